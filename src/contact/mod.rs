@@ -1,0 +1,11 @@
+//! Unilateral contact by the reduced-integration penalty method: the gap, the contact
+//! rules, the penalty Newton solver and the pressures (DESIGN §2–§4).
+
+pub mod gap;
+pub mod penalty;
+pub mod pressure;
+pub mod rule;
+
+pub use gap::Obstacle;
+pub use pressure::{load, raw_pressure, smoothed_pressure};
+pub use rule::{ContactPoints, Rule};

@@ -1,0 +1,70 @@
+//! Degrees of freedom: two per node (u_x, u_y), numbered node by node; the Dirichlet
+//! dofs of Γ_D (and of the symmetry line of a half model) are removed, leaving V_h of (5).
+
+use crate::mesh::Mesh;
+
+/// Marks a constrained dof in [`DofMap::free`].
+const CONSTRAINED: usize = usize::MAX;
+
+#[derive(Clone, Debug)]
+pub struct DofMap {
+    /// For each global dof 2·node + component: its index among the free dofs, or CONSTRAINED.
+    free: Vec<usize>,
+    n_free: usize,
+}
+
+impl DofMap {
+    /// Free dofs are all but those for which `constrained(node, component)` holds.
+    pub fn new(n_nodes: usize, constrained: impl Fn(usize, usize) -> bool) -> Self {
+        let mut free = vec![CONSTRAINED; 2 * n_nodes];
+        let mut n_free = 0;
+        for (g, slot) in free.iter_mut().enumerate() {
+            if !constrained(g / 2, g % 2) {
+                *slot = n_free;
+                n_free += 1;
+            }
+        }
+        DofMap { free, n_free }
+    }
+
+    /// The model's constraints (DESIGN §1): the bottom clamped, and u_x = 0 on the left side
+    /// of a half model.
+    pub fn model(mesh: &Mesh) -> Self {
+        let nnx = mesh.nnx();
+        let symmetric = mesh.symmetric_left;
+        Self::new(mesh.n_nodes(), |node, comp| {
+            node < nnx || (symmetric && comp == 0 && node % nnx == 0)
+        })
+    }
+
+    pub fn n_free(&self) -> usize {
+        self.n_free
+    }
+    pub fn n_global(&self) -> usize {
+        self.free.len()
+    }
+
+    /// The free index of global dof `g`, if it is free.
+    pub fn free_index(&self, g: usize) -> Option<usize> {
+        let f = self.free[g];
+        (f != CONSTRAINED).then_some(f)
+    }
+
+    /// Global vector from free values, with `fixed` (by global dof) on the constrained dofs.
+    pub fn expand(&self, u_free: &[f64], fixed: impl Fn(usize) -> f64) -> Vec<f64> {
+        (0..self.free.len())
+            .map(|g| self.free_index(g).map_or_else(|| fixed(g), |f| u_free[f]))
+            .collect()
+    }
+
+    /// Free values of a global vector.
+    pub fn restrict(&self, global: &[f64]) -> Vec<f64> {
+        let mut out = vec![0.0; self.n_free];
+        for (g, &v) in global.iter().enumerate() {
+            if let Some(f) = self.free_index(g) {
+                out[f] = v;
+            }
+        }
+        out
+    }
+}

@@ -1,0 +1,13 @@
+//! riplab: the reduced-integration penalty (RIP) method for frictionless unilateral contact
+//! in plane elasticity, after N. Kikuchi, "A smoothing technique for reduced integration
+//! penalty methods in contact problems" (1981). Equation numbers (1)–(26) are the paper's;
+//! section numbers §1–§8 are those of `DESIGN.md`.
+
+pub mod cli;
+pub mod contact;
+pub mod fem;
+pub mod material;
+pub mod mesh;
+pub mod report;
+pub mod scenario;
+pub mod solve;

@@ -1,0 +1,43 @@
+//! Isotropic linear elasticity in the plane (DESIGN §1): the tensor E_ijkh of (2), (6).
+
+use serde::{Deserialize, Serialize};
+
+/// Plane strain (the paper's) or plane stress.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Plane {
+    Strain,
+    Stress,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Material {
+    /// Young's modulus E > 0.
+    pub young: f64,
+    /// Poisson's ratio, −1 < ν < 1/2.
+    pub poisson: f64,
+    pub plane: Plane,
+}
+
+impl Material {
+    /// Lamé's (λ, μ) of the two-dimensional model: plane stress uses λ* = 2λμ/(λ + 2μ).
+    pub fn lame(&self) -> (f64, f64) {
+        let (e, nu) = (self.young, self.poisson);
+        let mu = e / (2.0 * (1.0 + nu));
+        let lambda = match self.plane {
+            Plane::Strain => e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)),
+            Plane::Stress => e * nu / (1.0 - nu * nu),
+        };
+        (lambda, mu)
+    }
+
+    /// E_ijkh acting on the displacement gradient ordered (u_x,x, u_x,y, u_y,x, u_y,y), so that
+    /// a(u, v) of (2) is ∫ ∇vᵀ C ∇u.
+    pub fn tensor(&self) -> nalgebra::Matrix4<f64> {
+        let (lambda, mu) = self.lame();
+        let tr = nalgebra::Vector4::new(1.0, 0.0, 0.0, 1.0);
+        let shear = nalgebra::Vector4::new(0.0, 1.0, 1.0, 0.0);
+        let normal = nalgebra::Matrix4::from_diagonal(&nalgebra::Vector4::new(1.0, 0.0, 0.0, 1.0));
+        tr * tr.transpose() * lambda + normal * (2.0 * mu) + shear * shear.transpose() * mu
+    }
+}

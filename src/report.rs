@@ -1,0 +1,223 @@
+//! Output of solutions: a human table, CSV, and the JSON object of DESIGN §7.
+
+use std::fmt::Write as _;
+
+use serde::Serialize;
+
+use crate::scenario::Scenario;
+use crate::solve::{Discretization, Solution, Timing, scheme_name};
+
+/// Output format of the CLI.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Format {
+    Table,
+    Csv,
+    Json,
+}
+
+#[derive(Serialize)]
+pub struct Nodes {
+    pub x: Vec<f64>,
+    pub uy: Vec<f64>,
+    pub pbar: Vec<f64>,
+}
+
+#[derive(Serialize)]
+pub struct Points {
+    pub x: Vec<f64>,
+    pub p: Vec<f64>,
+}
+
+/// The JSON object of DESIGN §7 (fields may be added, never change meaning).
+#[derive(Serialize)]
+pub struct SolveReport {
+    pub scenario: String,
+    pub element: &'static str,
+    pub rule: &'static str,
+    pub scheme: Option<&'static str>,
+    pub level: u32,
+    pub h: f64,
+    pub epsilon: f64,
+    pub depth: f64,
+    pub half_model: bool,
+    pub n_elements: usize,
+    pub n_dofs: usize,
+    pub newton_iterations: usize,
+    pub converged: bool,
+    pub residual: f64,
+    pub load: f64,
+    pub nodes: Nodes,
+    pub points: Points,
+    pub timing_ms: Timing,
+}
+
+impl SolveReport {
+    pub fn new(scenario: &Scenario, level: u32, disc: &Discretization, sol: &Solution) -> Self {
+        let element = disc.mesh.element;
+        SolveReport {
+            scenario: scenario.name.clone(),
+            element: element.name(),
+            rule: sol.params.rule.name(),
+            scheme: scheme_name(element, sol.params.rule),
+            level,
+            h: disc.mesh.h(),
+            epsilon: sol.params.epsilon,
+            depth: sol.params.obstacle.depth(),
+            half_model: disc.mesh.symmetric_left,
+            n_elements: disc.mesh.n_elements(),
+            n_dofs: disc.n_dofs(),
+            newton_iterations: sol.newton.iterations,
+            converged: sol.newton.converged,
+            residual: sol.newton.residual,
+            load: sol.load,
+            nodes: Nodes {
+                x: sol.points.vertex_x.clone(),
+                uy: sol.vertex_uy.clone(),
+                pbar: sol.pbar.clone(),
+            },
+            points: Points {
+                x: sol.points.points.iter().map(|q| q.x).collect(),
+                p: sol.p.clone(),
+            },
+            timing_ms: sol.timing,
+        }
+    }
+
+    /// The scheme's label: "M1 (q1 + gauss1)" or "q1 + simpson".
+    pub fn scheme_label(&self) -> String {
+        match self.scheme {
+            Some(m) => format!("{m} ({} + {})", self.element, self.rule),
+            None => format!("{} + {}", self.element, self.rule),
+        }
+    }
+
+    /// A human-readable table.
+    pub fn table(&self) -> String {
+        let mut s = String::new();
+        let model = if self.half_model {
+            "half model"
+        } else {
+            "full model"
+        };
+        let _ = writeln!(
+            s,
+            "{} — {}, level {} (h = {}), {} elements, {} dofs, {model}",
+            self.scenario,
+            self.scheme_label(),
+            self.level,
+            self.h,
+            self.n_elements,
+            self.n_dofs
+        );
+        let state = if self.converged {
+            "converged"
+        } else {
+            "NOT CONVERGED"
+        };
+        let _ = writeln!(
+            s,
+            "ε = {:e}, depth = {}, Newton: {} iterations, {state} (relative residual {:.1e})",
+            self.epsilon, self.depth, self.newton_iterations, self.residual
+        );
+        let full = if self.half_model {
+            format!(" (full body {:.6})", 2.0 * self.load)
+        } else {
+            String::new()
+        };
+        let _ = writeln!(s, "load P = {:.6}{full}", self.load);
+        let t = &self.timing_ms;
+        let _ = writeln!(
+            s,
+            "time: assembly {:.1} ms, symbolic {:.1} ms, factorisations {:.1} ms, Newton {:.1} ms, total {:.1} ms",
+            t.assembly, t.symbolic, t.factorization, t.newton, t.total
+        );
+        let _ = writeln!(s);
+        let _ = writeln!(s, "Γ_C vertices ({}):", self.nodes.x.len());
+        let _ = writeln!(s, "{:>12} {:>14} {:>14}", "x", "u_y", "p̄");
+        for i in 0..self.nodes.x.len() {
+            let _ = writeln!(
+                s,
+                "{:>12.6} {:>14.6e} {:>14.6}",
+                self.nodes.x[i], self.nodes.uy[i], self.nodes.pbar[i]
+            );
+        }
+        let _ = writeln!(s);
+        let _ = writeln!(s, "rule points ({}):", self.points.x.len());
+        let _ = writeln!(s, "{:>12} {:>14}", "x", "p");
+        for i in 0..self.points.x.len() {
+            let _ = writeln!(s, "{:>12.6} {:>14.6}", self.points.x[i], self.points.p[i]);
+        }
+        s
+    }
+
+    /// CSV: one row per Γ_C vertex (`node`) and per rule point (`point`).
+    pub fn csv(&self) -> String {
+        let mut s = String::from("kind,x,uy,pbar,p\n");
+        for i in 0..self.nodes.x.len() {
+            let _ = writeln!(
+                s,
+                "node,{},{},{},",
+                self.nodes.x[i], self.nodes.uy[i], self.nodes.pbar[i]
+            );
+        }
+        for i in 0..self.points.x.len() {
+            let _ = writeln!(s, "point,{},,,{}", self.points.x[i], self.points.p[i]);
+        }
+        s
+    }
+}
+
+/// A sweep (several ε or depths on one mesh) as a summary table or CSV.
+pub fn sweep_summary(reports: &[SolveReport], format: Format) -> String {
+    let mut s = String::new();
+    let max = |v: &[f64]| v.iter().cloned().fold(0.0, f64::max);
+    if format == Format::Csv {
+        s.push_str("epsilon,depth,newton_iterations,converged,load,max_p,max_pbar,total_ms\n");
+        for r in reports {
+            let _ = writeln!(
+                s,
+                "{},{},{},{},{},{},{},{}",
+                r.epsilon,
+                r.depth,
+                r.newton_iterations,
+                r.converged,
+                r.load,
+                max(&r.points.p),
+                max(&r.nodes.pbar),
+                r.timing_ms.total
+            );
+        }
+        return s;
+    }
+    if let Some(r) = reports.first() {
+        let _ = writeln!(
+            s,
+            "{} — {}, level {} (h = {}), {} dofs",
+            r.scenario,
+            r.scheme_label(),
+            r.level,
+            r.h,
+            r.n_dofs
+        );
+    }
+    let _ = writeln!(
+        s,
+        "{:>10} {:>8} {:>7} {:>10} {:>14} {:>12} {:>12} {:>10}",
+        "ε", "depth", "Newton", "converged", "load", "max p", "max p̄", "total ms"
+    );
+    for r in reports {
+        let _ = writeln!(
+            s,
+            "{:>10.1e} {:>8} {:>7} {:>10} {:>14.6} {:>12.4} {:>12.4} {:>10.1}",
+            r.epsilon,
+            r.depth,
+            r.newton_iterations,
+            r.converged,
+            r.load,
+            max(&r.points.p),
+            max(&r.nodes.pbar),
+            r.timing_ms.total
+        );
+    }
+    s
+}
