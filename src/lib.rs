@@ -11,3 +11,4 @@ pub mod mesh;
 pub mod report;
 pub mod scenario;
 pub mod solve;
+pub mod tui;

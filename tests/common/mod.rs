@@ -1,0 +1,48 @@
+//! Helpers shared by the integration tests.
+#![allow(dead_code)]
+
+use riplab::scenario::Scenario;
+
+/// Run `body` with insta writing snapshots to the top-level `snapshots/`.
+#[macro_export]
+macro_rules! with_snapshots {
+    ($body:block) => {
+        insta::with_settings!({
+            snapshot_path => concat!(env!("CARGO_MANIFEST_DIR"), "/snapshots"),
+            prepend_module_to_snapshot => false,
+            omit_expression => true,
+        }, $body)
+    };
+}
+
+/// The default scenario with some TOML lines replaced: each `(old, new)` is a whole line.
+pub fn paper_with(edits: &[(&str, &str)]) -> Scenario {
+    let mut text = riplab::scenario::DEFAULT_SCENARIO.to_string();
+    for (old, new) in edits {
+        let line = text
+            .lines()
+            .find(|l| l.trim_start().starts_with(old))
+            .unwrap_or_else(|| panic!("no line {old}"))
+            .to_string();
+        text = text.replace(&line, new);
+    }
+    Scenario::parse(&text, "test.toml").expect("valid test scenario")
+}
+
+/// A deterministic pseudo-random sequence in [−1, 1) (no dependency needed for tests).
+pub struct Lcg(pub u64);
+
+impl Lcg {
+    pub fn next(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        ((self.0 >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
+    }
+}
+
+/// Relative difference |a − b| / max(|b|, floor).
+pub fn rel(a: f64, b: f64, floor: f64) -> f64 {
+    (a - b).abs() / b.abs().max(floor)
+}

@@ -1,0 +1,239 @@
+//! The contact discretisation checked by identities and physics independent of the solver:
+//! the paper's identity (18), global equilibrium, mirror symmetry, and plane-strain Hertz.
+
+mod common;
+
+use std::ops::ControlFlow;
+
+use common::{Lcg, paper_with, rel};
+use riplab::contact::penalty::NewtonOptions;
+use riplab::contact::pressure::{rule_product, smoothed_pressure, trapezoid_product};
+use riplab::contact::{ContactPoints, Obstacle, Rule};
+use riplab::fem::{Form, apply};
+use riplab::material::{Material, Plane};
+use riplab::mesh::{Element, Mesh};
+use riplab::solve::{ContactParams, Discretization, Solution, solve_contact, solve_scenario};
+
+fn solve(disc: &Discretization, rule: Rule, epsilon: f64, obstacle: Obstacle) -> Solution {
+    let params = ContactParams {
+        rule,
+        epsilon,
+        obstacle,
+    };
+    let sol = solve_contact(disc, &params, None, &NewtonOptions::default(), &mut |_| {
+        ControlFlow::Continue(())
+    })
+    .unwrap();
+    assert!(
+        sol.newton.converged,
+        "{rule:?}: Newton did not converge: {:?}",
+        sol.newton.history
+    );
+    sol
+}
+
+/// (18): I(q, v_n) = Î(q̄, v_n) for any q at the rule's points and any continuous piecewise
+/// linear v_n, on a non-uniform partition. For gauss1, q̄ is exactly (17).
+#[test]
+fn identity_18_holds_for_every_rule() {
+    let mut rng = Lcg(18);
+    let mut x = vec![0.0];
+    for _ in 0..23 {
+        x.push(x.last().unwrap() + 0.05 + rng.next().abs());
+    }
+    for rule in Rule::ALL {
+        let cp = ContactPoints::new(rule, &x, 1);
+        for _ in 0..20 {
+            let q: Vec<f64> = (0..cp.len()).map(|_| 100.0 * rng.next()).collect();
+            let v: Vec<f64> = (0..x.len()).map(|_| rng.next()).collect();
+            let v_at_points = cp.trace_of(&v);
+            let lhs = rule_product(&cp, &q, &v_at_points);
+            let rhs = trapezoid_product(&x, &smoothed_pressure(&cp, &q), &v);
+            assert!(
+                (lhs - rhs).abs() <= 1e-12 * lhs.abs().max(1.0),
+                "{rule:?}: {lhs} vs {rhs}"
+            );
+        }
+    }
+}
+
+/// The load P equals the vertical reaction on the clamped bottom: Σ_bottom (K u)_y = I(p, 1).
+#[test]
+fn load_equals_bottom_reaction() {
+    let scenario = paper_with(&[]);
+    for element in Element::ALL {
+        let disc = Discretization::of(&scenario, 2, element).unwrap();
+        for rule in Rule::ALL {
+            let sol = solve(&disc, rule, 1e-6, scenario.obstacle.clone());
+            let ku = apply(
+                &disc.mesh,
+                Form::Elasticity(scenario.material),
+                &sol.displacement(&disc),
+            );
+            let reaction: f64 = (0..disc.mesh.nnx())
+                .map(|i| ku[2 * disc.mesh.node(i, 0) + 1])
+                .sum();
+            assert!(sol.load > 100.0);
+            assert!(
+                rel(reaction, sol.load, 1.0) < 1e-9,
+                "{element:?}+{rule:?}: reaction {reaction} vs load {}",
+                sol.load
+            );
+        }
+    }
+}
+
+/// The half model and the full model give the same pressures, mirrored.
+#[test]
+fn half_and_full_model_agree() {
+    let half = paper_with(&[]);
+    let full = paper_with(&[("model", "model = \"full\""), ("nx =", "nx = 16")]);
+    for element in Element::ALL {
+        let dh = Discretization::of(&half, 1, element).unwrap();
+        let df = Discretization::of(&full, 1, element).unwrap();
+        for rule in Rule::ALL {
+            let sh = solve(&dh, rule, 1e-6, half.obstacle.clone());
+            let sf = solve(&df, rule, 1e-6, full.obstacle.clone());
+            assert!(
+                rel(sf.load, 2.0 * sh.load, 1.0) < 1e-8,
+                "{element:?}+{rule:?}: load"
+            );
+            let pmax = sh.p.iter().cloned().fold(0.0, f64::max);
+            // Points and vertices of the full model at x ≥ 0 are the half model's, in order,
+            // and those at −x mirror them.
+            let right: Vec<(f64, f64)> = sf
+                .points
+                .points
+                .iter()
+                .zip(&sf.p)
+                .filter(|(q, _)| q.x >= 0.0)
+                .map(|(q, &p)| (q.x, p))
+                .collect();
+            assert_eq!(right.len(), sh.p.len());
+            for ((x, pf), (qh, ph)) in right.iter().zip(sh.points.points.iter().zip(&sh.p)) {
+                assert_eq!(*x, qh.x);
+                assert!(
+                    (pf - ph).abs() <= 1e-8 * pmax,
+                    "{element:?}+{rule:?} p at x = {x}: {pf} vs {ph}"
+                );
+                let mirror = sf
+                    .points
+                    .points
+                    .iter()
+                    .position(|q| (q.x + x).abs() < 1e-12)
+                    .unwrap();
+                assert!((sf.p[mirror] - pf).abs() <= 1e-8 * pmax);
+            }
+            let offset = df.mesh.xs.len() / 2;
+            for (i, ph) in sh.pbar.iter().enumerate() {
+                assert!(
+                    (sf.pbar[offset + i] - ph).abs() <= 1e-8 * pmax,
+                    "{element:?}+{rule:?} p̄ at node {i}"
+                );
+                assert!((sf.pbar[offset - i] - ph).abs() <= 1e-8 * pmax);
+            }
+        }
+    }
+}
+
+/// Vertex lines: uniform with step `h` on [0, fine], then growing geometrically to `end`.
+fn graded(h: f64, fine: f64, end: f64, growth: f64) -> Vec<f64> {
+    let mut v: Vec<f64> = (0..=(fine / h).round() as usize).map(|i| i as f64 * h).collect();
+    let mut step = h;
+    while *v.last().unwrap() < end {
+        step *= growth;
+        let next = (v.last().unwrap() + step).min(end);
+        if end - next < step {
+            v.push(end);
+        } else {
+            v.push(next);
+        }
+    }
+    v
+}
+
+/// Plane-strain Hertz on a block much larger than the contact zone: a² = 4PR(1 − ν²)/(πE),
+/// p₀ = 2P/(πa) from the computed full-body load P agree with the computed pressure profile,
+/// whose fit p̄² = p₀²(1 − x²/a²) gives its own a and p₀.
+#[test]
+fn plane_strain_hertz() {
+    let material = Material {
+        young: 1000.0,
+        poisson: 0.3,
+        plane: Plane::Strain,
+    };
+    let radius = 10.0;
+    let (size, h) = (20.0, 1.0 / 32.0);
+    let xs = graded(h, 1.5, size, 1.15);
+    let ys: Vec<f64> = graded(h, 1.5, size, 1.15)
+        .iter()
+        .rev()
+        .map(|d| size - d)
+        .collect();
+    for (element, rule) in [
+        (Element::Q1, Rule::Trapezoid),
+        (Element::Q1, Rule::Gauss1),
+        (Element::Q2, Rule::Simpson),
+    ] {
+        let disc =
+            Discretization::new(Mesh::from_lines(element, xs.clone(), ys.clone(), true), material).unwrap();
+        let sol = solve(
+            &disc,
+            rule,
+            1e-8,
+            Obstacle::Cylinder {
+                radius,
+                depth: 0.2,
+                center: 0.0,
+            },
+        );
+        let load = 2.0 * sol.load;
+        let e_star = material.young / (1.0 - material.poisson.powi(2));
+        let a = (4.0 * load * radius / (std::f64::consts::PI * e_star)).sqrt();
+        let p0 = 2.0 * load / (std::f64::consts::PI * a);
+        assert!(
+            a > 0.6 && a < 1.4,
+            "the contact zone should be resolved by the fine region: a = {a}"
+        );
+        // Least-squares line through (x², p̄²) over the inner 80% of the zone.
+        let pts: Vec<(f64, f64)> = sol
+            .points
+            .vertex_x
+            .iter()
+            .zip(&sol.pbar)
+            .filter(|(x, _)| **x <= 0.8 * a)
+            .map(|(x, p)| (x * x, p * p))
+            .collect();
+        let n = pts.len() as f64;
+        let (mx, my) = (
+            pts.iter().map(|p| p.0).sum::<f64>() / n,
+            pts.iter().map(|p| p.1).sum::<f64>() / n,
+        );
+        let slope = pts.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum::<f64>()
+            / pts.iter().map(|p| (p.0 - mx).powi(2)).sum::<f64>();
+        let intercept = my - slope * mx;
+        let (p0_fit, a_fit) = (intercept.sqrt(), (-intercept / slope).sqrt());
+        assert!(
+            rel(p0_fit, p0, 1e-300) < 0.03,
+            "{element:?}+{rule:?}: p₀ fit {p0_fit} vs Hertz {p0}"
+        );
+        assert!(
+            rel(a_fit, a, 1e-300) < 0.03,
+            "{element:?}+{rule:?}: a fit {a_fit} vs Hertz {a}"
+        );
+    }
+}
+
+/// The default scenario solves at level 0 with every pair and says it converged.
+#[test]
+fn default_scenario_converges_for_every_pair() {
+    for element in Element::ALL {
+        for rule in Rule::ALL {
+            let mut s = paper_with(&[]);
+            s.element = element;
+            s.rule = rule;
+            let (_, sol) = solve_scenario(&s).unwrap();
+            assert!(sol.newton.converged && sol.load > 0.0);
+        }
+    }
+}

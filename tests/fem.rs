@@ -1,0 +1,139 @@
+//! The finite element layer checked against exact solutions: the patch test and a
+//! manufactured elasticity solution with the expected H¹ convergence rates.
+
+use riplab::fem::{DofMap, Form, apply, assemble, body_load, cholesky, h1_error, solve_in_place};
+use riplab::material::{Material, Plane};
+use riplab::mesh::{Element, Mesh};
+
+const STEEL_LIKE: Material = Material {
+    young: 1000.0,
+    poisson: 0.3,
+    plane: Plane::Strain,
+};
+
+/// Solve a(u, v) = ∫ f·v with u = `boundary` on every boundary node; returns u on all dofs.
+fn dirichlet_solve(
+    mesh: &Mesh,
+    material: Material,
+    f: &[f64],
+    boundary: impl Fn(f64, f64) -> [f64; 2],
+) -> Vec<f64> {
+    let (nnx, nny) = (mesh.nnx(), mesh.node_y.len());
+    let on_boundary = |n: usize| {
+        let (i, j) = (n % nnx, n / nnx);
+        i == 0 || j == 0 || i == nnx - 1 || j == nny - 1
+    };
+    let dofs = DofMap::new(mesh.n_nodes(), |n, _| on_boundary(n));
+    let lifted: Vec<f64> = (0..2 * mesh.n_nodes())
+        .map(|g| {
+            if on_boundary(g / 2) {
+                let (x, y) = mesh.node_coords(g / 2);
+                boundary(x, y)[g % 2]
+            } else {
+                0.0
+            }
+        })
+        .collect();
+    // K_ff u_f = f_f − K_fd u_d.
+    let k_lift = apply(mesh, Form::Elasticity(material), &lifted);
+    let rhs: Vec<f64> = f.iter().zip(&k_lift).map(|(a, b)| a - b).collect();
+    let mut uf = dofs.restrict(&rhs);
+    let k = assemble(mesh, &dofs, Form::Elasticity(material));
+    solve_in_place(&cholesky(&k).unwrap(), &mut uf, dofs.n_free());
+    dofs.expand(&uf, |g| lifted[g])
+}
+
+fn nonuniform_mesh(element: Element) -> Mesh {
+    Mesh::from_lines(
+        element,
+        vec![-1.0, -0.3, 0.1, 0.8, 2.0],
+        vec![0.0, 0.25, 1.1, 1.5],
+        false,
+    )
+}
+
+#[test]
+fn patch_test_reproduces_a_linear_field() {
+    let linear = |x: f64, y: f64| [0.3 + 1.2 * x - 0.7 * y, -0.4 + 0.5 * x + 0.9 * y];
+    for element in Element::ALL {
+        let mesh = nonuniform_mesh(element);
+        let u = dirichlet_solve(&mesh, STEEL_LIKE, &vec![0.0; 2 * mesh.n_nodes()], linear);
+        let worst = (0..mesh.n_nodes())
+            .map(|n| {
+                let (x, y) = mesh.node_coords(n);
+                let e = linear(x, y);
+                (u[2 * n] - e[0]).abs().max((u[2 * n + 1] - e[1]).abs())
+            })
+            .fold(0.0, f64::max);
+        assert!(worst < 1e-12, "{element:?}: linear field off by {worst:e}");
+    }
+}
+
+#[test]
+fn patch_test_gives_the_uniform_stress_reactions() {
+    // Uniaxial strain ε_xx = 1e-3 on [−1, 2] × [0, 1.5]: the reaction on the right side is
+    // σ_xx · height = (λ + 2μ) ε_xx · 1.5, checked by summing K u over the right-side nodes.
+    let (lambda, mu) = STEEL_LIKE.lame();
+    for element in Element::ALL {
+        let mesh = nonuniform_mesh(element);
+        let u = dirichlet_solve(&mesh, STEEL_LIKE, &vec![0.0; 2 * mesh.n_nodes()], |x, _| {
+            [1e-3 * x, 0.0]
+        });
+        let ku = apply(&mesh, Form::Elasticity(STEEL_LIKE), &u);
+        let nnx = mesh.nnx();
+        let right: f64 = (0..mesh.node_y.len()).map(|j| ku[2 * (j * nnx + nnx - 1)]).sum();
+        let expect = (lambda + 2.0 * mu) * 1e-3 * 1.5;
+        assert!(
+            (right - expect).abs() < 1e-10 * expect,
+            "{element:?}: {right} vs {expect}"
+        );
+    }
+}
+
+/// u = (sin πx sin πy, sin πx sin πy) on the unit square, zero on its boundary; f = −div σ(u).
+fn manufactured_rates(element: Element) -> Vec<f64> {
+    use std::f64::consts::PI;
+    let (lambda, mu) = STEEL_LIKE.lame();
+    let u = |x: f64, y: f64| {
+        let s = (PI * x).sin() * (PI * y).sin();
+        [s, s]
+    };
+    let grad = |x: f64, y: f64| {
+        let (sx, cx, sy, cy) = ((PI * x).sin(), (PI * x).cos(), (PI * y).sin(), (PI * y).cos());
+        [PI * cx * sy, PI * sx * cy, PI * cx * sy, PI * sx * cy]
+    };
+    let f = |x: f64, y: f64| {
+        let ss = (PI * x).sin() * (PI * y).sin();
+        let cc = (PI * x).cos() * (PI * y).cos();
+        // −(μ Δu + (λ + μ) ∇ div u), equal in both components.
+        let v = 2.0 * mu * PI * PI * ss - (lambda + mu) * PI * PI * (cc - ss);
+        [v, v]
+    };
+    let errors: Vec<f64> = [4, 8, 16, 32]
+        .iter()
+        .map(|&n| {
+            let mesh = Mesh::uniform(element, (0.0, 1.0, n), (0.0, 1.0, n), false);
+            let load = body_load(&mesh, f, 5);
+            let uh = dirichlet_solve(&mesh, STEEL_LIKE, &load, |_, _| [0.0, 0.0]);
+            let (err, norm) = h1_error(&mesh, &uh, u, grad, 5);
+            err / norm
+        })
+        .collect();
+    errors.windows(2).map(|w| (w[0] / w[1]).log2()).collect()
+}
+
+#[test]
+fn manufactured_solution_converges_at_rate_one_for_q1_and_p1() {
+    for element in [Element::Q1, Element::P1] {
+        let rates = manufactured_rates(element);
+        let last = *rates.last().unwrap();
+        assert!((0.95..1.1).contains(&last), "{element:?}: H¹ rates {rates:?}");
+    }
+}
+
+#[test]
+fn manufactured_solution_converges_at_rate_two_for_q2() {
+    let rates = manufactured_rates(Element::Q2);
+    let last = *rates.last().unwrap();
+    assert!((1.9..2.15).contains(&last), "Q2: H¹ rates {rates:?}");
+}
