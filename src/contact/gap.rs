@@ -15,7 +15,8 @@ pub enum Obstacle {
 }
 
 impl Obstacle {
-    /// g(x) = R − d − √(R² − (x − c)²); +∞ where the cylinder does not reach (|x − c| ≥ R).
+    /// g(x) = R − d − √(R² − (x − c)²), evaluated as (x − c)²/(R + √(R² − (x − c)²)) − d to
+    /// avoid cancellation; +∞ where the cylinder does not reach (|x − c| ≥ R).
     pub fn gap(&self, x: f64) -> f64 {
         match *self {
             Obstacle::Cylinder {
@@ -27,7 +28,7 @@ impl Obstacle {
                 if dx.abs() >= radius {
                     f64::INFINITY
                 } else {
-                    radius - depth - (radius * radius - dx * dx).sqrt()
+                    dx * dx / (radius + (radius * radius - dx * dx).sqrt()) - depth
                 }
             }
         }
