@@ -9,9 +9,11 @@ use clap::{Args, Parser, Subcommand};
 
 use crate::contact::Rule;
 use crate::contact::penalty::NewtonOptions;
+use crate::infsup::{TraceCompliance, estimate};
 use crate::mesh::Element;
-use crate::report::{Format, SolveReport, sweep_summary};
-use crate::scenario::{Scenario, ScenarioError, check};
+use crate::report::{Format, InfSupRow, SolveReport, infsup_output, sweep_summary};
+use crate::scenario::{MAX_LEVEL, Scenario, ScenarioError, check};
+use crate::solve::scheme_name;
 use crate::solve::{ContactParams, Discretization, preset, solve_contact};
 
 const EXIT_CODES: &str = "Exit codes:
@@ -33,6 +35,9 @@ pub enum Command {
     /// Solve the penalised contact problem and print the pressures.
     #[command(after_help = EXIT_CODES)]
     Solve(SolveArgs),
+    /// Estimate the inf-sup constants β_h of (13) and β̄_h of (21) over mesh levels.
+    #[command(after_help = EXIT_CODES)]
+    Infsup(InfsupArgs),
 }
 
 /// Which problem and discretisation: a scenario and overrides of its values.
@@ -66,6 +71,41 @@ pub struct SolveArgs {
     pub depth: Vec<f64>,
     #[arg(long, short, value_enum, default_value_t = Format::Table)]
     pub format: Format,
+}
+
+#[derive(Args, Debug)]
+pub struct InfsupArgs {
+    #[command(flatten)]
+    pub select: Select,
+    /// Levels, inclusive: `0..6`, `2..=4` or a single level.
+    #[arg(long, default_value = "0..4")]
+    pub levels: String,
+    /// Every element × rule pair (the paper's M1–M4 first).
+    #[arg(long, conflicts_with_all = ["element", "rule", "scheme"])]
+    pub all: bool,
+    #[arg(long, short, value_enum, default_value_t = Format::Table)]
+    pub format: Format,
+}
+
+/// Parse an inclusive level range `a..b`, `a..=b` or `a`.
+pub fn parse_levels(text: &str) -> Result<Vec<u32>, String> {
+    let bad = || format!("`{text}`; allowed: a level 0..={MAX_LEVEL} or a range like 0..6 (inclusive)");
+    let num = |t: &str| -> Result<u32, String> {
+        let v: i64 = t.trim().parse().map_err(|_| bad())?;
+        check::level(v)?;
+        Ok(v as u32)
+    };
+    let (a, b) = match text.split_once("..") {
+        Some((a, b)) => (num(a)?, num(b.trim_start_matches('='))?),
+        None => {
+            let v = num(text)?;
+            (v, v)
+        }
+    };
+    if a > b {
+        return Err(bad());
+    }
+    Ok((a..=b).collect())
 }
 
 /// A failure of a command, with its exit code.
@@ -123,6 +163,7 @@ impl Select {
 pub fn run(cli: Cli) -> ExitCode {
     let result = match cli.command {
         Some(Command::Solve(args)) => solve(&args),
+        Some(Command::Infsup(args)) => infsup(&args),
         None => {
             let args = SolveArgs {
                 select: Select {
@@ -226,4 +267,69 @@ fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
             failed.join("; ")
         )))
     }
+}
+
+/// Element × rule pairs: the paper's schemes first, then the others.
+fn all_pairs() -> Vec<(Element, Rule)> {
+    let mut pairs: Vec<(Element, Rule)> = ["M1", "M2", "M3", "M4"]
+        .iter()
+        .filter_map(|m| preset(m))
+        .collect();
+    for e in Element::ALL {
+        for r in Rule::ALL {
+            if !pairs.contains(&(e, r)) {
+                pairs.push((e, r));
+            }
+        }
+    }
+    pairs
+}
+
+fn infsup(args: &InfsupArgs) -> Result<ExitCode, CliError> {
+    let scenario = args.select.resolve()?;
+    let levels = parse_levels(&args.levels).map_err(|m| usage("--levels", m))?;
+    let pairs = if args.all {
+        all_pairs()
+    } else {
+        vec![(scenario.element, scenario.rule)]
+    };
+    let mut rows = Vec::new();
+    for element in Element::ALL
+        .into_iter()
+        .filter(|e| pairs.iter().any(|p| p.0 == *e))
+    {
+        for &level in &levels {
+            let t = std::time::Instant::now();
+            let disc =
+                Discretization::of(&scenario, level, element).map_err(|e| CliError::Solve(e.to_string()))?;
+            let compliance = TraceCompliance::new(&disc).map_err(CliError::Solve)?;
+            let shared_ms = t.elapsed().as_secs_f64() * 1e3;
+            for &(_, rule) in pairs.iter().filter(|p| p.0 == element) {
+                let t = std::time::Instant::now();
+                let est = estimate(&disc, &compliance, rule);
+                rows.push(InfSupRow {
+                    level,
+                    h: est.h,
+                    element: element.name(),
+                    rule: rule.name(),
+                    scheme: scheme_name(element, rule),
+                    beta: est.beta,
+                    beta_over_sqrt_h: est.beta_over_sqrt_h,
+                    beta_bar: est.beta_bar,
+                    beta_bar_over_sqrt_h: est.beta_bar_over_sqrt_h,
+                    kernel: est.kernel,
+                    mesh_ms: shared_ms,
+                    rule_ms: t.elapsed().as_secs_f64() * 1e3,
+                });
+            }
+        }
+    }
+    let order = |r: &InfSupRow| {
+        pairs
+            .iter()
+            .position(|p| p.0.name() == r.element && p.1.name() == r.rule)
+    };
+    rows.sort_by_key(|r| (order(r), r.level));
+    print(&infsup_output(&rows, args.format));
+    Ok(ExitCode::SUCCESS)
 }

@@ -6,6 +6,7 @@
 pub mod cli;
 pub mod contact;
 pub mod fem;
+pub mod infsup;
 pub mod material;
 pub mod mesh;
 pub mod report;

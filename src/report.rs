@@ -221,3 +221,115 @@ pub fn sweep_summary(reports: &[SolveReport], format: Format) -> String {
     }
     s
 }
+
+/// One row of `riplab infsup` (DESIGN §7; `scheme`, `kernel` and the timings are additions).
+#[derive(Serialize, Clone, Debug)]
+pub struct InfSupRow {
+    pub level: u32,
+    pub h: f64,
+    pub element: &'static str,
+    pub rule: &'static str,
+    pub scheme: Option<&'static str>,
+    pub beta: f64,
+    pub beta_over_sqrt_h: f64,
+    pub beta_bar: f64,
+    pub beta_bar_over_sqrt_h: f64,
+    pub kernel: Option<String>,
+    /// Assembly, factorisation and trace compliance of the mesh (shared by its rules), ms.
+    pub mesh_ms: f64,
+    /// The rule's own dense work, ms.
+    pub rule_ms: f64,
+}
+
+/// Observed slope of log β against log h between two rows (None where β = 0).
+pub fn slope(prev: &InfSupRow, row: &InfSupRow) -> Option<f64> {
+    (prev.beta > 0.0 && row.beta > 0.0).then(|| (row.beta / prev.beta).ln() / (row.h / prev.h).ln())
+}
+
+/// `riplab infsup` output: table (with slopes), CSV or the JSON array of DESIGN §7.
+pub fn infsup_output(rows: &[InfSupRow], format: Format) -> String {
+    let mut s = String::new();
+    match format {
+        Format::Json => return serde_json::to_string_pretty(rows).expect("serialisable") + "\n",
+        Format::Csv => {
+            s.push_str("level,h,element,rule,scheme,beta,beta_over_sqrt_h,beta_bar,beta_bar_over_sqrt_h,slope,kernel\n");
+            for (i, r) in rows.iter().enumerate() {
+                let sl = (i > 0 && same_pair(&rows[i - 1], r))
+                    .then(|| slope(&rows[i - 1], r))
+                    .flatten();
+                let _ = writeln!(
+                    s,
+                    "{},{},{},{},{},{},{},{},{},{},{}",
+                    r.level,
+                    r.h,
+                    r.element,
+                    r.rule,
+                    r.scheme.unwrap_or(""),
+                    r.beta,
+                    r.beta_over_sqrt_h,
+                    r.beta_bar,
+                    r.beta_bar_over_sqrt_h,
+                    sl.map_or(String::new(), |v| v.to_string()),
+                    r.kernel.is_some()
+                );
+            }
+            return s;
+        }
+        Format::Table => {}
+    }
+    let _ = writeln!(
+        s,
+        "{:<6} {:<15} {:>5} {:>9} {:>11} {:>11} {:>11} {:>11} {:>7} {:>9}",
+        "scheme", "pair", "level", "h", "β_h", "β_h/√h", "β̄_h", "β̄_h/√h", "slope", "ms"
+    );
+    for (i, r) in rows.iter().enumerate() {
+        if i > 0 && !same_pair(&rows[i - 1], r) {
+            s.push('\n');
+        }
+        let sl = (i > 0 && same_pair(&rows[i - 1], r))
+            .then(|| slope(&rows[i - 1], r))
+            .flatten();
+        let beta = if r.kernel.is_some() {
+            "0 (kernel)".to_string()
+        } else {
+            format!("{:.5}", r.beta)
+        };
+        let _ = writeln!(
+            s,
+            "{:<6} {:<15} {:>5} {:>9.6} {:>11} {:>11.5} {:>11.5} {:>11.5} {:>7} {:>9.1}",
+            r.scheme.unwrap_or("-"),
+            format!("{}+{}", r.element, r.rule),
+            r.level,
+            r.h,
+            beta,
+            r.beta_over_sqrt_h,
+            r.beta_bar,
+            r.beta_bar_over_sqrt_h,
+            sl.map_or("-".to_string(), |v| format!("{v:.3}")),
+            r.mesh_ms + r.rule_ms
+        );
+    }
+    let kernels: Vec<String> = rows
+        .iter()
+        .filter_map(|r| {
+            r.kernel
+                .as_ref()
+                .map(|k| format!("{}+{} level {}: {k}", r.element, r.rule, r.level))
+        })
+        .collect();
+    if let Some(first) = kernels.first() {
+        let _ = writeln!(
+            s,
+            "\nβ_h = 0 where the pressure space has a kernel, e.g. {first}."
+        );
+    }
+    let _ = writeln!(
+        s,
+        "slope: observed exponent of β_h ∝ h^slope between successive levels (0.5 means β_h/√h is constant)."
+    );
+    s
+}
+
+fn same_pair(a: &InfSupRow, b: &InfSupRow) -> bool {
+    a.element == b.element && a.rule == b.rule
+}

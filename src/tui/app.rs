@@ -1,0 +1,484 @@
+//! The app's state and its pure update function: keys and worker replies come in, the state
+//! changes, and the requests the visible scene still needs go out. No terminal, no threads.
+
+use std::collections::{HashMap, HashSet};
+use std::sync::Arc;
+
+use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
+
+use crate::contact::Rule;
+use crate::mesh::Element;
+use crate::scenario::{MAX_LEVEL, Scenario};
+use crate::solve::preset;
+
+use super::beta::InfSup;
+use super::worker::Solved;
+
+/// The finest level the interactive lab offers.
+pub const MAX_APP_LEVEL: u32 = if MAX_LEVEL < 6 { MAX_LEVEL } else { 6 };
+/// The range of ε reachable with `+`/`-`.
+pub const EPSILON_RANGE: (f64, f64) = (1e-14, 1e2);
+/// The depth step of `d`/`D`.
+pub const DEPTH_STEP: f64 = 0.1;
+
+/// A screen of the app.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Scene {
+    /// Pressures, inf-sup panel and deformed configuration near the contact.
+    Explore,
+    /// β/√h against h for the paper's schemes.
+    InfSup,
+    /// The deformed configuration, full size.
+    Mesh,
+}
+
+impl Scene {
+    pub const ALL: [Scene; 3] = [Scene::Explore, Scene::InfSup, Scene::Mesh];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Scene::Explore => "explore",
+            Scene::InfSup => "infsup",
+            Scene::Mesh => "mesh",
+        }
+    }
+
+    /// The scene called `name`, if any.
+    pub fn from_name(name: &str) -> Option<Scene> {
+        Scene::ALL.into_iter().find(|s| s.name() == name)
+    }
+
+    fn shifted(self, by: usize) -> Scene {
+        let i = Scene::ALL.iter().position(|&s| s == self).unwrap_or(0);
+        Scene::ALL[(i + by) % Scene::ALL.len()]
+    }
+
+    /// Whether the scene shows a contact solution.
+    pub fn needs_solution(self) -> bool {
+        matches!(self, Scene::Explore | Scene::Mesh)
+    }
+}
+
+/// Everything a contact solve depends on (the scenario aside).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SolveKey {
+    pub level: u32,
+    pub element: Element,
+    pub rule: Rule,
+    pub epsilon: f64,
+    pub depth: f64,
+}
+
+/// Everything an inf-sup estimate depends on (the scenario aside).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct InfSupKey {
+    pub level: u32,
+    pub element: Element,
+    pub rule: Rule,
+}
+
+/// A solve to run; `generation` orders requests (a newer one cancels an older one).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SolveRequest {
+    pub generation: u64,
+    pub key: SolveKey,
+}
+
+/// An inf-sup estimate to run; dropped unstarted if a newer generation exists.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct InfSupRequest {
+    pub generation: u64,
+    pub key: InfSupKey,
+}
+
+/// Where a running solve is.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Progress {
+    /// Assembling K and its symbolic factorisation for a new mesh.
+    Assembling,
+    /// Newton iteration `iteration` reached relative residual `residual`.
+    Newton {
+        iteration: usize,
+        residual: f64,
+        active: usize,
+    },
+}
+
+/// A message from the worker.
+#[derive(Clone, Debug)]
+pub enum Response {
+    Progress {
+        generation: u64,
+        progress: Progress,
+    },
+    Solved {
+        generation: u64,
+        result: Result<Arc<Solved>, String>,
+    },
+    /// The solve of `generation` was superseded and stopped.
+    Cancelled { generation: u64 },
+    /// `result` is None when the request was dropped as stale before it started.
+    InfSup {
+        key: InfSupKey,
+        result: Option<Result<InfSup, String>>,
+    },
+}
+
+/// An input to [`App::update`].
+#[derive(Clone, Debug)]
+pub enum Msg {
+    Key(KeyEvent),
+    /// The terminal was resized (redraw).
+    Resize,
+    Worker(Response),
+    /// The result of [`Command::Export`]: the file written, or what went wrong.
+    Exported(Result<String, String>),
+}
+
+/// Work for the runtime.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Command {
+    Solve(SolveRequest),
+    InfSup(InfSupRequest),
+    /// Write the displayed solution to a new CSV file.
+    Export,
+}
+
+/// What an update asks of the runtime.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Effect {
+    /// The screen changed.
+    pub redraw: bool,
+    pub commands: Vec<Command>,
+}
+
+/// The state of the lab.
+#[derive(Clone, Debug)]
+pub struct App {
+    pub scenario: Scenario,
+    /// The settings the user chose (what the screen should show).
+    pub settings: SolveKey,
+    pub scene: Scene,
+    pub show_gap: bool,
+    pub show_hertz: bool,
+    pub show_help: bool,
+    /// Show solve times (off for deterministic frames).
+    pub show_timing: bool,
+    /// Compute the inf-sup estimate at every level up to the current one, not just the current.
+    pub all_levels: bool,
+    quit: bool,
+    /// Bumped on every change of the settings.
+    pub generation: u64,
+    /// The last finished solve (kept on screen while a newer one runs).
+    pub solved: Option<Arc<Solved>>,
+    /// The generation of the solve in flight.
+    pending_solve: Option<u64>,
+    /// The settings whose solve failed (not retried until they change).
+    failed: Option<SolveKey>,
+    pub progress: Option<Progress>,
+    /// A failure to show in a banner.
+    pub error: Option<String>,
+    /// A one-off message for the status line (e.g. the file exported).
+    pub notice: Option<String>,
+    /// Inf-sup estimates computed so far.
+    pub infsup: HashMap<InfSupKey, Result<InfSup, String>>,
+    infsup_pending: HashSet<InfSupKey>,
+}
+
+impl App {
+    /// The lab on `scenario` at its own settings (level capped at [`MAX_APP_LEVEL`]).
+    pub fn new(scenario: Scenario) -> Self {
+        let settings = SolveKey {
+            level: scenario.level.min(MAX_APP_LEVEL),
+            element: scenario.element,
+            rule: scenario.rule,
+            epsilon: scenario.epsilon,
+            depth: scenario.obstacle.depth(),
+        };
+        App {
+            scenario,
+            settings,
+            scene: Scene::Explore,
+            show_gap: false,
+            show_hertz: false,
+            show_help: false,
+            show_timing: true,
+            all_levels: false,
+            quit: false,
+            generation: 0,
+            solved: None,
+            pending_solve: None,
+            failed: None,
+            progress: None,
+            error: None,
+            notice: None,
+            infsup: HashMap::new(),
+            infsup_pending: HashSet::new(),
+        }
+    }
+
+    /// Whether the user asked to quit.
+    pub fn should_quit(&self) -> bool {
+        self.quit
+    }
+
+    /// Whether a solve is in flight.
+    pub fn is_solving(&self) -> bool {
+        self.pending_solve.is_some()
+    }
+
+    /// The inf-sup estimates in flight.
+    pub fn infsup_pending(&self) -> usize {
+        self.infsup_pending.len()
+    }
+
+    /// The displayed solution if it is of the current settings.
+    pub fn current(&self) -> Option<&Arc<Solved>> {
+        self.solved.as_ref().filter(|s| s.key == self.settings)
+    }
+
+    /// The inf-sup key of the current settings.
+    pub fn infsup_key(&self) -> InfSupKey {
+        InfSupKey {
+            level: self.settings.level,
+            element: self.settings.element,
+            rule: self.settings.rule,
+        }
+    }
+
+    /// Handle one input; returns whether to redraw and the work still needed.
+    pub fn update(&mut self, msg: Msg) -> Effect {
+        let mut commands = Vec::new();
+        let redraw = match msg {
+            Msg::Key(key) => self.key(key, &mut commands),
+            Msg::Resize => true,
+            Msg::Worker(response) => self.worker(response),
+            Msg::Exported(result) => {
+                match result {
+                    Ok(path) => self.notice = Some(format!("exported {path}")),
+                    Err(e) => self.error = Some(format!("export failed: {e}")),
+                }
+                true
+            }
+        };
+        commands.extend(self.requests());
+        Effect { redraw, commands }
+    }
+
+    fn key(&mut self, key: KeyEvent, commands: &mut Vec<Command>) -> bool {
+        if !matches!(key.kind, KeyEventKind::Press | KeyEventKind::Repeat) {
+            return false;
+        }
+        if key.modifiers.contains(KeyModifiers::CONTROL) {
+            if matches!(key.code, KeyCode::Char('c' | 'C')) {
+                self.quit = true;
+            }
+            return self.quit;
+        }
+        self.notice = None;
+        if self.show_help {
+            // Any key closes the help; q still quits, Esc and ? only close it.
+            self.show_help = false;
+            if matches!(key.code, KeyCode::Esc | KeyCode::Char('?')) {
+                return true;
+            }
+        }
+        let before = self.settings;
+        match key.code {
+            KeyCode::Char('q') | KeyCode::Esc => self.quit = true,
+            KeyCode::Char('?') => self.show_help = true,
+            KeyCode::Left | KeyCode::Char('[') => {
+                self.settings.level = self.settings.level.saturating_sub(1);
+            }
+            KeyCode::Right | KeyCode::Char(']') => {
+                self.settings.level = (self.settings.level + 1).min(MAX_APP_LEVEL);
+            }
+            KeyCode::Char('r') => {
+                let i = Rule::ALL.iter().position(|&r| r == self.settings.rule).unwrap_or(0);
+                self.settings.rule = Rule::ALL[(i + 1) % Rule::ALL.len()];
+            }
+            KeyCode::Char('e') => {
+                let all = Element::ALL;
+                let i = all.iter().position(|&e| e == self.settings.element).unwrap_or(0);
+                self.settings.element = all[(i + 1) % all.len()];
+            }
+            KeyCode::Char(c @ '1'..='4') => {
+                if let Some((element, rule)) = preset(&format!("M{c}")) {
+                    self.settings.element = element;
+                    self.settings.rule = rule;
+                }
+            }
+            KeyCode::Char('+' | '=') => self.shift_epsilon(1),
+            KeyCode::Char('-' | '_') => self.shift_epsilon(-1),
+            KeyCode::Char('d') => self.shift_depth(-DEPTH_STEP),
+            KeyCode::Char('D') => self.shift_depth(DEPTH_STEP),
+            KeyCode::Tab => self.scene = self.scene.shifted(1),
+            KeyCode::BackTab => self.scene = self.scene.shifted(Scene::ALL.len() - 1),
+            KeyCode::Char('g') => self.show_gap = !self.show_gap,
+            KeyCode::Char('h') => self.show_hertz = !self.show_hertz,
+            KeyCode::Char('a') => self.all_levels = !self.all_levels,
+            KeyCode::Char('s') => {
+                if self.current().is_some() {
+                    commands.push(Command::Export);
+                } else {
+                    self.notice = Some("nothing to export yet: the solve is not finished".into());
+                }
+            }
+            _ => return false,
+        }
+        if self.settings != before {
+            self.generation += 1;
+            self.error = None;
+        }
+        true
+    }
+
+    /// ε times 10^`decades`, kept to the decimal digits of the scenario's ε.
+    fn shift_epsilon(&mut self, decades: i32) {
+        let next = shift_decades(self.settings.epsilon, decades);
+        if (EPSILON_RANGE.0..=EPSILON_RANGE.1).contains(&next) {
+            self.settings.epsilon = next;
+        } else {
+            self.notice = Some(format!(
+                "ε stays within {:e}..={:e}",
+                EPSILON_RANGE.0, EPSILON_RANGE.1
+            ));
+        }
+    }
+
+    /// The depth plus `delta`, within 0..=min(R, height)/2, rounded to 1e-9.
+    fn shift_depth(&mut self, delta: f64) {
+        let max = self.max_depth();
+        let next = ((self.settings.depth + delta) * 1e9).round() / 1e9;
+        if (0.0..=max + 1e-12).contains(&next) {
+            self.settings.depth = next;
+        } else {
+            self.notice = Some(format!("depth stays within 0..={max}"));
+        }
+    }
+
+    /// The deepest indentation offered: half the smaller of the radius and the height.
+    pub fn max_depth(&self) -> f64 {
+        let radius = match self.scenario.obstacle {
+            crate::contact::Obstacle::Cylinder { radius, .. } => radius,
+        };
+        radius.min(self.scenario.height) / 2.0
+    }
+
+    fn worker(&mut self, response: Response) -> bool {
+        match response {
+            Response::Progress {
+                generation,
+                progress,
+            } => {
+                if self.pending_solve != Some(generation) {
+                    return false;
+                }
+                self.progress = Some(progress);
+            }
+            Response::Solved { generation, result } => {
+                if self.pending_solve != Some(generation) {
+                    return false;
+                }
+                self.pending_solve = None;
+                self.progress = None;
+                match result {
+                    // The user came back to the settings on screen meanwhile: keep them.
+                    Ok(solved) if solved.key != self.settings && self.current().is_some() => {}
+                    Ok(solved) => {
+                        self.solved = Some(solved);
+                        self.error = None;
+                    }
+                    Err(e) => {
+                        self.failed = Some(self.settings);
+                        self.error = Some(e);
+                    }
+                }
+            }
+            Response::Cancelled { generation } => {
+                if self.pending_solve != Some(generation) {
+                    return false;
+                }
+                self.pending_solve = None;
+                self.progress = None;
+            }
+            Response::InfSup { key, result } => {
+                self.infsup_pending.remove(&key);
+                match result {
+                    Some(result) => {
+                        self.infsup.insert(key, result);
+                    }
+                    None => return false,
+                }
+            }
+        }
+        true
+    }
+
+    /// The inf-sup estimates the visible scene shows.
+    fn infsup_needed(&self) -> Vec<InfSupKey> {
+        let levels = if self.all_levels {
+            0..=self.settings.level
+        } else {
+            self.settings.level..=self.settings.level
+        };
+        let mut keys = Vec::new();
+        for level in levels {
+            match self.scene {
+                Scene::Explore => keys.push(InfSupKey {
+                    level,
+                    ..self.infsup_key()
+                }),
+                Scene::InfSup => keys.extend((1..=4).filter_map(|m| {
+                    let (element, rule) = preset(&format!("M{m}"))?;
+                    Some(InfSupKey {
+                        level,
+                        element,
+                        rule,
+                    })
+                })),
+                Scene::Mesh => {}
+            }
+        }
+        keys
+    }
+
+    /// The requests the visible scene needs that are neither done nor in flight.
+    fn requests(&mut self) -> Vec<Command> {
+        let mut out = Vec::new();
+        let wants_solve = self.scene.needs_solution()
+            && self.current().is_none()
+            && self.failed != Some(self.settings)
+            && self.pending_solve != Some(self.generation);
+        if wants_solve {
+            self.pending_solve = Some(self.generation);
+            out.push(Command::Solve(SolveRequest {
+                generation: self.generation,
+                key: self.settings,
+            }));
+        }
+        for key in self.infsup_needed() {
+            if !self.infsup.contains_key(&key) && self.infsup_pending.insert(key) {
+                out.push(Command::InfSup(InfSupRequest {
+                    generation: self.generation,
+                    key,
+                }));
+            }
+        }
+        out
+    }
+}
+
+/// `value` × 10^`decades`, computed in decimal so that 1e-6 becomes 1e-5 exactly.
+pub fn shift_decades(value: f64, decades: i32) -> f64 {
+    let text = format!("{value:e}");
+    match text.split_once('e') {
+        Some((mantissa, exponent)) => match exponent.parse::<i32>() {
+            Ok(e) => format!("{mantissa}e{}", e + decades)
+                .parse()
+                .unwrap_or(value),
+            Err(_) => value,
+        },
+        None => value,
+    }
+}

@@ -1,0 +1,269 @@
+//! The numerical work behind the app: an [`Engine`] that owns the discretisation cache and runs
+//! solves and inf-sup estimates, a [`Worker`] thread that drives it from a channel, and
+//! [`settle`], which drives it synchronously (for `render` and tests).
+
+use std::collections::VecDeque;
+use std::ops::ControlFlow;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::mpsc::{self, Receiver, Sender};
+use std::time::Instant;
+
+use crate::contact::penalty::{NewtonOptions, SolveError};
+use crate::mesh::Element;
+use crate::scenario::Scenario;
+use crate::solve::{ContactParams, Discretization, Solution, solve_contact};
+
+use super::app::{
+    App, Command, InfSupKey, InfSupRequest, Msg, Progress, Response, SolveKey, SolveRequest,
+};
+use super::beta::{self, InfSup};
+
+/// How many discretisations (meshes with their factorisation pattern) are kept.
+const CACHE_SIZE: usize = 4;
+
+/// A finished solve with the discretisation it was computed on.
+#[derive(Clone)]
+pub struct Solved {
+    pub key: SolveKey,
+    pub disc: Arc<Discretization>,
+    pub solution: Solution,
+    /// Wall time of the request, mesh work included, in ms.
+    pub total_ms: f64,
+}
+
+impl std::fmt::Debug for Solved {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Solved")
+            .field("key", &self.key)
+            .field("load", &self.solution.load)
+            .finish_non_exhaustive()
+    }
+}
+
+/// Owns the discretisation cache (least recently used last out) and the warm start.
+pub struct Engine {
+    scenario: Scenario,
+    cache: Vec<(u32, Element, Arc<Discretization>)>,
+    /// The last displacement and the mesh it lives on.
+    warm: Option<(u32, Element, Vec<f64>)>,
+}
+
+impl Engine {
+    pub fn new(scenario: Scenario) -> Self {
+        Engine {
+            scenario,
+            cache: Vec::new(),
+            warm: None,
+        }
+    }
+
+    fn cached(&mut self, level: u32, element: Element) -> Option<Arc<Discretization>> {
+        let i = self
+            .cache
+            .iter()
+            .position(|(l, e, _)| (*l, *e) == (level, element))?;
+        let entry = self.cache.remove(i);
+        let disc = entry.2.clone();
+        self.cache.push(entry);
+        Some(disc)
+    }
+
+    fn discretization(&mut self, level: u32, element: Element) -> Result<Arc<Discretization>, String> {
+        if let Some(disc) = self.cached(level, element) {
+            return Ok(disc);
+        }
+        let disc = Arc::new(Discretization::of(&self.scenario, level, element).map_err(|e| e.to_string())?);
+        if self.cache.len() == CACHE_SIZE {
+            self.cache.remove(0);
+        }
+        self.cache.push((level, element, disc.clone()));
+        Ok(disc)
+    }
+
+    /// Run `req`; `is_current(generation)` false cancels it; progress goes to `report`.
+    pub fn solve(
+        &mut self,
+        req: &SolveRequest,
+        is_current: &dyn Fn(u64) -> bool,
+        report: &mut dyn FnMut(Response),
+    ) -> Response {
+        let t = Instant::now();
+        let generation = req.generation;
+        let key = req.key;
+        if self.cached(key.level, key.element).is_none() {
+            report(Response::Progress {
+                generation,
+                progress: Progress::Assembling,
+            });
+        }
+        let disc = match self.discretization(key.level, key.element) {
+            Ok(d) => d,
+            Err(e) => {
+                return Response::Solved {
+                    generation,
+                    result: Err(e),
+                };
+            }
+        };
+        let params = ContactParams {
+            rule: key.rule,
+            epsilon: key.epsilon,
+            obstacle: self.scenario.obstacle.with_depth(key.depth),
+        };
+        let warm = self
+            .warm
+            .as_ref()
+            .filter(|(l, e, _)| (*l, *e) == (key.level, key.element))
+            .map(|(_, _, u)| u.as_slice());
+        let result = solve_contact(&disc, &params, warm, &NewtonOptions::default(), &mut |it| {
+            if !is_current(generation) {
+                return ControlFlow::Break(());
+            }
+            report(Response::Progress {
+                generation,
+                progress: Progress::Newton {
+                    iteration: it.iteration,
+                    residual: it.residual,
+                    active: it.active,
+                },
+            });
+            ControlFlow::Continue(())
+        });
+        match result {
+            Ok(solution) => {
+                self.warm = Some((key.level, key.element, solution.newton.u.clone()));
+                Response::Solved {
+                    generation,
+                    result: Ok(Arc::new(Solved {
+                        key,
+                        disc,
+                        solution,
+                        total_ms: t.elapsed().as_secs_f64() * 1e3,
+                    })),
+                }
+            }
+            Err(SolveError::Cancelled) => Response::Cancelled { generation },
+            Err(e) => Response::Solved {
+                generation,
+                result: Err(e.to_string()),
+            },
+        }
+    }
+
+    /// The inf-sup estimate of `key`.
+    pub fn inf_sup(&mut self, key: InfSupKey) -> Result<InfSup, String> {
+        let disc = self.discretization(key.level, key.element)?;
+        beta::estimate(&disc, key.rule)
+    }
+}
+
+/// A request to the worker thread.
+enum Request {
+    Solve(SolveRequest),
+    InfSup(InfSupRequest),
+}
+
+/// The worker thread. Dropping it cancels the running solve and lets the thread end.
+pub struct Worker {
+    tx: Sender<Request>,
+    latest: Arc<AtomicU64>,
+}
+
+impl Worker {
+    /// Start the thread; every response goes to `sink`, which returns false once nobody listens.
+    pub fn spawn(scenario: Scenario, sink: impl Fn(Response) -> bool + Send + 'static) -> Self {
+        let (tx, rx) = mpsc::channel();
+        let latest = Arc::new(AtomicU64::new(0));
+        let shared = latest.clone();
+        std::thread::Builder::new()
+            .name("riplab-worker".into())
+            .spawn(move || run(Engine::new(scenario), &rx, &shared, &sink))
+            .expect("spawn the worker thread");
+        Worker { tx, latest }
+    }
+
+    /// Send a solve or an inf-sup request (anything else is not the worker's).
+    pub fn send(&self, command: &Command) {
+        let request = match *command {
+            Command::Solve(r) => Request::Solve(r),
+            Command::InfSup(r) => Request::InfSup(r),
+            Command::Export => return,
+        };
+        let generation = match &request {
+            Request::Solve(r) => r.generation,
+            Request::InfSup(r) => r.generation,
+        };
+        self.latest.fetch_max(generation, Ordering::SeqCst);
+        // A dead worker shows as requests that never finish; the app keeps running.
+        let _ = self.tx.send(request);
+    }
+}
+
+impl Drop for Worker {
+    fn drop(&mut self) {
+        self.latest.store(u64::MAX, Ordering::SeqCst);
+    }
+}
+
+/// The worker loop: the newest solve first (older ones are dropped), then inf-sup estimates
+/// in order, skipping those older than the newest generation.
+fn run(mut engine: Engine, rx: &Receiver<Request>, latest: &AtomicU64, sink: &dyn Fn(Response) -> bool) {
+    let mut solve: Option<SolveRequest> = None;
+    let mut queue: VecDeque<InfSupRequest> = VecDeque::new();
+    loop {
+        if solve.is_none() && queue.is_empty() {
+            match rx.recv() {
+                Ok(r) => take(r, &mut solve, &mut queue),
+                Err(_) => return,
+            }
+        }
+        while let Ok(r) = rx.try_recv() {
+            take(r, &mut solve, &mut queue);
+        }
+        let current = |g: u64| latest.load(Ordering::SeqCst) == g;
+        let response = if let Some(req) = solve.take() {
+            if !current(req.generation) {
+                continue;
+            }
+            engine.solve(&req, &current, &mut |r| {
+                sink(r);
+            })
+        } else if let Some(req) = queue.pop_front() {
+            let stale = latest.load(Ordering::SeqCst) > req.generation;
+            Response::InfSup {
+                key: req.key,
+                result: (!stale).then(|| engine.inf_sup(req.key)),
+            }
+        } else {
+            continue;
+        };
+        if !sink(response) {
+            return;
+        }
+    }
+}
+
+/// File a request: a solve replaces any waiting one, an estimate joins the queue.
+fn take(r: Request, solve: &mut Option<SolveRequest>, queue: &mut VecDeque<InfSupRequest>) {
+    match r {
+        Request::Solve(r) => *solve = Some(r),
+        Request::InfSup(r) => queue.push_back(r),
+    }
+}
+
+/// Run everything `app` needs synchronously on `engine`, until nothing is left.
+pub fn settle(app: &mut App, engine: &mut Engine) {
+    let mut commands = app.update(Msg::Resize).commands;
+    while let Some(command) = commands.pop() {
+        let response = match command {
+            Command::Solve(req) => engine.solve(&req, &|_| true, &mut |_| {}),
+            Command::InfSup(req) => Response::InfSup {
+                key: req.key,
+                result: Some(engine.inf_sup(req.key)),
+            },
+            Command::Export => continue,
+        };
+        commands.extend(app.update(Msg::Worker(response)).commands);
+    }
+}
