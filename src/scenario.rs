@@ -51,9 +51,8 @@ pub struct Scenario {
 #[derive(Clone, Debug, PartialEq)]
 pub struct ScenarioError {
     pub file: String,
-    /// 1-based line and column, when known.
-    pub line: Option<usize>,
-    pub column: Option<usize>,
+    /// 1-based (line, column), when known.
+    pub location: Option<(usize, usize)>,
     /// Dotted key, e.g. `material.poisson`, when known.
     pub key: Option<String>,
     pub message: String,
@@ -66,19 +65,15 @@ impl std::error::Error for ScenarioError {}
 impl fmt::Display for ScenarioError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "{}", self.file)?;
-        if let Some(line) = self.line {
-            write!(f, ":{line}")?;
-            if let Some(col) = self.column {
-                write!(f, ":{col}")?;
-            }
+        if let Some((line, col)) = self.location {
+            write!(f, ":{line}:{col}")?;
         }
         write!(f, ": ")?;
         if let Some(key) = &self.key {
             write!(f, "`{key}`: ")?;
         }
         write!(f, "{}", self.message)?;
-        if let (Some(line), Some(text)) = (self.line, &self.source_line) {
-            let col = self.column.unwrap_or(1);
+        if let (Some((line, col)), Some(text)) = (self.location, &self.source_line) {
             write!(f, "\n {line:>4} | {text}\n      | {:>col$}", "^")?;
         }
         Ok(())
@@ -201,7 +196,7 @@ struct Locator<'a> {
 
 impl Locator<'_> {
     fn error(&self, span: Option<Range<usize>>, key: Option<String>, message: String) -> ScenarioError {
-        let (line, column, source_line) = match span {
+        let (location, source_line) = match span {
             Some(span) => {
                 let start = span.start.min(self.text.len());
                 let before = &self.text[..start];
@@ -209,15 +204,14 @@ impl Locator<'_> {
                 let line_start = before.rfind('\n').map_or(0, |i| i + 1);
                 let column = self.text[line_start..start].chars().count() + 1;
                 let text = self.text[line_start..].lines().next().unwrap_or("").to_string();
-                (Some(line), Some(column), Some(text))
+                (Some((line, column)), Some(text))
             }
-            None => (None, None, None),
+            None => (None, None),
         };
-        let key = key.or_else(|| line.and_then(|l| self.key_at(l)));
+        let key = key.or_else(|| location.and_then(|(l, _)| self.key_at(l)));
         ScenarioError {
             file: self.file.to_string(),
-            line,
-            column,
+            location,
             key,
             message,
             source_line,
@@ -268,8 +262,7 @@ impl Scenario {
         let file = path.display().to_string();
         let plain = |message: String| ScenarioError {
             file: file.clone(),
-            line: None,
-            column: None,
+            location: None,
             key: None,
             message,
             source_line: None,

@@ -232,6 +232,11 @@ impl App {
         self.infsup_pending.len()
     }
 
+    /// Whether the estimate of `key` is in flight.
+    pub fn is_estimating(&self, key: &InfSupKey) -> bool {
+        self.infsup_pending.contains(key)
+    }
+
     /// The displayed solution if it is of the current settings.
     pub fn current(&self) -> Option<&Arc<Solved>> {
         self.solved.as_ref().filter(|s| s.key == self.settings)

@@ -1,0 +1,178 @@
+//! The deformed configuration (like the paper's Figure 3): the mesh lines moved by the
+//! displacement (magnified when it is small), mirrored for a half model, with the obstacle.
+//! Near the contact in the explore scene; the whole body in the mesh scene.
+
+use ratatui::Frame;
+use ratatui::layout::Rect;
+use ratatui::style::Color;
+use ratatui::text::Span;
+use ratatui::widgets::canvas::{Canvas, Line};
+use ratatui::widgets::{Block, Paragraph};
+
+use crate::contact::Obstacle;
+
+use super::super::app::App;
+use super::super::worker::Solved;
+use super::Look;
+use super::fmt::sig;
+
+/// How much of the body to show.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Extent {
+    /// A window around the contact zone.
+    NearContact,
+    /// The whole body.
+    Full,
+}
+
+/// Samples of the obstacle's outline.
+const OUTLINE_SAMPLES: usize = 200;
+
+pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look, extent: Extent) {
+    let title = match extent {
+        Extent::NearContact => "deformed near contact",
+        Extent::Full => "deformed configuration",
+    };
+    let Some(solved) = &app.solved else {
+        frame.render_widget(
+            Paragraph::new("solving…").block(Block::bordered().title(format!(" {title} "))),
+            area,
+        );
+        return;
+    };
+    let block = Block::bordered().border_style(look.theme.axis());
+    let inner = block.inner(area);
+    let (cols, rows) = (f64::from(inner.width.max(1)), f64::from(inner.height.max(1)));
+    let (xb, yb) = window(app, solved, extent, cols, rows);
+    let u = solved.solution.displacement(&solved.disc);
+    let scale = magnification(&u, app.scenario.height);
+    let mesh_lines = mesh_lines(solved, &u, scale, app.scenario.half_model, (xb, yb), (cols, rows), look.theme.mesh());
+    let outline = obstacle_outline(&solved.solution.params.obstacle, app.scenario.height, xb, look.theme.obstacle());
+    let block = block.title(Span::styled(
+        format!(" {title} · {}+{} L{} · displacement ×{} ", solved.key.element.name(), solved.key.rule.name(), solved.key.level, sig(scale, 2)),
+        look.theme.title(),
+    ));
+    let canvas = Canvas::default()
+        .block(block)
+        .marker(look.marker)
+        .x_bounds(xb)
+        .y_bounds(yb)
+        .paint(|ctx| {
+            for line in &mesh_lines {
+                ctx.draw(line);
+            }
+            ctx.layer();
+            for line in &outline {
+                ctx.draw(line);
+            }
+        });
+    frame.render_widget(canvas, area);
+}
+
+/// x and y bounds with equal scales on screen (a cell is about twice as tall as wide).
+fn window(app: &App, solved: &Solved, extent: Extent, cols: f64, rows: f64) -> ([f64; 2], [f64; 2]) {
+    let s = &app.scenario;
+    let (x0, x1) = s.x_range();
+    let (xlo, xhi) = if s.half_model { (-x1, x1) } else { (x0, x1) };
+    let top = s.height;
+    let aspect = 2.0 * rows / cols; // data height per data width for square pixels
+    match extent {
+        Extent::Full => {
+            let (w, h) = (xhi - xlo, top * 1.3);
+            let unit = (w / cols).max(h / (2.0 * rows));
+            let (xr, yr) = (unit * cols, unit * 2.0 * rows);
+            let xc = 0.5 * (xlo + xhi);
+            ([xc - xr / 2.0, xc + xr / 2.0], [-0.05 * top, yr - 0.05 * top])
+        }
+        Extent::NearContact => {
+            let obstacle = &solved.solution.params.obstacle;
+            let Obstacle::Cylinder { radius, center, .. } = *obstacle;
+            let d = obstacle.depth().max(0.0);
+            let reach = (radius * radius - (radius - d.min(radius)).powi(2)).sqrt();
+            let half_width = (2.2 * reach).max(4.0 * s.h(solved.key.level)).min(0.5 * (xhi - xlo));
+            let yr = 2.0 * half_width * aspect;
+            (
+                [center - half_width, center + half_width],
+                [top - 0.65 * yr, top + 0.35 * yr],
+            )
+        }
+    }
+}
+
+/// Magnify displacements smaller than 2% of the height to about 10% of it (a 1-2-5 factor).
+fn magnification(u: &[f64], height: f64) -> f64 {
+    let umax = u.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    if umax <= 0.0 || umax >= 0.02 * height {
+        return 1.0;
+    }
+    let want = 0.1 * height / umax;
+    let p = 10f64.powf(want.log10().floor());
+    [5.0, 2.0, 1.0]
+        .into_iter()
+        .map(|m| m * p)
+        .find(|&v| v <= want)
+        .unwrap_or(p)
+}
+
+/// The deformed grid lines, every `k`-th vertex line so that a cell spans at least one
+/// terminal column, each line through every node (curved for Q2), mirrored for a half model.
+fn mesh_lines(
+    solved: &Solved,
+    u: &[f64],
+    scale: f64,
+    half: bool,
+    (xb, yb): ([f64; 2], [f64; 2]),
+    (cols, rows): (f64, f64),
+    color: Color,
+) -> Vec<Line> {
+    let mesh = &solved.disc.mesh;
+    let p = mesh.element.order();
+    let h = mesh.h();
+    let dense = ((xb[1] - xb[0]) / h / cols).max((yb[1] - yb[0]) / h / (2.0 * rows));
+    let k = (dense.max(1.0).ceil() as usize).next_power_of_two();
+    let at = |i: usize, j: usize| -> (f64, f64) {
+        let n = mesh.node(i, j);
+        let (x, y) = mesh.node_coords(n);
+        (x + scale * u[2 * n], y + scale * u[2 * n + 1])
+    };
+    let every = |n: usize| -> Vec<usize> {
+        let mut v: Vec<usize> = (0..=n).step_by(k).collect();
+        if v.last() != Some(&n) {
+            v.push(n);
+        }
+        v
+    };
+    let mut polylines: Vec<Vec<(f64, f64)>> = Vec::new();
+    for jv in every(mesh.ny()) {
+        polylines.push((0..mesh.nnx()).map(|i| at(i, jv * p)).collect());
+    }
+    let nny = mesh.node_y.len();
+    for iv in every(mesh.nx()) {
+        polylines.push((0..nny).map(|j| at(iv * p, j)).collect());
+    }
+    let mut lines = Vec::new();
+    for poly in &polylines {
+        for w in poly.windows(2) {
+            let ((x1, y1), (x2, y2)) = (w[0], w[1]);
+            lines.push(Line::new(x1, y1, x2, y2, color));
+            if half {
+                lines.push(Line::new(-x1, y1, -x2, y2, color));
+            }
+        }
+    }
+    lines
+}
+
+/// The obstacle's lower outline over the window, as line segments.
+fn obstacle_outline(obstacle: &Obstacle, top: f64, xb: [f64; 2], color: Color) -> Vec<Line> {
+    let pts: Vec<(f64, f64)> = (0..OUTLINE_SAMPLES)
+        .filter_map(|i| {
+            let x = xb[0] + (xb[1] - xb[0]) * i as f64 / (OUTLINE_SAMPLES - 1) as f64;
+            let g = obstacle.gap(x);
+            g.is_finite().then_some((x, top + g))
+        })
+        .collect();
+    pts.windows(2)
+        .map(|w| Line::new(w[0].0, w[0].1, w[1].0, w[1].1, color))
+        .collect()
+}

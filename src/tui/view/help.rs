@@ -1,0 +1,54 @@
+//! The help overlay listing every key.
+
+use ratatui::Frame;
+use ratatui::layout::{Constraint, Flex, Layout, Rect};
+use ratatui::text::{Line, Span};
+use ratatui::widgets::{Block, Clear, Paragraph};
+
+use super::super::theme::Theme;
+
+/// Every key and what it does.
+pub const KEYS: [(&str, &str); 14] = [
+    ("q  Esc  Ctrl-C", "quit (Esc first closes this help)"),
+    ("?", "show / hide this help"),
+    ("←  →   [  ]", "coarser / finer mesh level (0–6)"),
+    ("r", "next contact rule"),
+    ("1 2 3 4", "the paper's schemes M1–M4"),
+    ("e", "next element (q1, q2, p1)"),
+    ("+  -", "ε × 10 / ε ÷ 10"),
+    ("d  D", "depth − 0.1 / + 0.1"),
+    ("Tab  Shift-Tab", "next / previous scene"),
+    ("g", "gap overlay on the pressure chart"),
+    ("h", "Hertz overlay (for the computed load)"),
+    ("a", "inf-sup at every level up to this one"),
+    ("s", "export the solution as CSV (a new file)"),
+    ("", "any other key closes this help"),
+];
+
+pub fn render(frame: &mut Frame, area: Rect, theme: Theme) {
+    let height = (KEYS.len() as u16 + 2).min(area.height);
+    let [row] = Layout::vertical([Constraint::Length(height)])
+        .flex(Flex::Center)
+        .areas(area);
+    let [popup] = Layout::horizontal([Constraint::Length(62.min(area.width))])
+        .flex(Flex::Center)
+        .areas(row);
+    let lines: Vec<Line> = KEYS
+        .iter()
+        .map(|(key, what)| {
+            Line::from(vec![
+                Span::styled(format!(" {key:<16}"), theme.key()),
+                Span::raw(*what),
+            ])
+        })
+        .collect();
+    frame.render_widget(Clear, popup);
+    frame.render_widget(
+        Paragraph::new(lines).block(
+            Block::bordered()
+                .title(Span::styled(" keys ", theme.title()))
+                .border_style(theme.axis()),
+        ),
+        popup,
+    );
+}

@@ -1,0 +1,138 @@
+//! The inf-sup panel of the explore scene: β_h, β_h/√h and β̄_h/√h for the current element
+//! and rule at every level computed so far, the current level highlighted, and a verdict.
+
+use ratatui::Frame;
+use ratatui::layout::Rect;
+use ratatui::text::{Line, Span};
+use ratatui::widgets::{Block, Paragraph, Wrap};
+
+use crate::mesh::Element;
+use crate::contact::Rule;
+use crate::solve::scheme_name;
+
+use super::super::app::{App, InfSupKey};
+use super::super::beta::InfSup;
+use super::super::theme::Theme;
+use super::fmt::sig;
+
+/// Below this ratio of β/√h between two successive levels, the estimate is decaying.
+const DECAY: f64 = 0.8;
+
+pub fn render(app: &App, frame: &mut Frame, area: Rect, theme: Theme) {
+    let key = app.infsup_key();
+    let scheme = scheme_name(key.element, key.rule)
+        .map(|m| format!("{m} "))
+        .unwrap_or_default();
+    let title = format!(" inf-sup · {scheme}{}+{} ", key.element.name(), key.rule.name());
+    let mut lines = vec![Line::styled(
+        format!("{:>2} {:>7} {:>9} {:>9} {:>9}", "L", "h", "β_h", "β_h/√h", "β̄_h/√h"),
+        theme.title(),
+    )];
+    let rows = area.height.saturating_sub(4) as usize; // borders, header, verdict
+    let levels = computed_levels(app, key.element, key.rule);
+    let skip = levels.len().saturating_sub(rows);
+    for &level in &levels[skip..] {
+        let k = InfSupKey { level, ..key };
+        let text = match app.infsup.get(&k) {
+            Some(Ok(b)) => format!(
+                "{level:>2} {:>7} {:>9} {:>9} {:>9}",
+                sig(b.h, 4),
+                sig(b.beta, 3),
+                sig(b.beta_over_sqrt_h, 3),
+                sig(b.beta_bar_over_sqrt_h, 3)
+            ),
+            Some(Err(e)) => format!("{level:>2} {e}"),
+            None => format!("{level:>2} {:>7} ⟳ estimating…", sig(app.scenario.h(level), 4)),
+        };
+        let style = if level == key.level {
+            theme.selected()
+        } else {
+            ratatui::style::Style::new()
+        };
+        lines.push(Line::styled(text, style));
+    }
+    lines.push(verdict(app, key.element, key.rule, theme));
+    frame.render_widget(
+        Paragraph::new(lines)
+            .wrap(Wrap { trim: false })
+            .block(
+                Block::bordered()
+                    .title(Span::styled(title, theme.title()))
+                    .border_style(theme.axis()),
+            ),
+        area,
+    );
+}
+
+/// Levels with an estimate (done, failed or running) for this element and rule, ascending.
+pub fn computed_levels(app: &App, element: Element, rule: Rule) -> Vec<u32> {
+    (0..=super::super::app::MAX_APP_LEVEL)
+        .filter(|&level| {
+            let k = InfSupKey {
+                level,
+                element,
+                rule,
+            };
+            app.infsup.contains_key(&k) || app.is_estimating(&k)
+        })
+        .collect()
+}
+
+/// The successful estimates for this element and rule, by ascending level.
+pub fn estimates(app: &App, element: Element, rule: Rule) -> Vec<(u32, &InfSup)> {
+    (0..=super::super::app::MAX_APP_LEVEL)
+        .filter_map(|level| {
+            let k = InfSupKey {
+                level,
+                element,
+                rule,
+            };
+            match app.infsup.get(&k) {
+                Some(Ok(b)) => Some((level, b)),
+                _ => None,
+            }
+        })
+        .collect()
+}
+
+/// Stability as observed: a kernel, β/√h decaying between the two finest levels, or bounded.
+/// `pick` selects β/√h (raw) or β̄/√h (smoothed).
+pub fn trend(app: &App, element: Element, rule: Rule, pick: fn(&InfSup) -> f64) -> Option<bool> {
+    let est = estimates(app, element, rule);
+    if est.iter().any(|(_, b)| pick(b) == 0.0) {
+        return Some(false);
+    }
+    match est.as_slice() {
+        [.., (_, a), (_, b)] => Some(pick(b) >= DECAY * pick(a)),
+        _ => None,
+    }
+}
+
+fn mark(stable: Option<bool>, theme: Theme) -> Span<'static> {
+    match stable {
+        Some(true) => Span::styled("✓", theme.good()),
+        Some(false) => Span::styled("✗", theme.bad()),
+        None => Span::raw("?"),
+    }
+}
+
+/// "trend: p ✗  p̄ ✓ · paper: unstable": observed (✓ bounded, ✗ decaying or a kernel, ? fewer
+/// than two levels), and the paper's verdict for M1–M4.
+fn verdict(app: &App, element: Element, rule: Rule, theme: Theme) -> Line<'static> {
+    let raw = trend(app, element, rule, |b| b.beta_over_sqrt_h);
+    let smooth = trend(app, element, rule, |b| b.beta_bar_over_sqrt_h);
+    let mut spans = vec![
+        Span::raw("trend: p "),
+        mark(raw, theme),
+        Span::raw("  p̄ "),
+        mark(smooth, theme),
+    ];
+    if let Some(m) = scheme_name(element, rule) {
+        let stable = matches!(m, "M3" | "M4");
+        spans.push(Span::raw(format!(
+            " · paper: {}",
+            if stable { "stable" } else { "unstable" }
+        )));
+    }
+    Line::from(spans)
+}

@@ -1,0 +1,100 @@
+//! Drawing the app: `view(&App, &mut Frame)` lays out the header, the scene, the error banner
+//! and the status line, and the help overlay on top. One module per scene part.
+
+mod deformed;
+mod fmt;
+mod header;
+mod help;
+mod infsup_chart;
+mod infsup_panel;
+mod pressure;
+mod status;
+
+use ratatui::Frame;
+use ratatui::layout::{Constraint, Layout, Rect};
+use ratatui::symbols::Marker;
+use ratatui::text::Line;
+use ratatui::widgets::{Paragraph, Wrap};
+
+use super::app::{App, Scene};
+use super::theme::Theme;
+
+/// The smallest terminal the layout is made for.
+pub const MIN_SIZE: (u16, u16) = (80, 24);
+
+/// How to draw: colours and the marker of charts and canvases.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Look {
+    pub theme: Theme,
+    pub marker: Marker,
+}
+
+/// Draw `app` into the whole frame.
+pub fn view(app: &App, frame: &mut Frame, look: &Look) {
+    let area = frame.area();
+    if area.width < MIN_SIZE.0 || area.height < MIN_SIZE.1 {
+        too_small(frame, area, look.theme);
+        return;
+    }
+    let banner_height = if app.error.is_some() { 2 } else { 0 };
+    let [top, body, banner, bottom] = Layout::vertical([
+        Constraint::Length(2),
+        Constraint::Fill(1),
+        Constraint::Length(banner_height),
+        Constraint::Length(1),
+    ])
+    .areas(area);
+    header::render(app, frame, top, look.theme);
+    match app.scene {
+        Scene::Explore => explore(app, frame, body, look),
+        Scene::InfSup => infsup_chart::render(app, frame, body, look),
+        Scene::Mesh => deformed::render(app, frame, body, look, deformed::Extent::Full),
+    }
+    if let Some(error) = &app.error {
+        let text = format!(" ✗ {error}");
+        frame.render_widget(
+            Paragraph::new(text)
+                .style(look.theme.banner())
+                .wrap(Wrap { trim: false }),
+            banner,
+        );
+    }
+    status::render(app, frame, bottom, look.theme);
+    if app.show_help {
+        help::render(frame, body, look.theme);
+    }
+}
+
+/// The explore scene: pressures on top, the inf-sup panel and the contact zone below.
+fn explore(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
+    let [chart, lower] =
+        Layout::vertical([Constraint::Percentage(57), Constraint::Fill(1)]).areas(area);
+    let [panel, contact] =
+        Layout::horizontal([Constraint::Length(42), Constraint::Fill(1)]).areas(lower);
+    pressure::render(app, frame, chart, look);
+    infsup_panel::render(app, frame, panel, look.theme);
+    deformed::render(app, frame, contact, look, deformed::Extent::NearContact);
+}
+
+/// The message shown instead of the app in a terminal below [`MIN_SIZE`].
+fn too_small(frame: &mut Frame, area: Rect, theme: Theme) {
+    let lines = vec![
+        Line::styled("riplab needs a bigger terminal", theme.title()),
+        Line::raw(format!(
+            "this one is {}×{}; the lab needs at least {}×{}",
+            area.width, area.height, MIN_SIZE.0, MIN_SIZE.1
+        )),
+        Line::raw("enlarge the window or make the font smaller"),
+        Line::raw("(q quits)"),
+    ];
+    let height = (lines.len() as u16).min(area.height);
+    let [middle] = Layout::vertical([Constraint::Length(height)])
+        .flex(ratatui::layout::Flex::Center)
+        .areas(area);
+    frame.render_widget(
+        Paragraph::new(lines)
+            .alignment(ratatui::layout::Alignment::Center)
+            .wrap(Wrap { trim: true }),
+        middle,
+    );
+}
