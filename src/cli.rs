@@ -238,11 +238,9 @@ fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
             .map_err(|e| CliError::Solve(e.to_string()))?;
             if reports.is_empty() {
                 // The first solve pays for the mesh's work; later ones in a sweep reuse it.
-                sol.timing.assembly = disc.assembly_ms;
-                sol.timing.symbolic = disc.symbolic_ms;
-                sol.timing.total += disc.assembly_ms + disc.symbolic_ms;
+                sol.timing.include_mesh_work(&disc);
             }
-            previous = Some(sol.newton.u.clone());
+            previous = Some(sol.newton.forces.clone());
             reports.push(SolveReport::new(&scenario, scenario.level, &disc, &sol));
         }
     }

@@ -7,17 +7,16 @@
 //! matrix of Q_h, S the smoothing q ↦ q̄ of (17) and M₁ the P1 mass matrix on Γ_C.
 //!
 //! Only the normal dofs on Γ_C enter B, so A⁻¹ is needed on those alone: the *trace
-//! compliance* C = E A⁻¹ Eᵀ (E selecting u_y on Γ_C), computed once per mesh with one
-//! factorisation of A on the stiffness's symbolic factorisation (same pattern) and blocked
-//! solves. Every rule then costs only small dense work: B A⁻¹ Bᵀ = W T C Tᵀ W.
+//! compliance* C = E A⁻¹ Eᵀ (E selecting u_y on Γ_C), read from one factorisation of A on
+//! the stiffness's ordering (same pattern, Γ_C dofs last: see [`crate::fem::condense`]).
+//! Every rule then costs only small dense work: B A⁻¹ Bᵀ = W T C Tᵀ W.
 
 use std::time::Instant;
 
-use faer::linalg::solvers::Solve;
-use faer::sparse::linalg::solvers::Llt;
 use faer::{Mat, Side};
 
 use crate::contact::{ContactPoints, Rule, smoothed_pressure};
+use crate::fem::condense::TraceFactor;
 use crate::fem::quadrature::gauss_legendre;
 use crate::fem::{Form, assemble};
 use crate::solve::Discretization;
@@ -41,33 +40,15 @@ pub struct TraceCompliance {
     pub ms: f64,
 }
 
-/// Right-hand sides solved at once: enough for dense kernels, small enough for memory.
-const BLOCK: usize = 32;
-
 impl TraceCompliance {
+    /// Assemble A on the mesh and condense it onto Γ_C on the stiffness's ordering.
     pub fn new(disc: &Discretization) -> Result<Self, String> {
         let t = Instant::now();
         let a = assemble(&disc.mesh, &disc.dofs, Form::H1);
-        let llt = Llt::try_new_with_symbolic(disc.symbolic.clone(), a.view(&a.values), Side::Lower)
-            .map_err(|e| format!("the H¹ Gram matrix is not positive definite: {e:?}"))?;
-        let (n, nc) = (a.n, disc.contact_dofs.len());
-        let mut c = Mat::<f64>::zeros(nc, nc);
-        let mut rhs = Mat::<f64>::zeros(n, BLOCK.min(nc));
-        for start in (0..nc).step_by(BLOCK) {
-            let width = BLOCK.min(nc - start);
-            rhs.fill(0.0);
-            for j in 0..width {
-                rhs[(disc.contact_dofs[start + j], j)] = 1.0;
-            }
-            llt.solve_in_place(rhs.as_mut().subcols_mut(0, width));
-            for j in 0..width {
-                for (i, &d) in disc.contact_dofs.iter().enumerate() {
-                    c[(i, start + j)] = rhs[(d, j)];
-                }
-            }
-        }
+        let factor = TraceFactor::new(&disc.ordering, &a)
+            .map_err(|e| format!("the H¹ Gram matrix cannot be factorised: {e}"))?;
         Ok(TraceCompliance {
-            c,
+            c: factor.compliance(),
             ms: t.elapsed().as_secs_f64() * 1e3,
         })
     }

@@ -1,76 +1,51 @@
-//! The penalised problem (8), (11) solved by semismooth Newton (DESIGN §3).
+//! The penalised problem (8), (11) solved by semismooth Newton (DESIGN §3), condensed onto
+//! the contact points.
 //!
 //! Minimise Π(u) = ½ uᵀKu − fᵀu + (1/2ε) Σ_q w_q ((Bu − g)_q⁺)², whose gradient is the
-//! residual of (11), R(u) = Ku − f + (1/ε) BᵀW(Bu − g)⁺. Each step solves with the Jacobian
-//! K + (1/ε) B_AᵀW_A B_A of the active points A (where u_n > g), refactorised numerically on
-//! the stiffness's symbolic factorisation. Steps are full (the primal–dual active-set method)
-//! until an active set repeats; then the exact line search on Π breaks the cycle, so that the
-//! iteration converges from any start. (A monotone line search on every step is far slower at
-//! small ε: the valley of Π is so narrow that a wrong active set allows only tiny steps.) Converged means the active set did not change over the last step
-//! and ‖R‖ is below a relative tolerance; anything else is reported as not converged.
+//! residual of (11), R(u) = Ku − f + (1/ε) BᵀW(Bu − g)⁺. Every Newton iterate has the form
+//! u = u₀ − K⁻¹Bᵀy with u₀ = K⁻¹f and y the contact forces at the rule's points, so the whole
+//! iteration lives in y: with G = B K⁻¹ Bᵀ = T C Tᵀ (C the trace compliance of K, T the trace
+//! of the rule's points) and d = Bu₀ − g, u_n − g = d − Gy, and the Newton step with the
+//! Jacobian K + (1/ε) B_AᵀW_A B_A of the active points A (where u_n > g) is the solution of
+//!
+//!   (ε W_A⁻¹ + G_AA) y_A = d_A,  y = 0 off A,
+//!
+//! a dense system of the active set's size: K is never refactorised. Steps are full (the
+//! primal–dual active-set method) until an active set repeats; then the exact line search on
+//! Π(u(y)) = ½ yᵀGy + (1/2ε) Σ w ((d − Gy)⁺)² + const breaks the cycle, so the iteration
+//! converges from any start. (A monotone line search on every step is far slower at small ε:
+//! the valley of Π is so narrow that a wrong active set allows only tiny steps.) Converged
+//! means the active set did not change over the last step and the residual is below a
+//! relative tolerance; anything else is reported as not converged.
 
 use std::collections::HashSet;
 use std::ops::ControlFlow;
-use std::time::Instant;
 
 use faer::linalg::solvers::Solve;
-use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
-use faer::{MatMut, Side};
+use faer::{Mat, Side};
 
-use crate::fem::SymCsc;
-
-/// The trace operator B on the free dofs: for each contact point, the free dofs and the
-/// coefficients giving u_n there.
-#[derive(Clone, Debug, Default)]
-pub struct Trace {
-    pub rows: Vec<Vec<(usize, f64)>>,
-}
-
-impl Trace {
-    pub fn apply(&self, u: &[f64]) -> Vec<f64> {
-        self.rows
-            .iter()
-            .map(|row| row.iter().map(|&(d, c)| c * u[d]).sum())
-            .collect()
-    }
-
-    /// y += Bᵀ x.
-    pub fn add_transpose(&self, x: &[f64], y: &mut [f64]) {
-        for (row, &xq) in self.rows.iter().zip(x) {
-            for &(d, c) in row {
-                y[d] += c * xq;
-            }
-        }
-    }
-}
-
-/// One instance of (11) on a mesh.
+/// One instance of (11), condensed onto the rule's points.
 pub struct Penalty<'a> {
-    /// K on the free dofs.
-    pub stiffness: &'a SymCsc,
-    /// Its symbolic Cholesky factorisation (shared by every Jacobian: same pattern).
-    pub symbolic: &'a SymbolicLlt<usize>,
-    /// f on the free dofs.
-    pub load: &'a [f64],
-    pub trace: &'a Trace,
-    /// Rule weights w_q and gap g(x_q) at the contact points.
+    /// G = B K⁻¹ Bᵀ between the rule's points.
+    pub coupling: &'a Mat<f64>,
+    /// d = B u₀ − g: the gap violation with no contact forces.
+    pub free_violation: &'a [f64],
+    /// Rule weights w_q.
     pub weight: &'a [f64],
-    pub gap: &'a [f64],
     pub epsilon: f64,
 }
 
 #[derive(Clone, Copy, Debug)]
 pub struct NewtonOptions {
     pub max_iterations: usize,
-    /// Relative residual ‖R‖ / max(‖Ku‖, ‖f‖, ‖BᵀWp‖) below which an unchanged active set is
-    /// accepted as converged.
+    /// Relative residual ‖Bᵀ(Wp − y)‖ / ‖BᵀWp‖ below which an unchanged active set is accepted.
     pub rtol: f64,
 }
 
 impl Default for NewtonOptions {
     fn default() -> Self {
         NewtonOptions {
-            max_iterations: 60,
+            max_iterations: 100,
             rtol: 1e-9,
         }
     }
@@ -88,22 +63,21 @@ pub struct Iteration {
 
 #[derive(Clone, Debug)]
 pub struct NewtonResult {
-    /// Displacement on the free dofs.
-    pub u: Vec<f64>,
+    /// Contact forces y = W p at the rule's points (the warm start of a later solve).
+    pub forces: Vec<f64>,
     /// u_n − g at the contact points.
     pub violation: Vec<f64>,
     pub iterations: usize,
     pub converged: bool,
     pub residual: f64,
     pub history: Vec<Iteration>,
-    pub factorization_ms: f64,
 }
 
 #[derive(Debug, thiserror::Error)]
 pub enum SolveError {
     #[error("the solve was cancelled")]
     Cancelled,
-    #[error("the Jacobian is not positive definite ({0}); is the body held against rigid motion?")]
+    #[error("the stiffness is not positive definite ({0}); is the body held against rigid motion?")]
     Factorization(String),
 }
 
@@ -111,64 +85,73 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
 
-fn norm(a: &[f64]) -> f64 {
-    dot(a, a).sqrt()
+/// G y for y supported on `support`.
+fn apply(g: &Mat<f64>, y: &[f64], support: &[usize]) -> Vec<f64> {
+    let mut out = vec![0.0; g.nrows()];
+    for &j in support {
+        let col = g.col(j);
+        let yj = y[j];
+        for (i, o) in out.iter_mut().enumerate() {
+            *o += col[i] * yj;
+        }
+    }
+    out
 }
 
-/// Positions in the stiffness's values of the penalty contributions of each contact point:
-/// (position, product of the two trace coefficients).
-fn penalty_positions(k: &SymCsc, trace: &Trace) -> Vec<Vec<(usize, f64)>> {
-    trace
-        .rows
-        .iter()
-        .map(|row| {
-            let mut out = Vec::with_capacity(row.len() * row.len());
-            for &(r, cr) in row {
-                for &(c, cc) in row {
-                    if r >= c {
-                        let pos = k.position(r, c).expect("trace dofs of one edge share a cell");
-                        out.push((pos, cr * cc));
-                    }
-                }
-            }
-            out
-        })
-        .collect()
+/// Solve (ε W_A⁻¹ + G_AA) y_A = d_A for the active points `a`.
+fn active_forces(pb: &Penalty, a: &[usize]) -> Vec<f64> {
+    let n = pb.coupling.nrows();
+    let mut y = vec![0.0; n];
+    if a.is_empty() {
+        return y;
+    }
+    let m = Mat::<f64>::from_fn(a.len(), a.len(), |i, j| {
+        pb.coupling[(a[i], a[j])] + if i == j { pb.epsilon / pb.weight[a[i]] } else { 0.0 }
+    });
+    let rhs = Mat::<f64>::from_fn(a.len(), 1, |i, _| pb.free_violation[a[i]]);
+    let sol = match m.llt(Side::Lower) {
+        Ok(llt) => llt.solve(&rhs),
+        // G is positive semi-definite and εW⁻¹ positive: only round-off can get here.
+        Err(_) => m.lblt(Side::Lower).solve(&rhs),
+    };
+    for (i, &q) in a.iter().enumerate() {
+        y[q] = sol[(i, 0)];
+    }
+    y
 }
 
-/// Solve (11) from `initial` (zero when None), reporting each iteration to `on_iteration`,
-/// which may cancel the solve.
+/// Solve (11) from the contact forces `initial` (none when None), reporting each iteration
+/// to `on_iteration`, which may cancel the solve.
 pub fn solve(
     pb: &Penalty,
     initial: Option<&[f64]>,
     opts: &NewtonOptions,
     on_iteration: &mut dyn FnMut(&Iteration) -> ControlFlow<()>,
 ) -> Result<NewtonResult, SolveError> {
-    let k = pb.stiffness;
-    let n = k.n;
+    let n = pb.coupling.nrows();
     let inv_eps = 1.0 / pb.epsilon;
-    let mut u = initial.map_or_else(|| vec![0.0; n], <[f64]>::to_vec);
-    let positions = penalty_positions(k, pb.trace);
+    let d = pb.free_violation;
+    let mut y = initial
+        .filter(|y| y.len() == n)
+        .map_or_else(|| vec![0.0; n], <[f64]>::to_vec);
     let mut previous_active: Option<Vec<bool>> = None;
-    let mut history = Vec::new();
-    let mut factorization_ms = 0.0;
-    let mut step = 1.0;
     let mut seen: HashSet<Vec<bool>> = HashSet::new();
+    let mut history = Vec::new();
+    let mut step = 1.0;
     for it in 0.. {
-        let ku = k.mul(&u);
-        let bu = pb.trace.apply(&u);
-        let s: Vec<f64> = bu.iter().zip(pb.gap).map(|(v, g)| v - g).collect();
+        let support: Vec<usize> = (0..n).filter(|&q| y[q] != 0.0).collect();
+        let gy = apply(pb.coupling, &y, &support);
+        let s: Vec<f64> = (0..n).map(|q| d[q] - gy[q]).collect();
         let active: Vec<bool> = s.iter().map(|&v| v > 0.0).collect();
-        let force: Vec<f64> = s
-            .iter()
-            .zip(pb.weight)
-            .map(|(&v, w)| w * v.max(0.0) * inv_eps)
-            .collect();
-        let mut contact = vec![0.0; n];
-        pb.trace.add_transpose(&force, &mut contact);
-        let r: Vec<f64> = (0..n).map(|i| ku[i] - pb.load[i] + contact[i]).collect();
-        let scale = norm(&ku).max(norm(pb.load)).max(norm(&contact));
-        let residual = if scale > 0.0 { norm(&r) / scale } else { 0.0 };
+        // R = Bᵀ(Wp − y): the contact forces the displacement implies against those assumed.
+        let force: Vec<f64> = (0..n).map(|q| pb.weight[q] * s[q].max(0.0) * inv_eps).collect();
+        let mismatch: Vec<f64> = (0..n).map(|q| force[q] - y[q]).collect();
+        let scale = dot(&force, &force).sqrt().max(dot(&y, &y).sqrt());
+        let residual = if scale > 0.0 {
+            dot(&mismatch, &mismatch).sqrt() / scale
+        } else {
+            0.0
+        };
         let info = Iteration {
             iteration: it,
             residual,
@@ -180,55 +163,29 @@ pub fn solve(
             return Err(SolveError::Cancelled);
         }
         let settled = previous_active.as_ref().is_none_or(|prev| *prev == active);
-        if residual <= opts.rtol && settled {
+        let done = residual <= opts.rtol && settled;
+        if done || it == opts.max_iterations || !residual.is_finite() {
             return Ok(NewtonResult {
-                u,
+                forces: y,
                 violation: s,
                 iterations: it,
-                converged: true,
+                converged: done,
                 residual,
                 history,
-                factorization_ms,
             });
         }
-        if it == opts.max_iterations || !residual.is_finite() {
-            return Ok(NewtonResult {
-                u,
-                violation: s,
-                iterations: it,
-                converged: false,
-                residual,
-                history,
-                factorization_ms,
-            });
-        }
-
-        // Newton direction: (K + (1/ε) B_AᵀW_A B_A) d = −R.
-        let t0 = Instant::now();
-        let mut values = k.values.clone();
-        for (q, pos) in positions.iter().enumerate().filter(|(q, _)| active[*q]) {
-            for &(p, c) in pos {
-                values[p] += pb.weight[q] * inv_eps * c;
-            }
-        }
-        let llt = Llt::try_new_with_symbolic(pb.symbolic.clone(), k.view(&values), Side::Lower)
-            .map_err(|e| SolveError::Factorization(format!("{e:?}")))?;
-        let mut d: Vec<f64> = r.iter().map(|v| -v).collect();
-        llt.solve_in_place(MatMut::from_column_major_slice_mut(&mut d, n, 1));
-        factorization_ms += t0.elapsed().as_secs_f64() * 1e3;
-
-        // Full semismooth Newton steps (a primal–dual active-set iteration) unless this
-        // active set was met before: then the iteration may cycle, and the exact minimiser of
-        // the convex Π along d is taken instead, which decreases Π strictly.
+        let a: Vec<usize> = (0..n).filter(|&q| active[q]).collect();
+        let target = active_forces(pb, &a);
         step = 1.0;
         if !seen.insert(active.clone()) {
-            let kd = k.mul(&d);
-            let bd = pb.trace.apply(&d);
-            let lin = dot(&ku, &d) - dot(pb.load, &d);
-            step = exact_step(&s, &bd, pb.weight, inv_eps, lin, dot(&d, &kd));
+            let delta: Vec<f64> = (0..n).map(|q| target[q] - y[q]).collect();
+            let moved: Vec<usize> = (0..n).filter(|&q| delta[q] != 0.0).collect();
+            let gd = apply(pb.coupling, &delta, &moved);
+            let b: Vec<f64> = gd.iter().map(|v| -v).collect();
+            step = exact_step(&s, &b, pb.weight, inv_eps, dot(&y, &gd), dot(&delta, &gd));
         }
-        for (ui, di) in u.iter_mut().zip(&d) {
-            *ui += step * di;
+        for q in 0..n {
+            y[q] += step * (target[q] - y[q]);
         }
         previous_active = Some(active);
     }

@@ -2,6 +2,7 @@
 
 pub mod assembly;
 pub mod basis;
+pub mod condense;
 pub mod dofs;
 pub mod quadrature;
 
