@@ -8,13 +8,14 @@ use std::process::ExitCode;
 use clap::{Args, Parser, Subcommand};
 
 use crate::contact::Rule;
-use crate::contact::penalty::NewtonOptions;
+use crate::contact::penalty::{NewtonOptions, SolveError};
 use crate::infsup::{TraceCompliance, estimate};
 use crate::mesh::Element;
-use crate::report::{Format, InfSupRow, SolveReport, infsup_output, sweep_summary};
+use crate::report::{Format, InfSupRow, SolveReport, infsup_output, study_output, sweep_summary};
 use crate::scenario::{MAX_LEVEL, Scenario, ScenarioError, check};
 use crate::solve::scheme_name;
 use crate::solve::{ContactParams, Discretization, preset, solve_contact};
+use crate::study::{Reference, convergence, epsilon_sweep};
 
 const EXIT_CODES: &str = "Exit codes:
   0  success
@@ -38,6 +39,9 @@ pub enum Command {
     /// Estimate the inf-sup constants β_h of (13) and β̄_h of (21) over mesh levels.
     #[command(after_help = EXIT_CODES)]
     Infsup(InfsupArgs),
+    /// Errors and rates of every scheme against an exact-constraint reference, with run times.
+    #[command(after_help = EXIT_CODES)]
+    Study(StudyArgs),
 }
 
 /// Which problem and discretisation: a scenario and overrides of its values.
@@ -63,7 +67,7 @@ pub struct Select {
 pub struct SolveArgs {
     #[command(flatten)]
     pub select: Select,
-    /// Penalty parameter ε > 0; several, comma-separated, sweep on one mesh.
+    /// Penalty parameter ε > 0 (0: the exact constraint); several, comma-separated, sweep on one mesh.
     #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
     pub epsilon: Vec<f64>,
     /// Indentation depth; several, comma-separated, sweep on one mesh.
@@ -85,6 +89,51 @@ pub struct InfsupArgs {
     pub all: bool,
     #[arg(long, short, value_enum, default_value_t = Format::Table)]
     pub format: Format,
+}
+
+#[derive(Args, Debug)]
+pub struct StudyArgs {
+    /// Scenario file (TOML); the paper's problem when omitted.
+    pub scenario: Option<PathBuf>,
+    /// Levels, inclusive: `0..5`, `2..=4` or a single level.
+    #[arg(long, default_value = "0..5")]
+    pub levels: String,
+    /// Schemes: presets M1–M4 or pairs like q2+gauss1, comma-separated.
+    #[arg(long, value_delimiter = ',', default_value = "M1,M2,M3,M4")]
+    pub schemes: Vec<String>,
+    /// Penalty parameter of the studied solves (the scenario's when omitted).
+    #[arg(long)]
+    pub epsilon: Option<f64>,
+    /// Instead of refining: sweep these ε (comma-separated) at `--level`.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        allow_negative_numbers = true,
+        requires = "level"
+    )]
+    pub sweep_epsilon: Vec<f64>,
+    /// The level of an ε sweep.
+    #[arg(long)]
+    pub level: Option<i64>,
+    /// Level of the Q2 exact-constraint reference (default: one finer than the finest studied).
+    #[arg(long)]
+    pub reference_level: Option<i64>,
+    #[arg(long, short, value_enum, default_value_t = Format::Table)]
+    pub format: Format,
+}
+
+/// Parse a scheme: a preset M1–M4 or `element+rule`.
+pub fn parse_scheme(text: &str) -> Result<(Element, Rule), String> {
+    use clap::ValueEnum;
+    if let Some(pair) = preset(text) {
+        return Ok(pair);
+    }
+    let bad = || format!("`{text}`; allowed: M1, M2, M3, M4 or element+rule, e.g. q2+gauss1");
+    let (e, r) = text.split_once('+').ok_or_else(bad)?;
+    Ok((
+        Element::from_str(e.trim(), true).map_err(|_| bad())?,
+        Rule::from_str(r.trim(), true).map_err(|_| bad())?,
+    ))
 }
 
 /// Parse an inclusive level range `a..b`, `a..=b` or `a`.
@@ -117,6 +166,16 @@ pub enum CliError {
     Usage(String),
     #[error("{0}")]
     Solve(String),
+}
+
+impl From<SolveError> for CliError {
+    fn from(e: SolveError) -> Self {
+        match e {
+            // A combination that has no solution is a bad request, not a solver failure.
+            SolveError::Kernel(_) => CliError::Usage(e.to_string()),
+            _ => CliError::Solve(e.to_string()),
+        }
+    }
 }
 
 impl CliError {
@@ -164,6 +223,7 @@ pub fn run(cli: Cli) -> ExitCode {
     let result = match cli.command {
         Some(Command::Solve(args)) => solve(&args),
         Some(Command::Infsup(args)) => infsup(&args),
+        Some(Command::Study(args)) => study(&args),
         None => {
             let args = SolveArgs {
                 select: Select {
@@ -195,7 +255,7 @@ fn print(out: &str) {
 fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
     let scenario = args.select.resolve()?;
     for &e in &args.epsilon {
-        check::positive(e).map_err(|m| usage("--epsilon", m))?;
+        check::epsilon(e).map_err(|m| usage("--epsilon", m))?;
     }
     for &d in &args.depth {
         check::finite(d).map_err(|m| usage("--depth", m))?;
@@ -217,8 +277,7 @@ fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
     };
     let sweep = epsilons.len() > 1 || depths.len() > 1;
 
-    let disc = Discretization::of(&scenario, scenario.level, scenario.element)
-        .map_err(|e| CliError::Solve(e.to_string()))?;
+    let disc = Discretization::of(&scenario, scenario.level, scenario.element).map_err(CliError::from)?;
     let mut reports = Vec::new();
     let mut previous: Option<Vec<f64>> = None;
     for &epsilon in &epsilons {
@@ -235,7 +294,7 @@ fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
                 &NewtonOptions::default(),
                 &mut |_| ControlFlow::Continue(()),
             )
-            .map_err(|e| CliError::Solve(e.to_string()))?;
+            .map_err(CliError::from)?;
             if reports.is_empty() {
                 // The first solve pays for the mesh's work; later ones in a sweep reuse it.
                 sol.timing.include_mesh_work(&disc);
@@ -298,8 +357,7 @@ fn infsup(args: &InfsupArgs) -> Result<ExitCode, CliError> {
     {
         for &level in &levels {
             let t = std::time::Instant::now();
-            let disc =
-                Discretization::of(&scenario, level, element).map_err(|e| CliError::Solve(e.to_string()))?;
+            let disc = Discretization::of(&scenario, level, element).map_err(CliError::from)?;
             let compliance = TraceCompliance::new(&disc).map_err(CliError::Solve)?;
             let shared_ms = t.elapsed().as_secs_f64() * 1e3;
             for &(_, rule) in pairs.iter().filter(|p| p.0 == element) {
@@ -329,5 +387,68 @@ fn infsup(args: &InfsupArgs) -> Result<ExitCode, CliError> {
     };
     rows.sort_by_key(|r| (order(r), r.level));
     print(&infsup_output(&rows, args.format));
+    Ok(ExitCode::SUCCESS)
+}
+
+fn study(args: &StudyArgs) -> Result<ExitCode, CliError> {
+    let scenario = Select {
+        scenario: args.scenario.clone(),
+        ..Select::default()
+    }
+    .resolve()?;
+    let schemes = args
+        .schemes
+        .iter()
+        .map(|s| parse_scheme(s))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(|m| usage("--schemes", m))?;
+    let epsilon = args.epsilon.unwrap_or(scenario.epsilon);
+    check::epsilon(epsilon).map_err(|m| usage("--epsilon", m))?;
+    for &e in &args.sweep_epsilon {
+        check::epsilon(e).map_err(|m| usage("--sweep-epsilon", m))?;
+    }
+    let levels = match args.level {
+        Some(l) if !args.sweep_epsilon.is_empty() => {
+            check::level(l).map_err(|m| usage("--level", m))?;
+            vec![l as u32]
+        }
+        _ => parse_levels(&args.levels).map_err(|m| usage("--levels", m))?,
+    };
+    let finest = *levels.iter().max().expect("at least one level");
+    let reference_level = match args.reference_level {
+        Some(l) => {
+            check::level(l).map_err(|m| usage("--reference-level", m))?;
+            if (l as u32) <= finest {
+                return Err(usage(
+                    "--reference-level",
+                    format!("{l} must be finer than the finest studied level {finest}"),
+                ));
+            }
+            l as u32
+        }
+        None => (finest + 1).min(MAX_LEVEL),
+    };
+    if reference_level <= finest {
+        return Err(usage(
+            "--levels",
+            format!(
+                "the reference needs a level finer than {finest}; allowed up to {}",
+                MAX_LEVEL - 1
+            ),
+        ));
+    }
+    eprintln!("computing the reference: q2 + simpson, ε = 0 (exact constraint), level {reference_level} …");
+    let reference = Reference::compute(&scenario, reference_level)?;
+    eprintln!(
+        "reference done in {:.1} s ({} dofs)",
+        reference.ms / 1e3,
+        reference.n_dofs
+    );
+    let rows = if args.sweep_epsilon.is_empty() {
+        convergence(&scenario, &reference, &schemes, &levels, epsilon)?
+    } else {
+        epsilon_sweep(&scenario, &reference, &schemes, levels[0], &args.sweep_epsilon)?
+    };
+    print(&study_output(&scenario.name, &reference, &rows, args.format));
     Ok(ExitCode::SUCCESS)
 }

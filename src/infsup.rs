@@ -62,31 +62,16 @@ pub fn pressure_mass(cp: &ContactPoints) -> Mat<f64> {
     let gauss = gauss_legendre(3);
     for (e, pts) in cp.edge_points.iter().enumerate() {
         let h = cp.vertex_x[e + 1] - cp.vertex_x[e];
-        let s: Vec<f64> = pts.iter().map(|&k| local_s(cp, k, e)).collect();
         for &(xi, w) in &gauss {
-            let t = (xi + 1.0) / 2.0;
-            let phi: Vec<f64> = (0..s.len())
-                .map(|a| {
-                    (0..s.len())
-                        .filter(|&b| b != a)
-                        .map(|b| (t - s[b]) / (s[a] - s[b]))
-                        .product()
-                })
-                .collect();
-            for a in 0..s.len() {
-                for b in 0..s.len() {
+            let phi = cp.edge_basis(e, (xi + 1.0) / 2.0);
+            for a in 0..pts.len() {
+                for b in 0..pts.len() {
                     m[(pts[a], pts[b])] += w / 2.0 * h * phi[a] * phi[b];
                 }
             }
         }
     }
     m
-}
-
-/// The parameter of point k on edge e (a shared end is s = 0 of the later edge).
-fn local_s(cp: &ContactPoints, k: usize, e: usize) -> f64 {
-    let q = &cp.points[k];
-    if q.edge == e { q.s } else { 0.0 }
 }
 
 /// The P1 mass matrix on the vertices of Γ_C.

@@ -12,4 +12,5 @@ pub mod mesh;
 pub mod report;
 pub mod scenario;
 pub mod solve;
+pub mod study;
 pub mod tui;

@@ -6,6 +6,7 @@ use serde::Serialize;
 
 use crate::scenario::Scenario;
 use crate::solve::{Discretization, Solution, Timing, scheme_name};
+use crate::study::{Errors, Reference, StudyRow};
 
 /// Output format of the CLI.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -332,4 +333,115 @@ pub fn infsup_output(rows: &[InfSupRow], format: Format) -> String {
 
 fn same_pair(a: &InfSupRow, b: &InfSupRow) -> bool {
     a.element == b.element && a.rule == b.rule
+}
+
+/// `riplab study` output: table, CSV, or JSON `{ "reference": …, "rows": […] }`.
+pub fn study_output(scenario: &str, reference: &Reference, rows: &[StudyRow], format: Format) -> String {
+    let mut s = String::new();
+    let rate = |r: &Option<Errors>, f: fn(&Errors) -> f64| {
+        r.as_ref().map_or(String::new(), |e| format!("{:.2}", f(e)))
+    };
+    match format {
+        Format::Json => {
+            let value = serde_json::json!({
+                "scenario": scenario,
+                "reference": {
+                    "element": reference.element.name(), "rule": reference.rule.name(), "epsilon": 0.0,
+                    "level": reference.level, "n_dofs": reference.n_dofs, "load": reference.load, "ms": reference.ms,
+                },
+                "rows": rows,
+            });
+            return serde_json::to_string_pretty(&value).expect("serialisable") + "\n";
+        }
+        Format::Csv => {
+            s.push_str("scheme,element,rule,level,h,epsilon,n_dofs,newton_iterations,converged,solve_ms,load,err_p,err_pbar,err_u,err_load,rate_p,rate_pbar,rate_u,rate_load\n");
+            for r in rows {
+                let e = &r.errors;
+                let _ = writeln!(
+                    s,
+                    "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
+                    r.scheme,
+                    r.element,
+                    r.rule,
+                    r.level,
+                    r.h,
+                    r.epsilon,
+                    r.n_dofs,
+                    r.newton_iterations,
+                    r.converged,
+                    r.solve_ms,
+                    r.load,
+                    e.p,
+                    e.pbar,
+                    e.u,
+                    e.load,
+                    rate(&r.rates, |e| e.p),
+                    rate(&r.rates, |e| e.pbar),
+                    rate(&r.rates, |e| e.u),
+                    rate(&r.rates, |e| e.load)
+                );
+            }
+            return s;
+        }
+        Format::Table => {}
+    }
+    let _ = writeln!(
+        s,
+        "{scenario}: reference {}+{}, ε = 0 (exact constraint), level {}, {} dofs, load {:.6}",
+        reference.element.name(),
+        reference.rule.name(),
+        reference.level,
+        reference.n_dofs,
+        reference.load
+    );
+    let _ = writeln!(
+        s,
+        "relative errors: p, p̄ in L²(Γ_C); u in H¹ (7); load P; rate = observed order between successive rows"
+    );
+    let _ = writeln!(
+        s,
+        "{:<14} {:>5} {:>9} {:>8} {:>8} {:>7} {:>9} {:>10} {:>5} {:>10} {:>5} {:>10} {:>5} {:>10} {:>5}",
+        "scheme",
+        "level",
+        "h",
+        "ε",
+        "dofs",
+        "Newton",
+        "solve ms",
+        "p",
+        "rate",
+        "p̄",
+        "rate",
+        "u",
+        "rate",
+        "load",
+        "rate"
+    );
+    for (i, r) in rows.iter().enumerate() {
+        if i > 0 && rows[i - 1].scheme != r.scheme {
+            s.push('\n');
+        }
+        let e = &r.errors;
+        let flag = if r.converged { "" } else { " NOT CONVERGED" };
+        let _ = writeln!(
+            s,
+            "{:<14} {:>5} {:>9.6} {:>8.1e} {:>8} {:>7} {:>9.1} {:>10.3e} {:>5} {:>10.3e} {:>5} {:>10.3e} {:>5} {:>10.3e} {:>5}{flag}",
+            r.scheme,
+            r.level,
+            r.h,
+            r.epsilon,
+            r.n_dofs,
+            r.newton_iterations,
+            r.solve_ms,
+            e.p,
+            rate(&r.rates, |e| e.p),
+            e.pbar,
+            rate(&r.rates, |e| e.pbar),
+            e.u,
+            rate(&r.rates, |e| e.u),
+            e.load,
+            rate(&r.rates, |e| e.load)
+        );
+    }
+    s
 }

@@ -165,6 +165,19 @@ pub mod check {
     pub fn positive(value: f64) -> Result<(), String> {
         open(value, 0.0, f64::INFINITY, "a finite number > 0")
     }
+    /// The penalty parameter: ε > 0, or 0 for the exact constraint.
+    pub fn epsilon(value: f64) -> Result<(), String> {
+        if value == 0.0 {
+            Ok(())
+        } else {
+            open(
+                value,
+                0.0,
+                f64::INFINITY,
+                "a finite number > 0, or 0 for the exact constraint",
+            )
+        }
+    }
     pub fn finite(value: f64) -> Result<(), String> {
         open(value, f64::NEG_INFINITY, f64::INFINITY, "any finite number")
     }
@@ -326,7 +339,7 @@ impl Scenario {
             }
             None => 0,
         };
-        loc.check("contact.epsilon", &raw.contact.epsilon, |v| check::positive(*v))?;
+        loc.check("contact.epsilon", &raw.contact.epsilon, |v| check::epsilon(*v))?;
 
         let Shape::Cylinder = raw.obstacle.shape;
         let name = raw.name.unwrap_or_else(|| {

@@ -12,6 +12,7 @@ use faer::Mat;
 use serde::Serialize;
 
 use crate::contact::penalty::{self, Iteration, NewtonOptions, NewtonResult, Penalty, SolveError};
+use crate::contact::signorini::solve_exact;
 use crate::contact::{ContactPoints, Obstacle, Rule, load, raw_pressure, smoothed_pressure};
 use crate::fem::condense::{TraceFactor, TraceOrdering};
 use crate::fem::{DofMap, Form, assemble};
@@ -133,6 +134,7 @@ impl Discretization {
 #[derive(Clone, Debug, PartialEq)]
 pub struct ContactParams {
     pub rule: Rule,
+    /// The penalty parameter ε > 0 of (8); ε = 0 imposes the constraint exactly (the limit).
     pub epsilon: f64,
     pub obstacle: Obstacle,
 }
@@ -204,8 +206,24 @@ pub fn solve_contact(
         weight: &weight,
         epsilon: params.epsilon,
     };
-    let newton = penalty::solve(&problem, initial, opts, on_iteration)?;
-    let p = raw_pressure(&newton.violation, params.epsilon);
+    let (newton, p) = if params.epsilon == 0.0 {
+        if points.len() > disc.contact_dofs.len() {
+            return Err(SolveError::Kernel(format!(
+                "ε = 0 imposes the constraint exactly at the {} points of {}, more than the {} normal displacements on Γ_C: the multipliers are not unique; use a rule without kernel (trapezoid, or simpson with q2)",
+                points.len(),
+                params.rule.name(),
+                disc.contact_dofs.len()
+            )));
+        }
+        let newton = solve_exact(&problem, initial, opts, on_iteration)?;
+        // The multiplier per unit tributary length.
+        let p = newton.forces.iter().zip(&weight).map(|(y, w)| y / w).collect();
+        (newton, p)
+    } else {
+        let newton = penalty::solve(&problem, initial, opts, on_iteration)?;
+        let p = raw_pressure(&newton.violation, params.epsilon);
+        (newton, p)
+    };
     let pbar = smoothed_pressure(&points, &p);
     let nodal = Discretization::nodal_forces(&points, &newton.forces, disc.contact_dofs.len());
     let loaded: Vec<usize> = (0..nodal.len()).filter(|&k| nodal[k] != 0.0).collect();

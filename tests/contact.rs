@@ -237,3 +237,83 @@ fn default_scenario_converges_for_every_pair() {
         }
     }
 }
+
+/// ε = 0 solves the exact-constraint problem: its multipliers are non-negative, there is no
+/// penetration, the load is the bottom reaction, and the penalty loads approach it linearly
+/// in ε (the penalty error is O(ε) once the active set has settled).
+#[test]
+fn exact_constraint_is_the_limit_of_the_penalty() {
+    let scenario = paper_with(&[]);
+    let disc = Discretization::of(&scenario, 3, Element::Q1).unwrap();
+    let exact = solve(&disc, Rule::Trapezoid, 0.0, scenario.obstacle.clone());
+    let ymax = exact.newton.forces.iter().cloned().fold(0.0, f64::max);
+    assert!(
+        exact.newton.forces.iter().all(|&y| y >= -1e-10 * ymax),
+        "tension in the multipliers"
+    );
+    assert!(
+        exact.newton.violation.iter().all(|&s| s <= 1e-12),
+        "penetration with the exact constraint"
+    );
+    let ku = apply(
+        &disc.mesh,
+        Form::Elasticity(scenario.material),
+        &exact.displacement(&disc),
+    );
+    let reaction: f64 = (0..disc.mesh.nnx())
+        .map(|i| ku[2 * disc.mesh.node(i, 0) + 1])
+        .sum();
+    assert!(rel(reaction, exact.load, 1.0) < 1e-9);
+    let gap = |eps: f64| exact.load - solve(&disc, Rule::Trapezoid, eps, scenario.obstacle.clone()).load;
+    let (g7, g9) = (gap(1e-7), gap(1e-9));
+    assert!(
+        g7 > 0.0 && g9 > 0.0,
+        "the penalty lets the body penetrate, so it carries less load"
+    );
+    assert!(
+        (g7 / g9 / 100.0 - 1.0).abs() < 0.05,
+        "O(ε) convergence: {g7} / {g9}"
+    );
+}
+
+/// Newton converges over ε from 1e−2 to 1e−14 (round-off in u_n − g is not mistaken for a
+/// changing active set), and the load tends to its exact-constraint value as the two error
+/// terms predict: the penalty's O(ε) (the body penetrates by ε·p, about 3e−6 relative at
+/// ε = 1e−8 here) and round-off O(u·|d|/(ε·p)) with u = 2.2e−16, |d| ≤ 0.8 and p ≈ 280, about
+/// 6e−19/ε relative. The bound below is ten times the sum.
+#[test]
+fn newton_converges_down_to_tiny_epsilon() {
+    let scenario = paper_with(&[]);
+    let disc = Discretization::of(&scenario, 3, Element::Q1).unwrap();
+    for rule in [Rule::Gauss1, Rule::Trapezoid] {
+        let exact = solve(&disc, rule, 0.0, scenario.obstacle.clone()).load;
+        for k in 2..=14 {
+            let eps = 10f64.powi(-k);
+            let sol = solve(&disc, rule, eps, scenario.obstacle.clone());
+            let bound = 10.0 * (400.0 * eps + 6e-19 / eps);
+            if bound < 1.0 {
+                assert!(
+                    rel(sol.load, exact, 1.0) < bound,
+                    "{rule:?} ε = 1e-{k}: {} vs {exact}",
+                    sol.load
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn exact_constraint_refuses_a_pressure_space_with_a_kernel() {
+    let scenario = paper_with(&[]);
+    let disc = Discretization::of(&scenario, 0, Element::Q1).unwrap();
+    let params = ContactParams {
+        rule: Rule::Gauss2,
+        epsilon: 0.0,
+        obstacle: scenario.obstacle.clone(),
+    };
+    let err = solve_contact(&disc, &params, None, &NewtonOptions::default(), &mut |_| {
+        ControlFlow::Continue(())
+    })
+    .unwrap_err();
+    assert!(err.to_string().contains("not unique"), "{err}");
+}

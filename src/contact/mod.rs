@@ -5,6 +5,7 @@ pub mod gap;
 pub mod penalty;
 pub mod pressure;
 pub mod rule;
+pub mod signorini;
 
 pub use gap::Obstacle;
 pub use pressure::{load, raw_pressure, smoothed_pressure};

@@ -38,7 +38,8 @@ pub struct Penalty<'a> {
 #[derive(Clone, Copy, Debug)]
 pub struct NewtonOptions {
     pub max_iterations: usize,
-    /// Relative residual ‖Bᵀ(Wp − y)‖ / ‖BᵀWp‖ below which an unchanged active set is accepted.
+    /// Relative residual ‖Bᵀ(Wp − y)‖ / ‖BᵀWp‖ below which an unchanged active set is accepted
+    /// (plus the floor that round-off in u_n − g sets at small ε).
     pub rtol: f64,
 }
 
@@ -79,14 +80,19 @@ pub enum SolveError {
     Cancelled,
     #[error("the stiffness is not positive definite ({0}); is the body held against rigid motion?")]
     Factorization(String),
+    #[error("{0}")]
+    Kernel(String),
 }
 
-fn dot(a: &[f64], b: &[f64]) -> f64 {
+/// Relative size of the round-off in s = d − Gy (a few units in the last place).
+const ROUNDOFF: f64 = 16.0 * f64::EPSILON;
+
+pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
 
 /// G y for y supported on `support`.
-fn apply(g: &Mat<f64>, y: &[f64], support: &[usize]) -> Vec<f64> {
+pub(crate) fn apply(g: &Mat<f64>, y: &[f64], support: &[usize]) -> Vec<f64> {
     let mut out = vec![0.0; g.nrows()];
     for &j in support {
         let col = g.col(j);
@@ -98,8 +104,8 @@ fn apply(g: &Mat<f64>, y: &[f64], support: &[usize]) -> Vec<f64> {
     out
 }
 
-/// Solve (ε W_A⁻¹ + G_AA) y_A = d_A for the active points `a`.
-fn active_forces(pb: &Penalty, a: &[usize]) -> Vec<f64> {
+/// Solve (ε W_A⁻¹ + G_AA) y_A = d_A for the active points `a` (G_AA y_A = d_A for ε = 0).
+pub(crate) fn active_forces(pb: &Penalty, a: &[usize]) -> Vec<f64> {
     let n = pb.coupling.nrows();
     let mut y = vec![0.0; n];
     if a.is_empty() {
@@ -143,15 +149,25 @@ pub fn solve(
         let gy = apply(pb.coupling, &y, &support);
         let s: Vec<f64> = (0..n).map(|q| d[q] - gy[q]).collect();
         let active: Vec<bool> = s.iter().map(|&v| v > 0.0).collect();
+        // Round-off in s = d − Gy, a difference of O(|d|) numbers: below it the sign of s and
+        // the residual are noise, amplified by 1/ε in the forces.
+        // (A point the obstacle never reaches, d = −∞, has none.)
+        let noise: Vec<f64> = (0..n)
+            .map(|q| {
+                if d[q].is_finite() {
+                    ROUNDOFF * (d[q].abs() + gy[q].abs())
+                } else {
+                    0.0
+                }
+            })
+            .collect();
         // R = Bᵀ(Wp − y): the contact forces the displacement implies against those assumed.
         let force: Vec<f64> = (0..n).map(|q| pb.weight[q] * s[q].max(0.0) * inv_eps).collect();
         let mismatch: Vec<f64> = (0..n).map(|q| force[q] - y[q]).collect();
+        let floor: Vec<f64> = (0..n).map(|q| pb.weight[q] * noise[q] * inv_eps).collect();
         let scale = dot(&force, &force).sqrt().max(dot(&y, &y).sqrt());
-        let residual = if scale > 0.0 {
-            dot(&mismatch, &mismatch).sqrt() / scale
-        } else {
-            0.0
-        };
+        let norm = |v: &[f64]| dot(v, v).sqrt();
+        let residual = if scale > 0.0 { norm(&mismatch) / scale } else { 0.0 };
         let info = Iteration {
             iteration: it,
             residual,
@@ -162,8 +178,12 @@ pub fn solve(
         if on_iteration(&info).is_break() {
             return Err(SolveError::Cancelled);
         }
-        let settled = previous_active.as_ref().is_none_or(|prev| *prev == active);
-        let done = residual <= opts.rtol && settled;
+        // Unchanged, but for points whose sign is round-off.
+        let settled = previous_active
+            .as_ref()
+            .is_none_or(|prev| (0..n).all(|q| prev[q] == active[q] || s[q].abs() <= noise[q]));
+        let accurate = norm(&mismatch) <= opts.rtol * scale + norm(&floor);
+        let done = accurate && settled;
         if done || it == opts.max_iterations || !residual.is_finite() {
             return Ok(NewtonResult {
                 forces: y,

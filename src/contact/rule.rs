@@ -139,6 +139,54 @@ impl ContactPoints {
             .collect()
     }
 
+    /// The parameter of point k on edge e (a shared end is s = 0 of the later edge).
+    pub fn s_on_edge(&self, k: usize, e: usize) -> f64 {
+        let q = &self.points[k];
+        if q.edge == e { q.s } else { 0.0 }
+    }
+
+    /// The edge that holds x (the last one for x past the end).
+    pub fn edge_at(&self, x: f64) -> usize {
+        self.vertex_x
+            .partition_point(|&v| v <= x)
+            .clamp(1, self.n_edges())
+            - 1
+    }
+
+    /// Values at s ∈ [0, 1] of edge e's Lagrange basis through its points (one per point).
+    pub fn edge_basis(&self, e: usize, s: f64) -> Vec<f64> {
+        let nodes: Vec<f64> = self.edge_points[e]
+            .iter()
+            .map(|&k| self.s_on_edge(k, e))
+            .collect();
+        (0..nodes.len())
+            .map(|a| {
+                (0..nodes.len())
+                    .filter(|&b| b != a)
+                    .map(|b| (s - nodes[b]) / (nodes[a] - nodes[b]))
+                    .product()
+            })
+            .collect()
+    }
+
+    /// The function of Q_h with values `v` at the points, evaluated at x.
+    pub fn interpolate(&self, v: &[f64], x: f64) -> f64 {
+        let e = self.edge_at(x);
+        let s = (x - self.vertex_x[e]) / (self.vertex_x[e + 1] - self.vertex_x[e]);
+        self.edge_points[e]
+            .iter()
+            .zip(self.edge_basis(e, s))
+            .map(|(&k, phi)| v[k] * phi)
+            .sum()
+    }
+
+    /// The continuous piecewise-linear function with values `v` at the vertices, at x.
+    pub fn interpolate_vertices(&self, v: &[f64], x: f64) -> f64 {
+        let e = self.edge_at(x);
+        let s = (x - self.vertex_x[e]) / (self.vertex_x[e + 1] - self.vertex_x[e]);
+        (1.0 - s) * v[e] + s * v[e + 1]
+    }
+
     /// The vertex hat functions φ_i of Γ_C that are non-zero at point q, with their values.
     pub fn hats_at(&self, q: &ContactPoint) -> [(usize, f64); 2] {
         [(q.edge, 1.0 - q.s), (q.edge + 1, q.s)]

@@ -136,3 +136,120 @@ mod tests {
         }
     }
 }
+
+/// Locate x among ascending lines: the interval index i with lines[i] ≤ x ≤ lines[i+1].
+fn interval(lines: &[f64], x: f64) -> usize {
+    lines.partition_point(|&l| l <= x).clamp(1, lines.len() - 1) - 1
+}
+
+/// The value and gradient (∂/∂x, ∂/∂y of u_x, then of u_y) at (x, y) of the field `u` (all
+/// dofs, node-major) on `mesh`, from the shape functions of the cell that contains the point.
+pub fn evaluate(mesh: &Mesh, u: &[f64], x: f64, y: f64) -> ([f64; 2], [f64; 4]) {
+    let (ci, cj) = (interval(&mesh.xs, x), interval(&mesh.ys, y));
+    let (x0, x1, y0, y1) = mesh.cell_rect(ci, cj);
+    let nodes = mesh.cell_nodes(ci, cj);
+    let (mut val, mut grad) = ([0.0; 2], [0.0; 4]);
+    let mut add = |k: usize, n: f64, g: [f64; 2]| {
+        for c in 0..2 {
+            let d = u[2 * nodes[k] + c];
+            val[c] += n * d;
+            grad[2 * c] += g[0] * d;
+            grad[2 * c + 1] += g[1] * d;
+        }
+    };
+    let (a, b) = (x1 - x0, y1 - y0);
+    let (xi, eta) = (2.0 * (x - x0) / a - 1.0, 2.0 * (y - y0) / b - 1.0);
+    match mesh.element {
+        Element::Q1 | Element::Q2 => {
+            let p = mesh.element.order();
+            let ((nx, dx), (ny, dy)) = (lagrange_1d(p, xi), lagrange_1d(p, eta));
+            for lj in 0..=p {
+                for li in 0..=p {
+                    add(
+                        lj * (p + 1) + li,
+                        nx[li] * ny[lj],
+                        [dx[li] * ny[lj] * 2.0 / a, nx[li] * dy[lj] * 2.0 / b],
+                    );
+                }
+            }
+        }
+        Element::P1 => {
+            // Local coordinates (r, s) ∈ [0, 1]² of the cell and the triangle holding them.
+            let (r, s) = ((xi + 1.0) / 2.0, (eta + 1.0) / 2.0);
+            let (gx, gy) = (1.0 / a, 1.0 / b);
+            match (mesh.diagonal(ci), s <= r) {
+                // Rising: (0,1,3) below the diagonal, (0,3,2) above.
+                (Diagonal::Rising, true) => {
+                    add(0, 1.0 - r, [-gx, 0.0]);
+                    add(1, r - s, [gx, -gy]);
+                    add(3, s, [0.0, gy]);
+                }
+                (Diagonal::Rising, false) => {
+                    add(0, 1.0 - s, [0.0, -gy]);
+                    add(3, r, [gx, 0.0]);
+                    add(2, s - r, [-gx, gy]);
+                }
+                // Falling: (0,1,2) below r + s = 1, (1,3,2) above.
+                (Diagonal::Falling, _) if r + s <= 1.0 => {
+                    add(0, 1.0 - r - s, [-gx, -gy]);
+                    add(1, r, [gx, 0.0]);
+                    add(2, s, [0.0, gy]);
+                }
+                (Diagonal::Falling, _) => {
+                    add(1, 1.0 - s, [0.0, -gy]);
+                    add(3, r + s - 1.0, [gx, gy]);
+                    add(2, 1.0 - r, [-gx, 0.0]);
+                }
+            }
+        }
+    }
+    (val, grad)
+}
+
+#[cfg(test)]
+mod evaluate_tests {
+    use super::*;
+
+    /// Every element reproduces a linear field and its gradient anywhere, and matches its own
+    /// quadrature-point values.
+    #[test]
+    fn evaluates_fields_exactly() {
+        let lin = |x: f64, y: f64| [0.2 + 1.5 * x - 0.3 * y, -0.1 + 0.4 * x + 2.0 * y];
+        for el in Element::ALL {
+            let m = Mesh::from_lines(el, vec![-1.0, -0.2, 0.5, 2.0], vec![0.0, 0.7, 1.0], false);
+            let u: Vec<f64> = (0..m.n_nodes())
+                .flat_map(|n| {
+                    let (x, y) = m.node_coords(n);
+                    lin(x, y)
+                })
+                .collect();
+            for (x, y) in [
+                (-1.0, 0.0),
+                (-0.7, 0.1),
+                (0.1, 0.95),
+                (1.9, 0.71),
+                (2.0, 1.0),
+                (0.5, 0.7),
+            ] {
+                let (v, g) = evaluate(&m, &u, x, y);
+                let e = lin(x, y);
+                assert!(
+                    (v[0] - e[0]).abs() < 1e-13 && (v[1] - e[1]).abs() < 1e-13,
+                    "{el:?} at ({x},{y})"
+                );
+                for (a, b) in g.iter().zip([1.5, -0.3, 0.4, 2.0]) {
+                    assert!((a - b).abs() < 1e-12, "{el:?} gradient at ({x},{y})");
+                }
+            }
+            // A non-polynomial nodal field: evaluation agrees with the quadrature points' sums.
+            let w: Vec<f64> = (0..2 * m.n_nodes())
+                .map(|k| ((k * 37 % 11) as f64).sin())
+                .collect();
+            for q in cell_points(&m, 1, 0, 3) {
+                let nodes = m.cell_nodes(1, 0);
+                let direct: f64 = nodes.iter().zip(&q.n).map(|(&k, n)| n * w[2 * k + 1]).sum();
+                assert!((evaluate(&m, &w, q.x, q.y).0[1] - direct).abs() < 1e-13, "{el:?}");
+            }
+        }
+    }
+}

@@ -1,0 +1,78 @@
+//! The exact-constraint limit ε → 0 of (11): the Signorini problem (1) with the constraint
+//! u_n ≤ g imposed at the rule's points by Lagrange multipliers, the contact forces y ≥ 0.
+//!
+//! Solved by the primal–dual active-set method (semismooth Newton on the complementarity
+//! y ≥ 0, s = u_n − g ≤ 0, y·s = 0) on the condensed operator G = B K⁻¹ Bᵀ of
+//! [`super::penalty`]: with A = {q : y_q + c_q s_q > 0}, c_q = 1/G_qq, solve G_AA y_A = d_A,
+//! y = 0 off A, until A repeats itself. With the trapezoid rule (Simpson for Q2) these are
+//! nodal multipliers: the exact-constraint twin of M3 (M4), riplab's reference solution.
+//! A rule whose points outnumber the normal trace dofs (a kernel) has no unique multipliers
+//! and is refused.
+
+use std::collections::HashSet;
+use std::ops::ControlFlow;
+
+use super::penalty::{
+    Iteration, NewtonOptions, NewtonResult, Penalty, SolveError, active_forces, apply, dot,
+};
+
+/// Solve the exact-constraint problem (`pb.epsilon` is ignored), from the multipliers
+/// `initial` when given.
+pub fn solve_exact(
+    pb: &Penalty,
+    initial: Option<&[f64]>,
+    opts: &NewtonOptions,
+    on_iteration: &mut dyn FnMut(&Iteration) -> ControlFlow<()>,
+) -> Result<NewtonResult, SolveError> {
+    let g = pb.coupling;
+    let n = g.nrows();
+    let d = pb.free_violation;
+    let exact = Penalty { epsilon: 0.0, ..*pb };
+    let mut y = initial
+        .filter(|y| y.len() == n)
+        .map_or_else(|| vec![0.0; n], <[f64]>::to_vec);
+    let mut seen: HashSet<Vec<bool>> = HashSet::new();
+    let mut history = Vec::new();
+    for it in 0.. {
+        let support: Vec<usize> = (0..n).filter(|&q| y[q] != 0.0).collect();
+        let gy = apply(g, &y, &support);
+        let s: Vec<f64> = (0..n).map(|q| d[q] - gy[q]).collect();
+        let active: Vec<bool> = (0..n).map(|q| y[q] + s[q] / g[(q, q)] > 0.0).collect();
+        // Complementarity residual: penetration (in force units, c_q⁻¹ s_q⁺) and tension y⁻,
+        // relative to the contact forces.
+        let bad: Vec<f64> = (0..n)
+            .map(|q| (s[q].max(0.0) / g[(q, q)]).max((-y[q]).max(0.0)))
+            .collect();
+        let scale = dot(&y, &y).sqrt();
+        let residual = if scale > 0.0 {
+            dot(&bad, &bad).sqrt() / scale
+        } else {
+            dot(&bad, &bad).sqrt()
+        };
+        let info = Iteration {
+            iteration: it,
+            residual,
+            active: active.iter().filter(|&&a| a).count(),
+            step: 1.0,
+        };
+        history.push(info);
+        if on_iteration(&info).is_break() {
+            return Err(SolveError::Cancelled);
+        }
+        let repeated = !seen.insert(active.clone());
+        let done = residual <= opts.rtol;
+        if done || repeated || it == opts.max_iterations || !residual.is_finite() {
+            return Ok(NewtonResult {
+                forces: y,
+                violation: s,
+                iterations: it,
+                converged: done,
+                residual,
+                history,
+            });
+        }
+        let a: Vec<usize> = (0..n).filter(|&q| active[q]).collect();
+        y = active_forces(&exact, &a);
+    }
+    unreachable!("the loop returns")
+}

@@ -1,0 +1,289 @@
+//! Accuracy against work (DESIGN §6, Theorem 2 (26)): errors of every scheme against a
+//! reference solution of the continuous problem, observed rates, and the time each solve took.
+//!
+//! The reference is independent of the penalty: the exact-constraint problem (ε = 0, see
+//! [`crate::contact::signorini`]) with Q2 and nodal multipliers (Simpson's points), on a level
+//! finer than any studied one. Coarse solutions live on nested meshes and are evaluated
+//! exactly at the reference's quadrature points: the pressures on every reference edge of
+//! Γ_C, the displacement in every reference cell.
+
+use std::ops::ControlFlow;
+use std::time::Instant;
+
+use serde::Serialize;
+
+use crate::contact::Rule;
+use crate::contact::penalty::{NewtonOptions, SolveError};
+use crate::fem::basis::{cell_points, evaluate};
+use crate::fem::quadrature::gauss_legendre;
+use crate::mesh::Element;
+use crate::scenario::Scenario;
+use crate::solve::{ContactParams, Discretization, Solution, scheme_name, solve_contact};
+
+/// Gauss points per direction for the error integrals (exact for the Q2 reference's products).
+const ERROR_POINTS: usize = 4;
+
+/// A displacement and its gradient at a weighted point.
+struct Sample {
+    x: f64,
+    y: f64,
+    weight: f64,
+    value: [f64; 2],
+    grad: [f64; 4],
+}
+
+/// The reference solution, with its values where errors are integrated.
+pub struct Reference {
+    pub level: u32,
+    pub element: Element,
+    pub rule: Rule,
+    pub n_dofs: usize,
+    pub load: f64,
+    pub ms: f64,
+    /// (x, weight, p_ref) at Gauss points of every reference edge of Γ_C.
+    edge_points: Vec<(f64, f64, f64)>,
+    /// u_ref at Gauss points of every reference cell.
+    cell_points: Vec<Sample>,
+    p_norm: f64,
+    u_norm: f64,
+}
+
+fn solve_fresh(disc: &Discretization, params: &ContactParams) -> Result<Solution, SolveError> {
+    solve_contact(disc, params, None, &NewtonOptions::default(), &mut |_| {
+        ControlFlow::Continue(())
+    })
+}
+
+impl Reference {
+    /// Q2 + Simpson with the exact constraint at `level` (expensive: compute only when asked).
+    pub fn compute(scenario: &Scenario, level: u32) -> Result<Self, SolveError> {
+        let t = Instant::now();
+        let (element, rule) = (Element::Q2, Rule::Simpson);
+        let disc = Discretization::of(scenario, level, element)?;
+        let params = ContactParams {
+            rule,
+            epsilon: 0.0,
+            obstacle: scenario.obstacle.clone(),
+        };
+        let sol = solve_fresh(&disc, &params)?;
+        if !sol.newton.converged {
+            return Err(SolveError::Kernel(
+                "the reference solution did not converge".into(),
+            ));
+        }
+        let u = sol.displacement(&disc);
+        let gauss = gauss_legendre(ERROR_POINTS);
+        let vx = &sol.points.vertex_x;
+        let mut edge_points = Vec::with_capacity(gauss.len() * vx.len());
+        for e in 0..vx.len() - 1 {
+            let h = vx[e + 1] - vx[e];
+            for &(xi, w) in &gauss {
+                let x = vx[e] + h * (xi + 1.0) / 2.0;
+                edge_points.push((x, w * h / 2.0, sol.points.interpolate(&sol.p, x)));
+            }
+        }
+        let mesh = &disc.mesh;
+        let mut cells = Vec::with_capacity(mesh.n_cells() * ERROR_POINTS * ERROR_POINTS);
+        for cj in 0..mesh.ny() {
+            for ci in 0..mesh.nx() {
+                for q in cell_points(mesh, ci, cj, ERROR_POINTS) {
+                    let (value, grad) = evaluate(mesh, &u, q.x, q.y);
+                    cells.push(Sample {
+                        x: q.x,
+                        y: q.y,
+                        weight: q.weight,
+                        value,
+                        grad,
+                    });
+                }
+            }
+        }
+        let p_norm = edge_points.iter().map(|(_, w, p)| w * p * p).sum::<f64>().sqrt();
+        let u_norm = cells
+            .iter()
+            .map(|c| c.weight * c.value.iter().chain(&c.grad).map(|a| a * a).sum::<f64>())
+            .sum::<f64>()
+            .sqrt();
+        Ok(Reference {
+            level,
+            element,
+            rule,
+            n_dofs: disc.n_dofs(),
+            load: sol.load,
+            ms: t.elapsed().as_secs_f64() * 1e3,
+            edge_points,
+            cell_points: cells,
+            p_norm,
+            u_norm,
+        })
+    }
+}
+
+/// Relative errors of one solution against the reference.
+#[derive(Clone, Copy, Debug, Serialize, PartialEq)]
+pub struct Errors {
+    /// ‖p − p_ref‖₀ / ‖p_ref‖₀ on Γ_C, p the raw pressure in Q_h.
+    pub p: f64,
+    /// ‖p̄ − p_ref‖₀ / ‖p_ref‖₀, p̄ the smoothed pressure (16)–(17).
+    pub pbar: f64,
+    /// ‖u − u_ref‖₁ / ‖u_ref‖₁ of (7) over the body.
+    pub u: f64,
+    /// |P − P_ref| / P_ref.
+    pub load: f64,
+}
+
+/// The errors of `sol` on `disc` (a mesh nested in the reference's).
+pub fn errors(reference: &Reference, disc: &Discretization, sol: &Solution) -> Errors {
+    let (mut ep, mut epbar) = (0.0, 0.0);
+    for &(x, w, pref) in &reference.edge_points {
+        ep += w * (sol.points.interpolate(&sol.p, x) - pref).powi(2);
+        epbar += w * (sol.points.interpolate_vertices(&sol.pbar, x) - pref).powi(2);
+    }
+    let u = sol.displacement(disc);
+    let mut eu = 0.0;
+    for c in &reference.cell_points {
+        let (vh, gh) = evaluate(&disc.mesh, &u, c.x, c.y);
+        let d2: f64 = vh
+            .iter()
+            .zip(&c.value)
+            .chain(gh.iter().zip(&c.grad))
+            .map(|(a, b)| (a - b).powi(2))
+            .sum();
+        eu += c.weight * d2;
+    }
+    Errors {
+        p: ep.sqrt() / reference.p_norm,
+        pbar: epbar.sqrt() / reference.p_norm,
+        u: eu.sqrt() / reference.u_norm,
+        load: (sol.load - reference.load).abs() / reference.load,
+    }
+}
+
+/// One line of the study.
+#[derive(Clone, Debug, Serialize)]
+pub struct StudyRow {
+    pub scheme: String,
+    pub element: &'static str,
+    pub rule: &'static str,
+    pub level: u32,
+    pub h: f64,
+    pub epsilon: f64,
+    pub n_dofs: usize,
+    pub newton_iterations: usize,
+    pub converged: bool,
+    /// A fresh solve: the mesh's work and Newton (what the pressures need), ms.
+    pub solve_ms: f64,
+    pub load: f64,
+    pub errors: Errors,
+    /// Observed rates against h (or, in an ε sweep, against ε) from the previous row.
+    pub rates: Option<Errors>,
+}
+
+impl StudyRow {
+    fn new(reference: &Reference, disc: &Discretization, sol: &Solution, level: u32) -> Self {
+        let (element, rule) = (disc.mesh.element, sol.params.rule);
+        StudyRow {
+            scheme: label(element, rule),
+            element: element.name(),
+            rule: rule.name(),
+            level,
+            h: disc.mesh.h(),
+            epsilon: sol.params.epsilon,
+            n_dofs: disc.n_dofs(),
+            newton_iterations: sol.newton.iterations,
+            converged: sol.newton.converged,
+            solve_ms: sol.timing.total,
+            load: sol.load,
+            errors: errors(reference, disc, sol),
+            rates: None,
+        }
+    }
+}
+
+/// A scheme's label: the paper's name or `element+rule`.
+pub fn label(element: Element, rule: Rule) -> String {
+    scheme_name(element, rule).map_or_else(|| format!("{}+{}", element.name(), rule.name()), str::to_string)
+}
+
+fn rates(prev: &StudyRow, row: &StudyRow, by_epsilon: bool) -> Errors {
+    let scale = if by_epsilon {
+        (row.epsilon / prev.epsilon).ln()
+    } else {
+        (row.h / prev.h).ln()
+    };
+    let r = |a: f64, b: f64| (b / a).ln() / scale;
+    Errors {
+        p: r(prev.errors.p, row.errors.p),
+        pbar: r(prev.errors.pbar, row.errors.pbar),
+        u: r(prev.errors.u, row.errors.u),
+        load: r(prev.errors.load, row.errors.load),
+    }
+}
+
+/// Every scheme at every level (fresh solves at the scenario's ε), against `reference`.
+pub fn convergence(
+    scenario: &Scenario,
+    reference: &Reference,
+    schemes: &[(Element, Rule)],
+    levels: &[u32],
+    epsilon: f64,
+) -> Result<Vec<StudyRow>, SolveError> {
+    let mut rows: Vec<StudyRow> = Vec::new();
+    for &(element, rule) in schemes {
+        for &level in levels {
+            let disc = Discretization::of(scenario, level, element)?;
+            let params = ContactParams {
+                rule,
+                epsilon,
+                obstacle: scenario.obstacle.clone(),
+            };
+            let mut sol = solve_fresh(&disc, &params)?;
+            sol.timing.include_mesh_work(&disc);
+            let mut row = StudyRow::new(reference, &disc, &sol, level);
+            if let Some(prev) = rows.last().filter(|p| p.scheme == row.scheme) {
+                row.rates = Some(rates(prev, &row, false));
+            }
+            rows.push(row);
+        }
+    }
+    Ok(rows)
+}
+
+/// Every scheme at one level over several ε (re-solves on one mesh), against `reference`.
+pub fn epsilon_sweep(
+    scenario: &Scenario,
+    reference: &Reference,
+    schemes: &[(Element, Rule)],
+    level: u32,
+    epsilons: &[f64],
+) -> Result<Vec<StudyRow>, SolveError> {
+    let mut rows: Vec<StudyRow> = Vec::new();
+    for &(element, rule) in schemes {
+        let disc = Discretization::of(scenario, level, element)?;
+        let mut previous: Option<Vec<f64>> = None;
+        for &epsilon in epsilons {
+            let params = ContactParams {
+                rule,
+                epsilon,
+                obstacle: scenario.obstacle.clone(),
+            };
+            let sol = solve_contact(
+                &disc,
+                &params,
+                previous.as_deref(),
+                &NewtonOptions::default(),
+                &mut |_| ControlFlow::Continue(()),
+            )?;
+            previous = Some(sol.newton.forces.clone());
+            let mut row = StudyRow::new(reference, &disc, &sol, level);
+            if let Some(prev) = rows
+                .last()
+                .filter(|p| p.scheme == row.scheme && p.epsilon > 0.0 && row.epsilon > 0.0)
+            {
+                row.rates = Some(rates(prev, &row, true));
+            }
+            rows.push(row);
+        }
+    }
+    Ok(rows)
+}
