@@ -70,7 +70,7 @@ fn bad_scenarios_exit_2_with_a_located_message() {
 #[test]
 fn bad_command_line_values_exit_2() {
     for (args, fragment) in [
-        (&["solve", "--epsilon", "-1e-6"][..], "--epsilon"),
+        (&["solve", "--epsilon=-1e-6"][..], "--epsilon"),
         (&["solve", "--epsilon", "0", "--scheme", "M2"][..], "not unique"),
         (&["solve", "--epsilon", "inf"][..], "not a finite number"),
         (&["solve", "--level", "9"][..], "0..=8"),
