@@ -16,6 +16,7 @@ use crate::scenario::{MAX_LEVEL, Scenario, ScenarioError, check};
 use crate::solve::scheme_name;
 use crate::solve::{ContactParams, Discretization, preset, solve_contact};
 use crate::study::{Reference, convergence, epsilon_sweep};
+use crate::tui::{MarkerChoice, TuiOptions, render_to_string};
 
 const EXIT_CODES: &str = "Exit codes:
   0  success
@@ -25,8 +26,14 @@ const EXIT_CODES: &str = "Exit codes:
 #[derive(Parser, Debug)]
 #[command(name = "riplab", version, about = "A terminal laboratory for reduced-integration penalty contact (Kikuchi 1981)", after_help = EXIT_CODES, args_conflicts_with_subcommands = true)]
 pub struct Cli {
-    /// Scenario file (TOML); the paper's problem when omitted.
+    /// Scenario file (TOML) to open in the terminal lab; the paper's problem when omitted.
     pub scenario: Option<PathBuf>,
+    /// Chart marker, for fonts without braille.
+    #[arg(long, value_enum, default_value_t = MarkerChoice::Braille)]
+    pub marker: MarkerChoice,
+    /// Monochrome display (also when the NO_COLOR environment variable is set).
+    #[arg(long)]
+    pub no_color: bool,
     #[command(subcommand)]
     pub command: Option<Command>,
 }
@@ -42,6 +49,24 @@ pub enum Command {
     /// Errors and rates of every scheme against an exact-constraint reference, with run times.
     #[command(after_help = EXIT_CODES)]
     Study(StudyArgs),
+    /// Print one frame of the terminal lab as plain text (for logs, CI and documents).
+    #[command(after_help = EXIT_CODES)]
+    Render(RenderArgs),
+}
+
+#[derive(Args, Debug)]
+pub struct RenderArgs {
+    #[command(flatten)]
+    pub select: Select,
+    /// Scene: explore, infsup or mesh.
+    #[arg(long, default_value = "explore")]
+    pub scene: String,
+    /// Frame size, columns x rows.
+    #[arg(long, default_value = "120x40")]
+    pub size: String,
+    /// Penalty parameter ε > 0 (the scenario's when omitted).
+    #[arg(long)]
+    pub epsilon: Option<f64>,
 }
 
 /// Which problem and discretisation: a scenario and overrides of its values.
@@ -224,18 +249,14 @@ pub fn run(cli: Cli) -> ExitCode {
         Some(Command::Solve(args)) => solve(&args),
         Some(Command::Infsup(args)) => infsup(&args),
         Some(Command::Study(args)) => study(&args),
-        None => {
-            let args = SolveArgs {
-                select: Select {
-                    scenario: cli.scenario,
-                    ..Select::default()
-                },
-                epsilon: vec![],
-                depth: vec![],
-                format: Format::Table,
-            };
-            solve(&args)
-        }
+        Some(Command::Render(args)) => render(&args),
+        None => lab(
+            cli.scenario,
+            TuiOptions {
+                marker: cli.marker,
+                no_color: cli.no_color,
+            },
+        ),
     };
     match result {
         Ok(code) => code,
@@ -450,5 +471,50 @@ fn study(args: &StudyArgs) -> Result<ExitCode, CliError> {
         epsilon_sweep(&scenario, &reference, &schemes, levels[0], &args.sweep_epsilon)?
     };
     print(&study_output(&scenario.name, &reference, &rows, args.format));
+    Ok(ExitCode::SUCCESS)
+}
+
+/// The terminal lab.
+fn lab(scenario: Option<PathBuf>, opts: TuiOptions) -> Result<ExitCode, CliError> {
+    let scenario = Select {
+        scenario,
+        ..Select::default()
+    }
+    .resolve()?;
+    crate::tui::run(scenario, opts).map_err(|e| CliError::Solve(format!("terminal: {e}")))?;
+    Ok(ExitCode::SUCCESS)
+}
+
+fn render(args: &RenderArgs) -> Result<ExitCode, CliError> {
+    let scenario = args.select.resolve()?;
+    let bad_size = || {
+        usage(
+            "--size",
+            format!(
+                "`{}`; allowed: COLUMNSxROWS, e.g. 120x40 (at least 80x24)",
+                args.size
+            ),
+        )
+    };
+    let (w, h) = args.size.split_once('x').ok_or_else(bad_size)?;
+    let (width, height): (u16, u16) = (
+        w.trim().parse().map_err(|_| bad_size())?,
+        h.trim().parse().map_err(|_| bad_size())?,
+    );
+    if let Some(e) = args.epsilon {
+        check::positive(e).map_err(|m| usage("--epsilon", m))?;
+    }
+    let frame = render_to_string(
+        &scenario,
+        &args.scene,
+        width,
+        height,
+        Some(scenario.level),
+        Some(scenario.element),
+        Some(scenario.rule),
+        args.epsilon,
+    )
+    .map_err(CliError::Usage)?;
+    print(&frame);
     Ok(ExitCode::SUCCESS)
 }

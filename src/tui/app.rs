@@ -116,7 +116,9 @@ pub enum Response {
         result: Result<Arc<Solved>, String>,
     },
     /// The solve of `generation` was superseded and stopped.
-    Cancelled { generation: u64 },
+    Cancelled {
+        generation: u64,
+    },
     /// `result` is None when the request was dropped as stale before it started.
     InfSup {
         key: InfSupKey,
@@ -299,7 +301,10 @@ impl App {
                 self.settings.level = (self.settings.level + 1).min(MAX_APP_LEVEL);
             }
             KeyCode::Char('r') => {
-                let i = Rule::ALL.iter().position(|&r| r == self.settings.rule).unwrap_or(0);
+                let i = Rule::ALL
+                    .iter()
+                    .position(|&r| r == self.settings.rule)
+                    .unwrap_or(0);
                 self.settings.rule = Rule::ALL[(i + 1) % Rule::ALL.len()];
             }
             KeyCode::Char('e') => {
@@ -372,10 +377,7 @@ impl App {
 
     fn worker(&mut self, response: Response) -> bool {
         match response {
-            Response::Progress {
-                generation,
-                progress,
-            } => {
+            Response::Progress { generation, progress } => {
                 if self.pending_solve != Some(generation) {
                     return false;
                 }
@@ -436,11 +438,7 @@ impl App {
                 }),
                 Scene::InfSup => keys.extend((1..=4).filter_map(|m| {
                     let (element, rule) = preset(&format!("M{m}"))?;
-                    Some(InfSupKey {
-                        level,
-                        element,
-                        rule,
-                    })
+                    Some(InfSupKey { level, element, rule })
                 })),
                 Scene::Mesh => {}
             }
@@ -479,9 +477,7 @@ pub fn shift_decades(value: f64, decades: i32) -> f64 {
     let text = format!("{value:e}");
     match text.split_once('e') {
         Some((mantissa, exponent)) => match exponent.parse::<i32>() {
-            Ok(e) => format!("{mantissa}e{}", e + decades)
-                .parse()
-                .unwrap_or(value),
+            Ok(e) => format!("{mantissa}e{}", e + decades).parse().unwrap_or(value),
             Err(_) => value,
         },
         None => value,

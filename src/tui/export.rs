@@ -64,6 +64,12 @@ fn claim(tmp: &Path, dir: &Path, stem: &str) -> Result<PathBuf, String> {
 /// The scenario name reduced to characters safe in a file name.
 fn sanitize(name: &str) -> String {
     name.chars()
-        .map(|c| if c.is_ascii_alphanumeric() || c == '-' || c == '_' { c } else { '_' })
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
         .collect()
 }

@@ -27,7 +27,7 @@ impl Hertz {
             Plane::Stress => m.young,
         };
         let Obstacle::Cylinder { radius, center, .. } = scenario.obstacle;
-        if !(full > 0.0) {
+        if full.is_nan() || full <= 0.0 {
             return None;
         }
         let a = (4.0 * full * radius / (std::f64::consts::PI * e_star)).sqrt();

@@ -9,18 +9,19 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::mpsc::{self, Receiver, Sender};
 use std::time::Instant;
 
+use crate::contact::Rule;
 use crate::contact::penalty::{NewtonOptions, SolveError};
 use crate::mesh::Element;
 use crate::scenario::Scenario;
 use crate::solve::{ContactParams, Discretization, Solution, solve_contact};
 
-use super::app::{
-    App, Command, InfSupKey, InfSupRequest, Msg, Progress, Response, SolveKey, SolveRequest,
-};
+use super::app::{App, Command, InfSupKey, InfSupRequest, Msg, Progress, Response, SolveKey, SolveRequest};
 use super::beta::{self, InfSup};
 
-/// How many discretisations (meshes with their factorisation pattern) are kept.
+/// How many discretisations (meshes with their factorisations) are kept at most…
 const CACHE_SIZE: usize = 4;
+/// …and how many unknowns they may hold together (the newest is kept whatever its size).
+const CACHE_DOFS: usize = 600_000;
 
 /// A finished solve with the discretisation it was computed on.
 #[derive(Clone)]
@@ -28,6 +29,8 @@ pub struct Solved {
     pub key: SolveKey,
     pub disc: Arc<Discretization>,
     pub solution: Solution,
+    /// Displacement on every dof, node-major (u_x = [2n], u_y = [2n + 1]).
+    pub displacement: Vec<f64>,
     /// Wall time of the request, mesh work included, in ms.
     pub total_ms: f64,
 }
@@ -45,8 +48,8 @@ impl std::fmt::Debug for Solved {
 pub struct Engine {
     scenario: Scenario,
     cache: Vec<(u32, Element, Arc<Discretization>)>,
-    /// The last displacement and the mesh it lives on.
-    warm: Option<(u32, Element, Vec<f64>)>,
+    /// The last contact forces and the mesh and rule they belong to (the warm start).
+    warm: Option<(u32, Element, Rule, Vec<f64>)>,
 }
 
 impl Engine {
@@ -74,10 +77,13 @@ impl Engine {
             return Ok(disc);
         }
         let disc = Arc::new(Discretization::of(&self.scenario, level, element).map_err(|e| e.to_string())?);
-        if self.cache.len() == CACHE_SIZE {
+        self.cache.push((level, element, disc.clone()));
+        let dofs = |cache: &[(u32, Element, Arc<Discretization>)]| -> usize {
+            cache.iter().map(|(_, _, d)| d.n_dofs()).sum()
+        };
+        while self.cache.len() > 1 && (self.cache.len() > CACHE_SIZE || dofs(&self.cache) > CACHE_DOFS) {
             self.cache.remove(0);
         }
-        self.cache.push((level, element, disc.clone()));
         Ok(disc)
     }
 
@@ -114,8 +120,8 @@ impl Engine {
         let warm = self
             .warm
             .as_ref()
-            .filter(|(l, e, _)| (*l, *e) == (key.level, key.element))
-            .map(|(_, _, u)| u.as_slice());
+            .filter(|(l, e, r, _)| (*l, *e, *r) == (key.level, key.element, key.rule))
+            .map(|(_, _, _, y)| y.as_slice());
         let result = solve_contact(&disc, &params, warm, &NewtonOptions::default(), &mut |it| {
             if !is_current(generation) {
                 return ControlFlow::Break(());
@@ -132,13 +138,16 @@ impl Engine {
         });
         match result {
             Ok(solution) => {
-                self.warm = Some((key.level, key.element, solution.newton.u.clone()));
+                self.warm = Some((key.level, key.element, key.rule, solution.newton.forces.clone()));
+                // Every scene that shows a solution draws the deformed configuration.
+                let displacement = solution.displacement(&disc);
                 Response::Solved {
                     generation,
                     result: Ok(Arc::new(Solved {
                         key,
                         disc,
                         solution,
+                        displacement,
                         total_ms: t.elapsed().as_secs_f64() * 1e3,
                     })),
                 }

@@ -44,14 +44,34 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look, extent: Ext
     let inner = block.inner(area);
     let (cols, rows) = (f64::from(inner.width.max(1)), f64::from(inner.height.max(1)));
     let (xb, yb) = window(app, solved, extent, cols, rows);
-    let u = solved.solution.displacement(&solved.disc);
-    let scale = magnification(&u, app.scenario.height);
-    let mesh_lines = mesh_lines(solved, &u, scale, app.scenario.half_model, (xb, yb), (cols, rows), look.theme.mesh());
-    let outline = obstacle_outline(&solved.solution.params.obstacle, app.scenario.height, xb, look.theme.obstacle());
-    let block = block.title(Span::styled(
-        format!(" {title} · {}+{} L{} · displacement ×{} ", solved.key.element.name(), solved.key.rule.name(), solved.key.level, sig(scale, 2)),
-        look.theme.title(),
-    ));
+    let u = &solved.displacement;
+    let scale = magnification(u, app.scenario.height);
+    let mesh_lines = mesh_lines(
+        solved,
+        u,
+        scale,
+        app.scenario.half_model,
+        (xb, yb),
+        (cols, rows),
+        look.theme.mesh(),
+    );
+    let outline = obstacle_outline(
+        &solved.solution.params.obstacle,
+        app.scenario.height,
+        xb,
+        look.theme.obstacle(),
+    );
+    let label = match extent {
+        Extent::NearContact => format!(" contact zone · ×{} ", sig(scale, 2)),
+        Extent::Full => format!(
+            " {title} · {}+{} level {} · displacement ×{} ",
+            solved.key.element.name(),
+            solved.key.rule.name(),
+            solved.key.level,
+            sig(scale, 2)
+        ),
+    };
+    let block = block.title(Span::styled(label, look.theme.title()));
     let canvas = Canvas::default()
         .block(block)
         .marker(look.marker)
@@ -89,7 +109,9 @@ fn window(app: &App, solved: &Solved, extent: Extent, cols: f64, rows: f64) -> (
             let Obstacle::Cylinder { radius, center, .. } = *obstacle;
             let d = obstacle.depth().max(0.0);
             let reach = (radius * radius - (radius - d.min(radius)).powi(2)).sqrt();
-            let half_width = (2.2 * reach).max(4.0 * s.h(solved.key.level)).min(0.5 * (xhi - xlo));
+            let half_width = (1.6 * reach)
+                .max(4.0 * s.h(solved.key.level))
+                .min(0.5 * (xhi - xlo));
             let yr = 2.0 * half_width * aspect;
             (
                 [center - half_width, center + half_width],
@@ -114,8 +136,8 @@ fn magnification(u: &[f64], height: f64) -> f64 {
         .unwrap_or(p)
 }
 
-/// The deformed grid lines, every `k`-th vertex line so that a cell spans at least one
-/// terminal column, each line through every node (curved for Q2), mirrored for a half model.
+/// The deformed grid lines, every `k`-th vertex line so that a cell spans at least two
+/// terminal columns and one row, each line through every node (curved for Q2), mirrored for a half model.
 fn mesh_lines(
     solved: &Solved,
     u: &[f64],
@@ -128,7 +150,8 @@ fn mesh_lines(
     let mesh = &solved.disc.mesh;
     let p = mesh.element.order();
     let h = mesh.h();
-    let dense = ((xb[1] - xb[0]) / h / cols).max((yb[1] - yb[0]) / h / (2.0 * rows));
+    // Cells across the window per two columns, and per row.
+    let dense = ((xb[1] - xb[0]) / h / (cols / 2.0)).max((yb[1] - yb[0]) / h / rows);
     let k = (dense.max(1.0).ceil() as usize).next_power_of_two();
     let at = |i: usize, j: usize| -> (f64, f64) {
         let n = mesh.node(i, j);

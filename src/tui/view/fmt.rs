@@ -45,7 +45,7 @@ fn evenly(lo: f64, hi: f64, n: usize) -> impl Iterator<Item = f64> {
 
 /// A "nice" upper bound ≥ `x`: 1, 1.2, 1.5, 2, 2.5, 3, 4, 5, 6, 8 × 10^k.
 pub fn nice_ceil(x: f64) -> f64 {
-    if !(x > 0.0) || !x.is_finite() {
+    if x.is_nan() || x <= 0.0 || !x.is_finite() {
         return 1.0;
     }
     let p = 10f64.powf(x.log10().floor());

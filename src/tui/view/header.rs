@@ -12,12 +12,16 @@ use super::super::theme::Theme;
 use super::fmt::sig;
 
 pub fn render(app: &App, frame: &mut Frame, area: Rect, theme: Theme) {
-    let [first, second] =
-        Layout::vertical([Constraint::Length(1), Constraint::Length(1)]).areas(area);
+    let [first, second] = Layout::vertical([Constraint::Length(1), Constraint::Length(1)]).areas(area);
     let title = Line::from(vec![
         Span::styled(" riplab ", theme.selected()),
         Span::raw(" "),
         Span::styled(app.scenario.name.clone(), theme.title()),
+        Span::raw(if app.scenario.half_model {
+            " (half model, mirrored)"
+        } else {
+            " (full model)"
+        }),
     ]);
     let mut tabs = Vec::new();
     for scene in Scene::ALL {
@@ -29,14 +33,16 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, theme: Theme) {
         tabs.push(Span::styled(format!(" {} ", scene.name()), style));
         tabs.push(Span::raw(" "));
     }
-    let [left, right] =
-        Layout::horizontal([Constraint::Fill(1), Constraint::Length(30)]).areas(first);
+    let [left, right] = Layout::horizontal([Constraint::Fill(1), Constraint::Length(30)]).areas(first);
     frame.render_widget(Paragraph::new(title), left);
-    frame.render_widget(Paragraph::new(Line::from(tabs)).alignment(Alignment::Right), right);
+    frame.render_widget(
+        Paragraph::new(Line::from(tabs)).alignment(Alignment::Right),
+        right,
+    );
     frame.render_widget(Paragraph::new(settings_line(app, theme)), second);
 }
 
-/// "M1 q1+gauss1 │ level 0  h=1  32 el  90 dofs │ ε=1e-6 │ depth 0.8 │ half model".
+/// "M1 q1+gauss1 │ level 0 h=1 │ 32 el 90 dofs │ ε=1e-6 │ d=0.8" (dofs once solved).
 fn settings_line(app: &App, theme: Theme) -> Line<'static> {
     let s = &app.settings;
     let scheme = match scheme_name(s.element, s.rule) {
@@ -46,14 +52,9 @@ fn settings_line(app: &App, theme: Theme) -> Line<'static> {
     let mesh = app.scenario.mesh(s.level, s.element);
     let dofs = app
         .current()
-        .map(|c| format!("  {} dofs", c.disc.n_dofs()))
+        .map(|c| format!(" {} dofs", c.disc.n_dofs()))
         .unwrap_or_default();
     let sep = || Span::styled(" │ ", theme.faint());
-    let model = if app.scenario.half_model {
-        "half model"
-    } else {
-        "full model"
-    };
     Line::from(vec![
         Span::raw(" "),
         Span::styled(
@@ -61,17 +62,12 @@ fn settings_line(app: &App, theme: Theme) -> Line<'static> {
             theme.title(),
         ),
         sep(),
-        Span::raw(format!(
-            "level {}  h={}  {} el{dofs}",
-            s.level,
-            sig(app.scenario.h(s.level), 4),
-            mesh.n_elements()
-        )),
+        Span::raw(format!("level {} h={}", s.level, sig(app.scenario.h(s.level), 3))),
+        sep(),
+        Span::raw(format!("{} el{dofs}", mesh.n_elements())),
         sep(),
         Span::raw(format!("ε={:e}", s.epsilon)),
         sep(),
-        Span::raw(format!("depth {}", sig(s.depth, 4))),
-        sep(),
-        Span::raw(model),
+        Span::raw(format!("d={}", sig(s.depth, 4))),
     ])
 }

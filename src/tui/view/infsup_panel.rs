@@ -6,8 +6,8 @@ use ratatui::layout::Rect;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Paragraph, Wrap};
 
-use crate::mesh::Element;
 use crate::contact::Rule;
+use crate::mesh::Element;
 use crate::solve::scheme_name;
 
 use super::super::app::{App, InfSupKey};
@@ -25,7 +25,10 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, theme: Theme) {
         .unwrap_or_default();
     let title = format!(" inf-sup · {scheme}{}+{} ", key.element.name(), key.rule.name());
     let mut lines = vec![Line::styled(
-        format!("{:>2} {:>7} {:>9} {:>9} {:>9}", "L", "h", "β_h", "β_h/√h", "β̄_h/√h"),
+        format!(
+            "{:>2} {:>7} {:>9} {:>9} {:>9}",
+            "L", "h", "β_h", "β_h/√h", "β̄_h/√h"
+        ),
         theme.title(),
     )];
     let rows = area.height.saturating_sub(4) as usize; // borders, header, verdict
@@ -53,13 +56,11 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, theme: Theme) {
     }
     lines.push(verdict(app, key.element, key.rule, theme));
     frame.render_widget(
-        Paragraph::new(lines)
-            .wrap(Wrap { trim: false })
-            .block(
-                Block::bordered()
-                    .title(Span::styled(title, theme.title()))
-                    .border_style(theme.axis()),
-            ),
+        Paragraph::new(lines).wrap(Wrap { trim: false }).block(
+            Block::bordered()
+                .title(Span::styled(title, theme.title()))
+                .border_style(theme.axis()),
+        ),
         area,
     );
 }
@@ -68,11 +69,7 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, theme: Theme) {
 pub fn computed_levels(app: &App, element: Element, rule: Rule) -> Vec<u32> {
     (0..=super::super::app::MAX_APP_LEVEL)
         .filter(|&level| {
-            let k = InfSupKey {
-                level,
-                element,
-                rule,
-            };
+            let k = InfSupKey { level, element, rule };
             app.infsup.contains_key(&k) || app.is_estimating(&k)
         })
         .collect()
@@ -82,11 +79,7 @@ pub fn computed_levels(app: &App, element: Element, rule: Rule) -> Vec<u32> {
 pub fn estimates(app: &App, element: Element, rule: Rule) -> Vec<(u32, &InfSup)> {
     (0..=super::super::app::MAX_APP_LEVEL)
         .filter_map(|level| {
-            let k = InfSupKey {
-                level,
-                element,
-                rule,
-            };
+            let k = InfSupKey { level, element, rule };
             match app.infsup.get(&k) {
                 Some(Ok(b)) => Some((level, b)),
                 _ => None,

@@ -67,10 +67,8 @@ pub fn view(app: &App, frame: &mut Frame, look: &Look) {
 
 /// The explore scene: pressures on top, the inf-sup panel and the contact zone below.
 fn explore(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
-    let [chart, lower] =
-        Layout::vertical([Constraint::Percentage(57), Constraint::Fill(1)]).areas(area);
-    let [panel, contact] =
-        Layout::horizontal([Constraint::Length(42), Constraint::Fill(1)]).areas(lower);
+    let [chart, lower] = Layout::vertical([Constraint::Percentage(57), Constraint::Fill(1)]).areas(area);
+    let [panel, contact] = Layout::horizontal([Constraint::Length(42), Constraint::Fill(1)]).areas(lower);
     pressure::render(app, frame, chart, look);
     infsup_panel::render(app, frame, panel, look.theme);
     deformed::render(app, frame, contact, look, deformed::Extent::NearContact);

@@ -39,7 +39,14 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
         out
     };
     let raw = mirror(q_h_samples(&sol.points, &sol.p));
-    let pbar = mirror(sol.points.vertex_x.iter().copied().zip(sol.pbar.iter().copied()).collect());
+    let pbar = mirror(
+        sol.points
+            .vertex_x
+            .iter()
+            .copied()
+            .zip(sol.pbar.iter().copied())
+            .collect(),
+    );
     let (x0, x1) = app.scenario.x_range();
     let (xlo, xhi) = if half { (-x1, x1) } else { (x0, x1) };
     let hertz = Hertz::for_load(&app.scenario, sol.load).filter(|_| app.show_hertz);
@@ -51,7 +58,11 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
         .map(|h| sample(xlo, xhi, |x| Some(h.pressure(x))))
         .unwrap_or_default();
     let depth = sol.params.obstacle.depth();
-    let gap_scale = if depth > 0.0 { data_max.max(ymax / 2.0) / depth } else { 1.0 };
+    let gap_scale = if depth > 0.0 {
+        data_max.max(ymax / 2.0) / depth
+    } else {
+        1.0
+    };
     let gap_pts: Vec<(f64, f64)> = if app.show_gap {
         let obstacle = &sol.params.obstacle;
         sample(xlo, xhi, |x| {

@@ -13,13 +13,10 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, theme: Theme) {
     let keys = Line::from(vec![
         Span::styled("?", theme.key()),
         Span::raw(" help  "),
-        Span::styled("Tab", theme.key()),
-        Span::raw(" scene  "),
         Span::styled("q", theme.key()),
         Span::raw(" quit "),
     ]);
-    let [left, right] =
-        Layout::horizontal([Constraint::Fill(1), Constraint::Length(26)]).areas(area);
+    let [left, right] = Layout::horizontal([Constraint::Fill(1), Constraint::Length(15)]).areas(area);
     frame.render_widget(Paragraph::new(state(app, theme)), left);
     frame.render_widget(Paragraph::new(keys).alignment(Alignment::Right), right);
 }
@@ -48,7 +45,10 @@ fn state(app: &App, theme: Theme) -> Line<'static> {
     if app.scene == Scene::InfSup {
         let n = app.infsup_pending();
         if n > 0 {
-            spans.push(Span::styled(format!("⟳ {n} inf-sup estimate(s) running"), theme.busy()));
+            spans.push(Span::styled(
+                format!("⟳ {n} inf-sup estimate(s) running"),
+                theme.busy(),
+            ));
         } else {
             spans.push(Span::raw(format!("{} inf-sup estimate(s)", app.infsup.len())));
         }
@@ -67,13 +67,17 @@ fn state(app: &App, theme: Theme) -> Line<'static> {
     } else {
         spans.push(Span::styled("✗ NOT converged", theme.bad()));
     }
+    let steps = if newton.iterations == 1 { "step" } else { "steps" };
     spans.push(Span::raw(format!(
-        " in {} Newton its · load P={}",
+        " in {} Newton {steps} · P={}",
         newton.iterations,
         sig(solved.solution.load, 5)
     )));
     if app.scenario.half_model {
-        spans.push(Span::raw(format!(" (full {})", sig(2.0 * solved.solution.load, 5))));
+        spans.push(Span::raw(format!(
+            " (full {})",
+            sig(2.0 * solved.solution.load, 5)
+        )));
     }
     if app.show_timing {
         spans.push(Span::raw(format!(" · {} ms", sig(solved.total_ms, 3))));

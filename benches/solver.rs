@@ -1,0 +1,93 @@
+//! Run time of each stage per mesh level on the paper's problem (M1): `cargo bench`.
+//!
+//! assembly → ordering (symbolic analysis with Γ_C last) → factorisation (numeric, plus the
+//! trace compliance) → Newton (a fresh contact solve) → re-solve (ε changed, warm start) →
+//! inf-sup (H¹ condensation and the dense eigenproblems of one rule).
+
+use std::ops::ControlFlow;
+
+use divan::Bencher;
+use riplab::contact::Rule;
+use riplab::contact::penalty::NewtonOptions;
+use riplab::fem::condense::{TraceFactor, TraceOrdering};
+use riplab::fem::{DofMap, Form, assemble};
+use riplab::infsup::{TraceCompliance, estimate};
+use riplab::mesh::Element;
+use riplab::scenario::Scenario;
+use riplab::solve::{ContactParams, Discretization, solve_contact};
+
+const LEVELS: &[u32] = &[3, 4, 5, 6];
+
+fn main() {
+    divan::main();
+}
+
+fn params(scenario: &Scenario, epsilon: f64) -> ContactParams {
+    ContactParams {
+        rule: Rule::Gauss1,
+        epsilon,
+        obstacle: scenario.obstacle.clone(),
+    }
+}
+
+#[divan::bench(args = LEVELS, sample_count = 10)]
+fn assembly(bencher: Bencher, level: u32) {
+    let s = Scenario::paper();
+    let mesh = s.mesh(level, Element::Q1);
+    let dofs = DofMap::model(&mesh);
+    bencher.bench(|| assemble(&mesh, &dofs, Form::Elasticity(s.material)));
+}
+
+#[divan::bench(args = LEVELS, sample_count = 10)]
+fn ordering(bencher: Bencher, level: u32) {
+    let s = Scenario::paper();
+    let disc = Discretization::of(&s, level, Element::Q1).unwrap();
+    let k = assemble(&disc.mesh, &disc.dofs, Form::Elasticity(s.material));
+    bencher.bench(|| TraceOrdering::new(&k, &disc.contact_dofs).unwrap());
+}
+
+#[divan::bench(args = LEVELS, sample_count = 10)]
+fn factorisation(bencher: Bencher, level: u32) {
+    let s = Scenario::paper();
+    let disc = Discretization::of(&s, level, Element::Q1).unwrap();
+    let k = assemble(&disc.mesh, &disc.dofs, Form::Elasticity(s.material));
+    bencher.bench(|| TraceFactor::new(&disc.ordering, &k).unwrap().compliance());
+}
+
+#[divan::bench(args = LEVELS, sample_count = 10)]
+fn newton(bencher: Bencher, level: u32) {
+    let s = Scenario::paper();
+    let disc = Discretization::of(&s, level, Element::Q1).unwrap();
+    let p = params(&s, 1e-6);
+    bencher.bench(|| {
+        solve_contact(&disc, &p, None, &NewtonOptions::default(), &mut |_| {
+            ControlFlow::Continue(())
+        })
+        .unwrap()
+    });
+}
+
+#[divan::bench(args = LEVELS, sample_count = 10)]
+fn resolve(bencher: Bencher, level: u32) {
+    let s = Scenario::paper();
+    let disc = Discretization::of(&s, level, Element::Q1).unwrap();
+    let go = |eps: f64, warm: Option<&[f64]>| {
+        solve_contact(
+            &disc,
+            &params(&s, eps),
+            warm,
+            &NewtonOptions::default(),
+            &mut |_| ControlFlow::Continue(()),
+        )
+        .unwrap()
+    };
+    let previous = go(1e-6, None);
+    bencher.bench(|| go(1e-7, Some(&previous.newton.forces)));
+}
+
+#[divan::bench(args = LEVELS, sample_count = 10)]
+fn inf_sup(bencher: Bencher, level: u32) {
+    let s = Scenario::paper();
+    let disc = Discretization::of(&s, level, Element::Q1).unwrap();
+    bencher.bench(|| estimate(&disc, &TraceCompliance::new(&disc).unwrap(), Rule::Gauss1));
+}

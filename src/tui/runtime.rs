@@ -1,0 +1,108 @@
+//! The interactive loop: the terminal (raw mode, alternate screen, restored on exit and on
+//! panic by ratatui), an input thread and the worker feeding one channel, and a redraw only
+//! when an update says the screen changed, inside synchronized-output brackets.
+
+use std::io;
+use std::path::Path;
+use std::sync::mpsc;
+
+use crossterm::event::Event;
+use crossterm::terminal::{BeginSynchronizedUpdate, EndSynchronizedUpdate};
+use ratatui::DefaultTerminal;
+
+use crate::scenario::Scenario;
+
+use super::app::{App, Command, Msg, Response};
+use super::export::export_csv;
+use super::view::{Look, view};
+use super::worker::Worker;
+
+/// Everything the loop waits for.
+enum Input {
+    Terminal(Event),
+    Worker(Response),
+    /// Reading the terminal failed: the loop ends with this error.
+    Broken(io::Error),
+}
+
+/// Run the lab on `scenario` until the user quits; the terminal is restored in every case.
+pub fn run(scenario: Scenario, look: Look) -> io::Result<()> {
+    let mut terminal = ratatui::try_init()?;
+    let result = event_loop(&mut terminal, scenario, &look);
+    ratatui::restore();
+    result
+}
+
+fn event_loop(terminal: &mut DefaultTerminal, scenario: Scenario, look: &Look) -> io::Result<()> {
+    let (tx, rx) = mpsc::channel::<Input>();
+    let to_app = tx.clone();
+    let worker = Worker::spawn(scenario.clone(), move |r| to_app.send(Input::Worker(r)).is_ok());
+    std::thread::Builder::new()
+        .name("riplab-input".into())
+        .spawn(move || {
+            loop {
+                let input = match crossterm::event::read() {
+                    Ok(event) => Input::Terminal(event),
+                    Err(e) => Input::Broken(e),
+                };
+                let broken = matches!(input, Input::Broken(_));
+                if tx.send(input).is_err() || broken {
+                    return;
+                }
+            }
+        })?;
+
+    let mut app = App::new(scenario);
+    let mut redraw = apply(&mut app, &worker, Msg::Resize);
+    while !app.should_quit() {
+        if redraw {
+            draw(terminal, &app, look)?;
+        }
+        // Block for one input, then take whatever else is queued before drawing again.
+        let Ok(first) = rx.recv() else { break };
+        redraw = false;
+        for input in std::iter::once(first).chain(std::iter::from_fn(|| rx.try_recv().ok())) {
+            let msg = match input {
+                Input::Terminal(Event::Key(key)) => Msg::Key(key),
+                Input::Terminal(Event::Resize(..)) => Msg::Resize,
+                Input::Terminal(_) => continue,
+                Input::Worker(r) => Msg::Worker(r),
+                Input::Broken(e) => return Err(e),
+            };
+            redraw |= apply(&mut app, &worker, msg);
+            if app.should_quit() {
+                break;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Update the app and carry out its commands; returns whether to redraw.
+fn apply(app: &mut App, worker: &Worker, msg: Msg) -> bool {
+    let effect = app.update(msg);
+    let mut redraw = effect.redraw;
+    for command in effect.commands {
+        match command {
+            Command::Export => {
+                let result = match app.current() {
+                    Some(solved) => {
+                        export_csv(&app.scenario, solved, Path::new(".")).map(|p| p.display().to_string())
+                    }
+                    None => Err("no solution to export".into()),
+                };
+                redraw |= apply(app, worker, Msg::Exported(result));
+            }
+            other => worker.send(&other),
+        }
+    }
+    redraw
+}
+
+/// One frame inside synchronized-output brackets (no tearing over SSH).
+fn draw(terminal: &mut DefaultTerminal, app: &App, look: &Look) -> io::Result<()> {
+    crossterm::execute!(terminal.backend_mut(), BeginSynchronizedUpdate)?;
+    let drawn = terminal.draw(|frame| view(app, frame, look)).map(|_| ());
+    crossterm::execute!(terminal.backend_mut(), EndSynchronizedUpdate)?;
+    drawn
+}

@@ -1,0 +1,226 @@
+//! The inf-sup scene: β_h/√h against h for the paper's schemes M1–M4 (and the smoothed
+//! β̄_h/√h of M1) on log-log axes, and the numbers in a table below. Levels are estimated as
+//! the user visits them (`a`: every level up to the current one).
+
+use ratatui::Frame;
+use ratatui::layout::{Constraint, Layout, Rect};
+use ratatui::style::{Color, Style};
+use ratatui::text::{Line, Span};
+use ratatui::widgets::{Axis, Block, Chart, Dataset, GraphType, LegendPosition, Paragraph};
+
+use crate::contact::Rule;
+use crate::mesh::Element;
+use crate::solve::preset;
+
+use super::super::app::{App, InfSupKey, MAX_APP_LEVEL};
+use super::super::beta::InfSup;
+use super::super::theme::Theme;
+use super::Look;
+use super::fmt::{log_labels, sig};
+use super::infsup_panel::{estimates, trend};
+
+/// One curve: a scheme and which pressure (raw β or smoothed β̄).
+struct Series {
+    label: &'static str,
+    element: Element,
+    rule: Rule,
+    pick: fn(&InfSup) -> f64,
+    color: Color,
+}
+
+fn series() -> Vec<Series> {
+    let raw: fn(&InfSup) -> f64 = |b| b.beta_over_sqrt_h;
+    let smooth: fn(&InfSup) -> f64 = |b| b.beta_bar_over_sqrt_h;
+    let scheme = |m: &str| preset(m).expect("the paper's presets exist");
+    let mut out = Vec::new();
+    for (label, color) in [
+        ("M1", Color::Red),
+        ("M2", Color::Yellow),
+        ("M3", Color::Green),
+        ("M4", Color::Blue),
+    ] {
+        let (element, rule) = scheme(label);
+        out.push(Series {
+            label,
+            element,
+            rule,
+            pick: raw,
+            color,
+        });
+    }
+    let (element, rule) = scheme("M1");
+    out.push(Series {
+        label: "M1 p̄",
+        element,
+        rule,
+        pick: smooth,
+        color: Color::Cyan,
+    });
+    out
+}
+
+pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
+    let all = series();
+    let levels: Vec<u32> = (0..=MAX_APP_LEVEL)
+        .filter(|&level| {
+            all.iter().any(|s| {
+                let k = InfSupKey {
+                    level,
+                    element: s.element,
+                    rule: s.rule,
+                };
+                app.infsup.contains_key(&k) || app.is_estimating(&k)
+            })
+        })
+        .collect();
+    let table_height = (levels.len() as u16 + 5).min(area.height / 2);
+    let [top, bottom] = Layout::vertical([Constraint::Fill(1), Constraint::Length(table_height)]).areas(area);
+    chart(app, frame, top, look, &all);
+    table(app, frame, bottom, look.theme, &all, &levels);
+}
+
+fn chart(app: &App, frame: &mut Frame, area: Rect, look: &Look, all: &[Series]) {
+    let theme = look.theme;
+    let h_of = |level: u32| app.scenario.h(level).log10();
+    let xb = [h_of(MAX_APP_LEVEL), h_of(0)];
+    let data: Vec<Vec<(f64, f64)>> = all
+        .iter()
+        .map(|s| {
+            estimates(app, s.element, s.rule)
+                .into_iter()
+                .map(|(_, b)| (b.h.log10(), (s.pick)(b)))
+                .filter(|&(_, v)| v > 0.0 && v.is_finite())
+                .map(|(x, v)| (x, v.log10()))
+                .collect()
+        })
+        .collect();
+    let (lo, hi) = data
+        .iter()
+        .flatten()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &(_, y)| {
+            (lo.min(y), hi.max(y))
+        });
+    let yb = if lo.is_finite() {
+        let (lo, hi) = ((lo * 2.0).floor() / 2.0, (hi * 2.0).ceil() / 2.0);
+        if hi - lo < 0.5 {
+            [lo - 0.5, hi + 0.5]
+        } else {
+            [lo, hi]
+        }
+    } else {
+        [-1.0, 1.0]
+    };
+    let mut datasets = Vec::new();
+    for (s, pts) in all.iter().zip(&data) {
+        let style = Style::new().fg(theme.ink(s.color));
+        datasets.push(
+            Dataset::default()
+                .name(s.label)
+                .marker(look.marker)
+                .graph_type(GraphType::Line)
+                .style(style)
+                .data(pts),
+        );
+        // The points themselves, so that a single level shows too.
+        datasets.push(
+            Dataset::default()
+                .marker(look.marker)
+                .graph_type(GraphType::Scatter)
+                .style(style)
+                .data(pts),
+        );
+    }
+    let x_labels = if area.width >= 100 {
+        MAX_APP_LEVEL as usize + 1
+    } else {
+        4
+    };
+    let y_labels = if area.height >= 16 { 5 } else { 3 };
+    let chart = Chart::new(datasets)
+        .block(
+            Block::bordered()
+                .title(Span::styled(" β_h/√h against h (log-log) ", theme.title()))
+                .border_style(theme.axis()),
+        )
+        .x_axis(
+            Axis::default()
+                .title("h")
+                .style(theme.axis())
+                .bounds(xb)
+                .labels(log_labels(xb[0], xb[1], x_labels)),
+        )
+        .y_axis(
+            Axis::default()
+                .title("β/√h")
+                .style(theme.axis())
+                .bounds(yb)
+                .labels(log_labels(yb[0], yb[1], y_labels)),
+        )
+        // The curves start at the coarse (right) end: keep the legend out of their way.
+        .legend_position(Some(LegendPosition::BottomLeft))
+        .hidden_legend_constraints((Constraint::Ratio(1, 2), Constraint::Ratio(3, 4)));
+    frame.render_widget(chart, area);
+}
+
+fn table(app: &App, frame: &mut Frame, area: Rect, theme: Theme, all: &[Series], levels: &[u32]) {
+    let mut head = format!("{:>2} {:>7}", "L", "h");
+    for s in all {
+        head.push_str(&format!(" {:>8}", s.label));
+    }
+    let mut lines = vec![Line::styled(head, theme.title())];
+    let mut first_error: Option<&str> = None;
+    let rows = area.height.saturating_sub(5) as usize;
+    for &level in &levels[levels.len().saturating_sub(rows)..] {
+        let mut row = format!("{level:>2} {:>7}", sig(app.scenario.h(level), 4));
+        for s in all {
+            let k = InfSupKey {
+                level,
+                element: s.element,
+                rule: s.rule,
+            };
+            let cell = match app.infsup.get(&k) {
+                Some(Ok(b)) if b.kernel.is_some() => "kernel".to_string(),
+                Some(Ok(b)) => sig((s.pick)(b), 3),
+                Some(Err(e)) => {
+                    first_error.get_or_insert(e);
+                    "error".to_string()
+                }
+                None if app.is_estimating(&k) => "⟳".to_string(),
+                None => "·".to_string(),
+            };
+            row.push_str(&format!(" {cell:>8}"));
+        }
+        let style = if level == app.settings.level {
+            theme.selected()
+        } else {
+            Style::new()
+        };
+        lines.push(Line::styled(row, style));
+    }
+    let mut marks = vec![Span::raw(format!("{:>10}", "trend"))];
+    for s in all {
+        let (text, style) = match trend(app, s.element, s.rule, s.pick) {
+            Some(true) => ("✓", theme.good()),
+            Some(false) => ("✗", theme.bad()),
+            None => ("?", Style::new()),
+        };
+        marks.push(Span::raw(" ".repeat(8)));
+        marks.push(Span::styled(text, style));
+    }
+    lines.push(Line::from(marks));
+    lines.push(Line::styled(
+        match first_error {
+            Some(e) => format!("error: {e}"),
+            None => "✓ β/√h bounded (stable)  ✗ decaying or a kernel  · a: all levels".into(),
+        },
+        theme.faint(),
+    ));
+    frame.render_widget(
+        Paragraph::new(lines).block(
+            Block::bordered()
+                .title(Span::styled(" β_h/√h (raw) and β̄_h/√h (M1 p̄) ", theme.title()))
+                .border_style(theme.axis()),
+        ),
+        area,
+    );
+}
