@@ -9,6 +9,7 @@ pub mod fem;
 pub mod infsup;
 pub mod material;
 pub mod mesh;
+pub mod plot;
 pub mod report;
 pub mod scenario;
 pub mod solve;
