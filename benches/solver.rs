@@ -35,14 +35,18 @@ fn assembly(bencher: Bencher, level: u32) {
     let s = Scenario::paper();
     let mesh = s.mesh(level, Element::Q1);
     let dofs = DofMap::model(&mesh);
-    bencher.bench(|| assemble(&mesh, &dofs, Form::Elasticity(s.material)));
+    bencher.bench(|| assemble(&mesh, &dofs, Form::Elasticity(s.material, s.integration)));
 }
 
 #[divan::bench(args = LEVELS, sample_count = 10)]
 fn ordering(bencher: Bencher, level: u32) {
     let s = Scenario::paper();
     let disc = Discretization::of(&s, level, Element::Q1).unwrap();
-    let k = assemble(&disc.mesh, &disc.dofs, Form::Elasticity(s.material));
+    let k = assemble(
+        &disc.mesh,
+        &disc.dofs,
+        Form::Elasticity(s.material, s.integration),
+    );
     bencher.bench(|| TraceOrdering::new(&k, &disc.contact_dofs).unwrap());
 }
 
@@ -50,7 +54,11 @@ fn ordering(bencher: Bencher, level: u32) {
 fn factorisation(bencher: Bencher, level: u32) {
     let s = Scenario::paper();
     let disc = Discretization::of(&s, level, Element::Q1).unwrap();
-    let k = assemble(&disc.mesh, &disc.dofs, Form::Elasticity(s.material));
+    let k = assemble(
+        &disc.mesh,
+        &disc.dofs,
+        Form::Elasticity(s.material, s.integration),
+    );
     bencher.bench(|| TraceFactor::new(&disc.ordering, &k).unwrap().compliance());
 }
 

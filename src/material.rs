@@ -31,6 +31,12 @@ impl Material {
         (lambda, mu)
     }
 
+    /// The volumetric part λ δ_ij δ_kh of [`Material::tensor`]: λ (div u)(div v).
+    pub fn volumetric_tensor(&self) -> nalgebra::Matrix4<f64> {
+        let tr = nalgebra::Vector4::new(1.0, 0.0, 0.0, 1.0);
+        tr * tr.transpose() * self.lame().0
+    }
+
     /// E_ijkh acting on the displacement gradient ordered (u_x,x, u_x,y, u_y,x, u_y,y), so that
     /// a(u, v) of (2) is ∫ ∇vᵀ C ∇u.
     pub fn tensor(&self) -> nalgebra::Matrix4<f64> {

@@ -11,7 +11,9 @@ use std::path::Path;
 use serde::Deserialize;
 use toml::Spanned;
 
+use crate::contact::gap::Bump;
 use crate::contact::{Obstacle, Rule};
+use crate::fem::Integration;
 use crate::material::{Material, Plane};
 use crate::mesh::{Element, Mesh};
 
@@ -39,9 +41,12 @@ pub struct Scenario {
     pub material: Material,
     pub obstacle: Obstacle,
     pub element: Element,
-    /// Cells across the modelled width and the height at level 0.
-    pub nx0: usize,
-    pub ny0: usize,
+    /// Vertex lines of the level-0 grid across the modelled width and the height (uniform,
+    /// or graded); each level bisects every cell.
+    pub x_lines: Vec<f64>,
+    pub y_lines: Vec<f64>,
+    /// Integration of the stiffness: full, or selective (reduced for the volumetric part).
+    pub integration: Integration,
     pub level: u32,
     pub rule: Rule,
     pub epsilon: f64,
@@ -116,30 +121,61 @@ struct RawMaterial {
     plane: Plane,
 }
 
-#[derive(Deserialize, Clone, Copy, PartialEq, Eq)]
+#[derive(Deserialize, Clone, Copy, PartialEq, Eq, Debug)]
 #[serde(rename_all = "lowercase")]
 enum Shape {
     Cylinder,
+    Punch,
+    Bumps,
+    Polyline,
+}
+
+impl Shape {
+    /// The keys of `[obstacle]` that each shape takes (besides `shape` and `depth`).
+    fn keys(self) -> &'static [&'static str] {
+        match self {
+            Shape::Cylinder => &["radius", "center"],
+            Shape::Punch => &["half_width", "corner_radius", "center"],
+            Shape::Bumps => &["bumps"],
+            Shape::Polyline => &["points"],
+        }
+    }
 }
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawObstacle {
-    shape: Shape,
-    radius: Spanned<f64>,
+    shape: Spanned<Shape>,
     depth: Spanned<f64>,
-    #[serde(default)]
+    radius: Option<Spanned<f64>>,
     center: Option<Spanned<f64>>,
+    half_width: Option<Spanned<f64>>,
+    corner_radius: Option<Spanned<f64>>,
+    bumps: Option<Spanned<Vec<RawBump>>>,
+    points: Option<Spanned<Vec<Spanned<[f64; 2]>>>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawBump {
+    center: Spanned<f64>,
+    radius: Spanned<f64>,
+    #[serde(default)]
+    lift: Option<Spanned<f64>>,
 }
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawMesh {
     element: Element,
-    nx: Spanned<i64>,
-    ny: Spanned<i64>,
+    nx: Option<Spanned<i64>>,
+    ny: Option<Spanned<i64>>,
+    x_lines: Option<Spanned<Vec<f64>>>,
+    y_lines: Option<Spanned<Vec<f64>>>,
     #[serde(default)]
     level: Option<Spanned<i64>>,
+    #[serde(default)]
+    integration: Option<Integration>,
 }
 
 #[derive(Deserialize)]
@@ -164,6 +200,13 @@ pub mod check {
     }
     pub fn positive(value: f64) -> Result<(), String> {
         open(value, 0.0, f64::INFINITY, "a finite number > 0")
+    }
+    pub fn nonnegative(value: f64) -> Result<(), String> {
+        if value == 0.0 {
+            Ok(())
+        } else {
+            open(value, 0.0, f64::INFINITY, "a finite number ≥ 0")
+        }
     }
     /// The penalty parameter: ε > 0, or 0 for the exact constraint.
     pub fn epsilon(value: f64) -> Result<(), String> {
@@ -264,6 +307,211 @@ impl Locator<'_> {
     }
 }
 
+impl Locator<'_> {
+    /// A required positive/finite value of `[obstacle]`.
+    fn required(
+        &self,
+        key: &str,
+        v: &Option<Spanned<f64>>,
+        shape: Shape,
+        span: Range<usize>,
+        test: fn(f64) -> Result<(), String>,
+    ) -> Result<f64, ScenarioError> {
+        let v = v.as_ref().ok_or_else(|| {
+            self.error(
+                Some(span),
+                Some(format!("obstacle.{key}")),
+                format!(
+                    "is required for shape {shape:?}; its keys: {}",
+                    shape.keys().join(", ")
+                ),
+            )
+        })?;
+        self.check(&format!("obstacle.{key}"), v, |x| test(*x))?;
+        Ok(*v.get_ref())
+    }
+
+    /// The obstacle of `[obstacle]`, every key checked against its shape.
+    fn obstacle(&self, raw: &RawObstacle) -> Result<Obstacle, ScenarioError> {
+        let shape = *raw.shape.get_ref();
+        self.check("obstacle.depth", &raw.depth, |v| check::finite(*v))?;
+        let given: [(&str, Option<Range<usize>>); 6] = [
+            ("radius", raw.radius.as_ref().map(|v| v.span())),
+            ("center", raw.center.as_ref().map(|v| v.span())),
+            ("half_width", raw.half_width.as_ref().map(|v| v.span())),
+            ("corner_radius", raw.corner_radius.as_ref().map(|v| v.span())),
+            ("bumps", raw.bumps.as_ref().map(|v| v.span())),
+            ("points", raw.points.as_ref().map(|v| v.span())),
+        ];
+        for (key, span) in given {
+            if let Some(span) = span.filter(|_| !shape.keys().contains(&key)) {
+                return Err(self.error(
+                    Some(span),
+                    Some(format!("obstacle.{key}")),
+                    format!(
+                        "does not apply to shape {shape:?}; its keys: {}",
+                        shape.keys().join(", ")
+                    ),
+                ));
+            }
+        }
+        let depth = *raw.depth.get_ref();
+        let span = raw.shape.span();
+        let center = match &raw.center {
+            Some(c) => {
+                self.check("obstacle.center", c, |v| check::finite(*v))?;
+                *c.get_ref()
+            }
+            None => 0.0,
+        };
+        Ok(match shape {
+            Shape::Cylinder => Obstacle::Cylinder {
+                radius: self.required("radius", &raw.radius, shape, span, check::positive)?,
+                depth,
+                center,
+            },
+            Shape::Punch => Obstacle::Punch {
+                half_width: self.required(
+                    "half_width",
+                    &raw.half_width,
+                    shape,
+                    span.clone(),
+                    check::nonnegative,
+                )?,
+                corner_radius: self.required(
+                    "corner_radius",
+                    &raw.corner_radius,
+                    shape,
+                    span,
+                    check::positive,
+                )?,
+                depth,
+                center,
+            },
+            Shape::Bumps => {
+                let list = raw.bumps.as_ref().ok_or_else(|| {
+                    self.error(
+                        Some(span.clone()),
+                        Some("obstacle.bumps".into()),
+                        "is required for shape Bumps: a list of { center, radius, lift }".into(),
+                    )
+                })?;
+                if list.get_ref().is_empty() {
+                    return Err(self.error(
+                        Some(list.span()),
+                        Some("obstacle.bumps".into()),
+                        "is empty; allowed: at least one bump".into(),
+                    ));
+                }
+                let mut bumps = Vec::new();
+                for b in list.get_ref() {
+                    self.check("obstacle.bumps.center", &b.center, |v| check::finite(*v))?;
+                    self.check("obstacle.bumps.radius", &b.radius, |v| check::positive(*v))?;
+                    let lift = match &b.lift {
+                        Some(l) => {
+                            self.check("obstacle.bumps.lift", l, |v| check::nonnegative(*v))?;
+                            *l.get_ref()
+                        }
+                        None => 0.0,
+                    };
+                    bumps.push(Bump {
+                        center: *b.center.get_ref(),
+                        radius: *b.radius.get_ref(),
+                        lift,
+                    });
+                }
+                Obstacle::Bumps { bumps, depth }
+            }
+            Shape::Polyline => {
+                let list = raw.points.as_ref().ok_or_else(|| {
+                    self.error(
+                        Some(span.clone()),
+                        Some("obstacle.points".into()),
+                        "is required for shape Polyline: a list of [x, height]".into(),
+                    )
+                })?;
+                if list.get_ref().len() < 2 {
+                    return Err(self.error(
+                        Some(list.span()),
+                        Some("obstacle.points".into()),
+                        "needs at least two points".into(),
+                    ));
+                }
+                let mut points: Vec<(f64, f64)> = Vec::new();
+                for p in list.get_ref() {
+                    let [x, y] = *p.get_ref();
+                    self.check("obstacle.points", p, |v| {
+                        check::finite(v[0]).and(check::finite(v[1]))
+                    })?;
+                    if points.last().is_some_and(|q| q.0 >= x) {
+                        return Err(self.error(
+                            Some(p.span()),
+                            Some("obstacle.points".into()),
+                            format!("x = {x} does not increase; allowed: strictly increasing x"),
+                        ));
+                    }
+                    points.push((x, y));
+                }
+                Obstacle::Polyline { points, depth }
+            }
+        })
+    }
+
+    /// Level-0 vertex lines from a cell count `n_key` or explicit lines `lines_key` spanning
+    /// `range` (exactly one of them).
+    fn lines(
+        &self,
+        table: &str,
+        n_key: &str,
+        lines_key: &str,
+        n: &Option<Spanned<i64>>,
+        lines: &Option<Spanned<Vec<f64>>>,
+        range: (f64, f64),
+    ) -> Result<Vec<f64>, ScenarioError> {
+        let (lo, hi) = range;
+        match (n, lines) {
+            (Some(n), None) => {
+                self.check(&format!("{table}.{n_key}"), n, |v| {
+                    check::integer(*v, 1, MAX_CELLS_0)
+                })?;
+                let k = *n.get_ref() as usize;
+                Ok((0..=k).map(|i| lo + (hi - lo) * i as f64 / k as f64).collect())
+            }
+            (None, Some(l)) => {
+                let v = l.get_ref();
+                let key = format!("{table}.{lines_key}");
+                let ok = v.len() >= 2
+                    && v.len() as i64 <= MAX_CELLS_0 + 1
+                    && v.iter().all(|x| x.is_finite())
+                    && v.windows(2).all(|w| w[0] < w[1])
+                    && (v[0] - lo).abs() <= 1e-12 * (1.0 + lo.abs())
+                    && (v[v.len() - 1] - hi).abs() <= 1e-12 * (1.0 + hi.abs());
+                if !ok {
+                    return Err(self.error(
+                        Some(l.span()),
+                        Some(key),
+                        format!(
+                            "allowed: 2 to {} strictly increasing finite numbers from {lo} to {hi}",
+                            MAX_CELLS_0 + 1
+                        ),
+                    ));
+                }
+                Ok(v.clone())
+            }
+            (Some(n), Some(_)) => Err(self.error(
+                Some(n.span()),
+                Some(format!("{table}.{n_key}")),
+                format!("give either {n_key} or {lines_key}, not both"),
+            )),
+            (None, None) => Err(self.error(
+                None,
+                Some(format!("{table}.{n_key}")),
+                format!("missing: give {n_key} (uniform cells) or {lines_key} (graded)"),
+            )),
+        }
+    }
+}
+
 impl Scenario {
     /// The embedded default: the paper's problem.
     pub fn paper() -> Scenario {
@@ -310,28 +558,37 @@ impl Scenario {
         loc.check("body.height", &raw.body.height, |v| check::positive(*v))?;
         loc.check("material.young", &raw.material.young, |v| check::positive(*v))?;
         loc.check("material.poisson", &raw.material.poisson, |v| check::poisson(*v))?;
-        loc.check("obstacle.radius", &raw.obstacle.radius, |v| check::positive(*v))?;
-        loc.check("obstacle.depth", &raw.obstacle.depth, |v| check::finite(*v))?;
         let half_model = raw.body.model == Model::Half;
-        let center = match &raw.obstacle.center {
-            Some(c) => {
-                loc.check("obstacle.center", c, |v| check::finite(*v))?;
-                if half_model && *c.get_ref() != 0.0 {
+        let (x0, x1) = if half_model {
+            (0.0, raw.body.width.get_ref() / 2.0)
+        } else {
+            (-raw.body.width.get_ref() / 2.0, raw.body.width.get_ref() / 2.0)
+        };
+        let obstacle = loc.obstacle(&raw.obstacle)?;
+        if half_model {
+            // The half model's symmetry line x = 0 must be the obstacle's too.
+            let n = 400;
+            for i in 1..=n {
+                let x = x1 * i as f64 / n as f64;
+                let (a, b) = (obstacle.gap(x), obstacle.gap(-x));
+                if a != b && (a - b).abs() > 1e-9 * (1.0 + a.abs().min(b.abs())) {
                     return Err(loc.error(
-                        Some(c.span()),
-                        Some("obstacle.center".into()),
-                        format!(
-                            "{} is not allowed for a half model; allowed: 0 (the symmetry line)",
-                            c.get_ref()
-                        ),
+                        Some(raw.obstacle.shape.span()),
+                        Some("obstacle".into()),
+                        format!("a half model needs an obstacle symmetric about x = 0; here g({x}) = {a} but g({}) = {b}", -x),
                     ));
                 }
-                *c.get_ref()
             }
-            None => 0.0,
-        };
-        loc.check("mesh.nx", &raw.mesh.nx, |v| check::integer(*v, 1, MAX_CELLS_0))?;
-        loc.check("mesh.ny", &raw.mesh.ny, |v| check::integer(*v, 1, MAX_CELLS_0))?;
+        }
+        let x_lines = loc.lines("mesh", "nx", "x_lines", &raw.mesh.nx, &raw.mesh.x_lines, (x0, x1))?;
+        let y_lines = loc.lines(
+            "mesh",
+            "ny",
+            "y_lines",
+            &raw.mesh.ny,
+            &raw.mesh.y_lines,
+            (0.0, *raw.body.height.get_ref()),
+        )?;
         let level = match &raw.mesh.level {
             Some(l) => {
                 loc.check("mesh.level", l, |v| check::level(*v))?;
@@ -341,7 +598,6 @@ impl Scenario {
         };
         loc.check("contact.epsilon", &raw.contact.epsilon, |v| check::epsilon(*v))?;
 
-        let Shape::Cylinder = raw.obstacle.shape;
         let name = raw.name.unwrap_or_else(|| {
             Path::new(file)
                 .file_stem()
@@ -359,14 +615,11 @@ impl Scenario {
                 poisson: *raw.material.poisson.get_ref(),
                 plane: raw.material.plane,
             },
-            obstacle: Obstacle::Cylinder {
-                radius: *raw.obstacle.radius.get_ref(),
-                depth: *raw.obstacle.depth.get_ref(),
-                center,
-            },
+            obstacle,
             element: raw.mesh.element,
-            nx0: *raw.mesh.nx.get_ref() as usize,
-            ny0: *raw.mesh.ny.get_ref() as usize,
+            x_lines,
+            y_lines,
+            integration: raw.mesh.integration.unwrap_or(Integration::Full),
             level,
             rule: raw.contact.rule,
             epsilon: *raw.contact.epsilon.get_ref(),
@@ -382,23 +635,33 @@ impl Scenario {
         }
     }
 
-    /// The mesh of `level` with `element`: nx0·2^level × ny0·2^level cells.
+    /// The mesh of `level` with `element`: the level-0 grid with every cell bisected `level`
+    /// times in each direction.
     pub fn mesh(&self, level: u32, element: Element) -> Mesh {
-        let (x0, x1) = self.x_range();
-        let f = 1usize << level;
-        Mesh::uniform(
+        Mesh::from_lines(
             element,
-            (x0, x1, self.nx0 * f),
-            (0.0, self.height, self.ny0 * f),
+            bisect(&self.x_lines, level),
+            bisect(&self.y_lines, level),
             self.half_model,
         )
     }
 
-    /// The cell width at `level`.
+    /// The largest cell side at `level`.
     pub fn h(&self, level: u32) -> f64 {
-        let (x0, x1) = self.x_range();
-        ((x1 - x0) / self.nx0 as f64).max(self.height / self.ny0 as f64) / f64::from(1u32 << level)
+        let widest = |v: &[f64]| v.windows(2).map(|w| w[1] - w[0]).fold(0.0, f64::max);
+        widest(&self.x_lines).max(widest(&self.y_lines)) / f64::from(1u32 << level)
     }
+}
+
+/// Vertex lines with every interval bisected `level` times.
+fn bisect(lines: &[f64], level: u32) -> Vec<f64> {
+    let f = 1usize << level;
+    let mut out = Vec::with_capacity((lines.len() - 1) * f + 1);
+    for w in lines.windows(2) {
+        out.extend((0..f).map(|i| w[0] + (w[1] - w[0]) * i as f64 / f as f64));
+    }
+    out.push(lines[lines.len() - 1]);
+    out
 }
 
 #[cfg(test)]
@@ -419,8 +682,8 @@ mod tests {
             }
         );
         assert_eq!(
-            (s.nx0, s.ny0, s.element, s.rule, s.epsilon),
-            (8, 4, Element::Q1, Rule::Gauss1, 1e-6)
+            (s.x_lines.len(), s.y_lines.len(), s.element, s.rule, s.epsilon),
+            (9, 5, Element::Q1, Rule::Gauss1, 1e-6)
         );
         assert_eq!(s.mesh(1, Element::Q1).n_elements(), 128);
         assert_eq!(s.h(1), 0.5);

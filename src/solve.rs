@@ -15,7 +15,7 @@ use crate::contact::penalty::{self, Iteration, NewtonOptions, NewtonResult, Pena
 use crate::contact::signorini::solve_exact;
 use crate::contact::{ContactPoints, Obstacle, Rule, load, raw_pressure, smoothed_pressure};
 use crate::fem::condense::{TraceFactor, TraceOrdering};
-use crate::fem::{DofMap, Form, assemble};
+use crate::fem::{DofMap, Form, Integration, assemble};
 use crate::material::Material;
 use crate::mesh::{Element, Mesh};
 use crate::scenario::Scenario;
@@ -47,10 +47,10 @@ pub struct Discretization {
 }
 
 impl Discretization {
-    pub fn new(mesh: Mesh, material: Material) -> Result<Self, SolveError> {
+    pub fn new(mesh: Mesh, material: Material, integration: Integration) -> Result<Self, SolveError> {
         let t = Instant::now();
         let dofs = DofMap::model(&mesh);
-        let stiffness = assemble(&mesh, &dofs, Form::Elasticity(material));
+        let stiffness = assemble(&mesh, &dofs, Form::Elasticity(material, integration));
         let assembly_ms = ms_since(t);
         let contact_dofs: Vec<usize> = mesh
             .top_nodes()
@@ -84,7 +84,11 @@ impl Discretization {
 
     /// The discretisation of `scenario` at `level` with `element`.
     pub fn of(scenario: &Scenario, level: u32, element: Element) -> Result<Self, SolveError> {
-        Self::new(scenario.mesh(level, element), scenario.material)
+        Self::new(
+            scenario.mesh(level, element),
+            scenario.material,
+            scenario.integration,
+        )
     }
 
     /// `rule` laid on Γ_C.

@@ -9,7 +9,7 @@ use common::{Lcg, paper_with, rel};
 use riplab::contact::penalty::NewtonOptions;
 use riplab::contact::pressure::{rule_product, smoothed_pressure, trapezoid_product};
 use riplab::contact::{ContactPoints, Obstacle, Rule};
-use riplab::fem::{Form, apply};
+use riplab::fem::{Form, Integration, apply};
 use riplab::material::{Material, Plane};
 use riplab::mesh::{Element, Mesh};
 use riplab::solve::{ContactParams, Discretization, Solution, solve_contact, solve_scenario};
@@ -67,7 +67,7 @@ fn load_equals_bottom_reaction() {
             let sol = solve(&disc, rule, 1e-6, scenario.obstacle.clone());
             let ku = apply(
                 &disc.mesh,
-                Form::Elasticity(scenario.material),
+                Form::Elasticity(scenario.material, scenario.integration),
                 &sol.displacement(&disc),
             );
             let reaction: f64 = (0..disc.mesh.nnx())
@@ -175,8 +175,12 @@ fn plane_strain_hertz() {
         (Element::Q1, Rule::Gauss1),
         (Element::Q2, Rule::Simpson),
     ] {
-        let disc =
-            Discretization::new(Mesh::from_lines(element, xs.clone(), ys.clone(), true), material).unwrap();
+        let disc = Discretization::new(
+            Mesh::from_lines(element, xs.clone(), ys.clone(), true),
+            material,
+            Integration::Full,
+        )
+        .unwrap();
         let sol = solve(
             &disc,
             rule,
@@ -257,7 +261,7 @@ fn exact_constraint_is_the_limit_of_the_penalty() {
     );
     let ku = apply(
         &disc.mesh,
-        Form::Elasticity(scenario.material),
+        Form::Elasticity(scenario.material, scenario.integration),
         &exact.displacement(&disc),
     );
     let reaction: f64 = (0..disc.mesh.nnx())

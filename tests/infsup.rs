@@ -6,7 +6,7 @@ mod common;
 use common::{paper_with, rel};
 use nalgebra::{DMatrix, SymmetricEigen};
 use riplab::contact::{ContactPoints, Rule};
-use riplab::fem::{Form, assemble};
+use riplab::fem::{Form, Integration, assemble};
 use riplab::infsup::{TraceCompliance, estimate, inf_sup};
 use riplab::material::{Material, Plane};
 use riplab::mesh::{Element, Mesh};
@@ -151,6 +151,7 @@ fn single_cell_by_hand() {
         let disc = Discretization::new(
             Mesh::uniform(Element::Q1, (0.0, h, 1), (0.0, h, 1), false),
             material,
+            Integration::Full,
         )
         .unwrap();
         let expect = (h / (1.0 + h * h / 3.0)).sqrt();

@@ -15,33 +15,47 @@ use super::dofs::DofMap;
 use crate::material::Material;
 use crate::mesh::{Diagonal, Mesh};
 
+/// How the elastic stiffness is integrated.
+#[derive(
+    Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Deserialize, serde::Serialize, clap::ValueEnum,
+)]
+#[serde(rename_all = "lowercase")]
+pub enum Integration {
+    /// Exactly (2×2 Gauss for Q1, 3×3 for Q2).
+    #[default]
+    Full,
+    /// Selective reduced integration: the volumetric part λ (div u)(div v) with one Gauss
+    /// order less (1 point for Q1, 2×2 for Q2), the rest exactly. It removes the volumetric
+    /// locking of Q1 as ν → 1/2 (the reduced-integration idea of the paper's references 2–4).
+    /// A P1 triangle has constant strains, so it changes nothing there.
+    Selective,
+}
+
 /// A bilinear form assembled cell by cell: ∫ ∇vᵀ C ∇u + m ∫ v·u.
 #[derive(Clone, Copy, Debug)]
 pub enum Form {
     /// a(u, v) of (2).
-    Elasticity(Material),
+    Elasticity(Material, Integration),
     /// The H¹ inner product (u, v)₁ of (7).
     H1,
-}
-
-impl Form {
-    fn tensor_and_mass(&self) -> (Matrix4<f64>, f64) {
-        match self {
-            Form::Elasticity(m) => (m.tensor(), 0.0),
-            Form::H1 => (Matrix4::identity(), 1.0),
-        }
-    }
 }
 
 /// The cell matrix over the cell's dofs, ordered (u_x, u_y) node by node in tensor order.
 pub fn cell_matrix(mesh: &Mesh, ci: usize, cj: usize, form: &Form) -> DMatrix<f64> {
     let pts = cell_points(mesh, ci, cj, exact_order(mesh.element));
-    integrate_cell(&pts, form)
+    match *form {
+        Form::H1 => integrate_cell(&pts, &Matrix4::identity(), 1.0),
+        Form::Elasticity(m, Integration::Full) => integrate_cell(&pts, &m.tensor(), 0.0),
+        Form::Elasticity(m, Integration::Selective) => {
+            let volumetric = m.volumetric_tensor();
+            let reduced = cell_points(mesh, ci, cj, exact_order(mesh.element) - 1);
+            integrate_cell(&pts, &(m.tensor() - volumetric), 0.0) + integrate_cell(&reduced, &volumetric, 0.0)
+        }
+    }
 }
 
-fn integrate_cell(pts: &[QuadPoint], form: &Form) -> DMatrix<f64> {
+fn integrate_cell(pts: &[QuadPoint], c: &Matrix4<f64>, mass: f64) -> DMatrix<f64> {
     let nn = pts[0].n.len();
-    let (c, mass) = form.tensor_and_mass();
     let mut k = DMatrix::zeros(2 * nn, 2 * nn);
     let mut g = DMatrix::zeros(4, 2 * nn);
     for q in pts {

@@ -204,7 +204,7 @@ impl TraceFactor {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fem::{DofMap, Form, assemble};
+    use crate::fem::{DofMap, Form, Integration, assemble};
     use crate::material::{Material, Plane};
     use crate::mesh::{Element, Mesh};
 
@@ -219,11 +219,14 @@ mod tests {
                 let a = assemble(
                     &mesh,
                     &dofs,
-                    Form::Elasticity(Material {
-                        young: 3.0,
-                        poisson: 0.3,
-                        plane: Plane::Strain,
-                    }),
+                    Form::Elasticity(
+                        Material {
+                            young: 3.0,
+                            poisson: 0.3,
+                            plane: Plane::Strain,
+                        },
+                        Integration::Full,
+                    ),
                 );
                 let trace: Vec<usize> = mesh
                     .top_nodes()

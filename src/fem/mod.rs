@@ -6,7 +6,7 @@ pub mod condense;
 pub mod dofs;
 pub mod quadrature;
 
-pub use assembly::{Form, SymCsc, apply, assemble, body_load, h1_error};
+pub use assembly::{Form, Integration, SymCsc, apply, assemble, body_load, h1_error};
 pub use dofs::DofMap;
 
 use faer::linalg::solvers::Solve;

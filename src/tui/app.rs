@@ -367,12 +367,9 @@ impl App {
         }
     }
 
-    /// The deepest indentation offered: half the smaller of the radius and the height.
+    /// The deepest indentation offered: the obstacle's own limit, at most half the height.
     pub fn max_depth(&self) -> f64 {
-        let radius = match self.scenario.obstacle {
-            crate::contact::Obstacle::Cylinder { radius, .. } => radius,
-        };
-        radius.min(self.scenario.height) / 2.0
+        self.scenario.obstacle.max_depth().min(self.scenario.height / 2.0)
     }
 
     fn worker(&mut self, response: Response) -> bool {

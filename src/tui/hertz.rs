@@ -1,7 +1,6 @@
 //! The plane Hertz profile for a given load, the reference curve of the pressure chart
 //! (DESIGN §6): a² = 4PR/(πE*), p₀ = 2P/(πa), p(x) = p₀√(1 − x²/a²).
 
-use crate::contact::Obstacle;
 use crate::material::Plane;
 use crate::scenario::Scenario;
 
@@ -26,7 +25,7 @@ impl Hertz {
             Plane::Strain => m.young / (1.0 - m.poisson * m.poisson),
             Plane::Stress => m.young,
         };
-        let Obstacle::Cylinder { radius, center, .. } = scenario.obstacle;
+        let (radius, center) = (scenario.obstacle.hertz_radius()?, scenario.obstacle.center());
         if full.is_nan() || full <= 0.0 {
             return None;
         }

@@ -106,9 +106,10 @@ fn window(app: &App, solved: &Solved, extent: Extent, cols: f64, rows: f64) -> (
         }
         Extent::NearContact => {
             let obstacle = &solved.solution.params.obstacle;
-            let Obstacle::Cylinder { radius, center, .. } = *obstacle;
-            let d = obstacle.depth().max(0.0);
-            let reach = (radius * radius - (radius - d.min(radius)).powi(2)).sqrt();
+            let center = obstacle.center();
+            let reach = obstacle
+                .contact_extent(xlo, xhi)
+                .map_or(0.0, |(lo, hi)| (hi - center).max(center - lo));
             let half_width = (1.6 * reach)
                 .max(4.0 * s.h(solved.key.level))
                 .min(0.5 * (xhi - xlo));
