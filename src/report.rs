@@ -4,6 +4,7 @@ use std::fmt::Write as _;
 
 use serde::Serialize;
 
+use crate::contact::hertz::Hertz;
 use crate::scenario::Scenario;
 use crate::solve::{Discretization, Solution, Timing, scheme_name};
 use crate::study::{Errors, Reference, StudyRow};
@@ -49,7 +50,17 @@ pub struct SolveReport {
     pub load: f64,
     pub nodes: Nodes,
     pub points: Points,
+    /// For a cylinder: the Hertz profile of the computed load and p̄'s distance from it.
+    pub hertz: Option<HertzReport>,
     pub timing_ms: Timing,
+}
+
+#[derive(Serialize)]
+pub struct HertzReport {
+    pub a: f64,
+    pub p0: f64,
+    /// ‖p̄ − p_Hertz‖₀ / ‖p_Hertz‖₀ on Γ_C.
+    pub relative_error: f64,
 }
 
 impl SolveReport {
@@ -79,6 +90,18 @@ impl SolveReport {
             points: Points {
                 x: sol.points.points.iter().map(|q| q.x).collect(),
                 p: sol.p.clone(),
+            },
+            hertz: {
+                let full = if disc.mesh.symmetric_left {
+                    2.0 * sol.load
+                } else {
+                    sol.load
+                };
+                Hertz::for_load(&sol.params.obstacle, &scenario.material, full).map(|h| HertzReport {
+                    a: h.a,
+                    p0: h.p0,
+                    relative_error: h.relative_error(&sol.points, &sol.pbar),
+                })
             },
             timing_ms: sol.timing,
         }
@@ -126,6 +149,13 @@ impl SolveReport {
             String::new()
         };
         let _ = writeln!(s, "load P = {:.6}{full}", self.load);
+        if let Some(h) = &self.hertz {
+            let _ = writeln!(
+                s,
+                "Hertz (plane, for this load): a = {:.5}, p₀ = {:.5}; ‖p̄ − p_Hertz‖₀/‖p_Hertz‖₀ = {:.3e} (meaningful when the body is much larger than a)",
+                h.a, h.p0, h.relative_error
+            );
+        }
         let t = &self.timing_ms;
         let _ = writeln!(
             s,

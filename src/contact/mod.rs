@@ -2,6 +2,7 @@
 //! rules, the penalty Newton solver and the pressures (DESIGN §2–§4).
 
 pub mod gap;
+pub mod hertz;
 pub mod penalty;
 pub mod pressure;
 pub mod rule;
