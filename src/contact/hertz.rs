@@ -21,7 +21,7 @@ impl Hertz {
     /// `material`; None for other shapes or no load.
     pub fn for_load(obstacle: &Obstacle, material: &Material, full_load: f64) -> Option<Hertz> {
         let radius = obstacle.hertz_radius()?;
-        if !(full_load > 0.0) {
+        if full_load.is_nan() || full_load <= 0.0 {
             return None;
         }
         let e_star = match material.plane {
