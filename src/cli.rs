@@ -95,6 +95,10 @@ pub struct SolveArgs {
     /// Penalty parameter ε > 0 (0: the exact constraint); several, comma-separated, sweep on one mesh.
     #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
     pub epsilon: Vec<f64>,
+    /// Scaled penalty: ε = κ·h/E (h the level's cell size, E Young's modulus), so that a value
+    /// means the same at every level and for every material; several, comma-separated, sweep.
+    #[arg(long, value_delimiter = ',', conflicts_with = "epsilon")]
+    pub kappa: Vec<f64>,
     /// Indentation depth; several, comma-separated, sweep on one mesh.
     #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
     pub depth: Vec<f64>,
@@ -197,7 +201,7 @@ impl From<SolveError> for CliError {
     fn from(e: SolveError) -> Self {
         match e {
             // A combination that has no solution is a bad request, not a solver failure.
-            SolveError::Kernel(_) => CliError::Usage(e.to_string()),
+            SolveError::Kernel(_) | SolveError::TooLarge(_) => CliError::Usage(e.to_string()),
             _ => CliError::Solve(e.to_string()),
         }
     }
@@ -278,18 +282,22 @@ fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
     for &e in &args.epsilon {
         check::epsilon(e).map_err(|m| usage("--epsilon", m))?;
     }
+    for &k in &args.kappa {
+        check::epsilon(k).map_err(|m| usage("--kappa", m))?;
+    }
     for &d in &args.depth {
         check::finite(d).map_err(|m| usage("--depth", m))?;
     }
-    if args.epsilon.len() > 1 && args.depth.len() > 1 {
+    if args.epsilon.len().max(args.kappa.len()) > 1 && args.depth.len() > 1 {
         return Err(CliError::Usage(
-            "sweep one of --epsilon and --depth at a time".into(),
+            "sweep one of --epsilon (or --kappa) and --depth at a time".into(),
         ));
     }
-    let epsilons = if args.epsilon.is_empty() {
-        vec![scenario.epsilon]
-    } else {
-        args.epsilon.clone()
+    let scale = scenario.h(scenario.level) / scenario.material.young;
+    let epsilons = match (args.epsilon.is_empty(), args.kappa.is_empty()) {
+        (false, _) => args.epsilon.clone(),
+        (true, false) => args.kappa.iter().map(|k| k * scale).collect(),
+        (true, true) => vec![scenario.epsilon],
     };
     let depths = if args.depth.is_empty() {
         vec![scenario.obstacle.depth()]
@@ -335,7 +343,14 @@ fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
     let failed: Vec<String> = reports
         .iter()
         .filter(|r| !r.converged)
-        .map(|r| format!("ε = {:e}, depth = {}", r.epsilon, r.depth))
+        .map(|r| {
+            format!(
+                "ε = {:e}, depth = {}: {}",
+                r.epsilon,
+                r.depth,
+                r.diagnosis.as_deref().unwrap_or("not converged")
+            )
+        })
         .collect();
     if failed.is_empty() {
         Ok(ExitCode::SUCCESS)

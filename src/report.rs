@@ -47,6 +47,8 @@ pub struct SolveReport {
     pub newton_iterations: usize,
     pub converged: bool,
     pub residual: f64,
+    /// Why Newton did not converge, when it did not.
+    pub diagnosis: Option<String>,
     pub load: f64,
     pub nodes: Nodes,
     pub points: Points,
@@ -81,6 +83,7 @@ impl SolveReport {
             newton_iterations: sol.newton.iterations,
             converged: sol.newton.converged,
             residual: sol.newton.residual,
+            diagnosis: sol.newton.diagnosis.clone(),
             load: sol.load,
             nodes: Nodes {
                 x: sol.points.vertex_x.clone(),

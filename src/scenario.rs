@@ -646,6 +646,19 @@ impl Scenario {
         )
     }
 
+    /// The number of free dofs at `level` with `element`, counted without building the mesh
+    /// (bottom clamped; u_x fixed on the symmetry line of a half model).
+    pub fn n_dofs(&self, level: u32, element: Element) -> usize {
+        let f = 1usize << level;
+        let p = element.order();
+        let (nnx, nny) = (
+            p * (self.x_lines.len() - 1) * f + 1,
+            p * (self.y_lines.len() - 1) * f + 1,
+        );
+        let symmetric = if self.half_model { nny - 1 } else { 0 };
+        2 * nnx * (nny - 1) - symmetric
+    }
+
     /// The largest cell side at `level`.
     pub fn h(&self, level: u32) -> f64 {
         let widest = |v: &[f64]| v.windows(2).map(|w| w[1] - w[0]).fold(0.0, f64::max);

@@ -82,8 +82,19 @@ impl Discretization {
         })
     }
 
-    /// The discretisation of `scenario` at `level` with `element`.
+    /// The discretisation of `scenario` at `level` with `element`, refused before anything is
+    /// allocated when its memory estimate exceeds the memory available.
     pub fn of(scenario: &Scenario, level: u32, element: Element) -> Result<Self, SolveError> {
+        let n = scenario.n_dofs(level, element);
+        let need = memory_estimate(n);
+        if let Some(free) = available_memory().filter(|&free| need > free) {
+            return Err(SolveError::TooLarge(format!(
+                "level {level} with {} has {n} unknowns and needs about {:.1} GiB; this machine has {:.1} GiB available: choose a coarser level",
+                element.name(),
+                need as f64 / GIB,
+                free as f64 / GIB
+            )));
+        }
         Self::new(
             scenario.mesh(level, element),
             scenario.material,
@@ -132,6 +143,24 @@ impl Discretization {
         }
         f
     }
+}
+
+const GIB: f64 = (1u64 << 30) as f64;
+
+/// Peak memory of a solve with `n` unknowns, bytes: the factor's fill grows like n·log₂n
+/// (measured 82–98 bytes per n·log₂n for Q1, Q2 and P1 at 65 thousand to a million
+/// unknowns, BENCHMARKS.md), plus a fixed 16 MiB.
+pub fn memory_estimate(n: usize) -> u64 {
+    let n = n.max(2) as f64;
+    (100.0 * n * n.log2()) as u64 + (16 << 20)
+}
+
+/// The memory available to a new allocation (Linux `MemAvailable`), if known.
+pub fn available_memory() -> Option<u64> {
+    let info = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = info.lines().find(|l| l.starts_with("MemAvailable:"))?;
+    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib * 1024)
 }
 
 /// What a contact solve depends on beyond the mesh.

@@ -72,6 +72,8 @@ pub struct NewtonResult {
     pub converged: bool,
     pub residual: f64,
     pub history: Vec<Iteration>,
+    /// Why the solve did not converge, when it did not.
+    pub diagnosis: Option<String>,
 }
 
 #[derive(Debug, thiserror::Error)]
@@ -82,6 +84,8 @@ pub enum SolveError {
     Factorization(String),
     #[error("{0}")]
     Kernel(String),
+    #[error("{0}")]
+    TooLarge(String),
 }
 
 /// Relative size of the round-off in s = d − Gy (a few units in the last place).
@@ -183,8 +187,23 @@ pub fn solve(
             .as_ref()
             .is_none_or(|prev| (0..n).all(|q| prev[q] == active[q] || s[q].abs() <= noise[q]));
         let accurate = norm(&mismatch) <= opts.rtol * scale + norm(&floor);
-        let done = accurate && settled;
-        if done || it == opts.max_iterations || !residual.is_finite() {
+        // When round-off alone could account for forces as large as the forces themselves,
+        // no iterate can be certified: ε is too small for double precision here.
+        let swamped = scale > 0.0 && norm(&floor) > 0.5 * scale;
+        let done = accurate && settled && !swamped;
+        if done || swamped || it == opts.max_iterations || !residual.is_finite() {
+            let diagnosis = (!done).then(|| {
+                if swamped {
+                    format!(
+                        "ε = {:e} is below what double precision resolves here: round-off in u_n − g, amplified by 1/ε, is as large as the contact forces; use a larger ε (or --kappa), or ε = 0 for the exact constraint",
+                        pb.epsilon
+                    )
+                } else if residual.is_finite() {
+                    format!("no convergence in {it} Newton iterations (relative residual {residual:.1e})")
+                } else {
+                    "the residual is not finite".to_string()
+                }
+            });
             return Ok(NewtonResult {
                 forces: y,
                 violation: s,
@@ -192,6 +211,7 @@ pub fn solve(
                 converged: done,
                 residual,
                 history,
+                diagnosis,
             });
         }
         let a: Vec<usize> = (0..n).filter(|&q| active[q]).collect();

@@ -62,6 +62,13 @@ pub fn solve_exact(
         let repeated = !seen.insert(active.clone());
         let done = residual <= opts.rtol;
         if done || repeated || it == opts.max_iterations || !residual.is_finite() {
+            let diagnosis = (!done).then(|| {
+                if repeated {
+                    format!("the active set cycles (after {it} iterations, relative residual {residual:.1e})")
+                } else {
+                    format!("no convergence in {it} iterations (relative residual {residual:.1e})")
+                }
+            });
             return Ok(NewtonResult {
                 forces: y,
                 violation: s,
@@ -69,6 +76,7 @@ pub fn solve_exact(
                 converged: done,
                 residual,
                 history,
+                diagnosis,
             });
         }
         let a: Vec<usize> = (0..n).filter(|&q| active[q]).collect();
