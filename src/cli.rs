@@ -52,6 +52,10 @@ pub enum Command {
     /// Print one frame of the terminal lab as plain text (for logs, CI and documents).
     #[command(after_help = EXIT_CODES)]
     Render(RenderArgs),
+    /// Print a shell completion script (e.g. `riplab completions bash > ~/.local/share/bash-completion/completions/riplab`).
+    Completions { shell: clap_complete::Shell },
+    /// Print the man page (roff), e.g. `riplab man > riplab.1 && man ./riplab.1`.
+    Man,
 }
 
 #[derive(Args, Debug)]
@@ -254,6 +258,23 @@ pub fn run(cli: Cli) -> ExitCode {
         Some(Command::Infsup(args)) => infsup(&args),
         Some(Command::Study(args)) => study(&args),
         Some(Command::Render(args)) => render(&args),
+        Some(Command::Completions { shell }) => {
+            let mut cmd = <Cli as clap::CommandFactory>::command();
+            let mut out = Vec::new();
+            clap_complete::generate(shell, &mut cmd, "riplab", &mut out);
+            print(&String::from_utf8_lossy(&out));
+            Ok(ExitCode::SUCCESS)
+        }
+        Some(Command::Man) => {
+            let mut out = Vec::new();
+            match clap_mangen::Man::new(<Cli as clap::CommandFactory>::command()).render(&mut out) {
+                Ok(()) => {
+                    print(&String::from_utf8_lossy(&out));
+                    Ok(ExitCode::SUCCESS)
+                }
+                Err(e) => Err(CliError::Solve(format!("man page: {e}"))),
+            }
+        }
         None => lab(
             cli.scenario,
             TuiOptions {

@@ -565,6 +565,21 @@ impl Scenario {
             (-raw.body.width.get_ref() / 2.0, raw.body.width.get_ref() / 2.0)
         };
         let obstacle = loc.obstacle(&raw.obstacle)?;
+        if let Some(c) = raw
+            .obstacle
+            .center
+            .as_ref()
+            .filter(|c| half_model && *c.get_ref() != 0.0)
+        {
+            return Err(loc.error(
+                Some(c.span()),
+                Some("obstacle.center".into()),
+                format!(
+                    "{} is not allowed for a half model; allowed: 0 (the symmetry line)",
+                    c.get_ref()
+                ),
+            ));
+        }
         if half_model {
             // The half model's symmetry line x = 0 must be the obstacle's too.
             let n = 400;
