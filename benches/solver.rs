@@ -10,7 +10,7 @@ use divan::Bencher;
 use riplab::contact::Rule;
 use riplab::contact::penalty::NewtonOptions;
 use riplab::fem::condense::{TraceFactor, TraceOrdering};
-use riplab::fem::{DofMap, Form, assemble};
+use riplab::fem::{DofMap, Form, SymCsc, assemble};
 use riplab::infsup::{TraceCompliance, estimate};
 use riplab::mesh::Element;
 use riplab::scenario::Scenario;
@@ -38,8 +38,8 @@ fn assembly(bencher: Bencher, level: u32) {
     bencher.bench(|| assemble(&mesh, &dofs, Form::Elasticity(s.material, s.integration)));
 }
 
-#[divan::bench(args = LEVELS, sample_count = 10)]
-fn ordering(bencher: Bencher, level: u32) {
+/// The paper's mesh at `level` with its stiffness assembled.
+fn stiffness(level: u32) -> (Discretization, SymCsc) {
     let s = Scenario::paper();
     let disc = Discretization::of(&s, level, Element::Q1).unwrap();
     let k = assemble(
@@ -47,18 +47,18 @@ fn ordering(bencher: Bencher, level: u32) {
         &disc.dofs,
         Form::Elasticity(s.material, s.integration),
     );
+    (disc, k)
+}
+
+#[divan::bench(args = LEVELS, sample_count = 10)]
+fn ordering(bencher: Bencher, level: u32) {
+    let (disc, k) = stiffness(level);
     bencher.bench(|| TraceOrdering::new(&k, &disc.contact_dofs).unwrap());
 }
 
 #[divan::bench(args = LEVELS, sample_count = 10)]
 fn factorisation(bencher: Bencher, level: u32) {
-    let s = Scenario::paper();
-    let disc = Discretization::of(&s, level, Element::Q1).unwrap();
-    let k = assemble(
-        &disc.mesh,
-        &disc.dofs,
-        Form::Elasticity(s.material, s.integration),
-    );
+    let (disc, k) = stiffness(level);
     bencher.bench(|| TraceFactor::new(&disc.ordering, &k).unwrap().compliance());
 }
 

@@ -13,7 +13,6 @@ use crate::infsup::{TraceCompliance, estimate};
 use crate::mesh::Element;
 use crate::report::{Format, InfSupRow, SolveReport, infsup_output, study_output, sweep_summary};
 use crate::scenario::{MAX_LEVEL, Scenario, ScenarioError, check};
-use crate::solve::scheme_name;
 use crate::solve::{ContactParams, Discretization, preset, solve_contact};
 use crate::study::{Reference, convergence, epsilon_sweep};
 use crate::tui::{MarkerChoice, TuiOptions, render_to_string};
@@ -28,11 +27,11 @@ const EXIT_CODES: &str = "Exit codes:
 pub struct Cli {
     /// Scenario file (TOML) to open in the terminal lab; the paper's problem when omitted.
     pub scenario: Option<PathBuf>,
-    /// Chart marker, for fonts without braille.
-    #[arg(long, value_enum, default_value_t = MarkerChoice::Braille)]
+    /// Chart marker, for fonts without braille (the lab and the tour).
+    #[arg(long, value_enum, default_value_t = MarkerChoice::Braille, global = true)]
     pub marker: MarkerChoice,
     /// Monochrome display (also when the NO_COLOR environment variable is set).
-    #[arg(long)]
+    #[arg(long, global = true)]
     pub no_color: bool,
     #[command(subcommand)]
     pub command: Option<Command>,
@@ -52,10 +51,25 @@ pub enum Command {
     /// Print one frame of the terminal lab as plain text (for logs, CI and documents).
     #[command(after_help = EXIT_CODES)]
     Render(RenderArgs),
+    /// Walk through the paper's argument step by step (Space/→ next, ← back, q quit).
+    #[command(after_help = EXIT_CODES)]
+    Tour(TourArgs),
     /// Print a shell completion script (e.g. `riplab completions bash > ~/.local/share/bash-completion/completions/riplab`).
     Completions { shell: clap_complete::Shell },
     /// Print the man page (roff), e.g. `riplab man > riplab.1 && man ./riplab.1`.
     Man,
+}
+
+#[derive(Args, Debug)]
+pub struct TourArgs {
+    /// Scenario for the steps that name none; the paper's problem when omitted.
+    pub scenario: Option<PathBuf>,
+    /// A tour file (TOML; see tours/paper.toml); the embedded paper tour when omitted.
+    #[arg(long)]
+    pub tour: Option<PathBuf>,
+    /// Advance by itself every SECONDS (for a projector); stops at the last step.
+    #[arg(long, value_name = "SECONDS")]
+    pub auto: Option<f64>,
 }
 
 #[derive(Args, Debug)]
@@ -108,6 +122,12 @@ pub struct SolveArgs {
     pub depth: Vec<f64>,
     #[arg(long, short, value_enum, default_value_t = Format::Table)]
     pub format: Format,
+    /// Also write the pressure chart (p and p̄ along Γ_C) as an SVG file.
+    #[arg(long, value_name = "FILE")]
+    pub plot: Option<PathBuf>,
+    /// Let --plot replace an existing file.
+    #[arg(long, requires = "plot")]
+    pub force: bool,
 }
 
 #[derive(Args, Debug)]
@@ -258,6 +278,13 @@ pub fn run(cli: Cli) -> ExitCode {
         Some(Command::Infsup(args)) => infsup(&args),
         Some(Command::Study(args)) => study(&args),
         Some(Command::Render(args)) => render(&args),
+        Some(Command::Tour(args)) => tour(
+            &args,
+            TuiOptions {
+                marker: cli.marker,
+                no_color: cli.no_color,
+            },
+        ),
         Some(Command::Completions { shell }) => {
             let mut cmd = <Cli as clap::CommandFactory>::command();
             let mut out = Vec::new();
@@ -326,6 +353,9 @@ fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
         args.depth.clone()
     };
     let sweep = epsilons.len() > 1 || depths.len() > 1;
+    if sweep && args.plot.is_some() {
+        return Err(usage("--plot", "plots one solve; a sweep has several".into()));
+    }
 
     let disc = Discretization::of(&scenario, scenario.level, scenario.element).map_err(CliError::from)?;
     let mut reports = Vec::new();
@@ -351,6 +381,11 @@ fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
             }
             previous = Some(sol.newton.forces.clone());
             reports.push(SolveReport::new(&scenario, scenario.level, &disc, &sol));
+            if let Some(path) = &args.plot {
+                let title = crate::plot::chart_title(&scenario.name, disc.mesh.element, scenario.level, &sol);
+                crate::plot::pressure_svg(path, &title, &sol, scenario.half_model, args.force)
+                    .map_err(|e| CliError::Usage(format!("--plot {}: {e}", path.display())))?;
+            }
         }
     }
     let out = match (args.format, sweep) {
@@ -420,20 +455,8 @@ fn infsup(args: &InfsupArgs) -> Result<ExitCode, CliError> {
             for &(_, rule) in pairs.iter().filter(|p| p.0 == element) {
                 let t = std::time::Instant::now();
                 let est = estimate(&disc, &compliance, rule);
-                rows.push(InfSupRow {
-                    level,
-                    h: est.h,
-                    element: element.name(),
-                    rule: rule.name(),
-                    scheme: scheme_name(element, rule),
-                    beta: est.beta,
-                    beta_over_sqrt_h: est.beta_over_sqrt_h,
-                    beta_bar: est.beta_bar,
-                    beta_bar_over_sqrt_h: est.beta_bar_over_sqrt_h,
-                    kernel: est.kernel,
-                    mesh_ms: shared_ms,
-                    rule_ms: t.elapsed().as_secs_f64() * 1e3,
-                });
+                let rule_ms = t.elapsed().as_secs_f64() * 1e3;
+                rows.push(InfSupRow::new(level, element, rule, est, shared_ms, rule_ms));
             }
         }
     }
@@ -552,5 +575,24 @@ fn render(args: &RenderArgs) -> Result<ExitCode, CliError> {
     )
     .map_err(CliError::Usage)?;
     print(&frame);
+    Ok(ExitCode::SUCCESS)
+}
+
+fn tour(args: &TourArgs, opts: TuiOptions) -> Result<ExitCode, CliError> {
+    use crate::tui::tour::{Tour, auto_interval, run_tour};
+    let scenario = Select {
+        scenario: args.scenario.clone(),
+        ..Select::default()
+    }
+    .resolve()?;
+    let tour = match &args.tour {
+        Some(path) => Tour::load(path)?,
+        None => Tour::paper(),
+    };
+    if let Some(seconds) = args.auto {
+        auto_interval(seconds).map_err(|m| usage("--auto", m))?;
+    }
+    let tour = tour.with_scenario(scenario).map_err(CliError::Usage)?;
+    run_tour(tour, opts, args.auto).map_err(|e| CliError::Solve(format!("terminal: {e}")))?;
     Ok(ExitCode::SUCCESS)
 }

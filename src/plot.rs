@@ -1,1 +1,313 @@
 //! Charts as SVG files (plotters): the pressure chart of a solution, for slides and papers.
+//!
+//! The chart is the terminal lab's main chart drawn with a pen: the raw pressure p of (12) as
+//! the function of Q_h through the rule's points (steps for gauss1, segments and the points
+//! themselves otherwise) and the smoothed p̄ of (16)–(17) as a line through the vertices,
+//! along Γ_C, mirrored to the full width for a half model. Files are written atomically and
+//! never overwritten unless asked.
+
+use std::fs;
+use std::io::{self, Write as _};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use plotters::prelude::*;
+
+use crate::contact::{ContactPoints, Rule};
+use crate::mesh::Element;
+use crate::solve::{Solution, scheme_name};
+
+/// The size of the SVG chart in pixels.
+pub const SIZE: (u32, u32) = (960, 540);
+/// Samples per edge of a non-constant Q_h function.
+const SAMPLES_PER_EDGE: usize = 9;
+/// The colour of the raw pressure (the terminal's yellow, darkened for white paper).
+const RAW: RGBColor = RGBColor(214, 110, 0);
+/// The colour of the smoothed pressure (the terminal's cyan, darkened).
+const SMOOTH: RGBColor = RGBColor(0, 110, 190);
+
+/// The chart's title: "hertz-paper: M1 (q1 + gauss1), level 1, ε = 1e-6" (ε = 0 is called
+/// the exact constraint).
+pub fn chart_title(scenario: &str, element: Element, level: u32, sol: &Solution) -> String {
+    let rule = sol.params.rule;
+    let scheme = match scheme_name(element, rule) {
+        Some(m) => format!("{m} ({} + {})", element.name(), rule.name()),
+        None => format!("{} + {}", element.name(), rule.name()),
+    };
+    let epsilon = if sol.params.epsilon == 0.0 {
+        "ε = 0 (exact constraint)".to_string()
+    } else {
+        format!("ε = {:e}", sol.params.epsilon)
+    };
+    format!("{scenario}: {scheme}, level {level}, {epsilon}")
+}
+
+/// The raw pressure as the function of Q_h, one polyline per edge: on each edge the Lagrange
+/// interpolant through the edge's rule points (a constant for one point), sampled from end to
+/// end. Values that are not finite are left out.
+pub fn raw_pressure_edges(points: &ContactPoints, p: &[f64]) -> Vec<Vec<(f64, f64)>> {
+    let mut out = Vec::with_capacity(points.edge_points.len());
+    for (e, idx) in points.edge_points.iter().enumerate() {
+        let (Some(&x0), Some(&x1)) = (points.vertex_x.get(e), points.vertex_x.get(e + 1)) else {
+            continue;
+        };
+        let (xs, ps): (Vec<f64>, Vec<f64>) = idx
+            .iter()
+            .filter_map(|&i| Some((points.points.get(i)?.x, *p.get(i)?)))
+            .unzip();
+        if xs.is_empty() {
+            continue;
+        }
+        let n = if xs.len() == 1 { 2 } else { SAMPLES_PER_EDGE };
+        let edge: Vec<(f64, f64)> = (0..n)
+            .map(|k| {
+                let x = x0 + (x1 - x0) * k as f64 / (n - 1) as f64;
+                (x, lagrange(&xs, &ps, x))
+            })
+            .filter(|(x, y)| x.is_finite() && y.is_finite())
+            .collect();
+        out.push(edge);
+    }
+    out
+}
+
+/// The polynomial through (xs[i], ys[i]) at x.
+fn lagrange(xs: &[f64], ys: &[f64], x: f64) -> f64 {
+    (0..xs.len())
+        .map(|i| {
+            let basis: f64 = (0..xs.len())
+                .filter(|&j| j != i)
+                .map(|j| (x - xs[j]) / (xs[i] - xs[j]))
+                .product();
+            ys[i] * basis
+        })
+        .sum()
+}
+
+/// `pts` and their mirror image in x = 0, in ascending x, when `half_model`.
+fn mirrored(pts: &[(f64, f64)], half_model: bool) -> Vec<(f64, f64)> {
+    let mut out = Vec::with_capacity(2 * pts.len());
+    if half_model {
+        out.extend(pts.iter().rev().map(|&(x, y)| (-x, y)));
+    }
+    out.extend_from_slice(pts);
+    out
+}
+
+/// Polylines `edges` (each in ascending x) and their mirror images, when `half_model`.
+fn mirrored_edges(edges: &[Vec<(f64, f64)>], half_model: bool) -> Vec<Vec<(f64, f64)>> {
+    let mut out = Vec::with_capacity(2 * edges.len());
+    if half_model {
+        out.extend(
+            edges
+                .iter()
+                .rev()
+                .map(|e| e.iter().rev().map(|&(x, y)| (-x, y)).collect()),
+        );
+    }
+    out.extend(edges.iter().cloned());
+    out
+}
+
+/// A "nice" upper bound ≥ `x` (1, 1.2, 1.5, 2, 2.5, 3, 4, 5, 6, 8 × 10^k); 1 for x ≤ 0.
+fn nice_ceil(x: f64) -> f64 {
+    if !x.is_finite() || x <= 0.0 {
+        return 1.0;
+    }
+    let p = 10f64.powf(x.log10().floor());
+    [1.0, 1.2, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0, 8.0, 10.0]
+        .into_iter()
+        .map(|m| m * p)
+        .find(|&v| v >= x * (1.0 - 1e-12))
+        .unwrap_or(10.0 * p)
+}
+
+/// A tick label: at most four significant digits, no trailing zeros ("-8", "2.5", "350").
+fn label(v: f64) -> String {
+    let s = format!("{:.4}", (v * 1e4).round() / 1e4);
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" { "0".into() } else { s.to_string() }
+}
+
+/// The pressure chart of `sol` as SVG text, titled `title`, mirrored to the full width when
+/// `half_model`.
+pub fn pressure_svg_string(title: &str, sol: &Solution, half_model: bool) -> Result<String, String> {
+    let points = &sol.points;
+    let raw_edges = raw_pressure_edges(points, &sol.p);
+    let raw: Vec<Vec<(f64, f64)>> = if points.rule == Rule::Gauss1 {
+        // One connected staircase: the risers join the constants of neighbouring edges.
+        let steps: Vec<(f64, f64)> = raw_edges.iter().flatten().copied().collect();
+        vec![mirrored(&steps, half_model)]
+    } else {
+        mirrored_edges(&raw_edges, half_model)
+    };
+    let marks: Vec<(f64, f64)> = if points.rule == Rule::Gauss1 {
+        Vec::new()
+    } else {
+        let pts: Vec<(f64, f64)> = points
+            .points
+            .iter()
+            .zip(&sol.p)
+            .map(|(q, &p)| (q.x, p))
+            .filter(|(x, p)| x.is_finite() && p.is_finite())
+            .collect();
+        // The point x = 0 of a half model is its own mirror image.
+        let mut all = mirrored(&pts, half_model);
+        all.dedup_by(|a, b| a.0 == b.0);
+        all
+    };
+    let pbar_pts: Vec<(f64, f64)> = points
+        .vertex_x
+        .iter()
+        .copied()
+        .zip(sol.pbar.iter().copied())
+        .filter(|(x, p)| x.is_finite() && p.is_finite())
+        .collect();
+    let pbar = mirrored(&pbar_pts, half_model);
+
+    let xs = || points.vertex_x.iter().copied().filter(|x| x.is_finite());
+    let (mut xlo, mut xhi) = (
+        xs().fold(f64::INFINITY, f64::min),
+        xs().fold(f64::NEG_INFINITY, f64::max),
+    );
+    if half_model {
+        xhi = xhi.max(-xlo);
+        xlo = -xhi;
+    }
+    if !(xlo.is_finite() && xhi.is_finite() && xhi > xlo) {
+        (xlo, xhi) = (-1.0, 1.0);
+    }
+    let peak = raw
+        .iter()
+        .flatten()
+        .chain(&pbar)
+        .map(|&(_, p)| p)
+        .fold(0.0f64, f64::max);
+    let ymax = nice_ceil(peak * 1.08);
+
+    let mut svg = String::new();
+    {
+        let fail = |e: &dyn std::fmt::Display| format!("drawing the chart: {e}");
+        let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| fail(&e))?;
+        let mut chart = ChartBuilder::on(&root)
+            .caption(title, ("sans-serif", 24))
+            .margin(18)
+            .x_label_area_size(56)
+            .y_label_area_size(84)
+            .build_cartesian_2d(xlo..xhi, 0.0..ymax)
+            .map_err(|e| fail(&e))?;
+        chart
+            .configure_mesh()
+            .x_desc(if half_model {
+                "x along Γ_C (length; half model mirrored)"
+            } else {
+                "x along Γ_C (length)"
+            })
+            .y_desc("pressure (units of E)")
+            .x_label_formatter(&|v| label(*v))
+            .y_label_formatter(&|v| label(*v))
+            .axis_desc_style(("sans-serif", 18))
+            .label_style(("sans-serif", 15))
+            .light_line_style(RGBColor(246, 246, 246))
+            .bold_line_style(RGBColor(210, 210, 210))
+            .draw()
+            .map_err(|e| fail(&e))?;
+
+        let raw_style = RAW.stroke_width(2);
+        let dotted = !marks.is_empty();
+        let raw_label = format!("raw p ({}, at the rule's points)", points.rule.name());
+        for (i, line) in raw.iter().enumerate() {
+            let series = chart
+                .draw_series(LineSeries::new(line.iter().copied(), raw_style))
+                .map_err(|e| fail(&e))?;
+            if i == 0 {
+                series.label(raw_label.as_str()).legend(move |(x, y)| {
+                    EmptyElement::at((x, y))
+                        + PathElement::new(vec![(0, 0), (24, 0)], raw_style)
+                        + Circle::new((12, 0), if dotted { 3 } else { 0 }, RAW.filled())
+                });
+            }
+        }
+        chart
+            .draw_series(marks.iter().map(|&c| Circle::new(c, 3, RAW.filled())))
+            .map_err(|e| fail(&e))?;
+        let smooth_style = SMOOTH.stroke_width(3);
+        chart
+            .draw_series(LineSeries::new(pbar.iter().copied(), smooth_style))
+            .map_err(|e| fail(&e))?
+            .label("smoothed p̄ (16)–(17), at the vertices")
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], smooth_style));
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .margin(12)
+            .label_font(("sans-serif", 16))
+            .background_style(WHITE.mix(0.9))
+            .border_style(RGBColor(160, 160, 160))
+            .draw()
+            .map_err(|e| fail(&e))?;
+        root.present().map_err(|e| fail(&e))?;
+    }
+    Ok(svg)
+}
+
+/// Write the pressure chart of `sol` to `path` as SVG (see [`pressure_svg_string`]).
+/// The file is written to a temporary name in the same directory and then moved into place;
+/// an existing `path` is replaced only when `overwrite`, otherwise it is an error.
+pub fn pressure_svg(
+    path: &Path,
+    title: &str,
+    sol: &Solution,
+    half_model: bool,
+    overwrite: bool,
+) -> Result<(), String> {
+    let svg = pressure_svg_string(title, sol, half_model)?;
+    write_file(path, svg.as_bytes(), overwrite).map_err(|e| match e.kind() {
+        io::ErrorKind::AlreadyExists => format!("{}: exists; not overwritten", path.display()),
+        _ => format!("{}: {e}", path.display()),
+    })
+}
+
+/// Write `bytes` to `path` atomically: to a fresh temporary file in the same directory, then
+/// moved into place. Unless `overwrite`, an existing `path` is left alone and the error is of
+/// kind [`io::ErrorKind::AlreadyExists`] (a hard link is made, which fails if the name is taken
+/// even under a race; where hard links are not supported, a rename onto a name that does not
+/// exist). The temporary file is gone afterwards in every case.
+pub fn write_file(path: &Path, bytes: &[u8], overwrite: bool) -> io::Result<()> {
+    static COUNTER: AtomicU64 = AtomicU64::new(0);
+    let name = path
+        .file_name()
+        .ok_or_else(|| io::Error::new(io::ErrorKind::InvalidInput, "not a file name"))?;
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    if !overwrite && fs::symlink_metadata(path).is_ok() {
+        return Err(io::ErrorKind::AlreadyExists.into());
+    }
+    let n = COUNTER.fetch_add(1, Ordering::Relaxed);
+    let tmp = dir.join(format!(
+        ".{}.{}-{n}.tmp",
+        name.to_string_lossy(),
+        std::process::id()
+    ));
+    let write = || -> io::Result<()> {
+        let mut f = fs::File::create_new(&tmp)?;
+        f.write_all(bytes)?;
+        f.sync_all()
+    };
+    let result = write().and_then(|()| {
+        if overwrite {
+            return fs::rename(&tmp, path);
+        }
+        match fs::hard_link(&tmp, path) {
+            Ok(()) => Ok(()),
+            Err(e) if e.kind() == io::ErrorKind::AlreadyExists => Err(e),
+            Err(_) if fs::symlink_metadata(path).is_err() => fs::rename(&tmp, path),
+            Err(e) => Err(e),
+        }
+    });
+    let _ = fs::remove_file(&tmp);
+    result
+}

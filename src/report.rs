@@ -4,7 +4,10 @@ use std::fmt::Write as _;
 
 use serde::Serialize;
 
+use crate::contact::Rule;
 use crate::contact::hertz::Hertz;
+use crate::infsup::InfSup;
+use crate::mesh::Element;
 use crate::scenario::Scenario;
 use crate::solve::{Discretization, Solution, Timing, scheme_name};
 use crate::study::{Errors, Reference, StudyRow};
@@ -273,6 +276,26 @@ pub struct InfSupRow {
     pub mesh_ms: f64,
     /// The rule's own dense work, ms.
     pub rule_ms: f64,
+}
+
+impl InfSupRow {
+    /// The row of `est` for `element` + `rule` at `level`, with the time it took.
+    pub fn new(level: u32, element: Element, rule: Rule, est: InfSup, mesh_ms: f64, rule_ms: f64) -> Self {
+        InfSupRow {
+            level,
+            h: est.h,
+            element: element.name(),
+            rule: rule.name(),
+            scheme: scheme_name(element, rule),
+            beta: est.beta,
+            beta_over_sqrt_h: est.beta_over_sqrt_h,
+            beta_bar: est.beta_bar,
+            beta_bar_over_sqrt_h: est.beta_bar_over_sqrt_h,
+            kernel: est.kernel,
+            mesh_ms,
+            rule_ms,
+        }
+    }
 }
 
 /// Observed slope of log β against log h between two rows (None where β = 0).

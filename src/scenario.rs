@@ -244,17 +244,22 @@ pub mod check {
     }
 }
 
-/// Locates byte offsets in a source text.
-struct Locator<'a> {
-    file: &'a str,
-    text: &'a str,
+/// Turns byte spans of a TOML text into located errors (used for scenarios and tours).
+pub struct Locator<'a> {
+    pub file: &'a str,
+    pub text: &'a str,
 }
 
 impl Locator<'_> {
-    fn error(&self, span: Option<Range<usize>>, key: Option<String>, message: String) -> ScenarioError {
+    /// An error at `span` about `key` (inferred from the line's `key = value` when None).
+    pub fn error(&self, span: Option<Range<usize>>, key: Option<String>, message: String) -> ScenarioError {
         let (location, source_line) = match span {
             Some(span) => {
                 let start = span.start.min(self.text.len());
+                let start = (0..=start)
+                    .rev()
+                    .find(|&i| self.text.is_char_boundary(i))
+                    .unwrap_or(0);
                 let before = &self.text[..start];
                 let line = before.matches('\n').count() + 1;
                 let line_start = before.rfind('\n').map_or(0, |i| i + 1);
@@ -297,7 +302,8 @@ impl Locator<'_> {
         })
     }
 
-    fn check<T>(
+    /// `test` of a spanned value, failing with an error at the value about `key`.
+    pub fn check<T>(
         &self,
         key: &str,
         value: &Spanned<T>,

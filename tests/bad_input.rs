@@ -1,19 +1,9 @@
 //! Bad scenarios and bad command lines: a clear message naming the file, line and key with
 //! the allowed range, exit code 2, no panic.
 
-use std::process::Command;
+mod common;
 
-fn riplab(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_riplab"))
-        .args(args)
-        .output()
-        .expect("runs");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into(),
-        String::from_utf8_lossy(&out.stderr).into(),
-    )
-}
+use common::riplab;
 
 /// (file, expected fragments of the message)
 const CASES: &[(&str, &[&str])] = &[

@@ -1,18 +1,9 @@
 //! The command line's own conventions: help documents the exit codes; completions and the man
 //! page are generated from the same definition.
 
-use std::process::Command;
+mod common;
 
-fn riplab(args: &[&str]) -> (i32, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_riplab"))
-        .args(args)
-        .output()
-        .expect("runs");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into(),
-    )
-}
+use common::riplab;
 
 #[test]
 fn help_documents_exit_codes() {
@@ -23,7 +14,7 @@ fn help_documents_exit_codes() {
         &["study", "--help"],
         &["render", "--help"],
     ] {
-        let (code, out) = riplab(args);
+        let (code, out, _) = riplab(args);
         assert_eq!(code, 0);
         assert!(
             out.contains("Exit codes:") && out.contains("2  bad input"),
@@ -35,18 +26,18 @@ fn help_documents_exit_codes() {
 #[test]
 fn completions_and_man_page() {
     for shell in ["bash", "zsh", "fish", "elvish", "powershell"] {
-        let (code, out) = riplab(&["completions", shell]);
+        let (code, out, _) = riplab(&["completions", shell]);
         assert_eq!(code, 0, "{shell}");
         assert!(out.contains("riplab") && out.contains("infsup"), "{shell}");
     }
-    let (code, man) = riplab(&["man"]);
+    let (code, man, _) = riplab(&["man"]);
     assert_eq!(code, 0);
     assert!(man.starts_with(".ie") && man.contains(".TH riplab 1") && man.contains("Exit codes"));
 }
 
 #[test]
 fn render_prints_a_frame_without_a_terminal() {
-    let (code, out) = riplab(&["render", "--size", "80x24", "--scene", "infsup"]);
+    let (code, out, _) = riplab(&["render", "--size", "80x24", "--scene", "infsup"]);
     assert_eq!(code, 0);
     assert_eq!(out.lines().count(), 24);
     assert!(out.contains("β"));

@@ -5,11 +5,11 @@ mod common;
 
 use std::ops::ControlFlow;
 
-use common::{Lcg, paper_with, rel};
+use common::{Lcg, bottom_reaction, paper_with, rel};
 use riplab::contact::penalty::NewtonOptions;
 use riplab::contact::pressure::{rule_product, smoothed_pressure, trapezoid_product};
 use riplab::contact::{ContactPoints, Obstacle, Rule};
-use riplab::fem::{Form, Integration, apply};
+use riplab::fem::Integration;
 use riplab::material::{Material, Plane};
 use riplab::mesh::{Element, Mesh};
 use riplab::solve::{ContactParams, Discretization, Solution, solve_contact, solve_scenario};
@@ -65,14 +65,7 @@ fn load_equals_bottom_reaction() {
         let disc = Discretization::of(&scenario, 2, element).unwrap();
         for rule in Rule::ALL {
             let sol = solve(&disc, rule, 1e-6, scenario.obstacle.clone());
-            let ku = apply(
-                &disc.mesh,
-                Form::Elasticity(scenario.material, scenario.integration),
-                &sol.displacement(&disc),
-            );
-            let reaction: f64 = (0..disc.mesh.nnx())
-                .map(|i| ku[2 * disc.mesh.node(i, 0) + 1])
-                .sum();
+            let reaction = bottom_reaction(&scenario, &disc, &sol);
             assert!(sol.load > 100.0);
             assert!(
                 rel(reaction, sol.load, 1.0) < 1e-9,
@@ -259,14 +252,7 @@ fn exact_constraint_is_the_limit_of_the_penalty() {
         exact.newton.violation.iter().all(|&s| s <= 1e-12),
         "penetration with the exact constraint"
     );
-    let ku = apply(
-        &disc.mesh,
-        Form::Elasticity(scenario.material, scenario.integration),
-        &exact.displacement(&disc),
-    );
-    let reaction: f64 = (0..disc.mesh.nnx())
-        .map(|i| ku[2 * disc.mesh.node(i, 0) + 1])
-        .sum();
+    let reaction = bottom_reaction(&scenario, &disc, &exact);
     assert!(rel(reaction, exact.load, 1.0) < 1e-9);
     let gap = |eps: f64| exact.load - solve(&disc, Rule::Trapezoid, eps, scenario.obstacle.clone()).load;
     let (g7, g9) = (gap(1e-7), gap(1e-9));

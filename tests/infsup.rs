@@ -11,7 +11,7 @@ use riplab::infsup::{TraceCompliance, estimate, inf_sup};
 use riplab::material::{Material, Plane};
 use riplab::mesh::{Element, Mesh};
 use riplab::report::{InfSupRow, slope};
-use riplab::solve::{Discretization, preset, scheme_name};
+use riplab::solve::{Discretization, preset};
 
 /// λ_min(S, N) for N symmetric positive definite, by nalgebra's Cholesky and symmetric eigen.
 fn dense_min_eig(s: &DMatrix<f64>, n: &DMatrix<f64>) -> f64 {
@@ -181,20 +181,7 @@ fn levels_of(element: Element, rule: Rule, levels: std::ops::RangeInclusive<u32>
         .map(|level| {
             let disc = Discretization::of(&scenario, level, element).unwrap();
             let est = estimate(&disc, &TraceCompliance::new(&disc).unwrap(), rule);
-            InfSupRow {
-                level,
-                h: est.h,
-                element: element.name(),
-                rule: rule.name(),
-                scheme: scheme_name(element, rule),
-                beta: est.beta,
-                beta_over_sqrt_h: est.beta_over_sqrt_h,
-                beta_bar: est.beta_bar,
-                beta_bar_over_sqrt_h: est.beta_bar_over_sqrt_h,
-                kernel: est.kernel,
-                mesh_ms: 0.0,
-                rule_ms: 0.0,
-            }
+            InfSupRow::new(level, element, rule, est, 0.0, 0.0)
         })
         .collect()
 }

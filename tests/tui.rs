@@ -476,20 +476,6 @@ fn fallback_markers_render() {
 }
 
 #[test]
-fn hertz_profile_by_hand() {
-    use riplab::tui::hertz::Hertz;
-    // Full-body load P = 2·500 = 1000, E* = 1000/(1 − 0.09), R = 8.
-    let h = Hertz::for_load(&Scenario::paper(), 500.0).unwrap();
-    let e_star = 1000.0 / (1.0 - 0.09);
-    let a = (4.0 * 1000.0 * 8.0 / (std::f64::consts::PI * e_star)).sqrt();
-    assert!((h.a - a).abs() < 1e-12);
-    assert!((h.p0 - 2.0 * 1000.0 / (std::f64::consts::PI * a)).abs() < 1e-9);
-    assert_eq!(h.pressure(a * 1.01), 0.0);
-    assert!((h.pressure(0.0) - h.p0).abs() < 1e-12);
-    assert!(Hertz::for_load(&Scenario::paper(), 0.0).is_none());
-}
-
-#[test]
 fn progress_shows_while_the_last_result_stays() {
     use riplab::tui::app::Progress;
     let mut app = settled(0, Scene::Explore);

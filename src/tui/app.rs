@@ -142,8 +142,19 @@ pub enum Msg {
 pub enum Command {
     Solve(SolveRequest),
     InfSup(InfSupRequest),
-    /// Write the displayed solution to a new CSV file.
+    /// Write the displayed solution to a new file, as [`App::export_kind`] says (the kind
+    /// travels in the app so that the variant stays a plain `Export`).
     Export,
+}
+
+/// What [`Command::Export`] writes.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ExportKind {
+    /// `s`: the solution's numbers as CSV.
+    #[default]
+    Csv,
+    /// `S`: the pressure chart as SVG.
+    Svg,
 }
 
 /// What an update asks of the runtime.
@@ -182,6 +193,8 @@ pub struct App {
     pub error: Option<String>,
     /// A one-off message for the status line (e.g. the file exported).
     pub notice: Option<String>,
+    /// The kind of the last export asked for.
+    pub export_kind: ExportKind,
     /// Inf-sup estimates computed so far.
     pub infsup: HashMap<InfSupKey, Result<InfSup, String>>,
     infsup_pending: HashSet<InfSupKey>,
@@ -214,6 +227,7 @@ impl App {
             progress: None,
             error: None,
             notice: None,
+            export_kind: ExportKind::Csv,
             infsup: HashMap::new(),
             infsup_pending: HashSet::new(),
         }
@@ -327,8 +341,13 @@ impl App {
             KeyCode::Char('g') => self.show_gap = !self.show_gap,
             KeyCode::Char('h') => self.show_hertz = !self.show_hertz,
             KeyCode::Char('a') => self.all_levels = !self.all_levels,
-            KeyCode::Char('s') => {
+            KeyCode::Char(c @ ('s' | 'S')) => {
                 if self.current().is_some() {
+                    self.export_kind = if c == 's' {
+                        ExportKind::Csv
+                    } else {
+                        ExportKind::Svg
+                    };
                     commands.push(Command::Export);
                 } else {
                     self.notice = Some("nothing to export yet: the solve is not finished".into());

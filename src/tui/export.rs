@@ -1,11 +1,12 @@
-//! `s`: the displayed solution as CSV (the CLI's `--format csv`) in a new file of the current
-//! directory. Never overwrites: the name is fresh, the file is written to a temporary name and
-//! then linked into place, which fails if the name was taken meanwhile.
+//! `s` and `S`: the displayed solution as CSV (the CLI's `--format csv`) or its pressure chart
+//! as SVG ([`crate::plot`]) in a new file of the current directory. Never overwrites: the name
+//! is fresh, and each file is written to a temporary name and then linked into place, which
+//! fails if the name was taken meanwhile (see [`crate::plot::write_file`]).
 
-use std::fs;
-use std::io::Write as _;
+use std::io::ErrorKind;
 use std::path::{Path, PathBuf};
 
+use crate::plot::{chart_title, pressure_svg_string, write_file};
 use crate::report::SolveReport;
 use crate::scenario::Scenario;
 
@@ -17,48 +18,48 @@ const MAX_TRIES: u32 = 1000;
 /// Write `solved` to `<scenario>-<element>-<rule>-L<level>[-N].csv` in `dir`; returns the path.
 pub fn export_csv(scenario: &Scenario, solved: &Solved, dir: &Path) -> Result<PathBuf, String> {
     let report = SolveReport::new(scenario, solved.key.level, &solved.disc, &solved.solution);
-    let text = report.csv();
-    let stem = format!(
-        "{}-{}-{}-L{}",
-        sanitize(&scenario.name),
-        report.element,
-        report.rule,
-        solved.key.level
-    );
-    let tmp = dir.join(format!(".{stem}.{}.tmp", std::process::id()));
-    let write = || -> std::io::Result<()> {
-        let mut f = fs::File::create_new(&tmp)?;
-        f.write_all(text.as_bytes())?;
-        f.sync_all()
-    };
-    write().map_err(|e| format!("{}: {e}", tmp.display()))?;
-    let result = claim(&tmp, dir, &stem);
-    let _ = fs::remove_file(&tmp);
-    result
+    save_fresh(dir, &stem(scenario, solved), "csv", report.csv().as_bytes())
 }
 
-/// Link `tmp` to the first free name `stem.csv`, `stem-1.csv`, …: a hard link fails when the
-/// target exists, so nothing is overwritten even under a race. Where hard links are not
-/// supported, fall back to a rename onto a name that does not exist.
-fn claim(tmp: &Path, dir: &Path, stem: &str) -> Result<PathBuf, String> {
+/// Write the pressure chart of `solved` to `<scenario>-<element>-<rule>-L<level>[-N].svg` in
+/// `dir` (the CSV export's names); returns the path.
+pub fn export_svg(scenario: &Scenario, solved: &Solved, dir: &Path) -> Result<PathBuf, String> {
+    let title = chart_title(
+        &scenario.name,
+        solved.key.element,
+        solved.key.level,
+        &solved.solution,
+    );
+    let svg = pressure_svg_string(&title, &solved.solution, scenario.half_model)?;
+    save_fresh(dir, &stem(scenario, solved), "svg", svg.as_bytes())
+}
+
+/// `<scenario>-<element>-<rule>-L<level>`.
+fn stem(scenario: &Scenario, solved: &Solved) -> String {
+    format!(
+        "{}-{}-{}-L{}",
+        sanitize(&scenario.name),
+        solved.key.element.name(),
+        solved.solution.params.rule.name(),
+        solved.key.level
+    )
+}
+
+/// Write `bytes` to the first free name `stem.ext`, `stem-1.ext`, … in `dir`.
+fn save_fresh(dir: &Path, stem: &str, ext: &str, bytes: &[u8]) -> Result<PathBuf, String> {
     for n in 0..MAX_TRIES {
         let path = dir.join(if n == 0 {
-            format!("{stem}.csv")
+            format!("{stem}.{ext}")
         } else {
-            format!("{stem}-{n}.csv")
+            format!("{stem}-{n}.{ext}")
         });
-        match fs::hard_link(tmp, &path) {
+        match write_file(&path, bytes, false) {
             Ok(()) => return Ok(path),
-            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => continue,
-            Err(_) if !path.exists() => {
-                return fs::rename(tmp, &path)
-                    .map(|()| path.clone())
-                    .map_err(|e| format!("{}: {e}", path.display()));
-            }
-            Err(_) => continue,
+            Err(e) if e.kind() == ErrorKind::AlreadyExists => continue,
+            Err(e) => return Err(format!("{}: {e}", path.display())),
         }
     }
-    Err(format!("no free file name for {stem}.csv in {}", dir.display()))
+    Err(format!("no free file name for {stem}.{ext} in {}", dir.display()))
 }
 
 /// The scenario name reduced to characters safe in a file name.

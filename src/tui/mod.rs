@@ -10,16 +10,16 @@
 pub mod app;
 pub mod beta;
 pub mod export;
-pub mod hertz;
 mod runtime;
 pub mod theme;
+pub mod tour;
 pub mod view;
 pub mod worker;
 
-use ratatui::Terminal;
 use ratatui::backend::TestBackend;
 use ratatui::buffer::{Buffer, CellWidth};
 use ratatui::symbols::Marker;
+use ratatui::{Frame, Terminal};
 
 use crate::contact::Rule;
 use crate::mesh::Element;
@@ -120,10 +120,13 @@ pub fn render_to_string(
 
 /// `app` drawn on a `width`×`height` test terminal, as plain text.
 pub fn render_app(app: &App, look: &Look, width: u16, height: u16) -> String {
+    render_frame(width, height, |frame| view::view(app, frame, look))
+}
+
+/// What `draw` draws on a `width`×`height` test terminal, as plain text.
+pub fn render_frame(width: u16, height: u16, draw: impl FnOnce(&mut Frame)) -> String {
     let mut terminal = Terminal::new(TestBackend::new(width, height)).expect("the test backend cannot fail");
-    terminal
-        .draw(|frame| view::view(app, frame, look))
-        .expect("the test backend cannot fail");
+    terminal.draw(draw).expect("the test backend cannot fail");
     buffer_text(terminal.backend().buffer())
 }
 

@@ -8,12 +8,12 @@ use std::sync::mpsc;
 
 use crossterm::event::Event;
 use crossterm::terminal::{BeginSynchronizedUpdate, EndSynchronizedUpdate};
-use ratatui::DefaultTerminal;
+use ratatui::{DefaultTerminal, Frame};
 
 use crate::scenario::Scenario;
 
-use super::app::{App, Command, Msg, Response};
-use super::export::export_csv;
+use super::app::{App, Command, ExportKind, Msg, Response};
+use super::export::{export_csv, export_svg};
 use super::view::{Look, view};
 use super::worker::Worker;
 
@@ -84,25 +84,38 @@ fn apply(app: &mut App, worker: &Worker, msg: Msg) -> bool {
     let mut redraw = effect.redraw;
     for command in effect.commands {
         match command {
-            Command::Export => {
-                let result = match app.current() {
-                    Some(solved) => {
-                        export_csv(&app.scenario, solved, Path::new(".")).map(|p| p.display().to_string())
-                    }
-                    None => Err("no solution to export".into()),
-                };
-                redraw |= apply(app, worker, Msg::Exported(result));
-            }
+            Command::Export => redraw |= apply(app, worker, export(app)),
             other => worker.send(&other),
         }
     }
     redraw
 }
 
-/// One frame inside synchronized-output brackets (no tearing over SSH).
+/// Carry out [`Command::Export`] in the current directory: the reply for the app.
+pub(super) fn export(app: &App) -> Msg {
+    let result = match app.current() {
+        Some(solved) => {
+            let dir = Path::new(".");
+            match app.export_kind {
+                ExportKind::Csv => export_csv(&app.scenario, solved, dir),
+                ExportKind::Svg => export_svg(&app.scenario, solved, dir),
+            }
+            .map(|p| p.display().to_string())
+        }
+        None => Err("no solution to export".into()),
+    };
+    Msg::Exported(result)
+}
+
+/// One frame of the lab inside synchronized-output brackets (no tearing over SSH).
 fn draw(terminal: &mut DefaultTerminal, app: &App, look: &Look) -> io::Result<()> {
+    draw_with(terminal, |frame| view(app, frame, look))
+}
+
+/// What `render` draws, as one frame inside synchronized-output brackets.
+pub(super) fn draw_with(terminal: &mut DefaultTerminal, render: impl FnOnce(&mut Frame)) -> io::Result<()> {
     crossterm::execute!(terminal.backend_mut(), BeginSynchronizedUpdate)?;
-    let drawn = terminal.draw(|frame| view(app, frame, look)).map(|_| ());
+    let drawn = terminal.draw(render).map(|_| ());
     crossterm::execute!(terminal.backend_mut(), EndSynchronizedUpdate)?;
     drawn
 }

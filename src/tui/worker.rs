@@ -263,7 +263,13 @@ fn take(r: Request, solve: &mut Option<SolveRequest>, queue: &mut VecDeque<InfSu
 
 /// Run everything `app` needs synchronously on `engine`, until nothing is left.
 pub fn settle(app: &mut App, engine: &mut Engine) {
-    let mut commands = app.update(Msg::Resize).commands;
+    let commands = app.update(Msg::Resize).commands;
+    carry_out(app, engine, commands);
+}
+
+/// Run `commands` (which `app` asked for) synchronously on `engine`, and whatever the replies
+/// ask for in turn, until nothing is left; exports are skipped.
+pub fn carry_out(app: &mut App, engine: &mut Engine, mut commands: Vec<Command>) {
     while let Some(command) = commands.pop() {
         let response = match command {
             Command::Solve(req) => engine.solve(&req, &|_| true, &mut |_| {}),

@@ -46,3 +46,33 @@ impl Lcg {
 pub fn rel(a: f64, b: f64, floor: f64) -> f64 {
     (a - b).abs() / b.abs().max(floor)
 }
+
+/// Run the riplab binary: (exit code, stdout, stderr).
+pub fn riplab(args: &[&str]) -> (i32, String, String) {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_riplab"))
+        .args(args)
+        .output()
+        .expect("runs");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into(),
+        String::from_utf8_lossy(&out.stderr).into(),
+    )
+}
+
+/// Σ over the clamped bottom of (K u)_y: the vertical reaction of the support.
+pub fn bottom_reaction(
+    scenario: &Scenario,
+    disc: &riplab::solve::Discretization,
+    sol: &riplab::solve::Solution,
+) -> f64 {
+    use riplab::fem::{Form, apply};
+    let ku = apply(
+        &disc.mesh,
+        Form::Elasticity(scenario.material, scenario.integration),
+        &sol.displacement(disc),
+    );
+    (0..disc.mesh.nnx())
+        .map(|i| ku[2 * disc.mesh.node(i, 0) + 1])
+        .sum()
+}

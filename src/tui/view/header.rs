@@ -66,7 +66,11 @@ fn settings_line(app: &App, theme: Theme) -> Line<'static> {
         sep(),
         Span::raw(format!("{} el{dofs}", mesh.n_elements())),
         sep(),
-        Span::raw(format!("ε={:e}", s.epsilon)),
+        Span::raw(if s.epsilon == 0.0 {
+            "ε=0 (exact)".to_string()
+        } else {
+            format!("ε={:e}", s.epsilon)
+        }),
         sep(),
         Span::raw(format!("d={}", sig(s.depth, 4))),
     ])

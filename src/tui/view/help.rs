@@ -8,7 +8,7 @@ use ratatui::widgets::{Block, Clear, Paragraph};
 use super::super::theme::Theme;
 
 /// Every key and what it does.
-pub const KEYS: [(&str, &str); 14] = [
+pub const KEYS: [(&str, &str); 15] = [
     ("q  Esc  Ctrl-C", "quit (Esc first closes this help)"),
     ("?", "show / hide this help"),
     ("←  →   [  ]", "coarser / finer mesh level (0–6)"),
@@ -22,6 +22,7 @@ pub const KEYS: [(&str, &str); 14] = [
     ("h", "Hertz overlay (for the computed load)"),
     ("a", "inf-sup at every level up to this one"),
     ("s", "export the solution as CSV (a new file)"),
+    ("S", "export the pressure chart as SVG (new file)"),
     ("", "any other key closes this help"),
 ];
 

@@ -31,7 +31,11 @@ pub struct Look {
 
 /// Draw `app` into the whole frame.
 pub fn view(app: &App, frame: &mut Frame, look: &Look) {
-    let area = frame.area();
+    view_in(app, frame, frame.area(), look);
+}
+
+/// Draw `app` into `area` of the frame (the guided tour puts its caption below).
+pub fn view_in(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
     if area.width < MIN_SIZE.0 || area.height < MIN_SIZE.1 {
         too_small(frame, area, look.theme);
         return;

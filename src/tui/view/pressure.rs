@@ -7,15 +7,13 @@ use ratatui::layout::{Constraint, Rect};
 use ratatui::text::Span;
 use ratatui::widgets::{Axis, Block, Chart, Dataset, GraphType, Paragraph};
 
-use crate::contact::ContactPoints;
+use crate::plot::raw_pressure_edges;
 
 use super::super::app::App;
-use super::super::hertz::Hertz;
 use super::Look;
 use super::fmt::{linear_labels, nice_ceil};
+use crate::contact::hertz::Hertz;
 
-/// Samples per edge of a non-constant Q_h function.
-const SAMPLES_PER_EDGE: usize = 9;
 /// Samples of the overlays across the width.
 const OVERLAY_SAMPLES: usize = 241;
 
@@ -38,7 +36,7 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
         out.extend(pts);
         out
     };
-    let raw = mirror(q_h_samples(&sol.points, &sol.p));
+    let raw = mirror(raw_pressure_edges(&sol.points, &sol.p).concat());
     let pbar = mirror(
         sol.points
             .vertex_x
@@ -49,7 +47,9 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
     );
     let (x0, x1) = app.scenario.x_range();
     let (xlo, xhi) = if half { (-x1, x1) } else { (x0, x1) };
-    let hertz = Hertz::for_load(&app.scenario, sol.load).filter(|_| app.show_hertz);
+    let full_load = if half { 2.0 * sol.load } else { sol.load };
+    let hertz =
+        Hertz::for_load(&sol.params.obstacle, &app.scenario.material, full_load).filter(|_| app.show_hertz);
     let data_max = sol.p.iter().chain(&sol.pbar).fold(0.0f64, |m, &v| m.max(v));
     let peak = data_max.max(hertz.map_or(0.0, |h| h.p0));
     let ymax = nice_ceil(peak * 1.05);
@@ -154,34 +154,4 @@ fn sample(lo: f64, hi: f64, f: impl Fn(f64) -> Option<f64>) -> Vec<(f64, f64)> {
             f(x).map(|y| (x, y))
         })
         .collect()
-}
-
-/// The raw pressure as the function of Q_h: on each edge, the Lagrange interpolant through
-/// the edge's rule points (constant for one point), sampled from end to end.
-fn q_h_samples(points: &ContactPoints, p: &[f64]) -> Vec<(f64, f64)> {
-    let mut out = Vec::new();
-    for (e, idx) in points.edge_points.iter().enumerate() {
-        let (x0, x1) = (points.vertex_x[e], points.vertex_x[e + 1]);
-        let xs: Vec<f64> = idx.iter().map(|&i| points.points[i].x).collect();
-        let ps: Vec<f64> = idx.iter().map(|&i| p[i]).collect();
-        let n = if idx.len() == 1 { 2 } else { SAMPLES_PER_EDGE };
-        for k in 0..n {
-            let x = x0 + (x1 - x0) * k as f64 / (n - 1) as f64;
-            out.push((x, lagrange(&xs, &ps, x)));
-        }
-    }
-    out
-}
-
-/// The polynomial through (xs[i], ys[i]) at x.
-fn lagrange(xs: &[f64], ys: &[f64], x: f64) -> f64 {
-    (0..xs.len())
-        .map(|i| {
-            let basis: f64 = (0..xs.len())
-                .filter(|&j| j != i)
-                .map(|j| (x - xs[j]) / (xs[i] - xs[j]))
-                .product();
-            ys[i] * basis
-        })
-        .sum()
 }

@@ -1,0 +1,352 @@
+//! The guided tour: the lab walked through a list of steps, each a screen of the lab at given
+//! settings with a short caption below (`riplab tour`). The steps are data: a TOML tour file
+//! (the default, `tours/paper.toml`, is embedded), validated like a scenario, every error
+//! naming the file, the line, the key and what is allowed.
+//!
+//! [`TourApp`] holds the state and its pure update (keys, worker replies, the auto-advance
+//! tick); [`view`] draws it; [`run_tour`] runs it in the terminal.
+
+mod player;
+mod runtime;
+mod view;
+
+use std::path::Path;
+use std::time::Duration;
+
+use serde::Deserialize;
+use toml::Spanned;
+
+use crate::cli::parse_scheme;
+use crate::contact::Rule;
+use crate::mesh::Element;
+use crate::scenario::Locator as Source;
+use crate::scenario::{Scenario, ScenarioError, check};
+
+use super::app::{App, MAX_APP_LEVEL, Scene};
+
+pub use player::{TourApp, TourEffect, TourMsg};
+pub use runtime::run_tour;
+pub use view::{MIN_TOUR_SIZE, render_step, view};
+
+/// The paper's tour, `tours/paper.toml`.
+pub const PAPER_TOUR: &str = include_str!("../../../tours/paper.toml");
+/// The name under which the embedded tour is reported.
+pub const PAPER_SOURCE: &str = "<embedded tours/paper.toml>";
+/// The most lines a caption may have…
+pub const MAX_CAPTION_LINES: usize = 4;
+/// …and the most characters in each (so that a 100-column terminal shows it unwrapped).
+pub const MAX_CAPTION_WIDTH: usize = 96;
+/// The most characters in a step's title.
+pub const MAX_TITLE_WIDTH: usize = 60;
+/// The overlays a step may switch on.
+pub const OVERLAYS: [&str; 3] = ["gap", "hertz", "all-levels"];
+
+/// A validated tour.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Tour {
+    pub title: String,
+    /// Where it was read from (a path, or [`PAPER_SOURCE`]).
+    pub source: String,
+    pub steps: Vec<Step>,
+    /// The scenario of the steps that do not name their own.
+    pub scenario: Scenario,
+}
+
+/// One screen of a tour.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Step {
+    pub title: String,
+    /// A few lines, shown as written.
+    pub caption: String,
+    /// The step's own scenario (loaded from its path), if it names one.
+    pub scenario: Option<Scenario>,
+    pub element: Option<Element>,
+    pub rule: Option<Rule>,
+    pub level: Option<u32>,
+    pub epsilon: Option<f64>,
+    pub depth: Option<f64>,
+    pub scene: Option<Scene>,
+    pub gap: bool,
+    pub hertz: bool,
+    pub all_levels: bool,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawTour {
+    title: Spanned<String>,
+    step: Spanned<Vec<RawStep>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawStep {
+    title: Spanned<String>,
+    caption: Spanned<String>,
+    scenario: Option<Spanned<String>>,
+    scheme: Option<Spanned<String>>,
+    element: Option<Spanned<Element>>,
+    rule: Option<Spanned<Rule>>,
+    level: Option<Spanned<i64>>,
+    epsilon: Option<Spanned<f64>>,
+    depth: Option<Spanned<f64>>,
+    scene: Option<Spanned<String>>,
+    overlays: Option<Spanned<Vec<Spanned<String>>>>,
+}
+
+impl Tour {
+    /// The embedded tour of the paper's argument, on the paper's problem.
+    pub fn paper() -> Tour {
+        Tour::parse(PAPER_TOUR, PAPER_SOURCE, None).expect("the embedded tour is valid")
+    }
+
+    /// Read and validate a tour file; scenario paths in it are relative to its directory.
+    pub fn load(path: &Path) -> Result<Tour, ScenarioError> {
+        let file = path.display().to_string();
+        let plain = |message: String| ScenarioError {
+            file: file.clone(),
+            location: None,
+            key: None,
+            message,
+            source_line: None,
+        };
+        let meta = std::fs::metadata(path).map_err(|e| plain(format!("cannot read: {e}")))?;
+        if meta.len() > 1 << 20 {
+            return Err(plain(format!("is {} bytes; a tour is at most 1 MiB", meta.len())));
+        }
+        let text = std::fs::read_to_string(path).map_err(|e| plain(format!("cannot read: {e}")))?;
+        let dir = path
+            .parent()
+            .map_or_else(|| Path::new(".").to_path_buf(), Path::to_path_buf);
+        Tour::parse(&text, &file, Some(&dir))
+    }
+
+    /// Parse and validate tour text; `file` names it in errors, `dir` is where its scenario
+    /// paths are relative to (None: the tour may not name scenario files).
+    pub fn parse(text: &str, file: &str, dir: Option<&Path>) -> Result<Tour, ScenarioError> {
+        let src = Source { file, text };
+        let raw: RawTour =
+            toml::from_str(text).map_err(|e| src.error(e.span(), None, e.message().trim().to_string()))?;
+        src.check("title", &raw.title, |t| one_line(t, 200))?;
+        if raw.step.get_ref().is_empty() {
+            return Err(src.error(
+                Some(raw.step.span()),
+                Some("step".into()),
+                "is empty; allowed: at least one [[step]]".into(),
+            ));
+        }
+        let steps = raw
+            .step
+            .get_ref()
+            .iter()
+            .enumerate()
+            .map(|(i, s)| step(&src, i + 1, s, dir))
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok(Tour {
+            title: raw.title.into_inner(),
+            source: file.to_string(),
+            steps,
+            scenario: Scenario::paper(),
+        })
+    }
+
+    /// The tour with `scenario` for the steps that do not name their own; every step's depth
+    /// is checked against its scenario.
+    pub fn with_scenario(mut self, scenario: Scenario) -> Result<Tour, String> {
+        self.scenario = scenario;
+        for (i, step) in self.steps.iter().enumerate() {
+            if let Some(depth) = step.depth {
+                let max = App::new(self.scenario_of(i).clone()).max_depth();
+                if depth > max + 1e-12 {
+                    return Err(format!(
+                        "{}: step {} (`{}`): depth {depth} is out of range for its scenario; allowed: 0..={max}",
+                        self.source,
+                        i + 1,
+                        step.title
+                    ));
+                }
+            }
+        }
+        Ok(self)
+    }
+
+    /// The scenario of step `index` (its own, else the tour's).
+    pub fn scenario_of(&self, index: usize) -> &Scenario {
+        self.steps
+            .get(index)
+            .and_then(|s| s.scenario.as_ref())
+            .unwrap_or(&self.scenario)
+    }
+
+    /// The lab at the settings of step `index` (a setting the step leaves out is the
+    /// scenario's; a depth beyond the scenario's limit is clamped to it).
+    pub fn app(&self, index: usize) -> App {
+        let mut app = App::new(self.scenario_of(index).clone());
+        let Some(step) = self.steps.get(index) else {
+            return app;
+        };
+        let s = &mut app.settings;
+        s.element = step.element.unwrap_or(s.element);
+        s.rule = step.rule.unwrap_or(s.rule);
+        s.level = step.level.unwrap_or(s.level).min(MAX_APP_LEVEL);
+        s.epsilon = step.epsilon.unwrap_or(s.epsilon);
+        let max = app.max_depth();
+        let s = &mut app.settings;
+        s.depth = step.depth.unwrap_or(s.depth).clamp(0.0, max.max(0.0));
+        app.scene = step.scene.unwrap_or(Scene::Explore);
+        app.show_gap = step.gap;
+        app.show_hertz = step.hertz;
+        app.all_levels = step.all_levels;
+        app
+    }
+}
+
+/// Text on one line of at most `width` characters, not blank.
+fn one_line(text: &str, width: usize) -> Result<(), String> {
+    if text.trim().is_empty() {
+        return Err(format!("is empty; allowed: one line of 1 to {width} characters"));
+    }
+    if text.contains('\n') || text.chars().count() > width {
+        return Err(format!("allowed: one line of at most {width} characters"));
+    }
+    Ok(())
+}
+
+/// A caption of 1 to [`MAX_CAPTION_LINES`] lines of at most [`MAX_CAPTION_WIDTH`] characters.
+fn caption(text: &str) -> Result<(), String> {
+    let allowed = format!("1 to {MAX_CAPTION_LINES} lines of at most {MAX_CAPTION_WIDTH} characters");
+    let lines: Vec<&str> = text.trim_matches('\n').lines().collect();
+    if text.trim().is_empty() {
+        return Err(format!("is empty; allowed: {allowed}"));
+    }
+    if lines.len() > MAX_CAPTION_LINES {
+        return Err(format!("has {} lines; allowed: {allowed}", lines.len()));
+    }
+    if let Some((n, line)) = lines
+        .iter()
+        .enumerate()
+        .find(|(_, l)| l.chars().count() > MAX_CAPTION_WIDTH)
+    {
+        return Err(format!(
+            "line {} has {} characters; allowed: {allowed}",
+            n + 1,
+            line.chars().count()
+        ));
+    }
+    Ok(())
+}
+
+/// Step number `n` (1-based) validated.
+fn step(src: &Source, n: usize, raw: &RawStep, dir: Option<&Path>) -> Result<Step, ScenarioError> {
+    let key = |k: &str| format!("step[{n}].{k}");
+    src.check(&key("title"), &raw.title, |t| one_line(t, MAX_TITLE_WIDTH))?;
+    src.check(&key("caption"), &raw.caption, |t| caption(t))?;
+    let scenario = match &raw.scenario {
+        None => None,
+        Some(path) => {
+            let Some(dir) = dir else {
+                return Err(src.error(Some(path.span()), Some(key("scenario")), "a scenario path needs a tour file to be relative to; allowed only in a tour read from a file".into()));
+            };
+            let full = dir.join(path.get_ref());
+            Some(Scenario::load(&full).map_err(|e| {
+                src.error(
+                    Some(path.span()),
+                    Some(key("scenario")),
+                    format!("cannot load the scenario: {e}"),
+                )
+            })?)
+        }
+    };
+    let (mut element, mut rule) = (
+        raw.element.as_ref().map(|e| *e.get_ref()),
+        raw.rule.as_ref().map(|r| *r.get_ref()),
+    );
+    if let Some(scheme) = &raw.scheme {
+        if let Some(other) = raw
+            .element
+            .as_ref()
+            .map(|e| e.span())
+            .or(raw.rule.as_ref().map(|r| r.span()))
+        {
+            return Err(src.error(
+                Some(other),
+                Some(key("scheme")),
+                "give either scheme or element and rule, not both".into(),
+            ));
+        }
+        let (e, r) = parse_scheme(scheme.get_ref())
+            .map_err(|m| src.error(Some(scheme.span()), Some(key("scheme")), m))?;
+        (element, rule) = (Some(e), Some(r));
+    }
+    let level = match &raw.level {
+        Some(l) => {
+            src.check(&key("level"), l, |v| {
+                check::integer(*v, 0, i64::from(MAX_APP_LEVEL))
+            })?;
+            Some(*l.get_ref() as u32)
+        }
+        None => None,
+    };
+    if let Some(e) = &raw.epsilon {
+        src.check(&key("epsilon"), e, |v| check::epsilon(*v))?;
+    }
+    if let Some(d) = &raw.depth {
+        src.check(&key("depth"), d, |v| check::nonnegative(*v))?;
+    }
+    let scene = match &raw.scene {
+        Some(name) => Some(Scene::from_name(name.get_ref()).ok_or_else(|| {
+            let names: Vec<&str> = Scene::ALL.iter().map(|s| s.name()).collect();
+            src.error(
+                Some(name.span()),
+                Some(key("scene")),
+                format!(
+                    "`{}` is not a scene; allowed: {}",
+                    name.get_ref(),
+                    names.join(", ")
+                ),
+            )
+        })?),
+        None => None,
+    };
+    let mut on = [false; 3];
+    for overlay in raw.overlays.iter().flat_map(|o| o.get_ref()) {
+        let i = OVERLAYS
+            .iter()
+            .position(|o| o == overlay.get_ref())
+            .ok_or_else(|| {
+                src.error(
+                    Some(overlay.span()),
+                    Some(key("overlays")),
+                    format!(
+                        "`{}` is not an overlay; allowed: {}",
+                        overlay.get_ref(),
+                        OVERLAYS.join(", ")
+                    ),
+                )
+            })?;
+        on[i] = true;
+    }
+    Ok(Step {
+        title: raw.title.get_ref().clone(),
+        caption: raw.caption.get_ref().trim_matches('\n').to_string(),
+        scenario,
+        element,
+        rule,
+        level,
+        epsilon: raw.epsilon.as_ref().map(|e| *e.get_ref()),
+        depth: raw.depth.as_ref().map(|d| *d.get_ref()),
+        scene,
+        gap: on[0],
+        hertz: on[1],
+        all_levels: on[2],
+    })
+}
+
+/// The interval of `--auto SECONDS`: a finite number of seconds in 0.5..=3600.
+pub fn auto_interval(seconds: f64) -> Result<Duration, String> {
+    if seconds.is_finite() && (0.5..=3600.0).contains(&seconds) {
+        Ok(Duration::from_secs_f64(seconds))
+    } else {
+        Err(format!("{seconds} is out of range; allowed: 0.5..=3600 seconds"))
+    }
+}

@@ -1,0 +1,256 @@
+//! The tour's state and its pure update: the step shown, the lab at that step's settings, and
+//! the keys that move between steps. Every other key goes to the lab, so that a step can be
+//! explored; leaving a step and coming back restores its settings.
+
+use std::collections::HashMap;
+use std::sync::Arc;
+use std::time::Duration;
+
+use crossterm::event::{KeyCode, KeyEventKind, KeyModifiers};
+
+use crate::scenario::Scenario;
+
+use super::super::app::{App, Command, InfSupKey, Msg};
+use super::super::beta::InfSup;
+use super::super::worker::Solved;
+use super::Tour;
+
+/// Inf-sup estimates by key, as the lab holds them.
+type Estimates = HashMap<InfSupKey, Result<InfSup, String>>;
+
+/// How many finished solves are kept for going back.
+const KEPT_SOLVES: usize = 16;
+
+/// An input to [`TourApp::update`].
+#[derive(Clone, Debug)]
+pub enum TourMsg {
+    /// A key, a resize, a worker reply or an export result, as for the lab.
+    Lab(Msg),
+    /// The auto-advance interval has passed (see [`TourApp::auto_due`]).
+    Auto,
+}
+
+/// What an update asks of the runtime.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct TourEffect {
+    /// The screen changed.
+    pub redraw: bool,
+    /// Work for the worker of the current step's scenario (or exports).
+    pub commands: Vec<Command>,
+    /// Another step is shown (the auto-advance clock starts again).
+    pub step_changed: bool,
+}
+
+/// The state of a running tour.
+#[derive(Clone, Debug)]
+pub struct TourApp {
+    pub tour: Tour,
+    index: usize,
+    /// The lab at the current step.
+    pub app: App,
+    /// Advance by itself after this long on a step (once its numbers are on screen).
+    pub auto: Option<Duration>,
+    pub show_help: bool,
+    /// Show solve times (off for deterministic frames).
+    pub show_timing: bool,
+    quit: bool,
+    /// Recent solves, with their scenarios, for going back without solving again.
+    solves: Vec<(Scenario, Arc<Solved>)>,
+    /// Inf-sup estimates per scenario.
+    estimates: Vec<(Scenario, Estimates)>,
+}
+
+impl TourApp {
+    /// The tour at its first step.
+    pub fn new(tour: Tour, auto: Option<Duration>) -> Self {
+        let app = tour.app(0);
+        TourApp {
+            tour,
+            index: 0,
+            app,
+            auto,
+            show_help: false,
+            show_timing: true,
+            quit: false,
+            solves: Vec::new(),
+            estimates: Vec::new(),
+        }
+    }
+
+    /// The index of the step shown.
+    pub fn index(&self) -> usize {
+        self.index
+    }
+
+    /// Whether the last step is shown.
+    pub fn at_end(&self) -> bool {
+        self.index + 1 >= self.tour.steps.len()
+    }
+
+    /// Whether the user asked to quit.
+    pub fn should_quit(&self) -> bool {
+        self.quit
+    }
+
+    /// Whether the lab still computes what the step shows.
+    pub fn is_busy(&self) -> bool {
+        self.app.is_solving() || self.app.infsup_pending() > 0
+    }
+
+    /// Whether to advance by itself, the step having been shown for `elapsed`: in auto mode,
+    /// once the interval has passed and the step's numbers are on screen, except at the end.
+    pub fn auto_due(&self, elapsed: Duration) -> bool {
+        self.auto.is_some_and(|a| elapsed >= a) && !self.at_end() && !self.is_busy()
+    }
+
+    /// Whether the lab's settings still are the step's (false once the user changed them).
+    pub fn is_pristine(&self) -> bool {
+        let step = self.tour.app(self.index);
+        (
+            step.settings,
+            step.scene,
+            step.show_gap,
+            step.show_hertz,
+            step.all_levels,
+        ) == (
+            self.app.settings,
+            self.app.scene,
+            self.app.show_gap,
+            self.app.show_hertz,
+            self.app.all_levels,
+        )
+    }
+
+    /// Handle one input.
+    pub fn update(&mut self, msg: TourMsg) -> TourEffect {
+        let target = match msg {
+            TourMsg::Auto => (!self.at_end()).then_some(self.index + 1),
+            TourMsg::Lab(Msg::Key(key)) => {
+                if !matches!(key.kind, KeyEventKind::Press | KeyEventKind::Repeat) {
+                    return TourEffect::default();
+                }
+                if key.modifiers.contains(KeyModifiers::CONTROL) {
+                    if matches!(key.code, KeyCode::Char('c' | 'C')) {
+                        self.quit = true;
+                    }
+                    return TourEffect {
+                        redraw: self.quit,
+                        ..TourEffect::default()
+                    };
+                }
+                if self.show_help {
+                    self.show_help = false;
+                    if matches!(key.code, KeyCode::Esc | KeyCode::Char('?')) {
+                        return TourEffect {
+                            redraw: true,
+                            ..TourEffect::default()
+                        };
+                    }
+                }
+                let last = self.tour.steps.len().saturating_sub(1);
+                match key.code {
+                    KeyCode::Char('q') | KeyCode::Esc => {
+                        self.quit = true;
+                        return TourEffect {
+                            redraw: true,
+                            ..TourEffect::default()
+                        };
+                    }
+                    KeyCode::Char('?') => {
+                        self.show_help = true;
+                        return TourEffect {
+                            redraw: true,
+                            ..TourEffect::default()
+                        };
+                    }
+                    KeyCode::Char(' ') | KeyCode::Right | KeyCode::PageDown | KeyCode::Enter => {
+                        Some((self.index + 1).min(last))
+                    }
+                    KeyCode::Left | KeyCode::PageUp | KeyCode::Backspace => {
+                        Some(self.index.saturating_sub(1))
+                    }
+                    KeyCode::Home => Some(0),
+                    KeyCode::End => Some(last),
+                    _ => return self.lab(Msg::Key(key)),
+                }
+            }
+            TourMsg::Lab(other) => return self.lab(other),
+        };
+        match target {
+            Some(i) if i != self.index => TourEffect {
+                redraw: true,
+                commands: self.enter(i),
+                step_changed: true,
+            },
+            // At either end: nothing moves, but a help overlay closed above needs a redraw.
+            _ => TourEffect {
+                redraw: true,
+                ..TourEffect::default()
+            },
+        }
+    }
+
+    /// Pass `msg` to the lab.
+    fn lab(&mut self, msg: Msg) -> TourEffect {
+        let effect = self.app.update(msg);
+        TourEffect {
+            redraw: effect.redraw,
+            commands: effect.commands,
+            step_changed: false,
+        }
+    }
+
+    /// Show step `index` (clamped to the last step); returns the requests its lab needs.
+    pub fn go_to(&mut self, index: usize) -> Vec<Command> {
+        let index = index.min(self.tour.steps.len().saturating_sub(1));
+        if index == self.index {
+            return self.app.update(Msg::Resize).commands;
+        }
+        self.enter(index)
+    }
+
+    /// Show step `index`: keep what the lab computed, set up the step's lab from what is
+    /// known, and return the requests it still needs.
+    fn enter(&mut self, index: usize) -> Vec<Command> {
+        self.keep();
+        let generation = self.app.generation + 1;
+        self.index = index;
+        let mut app = self.tour.app(index);
+        app.show_timing = self.show_timing;
+        // Replies to the previous step's requests carry older generations: ignored.
+        app.generation = generation;
+        if let Some((_, estimates)) = self.estimates.iter().find(|(s, _)| *s == app.scenario) {
+            app.infsup = estimates.clone();
+        }
+        app.solved = self
+            .solves
+            .iter()
+            .rev()
+            .find(|(s, solved)| *s == app.scenario && solved.key == app.settings)
+            .map(|(_, solved)| solved.clone());
+        self.app = app;
+        self.app.update(Msg::Resize).commands
+    }
+
+    /// File the lab's finished work under its scenario.
+    fn keep(&mut self) {
+        let scenario = &self.app.scenario;
+        if let Some(solved) = &self.app.solved {
+            let known = self
+                .solves
+                .iter()
+                .any(|(s, k)| Arc::ptr_eq(k, solved) && s == scenario);
+            if !known {
+                self.solves.push((scenario.clone(), solved.clone()));
+                if self.solves.len() > KEPT_SOLVES {
+                    self.solves.remove(0);
+                }
+            }
+        }
+        let done = self.app.infsup.clone();
+        match self.estimates.iter_mut().find(|(s, _)| s == scenario) {
+            Some((_, estimates)) => estimates.extend(done),
+            None => self.estimates.push((scenario.clone(), done)),
+        }
+    }
+}

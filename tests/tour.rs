@@ -1,0 +1,359 @@
+//! The guided tour: every tour file is valid and every step solves; each step of the embedded
+//! tour as an insta snapshot (plain text, 100×30); the keys that move between steps; and the
+//! validation errors of bad tour files.
+
+use std::path::{Path, PathBuf};
+use std::time::Duration;
+
+use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
+
+use riplab::scenario::Scenario;
+use riplab::tui::app::{Command, Msg, Scene};
+use riplab::tui::tour::{Tour, TourApp, TourMsg, auto_interval, render_step};
+use riplab::tui::worker::{Engine, carry_out, settle};
+
+/// Snapshot `text` as `snapshots/<name>.snap`.
+macro_rules! snap {
+    ($name:expr, $text:expr) => {
+        insta::with_settings!({
+            snapshot_path => concat!(env!("CARGO_MANIFEST_DIR"), "/snapshots"),
+            prepend_module_to_snapshot => false,
+            omit_expression => true,
+        }, {
+            insta::assert_snapshot!($name, $text);
+        })
+    };
+}
+
+fn key(code: KeyCode) -> TourMsg {
+    TourMsg::Lab(Msg::Key(KeyEvent::new(code, KeyModifiers::NONE)))
+}
+
+fn ch(c: char) -> TourMsg {
+    key(KeyCode::Char(c))
+}
+
+/// Every tour file under `tours/`.
+fn tour_files() -> Vec<PathBuf> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tours");
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .collect();
+    files.sort();
+    files
+}
+
+// ---- every step is valid and solves ------------------------------------------------------
+
+#[test]
+fn every_tour_loads_and_every_step_solves() {
+    let mut tours = vec![Tour::paper()];
+    for file in tour_files() {
+        tours.push(Tour::load(&file).unwrap_or_else(|e| panic!("{e}")));
+    }
+    assert!(tours.len() >= 2, "tours/paper.toml is there");
+    assert_eq!(
+        tours[1].steps, tours[0].steps,
+        "the embedded tour is tours/paper.toml"
+    );
+    for tour in &tours {
+        for (i, step) in tour.steps.iter().enumerate() {
+            let mut app = tour.app(i);
+            app.show_timing = false;
+            settle(&mut app, &mut Engine::new(tour.scenario_of(i).clone()));
+            let what = format!("{}: step {} `{}`", tour.source, i + 1, step.title);
+            assert!(app.error.is_none(), "{what}: {:?}", app.error);
+            if app.scene.needs_solution() {
+                let solved = app.current().unwrap_or_else(|| panic!("{what}: not solved"));
+                assert!(solved.solution.newton.converged, "{what}: not converged");
+            }
+            assert!(
+                app.infsup.values().all(|r| r.is_ok()),
+                "{what}: an inf-sup estimate failed"
+            );
+            assert_eq!(app.infsup_pending(), 0);
+        }
+    }
+}
+
+#[test]
+fn the_paper_tour_tells_the_story_in_order() {
+    let tour = Tour::paper();
+    let settings: Vec<(Option<u32>, Option<f64>, Option<Scene>)> =
+        tour.steps.iter().map(|s| (s.level, s.epsilon, s.scene)).collect();
+    // M1 at 32 and 128 elements, refinement, ε → 0, the inf-sup scene, then M3 and M4.
+    let levels: Vec<u32> = tour.steps.iter().filter_map(|s| s.level).collect();
+    assert!(levels.starts_with(&[0, 0, 1]), "{settings:?}");
+    assert!(
+        tour.steps
+            .iter()
+            .any(|s| s.epsilon == Some(0.0) && s.level == Some(4))
+    );
+    assert!(
+        tour.steps
+            .iter()
+            .any(|s| s.scene == Some(Scene::InfSup) && s.all_levels)
+    );
+    let schemes: Vec<String> = (0..tour.steps.len())
+        .map(|i| {
+            let app = tour.app(i);
+            riplab::solve::scheme_name(app.settings.element, app.settings.rule)
+                .unwrap_or("-")
+                .to_string()
+        })
+        .collect();
+    let m3 = schemes.iter().position(|s| s == "M3").unwrap();
+    let m4 = schemes.iter().position(|s| s == "M4").unwrap();
+    assert!(m3 < m4 && schemes[..m3].iter().all(|s| s == "M1"), "{schemes:?}");
+}
+
+// ---- snapshots -----------------------------------------------------------------------------
+
+#[test]
+fn every_step_of_the_paper_tour_100x30() {
+    let tour = Tour::paper();
+    for i in 0..tour.steps.len() {
+        let text = render_step(&tour, i, 100, 30).unwrap();
+        assert!(text.contains(&format!("tour {}/{}", i + 1, tour.steps.len())));
+        let first = tour.steps[i].caption.lines().next().unwrap();
+        assert!(
+            text.contains(first.trim_end()),
+            "step {} caption missing:\n{text}",
+            i + 1
+        );
+        snap!(format!("tour__paper_step{:02}_100x30", i + 1), text);
+    }
+}
+
+#[test]
+fn too_small_and_help() {
+    let tour = Tour::paper();
+    let small = render_step(&tour, 0, 80, 24).unwrap();
+    assert!(small.contains("the tour needs a bigger terminal"), "{small}");
+    let mut player = TourApp::new(tour, None);
+    player.show_timing = false;
+    player.app.show_timing = false;
+    player.update(ch('?'));
+    assert!(player.show_help);
+    let text = riplab::tui::render_frame(100, 30, |frame| {
+        riplab::tui::tour::view(
+            &player,
+            frame,
+            &riplab::tui::view::Look {
+                theme: riplab::tui::theme::Theme { color: true },
+                marker: ratatui::symbols::Marker::Braille,
+            },
+        )
+    });
+    snap!("tour__help_100x30", text);
+    // Esc closes the help without quitting; q then quits.
+    player.update(key(KeyCode::Esc));
+    assert!(!player.show_help && !player.should_quit());
+    player.update(ch('q'));
+    assert!(player.should_quit());
+}
+
+// ---- keys ----------------------------------------------------------------------------------
+
+#[test]
+fn keys_advance_go_back_and_stay_in_bounds() {
+    let tour = Tour::paper();
+    let n = tour.steps.len();
+    let mut player = TourApp::new(tour, None);
+    assert_eq!(player.index(), 0);
+    let back = player.update(key(KeyCode::Left));
+    assert!(!back.step_changed, "no step before the first");
+    assert_eq!(player.index(), 0);
+    let next = player.update(ch(' '));
+    assert!(next.step_changed);
+    assert_eq!(player.index(), 1);
+    assert!(
+        next.commands.iter().any(|c| matches!(c, Command::Solve(_))),
+        "the new step asks for its solve"
+    );
+    player.update(key(KeyCode::Right));
+    assert_eq!(player.index(), 2);
+    player.update(key(KeyCode::Backspace));
+    assert_eq!(player.index(), 1);
+    player.update(key(KeyCode::End));
+    assert_eq!(player.index(), n - 1);
+    assert!(player.at_end());
+    assert!(!player.update(ch(' ')).step_changed, "no step after the last");
+    assert_eq!(player.index(), n - 1);
+    player.update(key(KeyCode::Home));
+    assert_eq!(player.index(), 0);
+    assert!(!player.should_quit());
+    player.update(key(KeyCode::Esc));
+    assert!(player.should_quit());
+}
+
+#[test]
+fn each_step_sets_the_lab_and_coming_back_restores_it() {
+    let tour = Tour::paper();
+    let mut player = TourApp::new(tour.clone(), None);
+    for i in 0..tour.steps.len() {
+        let expected = tour.app(i);
+        assert_eq!(player.app.settings, expected.settings, "step {}", i + 1);
+        assert_eq!(player.app.scene, expected.scene);
+        assert!(player.is_pristine());
+        player.update(ch(' '));
+    }
+    // The lab's keys work inside a step; leaving and coming back restores the step.
+    player.update(key(KeyCode::Home));
+    player.update(ch(' '));
+    let step = player.app.settings;
+    player.update(ch('3'));
+    player.update(ch(']'));
+    assert_ne!(player.app.settings, step);
+    assert!(!player.is_pristine());
+    player.update(key(KeyCode::Left));
+    player.update(key(KeyCode::Right));
+    assert_eq!(player.app.settings, step);
+}
+
+#[test]
+fn replies_to_a_left_step_are_ignored_and_results_are_kept() {
+    let tour = Tour::paper();
+    let mut player = TourApp::new(tour.clone(), None);
+    player.show_timing = false;
+    let first = player.update(TourMsg::Lab(Msg::Resize)).commands;
+    let Some(Command::Solve(old)) = first.first().cloned() else {
+        panic!("step 1 asks for a solve: {first:?}");
+    };
+    // Step 1 is solved, then step 2 is shown; the late reply of step 1 must not show there.
+    let mut engine = Engine::new(tour.scenario_of(0).clone());
+    let reply = engine.solve(&old, &|_| true, &mut |_| {});
+    player.update(ch(' '));
+    player.update(TourMsg::Lab(Msg::Worker(reply.clone())));
+    assert!(
+        player.app.current().is_none(),
+        "a stale reply is not the new step's result"
+    );
+    // Back on step 1 a reply for it is shown, and kept for the next visit.
+    let again = match player.update(key(KeyCode::Left)).commands.first() {
+        Some(Command::Solve(r)) => *r,
+        other => panic!("{other:?}"),
+    };
+    let reply = engine.solve(&again, &|_| true, &mut |_| {});
+    player.update(TourMsg::Lab(Msg::Worker(reply)));
+    assert!(player.app.current().is_some());
+    player.update(ch(' '));
+    player.update(key(KeyCode::Left));
+    assert!(player.app.current().is_some(), "the kept solve is shown at once");
+}
+
+#[test]
+fn auto_advances_when_due_and_stops_at_the_end() {
+    let tour = Tour::paper();
+    let n = tour.steps.len();
+    let every = Duration::from_secs(5);
+    let mut player = TourApp::new(tour.clone(), Some(every));
+    settle(&mut player.app, &mut Engine::new(tour.scenario_of(0).clone()));
+    assert!(!player.auto_due(Duration::from_secs(4)));
+    assert!(player.auto_due(every));
+    let effect = player.update(TourMsg::Auto);
+    assert!(effect.step_changed);
+    assert_eq!(player.index(), 1);
+    // Not due while the step's numbers are being computed.
+    assert!(player.is_busy());
+    assert!(!player.auto_due(Duration::from_secs(60)));
+    carry_out(
+        &mut player.app,
+        &mut Engine::new(tour.scenario_of(1).clone()),
+        effect.commands,
+    );
+    assert!(player.auto_due(every));
+    for _ in 0..2 * n {
+        player.update(TourMsg::Auto);
+    }
+    assert_eq!(player.index(), n - 1);
+    assert!(!player.auto_due(Duration::from_secs(3600)), "it stops at the end");
+    assert!(!TourApp::new(tour, None).auto_due(Duration::from_secs(3600)));
+    assert!(auto_interval(8.0).is_ok());
+    for bad in [0.0, -1.0, f64::NAN, f64::INFINITY, 1e9] {
+        assert!(auto_interval(bad).is_err(), "{bad}");
+    }
+}
+
+// ---- validation ----------------------------------------------------------------------------
+
+/// The error of parsing `text` as a tour.
+fn error(text: &str) -> String {
+    Tour::parse(text, "bad.toml", None).unwrap_err().to_string()
+}
+
+const STEP: &str = "title = \"t\"\n[[step]]\ntitle = \"s\"\ncaption = \"c\"\n";
+
+#[test]
+fn bad_tours_name_the_file_line_key_and_allowed_values() {
+    let e = error(&format!("{STEP}colour = 1\n"));
+    assert!(e.starts_with("bad.toml:5:"), "{e}");
+    assert!(e.contains("colour") && e.contains("caption"), "{e}");
+    let e = error(&format!("{STEP}level = 9\n"));
+    assert!(
+        e.starts_with("bad.toml:5:9:") && e.contains("step[1].level") && e.contains("0..=6"),
+        "{e}"
+    );
+    let e = error(&format!("{STEP}scene = \"plot\"\n"));
+    assert!(
+        e.contains("step[1].scene") && e.contains("explore, infsup, mesh"),
+        "{e}"
+    );
+    let e = error(&format!("{STEP}overlays = [\"gap\", \"grid\"]\n"));
+    assert!(
+        e.contains("step[1].overlays") && e.contains("gap, hertz, all-levels"),
+        "{e}"
+    );
+    let e = error(&format!("{STEP}scheme = \"M9\"\n"));
+    assert!(
+        e.contains("step[1].scheme") && e.contains("M1, M2, M3, M4"),
+        "{e}"
+    );
+    let e = error(&format!("{STEP}scheme = \"M1\"\nrule = \"simpson\"\n"));
+    assert!(e.contains("not both"), "{e}");
+    let e = error(&format!("{STEP}element = \"q3\"\n"));
+    assert!(e.contains("q3") && e.contains("q1"), "{e}");
+    let e = error(&format!("{STEP}epsilon = -1e-6\n"));
+    assert!(
+        e.contains("step[1].epsilon") && e.contains("exact constraint"),
+        "{e}"
+    );
+    let e = error(&format!("{STEP}depth = -0.1\n"));
+    assert!(e.contains("step[1].depth"), "{e}");
+    let e = error("title = \"t\"\n[[step]]\ntitle = \"s\"\ncaption = \"\"\"\n1\n2\n3\n4\n5\"\"\"\n");
+    assert!(e.contains("step[1].caption") && e.contains("5 lines"), "{e}");
+    let e = error(&format!(
+        "title = \"t\"\n[[step]]\ntitle = \"s\"\ncaption = \"{}\"\n",
+        "x".repeat(97)
+    ));
+    assert!(e.contains("97 characters"), "{e}");
+    let e = error("title = \"t\"\nstep = []\n");
+    assert!(e.contains("at least one"), "{e}");
+    let e = error(&format!("{STEP}scenario = \"x.toml\"\n"));
+    assert!(e.contains("step[1].scenario") && e.contains("tour file"), "{e}");
+    assert!(error("title = ").starts_with("bad.toml:1:"));
+}
+
+#[test]
+fn scenario_paths_are_relative_to_the_tour_file() {
+    let dir = std::env::temp_dir().join(format!("riplab-tour-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let scenario = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/hertz-paper.toml");
+    std::fs::copy(&scenario, dir.join("mine.toml")).unwrap();
+    let file = dir.join("t.toml");
+    std::fs::write(&file, format!("{STEP}scenario = \"mine.toml\"\ndepth = 0.5\n")).unwrap();
+    let tour = Tour::load(&file).unwrap();
+    assert_eq!(tour.scenario_of(0).name, "hertz-paper");
+    assert_eq!(tour.app(0).settings.depth, 0.5);
+    std::fs::write(&file, format!("{STEP}scenario = \"missing.toml\"\n")).unwrap();
+    let e = Tour::load(&file).unwrap_err().to_string();
+    assert!(e.contains("t.toml:5:") && e.contains("missing.toml"), "{e}");
+    // A depth beyond the scenario's limit is refused for the scenario given at run time.
+    std::fs::write(&file, format!("{STEP}depth = 2.5\n")).unwrap();
+    let tour = Tour::load(&file).unwrap();
+    let e = tour.with_scenario(Scenario::paper()).unwrap_err();
+    assert!(e.contains("step 1") && e.contains("depth"), "{e}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
