@@ -37,6 +37,10 @@ const CASES: &[(&str, &[&str])] = &[
     ),
     ("truncated.toml", &[":12:", "missing field `height`"]),
     ("not-utf8.toml", &[":37:", "not valid UTF-8"]),
+    (
+        "negative-width.toml",
+        &[":13:9", "`body.width`", "-16 is out of range", "> 0"],
+    ),
 ];
 
 #[test]
@@ -145,4 +149,18 @@ fn an_epsilon_sweep_prints_one_object_per_value() {
         .map(|o| o["timing_ms"]["assembly"].as_f64().unwrap())
         .collect();
     assert!(assembly[1] == 0.0 && assembly[2] == 0.0);
+}
+
+/// A 100 MB file is refused from its size, before it is read (a sparse file: no disk used).
+#[test]
+fn a_huge_file_is_refused_unread() {
+    let path = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("huge-scenario.toml");
+    std::fs::File::create(&path).unwrap().set_len(100 << 20).unwrap();
+    let (code, stdout, stderr) = riplab(&["solve", path.to_str().unwrap()]);
+    std::fs::remove_file(&path).unwrap();
+    assert_eq!(code, 2);
+    assert!(
+        stdout.is_empty() && stderr.contains("huge-scenario.toml") && stderr.contains("at most 1 MiB"),
+        "{stderr}"
+    );
 }
