@@ -110,7 +110,7 @@ fn mirrored_edges(edges: &[Vec<(f64, f64)>], half_model: bool) -> Vec<Vec<(f64, 
 }
 
 /// A "nice" upper bound ≥ `x` (1, 1.2, 1.5, 2, 2.5, 3, 4, 5, 6, 8 × 10^k); 1 for x ≤ 0.
-fn nice_ceil(x: f64) -> f64 {
+pub fn nice_ceil(x: f64) -> f64 {
     if !x.is_finite() || x <= 0.0 {
         return 1.0;
     }

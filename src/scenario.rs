@@ -518,6 +518,34 @@ impl Locator<'_> {
     }
 }
 
+/// Read a TOML file of at most 1 MiB as UTF-8 text: (its name for errors, its text). `what`
+/// names the kind of file in the size error ("a scenario", "a tour").
+pub fn read_toml(path: &Path, what: &str) -> Result<(String, String), ScenarioError> {
+    let file = path.display().to_string();
+    let plain = |message: String| ScenarioError {
+        file: file.clone(),
+        location: None,
+        key: None,
+        message,
+        source_line: None,
+    };
+    let meta = std::fs::metadata(path).map_err(|e| plain(format!("cannot read: {e}")))?;
+    if meta.len() > 1 << 20 {
+        return Err(plain(format!("is {} bytes; {what} is at most 1 MiB", meta.len())));
+    }
+    let bytes = std::fs::read(path).map_err(|e| plain(format!("cannot read: {e}")))?;
+    let text = String::from_utf8(bytes).map_err(|e| {
+        let offset = e.utf8_error().valid_up_to();
+        let text = String::from_utf8_lossy(e.as_bytes()).into_owned();
+        Locator {
+            file: &file,
+            text: &text,
+        }
+        .error(Some(offset..offset), None, "is not valid UTF-8".into())
+    })?;
+    Ok((file, text))
+}
+
 impl Scenario {
     /// The embedded default: the paper's problem.
     pub fn paper() -> Scenario {
@@ -526,31 +554,7 @@ impl Scenario {
 
     /// Read and validate a scenario file.
     pub fn load(path: &Path) -> Result<Scenario, ScenarioError> {
-        let file = path.display().to_string();
-        let plain = |message: String| ScenarioError {
-            file: file.clone(),
-            location: None,
-            key: None,
-            message,
-            source_line: None,
-        };
-        let meta = std::fs::metadata(path).map_err(|e| plain(format!("cannot read: {e}")))?;
-        if meta.len() > 1 << 20 {
-            return Err(plain(format!(
-                "is {} bytes; a scenario is at most 1 MiB",
-                meta.len()
-            )));
-        }
-        let bytes = std::fs::read(path).map_err(|e| plain(format!("cannot read: {e}")))?;
-        let text = String::from_utf8(bytes).map_err(|e| {
-            let offset = e.utf8_error().valid_up_to();
-            let text = String::from_utf8_lossy(e.as_bytes()).into_owned();
-            Locator {
-                file: &file,
-                text: &text,
-            }
-            .error(Some(offset..offset), None, "is not valid UTF-8".into())
-        })?;
+        let (file, text) = read_toml(path, "a scenario")?;
         Scenario::parse(&text, &file)
     }
 

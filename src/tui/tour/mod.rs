@@ -20,7 +20,7 @@ use crate::cli::parse_scheme;
 use crate::contact::Rule;
 use crate::mesh::Element;
 use crate::scenario::Locator as Source;
-use crate::scenario::{Scenario, ScenarioError, check};
+use crate::scenario::{Scenario, ScenarioError, check, read_toml};
 
 use super::app::{App, MAX_APP_LEVEL, Scene};
 
@@ -102,19 +102,7 @@ impl Tour {
 
     /// Read and validate a tour file; scenario paths in it are relative to its directory.
     pub fn load(path: &Path) -> Result<Tour, ScenarioError> {
-        let file = path.display().to_string();
-        let plain = |message: String| ScenarioError {
-            file: file.clone(),
-            location: None,
-            key: None,
-            message,
-            source_line: None,
-        };
-        let meta = std::fs::metadata(path).map_err(|e| plain(format!("cannot read: {e}")))?;
-        if meta.len() > 1 << 20 {
-            return Err(plain(format!("is {} bytes; a tour is at most 1 MiB", meta.len())));
-        }
-        let text = std::fs::read_to_string(path).map_err(|e| plain(format!("cannot read: {e}")))?;
+        let (file, text) = read_toml(path, "a tour")?;
         let dir = path
             .parent()
             .map_or_else(|| Path::new(".").to_path_buf(), Path::to_path_buf);

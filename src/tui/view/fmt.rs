@@ -43,18 +43,7 @@ fn evenly(lo: f64, hi: f64, n: usize) -> impl Iterator<Item = f64> {
     (0..n).map(move |i| lo + (hi - lo) * i as f64 / (n - 1) as f64)
 }
 
-/// A "nice" upper bound ≥ `x`: 1, 1.2, 1.5, 2, 2.5, 3, 4, 5, 6, 8 × 10^k.
-pub fn nice_ceil(x: f64) -> f64 {
-    if x.is_nan() || x <= 0.0 || !x.is_finite() {
-        return 1.0;
-    }
-    let p = 10f64.powf(x.log10().floor());
-    [1.0, 1.2, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0, 8.0, 10.0]
-        .into_iter()
-        .map(|m| m * p)
-        .find(|&v| v >= x * (1.0 - 1e-12))
-        .unwrap_or(10.0 * p)
-}
+pub use crate::plot::nice_ceil;
 
 #[cfg(test)]
 mod tests {
