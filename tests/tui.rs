@@ -7,7 +7,12 @@ use ratatui::symbols::Marker;
 use riplab::contact::Rule;
 use riplab::mesh::Element;
 use riplab::scenario::Scenario;
-use riplab::tui::app::{App, Command, MAX_APP_LEVEL, Msg, Response, Scene};
+use std::sync::Arc;
+
+use riplab::study::{Errors, StudyRow};
+use riplab::tui::app::{
+    App, Command, MAX_APP_LEVEL, MAX_STUDY_LEVEL, Msg, Response, Scene, Study, StudyRequest,
+};
 use riplab::tui::theme::Theme;
 use riplab::tui::view::Look;
 use riplab::tui::worker::{Engine, settle};
@@ -272,13 +277,22 @@ fn depth_steps_by_a_tenth_within_bounds() {
 fn tab_cycles_scenes_both_ways() {
     let mut app = App::new(Scenario::paper());
     let mut seen = vec![app.scene];
-    for _ in 0..3 {
+    for _ in 0..4 {
         app.update(key(KeyCode::Tab));
         seen.push(app.scene);
     }
-    assert_eq!(seen, [Scene::Explore, Scene::InfSup, Scene::Mesh, Scene::Explore]);
+    assert_eq!(
+        seen,
+        [
+            Scene::Explore,
+            Scene::InfSup,
+            Scene::Mesh,
+            Scene::Convergence,
+            Scene::Explore
+        ]
+    );
     app.update(key(KeyCode::BackTab));
-    assert_eq!(app.scene, Scene::Mesh);
+    assert_eq!(app.scene, Scene::Convergence);
 }
 
 #[test]
@@ -417,6 +431,11 @@ fn no_key_sequence_panics() {
                     result: Err("test failure".into()),
                 },
                 Command::InfSup(r) => Response::InfSup {
+                    key: r.key,
+                    result: Some(Err("test failure".into())),
+                },
+                Command::Study(r) => Response::Study {
+                    generation: r.generation,
                     key: r.key,
                     result: Some(Err("test failure".into())),
                 },
@@ -559,4 +578,159 @@ fn no_contact_renders() {
             assert!(text.contains(" P=0 (full 0)"), "{text}");
         }
     }
+}
+
+// ---- convergence scene -----------------------------------------------------------------
+
+/// A row of a made-up study (fixed timings, so that frames are deterministic).
+#[allow(clippy::too_many_arguments)]
+fn row(scheme: &str, level: u32, n_dofs: usize, ms: f64, p: f64, pbar: f64, u: f64) -> StudyRow {
+    StudyRow {
+        scheme: scheme.into(),
+        element: "q1",
+        rule: "gauss1",
+        level,
+        h: 1.0 / f64::from(1 << level),
+        epsilon: 1e-6,
+        n_dofs,
+        newton_iterations: 3,
+        converged: true,
+        solve_ms: ms,
+        load: 1.0,
+        errors: Errors {
+            p,
+            pbar,
+            u,
+            load: pbar,
+        },
+        rates: None,
+    }
+}
+
+/// The paper's app on the convergence scene at level 2 with a made-up study of levels 0..=2.
+fn convergence_app() -> App {
+    let mut app = App::new(Scenario::paper());
+    app.show_timing = false;
+    app.scene = Scene::Convergence;
+    app.settings.level = 2;
+    let key = app.study_key();
+    assert_eq!(key.max_level, 2);
+    let rows = vec![
+        row("M1", 0, 90, 2.0, 0.42, 0.12, 0.05),
+        row("M1", 1, 306, 6.5, 0.31, 0.045, 0.025),
+        row("M1", 2, 1122, 24.0, 0.22, 0.016, 0.0123),
+        row("M2", 0, 90, 2.4, 0.9, 0.2, 0.05),
+        row("M2", 1, 306, 7.1, 1.3, 0.15, 0.026),
+        row("M2", 2, 1122, 27.0, 1.8, 0.11, 0.0125),
+        row("M3", 0, 90, 1.8, 0.15, 0.1, 0.048),
+        row("M3", 1, 306, 6.0, 0.07, 0.04, 0.024),
+        row("M3", 2, 1122, 22.0, 0.0345, 0.0149, 0.012),
+        row("M4", 0, 306, 5.2, 0.05, 0.03, 0.01),
+        row("M4", 1, 1122, 19.0, 0.018, 0.01, 0.0025),
+        row("M4", 2, 4290, 80.0, 0.0065, 0.0035, 0.000612),
+    ];
+    app.studies.insert(key.clone(), Ok(Arc::new(Study { key, rows })));
+    app
+}
+
+#[test]
+fn convergence_80x24() {
+    let app = convergence_app();
+    assert!(
+        app.clone().update(Msg::Resize).commands.is_empty(),
+        "a cached study asks for nothing more"
+    );
+    snap!("tui__convergence_80x24", frame(&app, 80, 24));
+}
+
+#[test]
+fn convergence_120x40() {
+    snap!("tui__convergence_120x40", frame(&convergence_app(), 120, 40));
+}
+
+fn studies(commands: &[Command]) -> Vec<StudyRequest> {
+    commands
+        .iter()
+        .filter_map(|c| match c {
+            Command::Study(r) => Some(r.clone()),
+            _ => None,
+        })
+        .collect()
+}
+
+#[test]
+fn convergence_asks_for_one_study_and_caches_it() {
+    let mut app = App::new(Scenario::paper());
+    app.update(Msg::Resize);
+    app.update(key(KeyCode::Tab));
+    app.update(key(KeyCode::Tab));
+    let cmds = app.update(key(KeyCode::Tab)).commands;
+    assert_eq!(app.scene, Scene::Convergence);
+    let asked = studies(&cmds);
+    assert_eq!(cmds.len(), 1, "only the study: {cmds:?}");
+    assert_eq!(asked.len(), 1);
+    let req = asked[0].clone();
+    assert_eq!(req.key.scenario, app.scenario.name);
+    assert_eq!(req.key.max_level, 0);
+    assert_eq!(req.key.reference_level(), 1);
+    let text = frame(&app, 80, 24);
+    assert!(text.contains("computing the reference (q2, level 1)…"), "{text}");
+    // Away and back while it runs: not asked again.
+    app.update(key(KeyCode::Tab));
+    assert!(studies(&app.update(key(KeyCode::BackTab)).commands).is_empty());
+    // The study finishes (on the real engine: level 0 against the q2 reference at level 1).
+    let mut engine = Engine::new(Scenario::paper());
+    let reply = Response::Study {
+        generation: req.generation,
+        result: Some(engine.study(&req.key)),
+        key: req.key.clone(),
+    };
+    assert!(app.update(Msg::Worker(reply)).redraw);
+    let Some(Ok(study)) = app.studies.get(&req.key) else {
+        panic!("the study is cached: {:?}", app.studies);
+    };
+    let schemes: Vec<&str> = study.rows.iter().map(|r| r.scheme.as_str()).collect();
+    assert_eq!(schemes, ["M1", "M2", "M3", "M4"]);
+    assert!(
+        study
+            .rows
+            .iter()
+            .all(|r| r.errors.pbar > 0.0 && r.errors.pbar.is_finite())
+    );
+    assert!(!frame(&app, 80, 24).contains("computing"));
+    // Cached: coming back asks for nothing.
+    app.update(key(KeyCode::Tab));
+    let back = app.update(key(KeyCode::BackTab)).commands;
+    assert_eq!(app.scene, Scene::Convergence);
+    assert!(back.is_empty(), "{back:?}");
+}
+
+#[test]
+fn newer_studies_supersede_older_ones() {
+    let mut app = App::new(Scenario::paper());
+    app.scene = Scene::Convergence;
+    let old = studies(&app.update(Msg::Resize).commands).remove(0);
+    let new = studies(&app.update(key(KeyCode::Right)).commands).remove(0);
+    assert!(new.generation > old.generation);
+    assert_eq!((old.key.max_level, new.key.max_level), (0, 1));
+    // The old study's reply is dropped: a newer one was asked for.
+    let reply = Response::Study {
+        generation: old.generation,
+        key: old.key.clone(),
+        result: Some(Err("stale".into())),
+    };
+    assert!(!app.update(Msg::Worker(reply)).redraw);
+    assert!(app.studies.is_empty());
+    // A study dropped unstarted by the worker is asked for again while still wanted.
+    let dropped = Response::Study {
+        generation: new.generation,
+        key: new.key.clone(),
+        result: None,
+    };
+    let again = studies(&app.update(Msg::Worker(dropped)).commands);
+    assert_eq!(again.len(), 1);
+    assert_eq!(again[0].key, new.key);
+    // Levels above the study's cap share the capped study.
+    app.settings.level = MAX_APP_LEVEL;
+    assert_eq!(app.study_key().max_level, MAX_APP_LEVEL.min(MAX_STUDY_LEVEL));
 }

@@ -10,6 +10,7 @@ use crate::contact::Rule;
 use crate::mesh::Element;
 use crate::scenario::{MAX_LEVEL, Scenario};
 use crate::solve::preset;
+use crate::study::StudyRow;
 
 use super::beta::InfSup;
 use super::worker::Solved;
@@ -30,16 +31,19 @@ pub enum Scene {
     InfSup,
     /// The deformed configuration, full size.
     Mesh,
+    /// Error against solve time (work–precision) for M1–M4 against a finer Q2 reference.
+    Convergence,
 }
 
 impl Scene {
-    pub const ALL: [Scene; 3] = [Scene::Explore, Scene::InfSup, Scene::Mesh];
+    pub const ALL: [Scene; 4] = [Scene::Explore, Scene::InfSup, Scene::Mesh, Scene::Convergence];
 
     pub fn name(self) -> &'static str {
         match self {
             Scene::Explore => "explore",
             Scene::InfSup => "infsup",
             Scene::Mesh => "mesh",
+            Scene::Convergence => "convergence",
         }
     }
 
@@ -75,6 +79,39 @@ pub struct InfSupKey {
     pub level: u32,
     pub element: Element,
     pub rule: Rule,
+}
+
+/// The finest level the convergence scene studies (the reference is one level finer).
+pub const MAX_STUDY_LEVEL: u32 = 4;
+
+/// What a work–precision study depends on: the scenario (by name) and the finest level
+/// studied; M1–M4 run at levels 0..=`max_level` against the Q2 reference at `max_level + 1`.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub struct StudyKey {
+    pub scenario: String,
+    pub max_level: u32,
+}
+
+impl StudyKey {
+    /// The level of the reference solution.
+    pub fn reference_level(&self) -> u32 {
+        self.max_level + 1
+    }
+}
+
+/// A finished study: one row per scheme and level, M1–M4 in order.
+#[derive(Clone, Debug)]
+pub struct Study {
+    pub key: StudyKey,
+    pub rows: Vec<StudyRow>,
+}
+
+/// A study to run; dropped unstarted if a newer generation exists (a running one cannot be
+/// stopped, and its reply is dropped by the app if a newer study was asked for meanwhile).
+#[derive(Clone, Debug, PartialEq)]
+pub struct StudyRequest {
+    pub generation: u64,
+    pub key: StudyKey,
 }
 
 /// A solve to run; `generation` orders requests (a newer one cancels an older one).
@@ -124,6 +161,12 @@ pub enum Response {
         key: InfSupKey,
         result: Option<Result<InfSup, String>>,
     },
+    /// `result` is None when the request was dropped as stale before it started.
+    Study {
+        generation: u64,
+        key: StudyKey,
+        result: Option<Result<Arc<Study>, String>>,
+    },
 }
 
 /// An input to [`App::update`].
@@ -142,6 +185,7 @@ pub enum Msg {
 pub enum Command {
     Solve(SolveRequest),
     InfSup(InfSupRequest),
+    Study(StudyRequest),
     /// Write the displayed solution to a new file, as [`App::export_kind`] says (the kind
     /// travels in the app so that the variant stays a plain `Export`).
     Export,
@@ -198,6 +242,10 @@ pub struct App {
     /// Inf-sup estimates computed so far.
     pub infsup: HashMap<InfSupKey, Result<InfSup, String>>,
     infsup_pending: HashSet<InfSupKey>,
+    /// Work–precision studies computed so far (failures too: they are not retried).
+    pub studies: HashMap<StudyKey, Result<Arc<Study>, String>>,
+    /// The study in flight and the generation it was asked for with.
+    study_pending: Option<(u64, StudyKey)>,
 }
 
 impl App {
@@ -230,6 +278,8 @@ impl App {
             export_kind: ExportKind::Csv,
             infsup: HashMap::new(),
             infsup_pending: HashSet::new(),
+            studies: HashMap::new(),
+            study_pending: None,
         }
     }
 
@@ -251,6 +301,19 @@ impl App {
     /// Whether the estimate of `key` is in flight.
     pub fn is_estimating(&self, key: &InfSupKey) -> bool {
         self.infsup_pending.contains(key)
+    }
+
+    /// The study the convergence scene shows at the current settings.
+    pub fn study_key(&self) -> StudyKey {
+        StudyKey {
+            scenario: self.scenario.name.clone(),
+            max_level: self.settings.level.min(MAX_STUDY_LEVEL),
+        }
+    }
+
+    /// The study in flight, if any.
+    pub fn study_pending(&self) -> Option<&StudyKey> {
+        self.study_pending.as_ref().map(|(_, k)| k)
     }
 
     /// The displayed solution if it is of the current settings.
@@ -434,6 +497,20 @@ impl App {
                     None => return false,
                 }
             }
+            Response::Study {
+                generation,
+                key,
+                result,
+            } => {
+                if self.study_pending.as_ref() != Some(&(generation, key.clone())) {
+                    // Superseded by a newer study request: dropped.
+                    return false;
+                }
+                self.study_pending = None;
+                if let Some(result) = result {
+                    self.studies.insert(key, result);
+                }
+            }
         }
         true
     }
@@ -456,7 +533,7 @@ impl App {
                     let (element, rule) = preset(&format!("M{m}"))?;
                     Some(InfSupKey { level, element, rule })
                 })),
-                Scene::Mesh => {}
+                Scene::Mesh | Scene::Convergence => {}
             }
         }
         keys
@@ -475,6 +552,17 @@ impl App {
                 generation: self.generation,
                 key: self.settings,
             }));
+        }
+        if self.scene == Scene::Convergence {
+            let key = self.study_key();
+            let in_flight = self.study_pending.as_ref().is_some_and(|(_, k)| *k == key);
+            if !self.studies.contains_key(&key) && !in_flight {
+                self.study_pending = Some((self.generation, key.clone()));
+                out.push(Command::Study(StudyRequest {
+                    generation: self.generation,
+                    key,
+                }));
+            }
         }
         for key in self.infsup_needed() {
             if !self.infsup.contains_key(&key) && self.infsup_pending.insert(key) {

@@ -15,7 +15,13 @@ use crate::mesh::Element;
 use crate::scenario::Scenario;
 use crate::solve::{ContactParams, Discretization, Solution, solve_contact};
 
-use super::app::{App, Command, InfSupKey, InfSupRequest, Msg, Progress, Response, SolveKey, SolveRequest};
+use crate::solve::preset;
+use crate::study::{Reference, convergence};
+
+use super::app::{
+    App, Command, InfSupKey, InfSupRequest, Msg, Progress, Response, SolveKey, SolveRequest, Study, StudyKey,
+    StudyRequest,
+};
 use super::beta::{self, InfSup};
 
 /// How many discretisations (meshes with their factorisations) are kept at most…
@@ -50,6 +56,8 @@ pub struct Engine {
     cache: Vec<(u32, Element, Arc<Discretization>)>,
     /// The last contact forces and the mesh and rule they belong to (the warm start).
     warm: Option<(u32, Element, Rule, Vec<f64>)>,
+    /// The last study (a study takes seconds; a second app on the same engine reuses it).
+    study: Option<Arc<Study>>,
 }
 
 impl Engine {
@@ -58,6 +66,7 @@ impl Engine {
             scenario,
             cache: Vec::new(),
             warm: None,
+            study: None,
         }
     }
 
@@ -160,6 +169,38 @@ impl Engine {
         }
     }
 
+    /// The work–precision study of `key`: M1–M4 at levels 0..=max against the Q2 reference
+    /// one level finer, at the scenario's ε (fresh solves: the timings are comparable).
+    pub fn study(&mut self, key: &StudyKey) -> Result<Arc<Study>, String> {
+        if let Some(study) = self.study.as_ref().filter(|s| s.key == *key) {
+            return Ok(study.clone());
+        }
+        if key.scenario != self.scenario.name {
+            return Err(format!(
+                "the worker runs {}, not {}",
+                self.scenario.name, key.scenario
+            ));
+        }
+        let reference =
+            Reference::compute(&self.scenario, key.reference_level()).map_err(|e| e.to_string())?;
+        let schemes: Vec<(Element, Rule)> = (1..=4).filter_map(|m| preset(&format!("M{m}"))).collect();
+        let levels: Vec<u32> = (0..=key.max_level).collect();
+        let rows = convergence(
+            &self.scenario,
+            &reference,
+            &schemes,
+            &levels,
+            self.scenario.epsilon,
+        )
+        .map_err(|e| e.to_string())?;
+        let study = Arc::new(Study {
+            key: key.clone(),
+            rows,
+        });
+        self.study = Some(study.clone());
+        Ok(study)
+    }
+
     /// The inf-sup estimate of `key`.
     pub fn inf_sup(&mut self, key: InfSupKey) -> Result<InfSup, String> {
         let disc = self.discretization(key.level, key.element)?;
@@ -171,6 +212,7 @@ impl Engine {
 enum Request {
     Solve(SolveRequest),
     InfSup(InfSupRequest),
+    Study(StudyRequest),
 }
 
 /// The worker thread. Dropping it cancels the running solve and lets the thread end.
@@ -194,14 +236,16 @@ impl Worker {
 
     /// Send a solve or an inf-sup request (anything else is not the worker's).
     pub fn send(&self, command: &Command) {
-        let request = match *command {
-            Command::Solve(r) => Request::Solve(r),
-            Command::InfSup(r) => Request::InfSup(r),
+        let request = match command {
+            Command::Solve(r) => Request::Solve(*r),
+            Command::InfSup(r) => Request::InfSup(*r),
+            Command::Study(r) => Request::Study(r.clone()),
             Command::Export => return,
         };
         let generation = match &request {
             Request::Solve(r) => r.generation,
             Request::InfSup(r) => r.generation,
+            Request::Study(r) => r.generation,
         };
         self.latest.fetch_max(generation, Ordering::SeqCst);
         // A dead worker shows as requests that never finish; the app keeps running.
@@ -215,20 +259,22 @@ impl Drop for Worker {
     }
 }
 
-/// The worker loop: the newest solve first (older ones are dropped), then inf-sup estimates
-/// in order, skipping those older than the newest generation.
+/// The worker loop: the newest solve first (older ones are dropped), then the newest study
+/// (likewise), then inf-sup estimates in order; studies and estimates older than the newest
+/// generation are skipped.
 fn run(mut engine: Engine, rx: &Receiver<Request>, latest: &AtomicU64, sink: &dyn Fn(Response) -> bool) {
     let mut solve: Option<SolveRequest> = None;
+    let mut study: Option<StudyRequest> = None;
     let mut queue: VecDeque<InfSupRequest> = VecDeque::new();
     loop {
-        if solve.is_none() && queue.is_empty() {
+        if solve.is_none() && study.is_none() && queue.is_empty() {
             match rx.recv() {
-                Ok(r) => take(r, &mut solve, &mut queue),
+                Ok(r) => take(r, &mut solve, &mut study, &mut queue),
                 Err(_) => return,
             }
         }
         while let Ok(r) = rx.try_recv() {
-            take(r, &mut solve, &mut queue);
+            take(r, &mut solve, &mut study, &mut queue);
         }
         let current = |g: u64| latest.load(Ordering::SeqCst) == g;
         let response = if let Some(req) = solve.take() {
@@ -238,6 +284,13 @@ fn run(mut engine: Engine, rx: &Receiver<Request>, latest: &AtomicU64, sink: &dy
             engine.solve(&req, &current, &mut |r| {
                 sink(r);
             })
+        } else if let Some(req) = study.take() {
+            let stale = latest.load(Ordering::SeqCst) > req.generation;
+            Response::Study {
+                generation: req.generation,
+                result: (!stale).then(|| engine.study(&req.key)),
+                key: req.key,
+            }
         } else if let Some(req) = queue.pop_front() {
             let stale = latest.load(Ordering::SeqCst) > req.generation;
             Response::InfSup {
@@ -253,10 +306,16 @@ fn run(mut engine: Engine, rx: &Receiver<Request>, latest: &AtomicU64, sink: &dy
     }
 }
 
-/// File a request: a solve replaces any waiting one, an estimate joins the queue.
-fn take(r: Request, solve: &mut Option<SolveRequest>, queue: &mut VecDeque<InfSupRequest>) {
+/// File a request: a solve or a study replaces any waiting one, an estimate joins the queue.
+fn take(
+    r: Request,
+    solve: &mut Option<SolveRequest>,
+    study: &mut Option<StudyRequest>,
+    queue: &mut VecDeque<InfSupRequest>,
+) {
     match r {
         Request::Solve(r) => *solve = Some(r),
+        Request::Study(r) => *study = Some(r),
         Request::InfSup(r) => queue.push_back(r),
     }
 }
@@ -276,6 +335,11 @@ pub fn carry_out(app: &mut App, engine: &mut Engine, mut commands: Vec<Command>)
             Command::InfSup(req) => Response::InfSup {
                 key: req.key,
                 result: Some(engine.inf_sup(req.key)),
+            },
+            Command::Study(req) => Response::Study {
+                generation: req.generation,
+                result: Some(engine.study(&req.key)),
+                key: req.key,
             },
             Command::Export => continue,
         };

@@ -30,10 +30,12 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, theme: Theme) {
         } else {
             ratatui::style::Style::new()
         };
+        // The padding of each tab separates it from the next (room for the title at 80 columns).
         tabs.push(Span::styled(format!(" {} ", scene.name()), style));
-        tabs.push(Span::raw(" "));
     }
-    let [left, right] = Layout::horizontal([Constraint::Fill(1), Constraint::Length(30)]).areas(first);
+    let tabs_width = Line::from(tabs.clone()).width() as u16;
+    let [left, right] =
+        Layout::horizontal([Constraint::Fill(1), Constraint::Length(tabs_width)]).areas(first);
     frame.render_widget(Paragraph::new(title), left);
     frame.render_widget(
         Paragraph::new(Line::from(tabs)).alignment(Alignment::Right),

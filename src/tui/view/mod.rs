@@ -1,6 +1,7 @@
 //! Drawing the app: `view(&App, &mut Frame)` lays out the header, the scene, the error banner
 //! and the status line, and the help overlay on top. One module per scene part.
 
+mod convergence;
 mod deformed;
 mod fmt;
 mod header;
@@ -53,6 +54,7 @@ pub fn view_in(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
         Scene::Explore => explore(app, frame, body, look),
         Scene::InfSup => infsup_chart::render(app, frame, body, look),
         Scene::Mesh => deformed::render(app, frame, body, look, deformed::Extent::Full),
+        Scene::Convergence => convergence::render(app, frame, body, look),
     }
     if let Some(error) = &app.error {
         let text = format!(" ✗ {error}");

@@ -54,6 +54,22 @@ fn state(app: &App, theme: Theme) -> Line<'static> {
         }
         return Line::from(spans);
     }
+    if app.scene == Scene::Convergence {
+        let key = app.study_key();
+        let reference = key.reference_level();
+        if app.study_pending() == Some(&key) {
+            spans.push(Span::styled(
+                format!("⟳ computing the reference (q2, level {reference})…"),
+                theme.busy(),
+            ));
+        } else if let Some(Ok(_)) = app.studies.get(&key) {
+            spans.push(Span::raw(format!(
+                "M1–M4 at levels 0..={} against q2 level {reference}, ε={:e}",
+                key.max_level, app.scenario.epsilon
+            )));
+        }
+        return Line::from(spans);
+    }
     let Some(solved) = &app.solved else {
         return Line::from(spans);
     };
