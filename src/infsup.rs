@@ -11,8 +11,6 @@
 //! the stiffness's ordering (same pattern, Γ_C dofs last: see [`crate::fem::condense`]).
 //! Every rule then costs only small dense work: B A⁻¹ Bᵀ = W T C Tᵀ W.
 
-use std::time::Instant;
-
 use faer::{Mat, Side};
 
 use crate::contact::{ContactPoints, Rule, smoothed_pressure};
@@ -36,20 +34,16 @@ pub struct InfSup {
 /// C = E A⁻¹ Eᵀ on the Γ_C normal dofs (rule-independent, one per mesh).
 pub struct TraceCompliance {
     pub c: Mat<f64>,
-    /// Time to assemble and factorise A and solve for C, in ms.
-    pub ms: f64,
 }
 
 impl TraceCompliance {
     /// Assemble A on the mesh and condense it onto Γ_C on the stiffness's ordering.
     pub fn new(disc: &Discretization) -> Result<Self, String> {
-        let t = Instant::now();
         let a = assemble(&disc.mesh, &disc.dofs, Form::H1);
         let factor = TraceFactor::new(&disc.ordering, &a)
             .map_err(|e| format!("the H¹ Gram matrix cannot be factorised: {e}"))?;
         Ok(TraceCompliance {
             c: factor.compliance(),
-            ms: t.elapsed().as_secs_f64() * 1e3,
         })
     }
 }

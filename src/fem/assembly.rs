@@ -206,11 +206,6 @@ impl SymCsc {
         }
         y
     }
-
-    /// xᵀ A x.
-    pub fn quadratic(&self, x: &[f64]) -> f64 {
-        self.mul(x).iter().zip(x).map(|(a, b)| a * b).sum()
-    }
 }
 
 /// Assemble `form` on the free dofs of `dofs`.

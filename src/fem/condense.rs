@@ -91,11 +91,6 @@ impl TraceOrdering {
         })
     }
 
-    /// Number of non-zeros of the factor L.
-    pub fn factor_nnz(&self) -> usize {
-        self.symbolic.len_val()
-    }
-
     /// Whether faer chose its supernodal (blocked) factorisation for this pattern.
     pub fn is_supernodal(&self) -> bool {
         matches!(self.symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_))

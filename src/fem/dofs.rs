@@ -40,10 +40,6 @@ impl DofMap {
     pub fn n_free(&self) -> usize {
         self.n_free
     }
-    pub fn n_global(&self) -> usize {
-        self.free.len()
-    }
-
     /// The free index of global dof `g`, if it is free.
     pub fn free_index(&self, g: usize) -> Option<usize> {
         let f = self.free[g];
