@@ -220,7 +220,36 @@ fn rates(prev: &StudyRow, row: &StudyRow, by_epsilon: bool) -> Errors {
     }
 }
 
+/// The elements of `schemes`, each once, in order of first appearance.
+fn elements(schemes: &[(Element, Rule)]) -> Vec<Element> {
+    let mut out: Vec<Element> = Vec::new();
+    for &(e, _) in schemes {
+        if !out.contains(&e) {
+            out.push(e);
+        }
+    }
+    out
+}
+
+/// Rows grouped per scheme, in `schemes`' order, each group with its rates from the row
+/// before it (`by_epsilon`: rates against ε; rows with ε = 0 get none).
+fn with_rates(groups: Vec<Vec<StudyRow>>, by_epsilon: bool) -> Vec<StudyRow> {
+    let mut rows = Vec::new();
+    for group in groups {
+        for (i, mut row) in group.iter().cloned().enumerate() {
+            let prev = i.checked_sub(1).map(|j| &group[j]);
+            if let Some(prev) = prev.filter(|p| !by_epsilon || (p.epsilon > 0.0 && row.epsilon > 0.0)) {
+                row.rates = Some(rates(prev, &row, by_epsilon));
+            }
+            rows.push(row);
+        }
+    }
+    rows
+}
+
 /// Every scheme at every level (fresh solves at the scenario's ε), against `reference`.
+/// Each mesh is assembled and factorised once and shared by the schemes of its element; each
+/// row's `solve_ms` is still a fresh solve's cost (that mesh's work plus the scheme's Newton).
 pub fn convergence(
     scenario: &Scenario,
     reference: &Reference,
@@ -228,28 +257,27 @@ pub fn convergence(
     levels: &[u32],
     epsilon: f64,
 ) -> Result<Vec<StudyRow>, SolveError> {
-    let mut rows: Vec<StudyRow> = Vec::new();
-    for &(element, rule) in schemes {
+    let mut groups: Vec<Vec<StudyRow>> = vec![Vec::new(); schemes.len()];
+    for element in elements(schemes) {
         for &level in levels {
             let disc = Discretization::of(scenario, level, element)?;
-            let params = ContactParams {
-                rule,
-                epsilon,
-                obstacle: scenario.obstacle.clone(),
-            };
-            let mut sol = solve_fresh(&disc, &params)?;
-            sol.timing.include_mesh_work(&disc);
-            let mut row = StudyRow::new(reference, &disc, &sol, level);
-            if let Some(prev) = rows.last().filter(|p| p.scheme == row.scheme) {
-                row.rates = Some(rates(prev, &row, false));
+            for (i, &(_, rule)) in schemes.iter().enumerate().filter(|(_, s)| s.0 == element) {
+                let params = ContactParams {
+                    rule,
+                    epsilon,
+                    obstacle: scenario.obstacle.clone(),
+                };
+                let mut sol = solve_fresh(&disc, &params)?;
+                sol.timing.include_mesh_work(&disc);
+                groups[i].push(StudyRow::new(reference, &disc, &sol, level));
             }
-            rows.push(row);
         }
     }
-    Ok(rows)
+    Ok(with_rates(groups, false))
 }
 
-/// Every scheme at one level over several ε (re-solves on one mesh), against `reference`.
+/// Every scheme at one level over several ε (re-solves on one mesh, warm-started from the
+/// previous ε), against `reference`; one mesh per element.
 pub fn epsilon_sweep(
     scenario: &Scenario,
     reference: &Reference,
@@ -257,33 +285,28 @@ pub fn epsilon_sweep(
     level: u32,
     epsilons: &[f64],
 ) -> Result<Vec<StudyRow>, SolveError> {
-    let mut rows: Vec<StudyRow> = Vec::new();
-    for &(element, rule) in schemes {
+    let mut groups: Vec<Vec<StudyRow>> = vec![Vec::new(); schemes.len()];
+    for element in elements(schemes) {
         let disc = Discretization::of(scenario, level, element)?;
-        let mut previous: Option<Vec<f64>> = None;
-        for &epsilon in epsilons {
-            let params = ContactParams {
-                rule,
-                epsilon,
-                obstacle: scenario.obstacle.clone(),
-            };
-            let sol = solve_contact(
-                &disc,
-                &params,
-                previous.as_deref(),
-                &NewtonOptions::default(),
-                &mut |_| ControlFlow::Continue(()),
-            )?;
-            previous = Some(sol.newton.forces.clone());
-            let mut row = StudyRow::new(reference, &disc, &sol, level);
-            if let Some(prev) = rows
-                .last()
-                .filter(|p| p.scheme == row.scheme && p.epsilon > 0.0 && row.epsilon > 0.0)
-            {
-                row.rates = Some(rates(prev, &row, true));
+        for (i, &(_, rule)) in schemes.iter().enumerate().filter(|(_, s)| s.0 == element) {
+            let mut previous: Option<Vec<f64>> = None;
+            for &epsilon in epsilons {
+                let params = ContactParams {
+                    rule,
+                    epsilon,
+                    obstacle: scenario.obstacle.clone(),
+                };
+                let sol = solve_contact(
+                    &disc,
+                    &params,
+                    previous.as_deref(),
+                    &NewtonOptions::default(),
+                    &mut |_| ControlFlow::Continue(()),
+                )?;
+                previous = Some(sol.newton.forces.clone());
+                groups[i].push(StudyRow::new(reference, &disc, &sol, level));
             }
-            rows.push(row);
         }
     }
-    Ok(rows)
+    Ok(with_rates(groups, true))
 }
