@@ -5,10 +5,11 @@ use ratatui::Frame;
 use ratatui::layout::{Alignment, Constraint, Flex, Layout, Rect};
 use ratatui::symbols::Marker;
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Block, Clear, Paragraph, Wrap};
+use ratatui::widgets::{Block, Paragraph, Wrap};
 
 use super::super::render_frame;
 use super::super::theme::Theme;
+use super::super::view::help::key_popup;
 use super::super::view::{Look, MIN_SIZE as LAB_MIN, view_in};
 use super::super::worker::{Engine, carry_out};
 use super::{Tour, TourApp};
@@ -129,31 +130,7 @@ fn wrapped_rows(text: &str, width: usize) -> usize {
 
 /// The tour's keys over the middle of `area`.
 fn help(frame: &mut Frame, area: Rect, theme: Theme) {
-    let height = (KEYS.len() as u16 + 2).min(area.height);
-    let [row] = Layout::vertical([Constraint::Length(height)])
-        .flex(Flex::Center)
-        .areas(area);
-    let [popup] = Layout::horizontal([Constraint::Length(74.min(area.width))])
-        .flex(Flex::Center)
-        .areas(row);
-    let lines: Vec<Line> = KEYS
-        .iter()
-        .map(|(key, what)| {
-            Line::from(vec![
-                Span::styled(format!(" {key:<17}"), theme.key()),
-                Span::raw(*what),
-            ])
-        })
-        .collect();
-    frame.render_widget(Clear, popup);
-    frame.render_widget(
-        Paragraph::new(lines).block(
-            Block::bordered()
-                .title(Span::styled(" tour keys ", theme.title()))
-                .border_style(theme.axis()),
-        ),
-        popup,
-    );
+    key_popup(frame, area, theme, " tour keys ", &KEYS, (74, 17));
 }
 
 /// The message shown instead of the tour in a terminal too small for it.

@@ -27,18 +27,32 @@ pub const KEYS: [(&str, &str); 15] = [
 ];
 
 pub fn render(frame: &mut Frame, area: Rect, theme: Theme) {
-    let height = (KEYS.len() as u16 + 2).min(area.height);
+    key_popup(frame, area, theme, " keys ", &KEYS, (62, 16));
+}
+
+/// A bordered list of `keys` (key, what it does) centred over `area`, `size` = (popup width,
+/// key column width): the lab's help and the tour's.
+pub fn key_popup(
+    frame: &mut Frame,
+    area: Rect,
+    theme: Theme,
+    title: &str,
+    keys: &[(&str, &str)],
+    size: (u16, usize),
+) {
+    let (width, key_width) = size;
+    let height = (keys.len() as u16 + 2).min(area.height);
     let [row] = Layout::vertical([Constraint::Length(height)])
         .flex(Flex::Center)
         .areas(area);
-    let [popup] = Layout::horizontal([Constraint::Length(62.min(area.width))])
+    let [popup] = Layout::horizontal([Constraint::Length(width.min(area.width))])
         .flex(Flex::Center)
         .areas(row);
-    let lines: Vec<Line> = KEYS
+    let lines: Vec<Line> = keys
         .iter()
         .map(|(key, what)| {
             Line::from(vec![
-                Span::styled(format!(" {key:<16}"), theme.key()),
+                Span::styled(format!(" {key:<key_width$}"), theme.key()),
                 Span::raw(*what),
             ])
         })
@@ -47,7 +61,7 @@ pub fn render(frame: &mut Frame, area: Rect, theme: Theme) {
     frame.render_widget(
         Paragraph::new(lines).block(
             Block::bordered()
-                .title(Span::styled(" keys ", theme.title()))
+                .title(Span::styled(title, theme.title()))
                 .border_style(theme.axis()),
         ),
         popup,

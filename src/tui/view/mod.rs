@@ -5,7 +5,7 @@ mod convergence;
 mod deformed;
 mod fmt;
 mod header;
-mod help;
+pub mod help;
 mod infsup_chart;
 mod infsup_panel;
 mod pressure;
