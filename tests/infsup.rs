@@ -244,7 +244,5 @@ fn snapshot_table_m1_to_m4() {
             );
         }
     }
-    with_snapshots!({
-        insta::assert_snapshot!("infsup_m1_m4_levels_0_4", text);
-    });
+    snap!("infsup_m1_m4_levels_0_4", text);
 }

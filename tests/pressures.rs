@@ -41,9 +41,7 @@ fn snapshots_of_p_and_pbar() {
     for scheme in ["M1", "M2", "M3", "M4"] {
         for level in [0, 1] {
             let (text, _, _) = table(scheme, level);
-            with_snapshots!({
-                insta::assert_snapshot!(format!("pressures_{scheme}_level{level}"), text);
-            });
+            snap!(format!("pressures_{scheme}_level{level}"), text);
         }
     }
 }

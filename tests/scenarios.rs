@@ -75,9 +75,7 @@ fn scenario_summaries_at_their_default_levels() {
         let level = Scenario::load(&path).unwrap().level;
         let name = path.file_stem().unwrap().to_string_lossy().to_string();
         let text = summary(&path, level);
-        with_snapshots!({
-            insta::assert_snapshot!(format!("scenario_{name}"), text);
-        });
+        snap!(format!("scenario_{name}"), text);
     }
 }
 

@@ -2,6 +2,8 @@
 //! tour as an insta snapshot (plain text, 100×30); the keys that move between steps; and the
 //! validation errors of bad tour files.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
@@ -11,19 +13,6 @@ use riplab::scenario::Scenario;
 use riplab::tui::app::{Command, Msg, Scene};
 use riplab::tui::tour::{Tour, TourApp, TourMsg, auto_interval, render_step};
 use riplab::tui::worker::{Engine, carry_out, settle};
-
-/// Snapshot `text` as `snapshots/<name>.snap`.
-macro_rules! snap {
-    ($name:expr, $text:expr) => {
-        insta::with_settings!({
-            snapshot_path => concat!(env!("CARGO_MANIFEST_DIR"), "/snapshots"),
-            prepend_module_to_snapshot => false,
-            omit_expression => true,
-        }, {
-            insta::assert_snapshot!($name, $text);
-        })
-    };
-}
 
 fn key(code: KeyCode) -> TourMsg {
     TourMsg::Lab(Msg::Key(KeyEvent::new(code, KeyModifiers::NONE)))

@@ -1,6 +1,8 @@
 //! The terminal lab: rendered frames (insta snapshots of the plain text, in `snapshots/`) and
 //! the key handling of `App::update`, without a terminal.
 
+mod common;
+
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use ratatui::symbols::Marker;
 
@@ -17,19 +19,6 @@ use riplab::tui::theme::Theme;
 use riplab::tui::view::Look;
 use riplab::tui::worker::{Engine, settle};
 use riplab::tui::{render_app, render_to_string};
-
-/// Snapshot `text` as `snapshots/<name>.snap`.
-macro_rules! snap {
-    ($name:expr, $text:expr) => {
-        insta::with_settings!({
-            snapshot_path => concat!(env!("CARGO_MANIFEST_DIR"), "/snapshots"),
-            prepend_module_to_snapshot => false,
-            omit_expression => true,
-        }, {
-            insta::assert_snapshot!($name, $text);
-        })
-    };
-}
 
 const LOOK: Look = Look {
     theme: Theme { color: true },

@@ -3,15 +3,17 @@
 
 use riplab::scenario::Scenario;
 
-/// Run `body` with insta writing snapshots to the top-level `snapshots/`.
+/// Snapshot `text` as `snapshots/<name>.snap` (the top-level directory, no module prefix).
 #[macro_export]
-macro_rules! with_snapshots {
-    ($body:block) => {
+macro_rules! snap {
+    ($name:expr, $text:expr) => {
         insta::with_settings!({
             snapshot_path => concat!(env!("CARGO_MANIFEST_DIR"), "/snapshots"),
             prepend_module_to_snapshot => false,
             omit_expression => true,
-        }, $body)
+        }, {
+            insta::assert_snapshot!($name, $text);
+        })
     };
 }
 
