@@ -28,7 +28,6 @@ fn ms_since(t: Instant) -> f64 {
 /// with the Γ_C normal dofs last, and its trace compliance C (see [`crate::fem::condense`]).
 pub struct Discretization {
     pub mesh: Mesh,
-    pub material: Material,
     pub dofs: DofMap,
     /// The symbolic analysis of K's pattern (shared by every form on this mesh).
     pub ordering: TraceOrdering,
@@ -69,7 +68,6 @@ impl Discretization {
         let factorization_ms = ms_since(t);
         Ok(Discretization {
             mesh,
-            material,
             dofs,
             ordering,
             factor,
