@@ -25,6 +25,29 @@ enum Input {
     Broken(io::Error),
 }
 
+/// Forward the terminal's events to `tx` from a thread of their own, as `event(e)`; a failed
+/// read is sent as `broken(err)` and ends the thread (so does a closed channel).
+pub(super) fn forward_terminal<T: Send + 'static>(
+    tx: mpsc::Sender<T>,
+    event: fn(Event) -> T,
+    broken: fn(io::Error) -> T,
+) -> io::Result<()> {
+    std::thread::Builder::new()
+        .name("riplab-input".into())
+        .spawn(move || {
+            loop {
+                let (input, end) = match crossterm::event::read() {
+                    Ok(e) => (event(e), false),
+                    Err(e) => (broken(e), true),
+                };
+                if tx.send(input).is_err() || end {
+                    return;
+                }
+            }
+        })?;
+    Ok(())
+}
+
 /// Run the lab on `scenario` until the user quits; the terminal is restored in every case.
 pub fn run(scenario: Scenario, look: Look) -> io::Result<()> {
     let mut terminal = ratatui::try_init()?;
@@ -37,20 +60,7 @@ fn event_loop(terminal: &mut DefaultTerminal, scenario: Scenario, look: &Look) -
     let (tx, rx) = mpsc::channel::<Input>();
     let to_app = tx.clone();
     let worker = Worker::spawn(scenario.clone(), move |r| to_app.send(Input::Worker(r)).is_ok());
-    std::thread::Builder::new()
-        .name("riplab-input".into())
-        .spawn(move || {
-            loop {
-                let input = match crossterm::event::read() {
-                    Ok(event) => Input::Terminal(event),
-                    Err(e) => Input::Broken(e),
-                };
-                let broken = matches!(input, Input::Broken(_));
-                if tx.send(input).is_err() || broken {
-                    return;
-                }
-            }
-        })?;
+    forward_terminal(tx, Input::Terminal, Input::Broken)?;
 
     let mut app = App::new(scenario);
     let mut redraw = apply(&mut app, &worker, Msg::Resize);

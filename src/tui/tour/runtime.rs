@@ -13,7 +13,7 @@ use crate::scenario::Scenario;
 
 use super::super::TuiOptions;
 use super::super::app::{Command, Msg, Response};
-use super::super::runtime::{draw_with, export};
+use super::super::runtime::{draw_with, export, forward_terminal};
 use super::super::theme::Theme;
 use super::super::view::Look;
 use super::super::worker::Worker;
@@ -103,21 +103,7 @@ fn event_loop(
     look: &Look,
 ) -> io::Result<()> {
     let (tx, rx) = mpsc::channel::<Input>();
-    let input = tx.clone();
-    std::thread::Builder::new()
-        .name("riplab-input".into())
-        .spawn(move || {
-            loop {
-                let event = match crossterm::event::read() {
-                    Ok(event) => Input::Terminal(event),
-                    Err(e) => Input::Broken(e),
-                };
-                let broken = matches!(event, Input::Broken(_));
-                if input.send(event).is_err() || broken {
-                    return;
-                }
-            }
-        })?;
+    forward_terminal(tx.clone(), Input::Terminal, Input::Broken)?;
     let player = TourApp::new(tour, auto);
     let scenario = player.app.scenario.clone();
     let mut session = Session {
