@@ -97,5 +97,5 @@ fn resolve(bencher: Bencher, level: u32) {
 fn inf_sup(bencher: Bencher, level: u32) {
     let s = Scenario::paper();
     let disc = Discretization::of(&s, level, Element::Q1).unwrap();
-    bencher.bench(|| estimate(&disc, &TraceCompliance::new(&disc).unwrap(), Rule::Gauss1));
+    bencher.bench(|| estimate(&disc, &TraceCompliance::new(&disc).unwrap(), Rule::Gauss1).unwrap());
 }

@@ -8,18 +8,22 @@ use std::process::ExitCode;
 use clap::{Args, Parser, Subcommand};
 
 use crate::contact::Rule;
-use crate::contact::penalty::{NewtonOptions, SolveError};
+use crate::contact::penalty::NewtonOptions;
+use crate::error::SolveError;
 use crate::infsup::{TraceCompliance, estimate};
 use crate::mesh::Element;
-use crate::report::{Format, InfSupRow, SolveReport, infsup_output, study_output, sweep_summary};
+use crate::report::{
+    Format, InfSupRow, SolveReport, SweepFailure, infsup_output, study_output, sweep_output,
+};
 use crate::scenario::{MAX_LEVEL, Scenario, ScenarioError, check};
-use crate::solve::{ContactParams, Discretization, preset, solve_contact};
-use crate::study::{Reference, convergence, epsilon_sweep};
+use crate::solve::{ContactParams, Discretization, check_request, preset, solve_contact};
+use crate::study::{Reference, all_ok, convergence, epsilon_sweep};
 use crate::tui::{MarkerChoice, TuiOptions, render_to_string};
 
 const EXIT_CODES: &str = "Exit codes:
   0  success
-  1  the solver failed or did not converge (the output says which)
+  1  the solver failed or did not converge, or a row of a study or sweep has no result
+     (the output says which), or the output could not be written
   2  bad input: a scenario file or a command-line value is invalid";
 
 #[derive(Parser, Debug)]
@@ -101,7 +105,7 @@ pub struct Select {
     /// Quadrature rule of the penalty term.
     #[arg(long, short)]
     pub rule: Option<Rule>,
-    /// One of the paper's schemes M1–M4 (sets element and rule).
+    /// One of the paper's schemes M1–M4, or a pair like q2+gauss1 (sets element and rule).
     #[arg(long, short, conflicts_with_all = ["element", "rule"])]
     pub scheme: Option<String>,
 }
@@ -134,9 +138,9 @@ pub struct SolveArgs {
 pub struct InfsupArgs {
     #[command(flatten)]
     pub select: Select,
-    /// Levels, inclusive: `0..6`, `2..=4` or a single level.
-    #[arg(long, default_value = "0..4")]
-    pub levels: String,
+    /// Levels, inclusive: `0..6`, `2..=4` or a single level [default: 0..4, or --level's].
+    #[arg(long, conflicts_with = "level")]
+    pub levels: Option<String>,
     /// Every element × rule pair (the paper's M1–M4 first).
     #[arg(long, conflicts_with_all = ["element", "rule", "scheme"])]
     pub all: bool,
@@ -165,8 +169,8 @@ pub struct StudyArgs {
         requires = "level"
     )]
     pub sweep_epsilon: Vec<f64>,
-    /// The level of an ε sweep.
-    #[arg(long)]
+    /// The level of an ε sweep (with --sweep-epsilon; a refinement study takes --levels).
+    #[arg(long, requires = "sweep_epsilon")]
     pub level: Option<i64>,
     /// Level of the Q2 exact-constraint reference (default: one finer than the finest studied).
     #[arg(long)]
@@ -218,24 +222,21 @@ pub enum CliError {
     #[error("{0}")]
     Usage(String),
     #[error("{0}")]
-    Solve(String),
-}
-
-impl From<SolveError> for CliError {
-    fn from(e: SolveError) -> Self {
-        match e {
-            // A combination that has no solution is a bad request, not a solver failure.
-            SolveError::Kernel(_) | SolveError::TooLarge(_) => CliError::Usage(e.to_string()),
-            _ => CliError::Solve(e.to_string()),
-        }
-    }
+    Solve(#[from] SolveError),
+    /// The command ran but some of what it was asked for has no result (rows of a study or a
+    /// sweep, a terminal that failed).
+    #[error("{0}")]
+    Failed(String),
+    #[error("cannot write the output: {0}")]
+    Output(std::io::Error),
 }
 
 impl CliError {
     pub fn exit_code(&self) -> u8 {
         match self {
             CliError::Scenario(_) | CliError::Usage(_) => 2,
-            CliError::Solve(_) => 1,
+            CliError::Solve(e) => e.exit_code(),
+            CliError::Failed(_) | CliError::Output(_) => 1,
         }
     }
 }
@@ -256,8 +257,7 @@ impl Select {
             s.level = level as u32;
         }
         if let Some(name) = &self.scheme {
-            let (e, r) = preset(name)
-                .ok_or_else(|| usage("--scheme", format!("`{name}`; allowed: M1, M2, M3, M4")))?;
+            let (e, r) = parse_scheme(name).map_err(|m| usage("--scheme", m))?;
             s.element = e;
             s.rule = r;
         }
@@ -289,17 +289,13 @@ pub fn run(cli: Cli) -> ExitCode {
             let mut cmd = <Cli as clap::CommandFactory>::command();
             let mut out = Vec::new();
             clap_complete::generate(shell, &mut cmd, "riplab", &mut out);
-            print(&String::from_utf8_lossy(&out));
-            Ok(ExitCode::SUCCESS)
+            print(&String::from_utf8_lossy(&out)).map(|()| ExitCode::SUCCESS)
         }
         Some(Command::Man) => {
             let mut out = Vec::new();
             match clap_mangen::Man::new(<Cli as clap::CommandFactory>::command()).render(&mut out) {
-                Ok(()) => {
-                    print(&String::from_utf8_lossy(&out));
-                    Ok(ExitCode::SUCCESS)
-                }
-                Err(e) => Err(CliError::Solve(format!("man page: {e}"))),
+                Ok(()) => print(&String::from_utf8_lossy(&out)).map(|()| ExitCode::SUCCESS),
+                Err(e) => Err(CliError::Failed(format!("man page: {e}"))),
             }
         }
         None => lab(
@@ -313,35 +309,49 @@ pub fn run(cli: Cli) -> ExitCode {
     match result {
         Ok(code) => code,
         Err(e) => {
-            eprintln!("error: {e}");
+            note(&format!("error: {e}"));
             ExitCode::from(e.exit_code())
         }
     }
 }
 
-fn print(out: &str) {
+/// Write `out` to standard output. A reader that closed the pipe (`| head`) has taken what it
+/// wanted: that is not an error. Any other failure (a full disk, `> /dev/full`) is.
+fn print(out: &str) -> Result<(), CliError> {
     let mut stdout = std::io::stdout().lock();
-    // A closed pipe (e.g. `| head`) is not an error worth a panic.
-    let _ = stdout.write_all(out.as_bytes());
+    match stdout.write_all(out.as_bytes()).and_then(|()| stdout.flush()) {
+        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(CliError::Output(e)),
+        _ => Ok(()),
+    }
+}
+
+/// A line on standard error (progress, warnings, the final error). A closed or full stderr
+/// cannot be told about itself, and is no reason to stop: the line is dropped.
+fn note(line: &str) {
+    let _ = writeln!(std::io::stderr().lock(), "{line}");
 }
 
 fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
     let scenario = args.select.resolve()?;
+    let level = scenario.level;
+    let range = scenario.epsilon_range(level);
     for &e in &args.epsilon {
-        check::epsilon(e).map_err(|m| usage("--epsilon", m))?;
+        check::epsilon_in(e, range).map_err(|m| usage("--epsilon", m))?;
     }
+    // ε = κ·h/E: the κ range is KAPPA_RANGE whatever the level.
+    let scale = scenario.h(level) / scenario.material.young;
     for &k in &args.kappa {
-        check::epsilon(k).map_err(|m| usage("--kappa", m))?;
+        check::epsilon_in(k * scale, range)
+            .map_err(|m| usage("--kappa", format!("κ = {}: {m}", crate::text::num(k))))?;
     }
     for &d in &args.depth {
-        check::finite(d).map_err(|m| usage("--depth", m))?;
+        check::depth(d, scenario.height).map_err(|m| usage("--depth", m))?;
     }
     if args.epsilon.len().max(args.kappa.len()) > 1 && args.depth.len() > 1 {
         return Err(CliError::Usage(
             "sweep one of --epsilon (or --kappa) and --depth at a time".into(),
         ));
     }
-    let scale = scenario.h(scenario.level) / scenario.material.young;
     let epsilons = match (args.epsilon.is_empty(), args.kappa.is_empty()) {
         (false, _) => args.epsilon.clone(),
         (true, false) => args.kappa.iter().map(|k| k * scale).collect(),
@@ -353,69 +363,107 @@ fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
         args.depth.clone()
     };
     let sweep = epsilons.len() > 1 || depths.len() > 1;
-    if sweep && args.plot.is_some() {
-        return Err(usage("--plot", "plots one solve; a sweep has several".into()));
+    if let Some(path) = &args.plot {
+        if sweep {
+            return Err(usage("--plot", "plots one solve; a sweep has several".into()));
+        }
+        crate::plot::check_target(path, args.force).map_err(|e| plot_error(path, &e))?;
+    }
+    let params = |epsilon: f64, depth: f64| ContactParams {
+        rule: scenario.rule,
+        epsilon,
+        obstacle: scenario.obstacle.with_depth(depth),
+    };
+    // A single solve's request with no answer is refused before any assembly; in a sweep each
+    // row says for itself.
+    if !sweep {
+        check_request(
+            &scenario,
+            level,
+            scenario.element,
+            &params(epsilons[0], depths[0]),
+        )?;
     }
 
-    let disc = Discretization::of(&scenario, scenario.level, scenario.element).map_err(CliError::from)?;
-    let mut reports = Vec::new();
+    let disc = Discretization::of(&scenario, level, scenario.element)?;
+    let mut rows: Vec<Result<SolveReport, SweepFailure>> = Vec::new();
     let mut previous: Option<Vec<f64>> = None;
     for &epsilon in &epsilons {
         for &depth in &depths {
-            let params = ContactParams {
-                rule: scenario.rule,
-                epsilon,
-                obstacle: scenario.obstacle.with_depth(depth),
-            };
-            let mut sol = solve_contact(
+            let params = params(epsilon, depth);
+            let solved = solve_contact(
                 &disc,
                 &params,
                 previous.as_deref(),
                 &NewtonOptions::default(),
                 &mut |_| ControlFlow::Continue(()),
-            )
-            .map_err(CliError::from)?;
-            if reports.is_empty() {
+            );
+            let mut sol = match solved {
+                Ok(sol) => sol,
+                Err(e) if sweep => {
+                    rows.push(Err(SweepFailure::new(&scenario, &disc, &params, &e)));
+                    continue;
+                }
+                Err(e) => return Err(e.into()),
+            };
+            if rows.is_empty() {
                 // The first solve pays for the mesh's work; later ones in a sweep reuse it.
                 sol.timing.include_mesh_work(&disc);
             }
             previous = Some(sol.newton.forces.clone());
-            reports.push(SolveReport::new(&scenario, scenario.level, &disc, &sol));
+            for w in &sol.warnings {
+                note(&format!(
+                    "warning: ε = {:e}, depth = {}: {w}",
+                    epsilon,
+                    crate::text::num(depth)
+                ));
+            }
+            rows.push(Ok(SolveReport::new(&scenario, level, &disc, &sol)));
             if let Some(path) = &args.plot {
-                let title = crate::plot::chart_title(&scenario.name, disc.mesh.element, scenario.level, &sol);
+                let title = crate::plot::chart_title(&scenario.name, disc.mesh.element, level, &sol);
                 crate::plot::pressure_svg(path, &title, &sol, scenario.half_model, args.force)
-                    .map_err(|e| CliError::Usage(format!("--plot {}: {e}", path.display())))?;
+                    .map_err(|e| CliError::Failed(format!("--plot {e}")))?;
             }
         }
     }
-    let out = match (args.format, sweep) {
-        (Format::Json, false) => serde_json::to_string_pretty(&reports[0]).expect("serialisable") + "\n",
-        (Format::Json, true) => serde_json::to_string_pretty(&reports).expect("serialisable") + "\n",
-        (Format::Csv, false) => reports[0].csv(),
-        (Format::Table, false) => reports[0].table(),
-        (format, true) => sweep_summary(&reports, format),
+    let out = match (args.format, &rows[..]) {
+        (Format::Json, [Ok(report)]) if !sweep => {
+            serde_json::to_string_pretty(report).expect("serialisable") + "\n"
+        }
+        (Format::Csv, [Ok(report)]) if !sweep => report.csv(),
+        (Format::Table, [Ok(report)]) if !sweep => report.table(),
+        (format, _) => sweep_output(&rows, format),
     };
-    print(&out);
-    let failed: Vec<String> = reports
+    print(&out)?;
+    let failed: Vec<String> = rows
         .iter()
-        .filter(|r| !r.converged)
-        .map(|r| {
-            format!(
+        .filter_map(|row| match row {
+            Ok(r) if !r.converged => Some(format!(
                 "ε = {:e}, depth = {}: {}",
                 r.epsilon,
                 r.depth,
                 r.diagnosis.as_deref().unwrap_or("not converged")
-            )
+            )),
+            Ok(_) => None,
+            Err(f) => Some(format!("ε = {:e}, depth = {}: {}", f.epsilon, f.depth, f.reason)),
         })
         .collect();
     if failed.is_empty() {
         Ok(ExitCode::SUCCESS)
     } else {
-        Err(CliError::Solve(format!(
-            "Newton did not converge for {}",
+        Err(CliError::Failed(format!(
+            "no certified result for {}",
             failed.join("; ")
         )))
     }
+}
+
+fn plot_error(path: &std::path::Path, e: &std::io::Error) -> CliError {
+    let what = match e.kind() {
+        std::io::ErrorKind::AlreadyExists => "exists; not overwritten (--force replaces it)".to_string(),
+        _ => e.to_string(),
+    };
+    usage("--plot", format!("{}: {what}", path.display()))
 }
 
 /// Element × rule pairs: the paper's schemes first, then the others.
@@ -436,7 +484,12 @@ fn all_pairs() -> Vec<(Element, Rule)> {
 
 fn infsup(args: &InfsupArgs) -> Result<ExitCode, CliError> {
     let scenario = args.select.resolve()?;
-    let levels = parse_levels(&args.levels).map_err(|m| usage("--levels", m))?;
+    // `--level L` alone estimates that level; `--levels` a range (they exclude each other).
+    let levels = match (&args.levels, args.select.level) {
+        (Some(text), _) => parse_levels(text).map_err(|m| usage("--levels", m))?,
+        (None, Some(_)) => vec![scenario.level],
+        (None, None) => parse_levels("0..4").expect("the default levels parse"),
+    };
     let pairs = if args.all {
         all_pairs()
     } else {
@@ -450,11 +503,11 @@ fn infsup(args: &InfsupArgs) -> Result<ExitCode, CliError> {
         for &level in &levels {
             let t = std::time::Instant::now();
             let disc = Discretization::of(&scenario, level, element).map_err(CliError::from)?;
-            let compliance = TraceCompliance::new(&disc).map_err(CliError::Solve)?;
+            let compliance = TraceCompliance::new(&disc)?;
             let shared_ms = t.elapsed().as_secs_f64() * 1e3;
             for &(_, rule) in pairs.iter().filter(|p| p.0 == element) {
                 let t = std::time::Instant::now();
-                let est = estimate(&disc, &compliance, rule);
+                let est = estimate(&disc, &compliance, rule)?;
                 let rule_ms = t.elapsed().as_secs_f64() * 1e3;
                 rows.push(InfSupRow::new(level, element, rule, est, shared_ms, rule_ms));
             }
@@ -466,7 +519,7 @@ fn infsup(args: &InfsupArgs) -> Result<ExitCode, CliError> {
             .position(|p| p.0.name() == r.element && p.1.name() == r.rule)
     };
     rows.sort_by_key(|r| (order(r), r.level));
-    print(&infsup_output(&rows, args.format));
+    print(&infsup_output(&rows, args.format))?;
     Ok(ExitCode::SUCCESS)
 }
 
@@ -483,17 +536,22 @@ fn study(args: &StudyArgs) -> Result<ExitCode, CliError> {
         .collect::<Result<Vec<_>, _>>()
         .map_err(|m| usage("--schemes", m))?;
     let epsilon = args.epsilon.unwrap_or(scenario.epsilon);
-    check::epsilon(epsilon).map_err(|m| usage("--epsilon", m))?;
-    for &e in &args.sweep_epsilon {
-        check::epsilon(e).map_err(|m| usage("--sweep-epsilon", m))?;
-    }
     let levels = match args.level {
-        Some(l) if !args.sweep_epsilon.is_empty() => {
+        Some(l) => {
             check::level(l).map_err(|m| usage("--level", m))?;
             vec![l as u32]
         }
-        _ => parse_levels(&args.levels).map_err(|m| usage("--levels", m))?,
+        None => parse_levels(&args.levels).map_err(|m| usage("--levels", m))?,
     };
+    // ε's range depends on h: check it at the coarsest and the finest level studied.
+    for &level in [levels[0], levels[levels.len() - 1]].iter() {
+        let range = scenario.epsilon_range(level);
+        check::epsilon_in(epsilon, range)
+            .map_err(|m| usage("--epsilon", format!("at level {level}: {m}")))?;
+        for &e in &args.sweep_epsilon {
+            check::epsilon_in(e, range).map_err(|m| usage("--sweep-epsilon", m))?;
+        }
+    }
     let finest = *levels.iter().max().expect("at least one level");
     let reference_level = match args.reference_level {
         Some(l) => {
@@ -517,20 +575,33 @@ fn study(args: &StudyArgs) -> Result<ExitCode, CliError> {
             ),
         ));
     }
-    eprintln!("computing the reference: q2 + simpson, ε = 0 (exact constraint), level {reference_level} …");
+    note(&format!(
+        "computing the reference: q2 + simpson, ε = 0 (exact constraint), level {reference_level} …"
+    ));
     let reference = Reference::compute(&scenario, reference_level)?;
-    eprintln!(
+    note(&format!(
         "reference done in {:.1} s ({} dofs)",
         reference.ms / 1e3,
         reference.n_dofs
-    );
+    ));
     let rows = if args.sweep_epsilon.is_empty() {
-        convergence(&scenario, &reference, &schemes, &levels, epsilon)?
+        convergence(&scenario, &reference, &schemes, &levels, epsilon)
     } else {
-        epsilon_sweep(&scenario, &reference, &schemes, levels[0], &args.sweep_epsilon)?
+        epsilon_sweep(&scenario, &reference, &schemes, levels[0], &args.sweep_epsilon)
     };
-    print(&study_output(&scenario.name, &reference, &rows, args.format));
-    Ok(ExitCode::SUCCESS)
+    print(&study_output(&scenario.name, &reference, &rows, args.format))?;
+    if all_ok(&rows) {
+        Ok(ExitCode::SUCCESS)
+    } else {
+        let n = rows
+            .iter()
+            .filter(|r| r.status != crate::study::Status::Ok)
+            .count();
+        Err(CliError::Failed(format!(
+            "{n} of {} rows have no certified result (their status and reason are in the output)",
+            rows.len()
+        )))
+    }
 }
 
 /// The terminal lab.
@@ -540,7 +611,7 @@ fn lab(scenario: Option<PathBuf>, opts: TuiOptions) -> Result<ExitCode, CliError
         ..Select::default()
     }
     .resolve()?;
-    crate::tui::run(scenario, opts).map_err(|e| CliError::Solve(format!("terminal: {e}")))?;
+    crate::tui::run(scenario, opts).map_err(|e| CliError::Failed(format!("terminal: {e}")))?;
     Ok(ExitCode::SUCCESS)
 }
 
@@ -561,7 +632,9 @@ fn render(args: &RenderArgs) -> Result<ExitCode, CliError> {
         h.trim().parse().map_err(|_| bad_size())?,
     );
     if let Some(e) = args.epsilon {
-        check::positive(e).map_err(|m| usage("--epsilon", m))?;
+        check::positive(e)
+            .and_then(|()| check::epsilon_in(e, scenario.epsilon_range(scenario.level)))
+            .map_err(|m| usage("--epsilon", m))?;
     }
     let frame = render_to_string(
         &scenario,
@@ -574,7 +647,7 @@ fn render(args: &RenderArgs) -> Result<ExitCode, CliError> {
         args.epsilon,
     )
     .map_err(CliError::Usage)?;
-    print(&frame);
+    print(&frame)?;
     Ok(ExitCode::SUCCESS)
 }
 
@@ -593,6 +666,6 @@ fn tour(args: &TourArgs, opts: TuiOptions) -> Result<ExitCode, CliError> {
         auto_interval(seconds).map_err(|m| usage("--auto", m))?;
     }
     let tour = tour.with_scenario(scenario).map_err(CliError::Usage)?;
-    run_tour(tour, opts, args.auto).map_err(|e| CliError::Solve(format!("terminal: {e}")))?;
+    run_tour(tour, opts, args.auto).map_err(|e| CliError::Failed(format!("terminal: {e}")))?;
     Ok(ExitCode::SUCCESS)
 }

@@ -14,6 +14,7 @@
 use faer::{Mat, Side};
 
 use crate::contact::{ContactPoints, Rule, smoothed_pressure};
+use crate::error::SolveError;
 use crate::fem::condense::TraceFactor;
 use crate::fem::quadrature::gauss_legendre;
 use crate::fem::{Form, assemble};
@@ -38,10 +39,10 @@ pub struct TraceCompliance {
 
 impl TraceCompliance {
     /// Assemble A on the mesh and condense it onto Γ_C on the stiffness's ordering.
-    pub fn new(disc: &Discretization) -> Result<Self, String> {
+    pub fn new(disc: &Discretization) -> Result<Self, SolveError> {
         let a = assemble(&disc.mesh, &disc.dofs, Form::H1);
         let factor = TraceFactor::new(&disc.ordering, &a)
-            .map_err(|e| format!("the H¹ Gram matrix cannot be factorised: {e}"))?;
+            .map_err(|e| SolveError::Factorization(format!("the H¹ Gram matrix: {e}")))?;
         Ok(TraceCompliance {
             c: factor.compliance(),
         })
@@ -112,10 +113,10 @@ pub fn schur(cp: &ContactPoints, compliance: &Mat<f64>) -> Mat<f64> {
 
 /// λ_min(S, N) over the vectors with Nq ≠ 0 (N symmetric positive semi-definite): with
 /// N = U D Uᵀ and Z = U_+ D_+^(−1/2) over its positive eigenvalues, λ_min(Zᵀ S Z).
-pub fn min_generalized_eigenvalue(s: &Mat<f64>, n: &Mat<f64>) -> f64 {
+pub fn min_generalized_eigenvalue(s: &Mat<f64>, n: &Mat<f64>) -> Result<f64, SolveError> {
     let evd = n
         .self_adjoint_eigen(Side::Lower)
-        .expect("symmetric eigen decomposition converges");
+        .map_err(|e| SolveError::Eigen(format!("{e:?}")))?;
     let d = evd.S().column_vector();
     let top = (0..d.nrows()).map(|i| d[i]).fold(0.0, f64::max);
     let keep: Vec<usize> = (0..d.nrows()).filter(|&i| d[i] > 1e-12 * top).collect();
@@ -124,12 +125,16 @@ pub fn min_generalized_eigenvalue(s: &Mat<f64>, n: &Mat<f64>) -> f64 {
     let reduced = z.transpose() * s * &z;
     let lam = reduced
         .self_adjoint_eigenvalues(Side::Lower)
-        .expect("symmetric eigenvalues converge");
-    lam.first().copied().unwrap_or(0.0).max(0.0)
+        .map_err(|e| SolveError::Eigen(format!("{e:?}")))?;
+    Ok(lam.first().copied().unwrap_or(0.0).max(0.0))
 }
 
 /// β_h, β̄_h and their ratios to √h for `rule` on `disc`, from its trace compliance.
-pub fn estimate(disc: &Discretization, compliance: &TraceCompliance, rule: Rule) -> InfSup {
+pub fn estimate(
+    disc: &Discretization,
+    compliance: &TraceCompliance,
+    rule: Rule,
+) -> Result<InfSup, SolveError> {
     let cp = disc.contact_points(rule);
     let h = disc.mesh.h();
     let s = schur(&cp, &compliance.c);
@@ -144,23 +149,23 @@ pub fn estimate(disc: &Discretization, compliance: &TraceCompliance, rule: Rule)
     let beta = if kernel.is_some() {
         0.0
     } else {
-        min_generalized_eigenvalue(&s, &pressure_mass(&cp)).sqrt()
+        min_generalized_eigenvalue(&s, &pressure_mass(&cp))?.sqrt()
     };
     let smooth = smoothing_matrix(&cp);
     let n_bar = smooth.transpose() * p1_mass(&cp.vertex_x) * &smooth;
-    let beta_bar = min_generalized_eigenvalue(&s, &n_bar).sqrt();
-    InfSup {
+    let beta_bar = min_generalized_eigenvalue(&s, &n_bar)?.sqrt();
+    Ok(InfSup {
         h,
         beta,
         beta_over_sqrt_h: beta / h.sqrt(),
         beta_bar,
         beta_bar_over_sqrt_h: beta_bar / h.sqrt(),
         kernel,
-    }
+    })
 }
 
 /// The estimate for one rule (computes the trace compliance; reuse [`TraceCompliance`] and
 /// [`estimate`] for several rules on one mesh).
-pub fn inf_sup(disc: &Discretization, rule: Rule) -> Result<InfSup, String> {
-    Ok(estimate(disc, &TraceCompliance::new(disc)?, rule))
+pub fn inf_sup(disc: &Discretization, rule: Rule) -> Result<InfSup, SolveError> {
+    estimate(disc, &TraceCompliance::new(disc)?, rule)
 }

@@ -5,6 +5,7 @@
 
 pub mod cli;
 pub mod contact;
+pub mod error;
 pub mod fem;
 pub mod infsup;
 pub mod material;
@@ -14,4 +15,6 @@ pub mod report;
 pub mod scenario;
 pub mod solve;
 pub mod study;
+pub mod text;
 pub mod tui;
+pub mod warning;

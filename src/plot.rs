@@ -269,6 +269,22 @@ pub fn pressure_svg(
     })
 }
 
+/// Whether `path` may be written: a name that does not exist, or (when `overwrite`) a
+/// regular file. A symbolic link, a FIFO, a device or a directory is never replaced, even
+/// with `overwrite`. Checked before any work is done, and again by [`write_file`].
+pub fn check_target(path: &Path, overwrite: bool) -> io::Result<()> {
+    match fs::symlink_metadata(path) {
+        Err(e) if e.kind() == io::ErrorKind::NotFound => Ok(()),
+        Err(e) => Err(e),
+        Ok(_) if !overwrite => Err(io::ErrorKind::AlreadyExists.into()),
+        Ok(meta) if meta.file_type().is_file() => Ok(()),
+        Ok(_) => Err(io::Error::new(
+            io::ErrorKind::InvalidInput,
+            "is not a regular file (a link, FIFO, device or directory); --force replaces regular files only",
+        )),
+    }
+}
+
 /// Write `bytes` to `path` atomically: to a fresh temporary file in the same directory, then
 /// moved into place. Unless `overwrite`, an existing `path` is left alone and the error is of
 /// kind [`io::ErrorKind::AlreadyExists`] (a hard link is made, which fails if the name is taken
@@ -276,6 +292,7 @@ pub fn pressure_svg(
 /// exist). The temporary file is gone afterwards in every case.
 pub fn write_file(path: &Path, bytes: &[u8], overwrite: bool) -> io::Result<()> {
     static COUNTER: AtomicU64 = AtomicU64::new(0);
+    check_target(path, overwrite)?;
     let name = path
         .file_name()
         .ok_or_else(|| io::Error::new(io::ErrorKind::InvalidInput, "not a file name"))?;
@@ -283,9 +300,6 @@ pub fn write_file(path: &Path, bytes: &[u8], overwrite: bool) -> io::Result<()> 
         Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
         _ => PathBuf::from("."),
     };
-    if !overwrite && fs::symlink_metadata(path).is_ok() {
-        return Err(io::ErrorKind::AlreadyExists.into());
-    }
     let n = COUNTER.fetch_add(1, Ordering::Relaxed);
     let tmp = dir.join(format!(
         ".{}.{}-{n}.tmp",

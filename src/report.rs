@@ -6,11 +6,13 @@ use serde::Serialize;
 
 use crate::contact::Rule;
 use crate::contact::hertz::Hertz;
+use crate::error::SolveError;
 use crate::infsup::InfSup;
 use crate::mesh::Element;
 use crate::scenario::Scenario;
-use crate::solve::{Discretization, Solution, Timing, scheme_name};
-use crate::study::{Errors, Reference, StudyRow};
+use crate::solve::{ContactParams, Discretization, Solution, Timing, scheme_name};
+use crate::study::{Errors, Reference, Status, StudyRow};
+use crate::warning::Warning;
 
 /// Output format of the CLI.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -48,6 +50,8 @@ pub struct SolveReport {
     pub n_elements: usize,
     pub n_dofs: usize,
     pub newton_iterations: usize,
+    /// `ok`, or `not_converged` (the numbers are then the last iterate's).
+    pub status: Status,
     pub converged: bool,
     pub residual: f64,
     /// Why Newton did not converge, when it did not.
@@ -58,6 +62,41 @@ pub struct SolveReport {
     /// For a cylinder: the Hertz profile of the computed load and p̄'s distance from it.
     pub hertz: Option<HertzReport>,
     pub timing_ms: Timing,
+    /// What is known to be poor about this answer ([`crate::warning`]).
+    pub warnings: Vec<Warning>,
+}
+
+/// A row of a sweep that has no result: which parameters, and why (`status`, `reason`).
+#[derive(Serialize)]
+pub struct SweepFailure {
+    pub scenario: String,
+    pub element: &'static str,
+    pub rule: &'static str,
+    pub level: u32,
+    pub epsilon: f64,
+    pub depth: f64,
+    pub status: Status,
+    pub reason: String,
+}
+
+impl SweepFailure {
+    pub fn new(
+        scenario: &Scenario,
+        disc: &Discretization,
+        params: &ContactParams,
+        error: &SolveError,
+    ) -> Self {
+        SweepFailure {
+            scenario: scenario.name.clone(),
+            element: disc.mesh.element.name(),
+            rule: params.rule.name(),
+            level: scenario.level,
+            epsilon: params.epsilon,
+            depth: params.obstacle.depth(),
+            status: Status::of_error(error),
+            reason: error.to_string(),
+        }
+    }
 }
 
 #[derive(Serialize)]
@@ -84,6 +123,11 @@ impl SolveReport {
             n_elements: disc.mesh.n_elements(),
             n_dofs: disc.n_dofs(),
             newton_iterations: sol.newton.iterations,
+            status: if sol.newton.converged {
+                Status::Ok
+            } else {
+                Status::NotConverged
+            },
             converged: sol.newton.converged,
             residual: sol.newton.residual,
             diagnosis: sol.newton.diagnosis.clone(),
@@ -110,6 +154,7 @@ impl SolveReport {
                 })
             },
             timing_ms: sol.timing,
+            warnings: sol.warnings.clone(),
         }
     }
 
@@ -204,29 +249,58 @@ impl SolveReport {
     }
 }
 
-/// A sweep (several ε or depths on one mesh) as a summary table or CSV.
-pub fn sweep_summary(reports: &[SolveReport], format: Format) -> String {
+/// A sweep (several ε or depths on one mesh): a JSON array of DESIGN §7's objects (a row
+/// with no result is `{…, "status", "reason"}`), or a summary table or CSV, a row each.
+pub fn sweep_output(rows: &[Result<SolveReport, SweepFailure>], format: Format) -> String {
     let mut s = String::new();
     let max = |v: &[f64]| v.iter().cloned().fold(0.0, f64::max);
-    if format == Format::Csv {
-        s.push_str("epsilon,depth,newton_iterations,converged,load,max_p,max_pbar,total_ms\n");
-        for r in reports {
-            let _ = writeln!(
-                s,
-                "{},{},{},{},{},{},{},{}",
-                r.epsilon,
-                r.depth,
-                r.newton_iterations,
-                r.converged,
-                r.load,
-                max(&r.points.p),
-                max(&r.nodes.pbar),
-                r.timing_ms.total
-            );
+    match format {
+        Format::Json => {
+            let values: Vec<serde_json::Value> = rows
+                .iter()
+                .map(|r| match r {
+                    Ok(report) => serde_json::to_value(report),
+                    Err(failure) => serde_json::to_value(failure),
+                })
+                .collect::<Result<_, _>>()
+                .expect("serialisable");
+            return serde_json::to_string_pretty(&values).expect("serialisable") + "\n";
         }
-        return s;
+        Format::Csv => {
+            s.push_str(
+                "epsilon,depth,status,newton_iterations,converged,load,max_p,max_pbar,total_ms,reason\n",
+            );
+            for row in rows {
+                let _ = match row {
+                    Ok(r) => writeln!(
+                        s,
+                        "{},{},{},{},{},{},{},{},{},{}",
+                        r.epsilon,
+                        r.depth,
+                        r.status.word(),
+                        r.newton_iterations,
+                        r.converged,
+                        r.load,
+                        max(&r.points.p),
+                        max(&r.nodes.pbar),
+                        r.timing_ms.total,
+                        csv_field(r.diagnosis.as_deref().unwrap_or(""))
+                    ),
+                    Err(f) => writeln!(
+                        s,
+                        "{},{},{},,false,,,,,{}",
+                        f.epsilon,
+                        f.depth,
+                        f.status.word(),
+                        csv_field(&f.reason)
+                    ),
+                };
+            }
+            return s;
+        }
+        Format::Table => {}
     }
-    if let Some(r) = reports.first() {
+    if let Some(Ok(r)) = rows.iter().find(|r| r.is_ok()) {
         let _ = writeln!(
             s,
             "{} — {}, level {} (h = {}), {} dofs",
@@ -242,19 +316,29 @@ pub fn sweep_summary(reports: &[SolveReport], format: Format) -> String {
         "{:>10} {:>8} {:>7} {:>10} {:>14} {:>12} {:>12} {:>10}",
         "ε", "depth", "Newton", "converged", "load", "max p", "max p̄", "total ms"
     );
-    for r in reports {
-        let _ = writeln!(
-            s,
-            "{:>10.1e} {:>8} {:>7} {:>10} {:>14.6} {:>12.4} {:>12.4} {:>10.1}",
-            r.epsilon,
-            r.depth,
-            r.newton_iterations,
-            r.converged,
-            r.load,
-            max(&r.points.p),
-            max(&r.nodes.pbar),
-            r.timing_ms.total
-        );
+    for row in rows {
+        let _ = match row {
+            Ok(r) => writeln!(
+                s,
+                "{:>10.1e} {:>8} {:>7} {:>10} {:>14.6} {:>12.4} {:>12.4} {:>10.1}",
+                r.epsilon,
+                r.depth,
+                r.newton_iterations,
+                r.converged,
+                r.load,
+                max(&r.points.p),
+                max(&r.nodes.pbar),
+                r.timing_ms.total
+            ),
+            Err(f) => writeln!(
+                s,
+                "{:>10.1e} {:>8}  {}: {}",
+                f.epsilon,
+                f.depth,
+                f.status.word(),
+                short_reason(&f.reason)
+            ),
+        };
     }
     s
 }
@@ -410,12 +494,14 @@ pub fn study_output(scenario: &str, reference: &Reference, rows: &[StudyRow], fo
             return serde_json::to_string_pretty(&value).expect("serialisable") + "\n";
         }
         Format::Csv => {
-            s.push_str("scheme,element,rule,level,h,epsilon,n_dofs,newton_iterations,converged,solve_ms,load,err_p,err_pbar,err_u,err_load,rate_p,rate_pbar,rate_u,rate_load\n");
+            s.push_str("scheme,element,rule,level,h,epsilon,n_dofs,status,newton_iterations,converged,solve_ms,load,err_p,err_pbar,err_u,err_load,rate_p,rate_pbar,rate_u,rate_load,reason\n");
+            let opt = |v: Option<String>| v.unwrap_or_default();
             for r in rows {
-                let e = &r.errors;
+                let e = r.errors.as_ref();
+                let err = |f: fn(&Errors) -> f64| opt(e.map(|e| f(e).to_string()));
                 let _ = writeln!(
                     s,
-                    "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
+                    "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
                     r.scheme,
                     r.element,
                     r.rule,
@@ -423,18 +509,20 @@ pub fn study_output(scenario: &str, reference: &Reference, rows: &[StudyRow], fo
                     r.h,
                     r.epsilon,
                     r.n_dofs,
-                    r.newton_iterations,
+                    r.status.word(),
+                    opt(r.newton_iterations.map(|n| n.to_string())),
                     r.converged,
-                    r.solve_ms,
-                    r.load,
-                    e.p,
-                    e.pbar,
-                    e.u,
-                    e.load,
+                    opt(r.solve_ms.map(|v| v.to_string())),
+                    opt(r.load.map(|v| v.to_string())),
+                    err(|e| e.p),
+                    err(|e| e.pbar),
+                    err(|e| e.u),
+                    err(|e| e.load),
                     rate(&r.rates, |e| e.p),
                     rate(&r.rates, |e| e.pbar),
                     rate(&r.rates, |e| e.u),
-                    rate(&r.rates, |e| e.load)
+                    rate(&r.rates, |e| e.load),
+                    csv_field(r.reason.as_deref().unwrap_or(""))
                 );
             }
             return s;
@@ -477,18 +565,26 @@ pub fn study_output(scenario: &str, reference: &Reference, rows: &[StudyRow], fo
         if i > 0 && rows[i - 1].scheme != r.scheme {
             s.push('\n');
         }
-        let e = &r.errors;
-        let flag = if r.converged { "" } else { " NOT CONVERGED" };
+        let head = format!(
+            "{:<14} {:>5} {:>9.6} {:>8.1e} {:>8}",
+            r.scheme, r.level, r.h, r.epsilon, r.n_dofs
+        );
+        let (Some(e), Some(iterations), Some(ms)) = (&r.errors, r.newton_iterations, r.solve_ms) else {
+            // No result: the reason in place of the numbers.
+            let reason = r.reason.as_deref().unwrap_or("");
+            let _ = writeln!(s, "{head}  {}: {}", r.status.word(), short_reason(reason));
+            continue;
+        };
+        let flag = if r.status == Status::Ok {
+            String::new()
+        } else {
+            format!("  {}", r.status.word().to_uppercase())
+        };
         let _ = writeln!(
             s,
-            "{:<14} {:>5} {:>9.6} {:>8.1e} {:>8} {:>7} {:>9.1} {:>10.3e} {:>5} {:>10.3e} {:>5} {:>10.3e} {:>5} {:>10.3e} {:>5}{flag}",
-            r.scheme,
-            r.level,
-            r.h,
-            r.epsilon,
-            r.n_dofs,
-            r.newton_iterations,
-            r.solve_ms,
+            "{head} {:>7} {:>9.1} {:>10.3e} {:>5} {:>10.3e} {:>5} {:>10.3e} {:>5} {:>10.3e} {:>5}{flag}",
+            iterations,
+            ms,
             e.p,
             rate(&r.rates, |e| e.p),
             e.pbar,
@@ -499,5 +595,37 @@ pub fn study_output(scenario: &str, reference: &Reference, rows: &[StudyRow], fo
             rate(&r.rates, |e| e.load)
         );
     }
+    let reasons: Vec<String> = rows
+        .iter()
+        .filter(|r| r.status != Status::Ok)
+        .filter_map(|r| {
+            r.reason
+                .as_ref()
+                .map(|why| format!("{} level {} ε = {:e}: {why}", r.scheme, r.level, r.epsilon))
+        })
+        .collect();
+    if !reasons.is_empty() {
+        let _ = writeln!(s, "\nrows without a certified result:");
+        for why in reasons {
+            let _ = writeln!(s, "  {why}");
+        }
+    }
     s
+}
+
+/// The first clause of a reason, for a table cell (the whole reason follows the table).
+fn short_reason(reason: &str) -> &str {
+    if reason.contains("multipliers are not unique") {
+        return "multipliers not unique";
+    }
+    reason.split([':', ';']).next().unwrap_or(reason).trim()
+}
+
+/// A CSV field, quoted when it holds a comma, a quote or a line break.
+fn csv_field(text: &str) -> String {
+    if text.contains([',', '"', '\n']) {
+        format!("\"{}\"", text.replace('"', "\"\""))
+    } else {
+        text.to_string()
+    }
 }

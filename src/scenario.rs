@@ -16,6 +16,7 @@ use crate::contact::{Obstacle, Rule};
 use crate::fem::Integration;
 use crate::material::{Material, Plane};
 use crate::mesh::{Element, Mesh};
+use crate::text::{num, sanitize, sanitize_lines};
 
 /// The paper's problem, half model: `scenarios/hertz-paper.toml`.
 pub const DEFAULT_SCENARIO: &str = include_str!("../scenarios/hertz-paper.toml");
@@ -67,19 +68,21 @@ pub struct ScenarioError {
 
 impl std::error::Error for ScenarioError {}
 
+/// Every piece of text that came from the file (its name, keys, the message that may quote
+/// the file, the source line) is sanitised: an error must not replay escape sequences.
 impl fmt::Display for ScenarioError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}", self.file)?;
+        write!(f, "{}", sanitize(&self.file))?;
         if let Some((line, col)) = self.location {
             write!(f, ":{line}:{col}")?;
         }
         write!(f, ": ")?;
         if let Some(key) = &self.key {
-            write!(f, "`{key}`: ")?;
+            write!(f, "`{}`: ", sanitize(key))?;
         }
-        write!(f, "{}", self.message)?;
+        write!(f, "{}", sanitize_lines(&self.message))?;
         if let (Some((line, col)), Some(text)) = (self.location, &self.source_line) {
-            write!(f, "\n {line:>4} | {text}\n      | {:>col$}", "^")?;
+            write!(f, "\n {line:>4} | {}\n      | {:>col$}", sanitize(text), "^")?;
         }
         Ok(())
     }
@@ -152,7 +155,7 @@ struct RawObstacle {
     half_width: Option<Spanned<f64>>,
     corner_radius: Option<Spanned<f64>>,
     bumps: Option<Spanned<Vec<RawBump>>>,
-    points: Option<Spanned<Vec<Spanned<[f64; 2]>>>>,
+    points: Option<Spanned<Vec<Spanned<Vec<f64>>>>>,
 }
 
 #[derive(Deserialize)]
@@ -187,15 +190,38 @@ struct RawContact {
 
 /// Checks of single values, shared by the scenario file and the command-line overrides.
 pub mod check {
+    use crate::text::num;
+
+    /// The largest and smallest magnitude of a length (body sizes, radii, coordinates): a
+    /// scenario's units must put its lengths within 1e-6 to 1e6, so that the stiffness, the
+    /// gaps and the forces stay far from the limits of double precision.
+    pub const LENGTH: (f64, f64) = (1e-6, 1e6);
+    /// The range of Young's modulus E (any units).
+    pub const YOUNG: (f64, f64) = (1e-6, 1e12);
+    /// The largest aspect ratio of a level-0 cell: beyond it the stiffness of a cell is lost
+    /// to round-off (Q1's entries scale with hx/hy and hy/hx).
+    pub const ASPECT: f64 = 1e4;
+
     /// A finite number in (lo, hi) (open ends).
     pub fn open(value: f64, lo: f64, hi: f64, allowed: &str) -> Result<(), String> {
         if !value.is_finite() {
-            return Err(format!("{value} is not a finite number; allowed: {allowed}"));
+            return Err(format!(
+                "{} is not a finite number; allowed: {allowed}",
+                num(value)
+            ));
         }
         if value > lo && value < hi {
             Ok(())
         } else {
-            Err(format!("{value} is out of range; allowed: {allowed}"))
+            Err(format!("{} is out of range; allowed: {allowed}", num(value)))
+        }
+    }
+    /// A finite number in [lo, hi] (closed ends).
+    pub fn closed(value: f64, lo: f64, hi: f64, allowed: &str) -> Result<(), String> {
+        if value.is_finite() && value >= lo && value <= hi {
+            Ok(())
+        } else {
+            open(value, f64::NAN, f64::NAN, allowed)
         }
     }
     pub fn positive(value: f64) -> Result<(), String> {
@@ -208,7 +234,42 @@ pub mod check {
             open(value, 0.0, f64::INFINITY, "a finite number ≥ 0")
         }
     }
-    /// The penalty parameter: ε > 0, or 0 for the exact constraint.
+    /// A length: within [`LENGTH`].
+    pub fn length(value: f64) -> Result<(), String> {
+        let (lo, hi) = LENGTH;
+        closed(
+            value,
+            lo,
+            hi,
+            &format!("a length from {} to {}", num(lo), num(hi)),
+        )
+    }
+    /// A length that may be 0 (a punch's flat half-width).
+    pub fn length_or_zero(value: f64) -> Result<(), String> {
+        if value == 0.0 { Ok(()) } else { length(value) }
+    }
+    /// A coordinate or a signed offset: |value| at most [`LENGTH`]'s upper end.
+    pub fn coordinate(value: f64) -> Result<(), String> {
+        let hi = LENGTH.1;
+        closed(
+            value,
+            -hi,
+            hi,
+            &format!("a finite number from {} to {}", num(-hi), num(hi)),
+        )
+    }
+    /// Young's modulus: within [`YOUNG`].
+    pub fn young(value: f64) -> Result<(), String> {
+        let (lo, hi) = YOUNG;
+        closed(
+            value,
+            lo,
+            hi,
+            &format!("a modulus from {} to {}", num(lo), num(hi)),
+        )
+    }
+    /// The penalty parameter: ε > 0, or 0 for the exact constraint (its range depends on the
+    /// mesh and the material: see [`crate::solve::epsilon_range`]).
     pub fn epsilon(value: f64) -> Result<(), String> {
         if value == 0.0 {
             Ok(())
@@ -220,6 +281,37 @@ pub mod check {
                 "a finite number > 0, or 0 for the exact constraint",
             )
         }
+    }
+    /// ε within `range` (from [`crate::solve::epsilon_range`]), or 0.
+    pub fn epsilon_in(value: f64, (lo, hi): (f64, f64)) -> Result<(), String> {
+        epsilon(value)?;
+        if value == 0.0 || (lo..=hi).contains(&value) {
+            Ok(())
+        } else {
+            Err(format!(
+                "ε = {} is out of range; allowed: 0 (the exact constraint) or {} to {} here (ε·E/h from {} to {}, so that the penalty's products stay finite)",
+                num(value),
+                num(lo),
+                num(hi),
+                num(crate::solve::KAPPA_RANGE.0),
+                num(crate::solve::KAPPA_RANGE.1)
+            ))
+        }
+    }
+    /// The indentation depth: beyond the body's height it is meaningless (the obstacle would
+    /// pass through the clamped base).
+    pub fn depth(value: f64, height: f64) -> Result<(), String> {
+        open(
+            value,
+            -height,
+            height,
+            &format!(
+                "a depth between {} and {} (the body is {} high)",
+                num(-height),
+                num(height),
+                num(height)
+            ),
+        )
     }
     pub fn finite(value: f64) -> Result<(), String> {
         open(value, f64::NEG_INFINITY, f64::INFINITY, "any finite number")
@@ -236,7 +328,7 @@ pub mod check {
         if (lo..=hi).contains(&value) {
             Ok(())
         } else {
-            Err(format!("{value} is out of range; allowed: {lo}..={hi}"))
+            Err(format!("{value} is out of range; allowed: {lo} to {hi}"))
         }
     }
     pub fn level(value: i64) -> Result<(), String> {
@@ -338,9 +430,9 @@ impl Locator<'_> {
     }
 
     /// The obstacle of `[obstacle]`, every key checked against its shape.
-    fn obstacle(&self, raw: &RawObstacle) -> Result<Obstacle, ScenarioError> {
+    fn obstacle(&self, raw: &RawObstacle, height: f64) -> Result<Obstacle, ScenarioError> {
         let shape = *raw.shape.get_ref();
-        self.check("obstacle.depth", &raw.depth, |v| check::finite(*v))?;
+        self.check("obstacle.depth", &raw.depth, |v| check::depth(*v, height))?;
         let given: [(&str, Option<Range<usize>>); 6] = [
             ("radius", raw.radius.as_ref().map(|v| v.span())),
             ("center", raw.center.as_ref().map(|v| v.span())),
@@ -365,14 +457,14 @@ impl Locator<'_> {
         let span = raw.shape.span();
         let center = match &raw.center {
             Some(c) => {
-                self.check("obstacle.center", c, |v| check::finite(*v))?;
+                self.check("obstacle.center", c, |v| check::coordinate(*v))?;
                 *c.get_ref()
             }
             None => 0.0,
         };
         Ok(match shape {
             Shape::Cylinder => Obstacle::Cylinder {
-                radius: self.required("radius", &raw.radius, shape, span, check::positive)?,
+                radius: self.required("radius", &raw.radius, shape, span, check::length)?,
                 depth,
                 center,
             },
@@ -382,14 +474,14 @@ impl Locator<'_> {
                     &raw.half_width,
                     shape,
                     span.clone(),
-                    check::nonnegative,
+                    check::length_or_zero,
                 )?,
                 corner_radius: self.required(
                     "corner_radius",
                     &raw.corner_radius,
                     shape,
                     span,
-                    check::positive,
+                    check::length,
                 )?,
                 depth,
                 center,
@@ -411,11 +503,13 @@ impl Locator<'_> {
                 }
                 let mut bumps = Vec::new();
                 for b in list.get_ref() {
-                    self.check("obstacle.bumps.center", &b.center, |v| check::finite(*v))?;
-                    self.check("obstacle.bumps.radius", &b.radius, |v| check::positive(*v))?;
+                    self.check("obstacle.bumps.center", &b.center, |v| check::coordinate(*v))?;
+                    self.check("obstacle.bumps.radius", &b.radius, |v| check::length(*v))?;
                     let lift = match &b.lift {
                         Some(l) => {
-                            self.check("obstacle.bumps.lift", l, |v| check::nonnegative(*v))?;
+                            self.check("obstacle.bumps.lift", l, |v| {
+                                check::nonnegative(*v).and(check::coordinate(*v))
+                            })?;
                             *l.get_ref()
                         }
                         None => 0.0,
@@ -445,10 +539,14 @@ impl Locator<'_> {
                 }
                 let mut points: Vec<(f64, f64)> = Vec::new();
                 for p in list.get_ref() {
-                    let [x, y] = *p.get_ref();
-                    self.check("obstacle.points", p, |v| {
-                        check::finite(v[0]).and(check::finite(v[1]))
+                    self.check("obstacle.points", p, |v| match v[..] {
+                        [x, y] => check::coordinate(x).and(check::coordinate(y)),
+                        _ => Err(format!(
+                            "a point has {} coordinates; allowed: [x, height]",
+                            v.len()
+                        )),
                     })?;
+                    let (x, y) = (p.get_ref()[0], p.get_ref()[1]);
                     if points.last().is_some_and(|q| q.0 >= x) {
                         return Err(self.error(
                             Some(p.span()),
@@ -518,9 +616,17 @@ impl Locator<'_> {
     }
 }
 
-/// Read a TOML file of at most 1 MiB as UTF-8 text: (its name for errors, its text). `what`
-/// names the kind of file in the size error ("a scenario", "a tour").
+/// The largest scenario or tour file riplab reads.
+pub const MAX_FILE_BYTES: u64 = 1 << 20;
+
+/// Read a TOML file of at most [`MAX_FILE_BYTES`] as UTF-8 text: (its name for errors, its
+/// text). `what` names the kind of file in the errors ("a scenario", "a tour").
+///
+/// Only regular files are read (a FIFO would block, a device such as `/dev/zero` never
+/// ends), and never more than the cap plus one byte, whatever size the file claims: a file
+/// that grows while it is read is refused like one that was too large from the start.
 pub fn read_toml(path: &Path, what: &str) -> Result<(String, String), ScenarioError> {
+    use std::io::Read as _;
     let file = path.display().to_string();
     let plain = |message: String| ScenarioError {
         file: file.clone(),
@@ -529,11 +635,36 @@ pub fn read_toml(path: &Path, what: &str) -> Result<(String, String), ScenarioEr
         message,
         source_line: None,
     };
+    let not_regular = |meta: &std::fs::Metadata| {
+        plain(format!(
+            "is not a regular file ({}); {what} is read from a regular file of at most 1 MiB",
+            file_kind(meta)
+        ))
+    };
+    // Ask before opening: opening a FIFO for reading blocks until a writer comes.
     let meta = std::fs::metadata(path).map_err(|e| plain(format!("cannot read: {e}")))?;
-    if meta.len() > 1 << 20 {
-        return Err(plain(format!("is {} bytes; {what} is at most 1 MiB", meta.len())));
+    if !meta.is_file() {
+        return Err(not_regular(&meta));
     }
-    let bytes = std::fs::read(path).map_err(|e| plain(format!("cannot read: {e}")))?;
+    let handle = std::fs::File::open(path).map_err(|e| plain(format!("cannot read: {e}")))?;
+    // The file opened may not be the one asked about (a rename in between): ask again.
+    let meta = handle
+        .metadata()
+        .map_err(|e| plain(format!("cannot read: {e}")))?;
+    if !meta.is_file() {
+        return Err(not_regular(&meta));
+    }
+    let mut bytes = Vec::with_capacity(meta.len().min(MAX_FILE_BYTES) as usize + 1);
+    handle
+        .take(MAX_FILE_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| plain(format!("cannot read: {e}")))?;
+    if bytes.len() as u64 > MAX_FILE_BYTES {
+        return Err(plain(format!(
+            "is larger than 1 MiB ({} bytes or more); {what} is at most 1 MiB",
+            bytes.len()
+        )));
+    }
     let text = String::from_utf8(bytes).map_err(|e| {
         let offset = e.utf8_error().valid_up_to();
         let text = String::from_utf8_lossy(e.as_bytes()).into_owned();
@@ -544,6 +675,32 @@ pub fn read_toml(path: &Path, what: &str) -> Result<(String, String), ScenarioEr
         .error(Some(offset..offset), None, "is not valid UTF-8".into())
     })?;
     Ok((file, text))
+}
+
+/// What kind of file system object `meta` describes, for an error message.
+fn file_kind(meta: &std::fs::Metadata) -> &'static str {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt as _;
+        let t = meta.file_type();
+        if t.is_fifo() {
+            return "a FIFO";
+        }
+        if t.is_char_device() {
+            return "a character device";
+        }
+        if t.is_block_device() {
+            return "a block device";
+        }
+        if t.is_socket() {
+            return "a socket";
+        }
+    }
+    if meta.is_dir() {
+        "a directory"
+    } else {
+        "not a regular file"
+    }
 }
 
 impl Scenario {
@@ -564,9 +721,9 @@ impl Scenario {
         let raw: RawScenario =
             toml::from_str(text).map_err(|e| loc.error(e.span(), None, e.message().trim().to_string()))?;
 
-        loc.check("body.width", &raw.body.width, |v| check::positive(*v))?;
-        loc.check("body.height", &raw.body.height, |v| check::positive(*v))?;
-        loc.check("material.young", &raw.material.young, |v| check::positive(*v))?;
+        loc.check("body.width", &raw.body.width, |v| check::length(*v))?;
+        loc.check("body.height", &raw.body.height, |v| check::length(*v))?;
+        loc.check("material.young", &raw.material.young, |v| check::young(*v))?;
         loc.check("material.poisson", &raw.material.poisson, |v| check::poisson(*v))?;
         let half_model = raw.body.model == Model::Half;
         let (x0, x1) = if half_model {
@@ -574,7 +731,7 @@ impl Scenario {
         } else {
             (-raw.body.width.get_ref() / 2.0, raw.body.width.get_ref() / 2.0)
         };
-        let obstacle = loc.obstacle(&raw.obstacle)?;
+        let obstacle = loc.obstacle(&raw.obstacle, *raw.body.height.get_ref())?;
         if let Some(c) = raw
             .obstacle
             .center
@@ -621,7 +778,35 @@ impl Scenario {
             }
             None => 0,
         };
-        loc.check("contact.epsilon", &raw.contact.epsilon, |v| check::epsilon(*v))?;
+        // The flattest cell of the level-0 grid (every level bisects both sides alike).
+        let spacing = |v: &[f64]| {
+            v.windows(2)
+                .map(|w| w[1] - w[0])
+                .fold((f64::INFINITY, 0.0_f64), |(lo, hi), d| (lo.min(d), hi.max(d)))
+        };
+        let ((dx_min, dx_max), (dy_min, dy_max)) = (spacing(&x_lines), spacing(&y_lines));
+        let aspect = (dx_max / dy_min).max(dy_max / dx_min);
+        if aspect.is_nan() || aspect > check::ASPECT {
+            let (key, span) = match (&raw.mesh.nx, &raw.mesh.x_lines) {
+                (Some(n), _) => ("mesh.nx", n.span()),
+                (None, Some(l)) => ("mesh.x_lines", l.span()),
+                (None, None) => unreachable!("the lines were given"),
+            };
+            return Err(loc.error(
+                Some(span),
+                Some(key.into()),
+                format!(
+                    "the level-0 cells are up to {} times longer than they are high (or high than long): allowed at most {}; change mesh.nx/mesh.ny (or the lines) so that the cells are closer to square",
+                    num(aspect),
+                    num(check::ASPECT)
+                ),
+            ));
+        }
+        let h = dx_max.max(dy_max) / f64::from(1u32 << level);
+        let range = crate::solve::epsilon_range(*raw.material.young.get_ref(), h);
+        loc.check("contact.epsilon", &raw.contact.epsilon, |v| {
+            check::epsilon_in(*v, range)
+        })?;
 
         let name = raw.name.unwrap_or_else(|| {
             Path::new(file)
@@ -629,8 +814,8 @@ impl Scenario {
                 .map_or_else(|| "scenario".into(), |s| s.to_string_lossy().into_owned())
         });
         Ok(Scenario {
-            name,
-            description: raw.description,
+            name: sanitize(&name).into_owned(),
+            description: sanitize_lines(&raw.description),
             source: file.to_string(),
             width: *raw.body.width.get_ref(),
             height: *raw.body.height.get_ref(),
@@ -682,6 +867,11 @@ impl Scenario {
         );
         let symmetric = if self.half_model { nny - 1 } else { 0 };
         2 * nnx * (nny - 1) - symmetric
+    }
+
+    /// The penalty parameters accepted at `level` ([`crate::solve::epsilon_range`]).
+    pub fn epsilon_range(&self, level: u32) -> (f64, f64) {
+        crate::solve::epsilon_range(self.material.young, self.h(level))
     }
 
     /// The largest cell side at `level`.

@@ -18,7 +18,8 @@ use crate::fem::condense::{TraceFactor, TraceOrdering};
 use crate::fem::{DofMap, Form, Integration, assemble};
 use crate::material::Material;
 use crate::mesh::{Element, Mesh};
-use crate::scenario::Scenario;
+use crate::scenario::{Scenario, check};
+use crate::warning::{self, Warning};
 
 fn ms_since(t: Instant) -> f64 {
     t.elapsed().as_secs_f64() * 1e3
@@ -41,12 +42,17 @@ pub struct Discretization {
     pub symbolic_ms: f64,
     /// Numeric factorisation and the trace compliance.
     pub factorization_ms: f64,
+    /// Young's modulus, the scale of the penalty parameter's range ([`epsilon_range`]).
+    young: f64,
+    /// What is known to be poor about this stiffness before any solve (locking).
+    stiffness_warning: Option<Warning>,
     /// G = T C Tᵀ for each rule met so far.
     couplings: Mutex<HashMap<Rule, Arc<Mat<f64>>>>,
 }
 
 impl Discretization {
     pub fn new(mesh: Mesh, material: Material, integration: Integration) -> Result<Self, SolveError> {
+        let mesh_element = mesh.element;
         let t = Instant::now();
         let dofs = DofMap::model(&mesh);
         let stiffness = assemble(&mesh, &dofs, Form::Elasticity(material, integration));
@@ -76,6 +82,8 @@ impl Discretization {
             assembly_ms,
             symbolic_ms,
             factorization_ms,
+            young: material.young,
+            stiffness_warning: warning::of_material(&material, mesh_element, integration),
             couplings: Mutex::new(HashMap::new()),
         })
     }
@@ -131,6 +139,18 @@ impl Discretization {
         self.dofs.n_free()
     }
 
+    /// The penalty parameters this mesh and material can represent ([`epsilon_range`]).
+    pub fn epsilon_range(&self) -> (f64, f64) {
+        epsilon_range(self.young, self.mesh.h())
+    }
+
+    /// `params` checked against what this discretisation can answer ([`check_params`]).
+    pub fn check(&self, params: &ContactParams, n_points: usize) -> Result<(), SolveError> {
+        let height = self.mesh.ys.last().copied().unwrap_or(0.0);
+        let (range, normals) = (self.epsilon_range(), self.contact_dofs.len());
+        check_params(params, range, height, n_points, normals)
+    }
+
     /// Nodal contact forces Tᵀy on the Γ_C nodes from the forces y at the rule's points.
     fn nodal_forces(points: &ContactPoints, forces: &[f64], n_nodes: usize) -> Vec<f64> {
         let mut f = vec![0.0; n_nodes];
@@ -144,6 +164,19 @@ impl Discretization {
 }
 
 const GIB: f64 = (1u64 << 30) as f64;
+
+/// The range of the dimensionless penalty κ = ε·E/h (the penalty stiffness w/ε against the
+/// body's stiffness E, per unit length) that riplab accepts. Below 1e-20 the products of the
+/// penalty (1/ε times squares of violations) leave double precision; round-off already swamps
+/// the contact forces near κ = 1e-13 (STABILITY.md), which the Newton test reports. Above
+/// 1e10 the penalty carries no load worth computing.
+pub const KAPPA_RANGE: (f64, f64) = (1e-20, 1e10);
+
+/// The penalty parameters ε > 0 accepted on a mesh of cell size `h` for Young's modulus
+/// `young`: [`KAPPA_RANGE`] times h/E.
+pub fn epsilon_range(young: f64, h: f64) -> (f64, f64) {
+    (KAPPA_RANGE.0 * h / young, KAPPA_RANGE.1 * h / young)
+}
 
 /// Peak memory of a solve with `n` unknowns, bytes: the factor's fill grows like n·log₂n
 /// (measured 82–98 bytes per n·log₂n for Q1, Q2 and P1 at 65 thousand to a million
@@ -159,6 +192,52 @@ pub fn available_memory() -> Option<u64> {
     let line = info.lines().find(|l| l.starts_with("MemAvailable:"))?;
     let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
     Some(kib * 1024)
+}
+
+/// A contact solve's parameters checked against what it can answer: ε within `range` (from
+/// [`epsilon_range`]) or 0, the depth within the body's `height`, and ε = 0 only for a rule
+/// with no more points (`n_points`) than Γ_C has normal displacements (`normals`).
+pub fn check_params(
+    params: &ContactParams,
+    range: (f64, f64),
+    height: f64,
+    n_points: usize,
+    normals: usize,
+) -> Result<(), SolveError> {
+    check::epsilon_in(params.epsilon, range).map_err(|message| SolveError::Input {
+        what: "the penalty parameter ε",
+        message,
+    })?;
+    check::depth(params.obstacle.depth(), height).map_err(|message| SolveError::Input {
+        what: "the indentation depth",
+        message,
+    })?;
+    if params.epsilon == 0.0 && n_points > normals {
+        return Err(SolveError::Kernel {
+            rule: params.rule,
+            points: n_points,
+            normals,
+        });
+    }
+    Ok(())
+}
+
+/// [`check_params`] before anything is built: from the scenario's numbers at `level` with
+/// `element`, so that a request with no answer is refused without assembling a stiffness.
+pub fn check_request(
+    scenario: &Scenario,
+    level: u32,
+    element: Element,
+    params: &ContactParams,
+) -> Result<(), SolveError> {
+    let n_edges = (scenario.x_lines.len() - 1) << level;
+    check_params(
+        params,
+        scenario.epsilon_range(level),
+        scenario.height,
+        params.rule.n_points(n_edges),
+        element.order() * n_edges + 1,
+    )
 }
 
 /// What a contact solve depends on beyond the mesh.
@@ -200,6 +279,8 @@ pub struct Solution {
     /// P = I(p, 1), the load carried by the modelled body.
     pub load: f64,
     pub timing: Timing,
+    /// What is known to be poor about this answer ([`crate::warning`]).
+    pub warnings: Vec<Warning>,
 }
 
 impl Solution {
@@ -227,6 +308,7 @@ pub fn solve_contact(
 ) -> Result<Solution, SolveError> {
     let t = Instant::now();
     let points = disc.contact_points(params.rule);
+    disc.check(params, points.len())?;
     let coupling = disc.coupling(params.rule, &points);
     let weight: Vec<f64> = points.points.iter().map(|q| q.weight).collect();
     // No body force or traction (DESIGN §1): u₀ = 0 and d = −g.
@@ -237,15 +319,7 @@ pub fn solve_contact(
         weight: &weight,
         epsilon: params.epsilon,
     };
-    let (newton, p) = if params.epsilon == 0.0 {
-        if points.len() > disc.contact_dofs.len() {
-            return Err(SolveError::Kernel(format!(
-                "ε = 0 imposes the constraint exactly at the {} points of {}, more than the {} normal displacements on Γ_C: the multipliers are not unique; use a rule without kernel (trapezoid, or simpson with q2)",
-                points.len(),
-                params.rule.name(),
-                disc.contact_dofs.len()
-            )));
-        }
+    let (mut newton, p) = if params.epsilon == 0.0 {
         let newton = solve_exact(&problem, initial, opts, on_iteration)?;
         // The multiplier per unit tributary length.
         let p = newton.forces.iter().zip(&weight).map(|(y, w)| y / w).collect();
@@ -259,7 +333,7 @@ pub fn solve_contact(
     let nodal = Discretization::nodal_forces(&points, &newton.forces, disc.contact_dofs.len());
     let loaded: Vec<usize> = (0..nodal.len()).filter(|&k| nodal[k] != 0.0).collect();
     let order = disc.mesh.element.order();
-    let vertex_uy = (0..nodal.len())
+    let vertex_uy: Vec<f64> = (0..nodal.len())
         .step_by(order)
         .map(|i| {
             -loaded
@@ -269,6 +343,24 @@ pub fn solve_contact(
         })
         .collect();
     let load = load(&points, &p);
+    // A number that is not finite is never a result (the input checks should make this
+    // unreachable; this is the last line of defence).
+    let finite = |v: &[f64]| v.iter().all(|x| x.is_finite());
+    if newton.converged
+        && !(load.is_finite()
+            && newton.residual.is_finite()
+            && finite(&newton.forces)
+            && finite(&p)
+            && finite(&pbar)
+            && finite(&vertex_uy))
+    {
+        newton.converged = false;
+        newton.diagnosis = Some(
+            "a contact force, pressure or displacement is not finite: the problem's scaling overflows double precision".into(),
+        );
+    }
+    let mut warnings: Vec<Warning> = disc.stiffness_warning.iter().cloned().collect();
+    warnings.extend(warning::of_contact(&params.obstacle, &points, &p, disc.mesh.h()));
     let newton_ms = ms_since(t);
     let timing = Timing {
         newton: newton_ms,
@@ -284,6 +376,7 @@ pub fn solve_contact(
         vertex_uy,
         load,
         timing,
+        warnings,
     })
 }
 

@@ -67,9 +67,12 @@ impl Reference {
         };
         let sol = solve_fresh(&disc, &params)?;
         if !sol.newton.converged {
-            return Err(SolveError::Kernel(
-                "the reference solution did not converge".into(),
-            ));
+            return Err(SolveError::NotConverged {
+                what: "the reference solution (q2 + simpson, ε = 0)",
+                iterations: sol.newton.iterations,
+                residual: sol.newton.residual,
+                diagnosis: sol.newton.diagnosis.clone().unwrap_or_default(),
+            });
         }
         let u = sol.displacement(&disc);
         let gauss = gauss_legendre(ERROR_POINTS);
@@ -159,6 +162,41 @@ pub fn errors(reference: &Reference, disc: &Discretization, sol: &Solution) -> E
     }
 }
 
+/// Whether a row of a study or a sweep has a result, and if not, why.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Status {
+    /// Solved and converged.
+    Ok,
+    /// The solver ran but cannot certify its answer (the row's numbers are its last iterate).
+    NotConverged,
+    /// The scheme has no unique answer here (ε = 0 with more points than normal displacements).
+    Kernel,
+    /// The row could not be computed (too large for the memory, a failed factorisation, …).
+    Failed,
+}
+
+impl Status {
+    /// The status of a row whose solve returned `error`.
+    pub fn of_error(error: &SolveError) -> Status {
+        match error {
+            SolveError::Kernel { .. } => Status::Kernel,
+            SolveError::NotConverged { .. } => Status::NotConverged,
+            _ => Status::Failed,
+        }
+    }
+
+    /// The word shown in tables: `ok`, `not converged`, `kernel`, `failed`.
+    pub fn word(self) -> &'static str {
+        match self {
+            Status::Ok => "ok",
+            Status::NotConverged => "not converged",
+            Status::Kernel => "kernel",
+            Status::Failed => "failed",
+        }
+    }
+}
+
 /// One line of the study.
 #[derive(Clone, Debug, Serialize)]
 pub struct StudyRow {
@@ -169,35 +207,70 @@ pub struct StudyRow {
     pub h: f64,
     pub epsilon: f64,
     pub n_dofs: usize,
-    pub newton_iterations: usize,
+    pub status: Status,
+    /// Why the row has no (certified) result, when it has none.
+    pub reason: Option<String>,
+    pub newton_iterations: Option<usize>,
     pub converged: bool,
     /// A fresh solve: the mesh's work and Newton (what the pressures need), ms.
-    pub solve_ms: f64,
-    pub load: f64,
-    pub errors: Errors,
+    pub solve_ms: Option<f64>,
+    pub load: Option<f64>,
+    pub errors: Option<Errors>,
     /// Observed rates against h (or, in an ε sweep, against ε) from the previous row.
     pub rates: Option<Errors>,
 }
 
 impl StudyRow {
-    fn new(reference: &Reference, disc: &Discretization, sol: &Solution, level: u32) -> Self {
-        let (element, rule) = (disc.mesh.element, sol.params.rule);
-        StudyRow {
+    /// The row of a solve: its result, or what stopped it.
+    fn new(
+        reference: &Reference,
+        scenario: &Scenario,
+        (element, rule): (Element, Rule),
+        level: u32,
+        epsilon: f64,
+        outcome: Result<(&Discretization, &Solution), &SolveError>,
+    ) -> Self {
+        let mut row = StudyRow {
             scheme: label(element, rule),
             element: element.name(),
             rule: rule.name(),
             level,
-            h: disc.mesh.h(),
-            epsilon: sol.params.epsilon,
-            n_dofs: disc.n_dofs(),
-            newton_iterations: sol.newton.iterations,
-            converged: sol.newton.converged,
-            solve_ms: sol.timing.total,
-            load: sol.load,
-            errors: errors(reference, disc, sol),
+            h: scenario.h(level),
+            epsilon,
+            n_dofs: scenario.n_dofs(level, element),
+            status: Status::Ok,
+            reason: None,
+            newton_iterations: None,
+            converged: false,
+            solve_ms: None,
+            load: None,
+            errors: None,
             rates: None,
+        };
+        match outcome {
+            Ok((disc, sol)) => {
+                row.newton_iterations = Some(sol.newton.iterations);
+                row.converged = sol.newton.converged;
+                row.solve_ms = Some(sol.timing.total);
+                row.load = Some(sol.load);
+                row.errors = Some(errors(reference, disc, sol));
+                if !sol.newton.converged {
+                    row.status = Status::NotConverged;
+                    row.reason = sol.newton.diagnosis.clone();
+                }
+            }
+            Err(e) => {
+                row.status = Status::of_error(e);
+                row.reason = Some(e.to_string());
+            }
         }
+        row
     }
+}
+
+/// True when every row has a certified result (the study's exit code: 0, else 1).
+pub fn all_ok(rows: &[StudyRow]) -> bool {
+    rows.iter().all(|r| r.status == Status::Ok)
 }
 
 /// A scheme's label: the paper's name or `element+rule`.
@@ -205,19 +278,24 @@ pub fn label(element: Element, rule: Rule) -> String {
     scheme_name(element, rule).map_or_else(|| format!("{}+{}", element.name(), rule.name()), str::to_string)
 }
 
-fn rates(prev: &StudyRow, row: &StudyRow, by_epsilon: bool) -> Errors {
+/// Observed rates between two rows with results (None unless both are [`Status::Ok`]).
+fn rates(prev: &StudyRow, row: &StudyRow, by_epsilon: bool) -> Option<Errors> {
+    if prev.status != Status::Ok || row.status != Status::Ok {
+        return None;
+    }
+    let (a, b) = (prev.errors?, row.errors?);
     let scale = if by_epsilon {
         (row.epsilon / prev.epsilon).ln()
     } else {
         (row.h / prev.h).ln()
     };
     let r = |a: f64, b: f64| (b / a).ln() / scale;
-    Errors {
-        p: r(prev.errors.p, row.errors.p),
-        pbar: r(prev.errors.pbar, row.errors.pbar),
-        u: r(prev.errors.u, row.errors.u),
-        load: r(prev.errors.load, row.errors.load),
-    }
+    Some(Errors {
+        p: r(a.p, b.p),
+        pbar: r(a.pbar, b.pbar),
+        u: r(a.u, b.u),
+        load: r(a.load, b.load),
+    })
 }
 
 /// The elements of `schemes`, each once, in order of first appearance.
@@ -239,7 +317,7 @@ fn with_rates(groups: Vec<Vec<StudyRow>>, by_epsilon: bool) -> Vec<StudyRow> {
         for (i, mut row) in group.iter().cloned().enumerate() {
             let prev = i.checked_sub(1).map(|j| &group[j]);
             if let Some(prev) = prev.filter(|p| !by_epsilon || (p.epsilon > 0.0 && row.epsilon > 0.0)) {
-                row.rates = Some(rates(prev, &row, by_epsilon));
+                row.rates = rates(prev, &row, by_epsilon);
             }
             rows.push(row);
         }
@@ -250,63 +328,79 @@ fn with_rates(groups: Vec<Vec<StudyRow>>, by_epsilon: bool) -> Vec<StudyRow> {
 /// Every scheme at every level (fresh solves at the scenario's ε), against `reference`.
 /// Each mesh is assembled and factorised once and shared by the schemes of its element; each
 /// row's `solve_ms` is still a fresh solve's cost (that mesh's work plus the scheme's Newton).
+/// A row that cannot be computed says why ([`StudyRow::status`]) and the others go on.
 pub fn convergence(
     scenario: &Scenario,
     reference: &Reference,
     schemes: &[(Element, Rule)],
     levels: &[u32],
     epsilon: f64,
-) -> Result<Vec<StudyRow>, SolveError> {
+) -> Vec<StudyRow> {
     let mut groups: Vec<Vec<StudyRow>> = vec![Vec::new(); schemes.len()];
     for element in elements(schemes) {
         for &level in levels {
-            let disc = Discretization::of(scenario, level, element)?;
-            for (i, &(_, rule)) in schemes.iter().enumerate().filter(|(_, s)| s.0 == element) {
+            let disc = Discretization::of(scenario, level, element);
+            for (i, &scheme) in schemes.iter().enumerate().filter(|(_, s)| s.0 == element) {
                 let params = ContactParams {
-                    rule,
+                    rule: scheme.1,
                     epsilon,
                     obstacle: scenario.obstacle.clone(),
                 };
-                let mut sol = solve_fresh(&disc, &params)?;
-                sol.timing.include_mesh_work(&disc);
-                groups[i].push(StudyRow::new(reference, &disc, &sol, level));
+                let solved = disc.as_ref().map_err(Clone::clone).and_then(|disc| {
+                    let mut sol = solve_fresh(disc, &params)?;
+                    sol.timing.include_mesh_work(disc);
+                    Ok((disc, sol))
+                });
+                let outcome = solved.as_ref().map(|(d, s)| (*d, s));
+                groups[i].push(StudyRow::new(
+                    reference, scenario, scheme, level, epsilon, outcome,
+                ));
             }
         }
     }
-    Ok(with_rates(groups, false))
+    with_rates(groups, false)
 }
 
 /// Every scheme at one level over several ε (re-solves on one mesh, warm-started from the
-/// previous ε), against `reference`; one mesh per element.
+/// previous ε), against `reference`; one mesh per element. Rows that cannot be computed say
+/// why, as in [`convergence`].
 pub fn epsilon_sweep(
     scenario: &Scenario,
     reference: &Reference,
     schemes: &[(Element, Rule)],
     level: u32,
     epsilons: &[f64],
-) -> Result<Vec<StudyRow>, SolveError> {
+) -> Vec<StudyRow> {
     let mut groups: Vec<Vec<StudyRow>> = vec![Vec::new(); schemes.len()];
     for element in elements(schemes) {
-        let disc = Discretization::of(scenario, level, element)?;
-        for (i, &(_, rule)) in schemes.iter().enumerate().filter(|(_, s)| s.0 == element) {
+        let disc = Discretization::of(scenario, level, element);
+        for (i, &scheme) in schemes.iter().enumerate().filter(|(_, s)| s.0 == element) {
             let mut previous: Option<Vec<f64>> = None;
             for &epsilon in epsilons {
                 let params = ContactParams {
-                    rule,
+                    rule: scheme.1,
                     epsilon,
                     obstacle: scenario.obstacle.clone(),
                 };
-                let sol = solve_contact(
-                    &disc,
-                    &params,
-                    previous.as_deref(),
-                    &NewtonOptions::default(),
-                    &mut |_| ControlFlow::Continue(()),
-                )?;
-                previous = Some(sol.newton.forces.clone());
-                groups[i].push(StudyRow::new(reference, &disc, &sol, level));
+                let solved = disc.as_ref().map_err(Clone::clone).and_then(|disc| {
+                    let sol = solve_contact(
+                        disc,
+                        &params,
+                        previous.as_deref(),
+                        &NewtonOptions::default(),
+                        &mut |_| ControlFlow::Continue(()),
+                    )?;
+                    Ok((disc, sol))
+                });
+                if let Ok((_, sol)) = &solved {
+                    previous = Some(sol.newton.forces.clone());
+                }
+                let outcome = solved.as_ref().map(|(d, s)| (*d, s));
+                groups[i].push(StudyRow::new(
+                    reference, scenario, scheme, level, epsilon, outcome,
+                ));
             }
         }
     }
-    Ok(with_rates(groups, true))
+    with_rates(groups, true)
 }

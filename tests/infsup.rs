@@ -180,7 +180,7 @@ fn levels_of(element: Element, rule: Rule, levels: std::ops::RangeInclusive<u32>
     levels
         .map(|level| {
             let disc = Discretization::of(&scenario, level, element).unwrap();
-            let est = estimate(&disc, &TraceCompliance::new(&disc).unwrap(), rule);
+            let est = estimate(&disc, &TraceCompliance::new(&disc).unwrap(), rule).unwrap();
             InfSupRow::new(level, element, rule, est, 0.0, 0.0)
         })
         .collect()

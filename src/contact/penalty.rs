@@ -76,17 +76,7 @@ pub struct NewtonResult {
     pub diagnosis: Option<String>,
 }
 
-#[derive(Debug, thiserror::Error)]
-pub enum SolveError {
-    #[error("the solve was cancelled")]
-    Cancelled,
-    #[error("the stiffness is not positive definite ({0}); is the body held against rigid motion?")]
-    Factorization(String),
-    #[error("{0}")]
-    Kernel(String),
-    #[error("{0}")]
-    TooLarge(String),
-}
+pub use crate::error::SolveError;
 
 /// Relative size of the round-off in s = d − Gy (a few units in the last place).
 const ROUNDOFF: f64 = 16.0 * f64::EPSILON;

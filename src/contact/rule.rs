@@ -36,6 +36,17 @@ impl Rule {
         }
     }
 
+    /// The number of distinct points of the rule on `n_edges` consecutive edges (a point at
+    /// an edge's end is shared with the next edge).
+    pub fn n_points(self, n_edges: usize) -> usize {
+        match self {
+            Rule::Gauss1 => n_edges,
+            Rule::Gauss2 => 2 * n_edges,
+            Rule::Trapezoid => n_edges + 1,
+            Rule::Simpson => 2 * n_edges + 1,
+        }
+    }
+
     /// Points s ∈ [0, 1] along an edge and weights relative to its length (DESIGN §2).
     pub fn points(self) -> Vec<(f64, f64)> {
         let d = 0.5 / 3f64.sqrt();

@@ -8,5 +8,5 @@ pub use crate::infsup::InfSup;
 
 /// β_h and β̄_h for `rule` on `disc` (costs about one factorisation).
 pub fn estimate(disc: &Discretization, rule: Rule) -> Result<InfSup, String> {
-    crate::infsup::inf_sup(disc, rule)
+    crate::infsup::inf_sup(disc, rule).map_err(|e| e.to_string())
 }

@@ -191,8 +191,7 @@ impl Engine {
             &schemes,
             &levels,
             self.scenario.epsilon,
-        )
-        .map_err(|e| e.to_string())?;
+        );
         let study = Arc::new(Study {
             key: key.clone(),
             rows,

@@ -8,7 +8,7 @@ use ratatui::style::{Color, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Axis, Block, Chart, Dataset, GraphType, LegendPosition, Paragraph, Wrap};
 
-use crate::study::StudyRow;
+use crate::study::{Errors, Status, StudyRow};
 
 use super::super::app::{App, Study};
 use super::super::theme::Theme;
@@ -73,9 +73,10 @@ fn shown_levels(study: &Study, height: u16) -> Vec<u32> {
 }
 
 /// (log10 ms, log10 error) of `rows`, skipping what a log axis cannot show.
-fn points(rows: &[&StudyRow], error: fn(&StudyRow) -> f64) -> Vec<(f64, f64)> {
+fn points(rows: &[&StudyRow], error: fn(&Errors) -> f64) -> Vec<(f64, f64)> {
     rows.iter()
-        .map(|r| (r.solve_ms, error(r)))
+        .filter(|r| r.status == Status::Ok)
+        .filter_map(|r| Some((r.solve_ms?, error(r.errors.as_ref()?))))
         .filter(|&(t, e)| t > 0.0 && e > 0.0 && t.is_finite() && e.is_finite())
         .map(|(t, e)| (t.log10(), e.log10()))
         .collect()
@@ -131,8 +132,8 @@ fn bounds(values: impl Iterator<Item = f64>) -> [f64; 2] {
 fn chart(frame: &mut Frame, area: Rect, look: &Look, study: &Study) {
     let theme = look.theme;
     let of = |name: &str| -> Vec<&StudyRow> { study.rows.iter().filter(|r| r.scheme == name).collect() };
-    let pbar: fn(&StudyRow) -> f64 = |r| r.errors.pbar;
-    let raw: fn(&StudyRow) -> f64 = |r| r.errors.p;
+    let pbar: fn(&Errors) -> f64 = |e| e.pbar;
+    let raw: fn(&Errors) -> f64 = |e| e.p;
     let curves: Vec<Vec<(f64, f64)>> = SCHEMES.iter().map(|(name, _)| points(&of(name), pbar)).collect();
     let m1_raw = points(&of("M1"), raw);
     let all = || curves.iter().flatten().chain(&m1_raw);
@@ -235,17 +236,21 @@ fn table(frame: &mut Frame, area: Rect, theme: Theme, study: &Study, levels: &[u
             .iter()
             .find(|(name, _)| *name == r.scheme)
             .map_or(Color::Reset, |(_, c)| *c);
-        lines.push(Line::from(vec![
-            Span::styled(format!(" {:<6}", r.scheme), Style::new().fg(theme.ink(color))),
-            Span::raw(format!(
+        let numbers = match (&r.errors, r.solve_ms, r.status) {
+            (Some(e), Some(ms), Status::Ok) => format!(
                 " {:>2} {:>7} {:>8} {:>9} {:>9} {:>9}",
                 r.level,
                 r.n_dofs,
-                sig(r.solve_ms, 3),
-                sig(r.errors.p, 3),
-                sig(r.errors.pbar, 3),
-                sig(r.errors.u, 3),
-            )),
+                sig(ms, 3),
+                sig(e.p, 3),
+                sig(e.pbar, 3),
+                sig(e.u, 3),
+            ),
+            (_, _, status) => format!(" {:>2} {:>7}  {}", r.level, r.n_dofs, status.word()),
+        };
+        lines.push(Line::from(vec![
+            Span::styled(format!(" {:<6}", r.scheme), Style::new().fg(theme.ink(color))),
+            Span::raw(numbers),
         ]));
     }
     let max = study.key.max_level;

@@ -1,0 +1,61 @@
+//! The typed errors of the numerics: every way a discretisation or a contact solve can fail,
+//! each variant carrying what its message needs, and whether the fault is the input's (a
+//! request that has no answer: exit 2) or the solver's (exit 1).
+
+use crate::contact::Rule;
+use crate::text::num;
+
+/// Why a discretisation or a contact solve produced no result.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SolveError {
+    #[error("the solve was cancelled")]
+    Cancelled,
+    /// The stiffness's Cholesky factorisation failed: with the checks on the input this means
+    /// a body not held against rigid motion (or a stiffness lost to round-off).
+    #[error("the stiffness is not positive definite ({0}); is the body held against rigid motion?")]
+    Factorization(String),
+    /// ε = 0 asks for more multipliers than there are normal displacements.
+    #[error(
+        "ε = 0 imposes the constraint exactly at the {points} points of {}, more than the {normals} normal displacements on Γ_C: the multipliers are not unique; use a rule without kernel (trapezoid, or simpson with q2)",
+        rule.name()
+    )]
+    Kernel {
+        rule: Rule,
+        points: usize,
+        normals: usize,
+    },
+    /// The problem does not fit the memory this process may use.
+    #[error("{0}")]
+    TooLarge(String),
+    /// A parameter of the solve is outside the range where its answer means something (or
+    /// where double precision can represent it).
+    #[error("{what}: {message}")]
+    Input { what: &'static str, message: String },
+    /// The solver stopped without a result it can certify.
+    #[error("{what} did not converge after {iterations} iterations (relative residual {}): {diagnosis}", num(*residual))]
+    NotConverged {
+        what: &'static str,
+        iterations: usize,
+        residual: f64,
+        diagnosis: String,
+    },
+    /// A dense eigenvalue solve failed (faer's message).
+    #[error("the eigenvalue solve of the inf-sup estimate failed: {0}")]
+    Eigen(String),
+}
+
+impl SolveError {
+    /// True when the request itself has no answer (bad input: exit 2), false when the solver
+    /// failed on a valid request (exit 1).
+    pub fn is_input(&self) -> bool {
+        matches!(
+            self,
+            SolveError::Kernel { .. } | SolveError::TooLarge(_) | SolveError::Input { .. }
+        )
+    }
+
+    /// The process exit code of the README: 2 for bad input, 1 for a solver failure.
+    pub fn exit_code(&self) -> u8 {
+        if self.is_input() { 2 } else { 1 }
+    }
+}

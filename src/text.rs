@@ -1,0 +1,68 @@
+//! Text that reaches a terminal: sanitised when it came from a file, and numbers written the
+//! way a reader checks them.
+
+use std::borrow::Cow;
+
+/// `text` with every control character (C0, DEL, C1: escape sequences, bells, carriage
+/// returns, line feeds) replaced by `�`, so that text read from a file cannot move the
+/// cursor, retitle the window or clear the screen when it is printed.
+pub fn sanitize(text: &str) -> Cow<'_, str> {
+    if text.chars().any(char::is_control) {
+        Cow::Owned(
+            text.chars()
+                .map(|c| if c.is_control() { '\u{fffd}' } else { c })
+                .collect(),
+        )
+    } else {
+        Cow::Borrowed(text)
+    }
+}
+
+/// [`sanitize`] for several lines: each line sanitised, the line breaks kept.
+pub fn sanitize_lines(text: &str) -> String {
+    text.split('\n')
+        .map(|l| sanitize(l.strip_suffix('\r').unwrap_or(l)).into_owned())
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// A number as a person reads it in a message: plain between 1e-4 and 1e6, scientific
+/// otherwise (never a 300-digit decimal), `NaN`, `inf` and `-inf` as themselves.
+pub fn num(value: f64) -> String {
+    let a = value.abs();
+    if !value.is_finite() || a == 0.0 || (1e-4..1e6).contains(&a) {
+        format!("{value}")
+    } else {
+        format!("{value:e}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn control_characters_are_replaced() {
+        let hostile = "a\u{1b}]0;PWNED\u{7}\u{1b}[2Jb\u{9b}c\r\n";
+        let clean = sanitize(hostile);
+        assert_eq!(
+            clean,
+            "a\u{fffd}]0;PWNED\u{fffd}\u{fffd}[2Jb\u{fffd}c\u{fffd}\u{fffd}"
+        );
+        assert!(!clean.chars().any(char::is_control));
+        assert!(matches!(sanitize("plain ε = 1e-6"), Cow::Borrowed(_)));
+        assert_eq!(sanitize_lines("x\u{1b}\r\ny"), "x\u{fffd}\ny");
+    }
+
+    #[test]
+    fn numbers_are_short() {
+        assert_eq!(num(1e300), "1e300");
+        assert_eq!(num(-1.7e308), "-1.7e308");
+        assert_eq!(num(1e-200), "1e-200");
+        assert_eq!(num(0.8), "0.8");
+        assert_eq!(num(1000.0), "1000");
+        assert_eq!(num(0.0), "0");
+        assert_eq!(num(f64::NAN), "NaN");
+        assert_eq!(num(f64::NEG_INFINITY), "-inf");
+    }
+}

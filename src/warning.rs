@@ -1,0 +1,120 @@
+//! Answers that are computed correctly but known to be poor: a solve that converged can still
+//! describe the wrong physics (volumetric locking) or a contact the mesh does not resolve. Each
+//! warning says what is wrong and what to change; the CLI prints them on stderr and in the
+//! JSON `warnings`, the lab in its status line.
+
+use std::fmt;
+
+use crate::contact::{ContactPoints, Obstacle};
+use crate::fem::Integration;
+use crate::material::{Material, Plane};
+use crate::mesh::Element;
+use crate::text::num;
+
+/// Poisson's ratio from which a displacement element integrated exactly locks noticeably in
+/// plane strain (Q1 is 1.005× too stiff at 0.49 and 1.04× at 0.499, STABILITY.md).
+pub const LOCKING_POISSON: f64 = 0.495;
+
+/// The fewest elements of Γ_C in contact for a pressure profile worth reading.
+pub const MIN_CONTACT_ELEMENTS: usize = 3;
+
+/// A known weakness of an answer.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Warning {
+    /// Near-incompressible plane strain with an element that locks as integrated.
+    Locking {
+        poisson: f64,
+        element: Element,
+        integration: Integration,
+    },
+    /// The obstacle overlaps the body on an interval that holds none of the rule's points: the
+    /// solve cannot see it, and its load of 0 is wrong.
+    Unresolved { from: f64, to: f64, h: f64 },
+    /// Contact on fewer than [`MIN_CONTACT_ELEMENTS`] elements of Γ_C.
+    NarrowContact { elements: usize, h: f64 },
+}
+
+impl fmt::Display for Warning {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Warning::Locking {
+                poisson,
+                element,
+                integration,
+            } => {
+                let cure = if *element == Element::P1 {
+                    "use q1 or q2 with mesh.integration = \"selective\""
+                } else {
+                    "set mesh.integration = \"selective\" in the scenario"
+                };
+                write!(
+                    f,
+                    "ν = {} with {} ({} integration) locks in plane strain: the body is too stiff and the load too high; {cure}",
+                    num(*poisson),
+                    element.name(),
+                    match integration {
+                        Integration::Full => "full",
+                        Integration::Selective => "selective",
+                    }
+                )
+            }
+            Warning::Unresolved { from, to, h } => write!(
+                f,
+                "the obstacle overlaps Γ_C on x = {} to {} ({} wide), between the contact points of a mesh with h = {}: the mesh does not resolve it; choose a finer level",
+                num(*from),
+                num(*to),
+                num(to - from),
+                num(*h)
+            ),
+            Warning::NarrowContact { elements, h } => write!(
+                f,
+                "the contact zone spans only {elements} element{} of Γ_C (h = {}): the pressure is resolved by too few points to be trusted; choose a finer level",
+                if *elements == 1 { "" } else { "s" },
+                num(*h)
+            ),
+        }
+    }
+}
+
+impl serde::Serialize for Warning {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.collect_str(self)
+    }
+}
+
+/// The warning about the stiffness itself, known before any solve.
+pub fn of_material(material: &Material, element: Element, integration: Integration) -> Option<Warning> {
+    let locks = match (element, integration) {
+        (Element::P1, _) | (_, Integration::Full) => true,
+        (_, Integration::Selective) => false,
+    };
+    (material.plane == Plane::Strain && material.poisson >= LOCKING_POISSON && locks).then_some(
+        Warning::Locking {
+            poisson: material.poisson,
+            element,
+            integration,
+        },
+    )
+}
+
+/// The warnings about a contact solution: `p` the raw pressure at `points`, `h` the
+/// largest edge of Γ_C.
+pub fn of_contact(obstacle: &Obstacle, points: &ContactPoints, p: &[f64], h: f64) -> Vec<Warning> {
+    let vx = &points.vertex_x;
+    let (lo, hi) = (vx[0], vx[vx.len() - 1]);
+    let mut out = Vec::new();
+    let touched = (0..points.n_edges())
+        .filter(|&e| points.edge_points[e].iter().any(|&k| p[k] > 0.0))
+        .count();
+    if touched == 0 {
+        if let Some((from, to)) = obstacle.contact_extent(lo, hi) {
+            let seen = points.points.iter().any(|q| q.x >= from && q.x <= to);
+            if !seen {
+                out.push(Warning::Unresolved { from, to, h });
+            }
+        }
+    } else if touched < MIN_CONTACT_ELEMENTS {
+        out.push(Warning::NarrowContact { elements: touched, h });
+    }
+    out
+}
