@@ -361,7 +361,21 @@ impl Locator<'_> {
             }
             None => (None, None),
         };
-        let key = key.or_else(|| location.and_then(|(l, _)| self.key_at(l)));
+        // A missing field is reported at the table that lacks it: name the field.
+        let missing = message
+            .strip_prefix("missing field `")
+            .and_then(|rest| rest.split('`').next())
+            .map(str::to_string);
+        let key = key.or_else(|| {
+            let at = location.and_then(|(l, _)| self.key_at(l));
+            match (missing, at) {
+                (Some(field), Some(at)) if location.is_some_and(|(l, c)| l > 1 || c > 1) => {
+                    Some(format!("{at}.{field}"))
+                }
+                (Some(field), _) => Some(field),
+                (None, at) => at,
+            }
+        });
         ScenarioError {
             file: self.file.to_string(),
             location,
@@ -371,27 +385,43 @@ impl Locator<'_> {
         }
     }
 
-    /// The dotted key assigned on 1-based `line` (`table.key`), found from the text.
+    /// The dotted key assigned on 1-based `line` (`table.key`), found from the text; inside
+    /// an array of inline tables (`bumps = [ { … }, … ]`), the array's key.
     fn key_at(&self, line: usize) -> Option<String> {
         let lines: Vec<&str> = self.text.lines().collect();
         let here = lines.get(line - 1)?.trim();
-        let table = lines[..line - 1]
-            .iter()
-            .rev()
-            .map(|l| l.trim())
-            .find(|l| l.starts_with('['))
-            .map(|l| l.trim_matches(|c| c == '[' || c == ']').trim().to_string());
+        let header = |l: &str| l.trim_matches(|c| c == '[' || c == ']').trim().to_string();
         if here.starts_with('[') {
-            return Some(here.trim_matches(|c| c == '[' || c == ']').trim().to_string());
+            return Some(header(here));
         }
-        let key = here.split('=').next()?.trim();
-        if key.is_empty() || here.split('=').count() < 2 {
-            return table;
-        }
-        Some(match table {
+        let above = &lines[..line - 1];
+        let start = above
+            .iter()
+            .rposition(|l| l.trim().starts_with('['))
+            .map_or(0, |i| i + 1);
+        let table = start.checked_sub(1).map(|i| header(above[i].trim()));
+        let join = |key: &str| match &table {
             Some(t) => format!("{t}.{key}"),
             None => key.to_string(),
-        })
+        };
+        let bare = |k: &str| !k.is_empty() && k.chars().all(|c| c.is_alphanumeric() || "_-.".contains(c));
+        let key = here
+            .split('=')
+            .next()
+            .map(str::trim)
+            .filter(|k| bare(k) && here.contains('='));
+        if let Some(key) = key {
+            return Some(join(key));
+        }
+        // Inside a multi-line array: the key of the line that opened it.
+        let opened = above[start..]
+            .iter()
+            .rev()
+            .find_map(|l| l.split_once('=').filter(|(_, v)| v.trim_start().starts_with('[')));
+        match opened {
+            Some((key, _)) if bare(key.trim()) => Some(join(key.trim())),
+            _ => table,
+        }
     }
 
     /// `test` of a spanned value, failing with an error at the value about `key`.

@@ -511,3 +511,40 @@ fn smaller_holes_are_closed() {
         "refused only after assembly"
     );
 }
+
+/// Errors inside nested tables (arrays of inline tables) name the line and the dotted key.
+#[test]
+fn nested_table_errors_have_a_line_and_a_key() {
+    let bumps =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/scenarios/two-bumps.toml")).unwrap();
+    let second = "{ center = 3.0, radius = 3.0, lift = 0.1 }";
+    assert!(bumps.contains(second));
+    let line = bumps.lines().position(|l| l.contains(second)).unwrap() + 1;
+    for (replacement, key, fragment) in [
+        (
+            "{ center = 3.0 }",
+            "`obstacle.bumps.radius`",
+            "missing field `radius`",
+        ),
+        (
+            "{ center = 3.0, radius = 3.0, lift = 0.1, foo = 1 }",
+            "`obstacle.bumps`",
+            "unknown field `foo`",
+        ),
+        (
+            "{ center = 3.0, radius = -3.0 }",
+            "`obstacle.bumps.radius`",
+            "-3 is out of range",
+        ),
+    ] {
+        let path = scratch("nested.toml", &bumps.replace(second, replacement));
+        let (code, _, stderr) = riplab(&["solve", path.to_str().unwrap()]);
+        assert_eq!(code, 2, "{stderr}");
+        assert!(
+            stderr.contains(&format!("nested.toml:{line}:"))
+                && stderr.contains(key)
+                && stderr.contains(fragment),
+            "{replacement}: {stderr}"
+        );
+    }
+}
