@@ -17,7 +17,7 @@ use crate::report::{
 };
 use crate::scenario::{MAX_LEVEL, Scenario, ScenarioError, check};
 use crate::solve::{ContactParams, Discretization, check_request, preset, solve_contact};
-use crate::study::{Reference, all_ok, convergence, epsilon_sweep};
+use crate::study::{all_ok, convergence, epsilon_sweep};
 use crate::tui::{MarkerChoice, TuiOptions, render_to_string};
 
 const EXIT_CODES: &str = "Exit codes:
@@ -175,6 +175,10 @@ pub struct StudyArgs {
     /// Level of the Q2 exact-constraint reference (default: one finer than the finest studied).
     #[arg(long)]
     pub reference_level: Option<i64>,
+    /// Compute the reference even if the user's cache directory holds it, and do not store it
+    /// (by default it is kept in $XDG_CACHE_HOME/riplab, ~/.cache/riplab).
+    #[arg(long)]
+    pub no_cache: bool,
     #[arg(long, short, value_enum, default_value_t = Format::Table)]
     pub format: Format,
 }
@@ -576,14 +580,27 @@ fn study(args: &StudyArgs) -> Result<ExitCode, CliError> {
         ));
     }
     note(&format!(
-        "computing the reference: q2 + simpson, ε = 0 (exact constraint), level {reference_level} …"
+        "the reference: q2 + simpson, ε = 0 (exact constraint), level {reference_level} …"
     ));
-    let reference = Reference::compute(&scenario, reference_level)?;
-    note(&format!(
-        "reference done in {:.1} s ({} dofs)",
-        reference.ms / 1e3,
-        reference.n_dofs
-    ));
+    let dir = (!args.no_cache).then(crate::cache::default_dir).flatten();
+    let (reference, provenance) = crate::cache::reference(&scenario, reference_level, dir.as_deref())?;
+    match provenance {
+        crate::cache::Provenance::Cached(path) => note(&format!(
+            "reference read from {} (computed in {:.1} s; --no-cache recomputes it)",
+            path.display(),
+            reference.ms / 1e3
+        )),
+        other => {
+            note(&format!(
+                "reference done in {:.1} s ({} dofs)",
+                reference.ms / 1e3,
+                reference.n_dofs
+            ));
+            if let crate::cache::Provenance::Computed(Some(why)) = other {
+                note(&format!("warning: the reference is {why}"));
+            }
+        }
+    }
     let rows = if args.sweep_epsilon.is_empty() {
         convergence(&scenario, &reference, &schemes, &levels, epsilon)
     } else {

@@ -3,6 +3,7 @@
 //! penalty methods in contact problems" (1981). Equation numbers (1)–(26) are the paper's;
 //! section numbers §1–§8 are those of `DESIGN.md`.
 
+pub mod cache;
 pub mod cli;
 pub mod contact;
 pub mod error;

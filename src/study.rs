@@ -12,8 +12,8 @@ use std::time::Instant;
 
 use serde::Serialize;
 
-use crate::contact::Rule;
 use crate::contact::penalty::{NewtonOptions, SolveError};
+use crate::contact::{ContactPoints, Rule};
 use crate::fem::basis::{cell_points, evaluate};
 use crate::fem::quadrature::gauss_legendre;
 use crate::mesh::Element;
@@ -54,11 +54,26 @@ fn solve_fresh(disc: &Discretization, params: &ContactParams) -> Result<Solution
     })
 }
 
-impl Reference {
-    /// Q2 + Simpson with the exact constraint at `level` (expensive: compute only when asked).
-    pub fn compute(scenario: &Scenario, level: u32) -> Result<Self, SolveError> {
+/// What the reference is made of: the displacement on every dof of the Q2 mesh and the
+/// exact-constraint pressure at Simpson's points (what [`crate::cache`] stores).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ReferenceFields {
+    pub u: Vec<f64>,
+    pub p: Vec<f64>,
+    pub load: f64,
+    pub n_dofs: usize,
+    /// The time the solve took, ms.
+    pub ms: f64,
+}
+
+/// The reference's element and rule: Q2 + Simpson (M4) with the exact constraint.
+pub const REFERENCE_SCHEME: (Element, Rule) = (Element::Q2, Rule::Simpson);
+
+impl ReferenceFields {
+    /// Solve Q2 + Simpson with the exact constraint at `level` (expensive: only when asked).
+    pub fn solve(scenario: &Scenario, level: u32) -> Result<Self, SolveError> {
         let t = Instant::now();
-        let (element, rule) = (Element::Q2, Rule::Simpson);
+        let (element, rule) = REFERENCE_SCHEME;
         let disc = Discretization::of(scenario, level, element)?;
         let params = ContactParams {
             rule,
@@ -74,23 +89,49 @@ impl Reference {
                 diagnosis: sol.newton.diagnosis.clone().unwrap_or_default(),
             });
         }
-        let u = sol.displacement(&disc);
+        Ok(ReferenceFields {
+            u: sol.displacement(&disc),
+            p: sol.p,
+            load: sol.load,
+            n_dofs: disc.n_dofs(),
+            ms: t.elapsed().as_secs_f64() * 1e3,
+        })
+    }
+}
+
+impl Reference {
+    /// Q2 + Simpson with the exact constraint at `level` (expensive: compute only when asked;
+    /// [`crate::cache::reference`] keeps it between runs).
+    pub fn compute(scenario: &Scenario, level: u32) -> Result<Self, SolveError> {
+        Ok(Reference::from_fields(
+            scenario,
+            level,
+            &ReferenceFields::solve(scenario, level)?,
+        ))
+    }
+
+    /// The reference from its fields (solved now or read from the cache): its values at the
+    /// points where errors are integrated.
+    pub fn from_fields(scenario: &Scenario, level: u32, fields: &ReferenceFields) -> Self {
+        let (element, rule) = REFERENCE_SCHEME;
+        let mesh = scenario.mesh(level, element);
+        let points = ContactPoints::new(rule, &mesh.node_x[..mesh.nnx()], element.order());
+        let (u, p) = (&fields.u, &fields.p);
         let gauss = gauss_legendre(ERROR_POINTS);
-        let vx = &sol.points.vertex_x;
+        let vx = &points.vertex_x;
         let mut edge_points = Vec::with_capacity(gauss.len() * vx.len());
         for e in 0..vx.len() - 1 {
             let h = vx[e + 1] - vx[e];
             for &(xi, w) in &gauss {
                 let x = vx[e] + h * (xi + 1.0) / 2.0;
-                edge_points.push((x, w * h / 2.0, sol.points.interpolate(&sol.p, x)));
+                edge_points.push((x, w * h / 2.0, points.interpolate(p, x)));
             }
         }
-        let mesh = &disc.mesh;
         let mut cells = Vec::with_capacity(mesh.n_cells() * ERROR_POINTS * ERROR_POINTS);
         for cj in 0..mesh.ny() {
             for ci in 0..mesh.nx() {
-                for q in cell_points(mesh, ci, cj, ERROR_POINTS) {
-                    let (value, grad) = evaluate(mesh, &u, q.x, q.y);
+                for q in cell_points(&mesh, ci, cj, ERROR_POINTS) {
+                    let (value, grad) = evaluate(&mesh, u, q.x, q.y);
                     cells.push(Sample {
                         x: q.x,
                         y: q.y,
@@ -107,18 +148,18 @@ impl Reference {
             .map(|c| c.weight * c.value.iter().chain(&c.grad).map(|a| a * a).sum::<f64>())
             .sum::<f64>()
             .sqrt();
-        Ok(Reference {
+        Reference {
             level,
             element,
             rule,
-            n_dofs: disc.n_dofs(),
-            load: sol.load,
-            ms: t.elapsed().as_secs_f64() * 1e3,
+            n_dofs: fields.n_dofs,
+            load: fields.load,
+            ms: fields.ms,
             edge_points,
             cell_points: cells,
             p_norm,
             u_norm,
-        })
+        }
     }
 }
 

@@ -331,6 +331,7 @@ fn a_closed_stderr_is_not_a_crash() {
         drop(reader);
         let status = Command::new(env!("CARGO_BIN_EXE_riplab"))
             .args(args)
+            .env("XDG_CACHE_HOME", common::test_cache())
             .stdout(Stdio::null())
             .stderr(writer)
             .status()

@@ -227,6 +227,7 @@ fn every_documented_command_runs() {
             .args(&args)
             .current_dir(root)
             .env("NO_COLOR", "1")
+            .env("XDG_CACHE_HOME", common::test_cache())
             .output()
             .expect("runs");
         let (stdout, stderr) = (

@@ -45,3 +45,78 @@ fn errors_rates_and_the_smoothing_claim() {
     let e = m1.errors.unwrap();
     assert!(e.pbar < 0.6 * e.p, "M1: p̄ error {} vs p error {}", e.pbar, e.p);
 }
+
+/// The reference is kept in the cache directory: the second study reads it and reports the
+/// same errors; a damaged entry is recomputed; `--no-cache` neither reads nor writes; two
+/// studies at once both succeed (issue 13, item 5).
+#[test]
+fn the_reference_is_cached_between_runs() {
+    use std::process::Command;
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("cache-test");
+    let _ = std::fs::remove_dir_all(&dir);
+    let run = |extra: &[&str]| {
+        let out = Command::new(env!("CARGO_BIN_EXE_riplab"))
+            .args([
+                "study",
+                "--levels",
+                "0..1",
+                "--schemes",
+                "M1,M3",
+                "--format",
+                "json",
+            ])
+            .args(extra)
+            .env("XDG_CACHE_HOME", &dir)
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(0));
+        let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        let errors: Vec<serde_json::Value> = v["rows"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|r| r["errors"].clone())
+            .collect();
+        (errors, String::from_utf8_lossy(&out.stderr).into_owned())
+    };
+    let (none, stderr) = run(&["--no-cache"]);
+    assert!(stderr.contains("reference done") && !dir.exists(), "{stderr}");
+    let (first, stderr) = run(&[]);
+    assert!(stderr.contains("reference done"), "{stderr}");
+    let (second, stderr) = run(&[]);
+    assert!(stderr.contains("reference read from"), "{stderr}");
+    assert_eq!(first, second);
+    assert_eq!(first, none);
+    // Damage the entry: it is recomputed (and replaced).
+    let entry = std::fs::read_dir(dir.join("riplab"))
+        .unwrap()
+        .next()
+        .unwrap()
+        .unwrap()
+        .path();
+    let mut bytes = std::fs::read(&entry).unwrap();
+    let mid = bytes.len() / 2;
+    bytes[mid] ^= 1;
+    std::fs::write(&entry, &bytes).unwrap();
+    let (third, stderr) = run(&[]);
+    assert!(stderr.contains("reference done"), "{stderr}");
+    assert_eq!(first, third);
+    // Two runs at once on an empty cache.
+    std::fs::remove_dir_all(&dir).unwrap();
+    let spawn = || {
+        Command::new(env!("CARGO_BIN_EXE_riplab"))
+            .args(["study", "--levels", "0..1", "--schemes", "M1", "--format", "json"])
+            .env("XDG_CACHE_HOME", &dir)
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::null())
+            .spawn()
+            .unwrap()
+    };
+    let (a, b) = (spawn(), spawn());
+    let (a, b) = (a.wait_with_output().unwrap(), b.wait_with_output().unwrap());
+    assert!(a.status.success() && b.status.success());
+    assert_eq!(a.stdout.len() > 0, b.stdout.len() > 0);
+    let (after, stderr) = run(&[]);
+    assert!(stderr.contains("reference read from"), "{stderr}");
+    assert_eq!(after[0], first[0]);
+}

@@ -16,7 +16,7 @@ use crate::scenario::Scenario;
 use crate::solve::{ContactParams, Discretization, Solution, solve_contact};
 
 use crate::solve::preset;
-use crate::study::{Reference, convergence};
+use crate::study::convergence;
 
 use super::app::{
     App, Command, InfSupKey, InfSupRequest, Msg, Progress, Response, SolveKey, SolveRequest, Study, StudyKey,
@@ -181,8 +181,9 @@ impl Engine {
                 self.scenario.name, key.scenario
             ));
         }
-        let reference =
-            Reference::compute(&self.scenario, key.reference_level()).map_err(|e| e.to_string())?;
+        let dir = crate::cache::default_dir();
+        let (reference, _) = crate::cache::reference(&self.scenario, key.reference_level(), dir.as_deref())
+            .map_err(|e| e.to_string())?;
         let schemes: Vec<(Element, Rule)> = (1..=4).filter_map(|m| preset(&format!("M{m}"))).collect();
         let levels: Vec<u32> = (0..=key.max_level).collect();
         let rows = convergence(

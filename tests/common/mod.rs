@@ -53,6 +53,7 @@ pub fn rel(a: f64, b: f64, floor: f64) -> f64 {
 pub fn riplab(args: &[&str]) -> (i32, String, String) {
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_riplab"))
         .args(args)
+        .env("XDG_CACHE_HOME", test_cache())
         .output()
         .expect("runs");
     (
@@ -77,4 +78,9 @@ pub fn bottom_reaction(
     (0..disc.mesh.nnx())
         .map(|i| ku[2 * disc.mesh.node(i, 0) + 1])
         .sum()
+}
+
+/// The cache directory of the tests' riplab runs (never the user's own).
+pub fn test_cache() -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("xdg-cache")
 }
