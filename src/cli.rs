@@ -183,19 +183,7 @@ pub struct StudyArgs {
     pub format: Format,
 }
 
-/// Parse a scheme: a preset M1–M4 or `element+rule`.
-pub fn parse_scheme(text: &str) -> Result<(Element, Rule), String> {
-    use clap::ValueEnum;
-    if let Some(pair) = preset(text) {
-        return Ok(pair);
-    }
-    let bad = || format!("`{text}`; allowed: M1, M2, M3, M4 or element+rule, e.g. q2+gauss1");
-    let (e, r) = text.split_once('+').ok_or_else(bad)?;
-    Ok((
-        Element::from_str(e.trim(), true).map_err(|_| bad())?,
-        Rule::from_str(r.trim(), true).map_err(|_| bad())?,
-    ))
-}
+pub use crate::solve::parse_scheme;
 
 /// Parse an inclusive level range `a..b`, `a..=b` or `a`.
 pub fn parse_levels(text: &str) -> Result<Vec<u32>, String> {

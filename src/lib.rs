@@ -4,6 +4,7 @@
 //! section numbers §1–§8 are those of `DESIGN.md`.
 
 pub mod cache;
+#[cfg(feature = "cli")]
 pub mod cli;
 pub mod contact;
 pub mod error;
@@ -17,5 +18,6 @@ pub mod scenario;
 pub mod solve;
 pub mod study;
 pub mod text;
+#[cfg(feature = "tui")]
 pub mod tui;
 pub mod warning;

@@ -8,7 +8,8 @@
 use serde::{Deserialize, Serialize};
 
 /// The finite element used for the displacement (DESIGN §2).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 pub enum Element {
     /// Bilinear 4-node quadrilateral, the paper's element.

@@ -15,7 +15,8 @@ use crate::study::{Errors, Reference, Status, StudyRow};
 use crate::warning::Warning;
 
 /// Output format of the CLI.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Format {
     Table,
     Csv,

@@ -115,7 +115,7 @@ fn the_reference_is_cached_between_runs() {
     let (a, b) = (spawn(), spawn());
     let (a, b) = (a.wait_with_output().unwrap(), b.wait_with_output().unwrap());
     assert!(a.status.success() && b.status.success());
-    assert_eq!(a.stdout.len() > 0, b.stdout.len() > 0);
+    assert!(!a.stdout.is_empty() && !b.stdout.is_empty());
     let (after, stderr) = run(&[]);
     assert!(stderr.contains("reference read from"), "{stderr}");
     assert_eq!(after[0], first[0]);

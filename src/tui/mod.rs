@@ -31,7 +31,8 @@ use view::Look;
 use worker::{Engine, settle};
 
 /// The glyphs of charts and canvases.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum MarkerChoice {
     /// Unicode braille: 2×4 dots per cell (the sharpest).
     #[default]

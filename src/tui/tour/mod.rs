@@ -16,11 +16,11 @@ use std::time::Duration;
 use serde::Deserialize;
 use toml::Spanned;
 
-use crate::cli::parse_scheme;
 use crate::contact::Rule;
 use crate::mesh::Element;
 use crate::scenario::Locator as Source;
 use crate::scenario::{Scenario, ScenarioError, check, read_toml};
+use crate::solve::parse_scheme;
 
 use super::app::{App, MAX_APP_LEVEL, Scene};
 
