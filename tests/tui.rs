@@ -428,7 +428,7 @@ fn no_key_sequence_panics() {
                     key: r.key,
                     result: Some(Err("test failure".into())),
                 },
-                Command::Export => continue,
+                Command::Export | Command::Suspend => continue,
             };
             app.update(Msg::Worker(reply));
         }
@@ -509,7 +509,12 @@ fn progress_shows_while_the_last_result_stays() {
     assert!(
         !app.update(Msg::Worker(Response::Progress {
             generation: req.generation - 1,
-            progress: Progress::Assembling,
+            progress: Progress::Assembling {
+                level: 1,
+                unknowns: 100,
+                started: std::time::Instant::now(),
+                estimate_ms: 1.0,
+            },
         }))
         .redraw
     );
@@ -671,7 +676,7 @@ fn convergence_asks_for_one_study_and_caches_it() {
     let mut engine = Engine::new(Scenario::paper());
     let reply = Response::Study {
         generation: req.generation,
-        result: Some(engine.study(&req.key)),
+        result: Some(engine.study(&req.key, &mut |_| {})),
         key: req.key.clone(),
     };
     assert!(app.update(Msg::Worker(reply)).redraw);
@@ -722,4 +727,184 @@ fn newer_studies_supersede_older_ones() {
     // Levels above the study's cap share the capped study.
     app.settings.level = MAX_APP_LEVEL;
     assert_eq!(app.study_key().max_level, MAX_APP_LEVEL.min(MAX_STUDY_LEVEL));
+}
+
+// ---- issue 12: the lab draws as exactly as it computes ------------------------------------
+
+use ratatui::backend::TestBackend;
+use ratatui::buffer::Buffer;
+use ratatui::style::Color;
+use riplab::tui::view::plot::{Axis as PlotAxis, Plot, Scale, Series as PlotSeries, Stroke};
+
+/// The text of row `y` of `buf`, one char per cell (wide cells are not used by the charts).
+fn row_text(buf: &Buffer, y: u16) -> Vec<String> {
+    (0..buf.area.width)
+        .map(|x| buf[(x, y)].symbol().to_string())
+        .collect()
+}
+
+/// The centre column of each whole-word label in `row` that parses as a number.
+fn numbers_in(row: &[String]) -> Vec<(f64, f64)> {
+    let mut out = Vec::new();
+    let mut x = 0;
+    let gap = |c: &str| c.trim().is_empty() || ["│", "┤", "┬", "└", "─"].contains(&c);
+    while x < row.len() {
+        if gap(&row[x]) {
+            x += 1;
+            continue;
+        }
+        let start = x;
+        let mut word = String::new();
+        while x < row.len() && !gap(&row[x]) {
+            word.push_str(&row[x]);
+            x += 1;
+        }
+        if let Ok(v) = word.parse::<f64>() {
+            out.push((v, (start + x - 1) as f64 / 2.0));
+        }
+    }
+    out
+}
+
+/// A plot of one glyph series on an 80×14 test terminal.
+fn plot_buffer(x: PlotAxis, y: PlotAxis, data: &[(f64, f64)]) -> Buffer {
+    let mut terminal = ratatui::Terminal::new(TestBackend::new(80, 14)).unwrap();
+    terminal
+        .draw(|f| {
+            Plot {
+                title: " test ".into(),
+                x: x.clone(),
+                y: y.clone(),
+                series: vec![PlotSeries {
+                    name: "pts".into(),
+                    color: Color::Red,
+                    stroke: Stroke::None,
+                    glyph: Some('@'),
+                    data,
+                }],
+                marker: Marker::Braille,
+                theme: Theme { color: true },
+            }
+            .render(f, f.area())
+            .expect("room for the graph");
+        })
+        .unwrap();
+    terminal.backend().buffer().clone()
+}
+
+/// Where `@` is drawn in the graph (below the border and the legend row): (column, row).
+fn glyphs(buf: &Buffer) -> Vec<(u16, u16)> {
+    let mut out = Vec::new();
+    for y in 2..buf.area.height {
+        for x in 0..buf.area.width {
+            if buf[(x, y)].symbol() == "@" {
+                out.push((x, y));
+            }
+        }
+    }
+    out
+}
+
+/// Item 1: every tick label sits within one cell of where a point of its value is drawn,
+/// on linear and log axes, in x and in y.
+#[test]
+fn tick_labels_sit_at_their_values() {
+    let xs = [-8.0, -6.0, -4.0, -2.0, 0.0, 2.0, 4.0, 6.0, 8.0];
+    // x linear over [-8, 8] (the paper's mirrored Γ_C), y log10 over 10^-2.3 .. 10^0.4: a
+    // row of points at y = 0.01, and points at x = 4 of y = 0.1 and 1.
+    let mut points: Vec<(f64, f64)> = xs.iter().map(|&x| (x, -2.0)).collect();
+    points.extend([(4.0, -1.0), (4.0, 0.0)]);
+    let buf = plot_buffer(
+        PlotAxis {
+            title: "x".into(),
+            bounds: [-8.0, 8.0],
+            scale: Scale::Linear,
+        },
+        PlotAxis {
+            title: "y".into(),
+            bounds: [-2.3, 0.4],
+            scale: Scale::Log10,
+        },
+        &points,
+    );
+    let at = glyphs(&buf);
+    let bottom = at.iter().map(|p| p.1).max().unwrap();
+    let mut cols: Vec<u16> = at.iter().filter(|p| p.1 == bottom).map(|p| p.0).collect();
+    cols.sort();
+    assert_eq!(cols.len(), xs.len(), "{}", riplab::tui::buffer_text(&buf));
+    // x: the labels on the last row inside the border.
+    let labels = numbers_in(&row_text(&buf, buf.area.height - 2));
+    assert!(labels.len() >= 5, "{labels:?}");
+    for (v, centre) in &labels {
+        let i = xs.iter().position(|x| x == v).expect("a tick at a point");
+        assert!(
+            (f64::from(cols[i]) - centre).abs() <= 1.0,
+            "label {v} centred at {centre}, its point at column {}",
+            cols[i]
+        );
+    }
+    // y: each label (in the left margin) on the row of a point of its value: 0.01 is the
+    // bottom row of points, 1 the topmost point, 0.1 the other one.
+    let upper: Vec<u16> = at.iter().filter(|p| p.1 != bottom).map(|p| p.1).collect();
+    let row_of = |v: f64| -> u16 {
+        match v {
+            0.01 => bottom,
+            1.0 => *upper.iter().min().unwrap(),
+            0.1 => *upper.iter().max().unwrap(),
+            _ => panic!("a label without a point: {v}"),
+        }
+    };
+    let mut seen = 0;
+    for row in 0..buf.area.height - 3 {
+        for (v, _) in numbers_in(&row_text(&buf, row)[..8]) {
+            let point_row = row_of(v);
+            assert!(
+                (i32::from(point_row) - i32::from(row)).abs() <= 1,
+                "label {v} on row {row}, its point on row {point_row}"
+            );
+            seen += 1;
+        }
+    }
+    assert_eq!(
+        seen,
+        3,
+        "labels 0.01, 0.1 and 1:\n{}",
+        riplab::tui::buffer_text(&buf)
+    );
+}
+
+/// Item 1 on the lab's own pressure chart: at 80×24 the x labels are where their values are
+/// (the contact edge of the paper's problem at x = ±3 lies between the labels 2 and 4).
+#[test]
+fn pressure_chart_labels_are_linear_in_their_values() {
+    for (w, h) in [(80, 24), (100, 30)] {
+        let text = render_to_string(&Scenario::paper(), "explore", w, h, Some(0), None, None, None).unwrap();
+        let lines: Vec<Vec<String>> = text
+            .lines()
+            .map(|l| l.chars().map(String::from).collect())
+            .collect();
+        // The axis line of the pressure chart: "└┬───┬…"; its labels are the next row.
+        let axis = lines
+            .iter()
+            .position(|l| l.iter().any(|c| c == "└") && l.iter().any(|c| c == "┬"))
+            .unwrap();
+        let ticks: Vec<usize> = (0..lines[axis].len())
+            .filter(|&i| lines[axis][i] == "┬")
+            .collect();
+        let start = lines[axis].iter().position(|c| c == "└").unwrap() + 1;
+        let end = lines[axis].iter().rposition(|c| c == "─" || c == "┬").unwrap();
+        let labels = numbers_in(&lines[axis + 1]);
+        assert!(labels.iter().any(|(v, _)| *v == 4.0), "{w}x{h}: {labels:?}");
+        for (v, centre) in labels {
+            let expected = start as f64 + (v + 8.0) / 16.0 * (end - start) as f64;
+            assert!(
+                (centre - expected).abs() <= 1.0,
+                "{w}x{h}: label {v} at {centre}, value at {expected}"
+            );
+            assert!(
+                ticks.iter().any(|&t| (t as f64 - centre).abs() <= 1.0),
+                "{w}x{h}: a tick under label {v}"
+            );
+        }
+    }
 }
