@@ -53,7 +53,7 @@ pub enum Command {
     #[command(after_help = EXIT_CODES)]
     Study(StudyArgs),
     /// Print one frame of the terminal lab as plain text (for logs, CI and documents).
-    #[command(after_help = EXIT_CODES)]
+    #[command(after_help = RENDER_NOTES)]
     Render(RenderArgs),
     /// Walk through the paper's argument step by step (Space/→ next, ← back, q quit).
     #[command(after_help = EXIT_CODES)]
@@ -87,7 +87,6 @@ pub struct TourArgs {
 }
 
 #[derive(Args, Debug)]
-#[command(after_help = RENDER_NOTES)]
 pub struct RenderArgs {
     #[command(flatten)]
     pub select: Select,

@@ -44,7 +44,7 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
             let text = match other {
                 Some(Err(e)) => format!("the study failed: {e}"),
                 _ if app.study_pending() == Some(&key) => format!(
-                    "⟳ computing the reference (q2, level {}), then M1–M4 at levels 0..={}…",
+                    "⟳ computing the reference (q2, level {}), then M1–M4 at levels 0 to {}…",
                     key.reference_level(),
                     key.max_level
                 ),
@@ -175,8 +175,8 @@ fn table(frame: &mut Frame, area: Rect, theme: Theme, study: &Study, levels: &[u
     }
     let max = study.key.max_level;
     let shown = match levels {
-        [first, ..] if *first == max => format!(" · rows: level {max} (chart: 0..={max})"),
-        [first, ..] if *first > 0 => format!(" · rows: levels {first}..={max} (chart: 0..={max})"),
+        [first, ..] if *first == max => format!(" · rows: level {max} (chart: 0 to {max})"),
+        [first, ..] if *first > 0 => format!(" · rows: levels {first} to {max} (chart: 0 to {max})"),
         _ => String::new(),
     };
     let title = format!(

@@ -34,6 +34,12 @@ pub fn title_fit(text: &str, width: u16) -> String {
         return text.to_string();
     }
     let mut out: String = text.chars().take(width.saturating_sub(2)).collect();
+    // At the last word boundary when there is one in the second half.
+    if let Some(space) = out.trim_end().rfind(' ')
+        && out[..space].chars().count() > width / 2
+    {
+        out.truncate(space);
+    }
     out = out.trim_end().to_string();
     out.push_str("… ");
     out
@@ -89,6 +95,7 @@ mod tests {
         assert_eq!(sig(-8.0, 3), "-8");
         assert_eq!(nice_ceil(11.0), 12.0);
         assert_eq!(title_fit(" a long title ", 8), " a lon… ");
+        assert_eq!(title_fit(" a long title here ", 16), " a long title… ");
         assert_eq!(title_fit(" short ", 8), " short ");
         assert_eq!(wrap_words("one two three", 7), ["one two", "three"]);
         assert_eq!(wrap_words("abcdefghij", 4), ["abcd", "efgh", "ij"]);

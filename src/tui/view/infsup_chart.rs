@@ -118,7 +118,12 @@ fn chart(app: &App, frame: &mut Frame, area: Rect, look: &Look, all: &[Series]) 
         .iter()
         .zip(&data)
         .map(|(s, pts)| plot::Series {
-            name: s.label.into(),
+            // A kernel's β_h = 0 has no place on a log axis: the legend says so.
+            name: if pts.is_empty() && !estimates(app, s.element, s.rule).is_empty() {
+                format!("{} β=0, kernel", s.label)
+            } else {
+                s.label.into()
+            },
             color: s.color,
             stroke: Stroke::Solid,
             glyph: Some(s.glyph),

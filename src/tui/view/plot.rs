@@ -154,6 +154,7 @@ fn sample(stroke: Stroke, glyph: Option<char>, marker: Marker) -> String {
     };
     match glyph {
         Some(g) if stroke == Stroke::None => g.to_string(),
+        Some(g) if stroke == Stroke::Dotted => format!("{cell} {g} {cell}"),
         Some(g) => format!("{cell}{g}{cell}"),
         None => line,
     }

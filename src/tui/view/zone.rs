@@ -5,16 +5,18 @@
 use super::super::worker::Solved;
 
 /// The x range to zoom to: the contact zone plus a quarter of its width on each side (at
-/// least two cells of the level's mesh), within `[lo, hi]`; None without contact.
+/// least two of the mesh's cells at the zone's edges), within `[lo, hi]`; None without
+/// contact.
 pub fn zoom_range(solved: &Solved, half: bool, (lo, hi): (f64, f64)) -> Option<[f64; 2]> {
     let xs = &solved.solution.points.vertex_x;
     let pbar = &solved.solution.pbar;
     let inside: Vec<usize> = (0..pbar.len()).filter(|&i| pbar[i] > 0.0).collect();
     let (&first, &last) = (inside.first()?, inside.last()?);
-    let a = xs[first.saturating_sub(1)];
-    let b = xs[(last + 1).min(xs.len() - 1)];
+    let (i, j) = (first.saturating_sub(1), (last + 1).min(xs.len() - 1));
+    let (a, b) = (xs[i], xs[j]);
+    // The local cell size at the zone's edges (graded meshes are finer there).
+    let cell = (xs[i + 1] - xs[i]).max(xs[j] - xs[j - 1]);
     let (a, b) = if half { (-b, b) } else { (a, b) };
-    let cell = solved.disc.mesh.h();
     let margin = (0.25 * (b - a)).max(2.0 * cell);
     Some([(a - margin).max(lo), (b + margin).min(hi)])
 }
