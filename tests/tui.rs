@@ -1191,7 +1191,7 @@ fn zoom_narrows_to_the_contact_zone() {
     assert_eq!(x_labels(&frame(&app, 100, 30)), before);
     // The mesh scene says when it thins its lines.
     let text = render_to_string(&Scenario::paper(), "mesh", 80, 24, Some(4), None, None, None).unwrap();
-    assert!(text.contains("1 in "), "{text}");
+    assert!(text.contains(" grid lines"), "{text}");
 }
 
 /// Item 10: the key that closes the help does nothing else; a key that does nothing says

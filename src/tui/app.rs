@@ -451,7 +451,7 @@ impl App {
             KeyCode::Right | KeyCode::Char(']') => {
                 if self.settings.level >= MAX_APP_LEVEL {
                     self.notice = Some(Notice::info(format!(
-                        "level {MAX_APP_LEVEL} is the lab's finest: {LEVEL_LIMIT_WHY}"
+                        "level {MAX_APP_LEVEL} is the lab's finest: level 7 takes ~10 s and 1.7 GB (riplab solve)"
                     )));
                 }
                 self.settings.level = (self.settings.level + 1).min(MAX_APP_LEVEL);

@@ -12,9 +12,9 @@ use crate::scenario::Scenario;
 
 use super::super::app::{App, Command, InfSupKey, Msg};
 use super::super::beta::InfSup;
-use super::super::view::fmt::wrap_words;
 use super::super::worker::Solved;
 use super::Tour;
+use super::view::caption_rows;
 
 /// Inf-sup estimates by key, as the lab holds them.
 type Estimates = HashMap<InfSupKey, Result<InfSup, String>>;
@@ -193,7 +193,7 @@ impl TourApp {
                     KeyCode::Down => {
                         // At most to the last row of the caption at the narrowest width.
                         let caption = &self.tour.steps[self.index].caption;
-                        let rows = wrap_words(caption, usize::from(super::MIN_TOUR_SIZE.0 - 2)).len();
+                        let rows = caption_rows(caption, super::MIN_TOUR_SIZE.0 - 2).len();
                         self.caption_scroll = (self.caption_scroll + 1).min(rows.saturating_sub(1) as u16);
                         return TourEffect {
                             redraw: true,

@@ -52,7 +52,7 @@ pub fn view(tour: &TourApp, frame: &mut Frame, look: &Look) {
         return;
     }
     // The caption's rows: all of it if the lab keeps its minimum, else what is left.
-    let text = wrap_words(&step.caption, usize::from(area.width - 2));
+    let text = caption_rows(&step.caption, area.width - 2);
     let room = area.height - LAB_MIN.1 - 1;
     let rows = (text.len() as u16).min(room).max(1);
     let [lab, panel] = Layout::vertical([Constraint::Fill(1), Constraint::Length(rows + 1)]).areas(area);
@@ -61,6 +61,26 @@ pub fn view(tour: &TourApp, frame: &mut Frame, look: &Look) {
     if tour.show_help {
         help(frame, area, look.theme);
     }
+}
+
+/// The caption as rows of at most `width` columns: as written when every line fits, else
+/// reflowed (a line joins the one before it unless it is indented) and wrapped at words.
+pub(super) fn caption_rows(caption: &str, width: u16) -> Vec<String> {
+    let width = usize::from(width);
+    if caption.lines().all(|l| l.chars().count() <= width) {
+        return caption.lines().map(str::to_string).collect();
+    }
+    let mut paragraphs: Vec<String> = Vec::new();
+    for line in caption.lines() {
+        match paragraphs.last_mut() {
+            Some(last) if !line.starts_with(' ') => {
+                last.push(' ');
+                last.push_str(line.trim());
+            }
+            _ => paragraphs.push(line.trim_end().to_string()),
+        }
+    }
+    wrap_words(&paragraphs.join("\n"), width)
 }
 
 /// The step's number and title, the keys, then the caption (wrapped; ↑ ↓ scroll it when it

@@ -175,7 +175,7 @@ fn table(frame: &mut Frame, area: Rect, theme: Theme, study: &Study, levels: &[u
     }
     let max = study.key.max_level;
     let shown = match levels {
-        [first, ..] if *first == max => format!(" · rows: level {max} (chart: 0 to {max})"),
+        [first, ..] if *first == max && max > 0 => format!(" · rows: level {max} (chart: 0 to {max})"),
         [first, ..] if *first > 0 => format!(" · rows: levels {first} to {max} (chart: 0 to {max})"),
         _ => String::new(),
     };

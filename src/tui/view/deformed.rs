@@ -63,7 +63,7 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look, extent: Ext
         look.theme.obstacle(),
     );
     let thin = if thinned > 1 {
-        format!(" · 1 in {thinned} grid lines")
+        format!(" · 1/{thinned} grid lines")
     } else {
         String::new()
     };
@@ -73,9 +73,9 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look, extent: Ext
         ""
     };
     let label = match extent {
-        Extent::NearContact => format!(" contact zone{zoom} · u ×{}{thin} ", sig(scale, 2)),
+        Extent::NearContact => format!(" contact zone{zoom} · ×{}{thin} ", sig(scale, 2)),
         Extent::Full => format!(
-            " {title} · {}+{} level {} · displacement ×{}{thin} ",
+            " deformed · {}+{} level {} · u ×{}{thin} ",
             solved.key.element.name(),
             solved.key.rule.name(),
             solved.key.level,

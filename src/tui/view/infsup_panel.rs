@@ -45,14 +45,14 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, theme: Theme) {
         let text = match app.infsup.get(&k) {
             Some(Ok(b)) if b.kernel.is_some() => format!(
                 "{mark}{level:>2} {:>6} {:>9} {:>9} {:>9}",
-                sig(b.h, 4),
+                sig(b.h, 3),
                 "kernel",
                 "kernel",
                 sig(b.beta_bar_over_sqrt_h, 3)
             ),
             Some(Ok(b)) => format!(
                 "{mark}{level:>2} {:>6} {:>9} {:>9} {:>9}",
-                sig(b.h, 4),
+                sig(b.h, 3),
                 sig(b.beta, 3),
                 sig(b.beta_over_sqrt_h, 3),
                 sig(b.beta_bar_over_sqrt_h, 3)
@@ -60,7 +60,7 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, theme: Theme) {
             Some(Err(e)) => format!("{mark}{level:>2} {e}"),
             None => format!(
                 "{mark}{level:>2} {:>6} ⟳ estimating…",
-                sig(app.scenario.h(level), 4)
+                sig(app.scenario.h(level), 3)
             ),
         };
         let style = if level == key.level {

@@ -82,7 +82,8 @@ pub fn dots_per_cell(marker: Marker) -> (u16, u16) {
 /// round(t·(dots − 1)) for t = (value − lo)/(hi − lo), its cell that dot / per.
 pub fn cell_of(value: f64, bounds: [f64; 2], cells: u16, per: u16) -> Option<u16> {
     let (lo, hi) = (bounds[0], bounds[1]);
-    if !(hi > lo) || !value.is_finite() || value < lo || value > hi || cells == 0 {
+    let ordered = hi > lo;
+    if !ordered || !value.is_finite() || value < lo || value > hi || cells == 0 {
         return None;
     }
     let dots = f64::from(cells) * f64::from(per);
@@ -93,7 +94,8 @@ pub fn cell_of(value: f64, bounds: [f64; 2], cells: u16, per: u16) -> Option<u16
 /// Ticks on a linear axis: multiples of a 1-2-5 step, at most `max` of them.
 pub fn linear_ticks(bounds: [f64; 2], max: usize) -> Vec<f64> {
     let (lo, hi) = (bounds[0], bounds[1]);
-    if !(hi > lo) {
+    let ordered = hi > lo;
+    if !ordered {
         return vec![lo];
     }
     let max = max.max(2);
@@ -102,7 +104,7 @@ pub fn linear_ticks(bounds: [f64; 2], max: usize) -> Vec<f64> {
     let step = [1.0, 2.0, 2.5, 5.0, 10.0]
         .into_iter()
         .map(|m| m * p)
-        .find(|&s| ((hi - lo) / s).floor() as usize + 1 <= max)
+        .find(|&s| (((hi - lo) / s).floor() as usize) < max)
         .unwrap_or(10.0 * p);
     let first = (lo / step - 1e-9).ceil() as i64;
     let last = (hi / step + 1e-9).floor() as i64;
@@ -180,7 +182,7 @@ impl Shape for DottedLine<'_> {
                 cells += 1;
             }
             last = Some(cell);
-            if cells % 2 == 0 {
+            if cells.is_multiple_of(2) {
                 painter.paint(x, y, self.color);
             }
         };

@@ -115,11 +115,18 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
         glyph: None,
         data: &raw,
     });
+    // A contact zone under a sixth of the axis is worth zooming into: say so.
+    let narrow =
+        zoom_range(solved, half, (full[0], full[1])).is_some_and(|[a, b]| b - a < (full[1] - full[0]) / 6.0);
     let key = solved.key;
     let title = format!(
         " pressure on Γ_C{}{} · {}+{} level {} ",
         if half { " (mirrored)" } else { "" },
-        if zoomed.is_some() { " · zoom" } else { "" },
+        match (zoomed.is_some(), narrow) {
+            (true, _) => " · zoom (z: back)",
+            (false, true) => " · z zooms in",
+            _ => "",
+        },
         key.element.name(),
         key.rule.name(),
         key.level

@@ -152,9 +152,13 @@ fn state(app: &App, theme: Theme) -> Vec<Span<'static>> {
             };
             spans.push(Span::styled(what, theme.busy()));
         } else if let Some(Ok(_)) = app.studies.get(&key) {
+            let levels = match key.max_level {
+                0 => "level 0".to_string(),
+                max => format!("levels 0 to {max}"),
+            };
             spans.push(Span::raw(format!(
-                "M1–M4 at levels 0 to {} against q2 level {reference}, the scenario's ε={:e} (+ − do not apply)",
-                key.max_level, app.scenario.epsilon
+                "M1–M4 at {levels} against q2 level {reference}, the scenario's ε={:e} (+ − do not apply)",
+                app.scenario.epsilon
             )));
         }
         return spans;
