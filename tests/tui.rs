@@ -1036,7 +1036,10 @@ fn export_failures_show_and_names_carry_epsilon_and_depth() {
     app.update(Msg::Exported(Err(err)));
     let text = frame(&app, 120, 40);
     let last = text.lines().last().unwrap();
-    assert!(last.contains("✗ export failed: cannot write /"), "{last}");
+    assert!(
+        last.contains("✗ export failed: ") && last.contains("cannot write /"),
+        "{last}"
+    );
     std::fs::remove_file(&file).unwrap();
     // The help says where files go; the command line sets it.
     let (_, help, _) = common::riplab(&["--help"]);

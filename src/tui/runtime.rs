@@ -142,8 +142,16 @@ pub(super) fn suspend(terminal: &mut DefaultTerminal) -> io::Result<()> {
     let stopped = std::process::Command::new("kill")
         .args(["-TSTP", &std::process::id().to_string()])
         .status();
-    *terminal = ratatui::try_init()?;
-    terminal.clear()?;
+    // Resumed: raw mode and the alternate screen again, on the same terminal (a new one, or
+    // `Terminal::clear`, would ask for the cursor position, whose reply the input thread would
+    // take); the screen is blank, so the next draw is diffed against a blank buffer.
+    crossterm::terminal::enable_raw_mode()?;
+    crossterm::execute!(
+        terminal.backend_mut(),
+        crossterm::terminal::EnterAlternateScreen,
+        crossterm::terminal::Clear(crossterm::terminal::ClearType::All)
+    )?;
+    terminal.swap_buffers();
     stopped.map(|_| ())
 }
 
