@@ -62,7 +62,7 @@ fn save_fresh(dir: &Path, stem: &str, ext: &str, bytes: &[u8]) -> Result<PathBuf
         match write_file(&path, bytes, false) {
             Ok(()) => return Ok(path),
             Err(e) if e.kind() == ErrorKind::AlreadyExists => continue,
-            Err(e) => return Err(format!("{e}: cannot write {}", path.display())),
+            Err(e) => return Err(format!("{}: {e}", dir.display())),
         }
     }
     Err(format!("no free file name for {stem}.{ext} in {}", dir.display()))
