@@ -85,7 +85,14 @@ pub fn view_in(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
 
 /// The explore scene: pressures on top, the inf-sup panel and the contact zone below.
 fn explore(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
-    let [chart, lower] = Layout::vertical([Constraint::Percentage(57), Constraint::Fill(1)]).areas(area);
+    // The lower panels keep at least 6 rows (the inf-sup panel's borders, header, current
+    // row and verdict); in a short area (the tour at 80×24) the chart takes the rest.
+    let chart_rows = if area.height < 20 {
+        area.height.saturating_sub(6)
+    } else {
+        (area.height * 57 + 50) / 100
+    };
+    let [chart, lower] = Layout::vertical([Constraint::Length(chart_rows), Constraint::Fill(1)]).areas(area);
     let [panel, contact] = Layout::horizontal([Constraint::Length(42), Constraint::Fill(1)]).areas(lower);
     pressure::render(app, frame, chart, look);
     infsup_panel::render(app, frame, panel, look.theme);
