@@ -87,6 +87,7 @@ pub struct TourArgs {
 }
 
 #[derive(Args, Debug)]
+#[command(mut_arg("level", |a| a.help("Mesh level 0 to 6, the lab's levels (h halves with each level)")))]
 pub struct RenderArgs {
     #[command(flatten)]
     pub select: Select,

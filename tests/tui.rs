@@ -1282,7 +1282,10 @@ fn smaller_things() {
     for scene in Scene::ALL {
         assert!(help.contains(scene.name()), "{scene:?} in\n{help}");
     }
-    assert!(help.contains("0 to 6"), "{help}");
+    assert!(
+        help.contains("0 to 6") && help.contains("Mesh level 0 to 6"),
+        "{help}"
+    );
     // Started without a terminal, the lab says what to use instead.
     let (code, _, err) = common::riplab(&[]);
     assert_eq!(code, 2);
