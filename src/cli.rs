@@ -20,11 +20,17 @@ use crate::solve::{ContactParams, Discretization, check_request, preset, solve_c
 use crate::study::{all_ok, convergence, epsilon_sweep};
 use crate::tui::{MarkerChoice, TuiOptions, render_to_string};
 
-const EXIT_CODES: &str = "Exit codes:
+/// The exit codes, as every `--help` shows them (a macro, so that other notes can extend it).
+macro_rules! exit_codes {
+    () => {
+        "Exit codes:
   0  success
   1  the solver failed or did not converge, or a row of a study or sweep has no result
      (the output says which), or the output could not be written
-  2  bad input: a scenario file or a command-line value is invalid";
+  2  bad input: a scenario file or a command-line value is invalid"
+    };
+}
+const EXIT_CODES: &str = exit_codes!();
 
 #[derive(Parser, Debug)]
 #[command(name = "riplab", version, about = "A terminal laboratory for reduced-integration penalty contact (Kikuchi 1981)", after_help = EXIT_CODES, args_conflicts_with_subcommands = true)]
@@ -37,6 +43,10 @@ pub struct Cli {
     /// Monochrome display (also when the NO_COLOR environment variable is set).
     #[arg(long, global = true)]
     pub no_color: bool,
+    /// Where the lab's and the tour's `s` (CSV) and `S` (SVG) exports go; the current
+    /// directory when omitted. Files are never overwritten.
+    #[arg(long, global = true, value_name = "DIR")]
+    pub export_dir: Option<PathBuf>,
     #[command(subcommand)]
     pub command: Option<Command>,
 }
@@ -53,7 +63,7 @@ pub enum Command {
     #[command(after_help = EXIT_CODES)]
     Study(StudyArgs),
     /// Print one frame of the terminal lab as plain text (for logs, CI and documents).
-    #[command(after_help = EXIT_CODES)]
+    #[command(after_help = RENDER_NOTES)]
     Render(RenderArgs),
     /// Walk through the paper's argument step by step (Space/→ next, ← back, q quit).
     #[command(after_help = EXIT_CODES)]
@@ -63,6 +73,15 @@ pub enum Command {
     /// Print the man page (roff), e.g. `riplab man > riplab.1 && man ./riplab.1`.
     Man,
 }
+
+/// The notes under `riplab render --help`.
+const RENDER_NOTES: &str = concat!(
+    "Levels: render draws what the lab shows, levels 0 to 6 (a change at level 7 takes about 10 s
+and 1.7 GB, too slow for the lab; `riplab solve` goes to level 8).
+
+",
+    exit_codes!()
+);
 
 #[derive(Args, Debug)]
 pub struct TourArgs {
@@ -77,13 +96,14 @@ pub struct TourArgs {
 }
 
 #[derive(Args, Debug)]
+#[command(mut_arg("level", |a| a.help("Mesh level 0 to 6, the lab's levels (h halves with each level)")))]
 pub struct RenderArgs {
     #[command(flatten)]
     pub select: Select,
-    /// Scene: explore, infsup or mesh.
-    #[arg(long, default_value = "explore")]
+    /// Scene: explore, infsup, mesh or convergence (the convergence study takes seconds).
+    #[arg(long, default_value = "explore", value_parser = ["explore", "infsup", "mesh", "convergence"])]
     pub scene: String,
-    /// Frame size, columns x rows.
+    /// Frame size, COLUMNSxROWS (or COLUMNS×ROWS), from 80x24 to 1000x500.
     #[arg(long, default_value = "120x40")]
     pub size: String,
     /// Penalty parameter ε > 0 (the scenario's when omitted).
@@ -275,6 +295,7 @@ pub fn run(cli: Cli) -> ExitCode {
             TuiOptions {
                 marker: cli.marker,
                 no_color: cli.no_color,
+                export_dir: cli.export_dir.clone(),
             },
         ),
         Some(Command::Completions { shell }) => {
@@ -295,6 +316,7 @@ pub fn run(cli: Cli) -> ExitCode {
             TuiOptions {
                 marker: cli.marker,
                 no_color: cli.no_color,
+                export_dir: cli.export_dir.clone(),
             },
         ),
     };
@@ -609,6 +631,17 @@ fn study(args: &StudyArgs) -> Result<ExitCode, CliError> {
     }
 }
 
+/// The error of a lab or tour started without a terminal.
+fn needs_terminal(what: &str) -> Result<(), CliError> {
+    use std::io::IsTerminal;
+    if std::io::stdout().is_terminal() && std::io::stdin().is_terminal() {
+        return Ok(());
+    }
+    Err(CliError::Usage(format!(
+        "{what} needs a terminal (stdin and stdout are not both one); for a frame as text use `riplab render` (e.g. `riplab render --scene explore --size 100x30`)"
+    )))
+}
+
 /// The terminal lab.
 fn lab(scenario: Option<PathBuf>, opts: TuiOptions) -> Result<ExitCode, CliError> {
     let scenario = Select {
@@ -616,26 +649,15 @@ fn lab(scenario: Option<PathBuf>, opts: TuiOptions) -> Result<ExitCode, CliError
         ..Select::default()
     }
     .resolve()?;
-    crate::tui::run(scenario, opts).map_err(|e| CliError::Failed(format!("terminal: {e}")))?;
+    needs_terminal("the lab")?;
+    crate::tui::run(scenario, &opts).map_err(|e| CliError::Failed(format!("terminal: {e}")))?;
     Ok(ExitCode::SUCCESS)
 }
 
 fn render(args: &RenderArgs) -> Result<ExitCode, CliError> {
+    // The size first: nothing is loaded or allocated for a frame that cannot be drawn.
+    let (width, height) = crate::tui::parse_size(&args.size).map_err(|m| usage("--size", m))?;
     let scenario = args.select.resolve()?;
-    let bad_size = || {
-        usage(
-            "--size",
-            format!(
-                "`{}`; allowed: COLUMNSxROWS, e.g. 120x40 (at least 80x24)",
-                args.size
-            ),
-        )
-    };
-    let (w, h) = args.size.split_once('x').ok_or_else(bad_size)?;
-    let (width, height): (u16, u16) = (
-        w.trim().parse().map_err(|_| bad_size())?,
-        h.trim().parse().map_err(|_| bad_size())?,
-    );
     if let Some(e) = args.epsilon {
         check::positive(e)
             .and_then(|()| check::epsilon_in(e, scenario.epsilon_range(scenario.level)))
@@ -671,6 +693,7 @@ fn tour(args: &TourArgs, opts: TuiOptions) -> Result<ExitCode, CliError> {
         auto_interval(seconds).map_err(|m| usage("--auto", m))?;
     }
     let tour = tour.with_scenario(scenario).map_err(CliError::Usage)?;
-    run_tour(tour, opts, args.auto).map_err(|e| CliError::Failed(format!("terminal: {e}")))?;
+    needs_terminal("the tour")?;
+    run_tour(tour, &opts, args.auto).map_err(|e| CliError::Failed(format!("terminal: {e}")))?;
     Ok(ExitCode::SUCCESS)
 }

@@ -22,6 +22,11 @@ fn ch(c: char) -> TourMsg {
     key(KeyCode::Char(c))
 }
 
+const LOOK: riplab::tui::view::Look = riplab::tui::view::Look {
+    theme: riplab::tui::theme::Theme { color: true },
+    marker: ratatui::symbols::Marker::Braille,
+};
+
 /// Every tour file under `tours/`.
 fn tour_files() -> Vec<PathBuf> {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tours");
@@ -119,8 +124,17 @@ fn every_step_of_the_paper_tour_100x30() {
 #[test]
 fn too_small_and_help() {
     let tour = Tour::paper();
-    let small = render_step(&tour, 0, 80, 24).unwrap();
+    let small = riplab::tui::render_frame(60, 20, |frame| {
+        riplab::tui::tour::view(
+            &TourApp::new(tour.clone(), Some(Duration::from_secs(8))),
+            frame,
+            &LOOK,
+        )
+    });
     assert!(small.contains("the tour needs a bigger terminal"), "{small}");
+    assert!(small.contains("at least 80×24"), "{small}");
+    assert!(small.contains("auto-advance paused"), "{small}");
+    assert!(small.lines().all(|l| l.chars().count() <= 60));
     let mut player = TourApp::new(tour, None);
     player.show_timing = false;
     player.app.show_timing = false;
@@ -140,6 +154,11 @@ fn too_small_and_help() {
     // Esc closes the help without quitting; q then quits.
     player.update(key(KeyCode::Esc));
     assert!(!player.show_help && !player.should_quit());
+    // The key that closes the help does nothing else (Space does not advance).
+    player.update(ch('?'));
+    player.update(ch(' '));
+    assert!(!player.show_help);
+    assert_eq!(player.index(), 0);
     player.update(ch('q'));
     assert!(player.should_quit());
 }
@@ -345,4 +364,88 @@ fn scenario_paths_are_relative_to_the_tour_file() {
     let e = tour.with_scenario(Scenario::paper()).unwrap_err();
     assert!(e.contains("step 1") && e.contains("depth"), "{e}");
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+// ---- issue 12: the tour at 80×24 ---------------------------------------------------------
+
+/// Item 3: every step runs at 80×24: the lab above, the caption wrapped below in the rows
+/// left, with what does not fit a ↓ away.
+#[test]
+fn every_step_runs_at_80x24() {
+    let tour = Tour::paper();
+    for i in 0..tour.steps.len() {
+        let text = render_step(&tour, i, 80, 24).unwrap();
+        assert!(!text.contains("bigger terminal"), "step {}:\n{text}", i + 1);
+        assert!(text.contains(&format!("tour {}/{}", i + 1, tour.steps.len())));
+        // Columns: combining marks (the bar of p̄) take none.
+        let columns = |l: &str| l.chars().filter(|c| !('\u{300}'..='\u{36f}').contains(c)).count();
+        assert!(text.lines().all(|l| columns(l) <= 80), "{text}");
+        // The caption's first words are on screen; the lab's header and status are too.
+        let first: String = tour.steps[i]
+            .caption
+            .split_whitespace()
+            .take(3)
+            .collect::<Vec<_>>()
+            .join(" ");
+        assert!(text.contains(&first), "step {} caption `{first}`:\n{text}", i + 1);
+        assert!(text.contains("riplab"), "{text}");
+        if i == 2 {
+            snap!("tour__paper_step03_80x24", text);
+        }
+    }
+}
+
+/// Item 3: a long caption scrolls with ↓ and ↑, and the panel says there is more.
+#[test]
+fn long_captions_scroll() {
+    let tour = Tour::paper();
+    let mut player = TourApp::new(tour.clone(), None);
+    player.show_timing = false;
+    let commands = player.go_to(4);
+    carry_out(
+        &mut player.app,
+        &mut Engine::new(tour.scenario_of(4).clone()),
+        commands,
+    );
+    let draw =
+        |player: &TourApp| riplab::tui::render_frame(80, 24, |f| riplab::tui::tour::view(player, f, &LOOK));
+    let last_line = tour.steps[4].caption.lines().last().unwrap();
+    let tail: String = last_line
+        .split_whitespace()
+        .rev()
+        .take(2)
+        .collect::<Vec<_>>()
+        .into_iter()
+        .rev()
+        .collect::<Vec<_>>()
+        .join(" ");
+    let text = draw(&player);
+    assert!(text.contains("↓ more"), "{text}");
+    assert!(!text.contains(&tail), "`{tail}` not yet shown:\n{text}");
+    for _ in 0..10 {
+        player.update(key(KeyCode::Down));
+    }
+    let text = draw(&player);
+    assert!(text.contains(&tail), "`{tail}` shown after ↓:\n{text}");
+    assert!(text.contains("↑ more"), "{text}");
+    // Leaving the step starts the next caption at its top.
+    player.update(ch(' '));
+    assert_eq!(player.caption_scroll, 0);
+}
+
+/// Item 3: `--auto` pauses while the window is too small.
+#[test]
+fn auto_pauses_while_the_window_is_too_small() {
+    let tour = Tour::paper();
+    let every = Duration::from_secs(5);
+    let mut player = TourApp::new(tour.clone(), Some(every));
+    settle(&mut player.app, &mut Engine::new(tour.scenario_of(0).clone()));
+    player.set_size(80, 24);
+    assert!(player.auto_due(every));
+    player.set_size(79, 40);
+    assert!(!player.auto_due(Duration::from_secs(3600)));
+    player.set_size(120, 23);
+    assert!(!player.auto_due(Duration::from_secs(3600)));
+    player.set_size(160, 50);
+    assert!(player.auto_due(every));
 }

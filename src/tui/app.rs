@@ -3,6 +3,7 @@
 
 use std::collections::{HashMap, HashSet};
 use std::sync::Arc;
+use std::time::Instant;
 
 use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 
@@ -15,8 +16,13 @@ use crate::study::StudyRow;
 use super::beta::InfSup;
 use super::worker::Solved;
 
-/// The finest level the interactive lab offers.
+/// The finest level the interactive lab (and `riplab render`) offers: a change at level 6
+/// costs about 1.7 s and 370 MB; level 7 about 10 s and 1.7 GB (BENCHMARKS.md), too slow to
+/// explore by key. `riplab solve` goes to level 8.
 pub const MAX_APP_LEVEL: u32 = if MAX_LEVEL < 6 { MAX_LEVEL } else { 6 };
+/// Why the lab stops at [`MAX_APP_LEVEL`], for messages.
+pub const LEVEL_LIMIT_WHY: &str =
+    "a change at level 7 takes about 10 s and 1.7 GB; `riplab solve --level 7` computes it";
 /// The range of ε reachable with `+`/`-`.
 pub const EPSILON_RANGE: (f64, f64) = (1e-14, 1e2);
 /// The depth step of `d`/`D`.
@@ -128,11 +134,23 @@ pub struct InfSupRequest {
     pub key: InfSupKey,
 }
 
-/// Where a running solve is.
+/// Where a running solve or study is.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Progress {
-    /// Assembling K and its symbolic factorisation for a new mesh.
-    Assembling,
+    /// Assembling and factorising K for a new mesh of `unknowns` unknowns at `level`, begun
+    /// at `started` and expected to take `estimate_ms` (see [`super::eta`]).
+    Assembling {
+        level: u32,
+        unknowns: usize,
+        started: Instant,
+        estimate_ms: f64,
+    },
+    /// A study's stage: the reference (`level` None) or the schemes at `level`.
+    Study {
+        level: Option<u32>,
+        started: Instant,
+        estimate_ms: f64,
+    },
     /// Newton iteration `iteration` reached relative residual `residual`.
     Newton {
         iteration: usize,
@@ -151,6 +169,11 @@ pub enum Response {
     Solved {
         generation: u64,
         result: Result<Arc<Solved>, String>,
+    },
+    /// A stage of the study asked for with `generation` began.
+    StudyProgress {
+        generation: u64,
+        progress: Progress,
     },
     /// The solve of `generation` was superseded and stopped.
     Cancelled {
@@ -178,6 +201,8 @@ pub enum Msg {
     Worker(Response),
     /// The result of [`Command::Export`]: the file written, or what went wrong.
     Exported(Result<String, String>),
+    /// Time passed while something long runs (the time left changes).
+    Tick,
 }
 
 /// Work for the runtime.
@@ -189,6 +214,8 @@ pub enum Command {
     /// Write the displayed solution to a new file, as [`App::export_kind`] says (the kind
     /// travels in the app so that the variant stays a plain `Export`).
     Export,
+    /// Ctrl-Z: give the terminal back and stop until resumed.
+    Suspend,
 }
 
 /// What [`Command::Export`] writes.
@@ -209,6 +236,29 @@ pub struct Effect {
     pub commands: Vec<Command>,
 }
 
+/// A one-off message for the status line.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Notice {
+    pub text: String,
+    /// Something failed (drawn as bad news).
+    pub failure: bool,
+}
+
+impl Notice {
+    pub fn info(text: impl Into<String>) -> Self {
+        Notice {
+            text: text.into(),
+            failure: false,
+        }
+    }
+    pub fn failure(text: impl Into<String>) -> Self {
+        Notice {
+            text: text.into(),
+            failure: true,
+        }
+    }
+}
+
 /// The state of the lab.
 #[derive(Clone, Debug)]
 pub struct App {
@@ -219,6 +269,8 @@ pub struct App {
     pub show_gap: bool,
     pub show_hertz: bool,
     pub show_help: bool,
+    /// Zoom the pressure chart and the contact-zone view to the contact zone.
+    pub zoom: bool,
     /// Show solve times (off for deterministic frames).
     pub show_timing: bool,
     /// Compute the inf-sup estimate at every level up to the current one, not just the current.
@@ -235,29 +287,27 @@ pub struct App {
     pub progress: Option<Progress>,
     /// A failure to show in a banner.
     pub error: Option<String>,
-    /// A one-off message for the status line (e.g. the file exported).
-    pub notice: Option<String>,
+    /// A one-off message for the status line (the file exported, why a key did nothing).
+    pub notice: Option<Notice>,
     /// The kind of the last export asked for.
     pub export_kind: ExportKind,
     /// Inf-sup estimates computed so far.
     pub infsup: HashMap<InfSupKey, Result<InfSup, String>>,
     infsup_pending: HashSet<InfSupKey>,
+    /// Every estimate asked for (a row once shown stays, and is asked again if dropped).
+    infsup_wanted: HashSet<InfSupKey>,
     /// Work–precision studies computed so far (failures too: they are not retried).
     pub studies: HashMap<StudyKey, Result<Arc<Study>, String>>,
     /// The study in flight and the generation it was asked for with.
     study_pending: Option<(u64, StudyKey)>,
+    /// The stage of the study in flight.
+    pub study_progress: Option<Progress>,
 }
 
 impl App {
     /// The lab on `scenario` at its own settings (level capped at [`MAX_APP_LEVEL`]).
     pub fn new(scenario: Scenario) -> Self {
-        let settings = SolveKey {
-            level: scenario.level.min(MAX_APP_LEVEL),
-            element: scenario.element,
-            rule: scenario.rule,
-            epsilon: scenario.epsilon,
-            depth: scenario.obstacle.depth(),
-        };
+        let settings = App::defaults(&scenario);
         App {
             scenario,
             settings,
@@ -265,6 +315,7 @@ impl App {
             show_gap: false,
             show_hertz: false,
             show_help: false,
+            zoom: false,
             show_timing: true,
             all_levels: false,
             quit: false,
@@ -278,9 +329,28 @@ impl App {
             export_kind: ExportKind::Csv,
             infsup: HashMap::new(),
             infsup_pending: HashSet::new(),
+            infsup_wanted: HashSet::new(),
             studies: HashMap::new(),
             study_pending: None,
+            study_progress: None,
         }
+    }
+
+    /// The scenario's own settings (what `0` returns to).
+    pub fn defaults(scenario: &Scenario) -> SolveKey {
+        SolveKey {
+            level: scenario.level.min(MAX_APP_LEVEL),
+            element: scenario.element,
+            rule: scenario.rule,
+            epsilon: scenario.epsilon,
+            depth: scenario.obstacle.depth(),
+        }
+    }
+
+    /// Whether something long runs whose time left is shown (the runtime ticks meanwhile).
+    pub fn wants_tick(&self) -> bool {
+        matches!(self.progress, Some(Progress::Assembling { .. }))
+            || (self.scene == Scene::Convergence && self.study_progress.is_some())
     }
 
     /// Whether the user asked to quit.
@@ -338,12 +408,13 @@ impl App {
             Msg::Resize => true,
             Msg::Worker(response) => self.worker(response),
             Msg::Exported(result) => {
-                match result {
-                    Ok(path) => self.notice = Some(format!("exported {path}")),
-                    Err(e) => self.error = Some(format!("export failed: {e}")),
-                }
+                self.notice = Some(match result {
+                    Ok(path) => Notice::info(format!("wrote {path}")),
+                    Err(e) => Notice::failure(format!("export failed: {e}")),
+                });
                 true
             }
+            Msg::Tick => self.wants_tick(),
         };
         commands.extend(self.requests());
         Effect { redraw, commands }
@@ -354,28 +425,44 @@ impl App {
             return false;
         }
         if key.modifiers.contains(KeyModifiers::CONTROL) {
-            if matches!(key.code, KeyCode::Char('c' | 'C')) {
-                self.quit = true;
+            match key.code {
+                KeyCode::Char('c' | 'C') => self.quit = true,
+                KeyCode::Char('z' | 'Z') => commands.push(Command::Suspend),
+                _ => return false,
             }
-            return self.quit;
+            return true;
         }
         self.notice = None;
         if self.show_help {
-            // Any key closes the help; q still quits, Esc and ? only close it.
+            // Any key closes the help and does nothing else.
             self.show_help = false;
-            if matches!(key.code, KeyCode::Esc | KeyCode::Char('?')) {
-                return true;
-            }
+            return true;
         }
         let before = self.settings;
         match key.code {
             KeyCode::Char('q') | KeyCode::Esc => self.quit = true,
             KeyCode::Char('?') => self.show_help = true,
             KeyCode::Left | KeyCode::Char('[') => {
+                if self.settings.level == 0 {
+                    self.notice = Some(Notice::info("level 0 is the coarsest mesh"));
+                }
                 self.settings.level = self.settings.level.saturating_sub(1);
             }
             KeyCode::Right | KeyCode::Char(']') => {
+                if self.settings.level >= MAX_APP_LEVEL {
+                    self.notice = Some(Notice::info(format!(
+                        "level {MAX_APP_LEVEL} is the lab's finest: level 7 takes ~10 s and 1.7 GB (riplab solve)"
+                    )));
+                }
                 self.settings.level = (self.settings.level + 1).min(MAX_APP_LEVEL);
+            }
+            KeyCode::Char('0') => {
+                self.settings = App::defaults(&self.scenario);
+                self.show_gap = false;
+                self.show_hertz = false;
+                self.all_levels = false;
+                self.zoom = false;
+                self.notice = Some(Notice::info("reset to the scenario's settings"));
             }
             KeyCode::Char('r') => {
                 let i = Rule::ALL
@@ -402,7 +489,16 @@ impl App {
             KeyCode::Tab => self.scene = self.scene.shifted(1),
             KeyCode::BackTab => self.scene = self.scene.shifted(Scene::ALL.len() - 1),
             KeyCode::Char('g') => self.show_gap = !self.show_gap,
-            KeyCode::Char('h') => self.show_hertz = !self.show_hertz,
+            KeyCode::Char('h') => {
+                if self.scenario.obstacle.hertz_radius().is_some() || self.show_hertz {
+                    self.show_hertz = !self.show_hertz;
+                } else {
+                    self.notice = Some(Notice::info(
+                        "no Hertz solution for this obstacle: it needs a cylinder (a radius)",
+                    ));
+                }
+            }
+            KeyCode::Char('z') => self.toggle_zoom(),
             KeyCode::Char('a') => self.all_levels = !self.all_levels,
             KeyCode::Char(c @ ('s' | 'S')) => {
                 if self.current().is_some() {
@@ -413,7 +509,7 @@ impl App {
                     };
                     commands.push(Command::Export);
                 } else {
-                    self.notice = Some("nothing to export yet: the solve is not finished".into());
+                    self.notice = Some(Notice::info("nothing to export yet: the solve is not finished"));
                 }
             }
             _ => return false,
@@ -425,16 +521,38 @@ impl App {
         true
     }
 
+    /// `z`: zoom to the contact zone and back (only where there is one to zoom to).
+    fn toggle_zoom(&mut self) {
+        if self.zoom {
+            self.zoom = false;
+            return;
+        }
+        if !matches!(self.scene, Scene::Explore | Scene::Mesh) {
+            self.notice = Some(Notice::info(
+                "z zooms the pressure chart and the contact zone: explore and mesh scenes",
+            ));
+            return;
+        }
+        let in_contact = self
+            .current()
+            .is_some_and(|s| s.solution.pbar.iter().any(|&p| p > 0.0));
+        if in_contact {
+            self.zoom = true;
+        } else {
+            self.notice = Some(Notice::info("nothing to zoom to: no contact (p̄ = 0)"));
+        }
+    }
+
     /// ε times 10^`decades`, kept to the decimal digits of the scenario's ε.
     fn shift_epsilon(&mut self, decades: i32) {
         let next = shift_decades(self.settings.epsilon, decades);
         if (EPSILON_RANGE.0..=EPSILON_RANGE.1).contains(&next) {
             self.settings.epsilon = next;
         } else {
-            self.notice = Some(format!(
-                "ε stays within {:e}..={:e}",
+            self.notice = Some(Notice::info(format!(
+                "ε stays within {:e} to {:e}",
                 EPSILON_RANGE.0, EPSILON_RANGE.1
-            ));
+            )));
         }
     }
 
@@ -445,7 +563,7 @@ impl App {
         if (0.0..=max + 1e-12).contains(&next) {
             self.settings.depth = next;
         } else {
-            self.notice = Some(format!("depth stays within 0..={max}"));
+            self.notice = Some(Notice::info(format!("depth stays within 0 to {max}")));
         }
     }
 
@@ -481,6 +599,13 @@ impl App {
                     }
                 }
             }
+            Response::StudyProgress { generation, progress } => {
+                if self.study_pending.as_ref().map(|(g, _)| *g) != Some(generation) {
+                    return false;
+                }
+                self.study_progress = Some(progress);
+                return self.scene == Scene::Convergence;
+            }
             Response::Cancelled { generation } => {
                 if self.pending_solve != Some(generation) {
                     return false;
@@ -507,6 +632,7 @@ impl App {
                     return false;
                 }
                 self.study_pending = None;
+                self.study_progress = None;
                 if let Some(result) = result {
                     self.studies.insert(key, result);
                 }
@@ -535,6 +661,18 @@ impl App {
                 })),
                 Scene::Mesh | Scene::Convergence => {}
             }
+        }
+        if self.scene == Scene::Explore {
+            // Rows once asked for stay: asked again if the worker dropped them as stale.
+            let current = self.infsup_key();
+            let mut again: Vec<InfSupKey> = self
+                .infsup_wanted
+                .iter()
+                .filter(|k| (k.element, k.rule) == (current.element, current.rule))
+                .copied()
+                .collect();
+            again.sort_by_key(|k| std::cmp::Reverse(k.level));
+            keys.extend(again);
         }
         keys
     }
@@ -565,6 +703,9 @@ impl App {
             }
         }
         for key in self.infsup_needed() {
+            if self.scene == Scene::Explore {
+                self.infsup_wanted.insert(key);
+            }
             if !self.infsup.contains_key(&key) && self.infsup_pending.insert(key) {
                 out.push(Command::InfSup(InfSupRequest {
                     generation: self.generation,

@@ -1,5 +1,7 @@
 //! `s` and `S`: the displayed solution as CSV (the CLI's `--format csv`) or its pressure chart
-//! as SVG ([`crate::plot`]) in a new file of the current directory. Never overwrites: the name
+//! as SVG ([`crate::plot`]) in a new file of the export directory (`--export-dir`, else the
+//! current directory), named after the scenario, element, rule, level, ε and depth. Never
+//! overwrites: the name
 //! is fresh, and each file is written to a temporary name and then linked into place, which
 //! fails if the name was taken meanwhile (see [`crate::plot::write_file`]).
 
@@ -15,14 +17,15 @@ use super::worker::Solved;
 /// How many numbered names to try before giving up.
 const MAX_TRIES: u32 = 1000;
 
-/// Write `solved` to `<scenario>-<element>-<rule>-L<level>[-N].csv` in `dir`; returns the path.
+/// Write `solved` to `<scenario>-<element>-<rule>-L<level>-eps<ε>-d<depth>[-N].csv` in `dir`;
+/// returns the path (absolute when `dir` is).
 pub fn export_csv(scenario: &Scenario, solved: &Solved, dir: &Path) -> Result<PathBuf, String> {
     let report = SolveReport::new(scenario, solved.key.level, &solved.disc, &solved.solution);
     save_fresh(dir, &stem(scenario, solved), "csv", report.csv().as_bytes())
 }
 
-/// Write the pressure chart of `solved` to `<scenario>-<element>-<rule>-L<level>[-N].svg` in
-/// `dir` (the CSV export's names); returns the path.
+/// Write the pressure chart of `solved` to `<…>[-N].svg` in `dir` (the CSV export's names);
+/// returns the path.
 pub fn export_svg(scenario: &Scenario, solved: &Solved, dir: &Path) -> Result<PathBuf, String> {
     let title = chart_title(
         &scenario.name,
@@ -34,14 +37,17 @@ pub fn export_svg(scenario: &Scenario, solved: &Solved, dir: &Path) -> Result<Pa
     save_fresh(dir, &stem(scenario, solved), "svg", svg.as_bytes())
 }
 
-/// `<scenario>-<element>-<rule>-L<level>`.
-fn stem(scenario: &Scenario, solved: &Solved) -> String {
+/// `<scenario>-<element>-<rule>-L<level>-eps<ε>-d<depth>`, e.g.
+/// `hertz-paper-q1-gauss1-L1-eps1e-6-d0.8`.
+pub fn stem(scenario: &Scenario, solved: &Solved) -> String {
     format!(
-        "{}-{}-{}-L{}",
+        "{}-{}-{}-L{}-eps{:e}-d{}",
         sanitize(&scenario.name),
         solved.key.element.name(),
         solved.solution.params.rule.name(),
-        solved.key.level
+        solved.key.level,
+        solved.key.epsilon,
+        solved.key.depth
     )
 }
 
@@ -56,7 +62,7 @@ fn save_fresh(dir: &Path, stem: &str, ext: &str, bytes: &[u8]) -> Result<PathBuf
         match write_file(&path, bytes, false) {
             Ok(()) => return Ok(path),
             Err(e) if e.kind() == ErrorKind::AlreadyExists => continue,
-            Err(e) => return Err(format!("{}: {e}", path.display())),
+            Err(e) => return Err(format!("{}: {e}", dir.display())),
         }
     }
     Err(format!("no free file name for {stem}.{ext} in {}", dir.display()))
@@ -66,7 +72,7 @@ fn save_fresh(dir: &Path, stem: &str, ext: &str, bytes: &[u8]) -> Result<PathBuf
 fn sanitize(name: &str) -> String {
     name.chars()
         .map(|c| {
-            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+            if c.is_ascii_alphanumeric() || c == '-' || c == '_' || c == '.' {
                 c
             } else {
                 '_'

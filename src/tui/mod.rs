@@ -9,12 +9,15 @@
 
 pub mod app;
 pub mod beta;
+pub mod eta;
 pub mod export;
 mod runtime;
 pub mod theme;
 pub mod tour;
 pub mod view;
 pub mod worker;
+
+use std::path::{Path, PathBuf};
 
 use ratatui::backend::TestBackend;
 use ratatui::buffer::{Buffer, CellWidth};
@@ -54,21 +57,30 @@ impl MarkerChoice {
     }
 }
 
-/// How the interactive app looks.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+/// How the interactive app looks, and where it exports.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct TuiOptions {
     pub marker: MarkerChoice,
     /// Monochrome (the environment's NO_COLOR is honoured as well).
     pub no_color: bool,
+    /// Where `s` and `S` write; the current directory when None.
+    pub export_dir: Option<PathBuf>,
+}
+
+impl TuiOptions {
+    /// The export directory, absolute (so that the status line names the file exactly).
+    pub fn export_dir(&self) -> std::io::Result<PathBuf> {
+        std::path::absolute(self.export_dir.as_deref().unwrap_or(Path::new(".")))
+    }
 }
 
 /// Run the interactive lab on `scenario` until the user quits.
-pub fn run(scenario: Scenario, opts: TuiOptions) -> std::io::Result<()> {
+pub fn run(scenario: Scenario, opts: &TuiOptions) -> std::io::Result<()> {
     let look = Look {
         theme: Theme::new(opts.no_color),
         marker: opts.marker.marker(),
     };
-    runtime::run(scenario, look)
+    runtime::run(scenario, look, opts.export_dir()?)
 }
 
 /// One frame of `scene` as plain text, solved synchronously with the given overrides of the
@@ -87,16 +99,15 @@ pub fn render_to_string(
     let names: Vec<&str> = Scene::ALL.iter().map(|s| s.name()).collect();
     let scene = Scene::from_name(scene)
         .ok_or_else(|| format!("unknown scene `{scene}`; scenes: {}", names.join(", ")))?;
-    if width == 0 || height == 0 {
-        return Err(format!("size {width}×{height} is empty"));
-    }
+    check_size(width, height)?;
     let mut app = App::new(scenario.clone());
     app.scene = scene;
     app.show_timing = false;
     if let Some(level) = level {
         if level > MAX_APP_LEVEL {
             return Err(format!(
-                "level {level} is out of range; allowed: 0..={MAX_APP_LEVEL}"
+                "level {level} is out of range; allowed: 0 to {MAX_APP_LEVEL} (the lab's levels: {})",
+                app::LEVEL_LIMIT_WHY
             ));
         }
         app.settings.level = level;
@@ -117,6 +128,48 @@ pub fn render_to_string(
         marker: Marker::Braille,
     };
     Ok(render_app(&app, &look, width, height))
+}
+
+/// The largest frame `riplab render` draws: a sane bound checked before anything is
+/// allocated (a 1000×500 buffer of cells is a few tens of MB).
+pub const MAX_SIZE: (u16, u16) = (1000, 500);
+
+/// The one size rule of the lab and `render`: at least [`view::MIN_SIZE`], at most [`MAX_SIZE`].
+pub fn check_size(width: impl Into<u32>, height: impl Into<u32>) -> Result<(), String> {
+    let (width, height) = (width.into(), height.into());
+    let (min, max) = (view::MIN_SIZE, MAX_SIZE);
+    let ok = (u32::from(min.0)..=u32::from(max.0)).contains(&width)
+        && (u32::from(min.1)..=u32::from(max.1)).contains(&height);
+    if ok {
+        Ok(())
+    } else {
+        Err(format!(
+            "size {width}x{height} is out of range; allowed: {}x{} to {}x{} (columns x rows)",
+            min.0, min.1, max.0, max.1
+        ))
+    }
+}
+
+/// `COLUMNSxROWS` (`x`, `X` or `×`) parsed and checked by [`check_size`].
+pub fn parse_size(text: &str) -> Result<(u16, u16), String> {
+    let bad = || {
+        format!(
+            "`{text}` is not a size; allowed: COLUMNSxROWS from {}x{} to {}x{}, e.g. 120x40 or 120×40",
+            view::MIN_SIZE.0,
+            view::MIN_SIZE.1,
+            MAX_SIZE.0,
+            MAX_SIZE.1
+        )
+    };
+    let (w, h) = text.split_once(['x', 'X', '×']).ok_or_else(bad)?;
+    // Parse wide (u32) so that 70000 is "out of range", not "not a size".
+    let (w, h): (u32, u32) = (
+        w.trim().parse().map_err(|_| bad())?,
+        h.trim().parse().map_err(|_| bad())?,
+    );
+    check_size(w, h)?;
+    // In range, hence within u16.
+    Ok((w as u16, h as u16))
 }
 
 /// `app` drawn on a `width`×`height` test terminal, as plain text.

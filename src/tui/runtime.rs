@@ -3,8 +3,9 @@
 //! when an update says the screen changed, inside synchronized-output brackets.
 
 use std::io;
-use std::path::Path;
-use std::sync::mpsc;
+use std::path::{Path, PathBuf};
+use std::sync::mpsc::{self, RecvTimeoutError};
+use std::time::Duration;
 
 use crossterm::event::Event;
 use crossterm::terminal::{BeginSynchronizedUpdate, EndSynchronizedUpdate};
@@ -48,30 +49,53 @@ pub(super) fn forward_terminal<T: Send + 'static>(
     Ok(())
 }
 
-/// Run the lab on `scenario` until the user quits; the terminal is restored in every case.
-pub fn run(scenario: Scenario, look: Look) -> io::Result<()> {
+/// How often the screen is redrawn while a long job shows its time left.
+pub(super) const TICK: Duration = Duration::from_millis(250);
+
+/// Run the lab on `scenario` until the user quits, exporting into `dir` (absolute); the
+/// terminal is restored in every case.
+pub fn run(scenario: Scenario, look: Look, dir: PathBuf) -> io::Result<()> {
     let mut terminal = ratatui::try_init()?;
-    let result = event_loop(&mut terminal, scenario, &look);
+    let result = event_loop(&mut terminal, scenario, &look, &dir);
     ratatui::restore();
     result
 }
 
-fn event_loop(terminal: &mut DefaultTerminal, scenario: Scenario, look: &Look) -> io::Result<()> {
+/// Wait for the next input: for ever, or at most one [`TICK`] when `tick` (then None).
+pub(super) fn next<T>(rx: &mpsc::Receiver<T>, tick: bool) -> Result<Option<T>, ()> {
+    if tick {
+        match rx.recv_timeout(TICK) {
+            Ok(input) => Ok(Some(input)),
+            Err(RecvTimeoutError::Timeout) => Ok(None),
+            Err(RecvTimeoutError::Disconnected) => Err(()),
+        }
+    } else {
+        rx.recv().map(Some).map_err(|_| ())
+    }
+}
+
+fn event_loop(terminal: &mut DefaultTerminal, scenario: Scenario, look: &Look, dir: &Path) -> io::Result<()> {
     let (tx, rx) = mpsc::channel::<Input>();
     let to_app = tx.clone();
     let worker = Worker::spawn(scenario.clone(), move |r| to_app.send(Input::Worker(r)).is_ok());
     forward_terminal(tx, Input::Terminal, Input::Broken)?;
 
     let mut app = App::new(scenario);
-    let mut redraw = apply(&mut app, &worker, Msg::Resize);
+    let mut redraw = apply(terminal, &mut app, &worker, Msg::Resize, dir)?;
     while !app.should_quit() {
         if redraw {
             draw(terminal, &app, look)?;
         }
-        // Block for one input, then take whatever else is queued before drawing again.
-        let Ok(first) = rx.recv() else { break };
+        // Block for one input (or a tick while a long job runs), then take whatever else is
+        // queued before drawing again.
+        let Ok(first) = next(&rx, app.wants_tick()) else {
+            break;
+        };
         redraw = false;
-        for input in std::iter::once(first).chain(std::iter::from_fn(|| rx.try_recv().ok())) {
+        if first.is_none() {
+            redraw |= apply(terminal, &mut app, &worker, Msg::Tick, dir)?;
+        }
+        for input in first.into_iter().chain(std::iter::from_fn(|| rx.try_recv().ok())) {
             let msg = match input {
                 Input::Terminal(Event::Key(key)) => Msg::Key(key),
                 Input::Terminal(Event::Resize(..)) => Msg::Resize,
@@ -79,7 +103,7 @@ fn event_loop(terminal: &mut DefaultTerminal, scenario: Scenario, look: &Look) -
                 Input::Worker(r) => Msg::Worker(r),
                 Input::Broken(e) => return Err(e),
             };
-            redraw |= apply(&mut app, &worker, msg);
+            redraw |= apply(terminal, &mut app, &worker, msg, dir)?;
             if app.should_quit() {
                 break;
             }
@@ -89,29 +113,56 @@ fn event_loop(terminal: &mut DefaultTerminal, scenario: Scenario, look: &Look) -
 }
 
 /// Update the app and carry out its commands; returns whether to redraw.
-fn apply(app: &mut App, worker: &Worker, msg: Msg) -> bool {
+fn apply(
+    terminal: &mut DefaultTerminal,
+    app: &mut App,
+    worker: &Worker,
+    msg: Msg,
+    dir: &Path,
+) -> io::Result<bool> {
     let effect = app.update(msg);
     let mut redraw = effect.redraw;
     for command in effect.commands {
         match command {
-            Command::Export => redraw |= apply(app, worker, export(app)),
+            Command::Export => redraw |= apply(terminal, app, worker, export(app, dir), dir)?,
+            Command::Suspend => {
+                suspend(terminal)?;
+                redraw = true;
+            }
             other => worker.send(&other),
         }
     }
-    redraw
+    Ok(redraw)
 }
 
-/// Carry out [`Command::Export`] in the current directory: the reply for the app.
-pub(super) fn export(app: &App) -> Msg {
+/// Ctrl-Z: restore the terminal, stop the process as the shell's Ctrl-Z would (SIGTSTP,
+/// sent by `kill`, std having no call for it), and take the terminal again once resumed.
+pub(super) fn suspend(terminal: &mut DefaultTerminal) -> io::Result<()> {
+    ratatui::restore();
+    let stopped = std::process::Command::new("kill")
+        .args(["-TSTP", &std::process::id().to_string()])
+        .status();
+    // Resumed: raw mode and the alternate screen again, on the same terminal (a new one, or
+    // `Terminal::clear`, would ask for the cursor position, whose reply the input thread would
+    // take); the screen is blank, so the next draw is diffed against a blank buffer.
+    crossterm::terminal::enable_raw_mode()?;
+    crossterm::execute!(
+        terminal.backend_mut(),
+        crossterm::terminal::EnterAlternateScreen,
+        crossterm::terminal::Clear(crossterm::terminal::ClearType::All)
+    )?;
+    terminal.swap_buffers();
+    stopped.map(|_| ())
+}
+
+/// Carry out [`Command::Export`] into `dir`: the reply for the app.
+pub(super) fn export(app: &App, dir: &Path) -> Msg {
     let result = match app.current() {
-        Some(solved) => {
-            let dir = Path::new(".");
-            match app.export_kind {
-                ExportKind::Csv => export_csv(&app.scenario, solved, dir),
-                ExportKind::Svg => export_svg(&app.scenario, solved, dir),
-            }
-            .map(|p| p.display().to_string())
+        Some(solved) => match app.export_kind {
+            ExportKind::Csv => export_csv(&app.scenario, solved, dir),
+            ExportKind::Svg => export_svg(&app.scenario, solved, dir),
         }
+        .map(|p| p.display().to_string()),
         None => Err("no solution to export".into()),
     };
     Msg::Exported(result)

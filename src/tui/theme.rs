@@ -28,19 +28,23 @@ impl Theme {
         Style::new().fg(self.ink(c))
     }
 
-    /// Raw pressure p.
-    pub fn raw(self) -> Style {
-        self.fg(Color::Yellow)
+    /// Raw pressure p (a dotted line).
+    pub fn raw_color(self) -> Color {
+        self.ink(Color::Yellow)
     }
-    /// Smoothed pressure p̄.
-    pub fn smooth(self) -> Style {
-        self.fg(Color::Cyan)
+    /// Smoothed pressure p̄ (a solid line).
+    pub fn smooth_color(self) -> Color {
+        self.ink(Color::Cyan)
     }
     /// The Hertz profile.
-    pub fn hertz(self) -> Style {
-        self.fg(Color::Magenta)
+    pub fn hertz_color(self) -> Color {
+        self.ink(Color::Magenta)
     }
     /// The gap overlay and other secondary lines.
+    pub fn faint_color(self) -> Color {
+        self.ink(Color::DarkGray)
+    }
+    /// Secondary text.
     pub fn faint(self) -> Style {
         self.fg(Color::DarkGray)
     }

@@ -16,13 +16,14 @@ use crate::scenario::Scenario;
 use crate::solve::{ContactParams, Discretization, Solution, solve_contact};
 
 use crate::solve::preset;
-use crate::study::convergence;
+use crate::study::{StudyRow, convergence};
 
 use super::app::{
     App, Command, InfSupKey, InfSupRequest, Msg, Progress, Response, SolveKey, SolveRequest, Study, StudyKey,
     StudyRequest,
 };
 use super::beta::{self, InfSup};
+use super::eta::Eta;
 
 /// How many discretisations (meshes with their factorisations) are kept at most…
 const CACHE_SIZE: usize = 4;
@@ -58,6 +59,8 @@ pub struct Engine {
     warm: Option<(u32, Element, Rule, Vec<f64>)>,
     /// The last study (a study takes seconds; a second app on the same engine reuses it).
     study: Option<Arc<Study>>,
+    /// How long builds take here (for the time left).
+    eta: Eta,
 }
 
 impl Engine {
@@ -67,7 +70,13 @@ impl Engine {
             cache: Vec::new(),
             warm: None,
             study: None,
+            eta: Eta::default(),
         }
+    }
+
+    /// The unknowns of the mesh at `level` for `element` (two per node, before the supports).
+    fn unknowns(&self, level: u32, element: Element) -> usize {
+        2 * self.scenario.mesh(level, element).n_nodes()
     }
 
     fn cached(&mut self, level: u32, element: Element) -> Option<Arc<Discretization>> {
@@ -85,7 +94,10 @@ impl Engine {
         if let Some(disc) = self.cached(level, element) {
             return Ok(disc);
         }
+        let t = Instant::now();
         let disc = Arc::new(Discretization::of(&self.scenario, level, element).map_err(|e| e.to_string())?);
+        self.eta
+            .record(self.unknowns(level, element), t.elapsed().as_secs_f64() * 1e3);
         self.cache.push((level, element, disc.clone()));
         let dofs = |cache: &[(u32, Element, Arc<Discretization>)]| -> usize {
             cache.iter().map(|(_, _, d)| d.n_dofs()).sum()
@@ -107,9 +119,15 @@ impl Engine {
         let generation = req.generation;
         let key = req.key;
         if self.cached(key.level, key.element).is_none() {
+            let unknowns = self.unknowns(key.level, key.element);
             report(Response::Progress {
                 generation,
-                progress: Progress::Assembling,
+                progress: Progress::Assembling {
+                    level: key.level,
+                    unknowns,
+                    started: Instant::now(),
+                    estimate_ms: self.eta.predict_ms(unknowns),
+                },
             });
         }
         let disc = match self.discretization(key.level, key.element) {
@@ -170,8 +188,9 @@ impl Engine {
     }
 
     /// The work–precision study of `key`: M1–M4 at levels 0..=max against the Q2 reference
-    /// one level finer, at the scenario's ε (fresh solves: the timings are comparable).
-    pub fn study(&mut self, key: &StudyKey) -> Result<Arc<Study>, String> {
+    /// one level finer, at the scenario's ε (fresh solves: the timings are comparable); each
+    /// stage (the reference, then each level) is announced to `report` with its estimate.
+    pub fn study(&mut self, key: &StudyKey, report: &mut dyn FnMut(Progress)) -> Result<Arc<Study>, String> {
         if let Some(study) = self.study.as_ref().filter(|s| s.key == *key) {
             return Ok(study.clone());
         }
@@ -181,18 +200,38 @@ impl Engine {
                 self.scenario.name, key.scenario
             ));
         }
+        // The reference: a Q2 build and an active-set solve of about the same cost (nothing
+        // when the cache holds it).
+        let unknowns = self.unknowns(key.reference_level(), Element::Q2);
+        report(Progress::Study {
+            level: None,
+            started: Instant::now(),
+            estimate_ms: 2.0 * self.eta.predict_ms(unknowns),
+        });
         let dir = crate::cache::default_dir();
         let (reference, _) = crate::cache::reference(&self.scenario, key.reference_level(), dir.as_deref())
             .map_err(|e| e.to_string())?;
         let schemes: Vec<(Element, Rule)> = (1..=4).filter_map(|m| preset(&format!("M{m}"))).collect();
-        let levels: Vec<u32> = (0..=key.max_level).collect();
-        let rows = convergence(
-            &self.scenario,
-            &reference,
-            &schemes,
-            &levels,
-            self.scenario.epsilon,
-        );
+        let mut rows = Vec::new();
+        for level in 0..=key.max_level {
+            // One Q1 and one Q2 build per level.
+            let unknowns = self.unknowns(level, Element::Q1) + self.unknowns(level, Element::Q2);
+            report(Progress::Study {
+                level: Some(level),
+                started: Instant::now(),
+                estimate_ms: self.eta.predict_ms(unknowns),
+            });
+            rows.extend(convergence(
+                &self.scenario,
+                &reference,
+                &schemes,
+                &[level],
+                self.scenario.epsilon,
+            ));
+        }
+        // M1–M4 in order, each by ascending level.
+        let order = |r: &StudyRow| schemes_index(&r.scheme);
+        rows.sort_by_key(|r| (order(r), r.level));
         let study = Arc::new(Study {
             key: key.clone(),
             rows,
@@ -206,6 +245,14 @@ impl Engine {
         let disc = self.discretization(key.level, key.element)?;
         beta::estimate(&disc, key.rule)
     }
+}
+
+/// The position of scheme `name` among M1–M4 (others last).
+fn schemes_index(name: &str) -> usize {
+    ["M1", "M2", "M3", "M4"]
+        .iter()
+        .position(|m| *m == name)
+        .unwrap_or(4)
 }
 
 /// A request to the worker thread.
@@ -240,7 +287,7 @@ impl Worker {
             Command::Solve(r) => Request::Solve(*r),
             Command::InfSup(r) => Request::InfSup(*r),
             Command::Study(r) => Request::Study(r.clone()),
-            Command::Export => return,
+            Command::Export | Command::Suspend => return,
         };
         let generation = match &request {
             Request::Solve(r) => r.generation,
@@ -286,9 +333,14 @@ fn run(mut engine: Engine, rx: &Receiver<Request>, latest: &AtomicU64, sink: &dy
             })
         } else if let Some(req) = study.take() {
             let stale = latest.load(Ordering::SeqCst) > req.generation;
+            let generation = req.generation;
             Response::Study {
-                generation: req.generation,
-                result: (!stale).then(|| engine.study(&req.key)),
+                generation,
+                result: (!stale).then(|| {
+                    engine.study(&req.key, &mut |progress| {
+                        sink(Response::StudyProgress { generation, progress });
+                    })
+                }),
                 key: req.key,
             }
         } else if let Some(req) = queue.pop_front() {
@@ -338,10 +390,10 @@ pub fn carry_out(app: &mut App, engine: &mut Engine, mut commands: Vec<Command>)
             },
             Command::Study(req) => Response::Study {
                 generation: req.generation,
-                result: Some(engine.study(&req.key)),
+                result: Some(engine.study(&req.key, &mut |_| {})),
                 key: req.key,
             },
-            Command::Export => continue,
+            Command::Export | Command::Suspend => continue,
         };
         commands.extend(app.update(Msg::Worker(response)).commands);
     }

@@ -147,7 +147,7 @@ impl Tour {
                 let max = App::new(self.scenario_of(i).clone()).max_depth();
                 if depth > max + 1e-12 {
                     return Err(format!(
-                        "{}: step {} (`{}`): depth {depth} is out of range for its scenario; allowed: 0..={max}",
+                        "{}: step {} (`{}`): depth {depth} is out of range for its scenario; allowed: 0 to {max}",
                         self.source,
                         i + 1,
                         step.title
@@ -335,6 +335,6 @@ pub fn auto_interval(seconds: f64) -> Result<Duration, String> {
     if seconds.is_finite() && (0.5..=3600.0).contains(&seconds) {
         Ok(Duration::from_secs_f64(seconds))
     } else {
-        Err(format!("{seconds} is out of range; allowed: 0.5..=3600 seconds"))
+        Err(format!("{seconds} is out of range; allowed: 0.5 to 3600 seconds"))
     }
 }

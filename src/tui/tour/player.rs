@@ -14,6 +14,7 @@ use super::super::app::{App, Command, InfSupKey, Msg};
 use super::super::beta::InfSup;
 use super::super::worker::Solved;
 use super::Tour;
+use super::view::caption_rows;
 
 /// Inf-sup estimates by key, as the lab holds them.
 type Estimates = HashMap<InfSupKey, Result<InfSup, String>>;
@@ -53,6 +54,10 @@ pub struct TourApp {
     pub show_help: bool,
     /// Show solve times (off for deterministic frames).
     pub show_timing: bool,
+    /// The first caption row shown (long captions scroll with ↑ and ↓).
+    pub caption_scroll: u16,
+    /// Whether the terminal is large enough for the tour (auto-advance pauses otherwise).
+    pub fits: bool,
     quit: bool,
     /// Recent solves, with their scenarios, for going back without solving again.
     solves: Vec<(Scenario, Arc<Solved>)>,
@@ -71,6 +76,8 @@ impl TourApp {
             auto,
             show_help: false,
             show_timing: true,
+            caption_scroll: 0,
+            fits: true,
             quit: false,
             solves: Vec::new(),
             estimates: Vec::new(),
@@ -98,9 +105,15 @@ impl TourApp {
     }
 
     /// Whether to advance by itself, the step having been shown for `elapsed`: in auto mode,
-    /// once the interval has passed and the step's numbers are on screen, except at the end.
+    /// once the interval has passed and the step's numbers are on screen, except at the end
+    /// and while the terminal is too small to show the step.
     pub fn auto_due(&self, elapsed: Duration) -> bool {
-        self.auto.is_some_and(|a| elapsed >= a) && !self.at_end() && !self.is_busy()
+        self.auto.is_some_and(|a| elapsed >= a) && !self.at_end() && !self.is_busy() && self.fits
+    }
+
+    /// The terminal is `width`×`height`: does the tour fit (see [`super::MIN_TOUR_SIZE`])?
+    pub fn set_size(&mut self, width: u16, height: u16) {
+        self.fits = width >= super::MIN_TOUR_SIZE.0 && height >= super::MIN_TOUR_SIZE.1;
     }
 
     /// Whether the lab's settings still are the step's (false once the user changed them).
@@ -132,20 +145,21 @@ impl TourApp {
                 if key.modifiers.contains(KeyModifiers::CONTROL) {
                     if matches!(key.code, KeyCode::Char('c' | 'C')) {
                         self.quit = true;
-                    }
-                    return TourEffect {
-                        redraw: self.quit,
-                        ..TourEffect::default()
-                    };
-                }
-                if self.show_help {
-                    self.show_help = false;
-                    if matches!(key.code, KeyCode::Esc | KeyCode::Char('?')) {
                         return TourEffect {
                             redraw: true,
                             ..TourEffect::default()
                         };
                     }
+                    // Ctrl-Z and the like are the lab's.
+                    return self.lab(Msg::Key(key));
+                }
+                if self.show_help {
+                    // Any key closes the help and does nothing else.
+                    self.show_help = false;
+                    return TourEffect {
+                        redraw: true,
+                        ..TourEffect::default()
+                    };
                 }
                 let last = self.tour.steps.len().saturating_sub(1);
                 match key.code {
@@ -168,6 +182,23 @@ impl TourApp {
                     }
                     KeyCode::Left | KeyCode::PageUp | KeyCode::Backspace => {
                         Some(self.index.saturating_sub(1))
+                    }
+                    KeyCode::Up => {
+                        self.caption_scroll = self.caption_scroll.saturating_sub(1);
+                        return TourEffect {
+                            redraw: true,
+                            ..TourEffect::default()
+                        };
+                    }
+                    KeyCode::Down => {
+                        // At most to the last row of the caption at the narrowest width.
+                        let caption = &self.tour.steps[self.index].caption;
+                        let rows = caption_rows(caption, super::MIN_TOUR_SIZE.0 - 2).len();
+                        self.caption_scroll = (self.caption_scroll + 1).min(rows.saturating_sub(1) as u16);
+                        return TourEffect {
+                            redraw: true,
+                            ..TourEffect::default()
+                        };
                     }
                     KeyCode::Home => Some(0),
                     KeyCode::End => Some(last),
@@ -215,6 +246,7 @@ impl TourApp {
         self.keep();
         let generation = self.app.generation + 1;
         self.index = index;
+        self.caption_scroll = 0;
         let mut app = self.tour.app(index);
         app.show_timing = self.show_timing;
         // Replies to the previous step's requests carry older generations: ignored.

@@ -3,6 +3,7 @@
 //! worker dropped, and the auto-advance clock.
 
 use std::io;
+use std::path::PathBuf;
 use std::sync::mpsc::{self, RecvTimeoutError, Sender};
 use std::time::{Duration, Instant};
 
@@ -13,7 +14,7 @@ use crate::scenario::Scenario;
 
 use super::super::TuiOptions;
 use super::super::app::{Command, Msg, Response};
-use super::super::runtime::{draw_with, export, forward_terminal};
+use super::super::runtime::{TICK, draw_with, export, forward_terminal, suspend};
 use super::super::theme::Theme;
 use super::super::view::Look;
 use super::super::worker::Worker;
@@ -31,7 +32,7 @@ enum Input {
 /// Run `tour` in the terminal until the user quits; with `auto` (seconds, 0.5..=3600) each
 /// step advances by itself that long after its numbers are on screen, stopping at the last.
 /// The terminal is restored in every case.
-pub fn run_tour(tour: Tour, opts: TuiOptions, auto: Option<f64>) -> io::Result<()> {
+pub fn run_tour(tour: Tour, opts: &TuiOptions, auto: Option<f64>) -> io::Result<()> {
     let auto = auto
         .map(auto_interval)
         .transpose()
@@ -40,8 +41,9 @@ pub fn run_tour(tour: Tour, opts: TuiOptions, auto: Option<f64>) -> io::Result<(
         theme: Theme::new(opts.no_color),
         marker: opts.marker.marker(),
     };
+    let dir = opts.export_dir()?;
     let mut terminal = ratatui::try_init()?;
-    let result = event_loop(&mut terminal, tour, auto, &look);
+    let result = event_loop(&mut terminal, tour, auto, &look, dir);
     ratatui::restore();
     result
 }
@@ -56,11 +58,13 @@ struct Session {
     tx: Sender<Input>,
     /// When the current step was shown.
     shown: Instant,
+    /// Where exports go (absolute).
+    dir: PathBuf,
 }
 
 impl Session {
     /// Update the tour and carry out its commands; returns whether to redraw.
-    fn apply(&mut self, msg: TourMsg) -> bool {
+    fn apply(&mut self, terminal: &mut DefaultTerminal, msg: TourMsg) -> io::Result<bool> {
         let effect = self.player.update(msg);
         let mut redraw = effect.redraw;
         if effect.step_changed {
@@ -74,19 +78,32 @@ impl Session {
         for command in effect.commands {
             match command {
                 Command::Export => {
-                    let reply = export(&self.player.app);
-                    redraw |= self.apply(TourMsg::Lab(reply));
+                    let reply = export(&self.player.app, &self.dir);
+                    redraw |= self.apply(terminal, TourMsg::Lab(reply))?;
+                }
+                Command::Suspend => {
+                    suspend(terminal)?;
+                    redraw = true;
                 }
                 other => self.worker.send(&other),
             }
         }
-        redraw
+        Ok(redraw)
     }
 
-    /// How long to wait for input: until the auto-advance is due, or for ever.
+    /// How long to wait for input: until the auto-advance is due, a tick while a long job
+    /// shows its time left, or for ever.
     fn wait(&self) -> Option<Duration> {
-        let auto = self.player.auto?;
-        (!self.player.at_end() && !self.player.is_busy()).then(|| auto.saturating_sub(self.shown.elapsed()))
+        let tick = self.player.app.wants_tick().then_some(TICK);
+        let auto = self
+            .player
+            .auto
+            .filter(|_| !self.player.at_end() && !self.player.is_busy() && self.player.fits);
+        let due = auto.map(|a| a.saturating_sub(self.shown.elapsed()));
+        match (tick, due) {
+            (Some(t), Some(d)) => Some(t.min(d)),
+            (t, d) => t.or(d),
+        }
     }
 }
 
@@ -101,6 +118,7 @@ fn event_loop(
     tour: Tour,
     auto: Option<Duration>,
     look: &Look,
+    dir: PathBuf,
 ) -> io::Result<()> {
     let (tx, rx) = mpsc::channel::<Input>();
     forward_terminal(tx.clone(), Input::Terminal, Input::Broken)?;
@@ -113,8 +131,11 @@ fn event_loop(
         epoch: 0,
         tx,
         shown: Instant::now(),
+        dir,
     };
-    let mut redraw = session.apply(TourMsg::Lab(Msg::Resize));
+    let size = terminal.size()?;
+    session.player.set_size(size.width, size.height);
+    let mut redraw = session.apply(terminal, TourMsg::Lab(Msg::Resize))?;
     while !session.player.should_quit() {
         if redraw {
             draw_with(terminal, |frame| view(&session.player, frame, look))?;
@@ -131,22 +152,33 @@ fn event_loop(
             },
         };
         redraw = false;
+        if first.is_none() {
+            redraw |= session.apply(terminal, TourMsg::Lab(Msg::Tick))?;
+        }
         for input in first.into_iter().chain(std::iter::from_fn(|| rx.try_recv().ok())) {
             let msg = match input {
                 Input::Terminal(Event::Key(key)) => Msg::Key(key),
-                Input::Terminal(Event::Resize(..)) => Msg::Resize,
+                Input::Terminal(Event::Resize(width, height)) => {
+                    let fitted = session.player.fits;
+                    session.player.set_size(width, height);
+                    if session.player.fits && !fitted {
+                        // Paused while too small: the step's time starts again.
+                        session.shown = Instant::now();
+                    }
+                    Msg::Resize
+                }
                 Input::Terminal(_) => continue,
                 Input::Worker(epoch, r) if epoch == session.epoch => Msg::Worker(r),
                 Input::Worker(..) => continue,
                 Input::Broken(e) => return Err(e),
             };
-            redraw |= session.apply(TourMsg::Lab(msg));
+            redraw |= session.apply(terminal, TourMsg::Lab(msg))?;
             if session.player.should_quit() {
                 return Ok(());
             }
         }
         if session.player.auto_due(session.shown.elapsed()) {
-            redraw |= session.apply(TourMsg::Auto);
+            redraw |= session.apply(terminal, TourMsg::Auto)?;
         }
     }
     Ok(())

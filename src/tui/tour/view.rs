@@ -2,34 +2,43 @@
 //! top of both; and [`render_step`], one step as plain text (for tests and documents).
 
 use ratatui::Frame;
-use ratatui::layout::{Alignment, Constraint, Flex, Layout, Rect};
+use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::symbols::Marker;
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Block, Paragraph, Wrap};
+use ratatui::widgets::Paragraph;
 
-use super::super::render_frame;
 use super::super::theme::Theme;
+use super::super::view::fmt::{title_fit, wrap_words};
 use super::super::view::help::key_popup;
-use super::super::view::{Look, MIN_SIZE as LAB_MIN, view_in};
+use super::super::view::{Look, view_in};
+use super::super::view::{MIN_AREA as LAB_MIN, centred_message};
 use super::super::worker::{Engine, carry_out};
+use super::super::{check_size, render_frame};
 use super::{Tour, TourApp};
 
-/// The smallest terminal that shows a step with a four-line caption unwrapped.
-pub const MIN_TOUR_SIZE: (u16, u16) = (100, 30);
+/// The smallest terminal the tour runs in: the lab's own minimum, its caption below the lab
+/// in the rows the lab leaves (scrolling when longer).
+pub const MIN_TOUR_SIZE: (u16, u16) = (80, 24);
 
 /// The tour's keys and what they do.
-const KEYS: [(&str, &str); 8] = [
+const KEYS: [(&str, &str); 11] = [
     ("Space  →  Enter", "next step (PageDown too)"),
     ("←  Backspace", "previous step (PageUp too)"),
     ("Home  End", "first / last step"),
-    ("q  Esc  Ctrl-C", "quit the tour (Esc first closes this help)"),
-    ("?", "show / hide this help"),
+    ("↑  ↓", "scroll a long caption"),
+    ("q  Esc  Ctrl-C", "quit the tour"),
+    ("?", "show this help (any key closes it)"),
     (
         "r e 1–4 + − d D",
         "the lab's keys work inside a step: rule, element,",
     ),
-    ("Tab g h a [ ]", "scheme, ε, depth, scene, overlays, level;"),
-    ("s  S", "CSV / SVG export. Coming back restores a step."),
+    (
+        "Tab g h a z [ ]",
+        "scheme, ε, depth, scene, overlays, zoom, level;",
+    ),
+    ("s  S", "CSV / SVG export (--export-dir; never overwrites)."),
+    ("0", "the scenario's settings; leaving and coming back"),
+    ("", "restores the step's. Ctrl-Z suspends."),
 ];
 
 /// Draw the tour into the whole frame.
@@ -38,94 +47,102 @@ pub fn view(tour: &TourApp, frame: &mut Frame, look: &Look) {
     let Some(step) = tour.tour.steps.get(tour.index()) else {
         return;
     };
-    let inner_width = area.width.saturating_sub(2).max(1);
-    let rows = wrapped_rows(&step.caption, usize::from(inner_width)) as u16 + 2;
-    if area.width < LAB_MIN.0 || area.height < LAB_MIN.1 + rows {
-        too_small(frame, area, LAB_MIN.1 + rows);
+    if area.width < MIN_TOUR_SIZE.0 || area.height < MIN_TOUR_SIZE.1 {
+        too_small(frame, area, tour, look.theme);
         return;
     }
-    let [lab, panel] = Layout::vertical([Constraint::Fill(1), Constraint::Length(rows)]).areas(area);
+    // The caption's rows: all of it if the lab keeps its minimum, else what is left.
+    let text = caption_rows(&step.caption, area.width - 2);
+    let room = area.height - LAB_MIN.1 - 1;
+    let rows = (text.len() as u16).min(room).max(1);
+    let [lab, panel] = Layout::vertical([Constraint::Fill(1), Constraint::Length(rows + 1)]).areas(area);
     view_in(&tour.app, frame, lab, look);
-    caption_panel(tour, frame, panel, look.theme);
+    caption_panel(tour, frame, panel, look.theme, &text);
     if tour.show_help {
         help(frame, area, look.theme);
     }
 }
 
-/// The caption of the current step in a frame titled with its number and title, the keys in
-/// the bottom border.
-fn caption_panel(tour: &TourApp, frame: &mut Frame, area: Rect, theme: Theme) {
+/// The caption as rows of at most `width` columns: as written when every line fits, else
+/// reflowed (a line joins the one before it unless it is indented) and wrapped at words.
+pub(super) fn caption_rows(caption: &str, width: u16) -> Vec<String> {
+    let width = usize::from(width);
+    if caption.lines().all(|l| l.chars().count() <= width) {
+        return caption.lines().map(str::to_string).collect();
+    }
+    let mut paragraphs: Vec<String> = Vec::new();
+    for line in caption.lines() {
+        match paragraphs.last_mut() {
+            Some(last) if !line.starts_with(' ') => {
+                last.push(' ');
+                last.push_str(line.trim());
+            }
+            _ => paragraphs.push(line.trim_end().to_string()),
+        }
+    }
+    wrap_words(&paragraphs.join("\n"), width)
+}
+
+/// The step's number and title, the keys, then the caption (wrapped; ↑ ↓ scroll it when it
+/// is longer than the rows it has).
+fn caption_panel(tour: &TourApp, frame: &mut Frame, area: Rect, theme: Theme, text: &[String]) {
     let n = tour.tour.steps.len();
     let i = tour.index();
     let Some(step) = tour.tour.steps.get(i) else {
         return;
     };
-    let title = Line::from(vec![
-        Span::styled(format!(" tour {}/{n} ", i + 1), theme.selected()),
-        Span::styled(format!(" {} ", step.title), theme.title()),
-    ]);
-    let mut keys = Vec::new();
+    let rows = usize::from(area.height.saturating_sub(1));
+    let scroll = usize::from(tour.caption_scroll).min(text.len().saturating_sub(rows));
+    let more_above = scroll > 0;
+    let more_below = scroll + rows < text.len();
+    let mut keys: Vec<Span> = Vec::new();
+    if more_above || more_below {
+        let arrows = match (more_above, more_below) {
+            (true, true) => "↑↓",
+            (true, false) => "↑",
+            _ => "↓",
+        };
+        keys.push(Span::styled(format!(" {arrows}"), theme.key()));
+        keys.push(Span::raw(" more "));
+    }
     if let Some(auto) = tour.auto {
         let what = if tour.at_end() {
             "auto: done".to_string()
         } else {
-            format!("auto every {} s", auto.as_secs_f64())
+            format!("auto {} s", auto.as_secs_f64())
         };
         keys.push(Span::styled(format!(" {what} "), theme.busy()));
     }
-    if !tour.at_end() {
+    if tour.at_end() {
+        keys.push(Span::raw(" end "));
+    } else {
         keys.push(Span::styled(" Space", theme.key()));
         keys.push(Span::raw(" next "));
-    } else {
-        keys.push(Span::raw(" end of the tour "));
-    }
-    if i > 0 {
-        keys.push(Span::styled(" ←", theme.key()));
-        keys.push(Span::raw(" back "));
     }
     keys.push(Span::styled(" ?", theme.key()));
     keys.push(Span::raw(" keys "));
-    keys.push(Span::styled(" q", theme.key()));
-    keys.push(Span::raw(" quit "));
-    let mut block = Block::bordered()
-        .border_style(theme.axis())
-        .title(title)
-        .title_bottom(Line::from(keys).alignment(Alignment::Right));
-    if !tour.is_pristine() {
-        block = block.title(
-            Line::styled(" changed: leave and come back to restore ", theme.faint())
-                .alignment(Alignment::Right),
-        );
-    }
-    let lines: Vec<Line> = step.caption.lines().map(Line::raw).collect();
+    let keys_width = Line::from(keys.clone()).width() as u16;
+    let changed = if tour.is_pristine() { "" } else { " (changed)" };
+    let head = format!(" tour {}/{n}{changed} ", i + 1);
+    let head_width = head.chars().count() as u16;
+    let title_room = area.width.saturating_sub(head_width + keys_width + 1);
+    let [top, body] = Layout::vertical([Constraint::Length(1), Constraint::Fill(1)]).areas(area);
+    let [left, right] = Layout::horizontal([Constraint::Fill(1), Constraint::Length(keys_width)]).areas(top);
     frame.render_widget(
-        Paragraph::new(lines).wrap(Wrap { trim: false }).block(block),
-        area,
+        Paragraph::new(Line::from(vec![
+            Span::styled(head, theme.selected()),
+            Span::styled(title_fit(&format!(" {} ", step.title), title_room), theme.title()),
+        ])),
+        left,
     );
-}
-
-/// How many rows `text` takes wrapped at word boundaries to `width` columns (a word longer
-/// than a row fills whole rows).
-fn wrapped_rows(text: &str, width: usize) -> usize {
-    let width = width.max(1);
-    text.lines()
-        .map(|line| {
-            let (mut rows, mut used) = (1, 0usize);
-            for word in line.split(' ') {
-                let w = word.chars().count();
-                if used > 0 && used + 1 + w <= width {
-                    used += 1 + w;
-                } else if used == 0 && w <= width {
-                    used = w;
-                } else {
-                    rows += usize::from(used > 0) + w.saturating_sub(1) / width;
-                    used = w - w.saturating_sub(1) / width * width;
-                }
-            }
-            rows
-        })
-        .sum::<usize>()
-        .max(1)
+    frame.render_widget(Paragraph::new(Line::from(keys)), right);
+    let lines: Vec<Line> = text
+        .iter()
+        .skip(scroll)
+        .take(rows)
+        .map(|l| Line::raw(format!(" {l}")))
+        .collect();
+    frame.render_widget(Paragraph::new(lines), body);
 }
 
 /// The tour's keys over the middle of `area`.
@@ -133,26 +150,18 @@ fn help(frame: &mut Frame, area: Rect, theme: Theme) {
     key_popup(frame, area, theme, " tour keys ", &KEYS, (74, 17));
 }
 
-/// The message shown instead of the tour in a terminal too small for it.
-fn too_small(frame: &mut Frame, area: Rect, rows: u16) {
-    let lines = vec![
-        Line::raw("the tour needs a bigger terminal"),
-        Line::raw(format!(
-            "this one is {}×{}; this step needs at least {}×{rows}",
-            area.width, area.height, LAB_MIN.0
-        )),
-        Line::raw("enlarge the window or make the font smaller (q quits)"),
-    ];
-    let height = (lines.len() as u16).min(area.height);
-    let [middle] = Layout::vertical([Constraint::Length(height)])
-        .flex(Flex::Center)
-        .areas(area);
-    frame.render_widget(
-        Paragraph::new(lines)
-            .alignment(Alignment::Center)
-            .wrap(Wrap { trim: true }),
-        middle,
+/// The message shown instead of the tour in a terminal too small for it, wrapped to fit.
+fn too_small(frame: &mut Frame, area: Rect, tour: &TourApp, theme: Theme) {
+    let paused = if tour.auto.is_some() {
+        "\nauto-advance paused until it fits"
+    } else {
+        ""
+    };
+    let text = format!(
+        "the tour needs a bigger terminal\nthis one is {}×{}; the tour needs at least {}×{}{paused}\nenlarge the window or make the font smaller (q quits)",
+        area.width, area.height, MIN_TOUR_SIZE.0, MIN_TOUR_SIZE.1
     );
+    centred_message(frame, area, &text, theme);
 }
 
 /// Step `index` of `tour` on a `width`×`height` test terminal as plain text, its lab solved
@@ -165,9 +174,7 @@ pub fn render_step(tour: &Tour, index: usize, width: u16, height: u16) -> Result
             tour.steps.len()
         ));
     }
-    if width == 0 || height == 0 {
-        return Err(format!("size {width}×{height} is empty"));
-    }
+    check_size(width, height)?;
     let mut player = TourApp::new(tour.clone(), None);
     player.show_timing = false;
     player.app.show_timing = false;

@@ -6,21 +6,23 @@ use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::{Color, Style};
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Axis, Block, Chart, Dataset, GraphType, LegendPosition, Paragraph, Wrap};
+use ratatui::widgets::{Block, Paragraph, Wrap};
 
 use crate::study::{Errors, Status, StudyRow};
 
 use super::super::app::{App, Study};
 use super::super::theme::Theme;
 use super::Look;
-use super::fmt::{log_labels, sig};
+use super::fmt::sig;
+use super::plot::{Axis, Plot, Scale, Series, Stroke};
 
-/// The schemes in the order of the legend, with their colours (as in the inf-sup scene).
-const SCHEMES: [(&str, Color); 4] = [
-    ("M1", Color::Red),
-    ("M2", Color::Yellow),
-    ("M3", Color::Green),
-    ("M4", Color::Blue),
+/// The schemes in the order of the legend, with their colours and glyphs (as in the
+/// inf-sup scene).
+const SCHEMES: [(&str, Color, char); 4] = [
+    ("M1", Color::Red, '1'),
+    ("M2", Color::Yellow, '2'),
+    ("M3", Color::Green, '3'),
+    ("M4", Color::Blue, '4'),
 ];
 /// The colour of M1's raw pressure (the dotted curve).
 const RAW_COLOR: Color = Color::Cyan;
@@ -42,7 +44,7 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
             let text = match other {
                 Some(Err(e)) => format!("the study failed: {e}"),
                 _ if app.study_pending() == Some(&key) => format!(
-                    "⟳ computing the reference (q2, level {}), then M1–M4 at levels 0..={}…",
+                    "⟳ computing the reference (q2, level {}), then M1–M4 at levels 0 to {}…",
                     key.reference_level(),
                     key.max_level
                 ),
@@ -82,37 +84,6 @@ fn points(rows: &[&StudyRow], error: fn(&Errors) -> f64) -> Vec<(f64, f64)> {
         .collect()
 }
 
-/// Points every few dots along the polyline through `pts`: a dotted line.
-fn dotted(pts: &[(f64, f64)], step: f64) -> Vec<(f64, f64)> {
-    let mut out = Vec::new();
-    for w in pts.windows(2) {
-        let (a, b) = (w[0], w[1]);
-        let len = ((b.0 - a.0).powi(2) + (b.1 - a.1).powi(2)).sqrt();
-        let n = (len / step).ceil().max(1.0) as usize;
-        out.extend((0..n).map(|i| {
-            let t = i as f64 / n as f64;
-            (a.0 + (b.0 - a.0) * t, a.1 + (b.1 - a.1) * t)
-        }));
-    }
-    out.extend(pts.last());
-    out
-}
-
-/// A cross of five dots (`dot` apart in x and y) at each of `pts`.
-fn cross(pts: &[(f64, f64)], dot: (f64, f64)) -> Vec<(f64, f64)> {
-    pts.iter()
-        .flat_map(|&(x, y)| {
-            [
-                (x, y),
-                (x - dot.0, y),
-                (x + dot.0, y),
-                (x, y - dot.1),
-                (x, y + dot.1),
-            ]
-        })
-        .collect()
-}
-
 /// Bounds on half decades around `values`, at least a decade wide.
 fn bounds(values: impl Iterator<Item = f64>) -> [f64; 2] {
     let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
@@ -130,99 +101,53 @@ fn bounds(values: impl Iterator<Item = f64>) -> [f64; 2] {
 }
 
 fn chart(frame: &mut Frame, area: Rect, look: &Look, study: &Study) {
-    let theme = look.theme;
     let of = |name: &str| -> Vec<&StudyRow> { study.rows.iter().filter(|r| r.scheme == name).collect() };
     let pbar: fn(&Errors) -> f64 = |e| e.pbar;
     let raw: fn(&Errors) -> f64 = |e| e.p;
-    let curves: Vec<Vec<(f64, f64)>> = SCHEMES.iter().map(|(name, _)| points(&of(name), pbar)).collect();
+    let curves: Vec<Vec<(f64, f64)>> = SCHEMES.iter().map(|(name, ..)| points(&of(name), pbar)).collect();
     let m1_raw = points(&of("M1"), raw);
     let all = || curves.iter().flatten().chain(&m1_raw);
     let xb = bounds(all().map(|p| p.0));
     let yb = bounds(all().map(|p| p.1));
-    // A dot about every second braille column.
-    let step = (xb[1] - xb[0]) / f64::from(area.width.max(8) - 6);
-    let m1_dotted = dotted(&m1_raw, step);
-
-    let mut datasets = Vec::new();
-    let raw_style = Style::new().fg(theme.ink(RAW_COLOR));
-    datasets.push(
-        Dataset::default()
-            .name("M1 p (raw)")
-            .marker(look.marker)
-            .graph_type(GraphType::Scatter)
-            .style(raw_style)
-            .data(&m1_dotted),
-    );
-    for ((name, color), pts) in SCHEMES.iter().zip(&curves) {
-        let style = Style::new().fg(theme.ink(*color));
-        datasets.push(
-            Dataset::default()
-                .name(format!("{name} p̄"))
-                .marker(look.marker)
-                .graph_type(GraphType::Line)
-                .style(style)
-                .data(pts),
-        );
+    let mut series = vec![Series {
+        name: "M1 p (raw)".into(),
+        color: RAW_COLOR,
+        stroke: Stroke::Dotted,
+        glyph: Some('r'),
+        data: &m1_raw,
+    }];
+    for ((name, color, glyph), pts) in SCHEMES.iter().zip(&curves) {
+        series.push(Series {
+            name: format!("{name} p̄"),
+            color: *color,
+            stroke: Stroke::Solid,
+            glyph: Some(*glyph),
+            data: pts,
+        });
     }
-    // The levels as small crosses of dots on the same grid as the lines, drawn last.
-    let inner = (
-        area.width.saturating_sub(9).max(1),
-        area.height.saturating_sub(4).max(1),
-    );
-    let dot = (
-        (xb[1] - xb[0]) / f64::from(inner.0 * 2),
-        (yb[1] - yb[0]) / f64::from(inner.1 * 4),
-    );
-    let crosses: Vec<Vec<(f64, f64)>> = curves
-        .iter()
-        .chain([&m1_raw])
-        .map(|pts| cross(pts, dot))
-        .collect();
-    for ((_, color), pts) in SCHEMES.iter().zip(&crosses) {
-        datasets.push(
-            Dataset::default()
-                .marker(look.marker)
-                .graph_type(GraphType::Scatter)
-                .style(Style::new().fg(theme.ink(*color)))
-                .data(pts),
-        );
+    Plot {
+        title: format!(
+            " work–precision: relative error of p̄ against solve time (log-log){} ",
+            study
+                .rows
+                .first()
+                .map_or(String::new(), |r| format!(" · the scenario's ε={:e}", r.epsilon))
+        ),
+        x: Axis {
+            title: "solve ms".into(),
+            bounds: xb,
+            scale: Scale::Log10,
+        },
+        y: Axis {
+            title: "error".into(),
+            bounds: yb,
+            scale: Scale::Log10,
+        },
+        series,
+        marker: look.marker,
+        theme: look.theme,
     }
-    datasets.push(
-        Dataset::default()
-            .marker(look.marker)
-            .graph_type(GraphType::Scatter)
-            .style(raw_style)
-            .data(&crosses[SCHEMES.len()]),
-    );
-    let x_labels = if area.width >= 100 { 7 } else { 4 };
-    let y_labels = if area.height >= 16 { 5 } else { 3 };
-    let chart = Chart::new(datasets)
-        .block(
-            Block::bordered()
-                .title(Span::styled(
-                    " work–precision: relative error of p̄ against solve time (log-log, + a level) ",
-                    theme.title(),
-                ))
-                .border_style(theme.axis()),
-        )
-        .x_axis(
-            Axis::default()
-                .title("ms")
-                .style(theme.axis())
-                .bounds(xb)
-                .labels(log_labels(xb[0], xb[1], x_labels)),
-        )
-        .y_axis(
-            Axis::default()
-                .title("error")
-                .style(theme.axis())
-                .bounds(yb)
-                .labels(log_labels(yb[0], yb[1], y_labels)),
-        )
-        // Cheap and coarse is top left, fine and costly bottom right: the top right is free.
-        .legend_position(Some(LegendPosition::TopRight))
-        .hidden_legend_constraints((Constraint::Ratio(1, 2), Constraint::Ratio(3, 4)));
-    frame.render_widget(chart, area);
+    .render(frame, area);
 }
 
 fn table(frame: &mut Frame, area: Rect, theme: Theme, study: &Study, levels: &[u32]) {
@@ -234,8 +159,8 @@ fn table(frame: &mut Frame, area: Rect, theme: Theme, study: &Study, levels: &[u
     for r in study.rows.iter().filter(|r| levels.contains(&r.level)) {
         let color = SCHEMES
             .iter()
-            .find(|(name, _)| *name == r.scheme)
-            .map_or(Color::Reset, |(_, c)| *c);
+            .find(|(name, ..)| *name == r.scheme)
+            .map_or(Color::Reset, |(_, c, _)| *c);
         let numbers = match (&r.errors, r.solve_ms, r.status) {
             (Some(e), Some(ms), Status::Ok) => format!(
                 " {:>2} {:>7} {:>8} {:>9} {:>9} {:>9}",
@@ -255,8 +180,8 @@ fn table(frame: &mut Frame, area: Rect, theme: Theme, study: &Study, levels: &[u
     }
     let max = study.key.max_level;
     let shown = match levels {
-        [first, ..] if *first == max => format!(" · rows: level {max} (chart: 0..={max})"),
-        [first, ..] if *first > 0 => format!(" · rows: levels {first}..={max} (chart: 0..={max})"),
+        [first, ..] if *first == max && max > 0 => format!(" · rows: level {max} (chart: 0 to {max})"),
+        [first, ..] if *first > 0 => format!(" · rows: levels {first} to {max} (chart: 0 to {max})"),
         _ => String::new(),
     };
     let title = format!(

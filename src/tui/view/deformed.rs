@@ -14,7 +14,8 @@ use crate::contact::Obstacle;
 use super::super::app::App;
 use super::super::worker::Solved;
 use super::Look;
-use super::fmt::sig;
+use super::fmt::{sig, title_fit};
+use super::zone::zoom_range;
 
 /// How much of the body to show.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -46,7 +47,7 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look, extent: Ext
     let (xb, yb) = window(app, solved, extent, cols, rows);
     let u = &solved.displacement;
     let scale = magnification(u, app.scenario.height);
-    let mesh_lines = mesh_lines(
+    let (mesh_lines, thinned) = mesh_lines(
         solved,
         u,
         scale,
@@ -61,17 +62,30 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look, extent: Ext
         xb,
         look.theme.obstacle(),
     );
+    let thin = if thinned > 1 {
+        format!(" · 1/{thinned} grid lines")
+    } else {
+        String::new()
+    };
+    let zoom = if app.zoom && extent == Extent::NearContact {
+        " · zoom"
+    } else {
+        ""
+    };
     let label = match extent {
-        Extent::NearContact => format!(" contact zone · ×{} ", sig(scale, 2)),
+        Extent::NearContact => format!(" contact zone{zoom} · ×{}{thin} ", sig(scale, 2)),
         Extent::Full => format!(
-            " {title} · {}+{} level {} · displacement ×{} ",
+            " deformed · {}+{} level {} · u ×{}{thin} ",
             solved.key.element.name(),
             solved.key.rule.name(),
             solved.key.level,
             sig(scale, 2)
         ),
     };
-    let block = block.title(Span::styled(label, look.theme.title()));
+    let block = block.title(Span::styled(
+        title_fit(&label, area.width.saturating_sub(2)),
+        look.theme.title(),
+    ));
     let canvas = Canvas::default()
         .block(block)
         .marker(look.marker)
@@ -106,13 +120,25 @@ fn window(app: &App, solved: &Solved, extent: Extent, cols: f64, rows: f64) -> (
         }
         Extent::NearContact => {
             let obstacle = &solved.solution.params.obstacle;
-            let center = obstacle.center();
-            let reach = obstacle
-                .contact_extent(xlo, xhi)
-                .map_or(0.0, |(lo, hi)| (hi - center).max(center - lo));
-            let half_width = (1.6 * reach)
-                .max(4.0 * s.h(solved.key.level))
-                .min(0.5 * (xhi - xlo));
+            let zoomed = if app.zoom {
+                zoom_range(solved, s.half_model, (xlo, xhi))
+            } else {
+                None
+            };
+            let (center, half_width) = match zoomed {
+                // The contact zone with its margin, as the zoomed pressure chart shows it.
+                Some([a, b]) => (0.5 * (a + b), 0.5 * (b - a)),
+                None => {
+                    let center = obstacle.center();
+                    let reach = obstacle
+                        .contact_extent(xlo, xhi)
+                        .map_or(0.0, |(lo, hi)| (hi - center).max(center - lo));
+                    let half_width = (1.6 * reach)
+                        .max(4.0 * s.h(solved.key.level))
+                        .min(0.5 * (xhi - xlo));
+                    (center, half_width)
+                }
+            };
             let yr = 2.0 * half_width * aspect;
             (
                 [center - half_width, center + half_width],
@@ -138,7 +164,8 @@ fn magnification(u: &[f64], height: f64) -> f64 {
 }
 
 /// The deformed grid lines, every `k`-th vertex line so that a cell spans at least two
-/// terminal columns and one row, each line through every node (curved for Q2), mirrored for a half model.
+/// terminal columns and one row, each line through every node (curved for Q2), mirrored for
+/// a half model; and `k`.
 fn mesh_lines(
     solved: &Solved,
     u: &[f64],
@@ -147,7 +174,7 @@ fn mesh_lines(
     (xb, yb): ([f64; 2], [f64; 2]),
     (cols, rows): (f64, f64),
     color: Color,
-) -> Vec<Line> {
+) -> (Vec<Line>, usize) {
     let mesh = &solved.disc.mesh;
     let p = mesh.element.order();
     let h = mesh.h();
@@ -184,7 +211,7 @@ fn mesh_lines(
             }
         }
     }
-    lines
+    (lines, k)
 }
 
 /// The obstacle's lower outline over the window, as line segments.

@@ -1,5 +1,4 @@
-//! Number formatting and axis labels (ratatui spaces labels evenly between the bounds, so
-//! they are generated from the bounds).
+//! Number formatting and titles that fit.
 
 /// `x` to `digits` significant digits, trailing zeros trimmed; scientific outside [1e-3, 1e5).
 pub fn sig(x: f64, digits: usize) -> String {
@@ -28,19 +27,57 @@ fn trim(s: &str) -> &str {
     }
 }
 
-/// `n` labels evenly spaced over `[lo, hi]`.
-pub fn linear_labels(lo: f64, hi: f64, n: usize) -> Vec<String> {
-    evenly(lo, hi, n).map(|v| sig(v, 3)).collect()
+/// `text` cut to `width` characters, ending with "…" when cut (block titles).
+pub fn title_fit(text: &str, width: u16) -> String {
+    let width = usize::from(width);
+    if text.chars().count() <= width {
+        return text.to_string();
+    }
+    let mut out: String = text.chars().take(width.saturating_sub(2)).collect();
+    // At the last word boundary when there is one in the second half.
+    if let Some(space) = out.trim_end().rfind(' ')
+        && out[..space].chars().count() > width / 2
+    {
+        out.truncate(space);
+    }
+    out = out.trim_end().to_string();
+    out.push_str("… ");
+    out
 }
 
-/// `n` labels evenly spaced over `[lo, hi]` in log10, showing 10^v.
-pub fn log_labels(lo: f64, hi: f64, n: usize) -> Vec<String> {
-    evenly(lo, hi, n).map(|v| sig(10f64.powf(v), 2)).collect()
-}
-
-fn evenly(lo: f64, hi: f64, n: usize) -> impl Iterator<Item = f64> {
-    let n = n.max(2);
-    (0..n).map(move |i| lo + (hi - lo) * i as f64 / (n - 1) as f64)
+/// `text` wrapped at spaces to lines of at most `width` characters (a longer word is split);
+/// the text's own line breaks are kept.
+pub fn wrap_words(text: &str, width: usize) -> Vec<String> {
+    let width = width.max(1);
+    let mut out = Vec::new();
+    for line in text.lines() {
+        let mut current = String::new();
+        for word in line.split(' ') {
+            let mut word: String = word.to_string();
+            loop {
+                let (cw, ww) = (current.chars().count(), word.chars().count());
+                if cw > 0 && cw + 1 + ww <= width {
+                    current.push(' ');
+                    current.push_str(&word);
+                    break;
+                }
+                if cw == 0 && ww <= width {
+                    current = word;
+                    break;
+                }
+                if cw > 0 {
+                    out.push(std::mem::take(&mut current));
+                    continue;
+                }
+                // A word longer than a line: split it.
+                let head: String = word.chars().take(width).collect();
+                word = word.chars().skip(width).collect();
+                out.push(head);
+            }
+        }
+        out.push(current);
+    }
+    out
 }
 
 pub use crate::plot::nice_ceil;
@@ -57,6 +94,11 @@ mod tests {
         assert_eq!(sig(0.5, 3), "0.5");
         assert_eq!(sig(-8.0, 3), "-8");
         assert_eq!(nice_ceil(11.0), 12.0);
-        assert_eq!(linear_labels(-8.0, 8.0, 5), ["-8", "-4", "0", "4", "8"]);
+        assert_eq!(title_fit(" a long title ", 8), " a lon… ");
+        assert_eq!(title_fit(" a long title here ", 16), " a long title… ");
+        assert_eq!(title_fit(" short ", 8), " short ");
+        assert_eq!(wrap_words("one two three", 7), ["one two", "three"]);
+        assert_eq!(wrap_words("abcdefghij", 4), ["abcd", "efgh", "ij"]);
+        assert_eq!(wrap_words("a\nb c", 9), ["a", "b c"]);
     }
 }

@@ -9,20 +9,15 @@ use crate::solve::scheme_name;
 
 use super::super::app::{App, Scene};
 use super::super::theme::Theme;
-use super::fmt::sig;
+use super::fmt::{sig, title_fit};
 
 pub fn render(app: &App, frame: &mut Frame, area: Rect, theme: Theme) {
     let [first, second] = Layout::vertical([Constraint::Length(1), Constraint::Length(1)]).areas(area);
-    let title = Line::from(vec![
-        Span::styled(" riplab ", theme.selected()),
-        Span::raw(" "),
-        Span::styled(app.scenario.name.clone(), theme.title()),
-        Span::raw(if app.scenario.half_model {
-            " (half model, mirrored)"
-        } else {
-            " (full model)"
-        }),
-    ]);
+    let model = if app.scenario.half_model {
+        " (half model, mirrored)"
+    } else {
+        " (full model)"
+    };
     let mut tabs = Vec::new();
     for scene in Scene::ALL {
         let style = if scene == app.scene {
@@ -36,6 +31,14 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, theme: Theme) {
     let tabs_width = Line::from(tabs.clone()).width() as u16;
     let [left, right] =
         Layout::horizontal([Constraint::Fill(1), Constraint::Length(tabs_width)]).areas(first);
+    // A long name ends with "…" rather than running under the tabs.
+    let room = left.width.saturating_sub(9);
+    let name = format!("{}{model}", app.scenario.name);
+    let title = Line::from(vec![
+        Span::styled(" riplab ", theme.selected()),
+        Span::raw(" "),
+        Span::styled(title_fit(&name, room), theme.title()),
+    ]);
     frame.render_widget(Paragraph::new(title), left);
     frame.render_widget(
         Paragraph::new(Line::from(tabs)).alignment(Alignment::Right),

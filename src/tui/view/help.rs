@@ -8,22 +8,25 @@ use ratatui::widgets::{Block, Clear, Paragraph};
 use super::super::theme::Theme;
 
 /// Every key and what it does.
-pub const KEYS: [(&str, &str); 15] = [
-    ("q  Esc  Ctrl-C", "quit (Esc first closes this help)"),
-    ("?", "show / hide this help"),
-    ("←  →   [  ]", "coarser / finer mesh level (0–6)"),
-    ("r", "next contact rule"),
+pub const KEYS: [(&str, &str); 18] = [
+    ("q  Esc  Ctrl-C", "quit"),
+    ("?", "this help (any key closes it)"),
+    ("←  →   [  ]", "coarser / finer mesh level (0 to 6)"),
     ("1 2 3 4", "the paper's schemes M1–M4"),
-    ("e", "next element (q1, q2, p1)"),
-    ("+  -", "ε × 10 / ε ÷ 10"),
+    ("r  e", "next contact rule / element (q1, q2, p1)"),
+    ("+  -", "ε × 10 / ε ÷ 10 (1e-14 to 1e2)"),
     ("d  D", "depth − 0.1 / + 0.1"),
     ("Tab  Shift-Tab", "next / previous scene"),
-    ("g", "gap overlay on the pressure chart"),
-    ("h", "Hertz overlay (for the computed load)"),
+    ("g  h", "gap / Hertz overlay on the pressure chart"),
+    ("z", "zoom to the contact zone (p̄ > 0) and back"),
     ("a", "inf-sup at every level up to this one"),
-    ("s", "export the solution as CSV (a new file)"),
-    ("S", "export the pressure chart as SVG (new file)"),
-    ("", "any other key closes this help"),
+    ("s  S", "export CSV / SVG (a new file, ε and d in"),
+    ("", "its name; --export-dir sets where)"),
+    ("0", "reset to the scenario's settings"),
+    ("Ctrl-Z", "suspend (fg resumes)"),
+    ("", "p, p̄ and E share a unit; x is in units of"),
+    ("", "length; load P = ∫p over Γ_C (per unit"),
+    ("", "thickness; full: both halves)"),
 ];
 
 pub fn render(frame: &mut Frame, area: Rect, theme: Theme) {

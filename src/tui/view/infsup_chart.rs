@@ -6,7 +6,7 @@ use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::{Color, Style};
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Axis, Block, Chart, Dataset, GraphType, LegendPosition, Paragraph};
+use ratatui::widgets::{Block, Paragraph};
 
 use crate::contact::Rule;
 use crate::mesh::Element;
@@ -16,8 +16,9 @@ use super::super::app::{App, InfSupKey, MAX_APP_LEVEL};
 use super::super::beta::InfSup;
 use super::super::theme::Theme;
 use super::Look;
-use super::fmt::{log_labels, sig};
-use super::infsup_panel::{estimates, trend};
+use super::fmt::sig;
+use super::infsup_panel::{estimates, hidden_rows, trend, visible};
+use super::plot::{self, Axis, Plot, Scale, Stroke};
 
 /// One curve: a scheme and which pressure (raw β or smoothed β̄).
 struct Series {
@@ -26,6 +27,8 @@ struct Series {
     rule: Rule,
     pick: fn(&InfSup) -> f64,
     color: Color,
+    /// The glyph at each level (the scheme's digit): apart without colour.
+    glyph: char,
 }
 
 fn series() -> Vec<Series> {
@@ -33,11 +36,11 @@ fn series() -> Vec<Series> {
     let smooth: fn(&InfSup) -> f64 = |b| b.beta_bar_over_sqrt_h;
     let scheme = |m: &str| preset(m).expect("the paper's presets exist");
     let mut out = Vec::new();
-    for (label, color) in [
-        ("M1", Color::Red),
-        ("M2", Color::Yellow),
-        ("M3", Color::Green),
-        ("M4", Color::Blue),
+    for (label, color, glyph) in [
+        ("M1", Color::Red, '1'),
+        ("M2", Color::Yellow, '2'),
+        ("M3", Color::Green, '3'),
+        ("M4", Color::Blue, '4'),
     ] {
         let (element, rule) = scheme(label);
         out.push(Series {
@@ -46,6 +49,7 @@ fn series() -> Vec<Series> {
             rule,
             pick: raw,
             color,
+            glyph,
         });
     }
     let (element, rule) = scheme("M1");
@@ -55,6 +59,7 @@ fn series() -> Vec<Series> {
         rule,
         pick: smooth,
         color: Color::Cyan,
+        glyph: '*',
     });
     out
 }
@@ -80,7 +85,6 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
 }
 
 fn chart(app: &App, frame: &mut Frame, area: Rect, look: &Look, all: &[Series]) {
-    let theme = look.theme;
     let h_of = |level: u32| app.scenario.h(level).log10();
     let xb = [h_of(MAX_APP_LEVEL), h_of(0)];
     let data: Vec<Vec<(f64, f64)>> = all
@@ -110,68 +114,53 @@ fn chart(app: &App, frame: &mut Frame, area: Rect, look: &Look, all: &[Series]) 
     } else {
         [-1.0, 1.0]
     };
-    let mut datasets = Vec::new();
-    for (s, pts) in all.iter().zip(&data) {
-        let style = Style::new().fg(theme.ink(s.color));
-        datasets.push(
-            Dataset::default()
-                .name(s.label)
-                .marker(look.marker)
-                .graph_type(GraphType::Line)
-                .style(style)
-                .data(pts),
-        );
-        // The points themselves, so that a single level shows too.
-        datasets.push(
-            Dataset::default()
-                .marker(look.marker)
-                .graph_type(GraphType::Scatter)
-                .style(style)
-                .data(pts),
-        );
+    let series = all
+        .iter()
+        .zip(&data)
+        .map(|(s, pts)| plot::Series {
+            // A kernel's β_h = 0 has no place on a log axis: the legend says so.
+            name: if pts.is_empty() && !estimates(app, s.element, s.rule).is_empty() {
+                format!("{} β=0, kernel", s.label)
+            } else {
+                s.label.into()
+            },
+            color: s.color,
+            stroke: Stroke::Solid,
+            glyph: Some(s.glyph),
+            data: pts,
+        })
+        .collect();
+    Plot {
+        title: " β_h/√h against h (log-log; 1–4: M1–M4, *: M1's p̄) ".into(),
+        x: Axis {
+            title: "h (length)".into(),
+            bounds: xb,
+            scale: Scale::Log10,
+        },
+        y: Axis {
+            title: "β/√h".into(),
+            bounds: yb,
+            scale: Scale::Log10,
+        },
+        series,
+        marker: look.marker,
+        theme: look.theme,
     }
-    let x_labels = if area.width >= 100 {
-        MAX_APP_LEVEL as usize + 1
-    } else {
-        4
-    };
-    let y_labels = if area.height >= 16 { 5 } else { 3 };
-    let chart = Chart::new(datasets)
-        .block(
-            Block::bordered()
-                .title(Span::styled(" β_h/√h against h (log-log) ", theme.title()))
-                .border_style(theme.axis()),
-        )
-        .x_axis(
-            Axis::default()
-                .title("h")
-                .style(theme.axis())
-                .bounds(xb)
-                .labels(log_labels(xb[0], xb[1], x_labels)),
-        )
-        .y_axis(
-            Axis::default()
-                .title("β/√h")
-                .style(theme.axis())
-                .bounds(yb)
-                .labels(log_labels(yb[0], yb[1], y_labels)),
-        )
-        // The curves start at the coarse (right) end: keep the legend out of their way.
-        .legend_position(Some(LegendPosition::BottomLeft))
-        .hidden_legend_constraints((Constraint::Ratio(1, 2), Constraint::Ratio(3, 4)));
-    frame.render_widget(chart, area);
+    .render(frame, area);
 }
 
 fn table(app: &App, frame: &mut Frame, area: Rect, theme: Theme, all: &[Series], levels: &[u32]) {
-    let mut head = format!("{:>2} {:>7}", "L", "h");
+    let mut head = format!(" {:>2} {:>7}", "L", "h");
     for s in all {
         head.push_str(&format!(" {:>8}", s.label));
     }
     let mut lines = vec![Line::styled(head, theme.title())];
     let mut first_error: Option<&str> = None;
     let rows = area.height.saturating_sub(5) as usize;
-    for &level in &levels[levels.len().saturating_sub(rows)..] {
-        let mut row = format!("{level:>2} {:>7}", sig(app.scenario.h(level), 4));
+    let shown = visible(levels, app.settings.level, rows);
+    for &level in shown {
+        let mark = if level == app.settings.level { '▸' } else { ' ' };
+        let mut row = format!("{mark}{level:>2} {:>7}", sig(app.scenario.h(level), 4));
         for s in all {
             let k = InfSupKey {
                 level,
@@ -197,7 +186,7 @@ fn table(app: &App, frame: &mut Frame, area: Rect, theme: Theme, all: &[Series],
         };
         lines.push(Line::styled(row, style));
     }
-    let mut marks = vec![Span::raw(format!("{:>10}", "trend"))];
+    let mut marks = vec![Span::raw(format!("{:>11}", "trend"))];
     for s in all {
         let (text, style) = match trend(app, s.element, s.rule, s.pick) {
             Some(true) => ("✓", theme.good()),
@@ -218,7 +207,10 @@ fn table(app: &App, frame: &mut Frame, area: Rect, theme: Theme, all: &[Series],
     frame.render_widget(
         Paragraph::new(lines).block(
             Block::bordered()
-                .title(Span::styled(" β_h/√h (raw) and β̄_h/√h (M1 p̄) ", theme.title()))
+                .title(Span::styled(
+                    format!(" β_h/√h (raw) and β̄_h/√h (M1 p̄){} ", hidden_rows(levels, shown)),
+                    theme.title(),
+                ))
                 .border_style(theme.axis()),
         ),
         area,

@@ -23,29 +23,45 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, theme: Theme) {
     let scheme = scheme_name(key.element, key.rule)
         .map(|m| format!("{m} "))
         .unwrap_or_default();
-    let title = format!(" inf-sup · {scheme}{}+{} ", key.element.name(), key.rule.name());
+    let levels = computed_levels(app, key.element, key.rule);
+    let rows = area.height.saturating_sub(4) as usize; // borders, header, verdict
+    let shown = visible(&levels, key.level, rows);
+    let title = format!(
+        " inf-sup · {scheme}{}+{}{} ",
+        key.element.name(),
+        key.rule.name(),
+        hidden_rows(&levels, shown)
+    );
     let mut lines = vec![Line::styled(
         format!(
-            "{:>2} {:>7} {:>9} {:>9} {:>9}",
+            " {:>2} {:>6} {:>9} {:>9} {:>9}",
             "L", "h", "β_h", "β_h/√h", "β̄_h/√h"
         ),
         theme.title(),
     )];
-    let rows = area.height.saturating_sub(4) as usize; // borders, header, verdict
-    let levels = computed_levels(app, key.element, key.rule);
-    let skip = levels.len().saturating_sub(rows);
-    for &level in &levels[skip..] {
+    for &level in shown {
         let k = InfSupKey { level, ..key };
+        let mark = if level == key.level { '▸' } else { ' ' };
         let text = match app.infsup.get(&k) {
+            Some(Ok(b)) if b.kernel.is_some() => format!(
+                "{mark}{level:>2} {:>6} {:>9} {:>9} {:>9}",
+                sig(b.h, 3),
+                "kernel",
+                "kernel",
+                sig(b.beta_bar_over_sqrt_h, 3)
+            ),
             Some(Ok(b)) => format!(
-                "{level:>2} {:>7} {:>9} {:>9} {:>9}",
-                sig(b.h, 4),
+                "{mark}{level:>2} {:>6} {:>9} {:>9} {:>9}",
+                sig(b.h, 3),
                 sig(b.beta, 3),
                 sig(b.beta_over_sqrt_h, 3),
                 sig(b.beta_bar_over_sqrt_h, 3)
             ),
-            Some(Err(e)) => format!("{level:>2} {e}"),
-            None => format!("{level:>2} {:>7} ⟳ estimating…", sig(app.scenario.h(level), 4)),
+            Some(Err(e)) => format!("{mark}{level:>2} {e}"),
+            None => format!(
+                "{mark}{level:>2} {:>6} ⟳ estimating…",
+                sig(app.scenario.h(level), 3)
+            ),
         };
         let style = if level == key.level {
             theme.selected()
@@ -63,6 +79,31 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, theme: Theme) {
         ),
         area,
     );
+}
+
+/// The rows of `levels` that fit in `rows`: all, else a window that holds `current` (the
+/// finest rows when `current` is not among them), as far down as it can go.
+pub fn visible(levels: &[u32], current: u32, rows: usize) -> &[u32] {
+    let rows = rows.max(1);
+    if levels.len() <= rows {
+        return levels;
+    }
+    let end = match levels.iter().position(|&l| l == current) {
+        // Keep the current row, with the row after it when there is one.
+        Some(i) => (i + 2).min(levels.len()).max(rows),
+        None => levels.len(),
+    };
+    &levels[end - rows..end]
+}
+
+/// " · rows 2–5 of 7" when `shown` is not all of `levels`, else nothing.
+pub fn hidden_rows(levels: &[u32], shown: &[u32]) -> String {
+    match (shown.first(), shown.last()) {
+        (Some(a), Some(b)) if shown.len() < levels.len() => {
+            format!(" · L{a}–{b} of {}", levels.len())
+        }
+        _ => String::new(),
+    }
 }
 
 /// Levels with an estimate (done, failed or running) for this element and rule, ascending.

@@ -3,13 +3,15 @@
 
 mod convergence;
 mod deformed;
-mod fmt;
+pub mod fmt;
 mod header;
 pub mod help;
 mod infsup_chart;
 mod infsup_panel;
+pub mod plot;
 mod pressure;
 mod status;
+mod zone;
 
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Rect};
@@ -30,14 +32,24 @@ pub struct Look {
     pub marker: Marker,
 }
 
-/// Draw `app` into the whole frame.
+/// The smallest area the lab is drawn in inside the guided tour (its caption takes the rest
+/// of an 80×24 terminal).
+pub const MIN_AREA: (u16, u16) = (80, 20);
+
+/// Draw `app` into the whole frame (at least [`MIN_SIZE`]).
 pub fn view(app: &App, frame: &mut Frame, look: &Look) {
-    view_in(app, frame, frame.area(), look);
+    let area = frame.area();
+    if area.width < MIN_SIZE.0 || area.height < MIN_SIZE.1 {
+        too_small(frame, area, look.theme);
+        return;
+    }
+    view_in(app, frame, area, look);
 }
 
-/// Draw `app` into `area` of the frame (the guided tour puts its caption below).
+/// Draw `app` into `area` of the frame (at least [`MIN_AREA`]; the guided tour puts its
+/// caption below).
 pub fn view_in(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
-    if area.width < MIN_SIZE.0 || area.height < MIN_SIZE.1 {
+    if area.width < MIN_AREA.0 || area.height < MIN_AREA.1 {
         too_small(frame, area, look.theme);
         return;
     }
@@ -73,32 +85,48 @@ pub fn view_in(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
 
 /// The explore scene: pressures on top, the inf-sup panel and the contact zone below.
 fn explore(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
-    let [chart, lower] = Layout::vertical([Constraint::Percentage(57), Constraint::Fill(1)]).areas(area);
+    // The lower panels keep at least 6 rows (the inf-sup panel's borders, header, current
+    // row and verdict); in a short area (the tour at 80×24) the chart takes the rest.
+    let chart_rows = if area.height < 20 {
+        area.height.saturating_sub(6)
+    } else {
+        (area.height * 57 + 50) / 100
+    };
+    let [chart, lower] = Layout::vertical([Constraint::Length(chart_rows), Constraint::Fill(1)]).areas(area);
     let [panel, contact] = Layout::horizontal([Constraint::Length(42), Constraint::Fill(1)]).areas(lower);
     pressure::render(app, frame, chart, look);
     infsup_panel::render(app, frame, panel, look.theme);
     deformed::render(app, frame, contact, look, deformed::Extent::NearContact);
 }
 
-/// The message shown instead of the app in a terminal below [`MIN_SIZE`].
+/// The message shown instead of the app in a terminal below [`MIN_SIZE`], wrapped to fit.
 fn too_small(frame: &mut Frame, area: Rect, theme: Theme) {
-    let lines = vec![
-        Line::styled("riplab needs a bigger terminal", theme.title()),
-        Line::raw(format!(
-            "this one is {}×{}; the lab needs at least {}×{}",
-            area.width, area.height, MIN_SIZE.0, MIN_SIZE.1
-        )),
-        Line::raw("enlarge the window or make the font smaller"),
-        Line::raw("(q quits)"),
-    ];
+    let text = format!(
+        "riplab needs a bigger terminal\nthis one is {}×{}; the lab needs at least {}×{}\nenlarge the window or make the font smaller\n(q quits)",
+        area.width, area.height, MIN_SIZE.0, MIN_SIZE.1
+    );
+    centred_message(frame, area, &text, theme);
+}
+
+/// `text` wrapped to `area`'s width and centred in it, its first line as a title.
+pub fn centred_message(frame: &mut Frame, area: Rect, text: &str, theme: Theme) {
+    let lines: Vec<Line> = fmt::wrap_words(text, usize::from(area.width))
+        .into_iter()
+        .enumerate()
+        .map(|(i, l)| {
+            if i == 0 {
+                Line::styled(l, theme.title())
+            } else {
+                Line::raw(l)
+            }
+        })
+        .collect();
     let height = (lines.len() as u16).min(area.height);
     let [middle] = Layout::vertical([Constraint::Length(height)])
         .flex(ratatui::layout::Flex::Center)
         .areas(area);
     frame.render_widget(
-        Paragraph::new(lines)
-            .alignment(ratatui::layout::Alignment::Center)
-            .wrap(Wrap { trim: true }),
+        Paragraph::new(lines).alignment(ratatui::layout::Alignment::Center),
         middle,
     );
 }

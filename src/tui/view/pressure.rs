@@ -1,21 +1,24 @@
 //! The main chart: raw pressure p (the function of Q_h through the rule's points, so steps
-//! for gauss1) against the smoothed p̄ (a line through the vertices) along Γ_C, mirrored to
-//! the full width for a half model, with optional overlays of the gap and the Hertz profile.
+//! for gauss1, a dotted line) against the smoothed p̄ (a solid line through the vertices)
+//! along Γ_C, mirrored to the full width for a half model, with optional overlays of the gap
+//! and the Hertz profile. p is drawn last so that its oscillation stays visible on fine
+//! meshes. Units are the paper's: x in units of length, p in the units of E.
 
 use ratatui::Frame;
-use ratatui::layout::{Constraint, Rect};
-use ratatui::text::Span;
-use ratatui::widgets::{Axis, Block, Chart, Dataset, GraphType, Paragraph};
+use ratatui::layout::Rect;
+use ratatui::widgets::{Block, Paragraph};
 
+use crate::contact::hertz::Hertz;
 use crate::plot::raw_pressure_edges;
 
 use super::super::app::App;
 use super::Look;
-use super::fmt::{linear_labels, nice_ceil};
-use crate::contact::hertz::Hertz;
+use super::fmt::{nice_ceil, sig};
+use super::plot::{Axis, Plot, Scale, Series, Stroke};
+use super::zone::zoom_range;
 
 /// Samples of the overlays across the width.
-const OVERLAY_SAMPLES: usize = 241;
+const OVERLAY_SAMPLES: usize = 41;
 
 pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
     let theme = look.theme;
@@ -46,7 +49,13 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
             .collect(),
     );
     let (x0, x1) = app.scenario.x_range();
-    let (xlo, xhi) = if half { (-x1, x1) } else { (x0, x1) };
+    let full = if half { [-x1, x1] } else { [x0, x1] };
+    let zoomed = if app.zoom {
+        zoom_range(solved, half, (full[0], full[1]))
+    } else {
+        None
+    };
+    let xb = zoomed.unwrap_or(full);
     let full_load = if half { 2.0 * sol.load } else { sol.load };
     let hertz =
         Hertz::for_load(&sol.params.obstacle, &app.scenario.material, full_load).filter(|_| app.show_hertz);
@@ -55,7 +64,7 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
     let ymax = nice_ceil(peak * 1.05);
 
     let hertz_pts: Vec<(f64, f64)> = hertz
-        .map(|h| sample(xlo, xhi, |x| Some(h.pressure(x))))
+        .map(|h| sample(xb, |x| Some(h.pressure(x))))
         .unwrap_or_default();
     let depth = sol.params.obstacle.depth();
     let gap_scale = if depth > 0.0 {
@@ -65,7 +74,7 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
     };
     let gap_pts: Vec<(f64, f64)> = if app.show_gap {
         let obstacle = &sol.params.obstacle;
-        sample(xlo, xhi, |x| {
+        sample(xb, |x| {
             let g = obstacle.gap(x);
             g.is_finite().then_some(-g * gap_scale)
         })
@@ -73,81 +82,76 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
         Vec::new()
     };
 
-    let mut datasets = Vec::new();
+    let mut series = Vec::new();
     if app.show_gap {
-        datasets.push(
-            Dataset::default()
-                .name(format!("−g ×{}", super::fmt::sig(gap_scale, 2)))
-                .marker(look.marker)
-                .graph_type(GraphType::Line)
-                .style(theme.faint())
-                .data(&gap_pts),
-        );
+        series.push(Series {
+            name: format!("−g ×{}", sig(gap_scale, 2)),
+            color: theme.faint_color(),
+            stroke: Stroke::None,
+            glyph: Some('·'),
+            data: &gap_pts,
+        });
     }
     if hertz.is_some() {
-        datasets.push(
-            Dataset::default()
-                .name("Hertz")
-                .marker(look.marker)
-                .graph_type(GraphType::Line)
-                .style(theme.hertz())
-                .data(&hertz_pts),
-        );
+        series.push(Series {
+            name: "Hertz".into(),
+            color: theme.hertz_color(),
+            stroke: Stroke::None,
+            glyph: Some('+'),
+            data: &hertz_pts,
+        });
     }
-    datasets.push(
-        Dataset::default()
-            .name(format!("p {}", sol.params.rule.name()))
-            .marker(look.marker)
-            .graph_type(GraphType::Line)
-            .style(theme.raw())
-            .data(&raw),
-    );
-    datasets.push(
-        Dataset::default()
-            .name("p̄ smoothed")
-            .marker(look.marker)
-            .graph_type(GraphType::Line)
-            .style(theme.smooth())
-            .data(&pbar),
-    );
-
-    let inner_h = area.height.saturating_sub(2);
-    let x_labels = if area.width >= 100 { 9 } else { 5 };
-    let y_labels = if inner_h >= 14 { 5 } else { 3 };
+    series.push(Series {
+        name: "p̄ smoothed".into(),
+        color: theme.smooth_color(),
+        stroke: Stroke::Solid,
+        glyph: None,
+        data: &pbar,
+    });
+    series.push(Series {
+        name: format!("p {}", sol.params.rule.name()),
+        color: theme.raw_color(),
+        stroke: Stroke::Dotted,
+        glyph: None,
+        data: &raw,
+    });
+    // A contact zone under a sixth of the axis is worth zooming into: say so.
+    let narrow =
+        zoom_range(solved, half, (full[0], full[1])).is_some_and(|[a, b]| b - a < (full[1] - full[0]) / 6.0);
     let key = solved.key;
     let title = format!(
-        " pressure on Γ_C{} · {}+{} level {} ",
+        " pressure on Γ_C{}{} · {}+{} level {} ",
         if half { " (mirrored)" } else { "" },
+        match (zoomed.is_some(), narrow) {
+            (true, _) => " · zoom (z: back)",
+            (false, true) => " · z zooms in",
+            _ => "",
+        },
         key.element.name(),
         key.rule.name(),
         key.level
     );
-    let chart = Chart::new(datasets)
-        .block(
-            Block::bordered()
-                .title(Span::styled(title, theme.title()))
-                .border_style(theme.axis()),
-        )
-        .x_axis(
-            Axis::default()
-                .title("x")
-                .style(theme.axis())
-                .bounds([xlo, xhi])
-                .labels(linear_labels(xlo, xhi, x_labels)),
-        )
-        .y_axis(
-            Axis::default()
-                .title("p")
-                .style(theme.axis())
-                .bounds([0.0, ymax])
-                .labels(linear_labels(0.0, ymax, y_labels)),
-        )
-        .hidden_legend_constraints((Constraint::Ratio(1, 2), Constraint::Ratio(3, 4)));
-    frame.render_widget(chart, area);
+    let plot = Plot {
+        title,
+        x: Axis {
+            title: "x (length)".into(),
+            bounds: xb,
+            scale: Scale::Linear,
+        },
+        y: Axis {
+            title: "p (units of E)".into(),
+            bounds: [0.0, ymax],
+            scale: Scale::Linear,
+        },
+        series,
+        marker: look.marker,
+        theme,
+    };
+    plot.render(frame, area);
 }
 
-/// `f` at evenly spaced x over [lo, hi], where it is defined.
-fn sample(lo: f64, hi: f64, f: impl Fn(f64) -> Option<f64>) -> Vec<(f64, f64)> {
+/// `f` at evenly spaced x over `[lo, hi]`, where it is defined.
+fn sample([lo, hi]: [f64; 2], f: impl Fn(f64) -> Option<f64>) -> Vec<(f64, f64)> {
     (0..OVERLAY_SAMPLES)
         .filter_map(|i| {
             let x = lo + (hi - lo) * i as f64 / (OVERLAY_SAMPLES - 1) as f64;

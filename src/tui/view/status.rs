@@ -1,29 +1,94 @@
-//! The status line: the state of the solve (or of the estimates) and the main keys.
+//! The status line: the state of the solve (or of the estimates, or the study), or a notice,
+//! and the main keys. The message wins: the key hints go first when room is short, and a
+//! message longer than the line is cut at a word boundary with "…", never mid-word.
 
 use ratatui::Frame;
-use ratatui::layout::{Alignment, Constraint, Layout, Rect};
+use ratatui::layout::Rect;
+use ratatui::style::Style;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::Paragraph;
 
 use super::super::app::{App, Progress, Scene};
+use super::super::eta::time_left;
 use super::super::theme::Theme;
 use super::fmt::sig;
 
 pub fn render(app: &App, frame: &mut Frame, area: Rect, theme: Theme) {
-    let keys = Line::from(vec![
+    frame.render_widget(
+        Paragraph::new(status_line(&state(app, theme), area.width, theme)),
+        area,
+    );
+}
+
+/// `message` followed by the key hints right-aligned when both fit in `width`, else the
+/// message alone, cut to fit at a word boundary.
+pub fn status_line(message: &[Span<'static>], width: u16, theme: Theme) -> Line<'static> {
+    let width = usize::from(width);
+    let hints = vec![
         Span::styled("?", theme.key()),
         Span::raw(" help  "),
         Span::styled("q", theme.key()),
         Span::raw(" quit "),
-    ]);
-    let [left, right] = Layout::horizontal([Constraint::Fill(1), Constraint::Length(15)]).areas(area);
-    frame.render_widget(Paragraph::new(state(app, theme)), left);
-    frame.render_widget(Paragraph::new(keys).alignment(Alignment::Right), right);
+    ];
+    let hints_width: usize = hints.iter().map(Span::width).sum();
+    let used: usize = message.iter().map(Span::width).sum();
+    if used + 2 + hints_width <= width {
+        let mut spans = message.to_vec();
+        spans.push(Span::raw(" ".repeat(width - used - hints_width)));
+        spans.extend(hints);
+        return Line::from(spans);
+    }
+    Line::from(fit_words(message, width))
 }
 
-fn state(app: &App, theme: Theme) -> Line<'static> {
+/// The spans cut to `width` columns at the last space that fits, with "…".
+fn fit_words(spans: &[Span<'static>], width: usize) -> Vec<Span<'static>> {
+    let total: usize = spans.iter().map(Span::width).sum();
+    if total <= width {
+        return spans.to_vec();
+    }
+    let room = width.saturating_sub(1);
+    let mut out = Vec::new();
+    let mut used = 0usize;
+    for span in spans {
+        let text = span.content.to_string();
+        let w = span.width();
+        if used + w <= room {
+            out.push(span.clone());
+            used += w;
+            continue;
+        }
+        // Cut inside this span at its last space within the room.
+        let mut kept = String::new();
+        let mut cut = String::new();
+        for ch in text.chars() {
+            if used + kept.chars().count() + 1 > room {
+                break;
+            }
+            kept.push(ch);
+            if ch == ' ' {
+                cut = kept.clone();
+            }
+        }
+        if !cut.trim().is_empty() {
+            out.push(Span::styled(cut.trim_end().to_string(), span.style));
+        }
+        break;
+    }
+    // Drop a trailing fragment of spaces, then mark the cut.
+    while out.last().is_some_and(|s| s.content.trim().is_empty()) {
+        out.pop();
+    }
+    out.push(Span::raw("…"));
+    out
+}
+
+/// What the status line says, as styled spans.
+fn state(app: &App, theme: Theme) -> Vec<Span<'static>> {
     if let Some(notice) = &app.notice {
-        return Line::raw(format!(" {notice}"));
+        let style = if notice.failure { theme.bad() } else { Style::new() };
+        let mark = if notice.failure { " ✗ " } else { " " };
+        return vec![Span::styled(format!("{mark}{}", notice.text), style)];
     }
     let mut spans = vec![Span::raw(" ")];
     if app.is_solving() {
@@ -36,8 +101,18 @@ fn state(app: &App, theme: Theme) -> Line<'static> {
                 "⟳ Newton {iteration}: residual {}, {active} active",
                 sig(residual, 2)
             ),
-            Some(Progress::Assembling) => format!("⟳ assembling level {}", app.settings.level),
-            None => "⟳ solving".into(),
+            Some(Progress::Assembling {
+                level,
+                unknowns,
+                started,
+                estimate_ms,
+            }) => {
+                let left = time_left(estimate_ms, started.elapsed().as_secs_f64() * 1e3)
+                    .map(|t| format!(" · {t}"))
+                    .unwrap_or_default();
+                format!("⟳ building level {level} ({unknowns} unknowns){left}")
+            }
+            _ => "⟳ solving".into(),
         };
         spans.push(Span::styled(what, theme.busy()));
         spans.push(Span::raw("  "));
@@ -52,30 +127,48 @@ fn state(app: &App, theme: Theme) -> Line<'static> {
         } else {
             spans.push(Span::raw(format!("{} inf-sup estimate(s)", app.infsup.len())));
         }
-        return Line::from(spans);
+        return spans;
     }
     if app.scene == Scene::Convergence {
         let key = app.study_key();
         let reference = key.reference_level();
         if app.study_pending() == Some(&key) {
-            spans.push(Span::styled(
-                format!("⟳ computing the reference (q2, level {reference})…"),
-                theme.busy(),
-            ));
+            let what = match app.study_progress {
+                Some(Progress::Study {
+                    level,
+                    started,
+                    estimate_ms,
+                }) => {
+                    let stage = match level {
+                        None => format!("the reference (q2, level {reference})"),
+                        Some(l) => format!("M1–M4 at level {l} of {}", key.max_level),
+                    };
+                    let left = time_left(estimate_ms, started.elapsed().as_secs_f64() * 1e3)
+                        .map(|t| format!(" · {t}"))
+                        .unwrap_or_default();
+                    format!("⟳ computing {stage}{left}")
+                }
+                _ => format!("⟳ computing the reference (q2, level {reference})…"),
+            };
+            spans.push(Span::styled(what, theme.busy()));
         } else if let Some(Ok(_)) = app.studies.get(&key) {
+            let levels = match key.max_level {
+                0 => "level 0".to_string(),
+                max => format!("levels 0 to {max}"),
+            };
             spans.push(Span::raw(format!(
-                "M1–M4 at levels 0..={} against q2 level {reference}, ε={:e}",
-                key.max_level, app.scenario.epsilon
+                "M1–M4 at {levels} against q2 level {reference}, the scenario's ε={:e} (+ − do not apply)",
+                app.scenario.epsilon
             )));
         }
-        return Line::from(spans);
+        return spans;
     }
     let Some(solved) = &app.solved else {
-        return Line::from(spans);
+        return spans;
     };
     if app.is_solving() {
         // The previous result stays on screen; the progress above says what is coming.
-        return Line::from(spans);
+        return spans;
     }
     let newton = &solved.solution.newton;
     if newton.converged {
@@ -85,7 +178,7 @@ fn state(app: &App, theme: Theme) -> Line<'static> {
     }
     let steps = if newton.iterations == 1 { "step" } else { "steps" };
     spans.push(Span::raw(format!(
-        " in {} Newton {steps} · P={}",
+        " in {} Newton {steps} · load P={}",
         newton.iterations,
         sig(solved.solution.load, 5)
     )));
@@ -98,5 +191,5 @@ fn state(app: &App, theme: Theme) -> Line<'static> {
     if app.show_timing {
         spans.push(Span::raw(format!(" · {} ms", sig(solved.total_ms, 3))));
     }
-    Line::from(spans)
+    spans
 }

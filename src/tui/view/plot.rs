@@ -1,0 +1,399 @@
+//! A chart that places every tick label at the value it names. ratatui's `Chart` spreads
+//! axis labels evenly whatever they say; here the ticks are chosen on a 1-2-5 grid (linear
+//! axes) or at decades and their 2 and 5 (log10 axes, data given as log10 values), and each
+//! label is drawn at the column (row) where the canvas draws a point of that value. The
+//! legend has a row of its own above the graph (never over data) and shows each series with
+//! the symbol it is drawn with: a solid or dotted line and an optional glyph at every point,
+//! so that the series stay apart in monochrome.
+
+use ratatui::Frame;
+use ratatui::buffer::Buffer;
+use ratatui::layout::Rect;
+use ratatui::style::{Color, Modifier, Style};
+use ratatui::symbols::Marker;
+use ratatui::text::{Line, Span};
+use ratatui::widgets::Block;
+use ratatui::widgets::canvas::{Canvas, Line as Segment, Painter, Shape};
+
+use super::super::theme::Theme;
+use super::fmt::{sig, title_fit};
+
+/// How an axis maps values.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Scale {
+    Linear,
+    /// The data are log10 of the values; labels show the values.
+    Log10,
+}
+
+/// One axis: its title (with units), bounds (in data units) and scale.
+#[derive(Clone, Debug)]
+pub struct Axis {
+    pub title: String,
+    pub bounds: [f64; 2],
+    pub scale: Scale,
+}
+
+/// How a series joins its points.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Stroke {
+    Solid,
+    /// The line in every other cell along its path (the chart's marker).
+    Dotted,
+    /// Points only (their glyph).
+    None,
+}
+
+/// One series.
+#[derive(Clone, Debug)]
+pub struct Series<'a> {
+    pub name: String,
+    pub color: Color,
+    pub stroke: Stroke,
+    /// A character drawn at every point, over the lines.
+    pub glyph: Option<char>,
+    pub data: &'a [(f64, f64)],
+}
+
+/// A chart: a bordered block titled `title`, the legend row, the graph with its axes.
+pub struct Plot<'a> {
+    pub title: String,
+    pub x: Axis,
+    pub y: Axis,
+    pub series: Vec<Series<'a>>,
+    pub marker: Marker,
+    pub theme: Theme,
+}
+
+/// Dots per cell of a marker (columns, rows), as ratatui's canvas grids have them.
+pub fn dots_per_cell(marker: Marker) -> (u16, u16) {
+    match marker {
+        Marker::Braille => (2, 4),
+        Marker::HalfBlock => (1, 2),
+        Marker::Quadrant => (2, 2),
+        Marker::Sextant => (2, 3),
+        Marker::Octant => (2, 4),
+        _ => (1, 1),
+    }
+}
+
+/// The cell offset (0-based, from the low end) at which ratatui's canvas draws `value` on an
+/// axis of `cells` cells over `bounds`, `per` dots per cell: the dot is
+/// round(t·(dots − 1)) for t = (value − lo)/(hi − lo), its cell that dot / per.
+pub fn cell_of(value: f64, bounds: [f64; 2], cells: u16, per: u16) -> Option<u16> {
+    let (lo, hi) = (bounds[0], bounds[1]);
+    let ordered = hi > lo;
+    if !ordered || !value.is_finite() || value < lo || value > hi || cells == 0 {
+        return None;
+    }
+    let dots = f64::from(cells) * f64::from(per);
+    let dot = ((value - lo) / (hi - lo) * (dots - 1.0)).round() as u16;
+    Some(dot / per)
+}
+
+/// Ticks on a linear axis: multiples of a 1-2-5 step, at most `max` of them.
+pub fn linear_ticks(bounds: [f64; 2], max: usize) -> Vec<f64> {
+    let (lo, hi) = (bounds[0], bounds[1]);
+    let ordered = hi > lo;
+    if !ordered {
+        return vec![lo];
+    }
+    let max = max.max(2);
+    let raw = (hi - lo) / (max - 1) as f64;
+    let p = 10f64.powf(raw.log10().floor());
+    let step = [1.0, 2.0, 2.5, 5.0, 10.0]
+        .into_iter()
+        .map(|m| m * p)
+        .find(|&s| (((hi - lo) / s).floor() as usize) < max)
+        .unwrap_or(10.0 * p);
+    let first = (lo / step - 1e-9).ceil() as i64;
+    let last = (hi / step + 1e-9).floor() as i64;
+    (first..=last).map(|k| k as f64 * step).collect()
+}
+
+/// Ticks on a log10 axis (data in log10): the decades inside, with 2× and 5× when fewer than
+/// three decades fit and there is room; at most `max`.
+pub fn log_ticks(bounds: [f64; 2], max: usize) -> Vec<f64> {
+    let (lo, hi) = (bounds[0], bounds[1]);
+    let decades: Vec<f64> = ((lo - 1e-9).ceil() as i64..=(hi + 1e-9).floor() as i64)
+        .map(|k| k as f64)
+        .collect();
+    if decades.len() >= 3 || max < 3 {
+        // Every decade, thinned to fit.
+        let every = decades.len().div_ceil(max.max(1)).max(1);
+        return decades.into_iter().step_by(every).collect();
+    }
+    let fine: Vec<f64> = ((lo - 1e-9).floor() as i64..=(hi + 1e-9).ceil() as i64)
+        .flat_map(|k| [1.0f64, 2.0, 5.0].map(|m| k as f64 + m.log10()))
+        .filter(|&v| v >= lo - 1e-9 && v <= hi + 1e-9)
+        .collect();
+    if fine.len() <= max && fine.len() >= 2 {
+        fine
+    } else {
+        decades
+    }
+}
+
+/// The text of a tick at `value` (data units).
+pub fn tick_label(value: f64, scale: Scale) -> String {
+    match scale {
+        Scale::Linear => sig(value, 3),
+        Scale::Log10 => sig(10f64.powf(value), 2),
+    }
+}
+
+/// The legend's sample of a series: its line drawn with the chart's marker and its glyph.
+fn sample(stroke: Stroke, glyph: Option<char>, marker: Marker) -> String {
+    let cell = match marker {
+        Marker::Braille => "⠒",
+        Marker::HalfBlock => "▀",
+        _ => "•",
+    };
+    let line = match stroke {
+        Stroke::Solid => cell.repeat(3),
+        Stroke::Dotted => format!("{cell} {cell}"),
+        Stroke::None => String::new(),
+    };
+    match glyph {
+        Some(g) if stroke == Stroke::None => g.to_string(),
+        Some(g) if stroke == Stroke::Dotted => format!("{cell} {g} {cell}"),
+        Some(g) => format!("{cell}{g}{cell}"),
+        None => line,
+    }
+}
+
+/// A polyline drawn in every other cell along its path: a dotted line whose dots are the
+/// marker's cells, as the legend shows it.
+struct DottedLine<'a> {
+    data: &'a [(f64, f64)],
+    color: Color,
+    /// Dots per cell (columns, rows).
+    per: (u16, u16),
+}
+
+impl Shape for DottedLine<'_> {
+    fn draw(&self, painter: &mut Painter) {
+        let (px, py) = (usize::from(self.per.0), usize::from(self.per.1));
+        let mut cells = 0usize;
+        let mut last: Option<(usize, usize)> = None;
+        let mut dot = |painter: &mut Painter, x: usize, y: usize| {
+            let cell = (x / px, y / py);
+            if last.is_some_and(|l| l != cell) {
+                cells += 1;
+            }
+            last = Some(cell);
+            if cells.is_multiple_of(2) {
+                painter.paint(x, y, self.color);
+            }
+        };
+        for w in self.data.windows(2) {
+            let (Some(a), Some(b)) = (
+                painter.get_point(w[0].0, w[0].1),
+                painter.get_point(w[1].0, w[1].1),
+            ) else {
+                continue;
+            };
+            let (dx, dy) = (b.0 as i64 - a.0 as i64, b.1 as i64 - a.1 as i64);
+            let n = dx.abs().max(dy.abs()).max(1);
+            for i in 0..n {
+                let x = a.0 as i64 + dx * i / n;
+                let y = a.1 as i64 + dy * i / n;
+                dot(painter, x as usize, y as usize);
+            }
+        }
+        if let Some(&(x, y)) = self.data.last()
+            && let Some(p) = painter.get_point(x, y)
+        {
+            dot(painter, p.0, p.1);
+        }
+    }
+}
+
+/// Where a plot put its graph, for tests and overlays.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Placed {
+    /// The cells of the data.
+    pub graph: Rect,
+}
+
+impl Plot<'_> {
+    /// Draw into `area`; returns where the graph went (None when there was no room).
+    pub fn render(&self, frame: &mut Frame, area: Rect) -> Option<Placed> {
+        let theme = self.theme;
+        let block = Block::bordered()
+            .title(Span::styled(
+                title_fit(&self.title, area.width.saturating_sub(2)),
+                theme.title(),
+            ))
+            .border_style(theme.axis());
+        let inner = block.inner(area);
+        frame.render_widget(block, area);
+        let legend = self.legend_lines(inner.width);
+        let legend_rows = legend.len() as u16;
+        // Legend rows, then the graph, then the x axis line and its labels.
+        if inner.height < legend_rows + 4 || inner.width < 20 {
+            return None;
+        }
+        let graph_rows = inner.height - legend_rows - 2;
+        let per = dots_per_cell(self.marker);
+        let max_y_ticks = usize::from(graph_rows / 2 + 1).min(6);
+        let y_ticks: Vec<(f64, String)> = self
+            .ticks(&self.y, max_y_ticks)
+            .into_iter()
+            .map(|v| (v, tick_label(v, self.y.scale)))
+            .collect();
+        let margin = y_ticks.iter().map(|(_, l)| l.chars().count()).max().unwrap_or(1) as u16;
+        let graph = Rect {
+            x: inner.x + margin + 1,
+            y: inner.y + legend_rows,
+            width: inner.width - margin - 1,
+            height: graph_rows,
+        };
+        let buf = frame.buffer_mut();
+        for (i, line) in legend.iter().enumerate() {
+            buf.set_line(inner.x, inner.y + i as u16, line, inner.width);
+        }
+        // The y axis: a line with a tick at each label.
+        let axis_style = theme.axis();
+        let axis_x = graph.x - 1;
+        for row in graph.y..graph.bottom() {
+            buf[(axis_x, row)].set_symbol("│").set_style(axis_style);
+        }
+        let mut last_row = None;
+        for (v, label) in &y_ticks {
+            let Some(off) = cell_of(*v, self.y.bounds, graph.height, per.1) else {
+                continue;
+            };
+            let row = graph.bottom() - 1 - off;
+            if last_row == Some(row) {
+                continue;
+            }
+            last_row = Some(row);
+            buf[(axis_x, row)].set_symbol("┤");
+            let w = label.chars().count() as u16;
+            buf.set_string(inner.x + margin - w, row, label, axis_style);
+        }
+        // The x axis line and its labels, centred on their columns, none overlapping.
+        let axis_row = graph.bottom();
+        let label_row = axis_row + 1;
+        buf[(axis_x, axis_row)].set_symbol("└").set_style(axis_style);
+        for col in graph.x..graph.right() {
+            buf[(col, axis_row)].set_symbol("─").set_style(axis_style);
+        }
+        let max_x_ticks = usize::from(graph.width / 7).max(2);
+        let mut free_from = inner.x;
+        for v in self.ticks(&self.x, max_x_ticks) {
+            let Some(off) = cell_of(v, self.x.bounds, graph.width, per.0) else {
+                continue;
+            };
+            let col = graph.x + off;
+            let label = tick_label(v, self.x.scale);
+            let w = label.chars().count() as u16;
+            let start = col
+                .saturating_sub((w - 1) / 2)
+                .max(inner.x)
+                .min(inner.right() - w);
+            buf[(col, axis_row)].set_symbol("┬");
+            if start < free_from {
+                continue;
+            }
+            buf.set_string(start, label_row, &label, axis_style);
+            free_from = start + w + 1;
+        }
+        self.draw_data(frame, graph);
+        Some(Placed { graph })
+    }
+
+    fn ticks(&self, axis: &Axis, max: usize) -> Vec<f64> {
+        match axis.scale {
+            Scale::Linear => linear_ticks(axis.bounds, max),
+            Scale::Log10 => log_ticks(axis.bounds, max),
+        }
+    }
+
+    /// The axes' titles ("y against x"), then each series' sample and name, wrapped to
+    /// `width` (two rows at most).
+    fn legend_lines(&self, width: u16) -> Vec<Line<'static>> {
+        let width = usize::from(width);
+        let mut entries: Vec<Vec<Span<'static>>> = vec![vec![Span::styled(
+            format!("{} against {} ", self.y.title, self.x.title),
+            self.theme.axis().add_modifier(Modifier::BOLD),
+        )]];
+        for s in &self.series {
+            if s.name.is_empty() {
+                continue;
+            }
+            let style = Style::new().fg(self.theme.ink(s.color));
+            entries.push(vec![
+                Span::styled(format!(" {}", sample(s.stroke, s.glyph, self.marker)), style),
+                Span::raw(format!(" {} ", s.name)),
+            ]);
+        }
+        let mut lines: Vec<Vec<Span<'static>>> = vec![Vec::new()];
+        let mut used = 0usize;
+        for entry in entries {
+            let w: usize = entry.iter().map(|s| s.width()).sum();
+            if used > 0 && used + w > width && lines.len() < 2 {
+                lines.push(Vec::new());
+                used = 0;
+            }
+            used += w;
+            lines.last_mut().expect("one line at least").extend(entry);
+        }
+        lines.into_iter().map(Line::from).collect()
+    }
+
+    /// The series on a canvas over `graph`, lines first, then the glyphs over them.
+    fn draw_data(&self, frame: &mut Frame, graph: Rect) {
+        let theme = self.theme;
+        let canvas = Canvas::default()
+            .marker(self.marker)
+            .x_bounds(self.x.bounds)
+            .y_bounds(self.y.bounds)
+            .paint(|ctx| {
+                for s in &self.series {
+                    let color = theme.ink(s.color);
+                    match s.stroke {
+                        Stroke::Solid => {
+                            for w in s.data.windows(2) {
+                                ctx.draw(&Segment::new(w[0].0, w[0].1, w[1].0, w[1].1, color));
+                            }
+                            if let [(x, y)] = s.data {
+                                ctx.draw(&Segment::new(*x, *y, *x, *y, color));
+                            }
+                        }
+                        Stroke::Dotted => ctx.draw(&DottedLine {
+                            data: s.data,
+                            color,
+                            per: dots_per_cell(self.marker),
+                        }),
+                        Stroke::None => {}
+                    }
+                    // In colour, one layer per series: a cell has one colour, the last drawn
+                    // wins. In monochrome the dots of every series merge in one layer, so that
+                    // no line loses dots where it meets another.
+                    if theme.color {
+                        ctx.layer();
+                    }
+                }
+            });
+        frame.render_widget(canvas, graph);
+        let per = dots_per_cell(self.marker);
+        let buf: &mut Buffer = frame.buffer_mut();
+        for s in &self.series {
+            let Some(g) = s.glyph else { continue };
+            let style = Style::new().fg(theme.ink(s.color)).add_modifier(Modifier::BOLD);
+            for &(x, y) in s.data {
+                let (Some(cx), Some(cy)) = (
+                    cell_of(x, self.x.bounds, graph.width, per.0),
+                    cell_of(y, self.y.bounds, graph.height, per.1),
+                ) else {
+                    continue;
+                };
+                buf[(graph.x + cx, graph.bottom() - 1 - cy)]
+                    .set_char(g)
+                    .set_style(style);
+            }
+        }
+    }
+}
