@@ -13,5 +13,6 @@ pub mod plot;
 pub mod report;
 pub mod scenario;
 pub mod solve;
+pub mod stress;
 pub mod study;
 pub mod tui;
