@@ -14,8 +14,10 @@ use crate::mesh::Element;
 use crate::report::{Format, InfSupRow, SolveReport, infsup_output, study_output, sweep_summary};
 use crate::scenario::{MAX_LEVEL, Scenario, ScenarioError, check};
 use crate::solve::{ContactParams, Discretization, preset, solve_contact};
+use crate::stress::StressField;
 use crate::study::{Reference, convergence, epsilon_sweep};
 use crate::tui::{MarkerChoice, TuiOptions, render_to_string};
+use crate::vtu;
 
 const EXIT_CODES: &str = "Exit codes:
   0  success
@@ -107,6 +109,7 @@ pub struct Select {
 }
 
 #[derive(Args, Debug)]
+#[command(group(clap::ArgGroup::new("output").args(["plot", "vtu"]).multiple(true)))]
 pub struct SolveArgs {
     #[command(flatten)]
     pub select: Select,
@@ -125,8 +128,12 @@ pub struct SolveArgs {
     /// Also write the pressure chart (p and p̄ along Γ_C) as an SVG file.
     #[arg(long, value_name = "FILE")]
     pub plot: Option<PathBuf>,
-    /// Let --plot replace an existing file.
-    #[arg(long, requires = "plot")]
+    /// Also write the body with u and the stresses to FILE (.vtu) and Γ_C with p and p̄ to
+    /// FILE.contact.vtu, for ParaView.
+    #[arg(long, value_name = "FILE")]
+    pub vtu: Option<PathBuf>,
+    /// Let --plot and --vtu replace existing regular files.
+    #[arg(long, requires = "output")]
     pub force: bool,
 }
 
@@ -356,6 +363,16 @@ fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
     if sweep && args.plot.is_some() {
         return Err(usage("--plot", "plots one solve; a sweep has several".into()));
     }
+    if sweep && args.vtu.is_some() {
+        return Err(usage("--vtu", "exports one solve; a sweep has several".into()));
+    }
+    // Before any work: an existing file is refused unless --force, and then only a regular one.
+    if let Some(path) = &args.plot {
+        vtu::check_target(path, args.force).map_err(|e| usage("--plot", e.to_string()))?;
+    }
+    if let Some(path) = &args.vtu {
+        vtu::check_targets(path, args.force).map_err(|e| usage("--vtu", e.to_string()))?;
+    }
 
     let disc = Discretization::of(&scenario, scenario.level, scenario.element).map_err(CliError::from)?;
     let mut reports = Vec::new();
@@ -385,6 +402,13 @@ fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
                 let title = crate::plot::chart_title(&scenario.name, disc.mesh.element, scenario.level, &sol);
                 crate::plot::pressure_svg(path, &title, &sol, scenario.half_model, args.force)
                     .map_err(|e| CliError::Usage(format!("--plot {}: {e}", path.display())))?;
+            }
+            if let Some(path) = &args.vtu {
+                let field = StressField::of_solution(&scenario, &disc, &sol)
+                    .map_err(|e| CliError::Solve(e.to_string()))?;
+                let [body, contact] = vtu::write(path, &disc, &sol, &field, args.force)
+                    .map_err(|e| usage("--vtu", e.to_string()))?;
+                eprintln!("wrote {} and {}", body.display(), contact.display());
             }
         }
     }

@@ -16,3 +16,4 @@ pub mod solve;
 pub mod stress;
 pub mod study;
 pub mod tui;
+pub mod vtu;
