@@ -13,7 +13,7 @@ use ratatui::{DefaultTerminal, Frame};
 use crate::scenario::Scenario;
 
 use super::app::{App, Command, ExportKind, Msg, Response};
-use super::export::{export_csv, export_svg};
+use super::export::{export_csv, export_svg, export_vtu};
 use super::view::{Look, view};
 use super::worker::Worker;
 
@@ -109,6 +109,7 @@ pub(super) fn export(app: &App) -> Msg {
             match app.export_kind {
                 ExportKind::Csv => export_csv(&app.scenario, solved, dir),
                 ExportKind::Svg => export_svg(&app.scenario, solved, dir),
+                ExportKind::Vtu => export_vtu(&app.scenario, solved, dir),
             }
             .map(|p| p.display().to_string())
         }

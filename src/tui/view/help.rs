@@ -8,7 +8,7 @@ use ratatui::widgets::{Block, Clear, Paragraph};
 use super::super::theme::Theme;
 
 /// Every key and what it does.
-pub const KEYS: [(&str, &str); 15] = [
+pub const KEYS: [(&str, &str); 17] = [
     ("q  Esc  Ctrl-C", "quit (Esc first closes this help)"),
     ("?", "show / hide this help"),
     ("←  →   [  ]", "coarser / finer mesh level (0–6)"),
@@ -23,6 +23,8 @@ pub const KEYS: [(&str, &str); 15] = [
     ("a", "inf-sup at every level up to this one"),
     ("s", "export the solution as CSV (a new file)"),
     ("S", "export the pressure chart as SVG (new file)"),
+    ("v", "export body and Γ_C as VTU (new files)"),
+    ("c", "stress scene: τ₁ / von Mises / σ_yy"),
     ("", "any other key closes this help"),
 ];
 

@@ -10,6 +10,7 @@ mod infsup_chart;
 mod infsup_panel;
 mod pressure;
 mod status;
+mod stress_map;
 
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Rect};
@@ -55,6 +56,7 @@ pub fn view_in(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
         Scene::InfSup => infsup_chart::render(app, frame, body, look),
         Scene::Mesh => deformed::render(app, frame, body, look, deformed::Extent::Full),
         Scene::Convergence => convergence::render(app, frame, body, look),
+        Scene::Stress => stress_map::render(app, frame, body, look),
     }
     if let Some(error) = &app.error {
         let text = format!(" ✗ {error}");
