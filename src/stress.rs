@@ -499,10 +499,13 @@ fn project(mesh: &Mesh, elements: &[Vec<StressPoint>]) -> Result<Vec<Stress>, St
         .collect())
 }
 
+/// One row of four right-hand sides (σ_xx, σ_yy, σ_xy, σ_zz).
+type Columns = [f64; 4];
+
 /// Solve A x = b for four right-hand sides at once by conjugate gradients preconditioned with
 /// A's `diagonal`, to a relative residual of 1e-13 in each column.
 fn conjugate_gradients(
-    apply: &dyn Fn(&[[f64; 4]], &mut [[f64; 4]]),
+    apply: &dyn Fn(&[Columns], &mut [Columns]),
     diagonal: &[f64],
     b: &[[f64; 4]],
 ) -> Result<Vec<[f64; 4]>, StressError> {
