@@ -17,8 +17,10 @@ use crate::report::{
 };
 use crate::scenario::{MAX_LEVEL, Scenario, ScenarioError, check};
 use crate::solve::{ContactParams, Discretization, check_request, preset, solve_contact};
+use crate::stress::StressField;
 use crate::study::{all_ok, convergence, epsilon_sweep};
 use crate::tui::{MarkerChoice, TuiOptions, render_to_string};
+use crate::vtu;
 
 /// The exit codes, as every `--help` shows them (a macro, so that other notes can extend it).
 macro_rules! exit_codes {
@@ -100,8 +102,8 @@ pub struct TourArgs {
 pub struct RenderArgs {
     #[command(flatten)]
     pub select: Select,
-    /// Scene: explore, infsup, mesh or convergence (the convergence study takes seconds).
-    #[arg(long, default_value = "explore", value_parser = ["explore", "infsup", "mesh", "convergence"])]
+    /// Scene: explore, infsup, mesh, convergence (the study takes seconds) or stress.
+    #[arg(long, default_value = "explore", value_parser = ["explore", "infsup", "mesh", "convergence", "stress"])]
     pub scene: String,
     /// Frame size, COLUMNSxROWS (or COLUMNS×ROWS), from 80x24 to 1000x500.
     #[arg(long, default_value = "120x40")]
@@ -131,6 +133,7 @@ pub struct Select {
 }
 
 #[derive(Args, Debug)]
+#[command(group(clap::ArgGroup::new("output").args(["plot", "vtu"]).multiple(true)))]
 pub struct SolveArgs {
     #[command(flatten)]
     pub select: Select,
@@ -149,8 +152,12 @@ pub struct SolveArgs {
     /// Also write the pressure chart (p and p̄ along Γ_C) as an SVG file.
     #[arg(long, value_name = "FILE")]
     pub plot: Option<PathBuf>,
-    /// Let --plot replace an existing file.
-    #[arg(long, requires = "plot")]
+    /// Also write the body with u and the stresses to FILE (.vtu) and Γ_C with p and p̄ to
+    /// FILE.contact.vtu, for ParaView.
+    #[arg(long, value_name = "FILE")]
+    pub vtu: Option<PathBuf>,
+    /// Let --plot and --vtu replace existing regular files.
+    #[arg(long, requires = "output")]
     pub force: bool,
 }
 
@@ -398,6 +405,13 @@ fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
             &params(epsilons[0], depths[0]),
         )?;
     }
+    if sweep && args.vtu.is_some() {
+        return Err(usage("--vtu", "exports one solve; a sweep has several".into()));
+    }
+    // Before any work: an existing file is refused unless --force, and then only a regular one.
+    if let Some(path) = &args.vtu {
+        vtu::check_targets(path, args.force).map_err(|e| usage("--vtu", e.to_string()))?;
+    }
 
     let disc = Discretization::of(&scenario, level, scenario.element)?;
     let mut rows: Vec<Result<SolveReport, SweepFailure>> = Vec::new();
@@ -437,6 +451,13 @@ fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
                 let title = crate::plot::chart_title(&scenario.name, disc.mesh.element, level, &sol);
                 crate::plot::pressure_svg(path, &title, &sol, scenario.half_model, args.force)
                     .map_err(|e| CliError::Failed(format!("--plot {e}")))?;
+            }
+            if let Some(path) = &args.vtu {
+                let field = StressField::of_solution(&scenario, &disc, &sol)
+                    .map_err(|e| CliError::Failed(format!("the stress field: {e}")))?;
+                let [body, contact] = vtu::write(path, &disc, &sol, &field, args.force)
+                    .map_err(|e| CliError::Failed(format!("--vtu {e}")))?;
+                note(&format!("wrote {} and {}", body.display(), contact.display()));
             }
         }
     }

@@ -16,8 +16,10 @@ pub mod plot;
 pub mod report;
 pub mod scenario;
 pub mod solve;
+pub mod stress;
 pub mod study;
 pub mod text;
 #[cfg(feature = "tui")]
 pub mod tui;
+pub mod vtu;
 pub mod warning;

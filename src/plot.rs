@@ -276,12 +276,12 @@ pub fn check_target(path: &Path, overwrite: bool) -> io::Result<()> {
     match fs::symlink_metadata(path) {
         Err(e) if e.kind() == io::ErrorKind::NotFound => Ok(()),
         Err(e) => Err(e),
-        Ok(_) if !overwrite => Err(io::ErrorKind::AlreadyExists.into()),
-        Ok(meta) if meta.file_type().is_file() => Ok(()),
-        Ok(_) => Err(io::Error::new(
+        Ok(meta) if !meta.file_type().is_file() => Err(io::Error::new(
             io::ErrorKind::InvalidInput,
             "is not a regular file (a link, FIFO, device or directory); --force replaces regular files only",
         )),
+        Ok(_) if overwrite => Ok(()),
+        Ok(_) => Err(io::ErrorKind::AlreadyExists.into()),
     }
 }
 

@@ -6,7 +6,7 @@
 //! - mesh levels are capped at [`LEVEL_CAP`] (`--level`, the upper end of `--levels`) and a
 //!   `--reference-level` at one above the cap;
 //! - the lab (`riplab` or `riplab SCENARIO`) is run as `riplab render [SCENARIO] --size 80x24`;
-//! - an output file (`--plot FILE`) goes to a fresh temporary directory, and a redirection
+//! - an output file (`--plot FILE`, `--vtu FILE`) goes to a fresh temporary directory, and a redirection
 //!   `> FILE` is dropped (the test reads standard output instead).
 //!
 //! A command whose comment says `exit N` must exit N; every other command must exit 0.
@@ -112,7 +112,7 @@ fn substitute(args: &[String], tmp: &Path) -> Vec<String> {
                 let hi = cap(hi, 0).max(lo.clone());
                 out.push(format!("{lo}..{hi}"));
             }
-            "--plot" => {
+            "--plot" | "--vtu" => {
                 out.push(a.clone());
                 let file = it.next().expect("a file");
                 out.push(
@@ -172,6 +172,13 @@ fn check_output(args: &[String], stdout: &str, tmp: &Path) -> Result<(), String>
     };
     match args[0].as_str() {
         "solve" => {
+            if let Some(i) = args.iter().position(|a| a == "--vtu") {
+                let vtu = std::fs::read_to_string(tmp.join(Path::new(&args[i + 1]).file_name().unwrap()))
+                    .map_err(|e| format!("no VTU written: {e}"))?;
+                if !vtu.contains("<VTKFile") {
+                    return Err("the VTU file is not VTK XML".into());
+                }
+            }
             if let Some(i) = args.iter().position(|a| a == "--plot") {
                 let svg = std::fs::read_to_string(tmp.join(Path::new(&args[i + 1]).file_name().unwrap()))
                     .map_err(|e| format!("no SVG written: {e}"))?;

@@ -266,7 +266,7 @@ fn depth_steps_by_a_tenth_within_bounds() {
 fn tab_cycles_scenes_both_ways() {
     let mut app = App::new(Scenario::paper());
     let mut seen = vec![app.scene];
-    for _ in 0..4 {
+    for _ in 0..5 {
         app.update(key(KeyCode::Tab));
         seen.push(app.scene);
     }
@@ -277,11 +277,12 @@ fn tab_cycles_scenes_both_ways() {
             Scene::InfSup,
             Scene::Mesh,
             Scene::Convergence,
+            Scene::Stress,
             Scene::Explore
         ]
     );
     app.update(key(KeyCode::BackTab));
-    assert_eq!(app.scene, Scene::Convergence);
+    assert_eq!(app.scene, Scene::Stress);
 }
 
 #[test]

@@ -11,6 +11,7 @@ use crate::contact::Rule;
 use crate::mesh::Element;
 use crate::scenario::{MAX_LEVEL, Scenario};
 use crate::solve::preset;
+use crate::stress::Quantity;
 use crate::study::StudyRow;
 
 use super::beta::InfSup;
@@ -39,10 +40,18 @@ pub enum Scene {
     Mesh,
     /// Error against solve time (work–precision) for M1–M4 against a finer Q2 reference.
     Convergence,
+    /// A heat map of a stress quantity under the contact.
+    Stress,
 }
 
 impl Scene {
-    pub const ALL: [Scene; 4] = [Scene::Explore, Scene::InfSup, Scene::Mesh, Scene::Convergence];
+    pub const ALL: [Scene; 5] = [
+        Scene::Explore,
+        Scene::InfSup,
+        Scene::Mesh,
+        Scene::Convergence,
+        Scene::Stress,
+    ];
 
     pub fn name(self) -> &'static str {
         match self {
@@ -50,6 +59,7 @@ impl Scene {
             Scene::InfSup => "infsup",
             Scene::Mesh => "mesh",
             Scene::Convergence => "convergence",
+            Scene::Stress => "stress",
         }
     }
 
@@ -65,7 +75,7 @@ impl Scene {
 
     /// Whether the scene shows a contact solution.
     pub fn needs_solution(self) -> bool {
-        matches!(self, Scene::Explore | Scene::Mesh)
+        matches!(self, Scene::Explore | Scene::Mesh | Scene::Stress)
     }
 }
 
@@ -226,6 +236,8 @@ pub enum ExportKind {
     Csv,
     /// `S`: the pressure chart as SVG.
     Svg,
+    /// `v`: the body and Γ_C as VTU files.
+    Vtu,
 }
 
 /// What an update asks of the runtime.
@@ -275,6 +287,8 @@ pub struct App {
     pub show_timing: bool,
     /// Compute the inf-sup estimate at every level up to the current one, not just the current.
     pub all_levels: bool,
+    /// What the stress scene shows (`c` cycles).
+    pub stress_quantity: Quantity,
     quit: bool,
     /// Bumped on every change of the settings.
     pub generation: u64,
@@ -318,6 +332,7 @@ impl App {
             zoom: false,
             show_timing: true,
             all_levels: false,
+            stress_quantity: Quantity::PrincipalShear,
             quit: false,
             generation: 0,
             solved: None,
@@ -500,12 +515,13 @@ impl App {
             }
             KeyCode::Char('z') => self.toggle_zoom(),
             KeyCode::Char('a') => self.all_levels = !self.all_levels,
-            KeyCode::Char(c @ ('s' | 'S')) => {
+            KeyCode::Char('c') => self.stress_quantity = self.stress_quantity.next(),
+            KeyCode::Char(c @ ('s' | 'S' | 'v')) => {
                 if self.current().is_some() {
-                    self.export_kind = if c == 's' {
-                        ExportKind::Csv
-                    } else {
-                        ExportKind::Svg
+                    self.export_kind = match c {
+                        's' => ExportKind::Csv,
+                        'S' => ExportKind::Svg,
+                        _ => ExportKind::Vtu,
                     };
                     commands.push(Command::Export);
                 } else {
@@ -659,7 +675,7 @@ impl App {
                     let (element, rule) = preset(&format!("M{m}"))?;
                     Some(InfSupKey { level, element, rule })
                 })),
-                Scene::Mesh | Scene::Convergence => {}
+                Scene::Mesh | Scene::Convergence | Scene::Stress => {}
             }
         }
         if self.scene == Scene::Explore {

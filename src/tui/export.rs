@@ -37,6 +37,21 @@ pub fn export_svg(scenario: &Scenario, solved: &Solved, dir: &Path) -> Result<Pa
     save_fresh(dir, &stem(scenario, solved), "svg", svg.as_bytes())
 }
 
+/// Write the body and Γ_C of `solved` as VTU ([`crate::vtu`]) to `<stem>[-N].vtu` and the
+/// same name with `.contact.vtu` in `dir`; returns the body's path.
+pub fn export_vtu(scenario: &Scenario, solved: &Solved, dir: &Path) -> Result<PathBuf, String> {
+    let field = solved.stresses(scenario)?;
+    let u = &solved.displacement;
+    let mesh = &solved.disc.mesh;
+    let body = crate::vtu::xml(crate::vtu::body(mesh, u, &field)).map_err(|e| e.to_string())?;
+    let contact =
+        crate::vtu::xml(crate::vtu::contact(mesh, &solved.solution, u)).map_err(|e| e.to_string())?;
+    let path = save_fresh(dir, &stem(scenario, solved), "vtu", &body)?;
+    let second = crate::vtu::contact_path(&path);
+    write_file(&second, &contact, false).map_err(|e| format!("{}: {e}", second.display()))?;
+    Ok(path)
+}
+
 /// `<scenario>-<element>-<rule>-L<level>-eps<ε>-d<depth>`, e.g.
 /// `hertz-paper-q1-gauss1-L1-eps1e-6-d0.8`.
 pub fn stem(scenario: &Scenario, solved: &Solved) -> String {

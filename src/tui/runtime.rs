@@ -14,7 +14,7 @@ use ratatui::{DefaultTerminal, Frame};
 use crate::scenario::Scenario;
 
 use super::app::{App, Command, ExportKind, Msg, Response};
-use super::export::{export_csv, export_svg};
+use super::export::{export_csv, export_svg, export_vtu};
 use super::view::{Look, view};
 use super::worker::Worker;
 
@@ -161,6 +161,7 @@ pub(super) fn export(app: &App, dir: &Path) -> Msg {
         Some(solved) => match app.export_kind {
             ExportKind::Csv => export_csv(&app.scenario, solved, dir),
             ExportKind::Svg => export_svg(&app.scenario, solved, dir),
+            ExportKind::Vtu => export_vtu(&app.scenario, solved, dir),
         }
         .map(|p| p.display().to_string()),
         None => Err("no solution to export".into()),

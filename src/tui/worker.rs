@@ -4,9 +4,9 @@
 
 use std::collections::VecDeque;
 use std::ops::ControlFlow;
-use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::mpsc::{self, Receiver, Sender};
+use std::sync::{Arc, OnceLock};
 use std::time::Instant;
 
 use crate::contact::Rule;
@@ -14,6 +14,7 @@ use crate::contact::penalty::{NewtonOptions, SolveError};
 use crate::mesh::Element;
 use crate::scenario::Scenario;
 use crate::solve::{ContactParams, Discretization, Solution, solve_contact};
+use crate::stress::StressField;
 
 use crate::solve::preset;
 use crate::study::{StudyRow, convergence};
@@ -40,6 +41,8 @@ pub struct Solved {
     pub displacement: Vec<f64>,
     /// Wall time of the request, mesh work included, in ms.
     pub total_ms: f64,
+    /// The stresses, computed when first shown (see `view::stress_map`).
+    pub stresses: OnceLock<Result<Arc<StressField>, String>>,
 }
 
 impl std::fmt::Debug for Solved {
@@ -176,6 +179,7 @@ impl Engine {
                         solution,
                         displacement,
                         total_ms: t.elapsed().as_secs_f64() * 1e3,
+                        stresses: OnceLock::new(),
                     })),
                 }
             }

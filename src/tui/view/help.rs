@@ -8,7 +8,7 @@ use ratatui::widgets::{Block, Clear, Paragraph};
 use super::super::theme::Theme;
 
 /// Every key and what it does.
-pub const KEYS: [(&str, &str); 18] = [
+pub const KEYS: [(&str, &str); 19] = [
     ("q  Esc  Ctrl-C", "quit"),
     ("?", "this help (any key closes it)"),
     ("←  →   [  ]", "coarser / finer mesh level (0 to 6)"),
@@ -20,8 +20,9 @@ pub const KEYS: [(&str, &str); 18] = [
     ("g  h", "gap / Hertz overlay on the pressure chart"),
     ("z", "zoom to the contact zone (p̄ > 0) and back"),
     ("a", "inf-sup at every level up to this one"),
-    ("s  S", "export CSV / SVG (a new file, ε and d in"),
-    ("", "its name; --export-dir sets where)"),
+    ("s  S  v", "export CSV / SVG / VTU (new files, ε and"),
+    ("", "d in the name; --export-dir sets where)"),
+    ("c", "stress scene: τ₁ / von Mises / σ_yy"),
     ("0", "reset to the scenario's settings"),
     ("Ctrl-Z", "suspend (fg resumes)"),
     ("", "p, p̄ and E share a unit; x is in units of"),

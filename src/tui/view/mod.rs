@@ -11,6 +11,7 @@ mod infsup_panel;
 pub mod plot;
 mod pressure;
 mod status;
+mod stress_map;
 mod zone;
 
 use ratatui::Frame;
@@ -67,6 +68,7 @@ pub fn view_in(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
         Scene::InfSup => infsup_chart::render(app, frame, body, look),
         Scene::Mesh => deformed::render(app, frame, body, look, deformed::Extent::Full),
         Scene::Convergence => convergence::render(app, frame, body, look),
+        Scene::Stress => stress_map::render(app, frame, body, look),
     }
     if let Some(error) = &app.error {
         let text = format!(" ✗ {error}");

@@ -1,0 +1,159 @@
+//! The lab's stress scene (issue 15): frames at 80×24 and 120×40, the monochrome rendering,
+//! the quantity key, computing the stresses only when shown, and the VTU export key.
+
+mod common;
+
+use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
+use ratatui::Terminal;
+use ratatui::backend::TestBackend;
+use ratatui::style::Color;
+use ratatui::symbols::Marker;
+
+use riplab::scenario::Scenario;
+use riplab::stress::Quantity;
+use riplab::tui::app::{App, Command, ExportKind, Msg, Scene};
+use riplab::tui::export::export_vtu;
+use riplab::tui::render_app;
+use riplab::tui::theme::Theme;
+use riplab::tui::view::{Look, view};
+use riplab::tui::worker::{Engine, settle};
+
+fn look(color: bool) -> Look {
+    Look {
+        theme: Theme { color },
+        marker: Marker::Braille,
+    }
+}
+
+fn ch(c: char) -> Msg {
+    Msg::Key(KeyEvent::new(KeyCode::Char(c), KeyModifiers::NONE))
+}
+
+/// The paper's app at `level`, solved synchronously, with `scene` shown.
+fn settled(level: u32, scene: Scene) -> App {
+    let mut app = App::new(Scenario::paper());
+    app.show_timing = false;
+    app.settings.level = level;
+    app.scene = scene;
+    settle(&mut app, &mut Engine::new(Scenario::paper()));
+    app
+}
+
+#[test]
+fn stress_80x24() {
+    let app = settled(1, Scene::Stress);
+    snap!("tui__stress_80x24", render_app(&app, &look(true), 80, 24));
+}
+
+#[test]
+fn stress_120x40_von_mises() {
+    let mut app = settled(2, Scene::Stress);
+    app.update(ch('c'));
+    assert_eq!(app.stress_quantity, Quantity::VonMises);
+    snap!(
+        "tui__stress_von_mises_120x40",
+        render_app(&app, &look(true), 120, 40)
+    );
+}
+
+/// The quantity key cycles τ₁ → von Mises → σ_yy → τ₁, and the title and caption follow.
+#[test]
+fn c_cycles_the_quantity() {
+    let mut app = settled(1, Scene::Stress);
+    let mut titles = Vec::new();
+    for _ in 0..3 {
+        let text = render_app(&app, &look(true), 100, 30);
+        titles.push(text.lines().nth(2).unwrap().to_string());
+        app.update(ch('c'));
+    }
+    assert_eq!(app.stress_quantity, Quantity::PrincipalShear);
+    assert!(titles[0].contains("τ₁ near the contact"), "{titles:?}");
+    assert!(titles[1].contains("σ_vM near the contact"), "{titles:?}");
+    assert!(titles[2].contains("σ_yy near the contact"), "{titles:?}");
+    app.update(ch('c'));
+    app.update(ch('c'));
+    let text = render_app(&app, &look(true), 100, 30);
+    assert!(text.contains("most compressive σ_yy = -"), "{text}");
+}
+
+/// The maximum of τ₁ is below the surface under the cylinder: the marker is on the axis
+/// (the middle column of the mirrored map), not in the first row, and the caption says
+/// where.
+#[test]
+fn the_marker_sits_below_the_surface_on_the_axis() {
+    let app = settled(2, Scene::Stress);
+    let text = render_app(&app, &look(true), 100, 30);
+    let rows: Vec<&str> = text.lines().collect();
+    let (r, line) = rows
+        .iter()
+        .enumerate()
+        .find(|(_, l)| l.contains('✕') && l.contains('│'))
+        .unwrap();
+    assert!(r > 3, "not in the first map row:\n{text}");
+    let col = line.chars().position(|c| c == '✕').unwrap();
+    let map_width = 100 - 2 - 12;
+    assert!(
+        (col as i64 - 1 - map_width as i64 / 2).abs() <= 1,
+        "column {col}:\n{text}"
+    );
+    assert!(text.contains("max τ₁ = 109.5 at depth 1.66 (x = 0)"), "{text}");
+}
+
+/// Under NO_COLOR the map is drawn in shading glyphs with no colour at all.
+#[test]
+fn monochrome_map_uses_shading_glyphs_and_no_colour() {
+    let app = settled(1, Scene::Stress);
+    let mut terminal = Terminal::new(TestBackend::new(100, 30)).unwrap();
+    terminal.draw(|f| view(&app, f, &look(false))).unwrap();
+    let buffer = terminal.backend().buffer();
+    let mut glyphs = std::collections::BTreeSet::new();
+    for cell in buffer.content() {
+        assert!(
+            matches!(cell.fg, Color::Reset) && matches!(cell.bg, Color::Reset),
+            "a colour under NO_COLOR: {cell:?}"
+        );
+        if "·░▒▓█✕".contains(cell.symbol()) {
+            glyphs.insert(cell.symbol().to_string());
+        }
+    }
+    assert_eq!(glyphs.len(), 6, "every level and the marker: {glyphs:?}");
+}
+
+/// The stresses are computed when the scene first shows a solution, and kept with it.
+#[test]
+fn stresses_are_computed_only_when_shown() {
+    let mut app = settled(1, Scene::Explore);
+    render_app(&app, &look(true), 100, 30);
+    let solved = app.solved.clone().unwrap();
+    assert!(
+        solved.stresses.get().is_none(),
+        "not computed for the explore scene"
+    );
+    app.scene = Scene::Stress;
+    render_app(&app, &look(true), 100, 30);
+    assert!(solved.stresses.get().is_some(), "computed once shown");
+}
+
+/// `v` asks for a VTU export of the displayed solution; the export writes the body and Γ_C
+/// to fresh names (never over an existing file) that read back as VTK XML.
+#[test]
+fn v_exports_vtu_to_fresh_files() {
+    let mut app = settled(1, Scene::Stress);
+    let effect = app.update(ch('v'));
+    assert_eq!(effect.commands, vec![Command::Export]);
+    assert_eq!(app.export_kind, ExportKind::Vtu);
+    let dir = std::env::temp_dir().join(format!("riplab-tui-vtu-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let solved = app.solved.clone().unwrap();
+    let first = export_vtu(&app.scenario, &solved, &dir).unwrap();
+    let second = export_vtu(&app.scenario, &solved, &dir).unwrap();
+    assert_eq!(first, dir.join("hertz-paper-q1-gauss1-L1-eps1e-6-d0.8.vtu"));
+    assert_eq!(second, dir.join("hertz-paper-q1-gauss1-L1-eps1e-6-d0.8-1.vtu"));
+    for p in [&first, &second] {
+        for file in [p.clone(), riplab::vtu::contact_path(p)] {
+            vtkio::model::Vtk::import(&file).unwrap_or_else(|e| panic!("{}: {e}", file.display()));
+        }
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
