@@ -33,6 +33,9 @@ pub struct Cli {
     /// Monochrome display (also when the NO_COLOR environment variable is set).
     #[arg(long, global = true)]
     pub no_color: bool,
+    /// Threads for the factorisation and the dense work on Γ_C (the results do not depend on it).
+    #[arg(long, global = true, default_value_t = 1, value_parser = clap::value_parser!(u16).range(1..=256))]
+    pub threads: u16,
     #[command(subcommand)]
     pub command: Option<Command>,
 }
@@ -273,6 +276,7 @@ impl Select {
 
 /// Run the command line; returns the process exit code.
 pub fn run(cli: Cli) -> ExitCode {
+    crate::fem::set_threads(usize::from(cli.threads));
     let result = match cli.command {
         Some(Command::Solve(args)) => solve(&args),
         Some(Command::Infsup(args)) => infsup(&args),

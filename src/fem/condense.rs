@@ -18,9 +18,13 @@ use faer::sparse::linalg::cholesky::{
     CholeskySymbolicParams, LltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
     factorize_symbolic_cholesky,
 };
-use faer::{Conj, Mat, MatMut, Par, Side};
+use faer::{Accum, Conj, Mat, MatMut, Par, Side};
 
 use super::SymCsc;
+use super::dofs::DofMap;
+use super::error::FemError;
+use super::ordering::nested_dissection;
+use crate::mesh::Mesh;
 
 /// The symbolic analysis of a pattern with the trace dofs ordered last (one per mesh).
 #[derive(Clone)]
@@ -31,8 +35,9 @@ pub struct TraceOrdering {
 }
 
 impl TraceOrdering {
-    /// Analyse the pattern of `a` (lower triangle) with `trace` (free dof indices) last.
-    pub fn new(a: &SymCsc, trace: &[usize]) -> Result<Self, String> {
+    /// Analyse the pattern of `a` (lower triangle) with `trace` (free dof indices) last and
+    /// approximate minimum degree on the other dofs: for any pattern.
+    pub fn new(a: &SymCsc, trace: &[usize]) -> Result<Self, FemError> {
         let n = a.n;
         let mut is_trace = vec![false; n];
         for &d in trace {
@@ -60,7 +65,7 @@ impl TraceOrdering {
         let (mut perm, mut perm_inv) = (vec![0usize; ni], vec![0usize; ni]);
         let interior = SymbolicSparseColMatRef::new_checked(ni, ni, &col_ptr, None, &row_idx);
         let mut mem = MemBuffer::try_new(amd::order_scratch::<usize>(ni, row_idx.len()))
-            .map_err(|e| format!("out of memory for the ordering: {e:?}"))?;
+            .map_err(|_| FemError::OutOfMemory("the ordering"))?;
         amd::order(
             &mut perm,
             &mut perm_inv,
@@ -68,12 +73,21 @@ impl TraceOrdering {
             amd::Control::default(),
             MemStack::new(&mut mem),
         )
-        .map_err(|e| format!("ordering failed: {e:?}"))?;
-        let fwd: Vec<usize> = perm
-            .iter()
-            .map(|&k| global[k])
-            .chain(trace.iter().copied())
-            .collect();
+        .map_err(FemError::from_faer("the ordering"))?;
+        Self::with_interior_order(a, perm.iter().map(|&k| global[k]).collect(), trace)
+    }
+
+    /// Analyse the pattern of `a`, the form on `mesh` over `dofs`, with `trace` last and the
+    /// grid's nested dissection on the other dofs ([`super::ordering`]).
+    pub fn grid(a: &SymCsc, mesh: &Mesh, dofs: &DofMap, trace: &[usize]) -> Result<Self, FemError> {
+        Self::with_interior_order(a, nested_dissection(mesh, dofs, trace), trace)
+    }
+
+    /// The symbolic analysis for the elimination order `interior` followed by `trace`.
+    pub fn with_interior_order(a: &SymCsc, interior: Vec<usize>, trace: &[usize]) -> Result<Self, FemError> {
+        let n = a.n;
+        let mut fwd = interior;
+        fwd.extend_from_slice(trace);
         let mut inv = vec![0usize; n];
         for (k, &d) in fwd.iter().enumerate() {
             inv[d] = k;
@@ -84,16 +98,44 @@ impl TraceOrdering {
             SymmetricOrdering::Custom(PermRef::new_checked(&fwd, &inv, n)),
             CholeskySymbolicParams::default(),
         )
-        .map_err(|e| format!("symbolic factorisation failed: {e:?}"))?;
+        .map_err(FemError::from_faer("the symbolic factorisation"))?;
         Ok(TraceOrdering {
             symbolic: Arc::new(symbolic),
             trace: trace.to_vec(),
         })
     }
 
+    /// The number of stored values of the factor L (explicit zeros of merged supernodes
+    /// included): its memory is eight bytes each.
+    pub fn factor_len(&self) -> usize {
+        self.symbolic.len_val()
+    }
+
+    /// Floating point operations of one numeric factorisation ([`factor_flops`]).
+    pub fn factor_flops(&self) -> f64 {
+        factor_flops(&self.symbolic)
+    }
+
     /// Whether faer chose its supernodal (blocked) factorisation for this pattern.
     pub fn is_supernodal(&self) -> bool {
         matches!(self.symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_))
+    }
+}
+
+/// Floating point operations of one numeric factorisation on `symbolic`: Σ_j c_j² over the
+/// columns of L with c_j stored values (c_j divisions and about c_j² multiply-adds of the
+/// updates it sends, the count of George and Liu).
+pub fn factor_flops(symbolic: &SymbolicCholesky<usize>) -> f64 {
+    let square = |c: usize| (c as f64) * (c as f64);
+    match symbolic.raw() {
+        SymbolicCholeskyRaw::Supernodal(sym) => (0..sym.n_supernodes())
+            .map(|s| {
+                let below = sym.supernode(s).pattern().len();
+                let width = sym.supernode_end()[s] - sym.supernode_begin()[s];
+                (1..=width).map(|k| square(k + below)).sum::<f64>()
+            })
+            .sum(),
+        SymbolicCholeskyRaw::Simplicial(sym) => sym.col_ptr().windows(2).map(|w| square(w[1] - w[0])).sum(),
     }
 }
 
@@ -104,28 +146,29 @@ pub struct TraceFactor {
 }
 
 impl TraceFactor {
-    /// Factorise `a`, whose pattern is the one `ordering` analysed.
-    pub fn new(ordering: &TraceOrdering, a: &SymCsc) -> Result<Self, String> {
+    /// Factorise `a`, whose pattern is the one `ordering` analysed, with faer's global
+    /// parallelism (`faer::set_global_parallelism`).
+    pub fn new(ordering: &TraceOrdering, a: &SymCsc) -> Result<Self, FemError> {
         let symbolic = &ordering.symbolic;
+        let par = faer::get_global_parallelism();
         let mut values = Vec::new();
         values
             .try_reserve_exact(symbolic.len_val())
-            .map_err(|_| "out of memory for the factor".to_string())?;
+            .map_err(|_| FemError::OutOfMemory("the factor"))?;
         values.resize(symbolic.len_val(), 0.0);
-        let mut mem =
-            MemBuffer::try_new(symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()))
-                .map_err(|e| format!("out of memory: {e:?}"))?;
-        symbolic
-            .factorize_numeric_llt(
-                &mut values,
-                a.view(&a.values),
-                Side::Lower,
-                Default::default(),
-                Par::Seq,
-                MemStack::new(&mut mem),
-                Default::default(),
-            )
-            .map_err(|e| format!("the matrix is not positive definite ({e:?})"))?;
+        let mut mem = MemBuffer::try_new(symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()))
+            .map_err(|_| FemError::OutOfMemory("the factorisation's workspace"))?;
+        symbolic.factorize_numeric_llt(
+            &mut values,
+            a.view(&a.values),
+            Side::Lower,
+            Default::default(),
+            par,
+            MemStack::new(&mut mem),
+            Default::default(),
+        )
+        // The numeric factorisation's only failure is a non-positive pivot.
+        .map_err(|_| FemError::NotPositiveDefinite)?;
         Ok(TraceFactor {
             ordering: ordering.clone(),
             values,
@@ -191,8 +234,11 @@ impl TraceFactor {
         let l = self.schur_factor();
         let nc = l.nrows();
         let mut inv = Mat::<f64>::identity(nc, nc);
-        faer::linalg::triangular_solve::solve_lower_triangular_in_place(l.as_ref(), inv.as_mut(), Par::Seq);
-        inv.transpose() * &inv
+        let par = faer::get_global_parallelism();
+        faer::linalg::triangular_solve::solve_lower_triangular_in_place(l.as_ref(), inv.as_mut(), par);
+        let mut c = Mat::<f64>::zeros(nc, nc);
+        faer::linalg::matmul::matmul(c.as_mut(), Accum::Replace, inv.transpose(), inv.as_ref(), 1.0, par);
+        c
     }
 }
 
