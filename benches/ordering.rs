@@ -15,7 +15,9 @@ use std::ops::ControlFlow;
 
 use divan::Bencher;
 use faer::Side;
-use faer::sparse::linalg::cholesky::{CholeskySymbolicParams, SymmetricOrdering, factorize_symbolic_cholesky};
+use faer::sparse::linalg::cholesky::{
+    CholeskySymbolicParams, SymmetricOrdering, factorize_symbolic_cholesky,
+};
 use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
 use riplab::contact::penalty::NewtonOptions;
 use riplab::fem::condense::{TraceFactor, TraceOrdering, factor_flops};
@@ -32,7 +34,10 @@ fn levels() -> Vec<u32> {
 }
 
 fn main() {
-    let threads = std::env::var("RIPLAB_THREADS").ok().and_then(|t| t.parse().ok()).unwrap_or(1);
+    let threads = std::env::var("RIPLAB_THREADS")
+        .ok()
+        .and_then(|t| t.parse().ok())
+        .unwrap_or(1);
     riplab::fem::set_threads(threads);
     println!("threads {threads}");
     println!("| level | unknowns | ordering | factor values | flops |");
@@ -49,7 +54,11 @@ fn main() {
         )
         .unwrap();
         for (name, len, flops) in [
-            ("grid nested dissection, Γ_C last", grid.factor_len(), grid.factor_flops()),
+            (
+                "grid nested dissection, Γ_C last",
+                grid.factor_len(),
+                grid.factor_flops(),
+            ),
             ("AMD, Γ_C last (before)", amd.factor_len(), amd.factor_flops()),
             ("faer default (AMD)", faer.len_val(), factor_flops(&faer)),
         ] {

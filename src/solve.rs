@@ -63,7 +63,8 @@ impl Discretization {
             .collect();
         let n = dofs.n_free();
         let t = Instant::now();
-        let ordering = TraceOrdering::grid(&stiffness, &mesh, &dofs, &contact_dofs).map_err(|e| fem_error(e, n))?;
+        let ordering =
+            TraceOrdering::grid(&stiffness, &mesh, &dofs, &contact_dofs).map_err(|e| fem_error(e, n))?;
         let symbolic_ms = ms_since(t);
         let t = Instant::now();
         let factor = TraceFactor::new(&ordering, &stiffness).map_err(|e| fem_error(e, n))?;

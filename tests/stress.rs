@@ -162,6 +162,9 @@ fn a_long_strip_is_refused_for_its_dense_blocks() {
 fn an_address_space_limit_is_honoured() {
     let (code, err) = riplab_limited(1_500_000, &["solve", "--level", "7", "--element", "q2"]);
     assert_eq!(code, 2, "{err}");
-    assert!(err.contains("level 7 with q2") && err.contains("choose a coarser level"), "{err}");
+    assert!(
+        err.contains("level 7 with q2") && err.contains("choose a coarser level"),
+        "{err}"
+    );
     assert!(!err.contains("rigid motion"), "{err}");
 }

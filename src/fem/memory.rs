@@ -81,12 +81,18 @@ impl Limits {
         let address_space = read("/proc/self/limits")
             .and_then(|t| parse_rlimit_as(&t))
             .map(|limit| {
-                let used = read("/proc/self/status").and_then(|t| parse_vm_size(&t)).unwrap_or(0);
+                let used = read("/proc/self/status")
+                    .and_then(|t| parse_vm_size(&t))
+                    .unwrap_or(0);
                 limit.saturating_sub(used)
             });
         let cgroup = read("/proc/self/cgroup").and_then(|t| {
             let mut headroom = None;
-            for (root, v2) in [("/sys/fs/cgroup", true), ("/sys/fs/cgroup/unified", true), ("/sys/fs/cgroup/memory", false)] {
+            for (root, v2) in [
+                ("/sys/fs/cgroup", true),
+                ("/sys/fs/cgroup/unified", true),
+                ("/sys/fs/cgroup/memory", false),
+            ] {
                 if let Some(rel) = cgroup_path(&t, v2) {
                     headroom = min_known(headroom, cgroup_headroom(Path::new(root), &rel, v2));
                 }
@@ -135,7 +141,11 @@ fn kib_field(text: &str, key: &str) -> Option<u64> {
 /// unlimited.
 pub fn parse_rlimit_as(text: &str) -> Option<u64> {
     let line = text.lines().find(|l| l.starts_with("Max address space"))?;
-    line["Max address space".len()..].split_whitespace().next()?.parse().ok()
+    line["Max address space".len()..]
+        .split_whitespace()
+        .next()?
+        .parse()
+        .ok()
 }
 
 /// A cgroup limit file (`max`, or bytes; v1 writes "no limit" as a number near 2⁶³).
@@ -193,7 +203,10 @@ mod tests {
     fn proc_files_are_read_in_bytes() {
         let meminfo = "MemTotal:       24589764 kB\nMemFree:         1000 kB\nMemAvailable:   23828596 kB\n";
         assert_eq!(parse_meminfo(meminfo), Some(23_828_596 * 1024));
-        assert_eq!(parse_vm_size("Name:\triplab\nVmPeak:\t  9 kB\nVmSize:\t   2048 kB\n"), Some(2 << 20));
+        assert_eq!(
+            parse_vm_size("Name:\triplab\nVmPeak:\t  9 kB\nVmSize:\t   2048 kB\n"),
+            Some(2 << 20)
+        );
         let limits = "Limit                     Soft Limit           Hard Limit           Units     \n\
                       Max stack size            8388608              unlimited            bytes     \n\
                       Max address space         1536000000           unlimited            bytes     \n";

@@ -10,15 +10,30 @@ pub mod memory;
 pub mod ordering;
 pub mod quadrature;
 
+use std::num::NonZeroUsize;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use faer::Par;
+
 pub use assembly::{Form, Integration, SymCsc, apply, assemble, body_load, h1_error};
 pub use dofs::DofMap;
 pub use error::FemError;
 
-/// Run the numeric factorisation and the dense work on Γ_C on `threads` threads (1: on the
-/// caller's thread). Every result is bit-identical for any count (tests/threads.rs).
+/// Threads of the numeric factorisation and the trace compliance (1: the caller's thread).
+static THREADS: AtomicUsize = AtomicUsize::new(1);
+
+/// Run the numeric factorisation and the trace compliance on `threads` threads; everything
+/// else (faer's dense eigensolvers among it) stays on the caller's thread. The results are
+/// bit-identical for any count (tests/threads.rs).
 pub fn set_threads(threads: usize) {
-    faer::set_global_parallelism(match std::num::NonZeroUsize::new(threads) {
-        Some(n) if threads > 1 => faer::Par::Rayon(n),
-        _ => faer::Par::Seq,
-    });
+    THREADS.store(threads.max(1), Ordering::Relaxed);
+    faer::set_global_parallelism(Par::Seq);
+}
+
+/// The parallelism [`set_threads`] chose.
+pub fn parallelism() -> Par {
+    match NonZeroUsize::new(THREADS.load(Ordering::Relaxed)) {
+        Some(n) if n.get() > 1 => Par::Rayon(n),
+        _ => Par::Seq,
+    }
 }
