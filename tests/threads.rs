@@ -28,10 +28,6 @@ fn run(threads: usize, element: Element, level: u32) -> Vec<u64> {
     (0..c.ncols())
         .flat_map(|j| (0..c.nrows()).map(move |i| c[(i, j)]))
         .chain(
-            h1.c.col_iter()
-                .flat_map(|col| col.iter().copied().collect::<Vec<_>>()),
-        )
-        .chain(
             sol.p
                 .iter()
                 .chain(&sol.pbar)
