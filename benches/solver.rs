@@ -53,7 +53,7 @@ fn stiffness(level: u32) -> (Discretization, SymCsc) {
 #[divan::bench(args = LEVELS, sample_count = 10)]
 fn ordering(bencher: Bencher, level: u32) {
     let (disc, k) = stiffness(level);
-    bencher.bench(|| TraceOrdering::new(&k, &disc.contact_dofs).unwrap());
+    bencher.bench(|| TraceOrdering::grid(&k, &disc.mesh, &disc.dofs, &disc.contact_dofs).unwrap());
 }
 
 #[divan::bench(args = LEVELS, sample_count = 10)]
