@@ -350,3 +350,33 @@ pub fn preset(name: &str) -> Option<(Element, Rule)> {
         _ => None,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Issue 10 item 5: an allocation failure is reported as out of memory (exit 2 through
+    /// `TooLarge`), and only a non-positive pivot asks about rigid motion.
+    #[test]
+    fn out_of_memory_is_not_called_a_rigid_motion() {
+        let oom = fem_error(FemError::OutOfMemory("the factor"), 1000);
+        assert!(
+            matches!(&oom, SolveError::TooLarge(m) if m.contains("out of memory in the factor with 1000 unknowns"))
+        );
+        assert!(!oom.to_string().contains("rigid"));
+        let big = fem_error(
+            FemError::TooLarge {
+                unknowns: 7,
+                need: 3 << 30,
+                available: 1 << 30,
+            },
+            7,
+        );
+        assert_eq!(
+            big.to_string(),
+            "7 unknowns need about 3.0 GiB and 1.0 GiB is available: choose a coarser level"
+        );
+        let pivot = fem_error(FemError::NotPositiveDefinite, 7);
+        assert!(matches!(pivot, SolveError::Factorization(_)) && pivot.to_string().contains("rigid motion"));
+    }
+}

@@ -23,6 +23,7 @@ use faer::{Accum, Conj, Mat, MatMut, Par, Side};
 use super::SymCsc;
 use super::dofs::DofMap;
 use super::error::FemError;
+use super::memory::Limits;
 use super::ordering::nested_dissection;
 use crate::mesh::Mesh;
 
@@ -151,14 +152,27 @@ impl TraceFactor {
     pub fn new(ordering: &TraceOrdering, a: &SymCsc) -> Result<Self, FemError> {
         let symbolic = &ordering.symbolic;
         let par = super::parallelism();
+        let scratch = symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default());
+        // The factor's exact size is known now: refuse it, rather than be killed for it, when
+        // it does not fit in what the process may still use.
+        let need = (8 * symbolic.len_val() + scratch.unaligned_bytes_required()) as u64;
+        match Limits::of_process().available() {
+            Some(available) if need > available => {
+                return Err(FemError::TooLarge {
+                    unknowns: a.n,
+                    need,
+                    available,
+                });
+            }
+            _ => {}
+        }
         let mut values = Vec::new();
         values
             .try_reserve_exact(symbolic.len_val())
             .map_err(|_| FemError::OutOfMemory("the factor"))?;
         values.resize(symbolic.len_val(), 0.0);
-        let mut mem =
-            MemBuffer::try_new(symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()))
-                .map_err(|_| FemError::OutOfMemory("the factorisation's workspace"))?;
+        let mut mem = MemBuffer::try_new(scratch)
+            .map_err(|_| FemError::OutOfMemory("the factorisation's workspace"))?;
         symbolic
             .factorize_numeric_llt(
                 &mut values,
