@@ -1,7 +1,8 @@
 //! Condensation of a symmetric positive definite form onto the trace dofs of Γ_C.
 //!
 //! The matrix is factorised once, A = Pᵀ L Lᵀ P, with an ordering that eliminates every other
-//! dof first (approximate minimum degree on them) and the `trace` dofs last. The trailing
+//! dof first (the grid's nested dissection, [`super::ordering`], or approximate minimum degree
+//! for any pattern) and the `trace` dofs last. The trailing
 //! block L_cc of L then satisfies L_cc L_ccᵀ = S, the Schur complement of A on the trace dofs,
 //! and the *trace compliance* C = E A⁻¹ Eᵀ = S⁻¹ follows from dense work of the trace's size:
 //! no solve per trace dof. The same factor solves with A when the full field is wanted.
