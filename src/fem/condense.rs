@@ -86,7 +86,7 @@ impl TraceOrdering {
     }
 
     /// The symbolic analysis for the elimination order `interior` followed by `trace`.
-    pub fn with_interior_order(a: &SymCsc, interior: Vec<usize>, trace: &[usize]) -> Result<Self, FemError> {
+    fn with_interior_order(a: &SymCsc, interior: Vec<usize>, trace: &[usize]) -> Result<Self, FemError> {
         let n = a.n;
         let mut fwd = interior;
         fwd.extend_from_slice(trace);
