@@ -19,6 +19,8 @@ use riplab::solve::{ContactParams, Discretization, solve_contact};
 const LEVELS: &[u32] = &[3, 4, 5, 6];
 
 fn main() {
+    // As the binary does: one thread, faer's dense kernels sequential.
+    riplab::fem::set_threads(1);
     divan::main();
 }
 
