@@ -19,6 +19,8 @@ use riplab::solve::{ContactParams, Discretization, solve_contact};
 const LEVELS: &[u32] = &[3, 4, 5, 6];
 
 fn main() {
+    // As the binary does: one thread, faer's dense kernels sequential.
+    riplab::fem::set_threads(1);
     divan::main();
 }
 
@@ -53,7 +55,7 @@ fn stiffness(level: u32) -> (Discretization, SymCsc) {
 #[divan::bench(args = LEVELS, sample_count = 10)]
 fn ordering(bencher: Bencher, level: u32) {
     let (disc, k) = stiffness(level);
-    bencher.bench(|| TraceOrdering::new(&k, &disc.contact_dofs).unwrap());
+    bencher.bench(|| TraceOrdering::grid(&k, &disc.mesh, &disc.dofs, &disc.contact_dofs).unwrap());
 }
 
 #[divan::bench(args = LEVELS, sample_count = 10)]

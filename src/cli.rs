@@ -49,6 +49,9 @@ pub struct Cli {
     /// directory when omitted. Files are never overwritten.
     #[arg(long, global = true, value_name = "DIR")]
     pub export_dir: Option<PathBuf>,
+    /// Threads for the factorisation and the dense work on Γ_C (the results do not depend on it).
+    #[arg(long, global = true, default_value_t = 1, value_parser = clap::value_parser!(u16).range(1..=256))]
+    pub threads: u16,
     #[command(subcommand)]
     pub command: Option<Command>,
 }
@@ -292,6 +295,7 @@ impl Select {
 
 /// Run the command line; returns the process exit code.
 pub fn run(cli: Cli) -> ExitCode {
+    crate::fem::set_threads(usize::from(cli.threads));
     let result = match cli.command {
         Some(Command::Solve(args)) => solve(&args),
         Some(Command::Infsup(args)) => infsup(&args),

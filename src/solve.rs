@@ -15,7 +15,9 @@ use crate::contact::penalty::{self, Iteration, NewtonOptions, NewtonResult, Pena
 use crate::contact::signorini::solve_exact;
 use crate::contact::{ContactPoints, Obstacle, Rule, load, raw_pressure, smoothed_pressure};
 use crate::fem::condense::{TraceFactor, TraceOrdering};
-use crate::fem::{DofMap, Form, Integration, assemble};
+use crate::fem::error::gib;
+use crate::fem::memory::{Limits, Sizes};
+use crate::fem::{DofMap, FemError, Form, Integration, assemble};
 use crate::material::Material;
 use crate::mesh::{Element, Mesh};
 use crate::scenario::{Scenario, check};
@@ -65,11 +67,13 @@ impl Discretization {
                     .expect("Γ_C is not on the clamped side")
             })
             .collect();
+        let n = dofs.n_free();
         let t = Instant::now();
-        let ordering = TraceOrdering::new(&stiffness, &contact_dofs).map_err(SolveError::Factorization)?;
+        let ordering =
+            TraceOrdering::grid(&stiffness, &mesh, &dofs, &contact_dofs).map_err(|e| fem_error(e, n))?;
         let symbolic_ms = ms_since(t);
         let t = Instant::now();
-        let factor = TraceFactor::new(&ordering, &stiffness).map_err(SolveError::Factorization)?;
+        let factor = TraceFactor::new(&ordering, &stiffness).map_err(|e| fem_error(e, n))?;
         let compliance = factor.compliance();
         let factorization_ms = ms_since(t);
         Ok(Discretization {
@@ -89,23 +93,35 @@ impl Discretization {
     }
 
     /// The discretisation of `scenario` at `level` with `element`, refused before anything is
-    /// allocated when its memory estimate exceeds the memory available.
+    /// allocated when its memory estimate exceeds the memory this process may use
+    /// ([`crate::fem::memory`]).
     pub fn of(scenario: &Scenario, level: u32, element: Element) -> Result<Self, SolveError> {
-        let n = scenario.n_dofs(level, element);
-        let need = memory_estimate(n);
-        if let Some(free) = available_memory().filter(|&free| need > free) {
-            return Err(SolveError::TooLarge(format!(
-                "level {level} with {} has {n} unknowns and needs about {:.1} GiB; this machine has {:.1} GiB available: choose a coarser level",
+        let mesh = scenario.mesh(level, element);
+        let trace = mesh.nnx();
+        let sizes = Sizes {
+            element,
+            unknowns: scenario.n_dofs(level, element),
+            trace,
+            points: Rule::ALL
+                .iter()
+                .map(|&rule| ContactPoints::new(rule, &mesh.node_x, element.order()).len())
+                .max()
+                .unwrap_or(trace),
+        };
+        sizes.check(&Limits::of_process()).map_err(|e| match e {
+            FemError::TooLarge {
+                unknowns,
+                need,
+                available,
+            } => SolveError::TooLarge(format!(
+                "level {level} with {} has {unknowns} unknowns ({trace} on Γ_C) and needs about {}; this process has {} available (free memory, ulimit -v and the control group's limit): choose a coarser level",
                 element.name(),
-                need as f64 / GIB,
-                free as f64 / GIB
-            )));
-        }
-        Self::new(
-            scenario.mesh(level, element),
-            scenario.material,
-            scenario.integration,
-        )
+                gib(need),
+                gib(available)
+            )),
+            e => fem_error(e, sizes.unknowns),
+        })?;
+        Self::new(mesh, scenario.material, scenario.integration)
     }
 
     /// `rule` laid on Γ_C.
@@ -163,8 +179,6 @@ impl Discretization {
     }
 }
 
-const GIB: f64 = (1u64 << 30) as f64;
-
 /// The range of the dimensionless penalty κ = ε·E/h (the penalty stiffness w/ε against the
 /// body's stiffness E, per unit length) that riplab accepts. Below 1e-20 the products of the
 /// penalty (1/ε times squares of violations) leave double precision; round-off already swamps
@@ -178,20 +192,23 @@ pub fn epsilon_range(young: f64, h: f64) -> (f64, f64) {
     (KAPPA_RANGE.0 * h / young, KAPPA_RANGE.1 * h / young)
 }
 
-/// Peak memory of a solve with `n` unknowns, bytes: the factor's fill grows like n·log₂n
-/// (measured 82–98 bytes per n·log₂n for Q1, Q2 and P1 at 65 thousand to a million
-/// unknowns, BENCHMARKS.md), plus a fixed 16 MiB.
-pub fn memory_estimate(n: usize) -> u64 {
-    let n = n.max(2) as f64;
-    (100.0 * n * n.log2()) as u64 + (16 << 20)
-}
-
-/// The memory available to a new allocation (Linux `MemAvailable`), if known.
-pub fn available_memory() -> Option<u64> {
-    let info = std::fs::read_to_string("/proc/meminfo").ok()?;
-    let line = info.lines().find(|l| l.starts_with("MemAvailable:"))?;
-    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
-    Some(kib * 1024)
+/// The solver's error for a failure of the finite element layer on `n` unknowns.
+fn fem_error(e: FemError, n: usize) -> SolveError {
+    match e {
+        FemError::NotPositiveDefinite => SolveError::Factorization("a zero or negative pivot".into()),
+        FemError::OutOfMemory(what) => SolveError::TooLarge(format!(
+            "out of memory in {what} with {n} unknowns: choose a coarser level"
+        )),
+        FemError::TooLarge {
+            unknowns,
+            need,
+            available,
+        } => SolveError::TooLarge(format!(
+            "{unknowns} unknowns need about {} and {} is available: choose a coarser level",
+            gib(need),
+            gib(available)
+        )),
+    }
 }
 
 /// A contact solve's parameters checked against what it can answer: ε within `range` (from
@@ -440,5 +457,35 @@ pub fn preset(name: &str) -> Option<(Element, Rule)> {
         "M3" => Some((Element::Q1, Rule::Trapezoid)),
         "M4" => Some((Element::Q2, Rule::Simpson)),
         _ => None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Issue 10 item 5: an allocation failure is reported as out of memory (exit 2 through
+    /// `TooLarge`), and only a non-positive pivot asks about rigid motion.
+    #[test]
+    fn out_of_memory_is_not_called_a_rigid_motion() {
+        let oom = fem_error(FemError::OutOfMemory("the factor"), 1000);
+        assert!(
+            matches!(&oom, SolveError::TooLarge(m) if m.contains("out of memory in the factor with 1000 unknowns"))
+        );
+        assert!(!oom.to_string().contains("rigid"));
+        let big = fem_error(
+            FemError::TooLarge {
+                unknowns: 7,
+                need: 3 << 30,
+                available: 1 << 30,
+            },
+            7,
+        );
+        assert_eq!(
+            big.to_string(),
+            "7 unknowns need about 3.0 GiB and 1.0 GiB is available: choose a coarser level"
+        );
+        let pivot = fem_error(FemError::NotPositiveDefinite, 7);
+        assert!(matches!(pivot, SolveError::Factorization(_)) && pivot.to_string().contains("rigid motion"));
     }
 }

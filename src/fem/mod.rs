@@ -1,10 +1,39 @@
-//! The finite element layer: quadrature, cell bases, dofs and assembly (DESIGN §2).
+//! The finite element layer: quadrature, cell bases, dofs, assembly, the grid's ordering and
+//! the condensation onto Γ_C (DESIGN §2), with the memory those need.
 
 pub mod assembly;
 pub mod basis;
 pub mod condense;
 pub mod dofs;
+pub mod error;
+pub mod memory;
+pub mod ordering;
 pub mod quadrature;
+
+use std::num::NonZeroUsize;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use faer::Par;
 
 pub use assembly::{Form, Integration, SymCsc, apply, assemble, body_load, h1_error};
 pub use dofs::DofMap;
+pub use error::FemError;
+
+/// Threads of the numeric factorisation and the trace compliance (1: the caller's thread).
+static THREADS: AtomicUsize = AtomicUsize::new(1);
+
+/// Run the numeric factorisation and the trace compliance on `threads` threads; everything
+/// else (faer's dense eigensolvers among it) stays on the caller's thread. The results are
+/// bit-identical for any count (tests/threads.rs).
+pub fn set_threads(threads: usize) {
+    THREADS.store(threads.max(1), Ordering::Relaxed);
+    faer::set_global_parallelism(Par::Seq);
+}
+
+/// The parallelism [`set_threads`] chose.
+pub fn parallelism() -> Par {
+    match NonZeroUsize::new(THREADS.load(Ordering::Relaxed)) {
+        Some(n) if n.get() > 1 => Par::Rayon(n),
+        _ => Par::Seq,
+    }
+}

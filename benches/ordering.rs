@@ -1,0 +1,116 @@
+//! The ordering of K against faer's own Cholesky (issue 13): `cargo bench --bench ordering`.
+//!
+//! In one run, on the paper's problem (Q1, M1) at `RIPLAB_LEVELS` (default 6 and 7):
+//! - `fresh_m1`: the whole fresh solve (assembly, the grid's nested dissection with Γ_C last,
+//!   symbolic and numeric factorisation, the trace compliance, Newton), as `riplab solve`;
+//! - `faer_default`: faer's Cholesky of the same K with its default (AMD) ordering, symbolic
+//!   and numeric, no compliance;
+//! - `constrained_amd`: the previous ordering (AMD on all but Γ_C, then Γ_C), symbolic and
+//!   numeric, no compliance.
+//!
+//! Before the timings it prints each ordering's factor size and flop count (no timing
+//! noise). `RIPLAB_THREADS` (default 1) sets the threads of every variant alike.
+
+use std::ops::ControlFlow;
+
+use divan::Bencher;
+use faer::Side;
+use faer::sparse::linalg::cholesky::{
+    CholeskySymbolicParams, SymmetricOrdering, factorize_symbolic_cholesky,
+};
+use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
+use riplab::contact::penalty::NewtonOptions;
+use riplab::fem::condense::{TraceFactor, TraceOrdering, factor_flops};
+use riplab::fem::{DofMap, Form, SymCsc, assemble};
+use riplab::mesh::Element;
+use riplab::scenario::Scenario;
+use riplab::solve::{ContactParams, Discretization, solve_contact};
+
+fn levels() -> Vec<u32> {
+    std::env::var("RIPLAB_LEVELS")
+        .ok()
+        .map(|v| v.split(',').filter_map(|l| l.trim().parse().ok()).collect())
+        .unwrap_or_else(|| vec![6, 7])
+}
+
+fn main() {
+    let threads = std::env::var("RIPLAB_THREADS")
+        .ok()
+        .and_then(|t| t.parse().ok())
+        .unwrap_or(1);
+    riplab::fem::set_threads(threads);
+    println!("threads {threads}");
+    println!("| level | unknowns | ordering | factor values | flops |");
+    println!("|---|---|---|---|---|");
+    for level in levels() {
+        let (k, mesh, dofs, trace) = stiffness(level);
+        let grid = TraceOrdering::grid(&k, &mesh, &dofs, &trace).unwrap();
+        let amd = TraceOrdering::new(&k, &trace).unwrap();
+        let faer = factorize_symbolic_cholesky(
+            k.symbolic(),
+            Side::Lower,
+            SymmetricOrdering::Amd,
+            CholeskySymbolicParams::default(),
+        )
+        .unwrap();
+        for (name, len, flops) in [
+            (
+                "grid nested dissection, Γ_C last",
+                grid.factor_len(),
+                grid.factor_flops(),
+            ),
+            ("AMD, Γ_C last (before)", amd.factor_len(), amd.factor_flops()),
+            ("faer default (AMD)", faer.len_val(), factor_flops(&faer)),
+        ] {
+            println!("| {level} | {} | {name} | {len} | {flops:.3e} |", k.n);
+        }
+    }
+    divan::main();
+}
+
+/// K of the paper's problem (Q1) at `level`, its mesh, dofs and Γ_C normal dofs.
+fn stiffness(level: u32) -> (SymCsc, riplab::mesh::Mesh, DofMap, Vec<usize>) {
+    let s = Scenario::paper();
+    let mesh = s.mesh(level, Element::Q1);
+    let dofs = DofMap::model(&mesh);
+    let k = assemble(&mesh, &dofs, Form::Elasticity(s.material, s.integration));
+    let trace = mesh
+        .top_nodes()
+        .iter()
+        .map(|&t| dofs.free_index(2 * t + 1).unwrap())
+        .collect();
+    (k, mesh, dofs, trace)
+}
+
+#[divan::bench(args = levels(), sample_count = 3, sample_size = 1)]
+fn fresh_m1(bencher: Bencher, level: u32) {
+    let s = Scenario::paper();
+    let params = ContactParams {
+        rule: s.rule,
+        epsilon: s.epsilon,
+        obstacle: s.obstacle.clone(),
+    };
+    bencher.bench(|| {
+        let disc = Discretization::of(&s, level, Element::Q1).unwrap();
+        solve_contact(&disc, &params, None, &NewtonOptions::default(), &mut |_| {
+            ControlFlow::Continue(())
+        })
+        .unwrap()
+        .load
+    });
+}
+
+#[divan::bench(args = levels(), sample_count = 3, sample_size = 1)]
+fn faer_default(bencher: Bencher, level: u32) {
+    let (k, ..) = stiffness(level);
+    bencher.bench(|| {
+        let symbolic = SymbolicLlt::try_new(k.symbolic(), Side::Lower).unwrap();
+        Llt::try_new_with_symbolic(symbolic, k.view(&k.values), Side::Lower).unwrap()
+    });
+}
+
+#[divan::bench(args = levels(), sample_count = 3, sample_size = 1)]
+fn constrained_amd(bencher: Bencher, level: u32) {
+    let (k, _, _, trace) = stiffness(level);
+    bencher.bench(|| TraceFactor::new(&TraceOrdering::new(&k, &trace).unwrap(), &k).unwrap());
+}
