@@ -1,4 +1,4 @@
-//! The discrete Babuška–Brezzi (inf-sup) constants of (13) and (21), as DESIGN §5 defines
+//! The discrete Babuška–Brezzi (inf-sup) constants of (13) and (21), as docs/design.md §5 defines
 //! them:
 //!
 //!   β_h² = λ_min(B A⁻¹ Bᵀ, M),   β̄_h² = λ_min(B A⁻¹ Bᵀ, Sᵀ M₁ S),

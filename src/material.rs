@@ -1,4 +1,4 @@
-//! Isotropic linear elasticity in the plane (DESIGN §1): the tensor E_ijkh of (2), (6).
+//! Isotropic linear elasticity in the plane (docs/design.md §1): the tensor E_ijkh of (2), (6).
 
 use serde::{Deserialize, Serialize};
 

@@ -1,4 +1,4 @@
-//! Structured tensor-product meshes of the body (DESIGN §1): vertex lines `xs`, `ys`, the
+//! Structured tensor-product meshes of the body (docs/design.md §1): vertex lines `xs`, `ys`, the
 //! element kind, and the node grid derived from them (Q2 adds the mid-lines).
 //!
 //! A *cell* is one rectangle of the grid. Q1 and Q2 have one element per cell; P1 splits each
@@ -7,7 +7,7 @@
 
 use serde::{Deserialize, Serialize};
 
-/// The finite element used for the displacement (DESIGN §2).
+/// The finite element used for the displacement (docs/design.md §2).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]

@@ -1,4 +1,4 @@
-//! Output of solutions: a human table, CSV, and the JSON object of DESIGN §7.
+//! Output of solutions: a human table, CSV, and the JSON object of docs/design.md §7.
 
 use std::fmt::Write as _;
 
@@ -36,7 +36,7 @@ pub struct Points {
     pub p: Vec<f64>,
 }
 
-/// The JSON object of DESIGN §7 (fields may be added, never change meaning).
+/// The JSON object of docs/design.md §7 (fields may be added, never change meaning).
 #[derive(Serialize)]
 pub struct SolveReport {
     pub scenario: String,
@@ -250,7 +250,7 @@ impl SolveReport {
     }
 }
 
-/// A sweep (several ε or depths on one mesh): a JSON array of DESIGN §7's objects (a row
+/// A sweep (several ε or depths on one mesh): a JSON array of docs/design.md §7's objects (a row
 /// with no result is `{…, "status", "reason"}`), or a summary table or CSV, a row each.
 pub fn sweep_output(rows: &[Result<SolveReport, SweepFailure>], format: Format) -> String {
     let mut s = String::new();
@@ -344,7 +344,7 @@ pub fn sweep_output(rows: &[Result<SolveReport, SweepFailure>], format: Format) 
     s
 }
 
-/// One row of `riplab infsup` (DESIGN §7; `scheme`, `kernel` and the timings are additions).
+/// One row of `riplab infsup` (docs/design.md §7; `scheme`, `kernel` and the timings are additions).
 #[derive(Serialize, Clone, Debug)]
 pub struct InfSupRow {
     pub level: u32,
@@ -388,7 +388,7 @@ pub fn slope(prev: &InfSupRow, row: &InfSupRow) -> Option<f64> {
     (prev.beta > 0.0 && row.beta > 0.0).then(|| (row.beta / prev.beta).ln() / (row.h / prev.h).ln())
 }
 
-/// `riplab infsup` output: table (with slopes), CSV or the JSON array of DESIGN §7.
+/// `riplab infsup` output: table (with slopes), CSV or the JSON array of docs/design.md §7.
 pub fn infsup_output(rows: &[InfSupRow], format: Format) -> String {
     let mut s = String::new();
     match format {

@@ -1,4 +1,4 @@
-//! Scenarios: the TOML description of a problem (DESIGN §1), its validation, and the paper's
+//! Scenarios: the TOML description of a problem (docs/design.md §1), its validation, and the paper's
 //! problem embedded as the default.
 //!
 //! Every value is checked against its allowed range; an error names the file, the line and

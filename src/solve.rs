@@ -328,7 +328,7 @@ pub fn solve_contact(
     disc.check(params, points.len())?;
     let coupling = disc.coupling(params.rule, &points);
     let weight: Vec<f64> = points.points.iter().map(|q| q.weight).collect();
-    // No body force or traction (DESIGN §1): u₀ = 0 and d = −g.
+    // No body force or traction (docs/design.md §1): u₀ = 0 and d = −g.
     let free_violation: Vec<f64> = points.points.iter().map(|q| -params.obstacle.gap(q.x)).collect();
     let problem = Penalty {
         coupling: &coupling,
@@ -422,7 +422,7 @@ impl Timing {
     }
 }
 
-/// The paper's name for an element × rule pair (DESIGN §2), if it has one.
+/// The paper's name for an element × rule pair (docs/design.md §2), if it has one.
 pub fn scheme_name(element: Element, rule: Rule) -> Option<&'static str> {
     match (element, rule) {
         (Element::Q1, Rule::Gauss1) => Some("M1"),

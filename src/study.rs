@@ -1,4 +1,4 @@
-//! Accuracy against work (DESIGN §6, Theorem 2 (26)): errors of every scheme against a
+//! Accuracy against work (docs/design.md §6, Theorem 2 (26)): errors of every scheme against a
 //! reference solution of the continuous problem, observed rates, and the time each solve took.
 //!
 //! The reference is independent of the penalty: the exact-constraint problem (ε = 0, see

@@ -1,4 +1,4 @@
-//! The inf-sup estimate of DESIGN §5 against a brute-force dense computation, a case done by
+//! The inf-sup estimate of docs/design.md §5 against a brute-force dense computation, a case done by
 //! hand, and the paper's claims about M1–M4.
 
 mod common;

@@ -1,4 +1,4 @@
-//! Numeric snapshots of the pressures of the paper's problem (DESIGN §1) at levels 0 and 1
+//! Numeric snapshots of the pressures of the paper's problem (docs/design.md §1) at levels 0 and 1
 //! for M1–M4, and the oscillation claim of its Figure 4 as an assertion.
 
 mod common;

@@ -1369,3 +1369,18 @@ fn readme_frame_is_rendered() {
     assert_eq!(code, 0, "{err}");
     assert_eq!(frame, out, "the README's frame differs from `riplab {command}`");
 }
+
+/// Issue 10, item 2: the lab's status line says what is known to be poor about the answer.
+#[test]
+fn the_status_line_shows_warnings() {
+    let locking = common::paper_with(&[("poisson", "poisson = 0.4999999")]);
+    let mut app = App::new(locking.clone());
+    app.show_timing = false;
+    settle(&mut app, &mut Engine::new(locking));
+    let text = frame(&app, 160, 40);
+    let status = text.lines().last().unwrap();
+    assert!(status.contains("⚠") && status.contains("locks"), "{status}");
+    // The paper's problem has none.
+    let text = frame(&settled(1, Scene::Explore), 160, 40);
+    assert!(!text.lines().last().unwrap().contains("⚠"));
+}

@@ -8,7 +8,7 @@
 /// A rigid obstacle above the contact side of the body.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Obstacle {
-    /// A rigid cylinder of radius R with its axis at x = `center` (the paper's, DESIGN §1).
+    /// A rigid cylinder of radius R with its axis at x = `center` (the paper's, docs/design.md §1).
     Cylinder { radius: f64, depth: f64, center: f64 },
     /// A flat rigid punch: a flat face of half-width `half_width` with rounded corners of
     /// radius `corner_radius`, vertical flanks beyond them.

@@ -1,5 +1,5 @@
 //! The plane-strain (or plane-stress) Hertz solution for a cylinder on a half-space
-//! (DESIGN §6): for the full-body load P per unit length, a² = 4PR/(πE*), p₀ = 2P/(πa),
+//! (docs/design.md §6): for the full-body load P per unit length, a² = 4PR/(πE*), p₀ = 2P/(πa),
 //! p(x) = p₀√(1 − (x − c)²/a²), with E* = E/(1 − ν²) in plane strain and E in plane stress.
 
 use serde::Serialize;

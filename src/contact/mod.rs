@@ -1,5 +1,5 @@
 //! Unilateral contact by the reduced-integration penalty method: the gap, the contact
-//! rules, the penalty Newton solver and the pressures (DESIGN §2–§4).
+//! rules, the penalty Newton solver and the pressures (docs/design.md §2–§4).
 
 pub mod gap;
 pub mod hertz;

@@ -1,4 +1,4 @@
-//! The penalised problem (8), (11) solved by semismooth Newton (DESIGN §3), condensed onto
+//! The penalised problem (8), (11) solved by semismooth Newton (docs/design.md §3), condensed onto
 //! the contact points.
 //!
 //! Minimise Π(u) = ½ uᵀKu − fᵀu + (1/2ε) Σ_q w_q ((Bu − g)_q⁺)², whose gradient is the

@@ -1,4 +1,4 @@
-//! Contact pressures (DESIGN §4): the raw pressure p at the rule's points (12), the smoothed
+//! Contact pressures (docs/design.md §4): the raw pressure p at the rule's points (12), the smoothed
 //! nodal pressure p̄ of (16)–(17), the load P, and the trapezoid form Î of (18).
 
 use super::rule::ContactPoints;

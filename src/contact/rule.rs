@@ -1,4 +1,4 @@
-//! Contact quadrature rules I of (10) on the edges of Γ_C (DESIGN §2), and the trace of the
+//! Contact quadrature rules I of (10) on the edges of Γ_C (docs/design.md §2), and the trace of the
 //! normal displacement at their points.
 //!
 //! Points are kept *distinct*: an edge end shared by two edges (trapezoid, Simpson) is one
@@ -48,7 +48,7 @@ impl Rule {
         }
     }
 
-    /// Points s ∈ [0, 1] along an edge and weights relative to its length (DESIGN §2).
+    /// Points s ∈ [0, 1] along an edge and weights relative to its length (docs/design.md §2).
     pub fn points(self) -> Vec<(f64, f64)> {
         let d = 0.5 / 3f64.sqrt();
         match self {

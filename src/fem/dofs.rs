@@ -27,7 +27,7 @@ impl DofMap {
         DofMap { free, n_free }
     }
 
-    /// The model's constraints (DESIGN §1): the bottom clamped, and u_x = 0 on the left side
+    /// The model's constraints (docs/design.md §1): the bottom clamped, and u_x = 0 on the left side
     /// of a half model.
     pub fn model(mesh: &Mesh) -> Self {
         let nnx = mesh.nnx();

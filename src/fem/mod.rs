@@ -1,5 +1,5 @@
 //! The finite element layer: quadrature, cell bases, dofs, assembly, the grid's ordering and
-//! the condensation onto Γ_C (DESIGN §2), with the memory those need.
+//! the condensation onto Γ_C (docs/design.md §2), with the memory those need.
 
 pub mod assembly;
 pub mod basis;

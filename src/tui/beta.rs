@@ -1,4 +1,4 @@
-//! The one call into the library's inf-sup estimate (DESIGN §5), kept behind this adapter so
+//! The one call into the library's inf-sup estimate (docs/design.md §5), kept behind this adapter so
 //! that the app does not depend on how the library organises the computation.
 
 use crate::contact::Rule;

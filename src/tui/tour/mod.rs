@@ -21,6 +21,7 @@ use crate::mesh::Element;
 use crate::scenario::Locator as Source;
 use crate::scenario::{Scenario, ScenarioError, check, read_toml};
 use crate::solve::parse_scheme;
+use crate::text::{sanitize, sanitize_lines};
 
 use super::app::{App, MAX_APP_LEVEL, Scene};
 
@@ -131,7 +132,7 @@ impl Tour {
             .map(|(i, s)| step(&src, i + 1, s, dir))
             .collect::<Result<Vec<_>, _>>()?;
         Ok(Tour {
-            title: raw.title.into_inner(),
+            title: sanitize(raw.title.get_ref()).into_owned(),
             source: file.to_string(),
             steps,
             scenario: Scenario::paper(),
@@ -315,8 +316,9 @@ fn step(src: &Source, n: usize, raw: &RawStep, dir: Option<&Path>) -> Result<Ste
         on[i] = true;
     }
     Ok(Step {
-        title: raw.title.get_ref().clone(),
-        caption: raw.caption.get_ref().trim_matches('\n').to_string(),
+        title: sanitize(raw.title.get_ref()).into_owned(),
+        // Text from a file: no control character reaches the terminal (the line breaks stay).
+        caption: sanitize_lines(raw.caption.get_ref().trim_matches('\n')),
         scenario,
         element,
         rule,
