@@ -9,21 +9,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-use common::riplab;
-
-/// The default scenario's text with whole lines replaced (`(starts_with, new line)`).
-fn paper_text(edits: &[(&str, &str)]) -> String {
-    let mut text = riplab::scenario::DEFAULT_SCENARIO.to_string();
-    for (old, new) in edits {
-        let line = text
-            .lines()
-            .find(|l| l.trim_start().starts_with(old))
-            .unwrap_or_else(|| panic!("no line {old}"))
-            .to_string();
-        text = text.replace(&line, new);
-    }
-    text
-}
+use common::{paper_text, riplab};
 
 /// A scratch file under the test target's temporary directory.
 fn scratch(name: &str, text: &str) -> PathBuf {

@@ -17,8 +17,9 @@ macro_rules! snap {
     };
 }
 
-/// The default scenario with some TOML lines replaced: each `(old, new)` is a whole line.
-pub fn paper_with(edits: &[(&str, &str)]) -> Scenario {
+/// The default scenario's text with some lines replaced: each `(old, new)` replaces the
+/// whole line that starts with `old`.
+pub fn paper_text(edits: &[(&str, &str)]) -> String {
     let mut text = riplab::scenario::DEFAULT_SCENARIO.to_string();
     for (old, new) in edits {
         let line = text
@@ -28,7 +29,12 @@ pub fn paper_with(edits: &[(&str, &str)]) -> Scenario {
             .to_string();
         text = text.replace(&line, new);
     }
-    Scenario::parse(&text, "test.toml").expect("valid test scenario")
+    text
+}
+
+/// The default scenario with some TOML lines replaced (see [`paper_text`]).
+pub fn paper_with(edits: &[(&str, &str)]) -> Scenario {
+    Scenario::parse(&paper_text(edits), "test.toml").expect("valid test scenario")
 }
 
 /// A deterministic pseudo-random sequence in [−1, 1) (no dependency needed for tests).
