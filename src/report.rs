@@ -278,7 +278,7 @@ pub fn sweep_output(rows: &[Result<SolveReport, SweepFailure>], format: Format) 
                         "{},{},{},{},{},{},{},{},{},{}",
                         r.epsilon,
                         r.depth,
-                        r.status.word(),
+                        r.status.token(),
                         r.newton_iterations,
                         r.converged,
                         r.load,
@@ -292,7 +292,7 @@ pub fn sweep_output(rows: &[Result<SolveReport, SweepFailure>], format: Format) 
                         "{},{},{},,false,,,,,{}",
                         f.epsilon,
                         f.depth,
-                        f.status.word(),
+                        f.status.token(),
                         csv_field(&f.reason)
                     ),
                 };
@@ -510,7 +510,7 @@ pub fn study_output(scenario: &str, reference: &Reference, rows: &[StudyRow], fo
                     r.h,
                     r.epsilon,
                     r.n_dofs,
-                    r.status.word(),
+                    r.status.token(),
                     opt(r.newton_iterations.map(|n| n.to_string())),
                     r.converged,
                     opt(r.solve_ms.map(|v| v.to_string())),

@@ -313,9 +313,6 @@ pub mod check {
             ),
         )
     }
-    pub fn finite(value: f64) -> Result<(), String> {
-        open(value, f64::NEG_INFINITY, f64::INFINITY, "any finite number")
-    }
     pub fn poisson(value: f64) -> Result<(), String> {
         open(
             value,

@@ -204,8 +204,7 @@ pub fn errors(reference: &Reference, disc: &Discretization, sol: &Solution) -> E
 }
 
 /// Whether a row of a study or a sweep has a result, and if not, why.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "snake_case")]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Status {
     /// Solved and converged.
     Ok,
@@ -227,6 +226,16 @@ impl Status {
         }
     }
 
+    /// The token of JSON and CSV: `ok`, `not_converged`, `kernel`, `failed`.
+    pub fn token(self) -> &'static str {
+        match self {
+            Status::Ok => "ok",
+            Status::NotConverged => "not_converged",
+            Status::Kernel => "kernel",
+            Status::Failed => "failed",
+        }
+    }
+
     /// The word shown in tables: `ok`, `not converged`, `kernel`, `failed`.
     pub fn word(self) -> &'static str {
         match self {
@@ -235,6 +244,13 @@ impl Status {
             Status::Kernel => "kernel",
             Status::Failed => "failed",
         }
+    }
+}
+
+/// JSON carries [`Status::token`], so that JSON and CSV cannot disagree.
+impl Serialize for Status {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(self.token())
     }
 }
 

@@ -116,6 +116,27 @@ fn unstructured(title: &str, piece: UnstructuredGridPiece) -> Vtk {
     }
 }
 
+/// A piece of points (x, y, z flattened), cells (connectivity, offsets, types) and the
+/// point and cell arrays.
+fn piece(
+    points: Vec<f64>,
+    (connectivity, offsets, types): (Vec<u64>, Vec<u64>, Vec<CellType>),
+    point: Vec<Attribute>,
+    cell: Vec<Attribute>,
+) -> UnstructuredGridPiece {
+    UnstructuredGridPiece {
+        points: points.into(),
+        cells: Cells {
+            cell_verts: VertexNumbers::XML {
+                connectivity,
+                offsets,
+            },
+            types,
+        },
+        data: Attributes { point, cell },
+    }
+}
+
 /// The arrays of the stress quantities for a list of stresses.
 fn stress_arrays(stresses: &[Stress]) -> Vec<Attribute> {
     type Get = fn(&Stress) -> f64;
@@ -189,20 +210,8 @@ pub fn body(mesh: &Mesh, u: &[f64], field: &StressField) -> Vtk {
     }
     let mut point = vec![displacement_array(u, 0..mesh.n_nodes())];
     point.extend(stress_arrays(&field.nodal));
-    let piece = UnstructuredGridPiece {
-        points: points.into(),
-        cells: Cells {
-            cell_verts: VertexNumbers::XML {
-                connectivity,
-                offsets,
-            },
-            types,
-        },
-        data: Attributes {
-            point,
-            cell: stress_arrays(&field.element_averages()),
-        },
-    };
+    let cells = (connectivity, offsets, types);
+    let piece = piece(points, cells, point, stress_arrays(&field.element_averages()));
     unstructured("riplab body", piece)
 }
 
@@ -242,23 +251,11 @@ pub fn contact(mesh: &Mesh, sol: &Solution, u: &[f64]) -> Vtk {
             CellType::Line
         });
     }
-    let piece = UnstructuredGridPiece {
-        points: points.into(),
-        cells: Cells {
-            cell_verts: VertexNumbers::XML {
-                connectivity,
-                offsets,
-            },
-            types,
-        },
-        data: Attributes {
-            point: vec![
-                Attribute::generic("p", 1).with_data(p),
-                Attribute::generic("pbar", 1).with_data(pbar),
-                displacement_array(u, nodes.into_iter()),
-            ],
-            cell: Vec::new(),
-        },
-    };
+    let point = vec![
+        Attribute::generic("p", 1).with_data(p),
+        Attribute::generic("pbar", 1).with_data(pbar),
+        displacement_array(u, nodes.into_iter()),
+    ];
+    let piece = piece(points, (connectivity, offsets, types), point, Vec::new());
     unstructured("riplab contact side", piece)
 }

@@ -561,3 +561,28 @@ line two"""
     );
     assert!(step.caption.contains("line one") && step.caption.contains('\n'));
 }
+
+/// A row's status is the same token in CSV as in JSON (`not_converged`, not `not converged`).
+#[test]
+fn csv_and_json_agree_on_a_rows_status() {
+    let args = [
+        "study",
+        "--levels",
+        "0..0",
+        "--schemes",
+        "M1",
+        "--epsilon",
+        "1e-19",
+    ];
+    let (code, csv, _) = riplab(&[&args[..], &["--format", "csv"]].concat());
+    assert_eq!(code, 1);
+    let (_, json, _) = riplab(&[&args[..], &["--format", "json"]].concat());
+    let v: serde_json::Value = serde_json::from_str(&json).unwrap();
+    let token = v["rows"][0]["status"].as_str().unwrap().to_string();
+    assert_eq!(token, "not_converged");
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let column = header.iter().position(|h| *h == "status").unwrap();
+    let row: Vec<&str> = lines.next().unwrap().split(',').collect();
+    assert_eq!(row[column], token);
+}

@@ -11,6 +11,7 @@ use riplab::mesh::Element;
 use riplab::scenario::Scenario;
 use std::sync::Arc;
 
+use common::settled;
 use riplab::study::{Errors, Status, StudyRow};
 use riplab::tui::app::{
     App, Command, MAX_APP_LEVEL, MAX_STUDY_LEVEL, Msg, Response, Scene, Study, StudyRequest,
@@ -31,16 +32,6 @@ fn key(code: KeyCode) -> Msg {
 
 fn ch(c: char) -> Msg {
     key(KeyCode::Char(c))
-}
-
-/// The paper's app, solved synchronously, at `level` with `scene` shown.
-fn settled(level: u32, scene: Scene) -> App {
-    let mut app = App::new(Scenario::paper());
-    app.show_timing = false;
-    app.settings.level = level;
-    app.scene = scene;
-    settle(&mut app, &mut Engine::new(Scenario::paper()));
-    app
 }
 
 fn frame(app: &App, w: u16, h: u16) -> String {

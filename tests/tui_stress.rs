@@ -9,14 +9,13 @@ use ratatui::backend::TestBackend;
 use ratatui::style::Color;
 use ratatui::symbols::Marker;
 
-use riplab::scenario::Scenario;
+use common::settled;
 use riplab::stress::Quantity;
-use riplab::tui::app::{App, Command, ExportKind, Msg, Scene};
+use riplab::tui::app::{Command, ExportKind, Msg, Scene};
 use riplab::tui::export::export_vtu;
 use riplab::tui::render_app;
 use riplab::tui::theme::Theme;
 use riplab::tui::view::{Look, view};
-use riplab::tui::worker::{Engine, settle};
 
 fn look(color: bool) -> Look {
     Look {
@@ -27,16 +26,6 @@ fn look(color: bool) -> Look {
 
 fn ch(c: char) -> Msg {
     Msg::Key(KeyEvent::new(KeyCode::Char(c), KeyModifiers::NONE))
-}
-
-/// The paper's app at `level`, solved synchronously, with `scene` shown.
-fn settled(level: u32, scene: Scene) -> App {
-    let mut app = App::new(Scenario::paper());
-    app.show_timing = false;
-    app.settings.level = level;
-    app.scene = scene;
-    settle(&mut app, &mut Engine::new(Scenario::paper()));
-    app
 }
 
 #[test]

@@ -85,46 +85,22 @@ fn dissect(part: Part, p: usize, emit: &mut impl FnMut(usize, usize)) {
                 }
             }
         }
-        Some((s, true)) => {
-            dissect(
-                Part {
-                    i: (part.i.0, s),
-                    ..part
-                },
-                p,
-                emit,
-            );
-            dissect(
-                Part {
-                    i: (s + 1, part.i.1),
-                    ..part
-                },
-                p,
-                emit,
-            );
-            for j in part.j.0..part.j.1 {
-                emit(s, j);
-            }
-        }
-        Some((s, false)) => {
-            dissect(
-                Part {
-                    j: (part.j.0, s),
-                    ..part
-                },
-                p,
-                emit,
-            );
-            dissect(
-                Part {
-                    j: (s + 1, part.j.1),
-                    ..part
-                },
-                p,
-                emit,
-            );
-            for i in part.i.0..part.i.1 {
-                emit(i, s);
+        // Across i (`across`: the separator is column s) or across j (row s): the two halves
+        // first, the separator last.
+        Some((s, across)) => {
+            let half = |range: (usize, usize)| {
+                if across {
+                    Part { i: range, ..part }
+                } else {
+                    Part { j: range, ..part }
+                }
+            };
+            let (lo, hi) = if across { part.i } else { part.j };
+            dissect(half((lo, s)), p, emit);
+            dissect(half((s + 1, hi)), p, emit);
+            let along = if across { part.j } else { part.i };
+            for k in along.0..along.1 {
+                if across { emit(s, k) } else { emit(k, s) }
             }
         }
     }

@@ -90,3 +90,14 @@ pub fn bottom_reaction(
 pub fn test_cache() -> std::path::PathBuf {
     std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("xdg-cache")
 }
+
+/// The paper's lab at `level`, solved synchronously, with `scene` shown, timings hidden.
+pub fn settled(level: u32, scene: riplab::tui::app::Scene) -> riplab::tui::app::App {
+    use riplab::tui::worker::{Engine, settle};
+    let mut app = riplab::tui::app::App::new(Scenario::paper());
+    app.show_timing = false;
+    app.settings.level = level;
+    app.scene = scene;
+    settle(&mut app, &mut Engine::new(Scenario::paper()));
+    app
+}
