@@ -80,7 +80,11 @@ fn scenario_summaries_at_their_default_levels() {
 }
 
 /// hertz-block.toml: the analytic plane-strain Hertz profile of the computed load is within
-/// 2% (L²) of p̄, and closer on the finer level.
+/// 1% (L²) of p̄ at the default level 2, and closer two levels finer. Measured (levels 1–5):
+/// 2.37%, 0.76%, 0.83%, 0.55%, 0.47%: not monotone from level to level (where the contact edge
+/// falls between the points moves with h; p has a square-root profile there), and levelling
+/// off near 0.4%, the size of what the half-space theory leaves out (the cylinder's
+/// outline beyond its parabola, x⁴/8R³ against x²/2R at x = a, and the finite block).
 #[test]
 fn the_hertz_block_matches_hertz() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/hertz-block.toml");
@@ -92,10 +96,10 @@ fn the_hertz_block_matches_hertz() {
             .unwrap()
             .relative_error(&sol.points, &sol.pbar)
     };
-    let (e2, e3) = (error(2), error(3));
+    let (e2, e4) = (error(2), error(4));
     assert!(
-        e2 < 0.02 && e3 < e2,
-        "Hertz error {e2} at level 2, {e3} at level 3"
+        e2 < 0.01 && e4 < 0.8 * e2,
+        "Hertz error {e2} at level 2, {e4} at level 4"
     );
 }
 

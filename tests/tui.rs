@@ -420,6 +420,7 @@ fn no_key_sequence_panics() {
                     key: r.key,
                     result: Some(Err("test failure".into())),
                 },
+                Command::Stresses(r) => Response::Stresses { key: r.solved.key },
                 Command::Export | Command::Suspend => continue,
             };
             app.update(Msg::Worker(reply));

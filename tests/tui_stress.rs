@@ -9,13 +9,17 @@ use ratatui::backend::TestBackend;
 use ratatui::style::Color;
 use ratatui::symbols::Marker;
 
+use std::sync::Arc;
+
 use common::settled;
+use riplab::scenario::Scenario;
 use riplab::stress::Quantity;
 use riplab::tui::app::{Command, ExportKind, Msg, Scene};
 use riplab::tui::export::export_vtu;
 use riplab::tui::render_app;
 use riplab::tui::theme::Theme;
 use riplab::tui::view::{Look, view};
+use riplab::tui::worker::{Engine, carry_out};
 
 fn look(color: bool) -> Look {
     Look {
@@ -108,9 +112,11 @@ fn monochrome_map_uses_shading_glyphs_and_no_colour() {
     assert_eq!(glyphs.len(), 6, "every level and the marker: {glyphs:?}");
 }
 
-/// The stresses are computed when the scene first shows a solution, and kept with it.
+/// The stresses are computed when the scene first shows a solution, by the worker (a
+/// request), not while drawing: the frame says they are coming meanwhile. They are kept with
+/// the solution and asked for once.
 #[test]
-fn stresses_are_computed_only_when_shown() {
+fn stresses_are_computed_by_the_worker_only_when_shown() {
     let mut app = settled(1, Scene::Explore);
     render_app(&app, &look(true), 100, 30);
     let solved = app.solved.clone().unwrap();
@@ -119,8 +125,53 @@ fn stresses_are_computed_only_when_shown() {
         "not computed for the explore scene"
     );
     app.scene = Scene::Stress;
-    render_app(&app, &look(true), 100, 30);
-    assert!(solved.stresses.get().is_some(), "computed once shown");
+    let effect = app.update(Msg::Resize);
+    assert!(
+        matches!(&effect.commands[..], [Command::Stresses(r)] if Arc::ptr_eq(&r.solved, &solved)),
+        "{:?}",
+        effect.commands
+    );
+    assert!(app.update(Msg::Resize).commands.is_empty(), "asked once");
+    let waiting = render_app(&app, &look(true), 100, 30);
+    assert!(solved.stresses.get().is_none(), "drawing computes nothing");
+    assert!(waiting.contains("computing the stresses…"), "{waiting}");
+    carry_out(&mut app, &mut Engine::new(Scenario::paper()), effect.commands);
+    assert!(solved.stresses.get().is_some(), "computed by the worker");
+    let text = render_app(&app, &look(true), 100, 30);
+    assert!(text.contains("max τ₁ ="), "{text}");
+    assert!(app.update(Msg::Resize).commands.is_empty(), "kept");
+}
+
+/// The zoom of the pressure chart applies to the map: its window is the zoomed chart's x
+/// range (the contact zone and its margin, mirrored), narrower than the unzoomed window.
+#[test]
+fn z_zooms_the_stress_map_to_the_contact_zone() {
+    let mut app = settled(2, Scene::Stress);
+    let window = |text: &str| -> (f64, f64) {
+        let tail = &text[text.find(" · x ").expect("the window in the caption") + 5..];
+        let (a, rest) = tail.split_once('…').unwrap();
+        let b = rest.split(',').next().unwrap();
+        (a.trim().parse().unwrap(), b.trim().parse().unwrap())
+    };
+    let before = window(&render_app(&app, &look(false), 100, 30));
+    app.update(ch('z'));
+    assert!(app.zoom);
+    let text = render_app(&app, &look(false), 100, 30);
+    assert!(text.contains("zoom (z: back)"), "{text}");
+    let after = window(&text);
+    let solved = app.solved.clone().unwrap();
+    let xs = &solved.solution.points.vertex_x;
+    let pbar = &solved.solution.pbar;
+    let last = (0..pbar.len()).filter(|&i| pbar[i] > 0.0).max().unwrap();
+    let edge = xs[(last + 1).min(xs.len() - 1)];
+    // The zoomed chart's margin: a quarter of the zone's width or two cells.
+    let cell = xs[1] - xs[0];
+    let expected = edge + (0.5 * edge).max(2.0 * cell);
+    assert!(
+        (after.1 - expected).abs() < 0.01 * expected && (after.0 + expected).abs() < 0.01 * expected,
+        "zoomed window {after:?}, expected ±{expected}"
+    );
+    assert!(after.1 - after.0 < before.1 - before.0, "{before:?} → {after:?}");
 }
 
 /// `v` asks for a VTU export of the displayed solution; the export writes the body and Γ_C

@@ -137,6 +137,19 @@ pub struct SolveRequest {
     pub key: SolveKey,
 }
 
+/// The stresses of `solved` to compute (into its `stresses`, shared with the app).
+#[derive(Clone, Debug)]
+pub struct StressRequest {
+    pub solved: Arc<Solved>,
+}
+
+/// Two requests are the same when they are for the same solution.
+impl PartialEq for StressRequest {
+    fn eq(&self, other: &Self) -> bool {
+        Arc::ptr_eq(&self.solved, &other.solved)
+    }
+}
+
 /// An inf-sup estimate to run; dropped unstarted if a newer generation exists.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct InfSupRequest {
@@ -194,6 +207,11 @@ pub enum Response {
         key: InfSupKey,
         result: Option<Result<InfSup, String>>,
     },
+    /// The stresses of the solution with `key` are computed (or failed; see
+    /// [`Solved::stresses`]).
+    Stresses {
+        key: SolveKey,
+    },
     /// `result` is None when the request was dropped as stale before it started.
     Study {
         generation: u64,
@@ -221,6 +239,8 @@ pub enum Command {
     Solve(SolveRequest),
     InfSup(InfSupRequest),
     Study(StudyRequest),
+    /// Compute the stresses of a solution the stress scene shows (kept with it).
+    Stresses(StressRequest),
     /// Write the displayed solution to a new file, as [`App::export_kind`] says (the kind
     /// travels in the app so that the variant stays a plain `Export`).
     Export,
@@ -316,6 +336,8 @@ pub struct App {
     study_pending: Option<(u64, StudyKey)>,
     /// The stage of the study in flight.
     pub study_progress: Option<Progress>,
+    /// The solution whose stresses are being computed.
+    stress_pending: Option<SolveKey>,
 }
 
 impl App {
@@ -348,6 +370,7 @@ impl App {
             studies: HashMap::new(),
             study_pending: None,
             study_progress: None,
+            stress_pending: None,
         }
     }
 
@@ -543,9 +566,9 @@ impl App {
             self.zoom = false;
             return;
         }
-        if !matches!(self.scene, Scene::Explore | Scene::Mesh) {
+        if !matches!(self.scene, Scene::Explore | Scene::Mesh | Scene::Stress) {
             self.notice = Some(Notice::info(
-                "z zooms the pressure chart and the contact zone: explore and mesh scenes",
+                "z zooms the pressure chart, the contact zone and the stress map: explore, mesh and stress scenes",
             ));
             return;
         }
@@ -614,6 +637,12 @@ impl App {
                         self.error = Some(e);
                     }
                 }
+            }
+            Response::Stresses { key } => {
+                if self.stress_pending == Some(key) {
+                    self.stress_pending = None;
+                }
+                return self.scene == Scene::Stress && self.current().is_some_and(|s| s.key == key);
             }
             Response::StudyProgress { generation, progress } => {
                 if self.study_pending.as_ref().map(|(g, _)| *g) != Some(generation) {
@@ -706,6 +735,15 @@ impl App {
                 generation: self.generation,
                 key: self.settings,
             }));
+        }
+        if self.scene == Scene::Stress
+            && let Some(solved) = self.current()
+            && solved.stresses.get().is_none()
+            && self.stress_pending != Some(solved.key)
+        {
+            let solved = solved.clone();
+            self.stress_pending = Some(solved.key);
+            out.push(Command::Stresses(StressRequest { solved }));
         }
         if self.scene == Scene::Convergence {
             let key = self.study_key();

@@ -20,8 +20,8 @@ use crate::solve::preset;
 use crate::study::{StudyRow, convergence};
 
 use super::app::{
-    App, Command, InfSupKey, InfSupRequest, Msg, Progress, Response, SolveKey, SolveRequest, Study, StudyKey,
-    StudyRequest,
+    App, Command, InfSupKey, InfSupRequest, Msg, Progress, Response, SolveKey, SolveRequest, StressRequest,
+    Study, StudyKey, StudyRequest,
 };
 use super::beta::{self, InfSup};
 use super::eta::Eta;
@@ -41,8 +41,28 @@ pub struct Solved {
     pub displacement: Vec<f64>,
     /// Wall time of the request, mesh work included, in ms.
     pub total_ms: f64,
-    /// The stresses, computed when first shown (see `view::stress_map`).
+    /// The stresses, computed by the worker when the stress scene first shows this solution
+    /// ([`Engine::stresses`]).
     pub stresses: OnceLock<Result<Arc<StressField>, String>>,
+}
+
+impl Solved {
+    /// The stresses of this solution (on `scenario`'s material), computed on first use and
+    /// kept.
+    pub fn stress_field(&self, scenario: &Scenario) -> Result<Arc<StressField>, String> {
+        self.stresses
+            .get_or_init(|| {
+                StressField::new(
+                    &self.disc.mesh,
+                    &scenario.material,
+                    scenario.integration,
+                    &self.displacement,
+                )
+                .map(Arc::new)
+                .map_err(|e| e.to_string())
+            })
+            .clone()
+    }
 }
 
 impl std::fmt::Debug for Solved {
@@ -191,6 +211,13 @@ impl Engine {
         }
     }
 
+    /// Compute the stresses of `req.solved` (kept in it, shared with the app).
+    pub fn stresses(&self, req: &StressRequest) -> Response {
+        // Success or failure, the result is kept in the solution for the view to show.
+        let _ = req.solved.stress_field(&self.scenario);
+        Response::Stresses { key: req.solved.key }
+    }
+
     /// The work–precision study of `key`: M1–M4 at levels 0..=max against the Q2 reference
     /// one level finer, at the scenario's ε (fresh solves: the timings are comparable); each
     /// stage (the reference, then each level) is announced to `report` with its estimate.
@@ -262,6 +289,7 @@ fn schemes_index(name: &str) -> usize {
 /// A request to the worker thread.
 enum Request {
     Solve(SolveRequest),
+    Stresses(StressRequest),
     InfSup(InfSupRequest),
     Study(StudyRequest),
 }
@@ -289,11 +317,14 @@ impl Worker {
     pub fn send(&self, command: &Command) {
         let request = match command {
             Command::Solve(r) => Request::Solve(*r),
+            Command::Stresses(r) => Request::Stresses(r.clone()),
             Command::InfSup(r) => Request::InfSup(*r),
             Command::Study(r) => Request::Study(r.clone()),
             Command::Export | Command::Suspend => return,
         };
         let generation = match &request {
+            // Not ordered by generation: the stresses of a solution are wanted whenever shown.
+            Request::Stresses(_) => 0,
             Request::Solve(r) => r.generation,
             Request::InfSup(r) => r.generation,
             Request::Study(r) => r.generation,
@@ -310,32 +341,59 @@ impl Drop for Worker {
     }
 }
 
-/// The worker loop: the newest solve first (older ones are dropped), then the newest study
-/// (likewise), then inf-sup estimates in order; studies and estimates older than the newest
-/// generation are skipped.
+/// The requests waiting for the worker: the newest solve, stress field and study, and the
+/// inf-sup estimates in order.
+#[derive(Default)]
+struct Waiting {
+    solve: Option<SolveRequest>,
+    stresses: Option<StressRequest>,
+    study: Option<StudyRequest>,
+    queue: VecDeque<InfSupRequest>,
+}
+
+impl Waiting {
+    fn is_empty(&self) -> bool {
+        self.solve.is_none() && self.stresses.is_none() && self.study.is_none() && self.queue.is_empty()
+    }
+
+    /// File a request: a solve, a stress field or a study replaces any waiting one, an
+    /// estimate joins the queue.
+    fn take(&mut self, r: Request) {
+        match r {
+            Request::Solve(r) => self.solve = Some(r),
+            Request::Stresses(r) => self.stresses = Some(r),
+            Request::Study(r) => self.study = Some(r),
+            Request::InfSup(r) => self.queue.push_back(r),
+        }
+    }
+}
+
+/// The worker loop: the newest solve first (older ones are dropped), then the stresses of
+/// the solution shown, then the newest study (likewise), then inf-sup estimates in order;
+/// studies and estimates older than the newest generation are skipped.
 fn run(mut engine: Engine, rx: &Receiver<Request>, latest: &AtomicU64, sink: &dyn Fn(Response) -> bool) {
-    let mut solve: Option<SolveRequest> = None;
-    let mut study: Option<StudyRequest> = None;
-    let mut queue: VecDeque<InfSupRequest> = VecDeque::new();
+    let mut waiting = Waiting::default();
     loop {
-        if solve.is_none() && study.is_none() && queue.is_empty() {
+        if waiting.is_empty() {
             match rx.recv() {
-                Ok(r) => take(r, &mut solve, &mut study, &mut queue),
+                Ok(r) => waiting.take(r),
                 Err(_) => return,
             }
         }
         while let Ok(r) = rx.try_recv() {
-            take(r, &mut solve, &mut study, &mut queue);
+            waiting.take(r);
         }
         let current = |g: u64| latest.load(Ordering::SeqCst) == g;
-        let response = if let Some(req) = solve.take() {
+        let response = if let Some(req) = waiting.solve.take() {
             if !current(req.generation) {
                 continue;
             }
             engine.solve(&req, &current, &mut |r| {
                 sink(r);
             })
-        } else if let Some(req) = study.take() {
+        } else if let Some(req) = waiting.stresses.take() {
+            engine.stresses(&req)
+        } else if let Some(req) = waiting.study.take() {
             let stale = latest.load(Ordering::SeqCst) > req.generation;
             let generation = req.generation;
             Response::Study {
@@ -347,7 +405,7 @@ fn run(mut engine: Engine, rx: &Receiver<Request>, latest: &AtomicU64, sink: &dy
                 }),
                 key: req.key,
             }
-        } else if let Some(req) = queue.pop_front() {
+        } else if let Some(req) = waiting.queue.pop_front() {
             let stale = latest.load(Ordering::SeqCst) > req.generation;
             Response::InfSup {
                 key: req.key,
@@ -359,20 +417,6 @@ fn run(mut engine: Engine, rx: &Receiver<Request>, latest: &AtomicU64, sink: &dy
         if !sink(response) {
             return;
         }
-    }
-}
-
-/// File a request: a solve or a study replaces any waiting one, an estimate joins the queue.
-fn take(
-    r: Request,
-    solve: &mut Option<SolveRequest>,
-    study: &mut Option<StudyRequest>,
-    queue: &mut VecDeque<InfSupRequest>,
-) {
-    match r {
-        Request::Solve(r) => *solve = Some(r),
-        Request::Study(r) => *study = Some(r),
-        Request::InfSup(r) => queue.push_back(r),
     }
 }
 
@@ -397,6 +441,7 @@ pub fn carry_out(app: &mut App, engine: &mut Engine, mut commands: Vec<Command>)
                 result: Some(engine.study(&req.key, &mut |_| {})),
                 key: req.key,
             },
+            Command::Stresses(req) => engine.stresses(&req),
             Command::Export | Command::Suspend => continue,
         };
         commands.extend(app.update(Msg::Worker(response)).commands);

@@ -3,10 +3,8 @@
 //! marker at the maximum with its value and depth. Each level is a shading glyph (· ░ ▒ ▓ █)
 //! as well as a colour, so that the map reads the same under NO_COLOR.
 //!
-//! The stresses ([`crate::stress::StressField`]) are computed the first time the scene shows
-//! a solution and kept with it.
-
-use std::sync::Arc;
+//! The stresses ([`crate::stress::StressField`]) are computed by the worker the first time
+//! the scene shows a solution, and kept with it; this view only draws them.
 
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Rect};
@@ -14,7 +12,6 @@ use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Paragraph};
 
-use crate::scenario::Scenario;
 use crate::stress::{Peak, Quantity, StressField};
 
 use super::super::app::App;
@@ -22,6 +19,7 @@ use super::super::theme::Theme;
 use super::super::worker::Solved;
 use super::Look;
 use super::fmt::sig;
+use super::zone::zoom_range;
 
 /// The shading of the levels, lowest first, and their colours.
 const GLYPHS: [&str; 5] = ["·", "░", "▒", "▓", "█"];
@@ -31,35 +29,22 @@ const MARKER: &str = "✕";
 /// Width of the colour bar with its labels.
 const BAR_WIDTH: u16 = 12;
 
-impl Solved {
-    /// The stresses of this solution, computed on first use and kept.
-    pub fn stresses(&self, scenario: &Scenario) -> Result<Arc<StressField>, String> {
-        self.stresses
-            .get_or_init(|| {
-                StressField::new(
-                    &self.disc.mesh,
-                    &scenario.material,
-                    scenario.integration,
-                    &self.displacement,
-                )
-                .map(Arc::new)
-                .map_err(|e| e.to_string())
-            })
-            .clone()
-    }
-}
-
 pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
     let q = app.stress_quantity;
-    let title = format!(" {} near the contact (c: next quantity) ", q.symbol());
+    let zoom = if app.zoom { " · zoom (z: back)" } else { "" };
+    let title = format!(" {} near the contact (c: next quantity){zoom} ", q.symbol());
     let block = Block::bordered().title(title).border_style(look.theme.axis());
     let Some(solved) = &app.solved else {
         frame.render_widget(Paragraph::new("solving…").block(block), area);
         return;
     };
-    let field = match solved.stresses(&app.scenario) {
-        Ok(f) => f,
-        Err(e) => {
+    let field = match solved.stresses.get() {
+        Some(Ok(f)) => f.clone(),
+        None => {
+            frame.render_widget(Paragraph::new("computing the stresses…").block(block), area);
+            return;
+        }
+        Some(Err(e)) => {
             frame.render_widget(Paragraph::new(format!("stresses: {e}")).block(block), area);
             return;
         }
@@ -95,30 +80,40 @@ impl HeatMap {
         let (cols, rows) = (usize::from(area.width.max(1)), usize::from(area.height.max(1)));
         let (x_lo, x_hi) = (mesh.xs[0], mesh.xs[mesh.xs.len() - 1]);
         let top = mesh.ys[mesh.ys.len() - 1];
-        // The contact zone's half-width: the farthest Γ_C vertex from the centre where p̄ > 0.
-        let centre = solved.solution.params.obstacle.center();
-        let zone = solved
-            .solution
-            .points
-            .vertex_x
-            .iter()
-            .zip(&solved.solution.pbar)
-            .filter(|&(_, &p)| p > 0.0)
-            .map(|(&x, _)| (x - centre).abs())
-            .fold(0.0, f64::max);
-        let half = if zone > 0.0 {
-            2.5 * zone
+        let full = if s.half_model { (-x_hi, x_hi) } else { (x_lo, x_hi) };
+        // Zoomed: the window of the zoomed pressure chart. Otherwise 2.5 times the contact
+        // zone's half-width (the farthest Γ_C vertex from the centre where p̄ > 0).
+        let zoomed = if app.zoom {
+            zoom_range(solved, s.half_model, full)
         } else {
-            (x_hi - x_lo) / 4.0
+            None
         };
-        let (mut a, mut b) = if s.half_model {
-            (-half.min(x_hi), half.min(x_hi))
-        } else {
-            ((centre - half).max(x_lo), (centre + half).min(x_hi))
+        let (a, b) = match zoomed {
+            Some([a, b]) => (a, b),
+            None => {
+                let centre = solved.solution.params.obstacle.center();
+                let zone = solved
+                    .solution
+                    .points
+                    .vertex_x
+                    .iter()
+                    .zip(&solved.solution.pbar)
+                    .filter(|&(_, &p)| p > 0.0)
+                    .map(|(&x, _)| (x - centre).abs())
+                    .fold(0.0, f64::max);
+                let half = if zone > 0.0 {
+                    2.5 * zone
+                } else {
+                    (x_hi - x_lo) / 4.0
+                };
+                let (a, b) = if s.half_model {
+                    (-half.min(x_hi), half.min(x_hi))
+                } else {
+                    ((centre - half).max(x_lo), (centre + half).min(x_hi))
+                };
+                if b <= a { full } else { (a, b) }
+            }
         };
-        if b <= a {
-            (a, b) = (x_lo, x_hi);
-        }
         // A character is about twice as tall as wide: keep the body's proportions.
         let z_max = ((b - a) / cols as f64 * 2.0 * rows as f64).min(top - mesh.ys[0]);
         let values: Vec<Vec<f64>> = (0..rows)
