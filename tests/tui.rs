@@ -1376,3 +1376,109 @@ fn the_status_line_shows_warnings() {
     let text = frame(&settled(1, Scene::Explore), 160, 40);
     assert!(!text.lines().last().unwrap().contains("⚠"));
 }
+
+/// Issue 13 item 4: when idle, the engine names the next finer, then the next coarser level
+/// of the mesh in use to build in the background, up to the lab's finest level and within its
+/// memory budget; an adopted build is used without assembling again.
+#[test]
+fn the_engine_prefetches_the_neighbouring_levels() {
+    use riplab::solve::Discretization;
+    use riplab::tui::app::{Progress, SolveRequest};
+    let scenario = Scenario::paper();
+    let mut engine = Engine::new(scenario.clone());
+    assert_eq!(engine.next_prefetch(), None, "nothing in use yet");
+    let mut app = App::new(scenario.clone());
+    app.settings.level = 2;
+    settle(&mut app, &mut engine);
+    assert_eq!(engine.next_prefetch(), Some((3, Element::Q1)));
+    let built = |level| Ok((Discretization::of(&scenario, level, Element::Q1).unwrap(), 1.0));
+    engine.adopt(3, Element::Q1, built(3), false);
+    assert!(engine.has(3, Element::Q1));
+    assert_eq!(engine.next_prefetch(), Some((1, Element::Q1)));
+    engine.adopt(1, Element::Q1, built(1), false);
+    assert_eq!(engine.next_prefetch(), None, "both neighbours built");
+    // A build for an element no longer in use is dropped.
+    let q2 = Ok((Discretization::of(&scenario, 1, Element::Q2).unwrap(), 1.0));
+    engine.adopt(1, Element::Q2, q2, false);
+    assert!(!engine.has(1, Element::Q2));
+    // The step to level 3 assembles nothing.
+    let key = riplab::tui::app::SolveKey {
+        level: 3,
+        ..app.settings
+    };
+    let mut progress = Vec::new();
+    let reply = engine.solve(&SolveRequest { generation: 1, key }, &|_| true, &mut |r| {
+        progress.push(r)
+    });
+    assert!(matches!(reply, Response::Solved { result: Ok(_), .. }));
+    assert!(
+        !progress.iter().any(|r| matches!(
+            r,
+            Response::Progress {
+                progress: Progress::Assembling { .. },
+                ..
+            }
+        )),
+        "{progress:?}"
+    );
+    // At the lab's finest level only the coarser neighbour; a failed build is not retried.
+    // (One level-0 cell, so that level 6 is small.)
+    let mut one_cell = scenario.clone();
+    one_cell.x_lines = vec![0.0, *scenario.x_lines.last().unwrap()];
+    one_cell.y_lines = vec![0.0, *scenario.y_lines.last().unwrap()];
+    let mut app = App::new(one_cell.clone());
+    (app.settings.level, app.settings.element, app.settings.rule) =
+        (MAX_APP_LEVEL, Element::Q2, Rule::Simpson);
+    let mut engine = Engine::new(one_cell);
+    settle(&mut app, &mut engine);
+    assert!(app.current().is_some());
+    assert_eq!(engine.next_prefetch(), Some((MAX_APP_LEVEL - 1, Element::Q2)));
+    let too_large = riplab::error::SolveError::TooLarge("test".into());
+    engine.adopt(MAX_APP_LEVEL - 1, Element::Q2, Err(too_large), false);
+    assert_eq!(engine.next_prefetch(), None, "not retried");
+}
+
+/// Issue 13 item 4, end to end: a worker left idle after a solve builds the next level in
+/// the background, and the step to it then assembles nothing (no "assembling" progress).
+#[test]
+fn an_idle_worker_builds_the_next_level_before_it_is_asked_for() {
+    use riplab::tui::app::{Progress, SolveRequest};
+    use riplab::tui::worker::Worker;
+    use std::time::Duration;
+    let (tx, rx) = std::sync::mpsc::channel();
+    let worker = Worker::spawn(Scenario::paper(), move |r| tx.send(r).is_ok());
+    let solve = |generation, level| {
+        let key = riplab::tui::app::SolveKey {
+            level,
+            ..App::defaults(&Scenario::paper())
+        };
+        worker.send(&Command::Solve(SolveRequest { generation, key }));
+        let mut seen = Vec::new();
+        loop {
+            let r = rx
+                .recv_timeout(Duration::from_secs(120))
+                .expect("the worker answers");
+            if let Response::Solved { result, .. } = &r {
+                assert!(result.is_ok(), "{result:?}");
+                return seen;
+            }
+            seen.push(r);
+        }
+    };
+    let assembling = |seen: &[Response]| {
+        seen.iter().any(|r| {
+            matches!(
+                r,
+                Response::Progress {
+                    progress: Progress::Assembling { .. },
+                    ..
+                }
+            )
+        })
+    };
+    assert!(assembling(&solve(1, 2)), "level 2 is built on demand");
+    // Levels 3 and 1 take milliseconds each; two seconds leave room for a loaded machine.
+    std::thread::sleep(Duration::from_secs(2));
+    let seen = solve(2, 3);
+    assert!(!assembling(&seen), "level 3 was built while idle: {seen:?}");
+}

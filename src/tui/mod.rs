@@ -11,6 +11,7 @@ pub mod app;
 pub mod beta;
 pub mod eta;
 pub mod export;
+mod prefetch;
 mod runtime;
 pub mod theme;
 pub mod tour;

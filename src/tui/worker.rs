@@ -7,7 +7,7 @@ use std::ops::ControlFlow;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::mpsc::{self, Receiver, Sender};
 use std::sync::{Arc, OnceLock};
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use crate::contact::Rule;
 use crate::contact::penalty::{NewtonOptions, SolveError};
@@ -20,11 +20,12 @@ use crate::solve::preset;
 use crate::study::{StudyRow, convergence};
 
 use super::app::{
-    App, Command, InfSupKey, InfSupRequest, Msg, Progress, Response, SolveKey, SolveRequest, StressRequest,
-    Study, StudyKey, StudyRequest,
+    App, Command, InfSupKey, InfSupRequest, MAX_APP_LEVEL, Msg, Progress, Response, SolveKey, SolveRequest,
+    StressRequest, Study, StudyKey, StudyRequest,
 };
 use super::beta::{self, InfSup};
 use super::eta::Eta;
+use super::prefetch::{Built, Prefetch};
 
 /// How many discretisations (meshes with their factorisations) are kept at most…
 const CACHE_SIZE: usize = 4;
@@ -84,6 +85,8 @@ pub struct Engine {
     study: Option<Arc<Study>>,
     /// How long builds take here (for the time left).
     eta: Eta,
+    /// Levels whose background build failed (too large for this machine): not tried again.
+    unfit: Vec<(u32, Element)>,
 }
 
 impl Engine {
@@ -94,12 +97,13 @@ impl Engine {
             warm: None,
             study: None,
             eta: Eta::default(),
+            unfit: Vec::new(),
         }
     }
 
-    /// The unknowns of the mesh at `level` for `element` (two per node, before the supports).
+    /// The unknowns of the mesh at `level` for `element`, counted without building it.
     fn unknowns(&self, level: u32, element: Element) -> usize {
-        2 * self.scenario.mesh(level, element).n_nodes()
+        self.scenario.n_dofs(level, element)
     }
 
     fn cached(&mut self, level: u32, element: Element) -> Option<Arc<Discretization>> {
@@ -122,13 +126,74 @@ impl Engine {
         self.eta
             .record(self.unknowns(level, element), t.elapsed().as_secs_f64() * 1e3);
         self.cache.push((level, element, disc.clone()));
+        self.evict();
+        Ok(disc)
+    }
+
+    /// Drop the least recently used discretisations beyond [`CACHE_SIZE`] and [`CACHE_DOFS`]
+    /// (the newest is kept whatever its size).
+    fn evict(&mut self) {
         let dofs = |cache: &[(u32, Element, Arc<Discretization>)]| -> usize {
             cache.iter().map(|(_, _, d)| d.n_dofs()).sum()
         };
         while self.cache.len() > 1 && (self.cache.len() > CACHE_SIZE || dofs(&self.cache) > CACHE_DOFS) {
             self.cache.remove(0);
         }
-        Ok(disc)
+    }
+
+    /// The level to build in the background next: the next finer, then the next coarser
+    /// level of the mesh last used, up to [`MAX_APP_LEVEL`], when it is not built yet, did not
+    /// fail before, and fits beside the mesh in use within [`CACHE_DOFS`].
+    pub fn next_prefetch(&self) -> Option<(u32, Element)> {
+        let (level, element, current) = self.cache.last()?;
+        let candidates = [level.checked_add(1), level.checked_sub(1)];
+        candidates
+            .into_iter()
+            .flatten()
+            .map(|l| (l, *element))
+            .find(|&(l, e)| {
+                l <= MAX_APP_LEVEL
+                    && !self.has(l, e)
+                    && !self.unfit.contains(&(l, e))
+                    && current.n_dofs() + self.unknowns(l, e) <= CACHE_DOFS
+            })
+    }
+
+    /// Start the build [`Engine::next_prefetch`] names, if any.
+    fn start_prefetch(&self) -> Option<Prefetch> {
+        let (level, element) = self.next_prefetch()?;
+        let unknowns = self.unknowns(level, element);
+        Prefetch::start(
+            &self.scenario,
+            level,
+            element,
+            unknowns,
+            self.eta.predict_ms(unknowns),
+        )
+    }
+
+    /// Keep a finished background build of `level` with `element`, just behind the mesh in
+    /// use in the cache's order; unless a solve `wants` it, a build for another element than
+    /// the one in use now is dropped. A failed build is not tried again.
+    pub fn adopt(&mut self, level: u32, element: Element, built: Built, wants: bool) {
+        match built {
+            Ok((disc, ms)) => {
+                let in_use = self.cache.last().map(|(_, e, _)| *e);
+                if (!wants && in_use != Some(element)) || self.has(level, element) {
+                    return;
+                }
+                self.eta.record(disc.n_dofs(), ms);
+                let at = self.cache.len().saturating_sub(1);
+                self.cache.insert(at, (level, element, Arc::new(disc)));
+                self.evict();
+            }
+            Err(_) => self.unfit.push((level, element)),
+        }
+    }
+
+    /// Whether the mesh of `level` with `element` is built.
+    pub fn has(&self, level: u32, element: Element) -> bool {
+        self.cache.iter().any(|(l, e, _)| (*l, *e) == (level, element))
     }
 
     /// Run `req`; `is_current(generation)` false cancels it; progress goes to `report`.
@@ -368,22 +433,74 @@ impl Waiting {
     }
 }
 
+/// How often the worker looks for new requests while it waits for a background build.
+const POLL: Duration = Duration::from_millis(20);
+
 /// The worker loop: the newest solve first (older ones are dropped), then the stresses of
 /// the solution shown, then the newest study (likewise), then inf-sup estimates in order;
-/// studies and estimates older than the newest generation are skipped.
+/// studies and estimates older than the newest generation are skipped. When nothing is
+/// waiting, the neighbouring levels of the mesh in use are built in the background
+/// ([`super::prefetch`]); a solve that needs the level being built waits for that build.
 fn run(mut engine: Engine, rx: &Receiver<Request>, latest: &AtomicU64, sink: &dyn Fn(Response) -> bool) {
     let mut waiting = Waiting::default();
+    let mut prefetch: Option<Prefetch> = None;
+    // The solve generation told that it waits for a background build.
+    let mut announced = None;
     loop {
+        if let Some(p) = prefetch.take() {
+            prefetch = collect(&mut engine, p, Duration::ZERO, false);
+        }
         if waiting.is_empty() {
-            match rx.recv() {
-                Ok(r) => waiting.take(r),
-                Err(_) => return,
+            if prefetch.is_none() {
+                prefetch = engine.start_prefetch();
             }
+            let next = if prefetch.is_some() {
+                match rx.recv_timeout(POLL) {
+                    Ok(r) => Some(r),
+                    Err(mpsc::RecvTimeoutError::Timeout) => None,
+                    Err(mpsc::RecvTimeoutError::Disconnected) => return,
+                }
+            } else {
+                match rx.recv() {
+                    Ok(r) => Some(r),
+                    Err(_) => return,
+                }
+            };
+            if let Some(r) = next {
+                waiting.take(r);
+            }
+            continue;
         }
         while let Ok(r) = rx.try_recv() {
             waiting.take(r);
         }
         let current = |g: u64| latest.load(Ordering::SeqCst) == g;
+        // A solve of the level being built in the background waits for that build.
+        let builds = |req: &SolveRequest| {
+            prefetch
+                .as_ref()
+                .filter(|p| current(req.generation) && p.is_for(req.key.level, req.key.element))
+                .map(|p| Progress::Assembling {
+                    level: p.level,
+                    unknowns: p.unknowns,
+                    started: p.started,
+                    estimate_ms: p.estimate_ms,
+                })
+        };
+        if let Some((generation, progress)) = waiting
+            .solve
+            .as_ref()
+            .and_then(|r| Some((r.generation, builds(r)?)))
+        {
+            if announced != Some(generation) {
+                announced = Some(generation);
+                sink(Response::Progress { generation, progress });
+            }
+            if let Some(p) = prefetch.take() {
+                prefetch = collect(&mut engine, p, POLL, true);
+            }
+            continue;
+        }
         let response = if let Some(req) = waiting.solve.take() {
             if !current(req.generation) {
                 continue;
@@ -417,6 +534,19 @@ fn run(mut engine: Engine, rx: &Receiver<Request>, latest: &AtomicU64, sink: &dy
         if !sink(response) {
             return;
         }
+    }
+}
+
+/// Adopt the background build `p` into `engine` if it finished within `wait` (`wanted` by a
+/// waiting solve or not, see [`Engine::adopt`]); otherwise give it back.
+fn collect(engine: &mut Engine, p: Prefetch, wait: Duration, wanted: bool) -> Option<Prefetch> {
+    let (level, element) = (p.level, p.element);
+    match p.finished(wait) {
+        Ok(built) => {
+            engine.adopt(level, element, built, wanted);
+            None
+        }
+        Err(p) => Some(p),
     }
 }
 
