@@ -1482,3 +1482,39 @@ fn an_idle_worker_builds_the_next_level_before_it_is_asked_for() {
     let seen = solve(2, 3);
     assert!(!assembling(&seen), "level 3 was built while idle: {seen:?}");
 }
+
+/// Issue 13 item 4: a solve's reply carries the pressures at once; the displacement (a solve
+/// with the whole factor, the larger part of a step to a built level) follows, and the
+/// deformed view says so meanwhile.
+#[test]
+fn the_pressures_are_shown_before_the_displacement_is_computed() {
+    use riplab::tui::app::SolveRequest;
+    let scenario = Scenario::paper();
+    let mut engine = Engine::new(scenario.clone());
+    let mut app = App::new(scenario);
+    app.show_timing = false;
+    let request = app.update(Msg::Resize).commands;
+    let Some(Command::Solve(req)) = request.first() else {
+        panic!("{request:?}")
+    };
+    let reply = engine.solve(req, &|_| true, &mut |_| {});
+    let Response::Solved {
+        result: Ok(solved), ..
+    } = &reply
+    else {
+        panic!("{reply:?}")
+    };
+    let solved = solved.clone();
+    assert!(solved.displacement.get().is_none(), "not computed with the solve");
+    assert!(app.update(Msg::Worker(reply)).redraw);
+    let first = render_app(&app, &LOOK, 100, 30);
+    assert!(first.contains("computing the displacement…"), "{first}");
+    assert!(first.contains("converged"), "{first}");
+    assert!(app.update(Msg::Worker(engine.displace(&solved))).redraw);
+    let then = render_app(&app, &LOOK, 100, 30);
+    assert!(!then.contains("computing the displacement"), "{then}");
+    assert_eq!(
+        solved.displacement.get().map(Vec::len),
+        Some(2 * solved.disc.mesh.n_nodes())
+    );
+}

@@ -207,6 +207,10 @@ pub enum Response {
         key: InfSupKey,
         result: Option<Result<InfSup, String>>,
     },
+    /// The displacement of the solution with `key` is computed.
+    Displaced {
+        key: SolveKey,
+    },
     /// The stresses of the solution with `key` are computed (or failed; see
     /// [`Solved::stresses`]).
     Stresses {
@@ -637,6 +641,9 @@ impl App {
                         self.error = Some(e);
                     }
                 }
+            }
+            Response::Displaced { key } => {
+                return self.scene.needs_solution() && self.current().is_some_and(|s| s.key == key);
             }
             Response::Stresses { key } => {
                 if self.stress_pending == Some(key) {

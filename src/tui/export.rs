@@ -41,7 +41,7 @@ pub fn export_svg(scenario: &Scenario, solved: &Solved, dir: &Path) -> Result<Pa
 /// same name with `.contact.vtu` in `dir`; returns the body's path.
 pub fn export_vtu(scenario: &Scenario, solved: &Solved, dir: &Path) -> Result<PathBuf, String> {
     let field = solved.stress_field(scenario)?;
-    let u = &solved.displacement;
+    let u = solved.u();
     let mesh = &solved.disc.mesh;
     let body = crate::vtu::xml(crate::vtu::body(mesh, u, &field)).map_err(|e| e.to_string())?;
     let contact =

@@ -38,8 +38,10 @@ pub struct Solved {
     pub key: SolveKey,
     pub disc: Arc<Discretization>,
     pub solution: Solution,
-    /// Displacement on every dof, node-major (u_x = [2n], u_y = [2n + 1]).
-    pub displacement: Vec<f64>,
+    /// Displacement on every dof, node-major (u_x = [2n], u_y = [2n + 1]): one solve with
+    /// the whole factor, computed by the worker just after the solution is shown
+    /// ([`Engine::displace`]), so that a level step shows its pressures without waiting for it.
+    pub displacement: OnceLock<Vec<f64>>,
     /// Wall time of the request, mesh work included, in ms.
     pub total_ms: f64,
     /// The stresses, computed by the worker when the stress scene first shows this solution
@@ -48,6 +50,12 @@ pub struct Solved {
 }
 
 impl Solved {
+    /// The displacement ([`Solved::displacement`]), computed on first use and kept.
+    pub fn u(&self) -> &[f64] {
+        self.displacement
+            .get_or_init(|| self.solution.displacement(&self.disc))
+    }
+
     /// The stresses of this solution (on `scenario`'s material), computed on first use and
     /// kept.
     pub fn stress_field(&self, scenario: &Scenario) -> Result<Arc<StressField>, String> {
@@ -57,7 +65,7 @@ impl Solved {
                     &self.disc.mesh,
                     &scenario.material,
                     scenario.integration,
-                    &self.displacement,
+                    self.u(),
                 )
                 .map(Arc::new)
                 .map_err(|e| e.to_string())
@@ -254,15 +262,13 @@ impl Engine {
         match result {
             Ok(solution) => {
                 self.warm = Some((key.level, key.element, key.rule, solution.newton.forces.clone()));
-                // Every scene that shows a solution draws the deformed configuration.
-                let displacement = solution.displacement(&disc);
                 Response::Solved {
                     generation,
                     result: Ok(Arc::new(Solved {
                         key,
                         disc,
                         solution,
-                        displacement,
+                        displacement: OnceLock::new(),
                         total_ms: t.elapsed().as_secs_f64() * 1e3,
                         stresses: OnceLock::new(),
                     })),
@@ -274,6 +280,12 @@ impl Engine {
                 result: Err(e.to_string()),
             },
         }
+    }
+
+    /// Compute the displacement of `solved` (kept in it, shared with the app).
+    pub fn displace(&self, solved: &Solved) -> Response {
+        solved.u();
+        Response::Displaced { key: solved.key }
     }
 
     /// Compute the stresses of `req.solved` (kept in it, shared with the app).
@@ -411,6 +423,8 @@ impl Drop for Worker {
 #[derive(Default)]
 struct Waiting {
     solve: Option<SolveRequest>,
+    /// The solution just sent, whose displacement comes next.
+    displace: Option<Arc<Solved>>,
     stresses: Option<StressRequest>,
     study: Option<StudyRequest>,
     queue: VecDeque<InfSupRequest>,
@@ -418,7 +432,11 @@ struct Waiting {
 
 impl Waiting {
     fn is_empty(&self) -> bool {
-        self.solve.is_none() && self.stresses.is_none() && self.study.is_none() && self.queue.is_empty()
+        self.solve.is_none()
+            && self.displace.is_none()
+            && self.stresses.is_none()
+            && self.study.is_none()
+            && self.queue.is_empty()
     }
 
     /// File a request: a solve, a stress field or a study replaces any waiting one, an
@@ -436,8 +454,8 @@ impl Waiting {
 /// How often the worker looks for new requests while it waits for a background build.
 const POLL: Duration = Duration::from_millis(20);
 
-/// The worker loop: the newest solve first (older ones are dropped), then the stresses of
-/// the solution shown, then the newest study (likewise), then inf-sup estimates in order;
+/// The worker loop: the newest solve first (older ones are dropped), then the displacement
+/// of the solution just sent, then the stresses of the solution shown, then the newest study (likewise), then inf-sup estimates in order;
 /// studies and estimates older than the newest generation are skipped. When nothing is
 /// waiting, the neighbouring levels of the mesh in use are built in the background
 /// ([`super::prefetch`]); a solve that needs the level being built waits for that build.
@@ -505,9 +523,18 @@ fn run(mut engine: Engine, rx: &Receiver<Request>, latest: &AtomicU64, sink: &dy
             if !current(req.generation) {
                 continue;
             }
-            engine.solve(&req, &current, &mut |r| {
+            let response = engine.solve(&req, &current, &mut |r| {
                 sink(r);
-            })
+            });
+            if let Response::Solved {
+                result: Ok(solved), ..
+            } = &response
+            {
+                waiting.displace = Some(solved.clone());
+            }
+            response
+        } else if let Some(solved) = waiting.displace.take() {
+            engine.displace(&solved)
         } else if let Some(req) = waiting.stresses.take() {
             engine.stresses(&req)
         } else if let Some(req) = waiting.study.take() {
@@ -561,7 +588,19 @@ pub fn settle(app: &mut App, engine: &mut Engine) {
 pub fn carry_out(app: &mut App, engine: &mut Engine, mut commands: Vec<Command>) {
     while let Some(command) = commands.pop() {
         let response = match command {
-            Command::Solve(req) => engine.solve(&req, &|_| true, &mut |_| {}),
+            Command::Solve(req) => {
+                let response = engine.solve(&req, &|_| true, &mut |_| {});
+                if let Response::Solved {
+                    result: Ok(solved), ..
+                } = &response
+                {
+                    let displaced = engine.displace(solved);
+                    commands.extend(app.update(Msg::Worker(response)).commands);
+                    displaced
+                } else {
+                    response
+                }
+            }
             Command::InfSup(req) => Response::InfSup {
                 key: req.key,
                 result: Some(engine.inf_sup(req.key)),

@@ -41,11 +41,18 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look, extent: Ext
         );
         return;
     };
+    let Some(u) = solved.displacement.get() else {
+        frame.render_widget(
+            Paragraph::new("computing the displacement…")
+                .block(Block::bordered().title(format!(" {title} "))),
+            area,
+        );
+        return;
+    };
     let block = Block::bordered().border_style(look.theme.axis());
     let inner = block.inner(area);
     let (cols, rows) = (f64::from(inner.width.max(1)), f64::from(inner.height.max(1)));
     let (xb, yb) = window(app, solved, extent, cols, rows);
-    let u = &solved.displacement;
     let scale = magnification(u, app.scenario.height);
     let (mesh_lines, thinned) = mesh_lines(
         solved,
