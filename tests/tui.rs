@@ -1488,7 +1488,6 @@ fn an_idle_worker_builds_the_next_level_before_it_is_asked_for() {
 /// deformed view says so meanwhile.
 #[test]
 fn the_pressures_are_shown_before_the_displacement_is_computed() {
-    use riplab::tui::app::SolveRequest;
     let scenario = Scenario::paper();
     let mut engine = Engine::new(scenario.clone());
     let mut app = App::new(scenario);
