@@ -1517,3 +1517,26 @@ fn the_pressures_are_shown_before_the_displacement_is_computed() {
         Some(2 * solved.disc.mesh.n_nodes())
     );
 }
+
+/// Issue 11 item 3: the key table drives the dispatch: every key it binds is handled by the
+/// lab (the frame changes or a notice says why not), and a key it does not bind is not.
+#[test]
+fn every_key_of_the_table_is_handled_and_no_other() {
+    use riplab::tui::keys::{CONTROL, LAB};
+    for row in LAB {
+        for &(code, action) in row.bindings {
+            let mut app = App::new(Scenario::paper());
+            assert!(app.update(key(code)).redraw, "{code:?} ({action:?}) does nothing");
+        }
+    }
+    for row in CONTROL {
+        for &(code, action) in row.bindings {
+            let mut app = App::new(Scenario::paper());
+            let ctrl = Msg::Key(KeyEvent::new(code, KeyModifiers::CONTROL));
+            assert!(app.update(ctrl).redraw, "Ctrl {code:?} ({action:?}) does nothing");
+        }
+    }
+    let mut app = App::new(Scenario::paper());
+    assert!(!app.update(key(KeyCode::Char('x'))).redraw);
+    assert!(!app.update(key(KeyCode::F(5))).redraw);
+}

@@ -5,7 +5,7 @@ use std::collections::{HashMap, HashSet};
 use std::sync::Arc;
 use std::time::Instant;
 
-use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
+use crossterm::event::{KeyEvent, KeyEventKind, KeyModifiers};
 
 use crate::contact::Rule;
 use crate::mesh::Element;
@@ -15,6 +15,7 @@ use crate::stress::Quantity;
 use crate::study::StudyRow;
 
 use super::beta::InfSup;
+use super::keys::{LabAction, lab_action};
 use super::worker::Solved;
 
 /// The finest level the interactive lab (and `riplab render`) offers: a change at level 6
@@ -466,10 +467,12 @@ impl App {
         if !matches!(key.kind, KeyEventKind::Press | KeyEventKind::Repeat) {
             return false;
         }
-        if key.modifiers.contains(KeyModifiers::CONTROL) {
-            match key.code {
-                KeyCode::Char('c' | 'C') => self.quit = true,
-                KeyCode::Char('z' | 'Z') => commands.push(Command::Suspend),
+        let control = key.modifiers.contains(KeyModifiers::CONTROL);
+        let action = lab_action(key.code, control);
+        if control {
+            match action {
+                Some(LabAction::Quit) => self.quit = true,
+                Some(LabAction::Suspend) => commands.push(Command::Suspend),
                 _ => return false,
             }
             return true;
@@ -480,17 +483,20 @@ impl App {
             self.show_help = false;
             return true;
         }
+        let Some(action) = action else {
+            return false;
+        };
         let before = self.settings;
-        match key.code {
-            KeyCode::Char('q') | KeyCode::Esc => self.quit = true,
-            KeyCode::Char('?') => self.show_help = true,
-            KeyCode::Left | KeyCode::Char('[') => {
+        match action {
+            LabAction::Quit => self.quit = true,
+            LabAction::Help => self.show_help = true,
+            LabAction::Coarser => {
                 if self.settings.level == 0 {
                     self.notice = Some(Notice::info("level 0 is the coarsest mesh"));
                 }
                 self.settings.level = self.settings.level.saturating_sub(1);
             }
-            KeyCode::Right | KeyCode::Char(']') => {
+            LabAction::Finer => {
                 if self.settings.level >= MAX_APP_LEVEL {
                     self.notice = Some(Notice::info(format!(
                         "level {MAX_APP_LEVEL} is the lab's finest: level 7 takes ~10 s and 1.7 GB (riplab solve)"
@@ -498,7 +504,7 @@ impl App {
                 }
                 self.settings.level = (self.settings.level + 1).min(MAX_APP_LEVEL);
             }
-            KeyCode::Char('0') => {
+            LabAction::Reset => {
                 self.settings = App::defaults(&self.scenario);
                 self.show_gap = false;
                 self.show_hertz = false;
@@ -506,32 +512,32 @@ impl App {
                 self.zoom = false;
                 self.notice = Some(Notice::info("reset to the scenario's settings"));
             }
-            KeyCode::Char('r') => {
+            LabAction::NextRule => {
                 let i = Rule::ALL
                     .iter()
                     .position(|&r| r == self.settings.rule)
                     .unwrap_or(0);
                 self.settings.rule = Rule::ALL[(i + 1) % Rule::ALL.len()];
             }
-            KeyCode::Char('e') => {
+            LabAction::NextElement => {
                 let all = Element::ALL;
                 let i = all.iter().position(|&e| e == self.settings.element).unwrap_or(0);
                 self.settings.element = all[(i + 1) % all.len()];
             }
-            KeyCode::Char(c @ '1'..='4') => {
-                if let Some((element, rule)) = preset(&format!("M{c}")) {
+            LabAction::Scheme(m) => {
+                if let Some((element, rule)) = preset(&format!("M{m}")) {
                     self.settings.element = element;
                     self.settings.rule = rule;
                 }
             }
-            KeyCode::Char('+' | '=') => self.shift_epsilon(1),
-            KeyCode::Char('-' | '_') => self.shift_epsilon(-1),
-            KeyCode::Char('d') => self.shift_depth(-DEPTH_STEP),
-            KeyCode::Char('D') => self.shift_depth(DEPTH_STEP),
-            KeyCode::Tab => self.scene = self.scene.shifted(1),
-            KeyCode::BackTab => self.scene = self.scene.shifted(Scene::ALL.len() - 1),
-            KeyCode::Char('g') => self.show_gap = !self.show_gap,
-            KeyCode::Char('h') => {
+            LabAction::EpsilonUp => self.shift_epsilon(1),
+            LabAction::EpsilonDown => self.shift_epsilon(-1),
+            LabAction::Shallower => self.shift_depth(-DEPTH_STEP),
+            LabAction::Deeper => self.shift_depth(DEPTH_STEP),
+            LabAction::NextScene => self.scene = self.scene.shifted(1),
+            LabAction::PreviousScene => self.scene = self.scene.shifted(Scene::ALL.len() - 1),
+            LabAction::Gap => self.show_gap = !self.show_gap,
+            LabAction::Hertz => {
                 if self.scenario.obstacle.hertz_radius().is_some() || self.show_hertz {
                     self.show_hertz = !self.show_hertz;
                 } else {
@@ -540,22 +546,19 @@ impl App {
                     ));
                 }
             }
-            KeyCode::Char('z') => self.toggle_zoom(),
-            KeyCode::Char('a') => self.all_levels = !self.all_levels,
-            KeyCode::Char('c') => self.stress_quantity = self.stress_quantity.next(),
-            KeyCode::Char(c @ ('s' | 'S' | 'v')) => {
+            LabAction::Zoom => self.toggle_zoom(),
+            LabAction::AllLevels => self.all_levels = !self.all_levels,
+            LabAction::NextQuantity => self.stress_quantity = self.stress_quantity.next(),
+            LabAction::Export(kind) => {
                 if self.current().is_some() {
-                    self.export_kind = match c {
-                        's' => ExportKind::Csv,
-                        'S' => ExportKind::Svg,
-                        _ => ExportKind::Vtu,
-                    };
+                    self.export_kind = kind;
                     commands.push(Command::Export);
                 } else {
                     self.notice = Some(Notice::info("nothing to export yet: the solve is not finished"));
                 }
             }
-            _ => return false,
+            // Only with Ctrl (above).
+            LabAction::Suspend => return false,
         }
         if self.settings != before {
             self.generation += 1;

@@ -11,6 +11,7 @@ pub mod app;
 pub mod beta;
 pub mod eta;
 pub mod export;
+pub mod keys;
 mod prefetch;
 mod runtime;
 pub mod theme;

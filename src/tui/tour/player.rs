@@ -12,6 +12,7 @@ use crate::scenario::Scenario;
 
 use super::super::app::{App, Command, InfSupKey, Msg};
 use super::super::beta::InfSup;
+use super::super::keys::{TourAction, tour_action};
 use super::super::worker::Solved;
 use super::Tour;
 use super::view::caption_rows;
@@ -162,35 +163,34 @@ impl TourApp {
                     };
                 }
                 let last = self.tour.steps.len().saturating_sub(1);
-                match key.code {
-                    KeyCode::Char('q') | KeyCode::Esc => {
+                let Some(action) = tour_action(key.code) else {
+                    return self.lab(Msg::Key(key));
+                };
+                match action {
+                    TourAction::Quit => {
                         self.quit = true;
                         return TourEffect {
                             redraw: true,
                             ..TourEffect::default()
                         };
                     }
-                    KeyCode::Char('?') => {
+                    TourAction::Help => {
                         self.show_help = true;
                         return TourEffect {
                             redraw: true,
                             ..TourEffect::default()
                         };
                     }
-                    KeyCode::Char(' ') | KeyCode::Right | KeyCode::PageDown | KeyCode::Enter => {
-                        Some((self.index + 1).min(last))
-                    }
-                    KeyCode::Left | KeyCode::PageUp | KeyCode::Backspace => {
-                        Some(self.index.saturating_sub(1))
-                    }
-                    KeyCode::Up => {
+                    TourAction::Next => Some((self.index + 1).min(last)),
+                    TourAction::Previous => Some(self.index.saturating_sub(1)),
+                    TourAction::ScrollUp => {
                         self.caption_scroll = self.caption_scroll.saturating_sub(1);
                         return TourEffect {
                             redraw: true,
                             ..TourEffect::default()
                         };
                     }
-                    KeyCode::Down => {
+                    TourAction::ScrollDown => {
                         // At most to the last row of the caption at the narrowest width.
                         let caption = &self.tour.steps[self.index].caption;
                         let rows = caption_rows(caption, super::MIN_TOUR_SIZE.0 - 2).len();
@@ -200,9 +200,8 @@ impl TourApp {
                             ..TourEffect::default()
                         };
                     }
-                    KeyCode::Home => Some(0),
-                    KeyCode::End => Some(last),
-                    _ => return self.lab(Msg::Key(key)),
+                    TourAction::First => Some(0),
+                    TourAction::Last => Some(last),
                 }
             }
             TourMsg::Lab(other) => return self.lab(other),

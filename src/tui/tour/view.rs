@@ -7,6 +7,7 @@ use ratatui::symbols::Marker;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::Paragraph;
 
+use super::super::keys;
 use super::super::theme::Theme;
 use super::super::view::fmt::{title_fit, wrap_words};
 use super::super::view::help::key_popup;
@@ -19,27 +20,6 @@ use super::{Tour, TourApp};
 /// The smallest terminal the tour runs in: the lab's own minimum, its caption below the lab
 /// in the rows the lab leaves (scrolling when longer).
 pub const MIN_TOUR_SIZE: (u16, u16) = (80, 24);
-
-/// The tour's keys and what they do.
-const KEYS: [(&str, &str); 11] = [
-    ("Space  →  Enter", "next step (PageDown too)"),
-    ("←  Backspace", "previous step (PageUp too)"),
-    ("Home  End", "first / last step"),
-    ("↑  ↓", "scroll a long caption"),
-    ("q  Esc  Ctrl-C", "quit the tour"),
-    ("?", "show this help (any key closes it)"),
-    (
-        "r e 1–4 + − d D",
-        "the lab's keys work inside a step: rule, element,",
-    ),
-    (
-        "Tab g h a z [ ]",
-        "scheme, ε, depth, scene, overlays, zoom, level;",
-    ),
-    ("s  S", "CSV / SVG export (--export-dir; never overwrites)."),
-    ("0", "the scenario's settings; leaving and coming back"),
-    ("", "restores the step's. Ctrl-Z suspends."),
-];
 
 /// Draw the tour into the whole frame.
 pub fn view(tour: &TourApp, frame: &mut Frame, look: &Look) {
@@ -146,8 +126,42 @@ fn caption_panel(tour: &TourApp, frame: &mut Frame, area: Rect, theme: Theme, te
 }
 
 /// The tour's keys over the middle of `area`.
+/// The tour's help: its own keys ([`keys::TOUR`]), then the lab's keys that work inside a
+/// step, wrapped to the popup.
 fn help(frame: &mut Frame, area: Rect, theme: Theme) {
-    key_popup(frame, area, theme, " tour keys ", &KEYS, (74, 17));
+    const WIDTH: u16 = 74;
+    const KEY_WIDTH: usize = 17;
+    let mut lines: Vec<(String, String)> = keys::help_lines(keys::TOUR)
+        .into_iter()
+        .map(|(k, w)| (k.to_string(), w.to_string()))
+        .collect();
+    let room = usize::from(WIDTH) - 3 - KEY_WIDTH;
+    let mut row = String::new();
+    let mut rows = Vec::new();
+    for group in keys::lab_keys_in_tour() {
+        if !row.is_empty() && row.chars().count() + 2 + group.chars().count() > room {
+            rows.push(std::mem::take(&mut row));
+        }
+        if !row.is_empty() {
+            row.push_str("  ");
+        }
+        row.push_str(&group);
+    }
+    rows.push(row);
+    rows.push("work inside a step (? outside the tour explains them);".into());
+    rows.push("leaving a step and coming back restores its settings.".into());
+    for (i, r) in rows.into_iter().enumerate() {
+        lines.push((
+            if i == 0 {
+                "the lab's keys".into()
+            } else {
+                String::new()
+            },
+            r,
+        ));
+    }
+    let lines: Vec<(&str, &str)> = lines.iter().map(|(k, w)| (k.as_str(), w.as_str())).collect();
+    key_popup(frame, area, theme, " tour keys ", &lines, (WIDTH, KEY_WIDTH));
 }
 
 /// The message shown instead of the tour in a terminal too small for it, wrapped to fit.

@@ -1,0 +1,322 @@
+//! Every key of the lab and of the tour, in one table each. The dispatch
+//! ([`lab_action`], [`tour_action`]), the help overlays and the README's key table are all
+//! read from these tables (a test keeps the README equal to [`readme_table`]), so that a key
+//! cannot do one thing and be documented as another.
+
+use crossterm::event::KeyCode;
+
+use super::app::ExportKind;
+
+/// What a key does in the lab.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LabAction {
+    Quit,
+    Help,
+    Coarser,
+    Finer,
+    /// The paper's scheme M1–M4 (1–4).
+    Scheme(u8),
+    NextRule,
+    NextElement,
+    /// ε × 10.
+    EpsilonUp,
+    /// ε ÷ 10.
+    EpsilonDown,
+    /// Depth − [`super::app::DEPTH_STEP`].
+    Shallower,
+    /// Depth + [`super::app::DEPTH_STEP`].
+    Deeper,
+    NextScene,
+    PreviousScene,
+    Gap,
+    Hertz,
+    Zoom,
+    AllLevels,
+    NextQuantity,
+    Export(ExportKind),
+    Reset,
+    /// Ctrl-Z: give the terminal back until resumed.
+    Suspend,
+}
+
+/// What a key does in the tour (any other key is the lab's).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TourAction {
+    Next,
+    Previous,
+    First,
+    Last,
+    ScrollUp,
+    ScrollDown,
+    Quit,
+    Help,
+}
+
+/// One row of a key table: the keys as the help writes them, what they do (one help line
+/// each; the README joins them), and the keys with their actions.
+pub struct Row<A: 'static> {
+    pub keys: &'static str,
+    pub what: &'static [&'static str],
+    pub bindings: &'static [(KeyCode, A)],
+}
+
+use KeyCode::Char;
+use LabAction as L;
+use TourAction as T;
+
+/// The lab's keys (and with Ctrl held: [`CONTROL`]).
+pub const LAB: &[Row<LabAction>] = &[
+    Row {
+        keys: "q  Esc",
+        what: &["quit"],
+        bindings: &[(Char('q'), L::Quit), (KeyCode::Esc, L::Quit)],
+    },
+    Row {
+        keys: "?",
+        what: &["this help (any key closes it)"],
+        bindings: &[(Char('?'), L::Help)],
+    },
+    Row {
+        keys: "←  →   [  ]",
+        what: &[LEVELS],
+        bindings: &[
+            (KeyCode::Left, L::Coarser),
+            (KeyCode::Right, L::Finer),
+            (Char('['), L::Coarser),
+            (Char(']'), L::Finer),
+        ],
+    },
+    Row {
+        keys: "1 2 3 4",
+        what: &["the paper's schemes M1–M4"],
+        bindings: &[
+            (Char('1'), L::Scheme(1)),
+            (Char('2'), L::Scheme(2)),
+            (Char('3'), L::Scheme(3)),
+            (Char('4'), L::Scheme(4)),
+        ],
+    },
+    Row {
+        keys: "r  e",
+        what: &["next contact rule / element (q1, q2, p1)"],
+        bindings: &[(Char('r'), L::NextRule), (Char('e'), L::NextElement)],
+    },
+    Row {
+        keys: "+  -",
+        what: &[EPSILON],
+        bindings: &[
+            (Char('+'), L::EpsilonUp),
+            (Char('='), L::EpsilonUp),
+            (Char('-'), L::EpsilonDown),
+            (Char('_'), L::EpsilonDown),
+        ],
+    },
+    Row {
+        keys: "d  D",
+        what: &[DEPTH],
+        bindings: &[(Char('d'), L::Shallower), (Char('D'), L::Deeper)],
+    },
+    Row {
+        keys: "Tab  Shift-Tab",
+        what: &["next / previous scene"],
+        bindings: &[(KeyCode::Tab, L::NextScene), (KeyCode::BackTab, L::PreviousScene)],
+    },
+    Row {
+        keys: "g  h",
+        what: &["gap / Hertz overlay on the pressure chart"],
+        bindings: &[(Char('g'), L::Gap), (Char('h'), L::Hertz)],
+    },
+    Row {
+        keys: "z",
+        what: &["zoom to the contact zone (p̄ > 0) and back"],
+        bindings: &[(Char('z'), L::Zoom)],
+    },
+    Row {
+        keys: "a",
+        what: &["inf-sup at every level up to this one"],
+        bindings: &[(Char('a'), L::AllLevels)],
+    },
+    Row {
+        keys: "s  S  v",
+        what: &[
+            "export CSV / SVG / VTU (new files, ε and",
+            "d in the name; --export-dir sets where)",
+        ],
+        bindings: &[
+            (Char('s'), L::Export(ExportKind::Csv)),
+            (Char('S'), L::Export(ExportKind::Svg)),
+            (Char('v'), L::Export(ExportKind::Vtu)),
+        ],
+    },
+    Row {
+        keys: "c",
+        what: &["stress scene: τ₁ / von Mises / σ_yy"],
+        bindings: &[(Char('c'), L::NextQuantity)],
+    },
+    Row {
+        keys: "0",
+        what: &["reset to the scenario's settings"],
+        bindings: &[(Char('0'), L::Reset)],
+    },
+];
+
+/// The lab's keys with Ctrl held (they work while the help is open).
+pub const CONTROL: &[Row<LabAction>] = &[Row {
+    keys: "Ctrl-C  Ctrl-Z",
+    what: &["quit / suspend (fg resumes)"],
+    bindings: &[(Char('c'), L::Quit), (Char('z'), L::Suspend)],
+}];
+
+/// The help's words for [`super::app::MAX_APP_LEVEL`], [`super::app::EPSILON_RANGE`] and
+/// [`super::app::DEPTH_STEP`] (a test
+/// keeps them equal).
+const LEVELS: &str = "coarser / finer mesh level (0 to 6)";
+const EPSILON: &str = "ε × 10 / ε ÷ 10 (1e-14 to 1e2)";
+const DEPTH: &str = "depth − 0.1 / + 0.1";
+
+/// The tour's own keys; every other key goes to the lab inside the step.
+pub const TOUR: &[Row<TourAction>] = &[
+    Row {
+        keys: "Space  →  Enter",
+        what: &["next step (PageDown too)"],
+        bindings: &[
+            (Char(' '), T::Next),
+            (KeyCode::Right, T::Next),
+            (KeyCode::Enter, T::Next),
+            (KeyCode::PageDown, T::Next),
+        ],
+    },
+    Row {
+        keys: "←  Backspace",
+        what: &["previous step (PageUp too)"],
+        bindings: &[
+            (KeyCode::Left, T::Previous),
+            (KeyCode::Backspace, T::Previous),
+            (KeyCode::PageUp, T::Previous),
+        ],
+    },
+    Row {
+        keys: "Home  End",
+        what: &["first / last step"],
+        bindings: &[(KeyCode::Home, T::First), (KeyCode::End, T::Last)],
+    },
+    Row {
+        keys: "↑  ↓",
+        what: &["scroll a long caption"],
+        bindings: &[(KeyCode::Up, T::ScrollUp), (KeyCode::Down, T::ScrollDown)],
+    },
+    Row {
+        keys: "q  Esc  Ctrl-C",
+        what: &["quit the tour"],
+        bindings: &[(Char('q'), T::Quit), (KeyCode::Esc, T::Quit)],
+    },
+    Row {
+        keys: "?",
+        what: &["show this help (any key closes it)"],
+        bindings: &[(Char('?'), T::Help)],
+    },
+];
+
+fn find<A: Copy>(table: &[Row<A>], code: KeyCode) -> Option<A> {
+    table
+        .iter()
+        .flat_map(|row| row.bindings)
+        .find(|(k, _)| *k == code)
+        .map(|&(_, a)| a)
+}
+
+/// The lab's action for `code`, with Ctrl held or not, if it has one.
+pub fn lab_action(code: KeyCode, control: bool) -> Option<LabAction> {
+    if control {
+        // Ctrl with a letter arrives as either case depending on the terminal.
+        let code = match code {
+            Char(c) => Char(c.to_ascii_lowercase()),
+            other => other,
+        };
+        find(CONTROL, code)
+    } else {
+        find(LAB, code)
+    }
+}
+
+/// The tour's action for `code`, if it has one (otherwise the key is the lab's).
+pub fn tour_action(code: KeyCode) -> Option<TourAction> {
+    find(TOUR, code)
+}
+
+/// The help lines of `rows`: (keys, what), one per line of `what`, the keys on the first.
+pub fn help_lines<A>(rows: &[Row<A>]) -> Vec<(&'static str, &'static str)> {
+    rows.iter()
+        .flat_map(|row| {
+            row.what
+                .iter()
+                .enumerate()
+                .map(move |(i, what)| (if i == 0 { row.keys } else { "" }, *what))
+        })
+        .collect()
+}
+
+/// The lab's help overlay: its keys, the Ctrl keys and a note on units.
+pub fn lab_help() -> Vec<(&'static str, &'static str)> {
+    let mut lines = help_lines(LAB);
+    lines.extend(help_lines(CONTROL));
+    lines.extend([
+        ("", "p, p̄ and E share a unit; x is in units of"),
+        ("", "length; load P = ∫p over Γ_C (per unit"),
+        ("", "thickness; full: both halves)"),
+    ]);
+    lines
+}
+
+/// The README's key table (Markdown), from [`LAB`] and [`CONTROL`].
+pub fn readme_table() -> String {
+    let mut out = String::from("| key | action |\n|---|---|\n");
+    for row in LAB.iter().chain(CONTROL) {
+        let keys: Vec<String> = row.keys.split_whitespace().map(|k| format!("`{k}`")).collect();
+        out.push_str(&format!("| {} | {} |\n", keys.join(" "), row.what.join(" ")));
+    }
+    out
+}
+
+/// The lab's keys that work inside a tour's step (those the tour does not take), as the
+/// lab's help writes them, row by row: for the tour's help.
+pub fn lab_keys_in_tour() -> Vec<String> {
+    let taken: Vec<&str> = TOUR.iter().flat_map(|row| row.keys.split_whitespace()).collect();
+    LAB.iter()
+        .chain(CONTROL)
+        .map(|row| {
+            row.keys
+                .split_whitespace()
+                .filter(|k| !taken.contains(k))
+                .collect::<Vec<_>>()
+                .join(" ")
+        })
+        .filter(|keys| !keys.is_empty())
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::app::{DEPTH_STEP, EPSILON_RANGE, MAX_APP_LEVEL};
+    use super::*;
+
+    /// No key is bound twice in a table, and the help's texts quote the app's constants.
+    #[test]
+    fn every_key_is_bound_once() {
+        fn unique<A>(table: &[Row<A>]) {
+            let codes: Vec<KeyCode> = table
+                .iter()
+                .flat_map(|r| r.bindings.iter().map(|b| b.0))
+                .collect();
+            for (i, c) in codes.iter().enumerate() {
+                assert!(!codes[..i].contains(c), "{c:?} bound twice");
+            }
+        }
+        unique(LAB);
+        unique(CONTROL);
+        unique(TOUR);
+        assert_eq!(EPSILON_RANGE, (1e-14, 1e2), "the help says 1e-14 to 1e2");
+        assert_eq!(DEPTH_STEP, 0.1, "the help says 0.1");
+        assert!(LEVELS.contains(&MAX_APP_LEVEL.to_string()));
+    }
+}
