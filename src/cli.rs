@@ -16,7 +16,8 @@ use crate::report::{
     Format, InfSupRow, SolveReport, SweepFailure, infsup_output, study_output, sweep_output,
 };
 use crate::scenario::{MAX_LEVEL, Scenario, ScenarioError, check};
-use crate::solve::{ContactParams, Discretization, check_request, preset, solve_contact};
+use crate::scheme::Scheme;
+use crate::solve::{ContactParams, Discretization, check_request, solve_contact};
 use crate::stress::StressField;
 use crate::study::{all_ok, convergence, epsilon_sweep};
 use crate::tui::{MarkerChoice, TuiOptions, render_to_string};
@@ -213,8 +214,6 @@ pub struct StudyArgs {
     pub format: Format,
 }
 
-pub use crate::solve::parse_scheme;
-
 /// Parse an inclusive level range `a..b`, `a..=b` or `a`.
 pub fn parse_levels(text: &str) -> Result<Vec<u32>, String> {
     let bad = || format!("`{text}`; allowed: a level 0..={MAX_LEVEL} or a range like 0..6 (inclusive)");
@@ -279,9 +278,9 @@ impl Select {
             s.level = level as u32;
         }
         if let Some(name) = &self.scheme {
-            let (e, r) = parse_scheme(name).map_err(|m| usage("--scheme", m))?;
-            s.element = e;
-            s.rule = r;
+            let scheme = Scheme::parse(name).map_err(|m| usage("--scheme", m))?;
+            s.element = scheme.element;
+            s.rule = scheme.rule;
         }
         if let Some(e) = self.element {
             s.element = e;
@@ -505,22 +504,6 @@ fn plot_error(path: &std::path::Path, e: &std::io::Error) -> CliError {
     usage("--plot", format!("{}: {what}", path.display()))
 }
 
-/// Element × rule pairs: the paper's schemes first, then the others.
-fn all_pairs() -> Vec<(Element, Rule)> {
-    let mut pairs: Vec<(Element, Rule)> = ["M1", "M2", "M3", "M4"]
-        .iter()
-        .filter_map(|m| preset(m))
-        .collect();
-    for e in Element::ALL {
-        for r in Rule::ALL {
-            if !pairs.contains(&(e, r)) {
-                pairs.push((e, r));
-            }
-        }
-    }
-    pairs
-}
-
 fn infsup(args: &InfsupArgs) -> Result<ExitCode, CliError> {
     let scenario = args.select.resolve()?;
     // `--level L` alone estimates that level; `--levels` a range (they exclude each other).
@@ -529,8 +512,8 @@ fn infsup(args: &InfsupArgs) -> Result<ExitCode, CliError> {
         (None, Some(_)) => vec![scenario.level],
         (None, None) => parse_levels("0..4").expect("the default levels parse"),
     };
-    let pairs = if args.all {
-        all_pairs()
+    let pairs: Vec<(Element, Rule)> = if args.all {
+        Scheme::all().into_iter().map(|s| (s.element, s.rule)).collect()
     } else {
         vec![(scenario.element, scenario.rule)]
     };
@@ -571,7 +554,7 @@ fn study(args: &StudyArgs) -> Result<ExitCode, CliError> {
     let schemes = args
         .schemes
         .iter()
-        .map(|s| parse_scheme(s))
+        .map(|s| Scheme::parse(s).map(|s| (s.element, s.rule)))
         .collect::<Result<Vec<_>, _>>()
         .map_err(|m| usage("--schemes", m))?;
     let epsilon = args.epsilon.unwrap_or(scenario.epsilon);

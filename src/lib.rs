@@ -36,6 +36,7 @@ pub mod mesh;
 pub mod plot;
 pub mod report;
 pub mod scenario;
+pub mod scheme;
 pub mod solve;
 pub mod stress;
 pub mod study;

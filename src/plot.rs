@@ -15,7 +15,8 @@ use plotters::prelude::*;
 
 use crate::contact::{ContactPoints, Rule};
 use crate::mesh::Element;
-use crate::solve::{Solution, scheme_name};
+use crate::scheme::Scheme;
+use crate::solve::Solution;
 
 /// The size of the SVG chart in pixels.
 pub const SIZE: (u32, u32) = (960, 540);
@@ -30,7 +31,7 @@ const SMOOTH: RGBColor = RGBColor(0, 110, 190);
 /// the exact constraint).
 pub fn chart_title(scenario: &str, element: Element, level: u32, sol: &Solution) -> String {
     let rule = sol.params.rule;
-    let scheme = match scheme_name(element, rule) {
+    let scheme = match Scheme::new(element, rule).name() {
         Some(m) => format!("{m} ({} + {})", element.name(), rule.name()),
         None => format!("{} + {}", element.name(), rule.name()),
     };

@@ -10,7 +10,8 @@ use crate::error::SolveError;
 use crate::infsup::InfSup;
 use crate::mesh::Element;
 use crate::scenario::Scenario;
-use crate::solve::{ContactParams, Discretization, Solution, Timing, scheme_name};
+use crate::scheme::Scheme;
+use crate::solve::{ContactParams, Discretization, Solution, Timing};
 use crate::study::{Errors, Reference, Status, StudyRow};
 use crate::warning::Warning;
 
@@ -115,7 +116,7 @@ impl SolveReport {
             scenario: scenario.name.clone(),
             element: element.name(),
             rule: sol.params.rule.name(),
-            scheme: scheme_name(element, sol.params.rule),
+            scheme: Scheme::new(element, sol.params.rule).name(),
             level,
             h: disc.mesh.h(),
             epsilon: sol.params.epsilon,
@@ -371,7 +372,7 @@ impl InfSupRow {
             h: est.h,
             element: element.name(),
             rule: rule.name(),
-            scheme: scheme_name(element, rule),
+            scheme: Scheme::new(element, rule).name(),
             beta: est.beta,
             beta_over_sqrt_h: est.beta_over_sqrt_h,
             beta_bar: est.beta_bar,

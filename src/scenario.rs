@@ -896,6 +896,16 @@ impl Scenario {
         2 * nnx * (nny - 1) - symmetric
     }
 
+    /// The number of elements at `level` with `element`, counted without building the mesh
+    /// (two triangles per cell for P1, as [`crate::mesh::Mesh::n_elements`]).
+    pub fn n_elements(&self, level: u32, element: Element) -> usize {
+        let cells = ((self.x_lines.len() - 1) * (self.y_lines.len() - 1)) << (2 * level);
+        match element {
+            Element::P1 => 2 * cells,
+            _ => cells,
+        }
+    }
+
     /// The penalty parameters accepted at `level` ([`crate::solve::epsilon_range`]).
     pub fn epsilon_range(&self, level: u32) -> (f64, f64) {
         crate::solve::epsilon_range(self.material.young, self.h(level))

@@ -422,44 +422,6 @@ impl Timing {
     }
 }
 
-/// The paper's name for an element × rule pair (docs/design.md §2), if it has one.
-pub fn scheme_name(element: Element, rule: Rule) -> Option<&'static str> {
-    match (element, rule) {
-        (Element::Q1, Rule::Gauss1) => Some("M1"),
-        (Element::Q1, Rule::Gauss2) => Some("M2"),
-        (Element::Q1, Rule::Trapezoid) => Some("M3"),
-        (Element::Q2, Rule::Simpson) => Some("M4"),
-        _ => None,
-    }
-}
-
-/// Parse a scheme: a preset M1–M4 or `element+rule` (e.g. `q2+gauss1`), any case.
-pub fn parse_scheme(text: &str) -> Result<(Element, Rule), String> {
-    if let Some(pair) = preset(text) {
-        return Ok(pair);
-    }
-    let bad = || format!("`{text}`; allowed: M1, M2, M3, M4 or element+rule, e.g. q2+gauss1");
-    let (e, r) = text.split_once('+').ok_or_else(bad)?;
-    let element = Element::ALL
-        .into_iter()
-        .find(|x| x.name().eq_ignore_ascii_case(e.trim()));
-    let rule = Rule::ALL
-        .into_iter()
-        .find(|x| x.name().eq_ignore_ascii_case(r.trim()));
-    Ok((element.ok_or_else(bad)?, rule.ok_or_else(bad)?))
-}
-
-/// The element × rule pair of a preset M1–M4.
-pub fn preset(name: &str) -> Option<(Element, Rule)> {
-    match name.to_ascii_uppercase().as_str() {
-        "M1" => Some((Element::Q1, Rule::Gauss1)),
-        "M2" => Some((Element::Q1, Rule::Gauss2)),
-        "M3" => Some((Element::Q1, Rule::Trapezoid)),
-        "M4" => Some((Element::Q2, Rule::Simpson)),
-        _ => None,
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

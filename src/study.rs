@@ -18,7 +18,8 @@ use crate::fem::basis::{cell_points, evaluate};
 use crate::fem::quadrature::gauss_legendre;
 use crate::mesh::Element;
 use crate::scenario::Scenario;
-use crate::solve::{ContactParams, Discretization, Solution, scheme_name, solve_contact};
+use crate::scheme::Scheme;
+use crate::solve::{ContactParams, Discretization, Solution, solve_contact};
 
 /// Gauss points per direction for the error integrals (exact for the Q2 reference's products).
 const ERROR_POINTS: usize = 4;
@@ -288,7 +289,7 @@ impl StudyRow {
         outcome: Result<(&Discretization, &Solution), &SolveError>,
     ) -> Self {
         let mut row = StudyRow {
-            scheme: label(element, rule),
+            scheme: Scheme::new(element, rule).label(),
             element: element.name(),
             rule: rule.name(),
             level,
@@ -328,11 +329,6 @@ impl StudyRow {
 /// True when every row has a certified result (the study's exit code: 0, else 1).
 pub fn all_ok(rows: &[StudyRow]) -> bool {
     rows.iter().all(|r| r.status == Status::Ok)
-}
-
-/// A scheme's label: the paper's name or `element+rule`.
-pub fn label(element: Element, rule: Rule) -> String {
-    scheme_name(element, rule).map_or_else(|| format!("{}+{}", element.name(), rule.name()), str::to_string)
 }
 
 /// Observed rates between two rows with results (None unless both are [`Status::Ok`]).

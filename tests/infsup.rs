@@ -11,7 +11,8 @@ use riplab::infsup::{TraceCompliance, estimate, inf_sup};
 use riplab::material::{Material, Plane};
 use riplab::mesh::{Element, Mesh};
 use riplab::report::{InfSupRow, slope};
-use riplab::solve::{Discretization, preset};
+use riplab::scheme::Scheme;
+use riplab::solve::Discretization;
 
 /// λ_min(S, N) for N symmetric positive definite, by nalgebra's Cholesky and symmetric eigen.
 fn dense_min_eig(s: &DMatrix<f64>, n: &DMatrix<f64>) -> f64 {
@@ -230,7 +231,7 @@ fn snapshot_table_m1_to_m4() {
         "scheme  level  h         beta        beta/sqrt(h)  beta_bar    beta_bar/sqrt(h)  slope\n",
     );
     for m in ["M1", "M2", "M3", "M4"] {
-        let (element, rule) = preset(m).unwrap();
+        let Scheme { element, rule } = Scheme::parse(m).unwrap();
         let rows = levels_of(element, rule, 0..=4);
         for (i, r) in rows.iter().enumerate() {
             let sl = if i > 0 {

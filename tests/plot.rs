@@ -6,12 +6,13 @@ use std::path::PathBuf;
 use riplab::mesh::Element;
 use riplab::plot::{chart_title, pressure_svg, pressure_svg_string, write_file};
 use riplab::scenario::Scenario;
-use riplab::solve::{Solution, preset, solve_scenario};
+use riplab::scheme::Scheme;
+use riplab::solve::{Solution, solve_scenario};
 
 /// The paper's problem solved with the preset `scheme` at `level`.
 fn solve(scheme: &str, level: u32) -> (Scenario, Element, Solution) {
     let mut s = Scenario::paper();
-    let (element, rule) = preset(scheme).unwrap();
+    let Scheme { element, rule } = Scheme::parse(scheme).unwrap();
     (s.element, s.rule, s.level) = (element, rule, level);
     let (_, sol) = solve_scenario(&s).unwrap();
     (s, element, sol)

@@ -4,7 +4,8 @@
 mod common;
 
 use common::paper_with;
-use riplab::solve::{preset, solve_scenario};
+use riplab::scheme::Scheme;
+use riplab::solve::solve_scenario;
 
 /// Number of sign changes of successive differences: an oscillating sequence has many.
 fn turns(v: &[f64]) -> usize {
@@ -17,7 +18,7 @@ fn turns(v: &[f64]) -> usize {
 }
 
 fn table(scheme: &str, level: u32) -> (String, Vec<f64>, Vec<f64>) {
-    let (element, rule) = preset(scheme).unwrap();
+    let Scheme { element, rule } = Scheme::parse(scheme).unwrap();
     let mut s = paper_with(&[]);
     (s.element, s.rule, s.level) = (element, rule, level);
     let (_, sol) = solve_scenario(&s).unwrap();

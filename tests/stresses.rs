@@ -12,7 +12,8 @@ use riplab::fem::quadrature::gauss_legendre;
 use riplab::material::{Material, Plane};
 use riplab::mesh::{Element, Mesh};
 use riplab::scenario::Scenario;
-use riplab::solve::{Discretization, Solution, preset, solve_scenario};
+use riplab::scheme::Scheme;
+use riplab::solve::{Discretization, Solution, solve_scenario};
 use riplab::stress::{Quantity, Stress, StressField};
 
 use common::paper_with;
@@ -20,7 +21,8 @@ use common::paper_with;
 /// The paper's problem with the preset `scheme` at `level` (ε = `epsilon`), solved.
 fn paper(scheme: &str, level: u32, epsilon: f64) -> (Scenario, Discretization, Solution) {
     let mut s = Scenario::paper();
-    (s.element, s.rule) = preset(scheme).unwrap();
+    let Scheme { element, rule } = Scheme::parse(scheme).unwrap();
+    (s.element, s.rule) = (element, rule);
     s.level = level;
     s.epsilon = epsilon;
     let (disc, sol) = solve_scenario(&s).unwrap();

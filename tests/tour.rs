@@ -93,7 +93,8 @@ fn the_paper_tour_tells_the_story_in_order() {
     let schemes: Vec<String> = (0..tour.steps.len())
         .map(|i| {
             let app = tour.app(i);
-            riplab::solve::scheme_name(app.settings.element, app.settings.rule)
+            riplab::scheme::Scheme::new(app.settings.element, app.settings.rule)
+                .name()
                 .unwrap_or("-")
                 .to_string()
         })

@@ -3,7 +3,8 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use riplab::cli::{parse_levels, parse_scheme};
+use riplab::cli::parse_levels;
+use riplab::scheme::Scheme;
 
 fuzz_target!(|data: &[u8]| {
     let Ok(text) = std::str::from_utf8(data) else { return };
@@ -14,7 +15,7 @@ fuzz_target!(|data: &[u8]| {
         }
         Err(m) => assert!(m.contains("allowed")),
     }
-    if let Err(m) = parse_scheme(text) {
+    if let Err(m) = Scheme::parse(text) {
         assert!(m.contains("allowed"));
     }
 });

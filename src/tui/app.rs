@@ -10,7 +10,7 @@ use crossterm::event::{KeyEvent, KeyEventKind, KeyModifiers};
 use crate::contact::Rule;
 use crate::mesh::Element;
 use crate::scenario::{MAX_LEVEL, Scenario};
-use crate::solve::preset;
+use crate::scheme::Scheme;
 use crate::stress::Quantity;
 use crate::study::StudyRow;
 
@@ -525,9 +525,9 @@ impl App {
                 self.settings.element = all[(i + 1) % all.len()];
             }
             LabAction::Scheme(m) => {
-                if let Some((element, rule)) = preset(&format!("M{m}")) {
-                    self.settings.element = element;
-                    self.settings.rule = rule;
+                if let Some(s) = Scheme::paper(m) {
+                    self.settings.element = s.element;
+                    self.settings.rule = s.rule;
                 }
             }
             LabAction::EpsilonUp => self.shift_epsilon(1),
@@ -710,9 +710,10 @@ impl App {
                     level,
                     ..self.infsup_key()
                 }),
-                Scene::InfSup => keys.extend((1..=4).filter_map(|m| {
-                    let (element, rule) = preset(&format!("M{m}"))?;
-                    Some(InfSupKey { level, element, rule })
+                Scene::InfSup => keys.extend(Scheme::PAPER.iter().map(|s| InfSupKey {
+                    level,
+                    element: s.element,
+                    rule: s.rule,
                 })),
                 Scene::Mesh | Scene::Convergence | Scene::Stress => {}
             }

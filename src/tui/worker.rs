@@ -16,7 +16,7 @@ use crate::scenario::Scenario;
 use crate::solve::{ContactParams, Discretization, Solution, solve_contact};
 use crate::stress::StressField;
 
-use crate::solve::preset;
+use crate::scheme::Scheme;
 use crate::study::{StudyRow, convergence};
 
 use super::app::{
@@ -319,7 +319,7 @@ impl Engine {
         let dir = crate::cache::default_dir();
         let (reference, _) = crate::cache::reference(&self.scenario, key.reference_level(), dir.as_deref())
             .map_err(|e| e.to_string())?;
-        let schemes: Vec<(Element, Rule)> = (1..=4).filter_map(|m| preset(&format!("M{m}"))).collect();
+        let schemes: Vec<(Element, Rule)> = Scheme::PAPER.iter().map(|s| (s.element, s.rule)).collect();
         let mut rows = Vec::new();
         for level in 0..=key.max_level {
             // One Q1 and one Q2 build per level.
@@ -355,12 +355,12 @@ impl Engine {
     }
 }
 
-/// The position of scheme `name` among M1–M4 (others last).
-fn schemes_index(name: &str) -> usize {
-    ["M1", "M2", "M3", "M4"]
+/// The position of the scheme labelled `label` among M1–M4 (others last).
+fn schemes_index(label: &str) -> usize {
+    Scheme::PAPER
         .iter()
-        .position(|m| *m == name)
-        .unwrap_or(4)
+        .position(|s| s.label() == label)
+        .unwrap_or(Scheme::PAPER.len())
 }
 
 /// A request to the worker thread.

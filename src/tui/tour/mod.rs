@@ -20,7 +20,7 @@ use crate::contact::Rule;
 use crate::mesh::Element;
 use crate::scenario::Locator as Source;
 use crate::scenario::{Scenario, ScenarioError, check, read_toml};
-use crate::solve::parse_scheme;
+use crate::scheme::Scheme;
 use crate::text::{sanitize, sanitize_lines};
 
 use super::app::{App, MAX_APP_LEVEL, Scene};
@@ -263,9 +263,9 @@ fn step(src: &Source, n: usize, raw: &RawStep, dir: Option<&Path>) -> Result<Ste
                 "give either scheme or element and rule, not both".into(),
             ));
         }
-        let (e, r) = parse_scheme(scheme.get_ref())
+        let s = Scheme::parse(scheme.get_ref())
             .map_err(|m| src.error(Some(scheme.span()), Some(key("scheme")), m))?;
-        (element, rule) = (Some(e), Some(r));
+        (element, rule) = (Some(s.element), Some(s.rule));
     }
     let level = match &raw.level {
         Some(l) => {

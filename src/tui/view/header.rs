@@ -5,7 +5,7 @@ use ratatui::layout::{Alignment, Constraint, Layout, Rect};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::Paragraph;
 
-use crate::solve::scheme_name;
+use crate::scheme::Scheme;
 
 use super::super::app::{App, Scene};
 use super::super::theme::Theme;
@@ -50,11 +50,10 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, theme: Theme) {
 /// "M1 q1+gauss1 │ level 0 h=1 │ 32 el 90 dofs │ ε=1e-6 │ d=0.8" (dofs once solved).
 fn settings_line(app: &App, theme: Theme) -> Line<'static> {
     let s = &app.settings;
-    let scheme = match scheme_name(s.element, s.rule) {
+    let scheme = match Scheme::new(s.element, s.rule).name() {
         Some(m) => format!("{m} "),
         None => String::new(),
     };
-    let mesh = app.scenario.mesh(s.level, s.element);
     let dofs = app
         .current()
         .map(|c| format!(" {} dofs", c.disc.n_dofs()))
@@ -69,7 +68,10 @@ fn settings_line(app: &App, theme: Theme) -> Line<'static> {
         sep(),
         Span::raw(format!("level {} h={}", s.level, sig(app.scenario.h(s.level), 3))),
         sep(),
-        Span::raw(format!("{} el{dofs}", mesh.n_elements())),
+        Span::raw(format!(
+            "{} el{dofs}",
+            app.scenario.n_elements(s.level, s.element)
+        )),
         sep(),
         Span::raw(if s.epsilon == 0.0 {
             "ε=0 (exact)".to_string()

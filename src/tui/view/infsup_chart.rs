@@ -10,7 +10,7 @@ use ratatui::widgets::{Block, Paragraph};
 
 use crate::contact::Rule;
 use crate::mesh::Element;
-use crate::solve::preset;
+use crate::scheme::Scheme;
 
 use super::super::app::{App, InfSupKey, MAX_APP_LEVEL};
 use super::super::beta::InfSup;
@@ -34,15 +34,16 @@ struct Series {
 fn series() -> Vec<Series> {
     let raw: fn(&InfSup) -> f64 = |b| b.beta_over_sqrt_h;
     let smooth: fn(&InfSup) -> f64 = |b| b.beta_bar_over_sqrt_h;
-    let scheme = |m: &str| preset(m).expect("the paper's presets exist");
     let mut out = Vec::new();
-    for (label, color, glyph) in [
-        ("M1", Color::Red, '1'),
-        ("M2", Color::Yellow, '2'),
-        ("M3", Color::Green, '3'),
-        ("M4", Color::Blue, '4'),
-    ] {
-        let (element, rule) = scheme(label);
+    let looks = [
+        (Color::Red, '1'),
+        (Color::Yellow, '2'),
+        (Color::Green, '3'),
+        (Color::Blue, '4'),
+    ];
+    for (scheme, (color, glyph)) in Scheme::PAPER.into_iter().zip(looks) {
+        let Scheme { element, rule } = scheme;
+        let label = scheme.name().unwrap_or_default();
         out.push(Series {
             label,
             element,
@@ -52,7 +53,7 @@ fn series() -> Vec<Series> {
             glyph,
         });
     }
-    let (element, rule) = scheme("M1");
+    let Scheme { element, rule } = Scheme::PAPER[0];
     out.push(Series {
         label: "M1 p̄",
         element,

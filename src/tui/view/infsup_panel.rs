@@ -8,7 +8,7 @@ use ratatui::widgets::{Block, Paragraph, Wrap};
 
 use crate::contact::Rule;
 use crate::mesh::Element;
-use crate::solve::scheme_name;
+use crate::scheme::Scheme;
 
 use super::super::app::{App, InfSupKey};
 use super::super::beta::InfSup;
@@ -20,7 +20,8 @@ const DECAY: f64 = 0.8;
 
 pub fn render(app: &App, frame: &mut Frame, area: Rect, theme: Theme) {
     let key = app.infsup_key();
-    let scheme = scheme_name(key.element, key.rule)
+    let scheme = Scheme::new(key.element, key.rule)
+        .name()
         .map(|m| format!("{m} "))
         .unwrap_or_default();
     let levels = computed_levels(app, key.element, key.rule);
@@ -161,7 +162,7 @@ fn verdict(app: &App, element: Element, rule: Rule, theme: Theme) -> Line<'stati
         Span::raw("  p̄ "),
         mark(smooth, theme),
     ];
-    if let Some(m) = scheme_name(element, rule) {
+    if let Some(m) = Scheme::new(element, rule).name() {
         let stable = matches!(m, "M3" | "M4");
         spans.push(Span::raw(format!(
             " · paper: {}",
