@@ -1,7 +1,7 @@
 #!/bin/bash
 # Key-to-frame latency of a level step in the lab, measured in tmux: send the key, poll the
 # pane until the header shows the new level and the status line a converged solve.
-# usage: latency.sh FROM TO WAIT   (steps up from level 1 to FROM, waits WAIT s idle, steps to TO)
+# usage: benches/lab_latency.sh FROM TO WAIT   (steps up from level 1 to FROM, waits WAIT s idle, steps to TO)
 from=$1; to=$2; wait=$3
 tmux kill-session -t lat 2>/dev/null
 tmux new -d -s lat -x 100 -y 30 "NO_COLOR=1 ${RIPLAB:-target/release/riplab}"

@@ -44,6 +44,8 @@ pub fn reference(
     level: u32,
     dir: Option<&Path>,
 ) -> Result<(Reference, Provenance), SolveError> {
+    // A custom outline has no text that identifies it: never cached.
+    let dir = dir.filter(|_| !matches!(scenario.obstacle, crate::contact::Obstacle::Custom { .. }));
     let Some(dir) = dir else {
         return Ok((Reference::compute(scenario, level)?, Provenance::Computed(None)));
     };

@@ -307,3 +307,66 @@ fn exact_constraint_refuses_a_pressure_space_with_a_kernel() {
     .unwrap_err();
     assert!(err.to_string().contains("not unique"), "{err}");
 }
+
+/// Issue 11 item 4: a library user's own outline ([`riplab::contact::Outline`]) that is the
+/// cylinder's, η(x) = R − √(R² − x²), gives the paper's cylinder's solution to round-off.
+#[test]
+fn a_custom_outline_equal_to_the_cylinder_gives_its_solution() {
+    use riplab::contact::{Obstacle, Outline};
+    use std::sync::Arc;
+    struct Circle(f64);
+    impl Outline for Circle {
+        fn outline(&self, x: f64) -> f64 {
+            if x.abs() >= self.0 {
+                f64::INFINITY
+            } else {
+                x * x / (self.0 + (self.0 * self.0 - x * x).sqrt())
+            }
+        }
+    }
+    let mut scenario = riplab::scenario::Scenario::paper();
+    scenario.level = 2;
+    let Obstacle::Cylinder { radius, depth, .. } = scenario.obstacle else {
+        panic!("the paper's obstacle is a cylinder")
+    };
+    let (_, cylinder) = riplab::solve::solve_scenario(&scenario).unwrap();
+    scenario.obstacle = Obstacle::Custom {
+        outline: Arc::new(Circle(radius)),
+        depth,
+    };
+    assert_eq!(scenario.obstacle.max_depth(), f64::INFINITY);
+    assert_eq!(scenario.obstacle.hertz_radius(), None);
+    let (_, custom) = riplab::solve::solve_scenario(&scenario).unwrap();
+    assert_eq!(custom.load, cylinder.load);
+    assert_eq!(custom.pbar, cylinder.pbar);
+    assert_eq!(
+        format!("{:?}", scenario.obstacle),
+        format!("Custom {{ outline: Outline(a custom outline), depth: {depth:?} }}")
+    );
+}
+
+/// A custom outline has no text that identifies it, so the study's reference of a scenario
+/// with one is computed and never stored in (or read from) the cache.
+#[test]
+fn a_custom_outline_is_never_cached() {
+    use riplab::cache::{Provenance, reference};
+    use riplab::contact::{Obstacle, Outline};
+    use std::sync::Arc;
+    struct Flat;
+    impl Outline for Flat {
+        fn outline(&self, _: f64) -> f64 {
+            0.0
+        }
+    }
+    let mut scenario = riplab::scenario::Scenario::paper();
+    scenario.obstacle = Obstacle::Custom {
+        outline: Arc::new(Flat),
+        depth: 0.1,
+    };
+    let dir = std::env::temp_dir().join(format!("riplab-custom-cache-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (_, provenance) = reference(&scenario, 1, Some(&dir)).unwrap();
+    assert!(matches!(provenance, Provenance::Computed(None)), "{provenance:?}");
+    assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0, "nothing stored");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -3,7 +3,56 @@
 //! Every shape is described by its lower outline, the height η(x) ≥ 0 of the obstacle above
 //! its lowest point; pressed down by the depth d, its gap to the undeformed surface is
 //! g(x) = η(x) − d (+∞ where the obstacle does not reach, e.g. beyond a cylinder's radius or a
-//! punch's flank).
+//! punch's flank). A library user may bring an outline of their own ([`Outline`],
+//! `examples/custom_obstacle.rs`).
+
+use std::fmt;
+use std::sync::Arc;
+
+/// An obstacle's lower outline of the library user's own: everything riplab needs of a shape.
+///
+/// The paper's problem pressed by a flat-bottomed wedge, in a few lines:
+///
+/// ```
+/// use std::sync::Arc;
+/// use riplab::contact::{Obstacle, Outline};
+/// use riplab::{scenario::Scenario, solve::solve_scenario};
+///
+/// struct Wedge; // η(x) = |x| / 4: flanks of slope 1/4
+/// impl Outline for Wedge {
+///     fn outline(&self, x: f64) -> f64 { x.abs() / 4.0 }
+/// }
+/// let mut scenario = Scenario::paper();
+/// scenario.obstacle = Obstacle::Custom { outline: Arc::new(Wedge), depth: 0.5 };
+/// let (_, sol) = solve_scenario(&scenario).expect("the wedge's problem solves");
+/// assert!(sol.newton.converged && sol.load > 0.0);
+/// ```
+pub trait Outline: Send + Sync {
+    /// η(x) ≥ 0: the outline's height above its lowest point at x, +∞ where the obstacle does
+    /// not reach.
+    fn outline(&self, x: f64) -> f64;
+    /// The x of its lowest point (where views centre).
+    fn center(&self) -> f64 {
+        0.0
+    }
+    /// A few words for messages and output.
+    fn describe(&self) -> String {
+        "a custom outline".into()
+    }
+}
+
+impl fmt::Debug for dyn Outline {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "Outline({})", self.describe())
+    }
+}
+
+/// Two custom outlines are the same when they are the same object.
+impl PartialEq for dyn Outline {
+    fn eq(&self, other: &Self) -> bool {
+        std::ptr::addr_eq(self, other)
+    }
+}
 
 /// A rigid obstacle above the contact side of the body.
 #[derive(Clone, Debug, PartialEq)]
@@ -23,6 +72,8 @@ pub enum Obstacle {
     Bumps { bumps: Vec<Bump>, depth: f64 },
     /// A polyline outline through (x, height) points, heights measured upwards; +∞ outside.
     Polyline { points: Vec<(f64, f64)>, depth: f64 },
+    /// An outline of the library user's own.
+    Custom { outline: Arc<dyn Outline>, depth: f64 },
 }
 
 /// One cylinder of [`Obstacle::Bumps`].
@@ -80,6 +131,7 @@ impl Obstacle {
                 let ((x0, y0), (x1, y1)) = (points[k - 1], points[k]);
                 y0 + (y1 - y0) * (x - x0) / (x1 - x0) - lowest
             }
+            Obstacle::Custom { outline, .. } => outline.outline(x),
         }
     }
 
@@ -94,7 +146,8 @@ impl Obstacle {
             Obstacle::Cylinder { depth, .. }
             | Obstacle::Punch { depth, .. }
             | Obstacle::Bumps { depth, .. }
-            | Obstacle::Polyline { depth, .. } => *depth,
+            | Obstacle::Polyline { depth, .. }
+            | Obstacle::Custom { depth, .. } => *depth,
         }
     }
 
@@ -105,7 +158,8 @@ impl Obstacle {
             Obstacle::Cylinder { depth, .. }
             | Obstacle::Punch { depth, .. }
             | Obstacle::Bumps { depth, .. }
-            | Obstacle::Polyline { depth, .. } => *depth = d,
+            | Obstacle::Polyline { depth, .. }
+            | Obstacle::Custom { depth, .. } => *depth = d,
         }
         o
     }
@@ -121,6 +175,7 @@ impl Obstacle {
                 .iter()
                 .min_by(|a, b| a.1.total_cmp(&b.1))
                 .map_or(0.0, |p| p.0),
+            Obstacle::Custom { outline, .. } => outline.center(),
         }
     }
 
@@ -176,7 +231,7 @@ impl Obstacle {
             Obstacle::Bumps { bumps, .. } => {
                 bumps.iter().map(|b| b.radius / 2.0).fold(f64::INFINITY, f64::min)
             }
-            Obstacle::Polyline { .. } => f64::INFINITY,
+            Obstacle::Polyline { .. } | Obstacle::Custom { .. } => f64::INFINITY,
         }
     }
 }

@@ -8,6 +8,6 @@ pub mod pressure;
 pub mod rule;
 pub mod signorini;
 
-pub use gap::Obstacle;
+pub use gap::{Obstacle, Outline};
 pub use pressure::{load, raw_pressure, smoothed_pressure};
 pub use rule::{ContactPoints, Rule};
