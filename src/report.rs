@@ -563,6 +563,11 @@ pub fn study_output(scenario: &str, reference: &Reference, rows: &[StudyRow], fo
         reference.n_dofs,
         reference.load
     );
+    let mut methods: Vec<String> = rows.iter().map(|r| r.method.label()).collect();
+    methods.dedup();
+    if !methods.is_empty() {
+        let _ = writeln!(s, "method: {}", methods.join(", "));
+    }
     let _ = writeln!(
         s,
         "relative errors: p, p̄ in L²(Γ_C); u in H¹ (7); load P; rate = observed order between successive rows"

@@ -284,6 +284,23 @@ pub struct ContactParams {
     pub obstacle: Obstacle,
 }
 
+impl ContactParams {
+    /// `penalty` at ε > 0, `exact` at ε = 0 ([`Method::resolve`] with no method named).
+    pub fn by_epsilon(rule: Rule, epsilon: f64, obstacle: Obstacle) -> Self {
+        let method = if epsilon == 0.0 {
+            Method::Exact
+        } else {
+            Method::Penalty
+        };
+        ContactParams {
+            rule,
+            method,
+            epsilon,
+            obstacle,
+        }
+    }
+}
+
 /// Wall-clock time of the parts of one solve, in milliseconds.
 #[derive(Clone, Copy, Debug, Default, Serialize, PartialEq)]
 pub struct Timing {

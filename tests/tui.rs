@@ -578,10 +578,12 @@ fn row(scheme: &str, level: u32, n_dofs: usize, ms: f64, p: f64, pbar: f64, u: f
         level,
         h: 1.0 / f64::from(1 << level),
         epsilon: 1e-6,
+        method: riplab::contact::Method::Penalty.into(),
         n_dofs,
         status: Status::Ok,
         reason: None,
         newton_iterations: Some(3),
+        outer_iterations: None,
         converged: true,
         solve_ms: Some(ms),
         load: Some(1.0),
@@ -1374,4 +1376,63 @@ fn the_status_line_shows_warnings() {
     // The paper's problem has none.
     let text = frame(&settled(1, Scene::Explore), 160, 40);
     assert!(!text.lines().last().unwrap().contains("⚠"));
+}
+
+/// Issue 14: `m` cycles the method (penalty → exact → alm → nitsche → penalty); each change
+/// re-solves, the line under the pressure chart names the method, what it needs and its
+/// iteration counts (the ALM's updates and inner Newton steps), at 80×24 too.
+#[test]
+fn the_method_key_cycles_and_the_method_line_shows() {
+    let mut engine = Engine::new(Scenario::paper());
+    let mut app = App::new(Scenario::paper());
+    app.show_timing = false;
+    app.settings.level = 1;
+    app.settings.epsilon = 1e-3;
+    settle(&mut app, &mut engine);
+    let line = |app: &App| {
+        frame(app, 80, 24)
+            .lines()
+            .find(|l| l.contains("needs"))
+            .map(str::to_string)
+            .unwrap_or_default()
+    };
+    assert!(
+        line(&app).contains("penalty: needs ε > 0"),
+        "{}",
+        frame(&app, 80, 24)
+    );
+    let penalty_load = app.current().unwrap().solution.load;
+    let mut seen = Vec::new();
+    for _ in 0..4 {
+        let commands = app.update(ch('m')).commands;
+        riplab::tui::worker::carry_out(&mut app, &mut engine, commands);
+        seen.push(app.settings.method.name());
+        let text = frame(&app, 80, 24);
+        match app.settings.method.name() {
+            "exact" => assert!(line(&app).contains("exact: needs inf-sup"), "{text}"),
+            "alm" => {
+                let l = line(&app);
+                assert!(l.contains("alm: needs ε > 0, no penalty error"), "{text}");
+                let sol = &app.current().unwrap().solution;
+                let outer = sol.outer_iterations.unwrap();
+                assert!(
+                    l.contains(&format!("{outer} updates × {} Newton", sol.newton.iterations)),
+                    "{l}"
+                );
+                // The ALM at ε = 1e-3 carries the exact load, not the penalty's.
+                assert!(
+                    sol.load > 1.3 * penalty_load,
+                    "{} against {penalty_load}",
+                    sol.load
+                );
+                assert!(text.contains("alm ε=1e-3"), "the header names the method: {text}");
+            }
+            "nitsche" => {
+                assert!(line(&app).contains("nitsche: needs γ₀"), "{text}");
+                assert!(text.contains("nitsche is not available in this build"), "{text}");
+            }
+            _ => assert!(line(&app).contains("penalty"), "{text}"),
+        }
+    }
+    assert_eq!(seen, ["exact", "alm", "nitsche", "penalty"]);
 }

@@ -63,10 +63,10 @@ impl Method {
     /// What the method needs, in a line: its stability condition and its parameter.
     pub fn needs(self) -> &'static str {
         match self {
-            Method::Penalty => "needs ε > 0 (error O(ε^½)); p̄ stable for any rule",
+            Method::Penalty => "needs ε > 0 (error O(√ε)); p̄ smooths p",
             Method::Exact => "needs inf-sup (a rule without kernel); no ε",
-            Method::Alm { .. } => "needs ε > 0 (no penalty error); p unique only with inf-sup",
-            Method::Nitsche { .. } => "needs γ₀ (large enough for θ = 1); no multiplier, no inf-sup",
+            Method::Alm { .. } => "needs ε > 0, no penalty error; p unique with inf-sup",
+            Method::Nitsche { .. } => "needs γ₀ (large for θ = 1); no multiplier, no inf-sup",
         }
     }
 

@@ -71,10 +71,9 @@ fn settings_line(app: &App, theme: Theme) -> Line<'static> {
         sep(),
         Span::raw(format!("{} el{dofs}", mesh.n_elements())),
         sep(),
-        Span::raw(if s.epsilon == 0.0 {
-            "ε=0 (exact)".to_string()
-        } else {
-            format!("ε={:e}", s.epsilon)
+        Span::raw(match s.method {
+            m if m.uses_epsilon() => format!("{} ε={:e}", m.name(), s.epsilon),
+            m => m.label(),
         }),
         sep(),
         Span::raw(format!("d={}", sig(s.depth, 4))),

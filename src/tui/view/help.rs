@@ -8,13 +8,14 @@ use ratatui::widgets::{Block, Clear, Paragraph};
 use super::super::theme::Theme;
 
 /// Every key and what it does.
-pub const KEYS: [(&str, &str); 19] = [
+pub const KEYS: [(&str, &str); 20] = [
     ("q  Esc  Ctrl-C", "quit"),
     ("?", "this help (any key closes it)"),
     ("←  →   [  ]", "coarser / finer mesh level (0 to 6)"),
     ("1 2 3 4", "the paper's schemes M1–M4"),
     ("r  e", "next contact rule / element (q1, q2, p1)"),
     ("+  -", "ε × 10 / ε ÷ 10 (1e-14 to 1e2)"),
+    ("m", "next method: penalty, exact, alm, nitsche"),
     ("d  D", "depth − 0.1 / + 0.1"),
     ("Tab  Shift-Tab", "next / previous scene"),
     ("g  h", "gap / Hertz overlay on the pressure chart"),
