@@ -458,9 +458,14 @@ pub fn solve_contact(
 /// A fresh solve of `scenario` as given (its level, element, rule, ε and obstacle).
 pub fn solve_scenario(scenario: &Scenario) -> Result<(Discretization, Solution), SolveError> {
     let disc = Discretization::of(scenario, scenario.level, scenario.element)?;
+    // A scenario whose ε was set to 0 after parsing asks for the exact constraint.
+    let method = match scenario.method {
+        Method::Penalty if scenario.epsilon == 0.0 => Method::Exact,
+        m => m,
+    };
     let params = ContactParams {
         rule: scenario.rule,
-        method: scenario.method,
+        method,
         epsilon: scenario.epsilon,
         obstacle: scenario.obstacle.clone(),
     };

@@ -1412,7 +1412,7 @@ fn the_method_key_cycles_and_the_method_line_shows() {
             "exact" => assert!(line(&app).contains("exact: needs inf-sup"), "{text}"),
             "alm" => {
                 let l = line(&app);
-                assert!(l.contains("alm: needs ε > 0, no penalty error"), "{text}");
+                assert!(l.contains("alm: needs ε > 0 (no ε error)"), "{text}");
                 let sol = &app.current().unwrap().solution;
                 let outer = sol.outer_iterations.unwrap();
                 assert!(

@@ -65,7 +65,7 @@ impl Method {
         match self {
             Method::Penalty => "needs ε > 0 (error O(√ε)); p̄ smooths p",
             Method::Exact => "needs inf-sup (a rule without kernel); no ε",
-            Method::Alm { .. } => "needs ε > 0, no penalty error; p unique with inf-sup",
+            Method::Alm { .. } => "needs ε > 0 (no ε error); p unique with inf-sup",
             Method::Nitsche { .. } => "needs γ₀ (large for θ = 1); no multiplier, no inf-sup",
         }
     }

@@ -5,6 +5,7 @@ use ratatui::layout::{Alignment, Constraint, Layout, Rect};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::Paragraph;
 
+use crate::contact::Method;
 use crate::solve::scheme_name;
 
 use super::super::app::{App, Scene};
@@ -71,8 +72,10 @@ fn settings_line(app: &App, theme: Theme) -> Line<'static> {
         sep(),
         Span::raw(format!("{} el{dofs}", mesh.n_elements())),
         sep(),
+        // The penalty is the paper's method: its ε alone (the method line names it).
         Span::raw(match s.method {
-            m if m.uses_epsilon() => format!("{} ε={:e}", m.name(), s.epsilon),
+            Method::Penalty => format!("ε={:e}", s.epsilon),
+            Method::Alm { .. } => format!("alm ε={:e}", s.epsilon),
             m => m.label(),
         }),
         sep(),
