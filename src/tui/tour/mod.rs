@@ -183,7 +183,7 @@ impl Tour {
         s.level = step.level.unwrap_or(s.level).min(MAX_APP_LEVEL);
         // ε = 0 is the exact method (the lab keeps its ε for penalty and alm).
         match step.epsilon {
-            Some(e) if e == 0.0 => s.method = Method::Exact,
+            Some(0.0) => s.method = Method::Exact,
             Some(e) => s.epsilon = e,
             None => {}
         }
