@@ -23,6 +23,7 @@ pub fn line(app: &App, theme: Theme) -> Line<'static> {
     if let Some(solved) = app.current() {
         let newton = solved.solution.newton.iterations;
         let counts = match solved.solution.outer_iterations {
+            Some(1) => format!(" · 1 update × {newton} Newton"),
             Some(outer) => format!(" · {outer} updates × {newton} Newton"),
             None => format!(" · {newton} Newton"),
         };

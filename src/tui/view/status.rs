@@ -180,7 +180,7 @@ fn state(app: &App, theme: Theme) -> Vec<Span<'static>> {
     let updates = solved
         .solution
         .outer_iterations
-        .map(|n| format!("{n} updates × "))
+        .map(|n| format!("{n} update{} × ", if n == 1 { "" } else { "s" }))
         .unwrap_or_default();
     spans.push(Span::raw(format!(
         " in {updates}{} Newton {steps} · load P={}",
