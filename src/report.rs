@@ -336,14 +336,14 @@ pub fn sweep_output(rows: &[Result<SolveReport, SweepFailure>], format: Format) 
     }
     let _ = writeln!(
         s,
-        "{:>10} {:>8} {:>7} {:>10} {:>14} {:>12} {:>12} {:>10}",
+        "{:>10} {:>8} {:>7} {:>10} {:>14} {:>12} {:>12} {:>10}  method",
         "ε", "depth", "Newton", "converged", "load", "max p", "max p̄", "total ms"
     );
     for row in rows {
         let _ = match row {
             Ok(r) => writeln!(
                 s,
-                "{:>10.1e} {:>8} {:>7} {:>10} {:>14.6} {:>12.4} {:>12.4} {:>10.1}",
+                "{:>10.1e} {:>8} {:>7} {:>10} {:>14.6} {:>12.4} {:>12.4} {:>10.1}  {}",
                 r.epsilon,
                 r.depth,
                 r.newton_iterations,
@@ -351,7 +351,8 @@ pub fn sweep_output(rows: &[Result<SolveReport, SweepFailure>], format: Format) 
                 r.load,
                 max(&r.points.p),
                 max(&r.nodes.pbar),
-                r.timing_ms.total
+                r.timing_ms.total,
+                r.method.label()
             ),
             Err(f) => writeln!(
                 s,
