@@ -85,11 +85,7 @@ fn stiffness(level: u32) -> (SymCsc, riplab::mesh::Mesh, DofMap, Vec<usize>) {
 #[divan::bench(args = levels(), sample_count = 3, sample_size = 1)]
 fn fresh_m1(bencher: Bencher, level: u32) {
     let s = Scenario::paper();
-    let params = ContactParams {
-        rule: s.rule,
-        epsilon: s.epsilon,
-        obstacle: s.obstacle.clone(),
-    };
+    let params = ContactParams::by_epsilon(s.rule, s.epsilon, s.obstacle.clone());
     bencher.bench(|| {
         let disc = Discretization::of(&s, level, Element::Q1).unwrap();
         solve_contact(&disc, &params, None, &NewtonOptions::default(), &mut |_| {

@@ -25,11 +25,7 @@ fn main() {
 }
 
 fn params(scenario: &Scenario, epsilon: f64) -> ContactParams {
-    ContactParams {
-        rule: Rule::Gauss1,
-        epsilon,
-        obstacle: scenario.obstacle.clone(),
-    }
+    ContactParams::by_epsilon(Rule::Gauss1, epsilon, scenario.obstacle.clone())
 }
 
 #[divan::bench(args = LEVELS, sample_count = 10)]

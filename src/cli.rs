@@ -7,8 +7,9 @@ use std::process::ExitCode;
 
 use clap::{Args, Parser, Subcommand};
 
-use crate::contact::Rule;
+use crate::contact::method::MethodError;
 use crate::contact::penalty::NewtonOptions;
+use crate::contact::{Method, Rule};
 use crate::error::SolveError;
 use crate::infsup::{TraceCompliance, estimate};
 use crate::mesh::Element;
@@ -136,11 +137,69 @@ pub struct Select {
     pub scheme: Option<String>,
 }
 
+/// The contact method and its parameters (docs/design.md §10).
+#[derive(Args, Debug, Clone, Default)]
+pub struct MethodArgs {
+    /// Contact method: penalty (ε > 0), exact (multipliers, ε = 0), alm (augmented Lagrangian
+    /// at ε > 0) or nitsche [default: the scenario's; with none named, --epsilon 0 is exact]
+    #[arg(long, value_name = "METHOD")]
+    pub method: Option<String>,
+    /// Nitsche's θ: 1 (symmetric), 0 (incomplete) or -1 (skew-symmetric) [default: 1]
+    #[arg(long, allow_negative_numbers = true)]
+    pub theta: Option<f64>,
+    /// Nitsche's γ₀ (γ = γ₀·E/h), from 1e-8 to 1e8 [default: 100]
+    #[arg(long, allow_negative_numbers = true)]
+    pub gamma0: Option<f64>,
+    /// The ALM's relative tolerance on the multiplier's change, 0 < tol < 1 [default: 1e-10]
+    #[arg(long, allow_negative_numbers = true)]
+    pub alm_tol: Option<f64>,
+}
+
+impl MethodArgs {
+    /// The method named on the command line, else the scenario's (None when the scenario's is
+    /// the one its ε implies, so that `--epsilon 0` selects `exact`), with the parameters
+    /// given applied and checked.
+    pub fn resolve(&self, scenario: &Scenario) -> Result<Option<Method>, CliError> {
+        let fail = |e: MethodError| {
+            let flag = match e.key() {
+                "alm_tol" => "--alm-tol".to_string(),
+                key => format!("--{key}"),
+            };
+            usage(&flag, e.to_string())
+        };
+        let (theta, gamma0, tol) = (self.theta, self.gamma0, self.alm_tol);
+        match &self.method {
+            Some(name) => Method::parse(name, theta, gamma0, tol).map(Some).map_err(fail),
+            None => {
+                let named = match scenario.method {
+                    Method::Penalty | Method::Exact => None,
+                    m => Some(m),
+                };
+                if theta.is_none() && gamma0.is_none() && tol.is_none() {
+                    return Ok(named);
+                }
+                named
+                    .unwrap_or(scenario.method)
+                    .with(theta, gamma0, tol)
+                    .map(Some)
+                    .map_err(fail)
+            }
+        }
+    }
+}
+
+/// The method and ε of a solve with `method` (from [`MethodArgs::resolve`]) at `epsilon`.
+fn method_at(method: Option<Method>, epsilon: f64, flag: &str) -> Result<(Method, f64), CliError> {
+    Method::resolve(method, epsilon).map_err(|e| usage(flag, e.to_string()))
+}
+
 #[derive(Args, Debug)]
 #[command(group(clap::ArgGroup::new("output").args(["plot", "vtu"]).multiple(true)))]
 pub struct SolveArgs {
     #[command(flatten)]
     pub select: Select,
+    #[command(flatten)]
+    pub method: MethodArgs,
     /// Penalty parameter ε > 0 (0: the exact constraint); several, comma-separated, sweep on one mesh.
     #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
     pub epsilon: Vec<f64>,
@@ -189,6 +248,8 @@ pub struct StudyArgs {
     /// Schemes: presets M1–M4 or pairs like q2+gauss1, comma-separated.
     #[arg(long, value_delimiter = ',', default_value = "M1,M2,M3,M4")]
     pub schemes: Vec<String>,
+    #[command(flatten)]
+    pub method: MethodArgs,
     /// Penalty parameter of the studied solves (the scenario's when omitted).
     #[arg(long)]
     pub epsilon: Option<f64>,
@@ -357,6 +418,7 @@ fn note(line: &str) {
 
 fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
     let scenario = args.select.resolve()?;
+    let method = args.method.resolve(&scenario)?;
     let level = scenario.level;
     let range = scenario.epsilon_range(level);
     for &e in &args.epsilon {
@@ -379,8 +441,19 @@ fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
     let epsilons = match (args.epsilon.is_empty(), args.kappa.is_empty()) {
         (false, _) => args.epsilon.clone(),
         (true, false) => args.kappa.iter().map(|k| k * scale).collect(),
+        // The scenario's ε, or for a method that needs one where the scenario has none
+        // (ε = 0), an error that says so.
         (true, true) => vec![scenario.epsilon],
     };
+    // Every ε with the method: `penalty` and `alm` refuse ε = 0 (before any work).
+    let flag = if args.kappa.is_empty() {
+        "--epsilon"
+    } else {
+        "--kappa"
+    };
+    for &e in &epsilons {
+        method_at(method, e, flag)?;
+    }
     let depths = if args.depth.is_empty() {
         vec![scenario.obstacle.depth()]
     } else {
@@ -393,10 +466,14 @@ fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
         }
         crate::plot::check_target(path, args.force).map_err(|e| plot_error(path, &e))?;
     }
-    let params = |epsilon: f64, depth: f64| ContactParams {
-        rule: scenario.rule,
-        epsilon,
-        obstacle: scenario.obstacle.with_depth(depth),
+    let params = |epsilon: f64, depth: f64| {
+        let (method, epsilon) = Method::resolve(method, epsilon).expect("checked above");
+        ContactParams {
+            rule: scenario.rule,
+            method,
+            epsilon,
+            obstacle: scenario.obstacle.with_depth(depth),
+        }
     };
     // A single solve's request with no answer is refused before any assembly; in a sweep each
     // row says for itself.
@@ -557,7 +634,11 @@ fn study(args: &StudyArgs) -> Result<ExitCode, CliError> {
         .map(|s| Scheme::parse(s).map(|s| (s.element, s.rule)))
         .collect::<Result<Vec<_>, _>>()
         .map_err(|m| usage("--schemes", m))?;
+    let method = args.method.resolve(&scenario)?;
     let epsilon = args.epsilon.unwrap_or(scenario.epsilon);
+    if args.sweep_epsilon.is_empty() {
+        method_at(method, epsilon, "--epsilon")?;
+    }
     let levels = match args.level {
         Some(l) => {
             check::level(l).map_err(|m| usage("--level", m))?;
@@ -620,9 +701,16 @@ fn study(args: &StudyArgs) -> Result<ExitCode, CliError> {
         }
     }
     let rows = if args.sweep_epsilon.is_empty() {
-        convergence(&scenario, &reference, &schemes, &levels, epsilon)
+        convergence(&scenario, &reference, &schemes, &levels, method, epsilon)
     } else {
-        epsilon_sweep(&scenario, &reference, &schemes, levels[0], &args.sweep_epsilon)
+        epsilon_sweep(
+            &scenario,
+            &reference,
+            &schemes,
+            levels[0],
+            method,
+            &args.sweep_epsilon,
+        )
     };
     print(&study_output(&scenario.name, &reference, &rows, args.format))?;
     if all_ok(&rows) {

@@ -62,6 +62,9 @@ pub struct Mesh {
     pub node_y: Vec<f64>,
     /// Half model: u_x = 0 on the left side x = x₀ (the symmetry line).
     pub symmetric_left: bool,
+    /// u_x = 0 on the right side x = x_nx too (a roller wall; no scenario sets it: the contact
+    /// patch test of tests/methods.rs, whose exact solution is a uniform compression).
+    pub roller_right: bool,
 }
 
 impl Mesh {
@@ -89,6 +92,7 @@ impl Mesh {
             node_x,
             node_y,
             symmetric_left,
+            roller_right: false,
         }
     }
 

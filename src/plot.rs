@@ -13,7 +13,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 
 use plotters::prelude::*;
 
-use crate::contact::{ContactPoints, Rule};
+use crate::contact::{ContactPoints, Method, Rule};
 use crate::mesh::Element;
 use crate::scheme::Scheme;
 use crate::solve::Solution;
@@ -27,18 +27,19 @@ const RAW: RGBColor = RGBColor(214, 110, 0);
 /// The colour of the smoothed pressure (the terminal's cyan, darkened).
 const SMOOTH: RGBColor = RGBColor(0, 110, 190);
 
-/// The chart's title: "hertz-paper: M1 (q1 + gauss1), level 1, ε = 1e-6" (ε = 0 is called
-/// the exact constraint).
+/// The chart's title: "hertz-paper: M1 (q1 + gauss1), level 1, ε = 1e-6" (`exact` is called
+/// the exact constraint, other methods are named with their parameters).
 pub fn chart_title(scenario: &str, element: Element, level: u32, sol: &Solution) -> String {
     let rule = sol.params.rule;
     let scheme = match Scheme::new(element, rule).name() {
         Some(m) => format!("{m} ({} + {})", element.name(), rule.name()),
         None => format!("{} + {}", element.name(), rule.name()),
     };
-    let epsilon = if sol.params.epsilon == 0.0 {
-        "ε = 0 (exact constraint)".to_string()
-    } else {
-        format!("ε = {:e}", sol.params.epsilon)
+    let epsilon = match sol.params.method {
+        Method::Penalty => format!("ε = {:e}", sol.params.epsilon),
+        Method::Exact => "ε = 0 (exact constraint)".to_string(),
+        m if m.uses_epsilon() => format!("{}, ε = {:e}", m.label(), sol.params.epsilon),
+        m => m.label(),
     };
     format!("{scenario}: {scheme}, level {level}, {epsilon}")
 }

@@ -6,6 +6,7 @@ use serde::Serialize;
 
 use crate::contact::Rule;
 use crate::contact::hertz::Hertz;
+use crate::contact::method::MethodFields;
 use crate::error::SolveError;
 use crate::infsup::InfSup;
 use crate::mesh::Element;
@@ -47,11 +48,17 @@ pub struct SolveReport {
     pub level: u32,
     pub h: f64,
     pub epsilon: f64,
+    /// The contact method and its parameters (`method`, `theta`, `gamma0`, `alm_tol`).
+    #[serde(flatten)]
+    pub method: MethodFields,
     pub depth: f64,
     pub half_model: bool,
     pub n_elements: usize,
     pub n_dofs: usize,
+    /// Newton iterations (for the ALM, its inner iterations summed over the updates).
     pub newton_iterations: usize,
+    /// The ALM's multiplier updates; null for a method without an outer iteration.
+    pub outer_iterations: Option<usize>,
     /// `ok`, or `not_converged` (the numbers are then the last iterate's).
     pub status: Status,
     pub converged: bool,
@@ -76,6 +83,8 @@ pub struct SweepFailure {
     pub rule: &'static str,
     pub level: u32,
     pub epsilon: f64,
+    #[serde(flatten)]
+    pub method: MethodFields,
     pub depth: f64,
     pub status: Status,
     pub reason: String,
@@ -94,6 +103,7 @@ impl SweepFailure {
             rule: params.rule.name(),
             level: scenario.level,
             epsilon: params.epsilon,
+            method: params.method.into(),
             depth: params.obstacle.depth(),
             status: Status::of_error(error),
             reason: error.to_string(),
@@ -120,11 +130,13 @@ impl SolveReport {
             level,
             h: disc.mesh.h(),
             epsilon: sol.params.epsilon,
+            method: sol.params.method.into(),
             depth: sol.params.obstacle.depth(),
             half_model: disc.mesh.symmetric_left,
             n_elements: disc.mesh.n_elements(),
             n_dofs: disc.n_dofs(),
             newton_iterations: sol.newton.iterations,
+            outer_iterations: sol.outer_iterations,
             status: if sol.newton.converged {
                 Status::Ok
             } else {
@@ -191,10 +203,17 @@ impl SolveReport {
         } else {
             "NOT CONVERGED"
         };
+        let outer = self
+            .outer_iterations
+            .map_or(String::new(), |n| format!("{n} multiplier updates, "));
         let _ = writeln!(
             s,
-            "ε = {:e}, depth = {}, Newton: {} iterations, {state} (relative residual {:.1e})",
-            self.epsilon, self.depth, self.newton_iterations, self.residual
+            "method {}, ε = {:e}, depth = {}, {outer}Newton: {} iterations, {state} (relative residual {:.1e})",
+            self.method.label(),
+            self.epsilon,
+            self.depth,
+            self.newton_iterations,
+            self.residual
         );
         let full = if self.half_model {
             format!(" (full body {:.6})", 2.0 * self.load)
@@ -270,17 +289,19 @@ pub fn sweep_output(rows: &[Result<SolveReport, SweepFailure>], format: Format) 
         }
         Format::Csv => {
             s.push_str(
-                "epsilon,depth,status,newton_iterations,converged,load,max_p,max_pbar,total_ms,reason\n",
+                "epsilon,method,theta,gamma0,alm_tol,depth,status,newton_iterations,outer_iterations,converged,load,max_p,max_pbar,total_ms,reason\n",
             );
             for row in rows {
                 let _ = match row {
                     Ok(r) => writeln!(
                         s,
-                        "{},{},{},{},{},{},{},{},{},{}",
+                        "{},{},{},{},{},{},{},{},{},{},{},{}",
                         r.epsilon,
+                        r.method.csv(),
                         r.depth,
                         r.status.token(),
                         r.newton_iterations,
+                        r.outer_iterations.map_or(String::new(), |n| n.to_string()),
                         r.converged,
                         r.load,
                         max(&r.points.p),
@@ -290,8 +311,9 @@ pub fn sweep_output(rows: &[Result<SolveReport, SweepFailure>], format: Format) 
                     ),
                     Err(f) => writeln!(
                         s,
-                        "{},{},{},,false,,,,,{}",
+                        "{},{},{},{},,,false,,,,,{}",
                         f.epsilon,
+                        f.method.csv(),
                         f.depth,
                         f.status.token(),
                         csv_field(&f.reason)
@@ -315,14 +337,14 @@ pub fn sweep_output(rows: &[Result<SolveReport, SweepFailure>], format: Format) 
     }
     let _ = writeln!(
         s,
-        "{:>10} {:>8} {:>7} {:>10} {:>14} {:>12} {:>12} {:>10}",
+        "{:>10} {:>8} {:>7} {:>10} {:>14} {:>12} {:>12} {:>10}  method",
         "ε", "depth", "Newton", "converged", "load", "max p", "max p̄", "total ms"
     );
     for row in rows {
         let _ = match row {
             Ok(r) => writeln!(
                 s,
-                "{:>10.1e} {:>8} {:>7} {:>10} {:>14.6} {:>12.4} {:>12.4} {:>10.1}",
+                "{:>10.1e} {:>8} {:>7} {:>10} {:>14.6} {:>12.4} {:>12.4} {:>10.1}  {}",
                 r.epsilon,
                 r.depth,
                 r.newton_iterations,
@@ -330,7 +352,8 @@ pub fn sweep_output(rows: &[Result<SolveReport, SweepFailure>], format: Format) 
                 r.load,
                 max(&r.points.p),
                 max(&r.nodes.pbar),
-                r.timing_ms.total
+                r.timing_ms.total,
+                r.method.label()
             ),
             Err(f) => writeln!(
                 s,
@@ -496,23 +519,25 @@ pub fn study_output(scenario: &str, reference: &Reference, rows: &[StudyRow], fo
             return serde_json::to_string_pretty(&value).expect("serialisable") + "\n";
         }
         Format::Csv => {
-            s.push_str("scheme,element,rule,level,h,epsilon,n_dofs,status,newton_iterations,converged,solve_ms,load,err_p,err_pbar,err_u,err_load,rate_p,rate_pbar,rate_u,rate_load,reason\n");
+            s.push_str("scheme,element,rule,level,h,epsilon,method,theta,gamma0,alm_tol,n_dofs,status,newton_iterations,outer_iterations,converged,solve_ms,load,err_p,err_pbar,err_u,err_load,rate_p,rate_pbar,rate_u,rate_load,reason\n");
             let opt = |v: Option<String>| v.unwrap_or_default();
             for r in rows {
                 let e = r.errors.as_ref();
                 let err = |f: fn(&Errors) -> f64| opt(e.map(|e| f(e).to_string()));
                 let _ = writeln!(
                     s,
-                    "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
+                    "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
                     r.scheme,
                     r.element,
                     r.rule,
                     r.level,
                     r.h,
                     r.epsilon,
+                    r.method.csv(),
                     r.n_dofs,
                     r.status.token(),
                     opt(r.newton_iterations.map(|n| n.to_string())),
+                    opt(r.outer_iterations.map(|n| n.to_string())),
                     r.converged,
                     opt(r.solve_ms.map(|v| v.to_string())),
                     opt(r.load.map(|v| v.to_string())),
@@ -540,6 +565,11 @@ pub fn study_output(scenario: &str, reference: &Reference, rows: &[StudyRow], fo
         reference.n_dofs,
         reference.load
     );
+    let mut methods: Vec<String> = rows.iter().map(|r| r.method.label()).collect();
+    methods.dedup();
+    if !methods.is_empty() {
+        let _ = writeln!(s, "method: {}", methods.join(", "));
+    }
     let _ = writeln!(
         s,
         "relative errors: p, p̄ in L²(Γ_C); u in H¹ (7); load P; rate = observed order between successive rows"

@@ -12,7 +12,7 @@ use serde::Deserialize;
 use toml::Spanned;
 
 use crate::contact::gap::Bump;
-use crate::contact::{Obstacle, Rule};
+use crate::contact::{Method, Obstacle, Rule};
 use crate::fem::Integration;
 use crate::material::{Material, Plane};
 use crate::mesh::{Element, Mesh};
@@ -50,6 +50,10 @@ pub struct Scenario {
     pub integration: Integration,
     pub level: u32,
     pub rule: Rule,
+    /// How the constraint is imposed: `[contact] method` (with its parameters), or by ε:
+    /// `penalty` for ε > 0, `exact` for ε = 0 ([`Method::resolve`]).
+    pub method: Method,
+    /// The penalty parameter (0 for `exact`).
     pub epsilon: f64,
 }
 
@@ -186,6 +190,11 @@ struct RawMesh {
 struct RawContact {
     rule: Rule,
     epsilon: Spanned<f64>,
+    /// `penalty`, `exact`, `alm` or `nitsche` ([`Method::parse`]).
+    method: Option<Spanned<String>>,
+    theta: Option<Spanned<f64>>,
+    gamma0: Option<Spanned<f64>>,
+    alm_tol: Option<Spanned<f64>>,
 }
 
 /// Checks of single values, shared by the scenario file and the command-line overrides.
@@ -433,6 +442,39 @@ impl Locator<'_> {
 }
 
 impl Locator<'_> {
+    /// The method of `[contact]` and the ε it uses, each key's error at its value.
+    fn method(&self, raw: &RawContact) -> Result<(Method, f64), ScenarioError> {
+        let at = |key: &str| -> Option<Range<usize>> {
+            match key {
+                "method" => raw.method.as_ref().map(Spanned::span),
+                "theta" => raw.theta.as_ref().map(Spanned::span),
+                "gamma0" => raw.gamma0.as_ref().map(Spanned::span),
+                "alm_tol" => raw.alm_tol.as_ref().map(Spanned::span),
+                _ => Some(raw.epsilon.span()),
+            }
+        };
+        let fail = |e: crate::contact::method::MethodError| {
+            let key = e.key();
+            // A parameter without a method is reported at the parameter.
+            let span = at(key).or_else(|| at("method")).or_else(|| at("epsilon"));
+            self.error(span, Some(format!("contact.{key}")), e.to_string())
+        };
+        let get = |v: &Option<Spanned<f64>>| v.as_ref().map(|v| *v.get_ref());
+        let (theta, gamma0, alm_tol) = (get(&raw.theta), get(&raw.gamma0), get(&raw.alm_tol));
+        let method = match &raw.method {
+            Some(name) => Some(Method::parse(name.get_ref(), theta, gamma0, alm_tol).map_err(fail)?),
+            None => {
+                // Parameters without a method name belong to the method ε implies.
+                let implied = Method::resolve(None, *raw.epsilon.get_ref()).map_err(fail)?.0;
+                if theta.is_some() || gamma0.is_some() || alm_tol.is_some() {
+                    implied.with(theta, gamma0, alm_tol).map_err(fail)?;
+                }
+                None
+            }
+        };
+        Method::resolve(method, *raw.epsilon.get_ref()).map_err(fail)
+    }
+
     /// A required positive/finite value of `[obstacle]`.
     fn required(
         &self,
@@ -835,6 +877,8 @@ impl Scenario {
             check::epsilon_in(*v, range)
         })?;
 
+        let (method, epsilon) = loc.method(&raw.contact)?;
+
         let name = raw.name.unwrap_or_else(|| {
             Path::new(file)
                 .file_stem()
@@ -859,7 +903,8 @@ impl Scenario {
             integration: raw.mesh.integration.unwrap_or(Integration::Full),
             level,
             rule: raw.contact.rule,
-            epsilon: *raw.contact.epsilon.get_ref(),
+            method,
+            epsilon,
         })
     }
 

@@ -13,7 +13,7 @@ use serde::Serialize;
 
 use crate::contact::penalty::{self, Iteration, NewtonOptions, NewtonResult, Penalty, SolveError};
 use crate::contact::signorini::solve_exact;
-use crate::contact::{ContactPoints, Obstacle, Rule, load, raw_pressure, smoothed_pressure};
+use crate::contact::{ContactPoints, Method, Obstacle, Rule, alm, load, raw_pressure, smoothed_pressure};
 use crate::fem::condense::{TraceFactor, TraceOrdering};
 use crate::fem::error::gib;
 use crate::fem::memory::{Limits, Sizes};
@@ -211,9 +211,11 @@ fn fem_error(e: FemError, n: usize) -> SolveError {
     }
 }
 
-/// A contact solve's parameters checked against what it can answer: ε within `range` (from
-/// [`epsilon_range`]) or 0, the depth within the body's `height`, and ε = 0 only for a rule
-/// with no more points (`n_points`) than Γ_C has normal displacements (`normals`).
+/// A contact solve's parameters checked against what it can answer: the method's own
+/// parameters ([`Method::check`]), ε within `range` (from [`epsilon_range`]) and > 0 for the
+/// methods that use it (ε = 0 for `exact`), the depth within the body's `height`, and `exact`
+/// only for a rule with no more points (`n_points`) than Γ_C has normal displacements
+/// (`normals`).
 pub fn check_params(
     params: &ContactParams,
     range: (f64, f64),
@@ -221,15 +223,28 @@ pub fn check_params(
     n_points: usize,
     normals: usize,
 ) -> Result<(), SolveError> {
+    params.method.check().map_err(|e| SolveError::Input {
+        what: "the method",
+        message: e.to_string(),
+    })?;
     check::epsilon_in(params.epsilon, range).map_err(|message| SolveError::Input {
         what: "the penalty parameter ε",
         message,
     })?;
+    if params.method.uses_epsilon() && params.epsilon == 0.0 {
+        return Err(SolveError::Input {
+            what: "the penalty parameter ε",
+            message: format!(
+                "{} needs ε > 0; ε = 0 is the exact method (`exact`)",
+                params.method.name()
+            ),
+        });
+    }
     check::depth(params.obstacle.depth(), height).map_err(|message| SolveError::Input {
         what: "the indentation depth",
         message,
     })?;
-    if params.epsilon == 0.0 && n_points > normals {
+    if params.method == Method::Exact && n_points > normals {
         return Err(SolveError::Kernel {
             rule: params.rule,
             points: n_points,
@@ -261,9 +276,29 @@ pub fn check_request(
 #[derive(Clone, Debug, PartialEq)]
 pub struct ContactParams {
     pub rule: Rule,
-    /// The penalty parameter ε > 0 of (8); ε = 0 imposes the constraint exactly (the limit).
+    /// How the constraint is imposed ([`Method`]).
+    pub method: Method,
+    /// The penalty parameter ε > 0 of (8) for `penalty` and `alm`; 0 for `exact` (the
+    /// limit; [`Method::resolve`]).
     pub epsilon: f64,
     pub obstacle: Obstacle,
+}
+
+impl ContactParams {
+    /// `penalty` at ε > 0, `exact` at ε = 0 ([`Method::resolve`] with no method named).
+    pub fn by_epsilon(rule: Rule, epsilon: f64, obstacle: Obstacle) -> Self {
+        let method = if epsilon == 0.0 {
+            Method::Exact
+        } else {
+            Method::Penalty
+        };
+        ContactParams {
+            rule,
+            method,
+            epsilon,
+            obstacle,
+        }
+    }
 }
 
 /// Wall-clock time of the parts of one solve, in milliseconds.
@@ -286,8 +321,12 @@ pub struct Timing {
 pub struct Solution {
     pub params: ContactParams,
     pub points: ContactPoints,
+    /// The (inner) Newton's result; for the ALM its iterations are summed over the updates.
     pub newton: NewtonResult,
-    /// Raw pressure p at the rule's points (12).
+    /// The ALM's multiplier updates (None for a method without an outer iteration).
+    pub outer_iterations: Option<usize>,
+    /// Raw pressure p at the rule's points (12); for `exact` and `alm` the multiplier per
+    /// unit length.
     pub p: Vec<f64>,
     /// Smoothed pressure p̄ at the Γ_C vertices (16)–(17).
     pub pbar: Vec<f64>,
@@ -336,15 +375,33 @@ pub fn solve_contact(
         weight: &weight,
         epsilon: params.epsilon,
     };
-    let (mut newton, p) = if params.epsilon == 0.0 {
-        let newton = solve_exact(&problem, initial, opts, on_iteration)?;
-        // The multiplier per unit tributary length.
-        let p = newton.forces.iter().zip(&weight).map(|(y, w)| y / w).collect();
-        (newton, p)
-    } else {
-        let newton = penalty::solve(&problem, initial, opts, on_iteration)?;
-        let p = raw_pressure(&newton.violation, params.epsilon);
-        (newton, p)
+    // The multiplier per unit tributary length.
+    let per_length =
+        |forces: &[f64]| -> Vec<f64> { forces.iter().zip(&weight).map(|(y, w)| y / w).collect() };
+    let (mut newton, p, outer_iterations) = match params.method {
+        Method::Exact => {
+            let newton = solve_exact(&problem, initial, opts, on_iteration)?;
+            let p = per_length(&newton.forces);
+            (newton, p, None)
+        }
+        Method::Penalty => {
+            let newton = penalty::solve(&problem, initial, opts, on_iteration)?;
+            let p = raw_pressure(&newton.violation, params.epsilon);
+            (newton, p, None)
+        }
+        Method::Alm { tolerance } => {
+            // Unique multipliers (no kernel) allow the ALM's Newton step on them.
+            let unique = points.len() <= disc.contact_dofs.len();
+            let result = alm::solve(&problem, unique, tolerance, initial, opts, on_iteration)?;
+            let p = per_length(&result.newton.forces);
+            (result.newton, p, Some(result.outer))
+        }
+        Method::Nitsche { .. } => {
+            return Err(SolveError::Input {
+                what: "the method",
+                message: "nitsche is not available in this build".into(),
+            });
+        }
     };
     let pbar = smoothed_pressure(&points, &p);
     let nodal = Discretization::nodal_forces(&points, &newton.forces, disc.contact_dofs.len());
@@ -388,6 +445,7 @@ pub fn solve_contact(
         params: params.clone(),
         points,
         newton,
+        outer_iterations,
         p,
         pbar,
         vertex_uy,
@@ -400,8 +458,14 @@ pub fn solve_contact(
 /// A fresh solve of `scenario` as given (its level, element, rule, ε and obstacle).
 pub fn solve_scenario(scenario: &Scenario) -> Result<(Discretization, Solution), SolveError> {
     let disc = Discretization::of(scenario, scenario.level, scenario.element)?;
+    // A scenario whose ε was set to 0 after parsing asks for the exact constraint.
+    let method = match scenario.method {
+        Method::Penalty if scenario.epsilon == 0.0 => Method::Exact,
+        m => m,
+    };
     let params = ContactParams {
         rule: scenario.rule,
+        method,
         epsilon: scenario.epsilon,
         obstacle: scenario.obstacle.clone(),
     };

@@ -12,8 +12,9 @@ use std::time::Instant;
 
 use serde::Serialize;
 
+use crate::contact::method::MethodFields;
 use crate::contact::penalty::{NewtonOptions, SolveError};
-use crate::contact::{ContactPoints, Rule};
+use crate::contact::{ContactPoints, Method, Rule};
 use crate::fem::basis::{cell_points, evaluate};
 use crate::fem::quadrature::gauss_legendre;
 use crate::mesh::Element;
@@ -78,6 +79,7 @@ impl ReferenceFields {
         let disc = Discretization::of(scenario, level, element)?;
         let params = ContactParams {
             rule,
+            method: Method::Exact,
             epsilon: 0.0,
             obstacle: scenario.obstacle.clone(),
         };
@@ -264,11 +266,16 @@ pub struct StudyRow {
     pub level: u32,
     pub h: f64,
     pub epsilon: f64,
+    /// The contact method and its parameters (`method`, `theta`, `gamma0`, `alm_tol`).
+    #[serde(flatten)]
+    pub method: MethodFields,
     pub n_dofs: usize,
     pub status: Status,
     /// Why the row has no (certified) result, when it has none.
     pub reason: Option<String>,
     pub newton_iterations: Option<usize>,
+    /// The ALM's multiplier updates (null for the other methods, or without a result).
+    pub outer_iterations: Option<usize>,
     pub converged: bool,
     /// A fresh solve: the mesh's work and Newton (what the pressures need), ms.
     pub solve_ms: Option<f64>,
@@ -285,7 +292,7 @@ impl StudyRow {
         scenario: &Scenario,
         (element, rule): (Element, Rule),
         level: u32,
-        epsilon: f64,
+        (method, epsilon): (Method, f64),
         outcome: Result<(&Discretization, &Solution), &SolveError>,
     ) -> Self {
         let mut row = StudyRow {
@@ -295,10 +302,12 @@ impl StudyRow {
             level,
             h: scenario.h(level),
             epsilon,
+            method: method.into(),
             n_dofs: scenario.n_dofs(level, element),
             status: Status::Ok,
             reason: None,
             newton_iterations: None,
+            outer_iterations: None,
             converged: false,
             solve_ms: None,
             load: None,
@@ -308,6 +317,7 @@ impl StudyRow {
         match outcome {
             Ok((disc, sol)) => {
                 row.newton_iterations = Some(sol.newton.iterations);
+                row.outer_iterations = sol.outer_iterations;
                 row.converged = sol.newton.converged;
                 row.solve_ms = Some(sol.timing.total);
                 row.load = Some(sol.load);
@@ -378,7 +388,17 @@ fn with_rates(groups: Vec<Vec<StudyRow>>, by_epsilon: bool) -> Vec<StudyRow> {
     rows
 }
 
-/// Every scheme at every level (fresh solves at the scenario's ε), against `reference`.
+/// The method a study's row at `epsilon` uses ([`Method::resolve`]: None and ε = 0 is
+/// `exact`), or why it has none.
+fn row_method(method: Option<Method>, epsilon: f64) -> Result<(Method, f64), SolveError> {
+    Method::resolve(method, epsilon).map_err(|e| SolveError::Input {
+        what: "the method",
+        message: e.to_string(),
+    })
+}
+
+/// Every scheme at every level (fresh solves with `method` at ε; None: penalty, or exact for
+/// ε = 0), against `reference`.
 /// Each mesh is assembled and factorised once and shared by the schemes of its element; each
 /// row's `solve_ms` is still a fresh solve's cost (that mesh's work plus the scheme's Newton).
 /// A row that cannot be computed says why ([`StudyRow::status`]) and the others go on.
@@ -387,6 +407,7 @@ pub fn convergence(
     reference: &Reference,
     schemes: &[(Element, Rule)],
     levels: &[u32],
+    method: Option<Method>,
     epsilon: f64,
 ) -> Vec<StudyRow> {
     let mut groups: Vec<Vec<StudyRow>> = vec![Vec::new(); schemes.len()];
@@ -394,20 +415,22 @@ pub fn convergence(
         for &level in levels {
             let disc = Discretization::of(scenario, level, element);
             for (i, &scheme) in schemes.iter().enumerate().filter(|(_, s)| s.0 == element) {
+                let resolved = row_method(method, epsilon);
+                let (m, e) = resolved.clone().unwrap_or((Method::Penalty, epsilon));
                 let params = ContactParams {
                     rule: scheme.1,
-                    epsilon,
+                    method: m,
+                    epsilon: e,
                     obstacle: scenario.obstacle.clone(),
                 };
                 let solved = disc.as_ref().map_err(Clone::clone).and_then(|disc| {
+                    resolved?;
                     let mut sol = solve_fresh(disc, &params)?;
                     sol.timing.include_mesh_work(disc);
                     Ok((disc, sol))
                 });
                 let outcome = solved.as_ref().map(|(d, s)| (*d, s));
-                groups[i].push(StudyRow::new(
-                    reference, scenario, scheme, level, epsilon, outcome,
-                ));
+                groups[i].push(StudyRow::new(reference, scenario, scheme, level, (m, e), outcome));
             }
         }
     }
@@ -422,6 +445,7 @@ pub fn epsilon_sweep(
     reference: &Reference,
     schemes: &[(Element, Rule)],
     level: u32,
+    method: Option<Method>,
     epsilons: &[f64],
 ) -> Vec<StudyRow> {
     let mut groups: Vec<Vec<StudyRow>> = vec![Vec::new(); schemes.len()];
@@ -430,12 +454,16 @@ pub fn epsilon_sweep(
         for (i, &scheme) in schemes.iter().enumerate().filter(|(_, s)| s.0 == element) {
             let mut previous: Option<Vec<f64>> = None;
             for &epsilon in epsilons {
+                let resolved = row_method(method, epsilon);
+                let (m, e) = resolved.clone().unwrap_or((Method::Penalty, epsilon));
                 let params = ContactParams {
                     rule: scheme.1,
-                    epsilon,
+                    method: m,
+                    epsilon: e,
                     obstacle: scenario.obstacle.clone(),
                 };
                 let solved = disc.as_ref().map_err(Clone::clone).and_then(|disc| {
+                    resolved?;
                     let sol = solve_contact(
                         disc,
                         &params,
@@ -449,9 +477,7 @@ pub fn epsilon_sweep(
                     previous = Some(sol.newton.forces.clone());
                 }
                 let outcome = solved.as_ref().map(|(d, s)| (*d, s));
-                groups[i].push(StudyRow::new(
-                    reference, scenario, scheme, level, epsilon, outcome,
-                ));
+                groups[i].push(StudyRow::new(reference, scenario, scheme, level, (m, e), outcome));
             }
         }
     }

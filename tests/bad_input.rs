@@ -167,3 +167,240 @@ fn a_huge_file_is_refused_unread() {
         "{stderr}"
     );
 }
+
+/// Issue 14: a method and its parameters on the command line. A bad `--method`, `--theta`,
+/// `--gamma0` or `--alm-tol`, a parameter the method does not take, and `--method penalty`
+/// or `alm` at ε = 0 exit 2 with the allowed values, before any solve.
+#[test]
+fn bad_methods_on_the_command_line_exit_2_with_the_allowed_values() {
+    for (args, fragments) in [
+        (
+            &["solve", "--method", "foo"][..],
+            &[
+                "--method",
+                "`foo` is not a method",
+                "allowed: penalty, exact, alm, nitsche",
+            ][..],
+        ),
+        (
+            &["solve", "--method", "nitsche", "--theta", "2"][..],
+            &[
+                "--theta",
+                "θ = 2 is not allowed",
+                "allowed: 1 (symmetric), 0 (incomplete), -1 (skew-symmetric)",
+            ][..],
+        ),
+        (
+            &["solve", "--method", "nitsche", "--gamma0", "-1"][..],
+            &["--gamma0", "-1 is out of range", "γ₀ from 1e-8 to 1e8"][..],
+        ),
+        (
+            &["solve", "--method", "alm", "--alm-tol", "1"][..],
+            &["--alm-tol", "0 < tol < 1"][..],
+        ),
+        (
+            &["study", "--method", "alm", "--alm-tol", "0", "--levels", "0"][..],
+            &["--alm-tol", "0 < tol < 1"][..],
+        ),
+        (
+            &["study", "--method", "foo", "--levels", "0"][..],
+            &["allowed: penalty, exact, alm, nitsche"][..],
+        ),
+        (
+            &["solve", "--method", "alm", "--theta", "1"][..],
+            &["--theta", "a parameter of nitsche, not of alm"][..],
+        ),
+        (
+            &["solve", "--alm-tol", "1e-8"][..],
+            &["--alm-tol", "a parameter of alm, not of penalty"][..],
+        ),
+        (
+            &["solve", "--method", "alm", "--epsilon", "0"][..],
+            &["--epsilon", "alm needs a penalty parameter ε > 0"][..],
+        ),
+        (
+            &["solve", "--method", "penalty", "--epsilon", "0"][..],
+            &["--epsilon", "penalty needs"][..],
+        ),
+        (
+            &["solve", "--method", "exact", "--scheme", "M2"][..],
+            &["not unique"][..],
+        ),
+    ] {
+        let (code, stdout, stderr) = riplab(args);
+        assert_eq!(code, 2, "{args:?}: {stderr}");
+        assert!(
+            stdout.is_empty() && !stderr.contains("panicked"),
+            "{args:?}: {stderr}"
+        );
+        for f in fragments {
+            assert!(stderr.contains(f), "{args:?}: message lacks {f:?}:\n{stderr}");
+        }
+    }
+    // Nitsche is a method of the interface; its solver is not in this build (exit 2, said so).
+    let (code, _, stderr) = riplab(&["solve", "--method", "nitsche", "--theta", "-1", "--gamma0", "10"]);
+    assert_eq!(code, 2, "{stderr}");
+    assert!(
+        stderr.contains("nitsche is not available in this build"),
+        "{stderr}"
+    );
+}
+
+/// Issue 14: a scenario's `[contact] method` and parameters: bad values give the file, line,
+/// key and allowed values, like every other key.
+#[test]
+fn bad_methods_in_a_scenario_are_located() {
+    let dir = std::env::temp_dir().join(format!("riplab-bad-methods-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let base = riplab::scenario::DEFAULT_SCENARIO;
+    // The paper's file ends with [contact]: appended lines belong to it.
+    let line = base.lines().count() + 1;
+    for (name, extra, key, fragment) in [
+        (
+            "method-foo",
+            "method = \"foo\"",
+            "contact.method",
+            "allowed: penalty, exact, alm, nitsche",
+        ),
+        (
+            "theta-2",
+            "method = \"nitsche\"\ntheta = 2",
+            "contact.theta",
+            "allowed: 1 (symmetric)",
+        ),
+        (
+            "gamma0-neg",
+            "method = \"nitsche\"\ngamma0 = -1",
+            "contact.gamma0",
+            "γ₀ from 1e-8 to 1e8",
+        ),
+        (
+            "tol-big",
+            "method = \"alm\"\nalm_tol = 2.0",
+            "contact.alm_tol",
+            "0 < tol < 1",
+        ),
+        (
+            "theta-no-method",
+            "theta = 1",
+            "contact.theta",
+            "a parameter of nitsche, not of penalty",
+        ),
+    ] {
+        let path = dir.join(format!("{name}.toml"));
+        std::fs::write(&path, format!("{}\n{extra}\n", base.trim_end())).unwrap();
+        let (code, stdout, stderr) = riplab(&["solve", path.to_str().unwrap()]);
+        assert_eq!(code, 2, "{name}: {stderr}");
+        assert!(stdout.is_empty(), "{name}");
+        let at_line = extra.lines().count() - 1 + line;
+        for f in [
+            format!(".toml:{at_line}:"),
+            format!("`{key}`"),
+            fragment.to_string(),
+        ] {
+            assert!(stderr.contains(&f), "{name}: message lacks {f:?}:\n{stderr}");
+        }
+    }
+    // A good one: `method = "alm"` is the method of every output.
+    let path = dir.join("alm.toml");
+    let text = format!("{}\nmethod = \"alm\"\nalm_tol = 1e-11\n", base.trim_end())
+        .replace("epsilon = 1e-6", "epsilon = 1e-3");
+    std::fs::write(&path, text).unwrap();
+    let (code, stdout, stderr) = riplab(&["solve", path.to_str().unwrap(), "--format", "json"]);
+    assert_eq!(code, 0, "{stderr}");
+    let v: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    assert_eq!(
+        (v["method"].as_str(), v["alm_tol"].as_f64(), v["epsilon"].as_f64()),
+        (Some("alm"), Some(1e-11), Some(1e-3))
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Issue 14: `--method alm` is carried by the JSON and the CSV (whose header is the JSON's
+/// names), with its outer iterations; `--epsilon 0` alone is still `exact`.
+#[test]
+fn the_method_is_in_every_output() {
+    let (code, stdout, stderr) = riplab(&[
+        "solve",
+        "--level",
+        "1",
+        "--scheme",
+        "M3",
+        "--method",
+        "alm",
+        "--epsilon",
+        "1e-3",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    let v: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    assert_eq!(v["method"], "alm");
+    assert_eq!(v["alm_tol"], 1e-10);
+    assert!(v["theta"].is_null() && v["gamma0"].is_null());
+    assert!(
+        v["outer_iterations"]
+            .as_u64()
+            .is_some_and(|n| (1..=8).contains(&n)),
+        "{v}"
+    );
+    let (_, exact, _) = riplab(&[
+        "solve",
+        "--level",
+        "1",
+        "--scheme",
+        "M3",
+        "--epsilon",
+        "0",
+        "--format",
+        "json",
+    ]);
+    let e: serde_json::Value = serde_json::from_str(&exact).unwrap();
+    assert_eq!(
+        (e["method"].as_str(), e["epsilon"].as_f64()),
+        (Some("exact"), Some(0.0))
+    );
+    assert!(e["outer_iterations"].is_null());
+    // The ALM's load is the exact one (to the tolerance), the penalty's at ε = 1e-3 is not.
+    let rel = (v["load"].as_f64().unwrap() - e["load"].as_f64().unwrap()).abs() / e["load"].as_f64().unwrap();
+    assert!(rel < 1e-9, "{rel:e}");
+    // A sweep's CSV: one row per ε, the method's columns named as in JSON.
+    let (code, csv, stderr) = riplab(&[
+        "solve",
+        "--level",
+        "1",
+        "--method",
+        "alm",
+        "--epsilon",
+        "1e-3,1e-4",
+        "--format",
+        "csv",
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    for name in [
+        "epsilon",
+        "method",
+        "theta",
+        "gamma0",
+        "alm_tol",
+        "newton_iterations",
+        "outer_iterations",
+    ] {
+        assert!(header.contains(&name), "{header:?}");
+    }
+    let col = |row: &str, name: &str| {
+        row.split(',')
+            .nth(header.iter().position(|h| *h == name).unwrap())
+            .unwrap()
+            .to_string()
+    };
+    let rows: Vec<&str> = lines.collect();
+    assert_eq!(rows.len(), 2);
+    for row in rows {
+        assert_eq!(col(row, "method"), "alm");
+        assert_eq!(col(row, "alm_tol"), "0.0000000001");
+        assert_eq!(col(row, "theta"), "");
+    }
+}

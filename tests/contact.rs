@@ -15,11 +15,7 @@ use riplab::mesh::{Element, Mesh};
 use riplab::solve::{ContactParams, Discretization, Solution, solve_contact, solve_scenario};
 
 fn solve(disc: &Discretization, rule: Rule, epsilon: f64, obstacle: Obstacle) -> Solution {
-    let params = ContactParams {
-        rule,
-        epsilon,
-        obstacle,
-    };
+    let params = ContactParams::by_epsilon(rule, epsilon, obstacle);
     let sol = solve_contact(disc, &params, None, &NewtonOptions::default(), &mut |_| {
         ControlFlow::Continue(())
     })
@@ -296,11 +292,7 @@ fn newton_converges_down_to_tiny_epsilon() {
 fn exact_constraint_refuses_a_pressure_space_with_a_kernel() {
     let scenario = paper_with(&[]);
     let disc = Discretization::of(&scenario, 0, Element::Q1).unwrap();
-    let params = ContactParams {
-        rule: Rule::Gauss2,
-        epsilon: 0.0,
-        obstacle: scenario.obstacle.clone(),
-    };
+    let params = ContactParams::by_epsilon(Rule::Gauss2, 0.0, scenario.obstacle.clone());
     let err = solve_contact(&disc, &params, None, &NewtonOptions::default(), &mut |_| {
         ControlFlow::Continue(())
     })

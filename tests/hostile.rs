@@ -113,11 +113,7 @@ fn the_library_refuses_unrepresentable_parameters() {
     let s = riplab::scenario::Scenario::paper();
     let disc = Discretization::of(&s, 1, s.element).unwrap();
     for (epsilon, depth) in [(1e-200, 0.8), (1e300, 0.8), (1e-6, 1.7e308), (1e-6, f64::NAN)] {
-        let params = ContactParams {
-            rule: s.rule,
-            epsilon,
-            obstacle: s.obstacle.with_depth(depth),
-        };
+        let params = ContactParams::by_epsilon(s.rule, epsilon, s.obstacle.with_depth(depth));
         let r = solve_contact(&disc, &params, None, &NewtonOptions::default(), &mut |_| {
             std::ops::ControlFlow::Continue(())
         });
@@ -145,11 +141,7 @@ fn a_stiffness_that_overflows_is_never_converged() {
             continue; // refused: fine
         };
         let (lo, _) = disc.epsilon_range();
-        let params = ContactParams {
-            rule: s.rule,
-            epsilon: lo * 10.0,
-            obstacle: s.obstacle.clone(),
-        };
+        let params = ContactParams::by_epsilon(s.rule, lo * 10.0, s.obstacle.clone());
         if let Ok(sol) = solve_contact(&disc, &params, None, &NewtonOptions::default(), &mut |_| {
             std::ops::ControlFlow::Continue(())
         }) {

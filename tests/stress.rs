@@ -13,11 +13,7 @@ use riplab::mesh::Element;
 use riplab::solve::{ContactParams, Discretization, Solution, solve_contact, solve_scenario};
 
 fn solve_with(disc: &Discretization, rule: Rule, obstacle: Obstacle) -> Solution {
-    let params = ContactParams {
-        rule,
-        epsilon: 1e-6,
-        obstacle,
-    };
+    let params = ContactParams::by_epsilon(rule, 1e-6, obstacle);
     let sol = solve_contact(disc, &params, None, &NewtonOptions::default(), &mut |_| {
         ControlFlow::Continue(())
     })

@@ -14,7 +14,14 @@ fn errors_rates_and_the_smoothing_claim() {
     let reference = Reference::compute(&scenario, 4).unwrap();
     // The reference scheme at the reference level against itself: zero (checks evaluation and
     // integration on nested meshes).
-    let itself = convergence(&scenario, &reference, &[(Element::Q2, Rule::Simpson)], &[4], 0.0);
+    let itself = convergence(
+        &scenario,
+        &reference,
+        &[(Element::Q2, Rule::Simpson)],
+        &[4],
+        None,
+        0.0,
+    );
     let e = itself[0].errors.unwrap();
     assert!(
         e.p < 1e-12 && e.pbar < 0.1 && e.u < 1e-12 && e.load < 1e-12,
@@ -25,6 +32,7 @@ fn errors_rates_and_the_smoothing_claim() {
         &reference,
         &[(Element::Q1, Rule::Gauss1), (Element::Q1, Rule::Trapezoid)],
         &[1, 2, 3],
+        None,
         1e-10,
     );
     for r in &rows {

@@ -15,11 +15,7 @@ fn run(threads: usize, element: Element, level: u32) -> Vec<u64> {
     riplab::fem::set_threads(threads);
     let s = paper_with(&[]);
     let disc = Discretization::of(&s, level, element).unwrap();
-    let params = ContactParams {
-        rule: s.rule,
-        epsilon: s.epsilon,
-        obstacle: s.obstacle.clone(),
-    };
+    let params = ContactParams::by_epsilon(s.rule, s.epsilon, s.obstacle.clone());
     let sol = solve_contact(&disc, &params, None, &NewtonOptions::default(), &mut |_| {
         ControlFlow::Continue(())
     })

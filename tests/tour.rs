@@ -450,3 +450,28 @@ fn auto_pauses_while_the_window_is_too_small() {
     player.set_size(160, 50);
     assert!(player.auto_due(every));
 }
+
+/// Issue 14: the tour compares the penalty and the ALM at the same large ε on the same mesh,
+/// and its ε = 0 step is the exact method.
+#[test]
+fn the_tour_compares_the_penalty_and_the_alm() {
+    use riplab::contact::Method;
+    let tour = Tour::paper();
+    let apps: Vec<_> = (0..tour.steps.len()).map(|i| tour.app(i)).collect();
+    let i = apps
+        .iter()
+        .position(|a| a.settings.method == Method::Penalty && a.settings.epsilon == 1e-3)
+        .expect("a penalty step at ε = 1e-3");
+    let (p, a) = (&apps[i].settings, &apps[i + 1].settings);
+    assert!(matches!(a.method, Method::Alm { .. }), "{a:?}");
+    assert_eq!(
+        (p.level, p.element, p.rule, p.epsilon),
+        (a.level, a.element, a.rule, a.epsilon)
+    );
+    assert!(
+        tour.steps
+            .iter()
+            .zip(&apps)
+            .any(|(s, a)| s.epsilon == Some(0.0) && a.settings.method == Method::Exact)
+    );
+}

@@ -579,10 +579,12 @@ fn row(scheme: &str, level: u32, n_dofs: usize, ms: f64, p: f64, pbar: f64, u: f
         level,
         h: 1.0 / f64::from(1 << level),
         epsilon: 1e-6,
+        method: riplab::contact::Method::Penalty.into(),
         n_dofs,
         status: Status::Ok,
         reason: None,
         newton_iterations: Some(3),
+        outer_iterations: None,
         converged: true,
         solve_ms: Some(ms),
         load: Some(1.0),
@@ -1539,4 +1541,68 @@ fn every_key_of_the_table_is_handled_and_no_other() {
     let mut app = App::new(Scenario::paper());
     assert!(!app.update(key(KeyCode::Char('x'))).redraw);
     assert!(!app.update(key(KeyCode::F(5))).redraw);
+}
+
+/// Issue 14: `m` cycles the method (penalty → exact → alm → nitsche → penalty); each change
+/// re-solves, the line under the pressure chart names the method, what it needs and its
+/// iteration counts (the ALM's updates and inner Newton steps), at 80×24 too.
+#[test]
+fn the_method_key_cycles_and_the_method_line_shows() {
+    let mut engine = Engine::new(Scenario::paper());
+    let mut app = App::new(Scenario::paper());
+    app.show_timing = false;
+    app.settings.level = 1;
+    app.settings.epsilon = 1e-3;
+    settle(&mut app, &mut engine);
+    let line = |app: &App| {
+        frame(app, 80, 24)
+            .lines()
+            .find(|l| l.contains("needs"))
+            .map(str::to_string)
+            .unwrap_or_default()
+    };
+    assert!(
+        line(&app).contains("penalty: needs ε > 0"),
+        "{}",
+        frame(&app, 80, 24)
+    );
+    let penalty_load = app.current().unwrap().solution.load;
+    let mut seen = Vec::new();
+    for _ in 0..4 {
+        let commands = app.update(ch('m')).commands;
+        riplab::tui::worker::carry_out(&mut app, &mut engine, commands);
+        seen.push(app.settings.method.name());
+        let text = frame(&app, 80, 24);
+        match app.settings.method.name() {
+            "exact" => assert!(line(&app).contains("exact: needs inf-sup"), "{text}"),
+            "alm" => {
+                let l = line(&app);
+                assert!(l.contains("alm: needs ε > 0 (no ε error)"), "{text}");
+                let sol = &app.current().unwrap().solution;
+                let outer = sol.outer_iterations.unwrap();
+                // Warm-started from `exact`'s multipliers: one update confirms them.
+                let plural = if outer == 1 { "" } else { "s" };
+                assert!(
+                    l.contains(&format!(
+                        "{outer} update{plural} × {} Newton",
+                        sol.newton.iterations
+                    )),
+                    "{l}"
+                );
+                // The ALM at ε = 1e-3 carries the exact load, not the penalty's.
+                assert!(
+                    sol.load > 1.3 * penalty_load,
+                    "{} against {penalty_load}",
+                    sol.load
+                );
+                assert!(text.contains("alm ε=1e-3"), "the header names the method: {text}");
+            }
+            "nitsche" => {
+                assert!(line(&app).contains("nitsche: needs γ₀"), "{text}");
+                assert!(text.contains("nitsche is not available in this build"), "{text}");
+            }
+            _ => assert!(line(&app).contains("penalty"), "{text}"),
+        }
+    }
+    assert_eq!(seen, ["exact", "alm", "nitsche", "penalty"]);
 }

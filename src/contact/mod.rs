@@ -1,13 +1,17 @@
-//! Unilateral contact by the reduced-integration penalty method: the gap, the contact
-//! rules, the penalty Newton solver and the pressures (docs/design.md §2–§4).
+//! Unilateral contact: the gap, the contact rules, the methods that impose the constraint
+//! (the reduced-integration penalty, the exact multipliers, the augmented Lagrangian) and the
+//! pressures (docs/design.md §2–§4, §10).
 
+pub mod alm;
 pub mod gap;
 pub mod hertz;
+pub mod method;
 pub mod penalty;
 pub mod pressure;
 pub mod rule;
 pub mod signorini;
 
 pub use gap::{Obstacle, Outline};
+pub use method::Method;
 pub use pressure::{load, raw_pressure, smoothed_pressure};
 pub use rule::{ContactPoints, Rule};

@@ -27,13 +27,15 @@ impl DofMap {
         DofMap { free, n_free }
     }
 
-    /// The model's constraints (docs/design.md §1): the bottom clamped, and u_x = 0 on the left side
-    /// of a half model.
+    /// The model's constraints (docs/design.md §1): the bottom clamped, u_x = 0 on the left side
+    /// of a half model, and on the right side of a mesh with a roller wall there.
     pub fn model(mesh: &Mesh) -> Self {
         let nnx = mesh.nnx();
-        let symmetric = mesh.symmetric_left;
+        let (symmetric, roller) = (mesh.symmetric_left, mesh.roller_right);
         Self::new(mesh.n_nodes(), |node, comp| {
-            node < nnx || (symmetric && comp == 0 && node % nnx == 0)
+            node < nnx
+                || (symmetric && comp == 0 && node % nnx == 0)
+                || (roller && comp == 0 && node % nnx == nnx - 1)
         })
     }
 

@@ -7,7 +7,7 @@ use std::time::Instant;
 
 use crossterm::event::{KeyEvent, KeyEventKind, KeyModifiers};
 
-use crate::contact::Rule;
+use crate::contact::{Method, Rule};
 use crate::mesh::Element;
 use crate::scenario::{MAX_LEVEL, Scenario};
 use crate::scheme::Scheme;
@@ -27,6 +27,8 @@ pub const LEVEL_LIMIT_WHY: &str =
     "a change at level 7 takes about 10 s and 1.7 GB; `riplab solve --level 7` computes it";
 /// The range of ε reachable with `+`/`-`.
 pub const EPSILON_RANGE: (f64, f64) = (1e-14, 1e2);
+/// The ε that `penalty` and `alm` use in a scenario whose own is 0 (`exact`): the paper's.
+pub const DEFAULT_EPSILON: f64 = 1e-6;
 /// The depth step of `d`/`D`.
 pub const DEPTH_STEP: f64 = 0.1;
 
@@ -86,6 +88,9 @@ pub struct SolveKey {
     pub level: u32,
     pub element: Element,
     pub rule: Rule,
+    /// The contact method (`m` cycles it).
+    pub method: Method,
+    /// The penalty parameter of `penalty` and `alm` (kept while another method is shown).
     pub epsilon: f64,
     pub depth: f64,
 }
@@ -385,7 +390,13 @@ impl App {
             level: scenario.level.min(MAX_APP_LEVEL),
             element: scenario.element,
             rule: scenario.rule,
-            epsilon: scenario.epsilon,
+            method: scenario.method,
+            // An exact scenario (ε = 0) lends `penalty` and `alm` the paper's ε.
+            epsilon: if scenario.epsilon > 0.0 {
+                scenario.epsilon
+            } else {
+                DEFAULT_EPSILON
+            },
             depth: scenario.obstacle.depth(),
         }
     }
@@ -530,6 +541,7 @@ impl App {
                     self.settings.rule = s.rule;
                 }
             }
+            LabAction::NextMethod => self.settings.method = self.settings.method.next(),
             LabAction::EpsilonUp => self.shift_epsilon(1),
             LabAction::EpsilonDown => self.shift_epsilon(-1),
             LabAction::Shallower => self.shift_depth(-DEPTH_STEP),

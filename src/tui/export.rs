@@ -53,15 +53,21 @@ pub fn export_vtu(scenario: &Scenario, solved: &Solved, dir: &Path) -> Result<Pa
 }
 
 /// `<scenario>-<element>-<rule>-L<level>-eps<ε>-d<depth>`, e.g.
-/// `hertz-paper-q1-gauss1-L1-eps1e-6-d0.8`.
+/// `hertz-paper-q1-gauss1-L1-eps1e-6-d0.8`; a method other than the penalty is named after
+/// the rule (`…-gauss1-alm-L1-…`; `exact` has ε = 0).
 pub fn stem(scenario: &Scenario, solved: &Solved) -> String {
+    let params = &solved.solution.params;
+    let method = match params.method {
+        crate::contact::Method::Penalty => String::new(),
+        m => format!("-{}", m.name()),
+    };
     format!(
-        "{}-{}-{}-L{}-eps{:e}-d{}",
+        "{}-{}-{}{method}-L{}-eps{:e}-d{}",
         sanitize(&scenario.name),
         solved.key.element.name(),
-        solved.solution.params.rule.name(),
+        params.rule.name(),
         solved.key.level,
-        solved.key.epsilon,
+        params.epsilon,
         solved.key.depth
     )
 }

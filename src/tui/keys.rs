@@ -22,6 +22,8 @@ pub enum LabAction {
     EpsilonUp,
     /// ε ÷ 10.
     EpsilonDown,
+    /// The next contact method (penalty, exact, alm, nitsche).
+    NextMethod,
     /// Depth − [`super::app::DEPTH_STEP`].
     Shallower,
     /// Depth + [`super::app::DEPTH_STEP`].
@@ -110,6 +112,11 @@ pub const LAB: &[Row<LabAction>] = &[
             (Char('-'), L::EpsilonDown),
             (Char('_'), L::EpsilonDown),
         ],
+    },
+    Row {
+        keys: "m",
+        what: &["next method: penalty, exact, alm, nitsche"],
+        bindings: &[(Char('m'), L::NextMethod)],
     },
     Row {
         keys: "d  D",
@@ -261,9 +268,8 @@ pub fn lab_help() -> Vec<(&'static str, &'static str)> {
     let mut lines = help_lines(LAB);
     lines.extend(help_lines(CONTROL));
     lines.extend([
-        ("", "p, p̄ and E share a unit; x is in units of"),
-        ("", "length; load P = ∫p over Γ_C (per unit"),
-        ("", "thickness; full: both halves)"),
+        ("", "p, p̄, E share a unit, x is a length; load"),
+        ("", "P = ∫p dx per unit thickness (full: both)"),
     ]);
     lines
 }
@@ -318,5 +324,7 @@ mod tests {
         assert_eq!(EPSILON_RANGE, (1e-14, 1e2), "the help says 1e-14 to 1e2");
         assert_eq!(DEPTH_STEP, 0.1, "the help says 0.1");
         assert!(LEVELS.contains(&MAX_APP_LEVEL.to_string()));
+        // The help overlay with its border fits an 80×24 terminal above the status line.
+        assert!(lab_help().len() + 2 <= 23, "{} lines", lab_help().len());
     }
 }

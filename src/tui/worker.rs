@@ -235,9 +235,16 @@ impl Engine {
                 };
             }
         };
+        // `exact` has no ε ([`Method::resolve`]); the others keep the lab's.
+        let epsilon = if key.method.uses_epsilon() {
+            key.epsilon
+        } else {
+            0.0
+        };
         let params = ContactParams {
             rule: key.rule,
-            epsilon: key.epsilon,
+            method: key.method,
+            epsilon,
             obstacle: self.scenario.obstacle.with_depth(key.depth),
         };
         let warm = self
@@ -334,6 +341,7 @@ impl Engine {
                 &reference,
                 &schemes,
                 &[level],
+                None,
                 self.scenario.epsilon,
             ));
         }

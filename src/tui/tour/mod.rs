@@ -16,7 +16,7 @@ use std::time::Duration;
 use serde::Deserialize;
 use toml::Spanned;
 
-use crate::contact::Rule;
+use crate::contact::{Method, Rule};
 use crate::mesh::Element;
 use crate::scenario::Locator as Source;
 use crate::scenario::{Scenario, ScenarioError, check, read_toml};
@@ -65,6 +65,8 @@ pub struct Step {
     pub rule: Option<Rule>,
     pub level: Option<u32>,
     pub epsilon: Option<f64>,
+    /// The contact method ([`Method::parse`], default parameters); ε = 0 alone is `exact`.
+    pub method: Option<Method>,
     pub depth: Option<f64>,
     pub scene: Option<Scene>,
     pub gap: bool,
@@ -90,6 +92,7 @@ struct RawStep {
     rule: Option<Spanned<Rule>>,
     level: Option<Spanned<i64>>,
     epsilon: Option<Spanned<f64>>,
+    method: Option<Spanned<String>>,
     depth: Option<Spanned<f64>>,
     scene: Option<Spanned<String>>,
     overlays: Option<Spanned<Vec<Spanned<String>>>>,
@@ -178,7 +181,13 @@ impl Tour {
         s.element = step.element.unwrap_or(s.element);
         s.rule = step.rule.unwrap_or(s.rule);
         s.level = step.level.unwrap_or(s.level).min(MAX_APP_LEVEL);
-        s.epsilon = step.epsilon.unwrap_or(s.epsilon);
+        // ε = 0 is the exact method (the lab keeps its ε for penalty and alm).
+        match step.epsilon {
+            Some(0.0) => s.method = Method::Exact,
+            Some(e) => s.epsilon = e,
+            None => {}
+        }
+        s.method = step.method.unwrap_or(s.method);
         let max = app.max_depth();
         let s = &mut app.settings;
         s.depth = step.depth.unwrap_or(s.depth).clamp(0.0, max.max(0.0));
@@ -282,6 +291,13 @@ fn step(src: &Source, n: usize, raw: &RawStep, dir: Option<&Path>) -> Result<Ste
     if let Some(d) = &raw.depth {
         src.check(&key("depth"), d, |v| check::nonnegative(*v))?;
     }
+    let method = match &raw.method {
+        Some(name) => Some(
+            Method::parse(name.get_ref(), None, None, None)
+                .map_err(|e| src.error(Some(name.span()), Some(key("method")), e.to_string()))?,
+        ),
+        None => None,
+    };
     let scene = match &raw.scene {
         Some(name) => Some(Scene::from_name(name.get_ref()).ok_or_else(|| {
             let names: Vec<&str> = Scene::ALL.iter().map(|s| s.name()).collect();
@@ -324,6 +340,7 @@ fn step(src: &Source, n: usize, raw: &RawStep, dir: Option<&Path>) -> Result<Ste
         rule,
         level,
         epsilon: raw.epsilon.as_ref().map(|e| *e.get_ref()),
+        method,
         depth: raw.depth.as_ref().map(|d| *d.get_ref()),
         scene,
         gap: on[0],

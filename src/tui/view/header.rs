@@ -5,6 +5,7 @@ use ratatui::layout::{Alignment, Constraint, Layout, Rect};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::Paragraph;
 
+use crate::contact::Method;
 use crate::scheme::Scheme;
 
 use super::super::app::{App, Scene};
@@ -73,10 +74,11 @@ fn settings_line(app: &App, theme: Theme) -> Line<'static> {
             app.scenario.n_elements(s.level, s.element)
         )),
         sep(),
-        Span::raw(if s.epsilon == 0.0 {
-            "ε=0 (exact)".to_string()
-        } else {
-            format!("ε={:e}", s.epsilon)
+        // The penalty is the paper's method: its ε alone (the method line names it).
+        Span::raw(match s.method {
+            Method::Penalty => format!("ε={:e}", s.epsilon),
+            Method::Alm { .. } => format!("alm ε={:e}", s.epsilon),
+            m => m.label(),
         }),
         sep(),
         Span::raw(format!("d={}", sig(s.depth, 4))),

@@ -8,6 +8,7 @@ mod header;
 pub mod help;
 mod infsup_chart;
 mod infsup_panel;
+mod method;
 pub mod plot;
 mod pressure;
 mod status;
@@ -85,16 +86,24 @@ pub fn view_in(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
     }
 }
 
-/// The explore scene: pressures on top, the inf-sup panel and the contact zone below.
+/// The explore scene: pressures on top, the method line, then the inf-sup panel and the
+/// contact zone.
 fn explore(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
     // The lower panels keep at least 6 rows (the inf-sup panel's borders, header, current
-    // row and verdict); in a short area (the tour at 80×24) the chart takes the rest.
-    let chart_rows = if area.height < 20 {
-        area.height.saturating_sub(6)
+    // row and verdict) below the method line; in a short area (the tour at 80×24) the chart
+    // takes the rest.
+    let chart_rows = if area.height < 21 {
+        area.height.saturating_sub(7)
     } else {
-        (area.height * 57 + 50) / 100
+        ((area.height - 1) * 57 + 50) / 100
     };
-    let [chart, lower] = Layout::vertical([Constraint::Length(chart_rows), Constraint::Fill(1)]).areas(area);
+    let [chart, method_row, lower] = Layout::vertical([
+        Constraint::Length(chart_rows),
+        Constraint::Length(1),
+        Constraint::Fill(1),
+    ])
+    .areas(area);
+    method::render(app, frame, method_row, look.theme);
     let [panel, contact] = Layout::horizontal([Constraint::Length(42), Constraint::Fill(1)]).areas(lower);
     pressure::render(app, frame, chart, look);
     infsup_panel::render(app, frame, panel, look.theme);

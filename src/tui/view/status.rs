@@ -177,8 +177,13 @@ fn state(app: &App, theme: Theme) -> Vec<Span<'static>> {
         spans.push(Span::styled("✗ NOT converged", theme.bad()));
     }
     let steps = if newton.iterations == 1 { "step" } else { "steps" };
+    let updates = solved
+        .solution
+        .outer_iterations
+        .map(|n| format!("{n} update{} × ", if n == 1 { "" } else { "s" }))
+        .unwrap_or_default();
     spans.push(Span::raw(format!(
-        " in {} Newton {steps} · load P={}",
+        " in {updates}{} Newton {steps} · load P={}",
         newton.iterations,
         sig(solved.solution.load, 5)
     )));

@@ -1,0 +1,415 @@
+//! The contact methods riplab compares (docs/design.md §10): how the constraint u_n − g ≤ 0 of
+//! (4) is imposed on Γ_C. One type, one parser, one name, one place that checks parameters.
+//!
+//! - `penalty`: the paper's penalised problem (8), (11) at ε > 0 (raw p and smoothed p̄).
+//! - `exact`: the limit ε = 0, Lagrange multipliers at the rule's points (primal–dual active
+//!   set, [`super::signorini`]); needs a rule without kernel (inf-sup).
+//! - `alm`: the augmented Lagrangian at a finite ε ([`super::alm`]): Uzawa updates of the
+//!   multiplier around the penalty Newton; no penalty error.
+//! - `nitsche`: Nitsche's method, θ ∈ {1, 0, −1}, γ = γ₀·E/h (Chouly and Hild 2013): no
+//!   multiplier, no inf-sup condition.
+
+use serde::Serialize;
+
+use crate::text::num;
+
+/// θ of Nitsche's method: 1 symmetric, 0 incomplete, −1 skew-symmetric.
+pub const THETAS: [i8; 3] = [1, 0, -1];
+/// The range of Nitsche's γ₀ (γ = γ₀·E/h). Nitsche's contact term acts like a penalty of
+/// ε = h/(γ₀E), i.e. κ = εE/h = 1/γ₀: γ₀ ≤ 1e8 keeps κ ≥ 1e-8, well above κ ≈ 1e-13 where
+/// round-off swamps a penalty's contact forces (STABILITY.md); γ₀ ≥ 1e-8 keeps 1/γ finite
+/// and representable in every product. Whether a γ₀ is *stable* (the symmetric variant
+/// needs it large enough) is the method's to report, not an input error.
+pub const GAMMA0_RANGE: (f64, f64) = (1e-8, 1e8);
+/// Nitsche's default parameters: symmetric, γ₀ = 100.
+pub const DEFAULT_THETA: i8 = 1;
+pub const DEFAULT_GAMMA0: f64 = 100.0;
+/// The ALM's default relative tolerance on the multiplier's change.
+pub const DEFAULT_ALM_TOL: f64 = 1e-10;
+
+/// A contact method with its parameters (the penalty parameter ε is the scenario's).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Method {
+    /// The penalised problem (11) at ε > 0.
+    Penalty,
+    /// The exact constraint at the rule's points (the limit ε = 0).
+    Exact,
+    /// The augmented Lagrangian at the scenario's ε > 0, stopped when the multiplier's
+    /// relative change falls below `tolerance` ∈ (0, 1).
+    Alm { tolerance: f64 },
+    /// Nitsche's method with θ ∈ {1, 0, −1} and γ = γ₀·E/h.
+    Nitsche { theta: i8, gamma0: f64 },
+}
+
+/// The names [`Method::parse`] accepts, in the order the lab cycles them.
+pub const NAMES: [&str; 4] = ["penalty", "exact", "alm", "nitsche"];
+
+impl Method {
+    /// The name of the command line, the files and every output.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Penalty => "penalty",
+            Method::Exact => "exact",
+            Method::Alm { .. } => "alm",
+            Method::Nitsche { .. } => "nitsche",
+        }
+    }
+
+    /// A short label with the parameters, e.g. `alm (tol 1e-10)`, `nitsche (θ = 1, γ₀ = 100)`.
+    pub fn label(self) -> String {
+        MethodFields::from(self).label()
+    }
+
+    /// What the method needs, in a line: its stability condition and its parameter.
+    pub fn needs(self) -> &'static str {
+        match self {
+            Method::Penalty => "needs ε > 0 (error O(√ε)); p̄ smooths p",
+            Method::Exact => "needs inf-sup (a rule without kernel); no ε",
+            Method::Alm { .. } => "needs ε > 0 (no ε error); p unique with inf-sup",
+            Method::Nitsche { .. } => "needs γ₀ (large for θ = 1); no multiplier, no inf-sup",
+        }
+    }
+
+    /// The method named `name` (any case), with `theta`, `gamma0` and `alm_tol` where it takes
+    /// them (their defaults when None); a parameter given to a method that does not take it is
+    /// refused, so that a typo is not silently ignored. Errors name the allowed values.
+    pub fn parse(
+        name: &str,
+        theta: Option<f64>,
+        gamma0: Option<f64>,
+        alm_tol: Option<f64>,
+    ) -> Result<Method, MethodError> {
+        let method = match name.trim().to_ascii_lowercase().as_str() {
+            "penalty" => Method::Penalty,
+            "exact" => Method::Exact,
+            "alm" => Method::Alm {
+                tolerance: DEFAULT_ALM_TOL,
+            },
+            "nitsche" => Method::Nitsche {
+                theta: DEFAULT_THETA,
+                gamma0: DEFAULT_GAMMA0,
+            },
+            _ => {
+                return Err(MethodError::Name(format!(
+                    "`{name}` is not a method; allowed: {}",
+                    NAMES.join(", ")
+                )));
+            }
+        };
+        method.with(theta, gamma0, alm_tol)
+    }
+
+    /// This method with the parameters that are given replaced, checked.
+    pub fn with(
+        self,
+        theta: Option<f64>,
+        gamma0: Option<f64>,
+        alm_tol: Option<f64>,
+    ) -> Result<Method, MethodError> {
+        let foreign = |key: &'static str, takes: &'static str| {
+            Err(MethodError::NotTaken {
+                key,
+                method: self.name(),
+                takes,
+            })
+        };
+        let method = match self {
+            Method::Nitsche {
+                theta: t0,
+                gamma0: g0,
+            } => {
+                if alm_tol.is_some() {
+                    return foreign("alm_tol", "alm");
+                }
+                let theta = match theta {
+                    Some(t) => check_theta(t).map_err(MethodError::Theta)?,
+                    None => t0,
+                };
+                Method::Nitsche {
+                    theta,
+                    gamma0: gamma0.unwrap_or(g0),
+                }
+            }
+            Method::Alm { tolerance } => {
+                if theta.is_some() {
+                    return foreign("theta", "nitsche");
+                }
+                if gamma0.is_some() {
+                    return foreign("gamma0", "nitsche");
+                }
+                Method::Alm {
+                    tolerance: alm_tol.unwrap_or(tolerance),
+                }
+            }
+            Method::Penalty | Method::Exact => {
+                if theta.is_some() {
+                    return foreign("theta", "nitsche");
+                }
+                if gamma0.is_some() {
+                    return foreign("gamma0", "nitsche");
+                }
+                if alm_tol.is_some() {
+                    return foreign("alm_tol", "alm");
+                }
+                self
+            }
+        };
+        method.check()?;
+        Ok(method)
+    }
+
+    /// The parameters' ranges: θ ∈ {1, 0, −1}, γ₀ in [`GAMMA0_RANGE`], the ALM's tolerance in
+    /// (0, 1).
+    pub fn check(self) -> Result<(), MethodError> {
+        match self {
+            Method::Penalty | Method::Exact => Ok(()),
+            Method::Alm { tolerance } => crate::scenario::check::open(
+                tolerance,
+                0.0,
+                1.0,
+                "a relative tolerance 0 < tol < 1 (tolerances below about 1e-14 are not reachable in double precision and end as not converged)",
+            )
+            .map_err(MethodError::Tolerance),
+            Method::Nitsche { theta, gamma0 } => {
+                check_theta(f64::from(theta)).map_err(MethodError::Theta)?;
+                let (lo, hi) = GAMMA0_RANGE;
+                crate::scenario::check::closed(
+                    gamma0,
+                    lo,
+                    hi,
+                    &format!(
+                        "γ₀ from {} to {} (γ = γ₀·E/h; γ₀ ≤ 1e8 keeps Nitsche's equivalent penalty εE/h = 1/γ₀ above round-off)",
+                        num(lo),
+                        num(hi)
+                    ),
+                )
+                .map_err(MethodError::Gamma0)
+            }
+        }
+    }
+
+    /// The method and the penalty parameter a solve uses when the scenario or the command line
+    /// gives `method` (None: not named) and ε: ε = 0 with no method named is `exact` (riplab's
+    /// convention before methods were named); `exact` reports ε = 0 whatever was given (it has
+    /// no ε); `penalty` and `alm` need ε > 0.
+    pub fn resolve(method: Option<Method>, epsilon: f64) -> Result<(Method, f64), MethodError> {
+        match (method, epsilon == 0.0) {
+            (None, true) | (Some(Method::Exact), _) => Ok((Method::Exact, 0.0)),
+            (None, false) => Ok((Method::Penalty, epsilon)),
+            (Some(m @ (Method::Penalty | Method::Alm { .. })), true) => {
+                Err(MethodError::NeedsEpsilon(m.name()))
+            }
+            (Some(m), _) => Ok((m, epsilon)),
+        }
+    }
+
+    /// The next method in the lab's cycle (penalty → exact → alm → nitsche → penalty), each
+    /// with its default parameters.
+    pub fn next(self) -> Method {
+        let i = NAMES.iter().position(|&n| n == self.name()).unwrap_or(0);
+        Method::parse(NAMES[(i + 1) % NAMES.len()], None, None, None).expect("the names parse")
+    }
+
+    /// θ, when the method takes it.
+    pub fn theta(self) -> Option<i8> {
+        match self {
+            Method::Nitsche { theta, .. } => Some(theta),
+            _ => None,
+        }
+    }
+
+    /// γ₀, when the method takes it.
+    pub fn gamma0(self) -> Option<f64> {
+        match self {
+            Method::Nitsche { gamma0, .. } => Some(gamma0),
+            _ => None,
+        }
+    }
+
+    /// The ALM's tolerance, when the method is the ALM.
+    pub fn alm_tol(self) -> Option<f64> {
+        match self {
+            Method::Alm { tolerance } => Some(tolerance),
+            _ => None,
+        }
+    }
+
+    /// Whether the method uses the penalty parameter ε.
+    pub fn uses_epsilon(self) -> bool {
+        matches!(self, Method::Penalty | Method::Alm { .. })
+    }
+}
+
+/// The method and its parameters as the JSON and CSV of every output carry them (flattened
+/// into a row: `method`, `theta`, `gamma0`, `alm_tol`; null or empty where the method has
+/// no such parameter).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct MethodFields {
+    pub method: &'static str,
+    pub theta: Option<i8>,
+    pub gamma0: Option<f64>,
+    pub alm_tol: Option<f64>,
+}
+
+impl MethodFields {
+    /// The CSV header of these fields, the JSON names.
+    pub const CSV_HEADER: &'static str = "method,theta,gamma0,alm_tol";
+
+    /// The method with its parameters, e.g. `alm (tol 1e-10)` ([`Method::label`]).
+    pub fn label(&self) -> String {
+        match (self.theta, self.gamma0, self.alm_tol) {
+            (Some(theta), Some(gamma0), _) => format!("{} (θ = {theta}, γ₀ = {})", self.method, num(gamma0)),
+            (_, _, Some(tol)) => format!("{} (tol {tol:e})", self.method),
+            _ => self.method.to_string(),
+        }
+    }
+
+    /// The CSV cells of these fields (empty for None).
+    pub fn csv(&self) -> String {
+        let opt = |v: Option<String>| v.unwrap_or_default();
+        format!(
+            "{},{},{},{}",
+            self.method,
+            opt(self.theta.map(|t| t.to_string())),
+            opt(self.gamma0.map(|g| g.to_string())),
+            opt(self.alm_tol.map(|t| t.to_string()))
+        )
+    }
+}
+
+impl From<Method> for MethodFields {
+    fn from(m: Method) -> Self {
+        MethodFields {
+            method: m.name(),
+            theta: m.theta(),
+            gamma0: m.gamma0(),
+            alm_tol: m.alm_tol(),
+        }
+    }
+}
+
+fn check_theta(value: f64) -> Result<i8, String> {
+    THETAS
+        .into_iter()
+        .find(|&t| f64::from(t) == value)
+        .ok_or_else(|| {
+            format!(
+                "θ = {} is not allowed; allowed: 1 (symmetric), 0 (incomplete), -1 (skew-symmetric)",
+                num(value)
+            )
+        })
+}
+
+/// A method or one of its parameters that is not allowed; the message names what is.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum MethodError {
+    #[error("{0}")]
+    Name(String),
+    #[error("{0}")]
+    Theta(String),
+    #[error("{0}")]
+    Gamma0(String),
+    #[error("{0}")]
+    Tolerance(String),
+    #[error("`{key}` is a parameter of {takes}, not of {method}")]
+    NotTaken {
+        key: &'static str,
+        method: &'static str,
+        takes: &'static str,
+    },
+    #[error("{0} needs a penalty parameter ε > 0; ε = 0 is the exact method (`exact`)")]
+    NeedsEpsilon(&'static str),
+}
+
+impl MethodError {
+    /// The key of the scenario file (and, with `--` and `_` as `-`, the flag) at fault.
+    pub fn key(&self) -> &'static str {
+        match self {
+            MethodError::Name(_) => "method",
+            MethodError::Theta(_) => "theta",
+            MethodError::Gamma0(_) => "gamma0",
+            MethodError::Tolerance(_) => "alm_tol",
+            MethodError::NotTaken { key, .. } => key,
+            MethodError::NeedsEpsilon(_) => "epsilon",
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_name_parses_and_is_its_own_name() {
+        for name in NAMES {
+            let m = Method::parse(&name.to_uppercase(), None, None, None).unwrap();
+            assert_eq!(m.name(), name);
+        }
+        assert!(matches!(
+            Method::parse("foo", None, None, None),
+            Err(MethodError::Name(m)) if m.contains("penalty, exact, alm, nitsche")
+        ));
+    }
+
+    #[test]
+    fn parameters_are_checked_in_one_place() {
+        let n = |t, g| Method::parse("nitsche", t, g, None);
+        assert_eq!(
+            n(Some(-1.0), Some(5.0)).unwrap(),
+            Method::Nitsche {
+                theta: -1,
+                gamma0: 5.0
+            }
+        );
+        for bad in [2.0, 0.5, -2.0, f64::NAN] {
+            assert!(
+                matches!(n(Some(bad), None), Err(MethodError::Theta(m)) if m.contains("allowed: 1 (symmetric), 0 (incomplete), -1"))
+            );
+        }
+        for bad in [-1.0, 0.0, 1e-9, 1e9, f64::INFINITY] {
+            assert!(matches!(n(None, Some(bad)), Err(MethodError::Gamma0(_))), "{bad}");
+        }
+        for bad in [0.0, 1.0, -1e-3, f64::NAN] {
+            assert!(matches!(
+                Method::parse("alm", None, None, Some(bad)),
+                Err(MethodError::Tolerance(_))
+            ));
+        }
+        assert!(matches!(
+            Method::parse("alm", Some(1.0), None, None),
+            Err(MethodError::NotTaken { key: "theta", .. })
+        ));
+        assert!(matches!(
+            Method::parse("penalty", None, None, Some(1e-3)),
+            Err(MethodError::NotTaken { key: "alm_tol", .. })
+        ));
+    }
+
+    #[test]
+    fn epsilon_zero_is_exact() {
+        assert_eq!(Method::resolve(None, 0.0), Ok((Method::Exact, 0.0)));
+        assert_eq!(Method::resolve(None, 1e-6), Ok((Method::Penalty, 1e-6)));
+        assert_eq!(
+            Method::resolve(Some(Method::Exact), 1e-6),
+            Ok((Method::Exact, 0.0))
+        );
+        assert_eq!(
+            Method::resolve(Some(Method::Penalty), 0.0),
+            Err(MethodError::NeedsEpsilon("penalty"))
+        );
+        let alm = Method::Alm { tolerance: 1e-9 };
+        assert_eq!(Method::resolve(Some(alm), 1e-3), Ok((alm, 1e-3)));
+    }
+
+    #[test]
+    fn the_cycle_visits_every_method() {
+        let mut m = Method::Penalty;
+        let mut seen = Vec::new();
+        for _ in 0..4 {
+            seen.push(m.name());
+            m = m.next();
+        }
+        assert_eq!(seen, NAMES);
+        assert_eq!(m, Method::Penalty);
+    }
+}
