@@ -12,6 +12,7 @@ use faer::Mat;
 use serde::Serialize;
 
 use crate::contact::penalty::{self, Iteration, NewtonOptions, NewtonResult, Penalty, SolveError};
+use crate::contact::nitsche::NitscheCache;
 use crate::contact::signorini::solve_exact;
 use crate::contact::{ContactPoints, Obstacle, Rule, load, raw_pressure, smoothed_pressure};
 use crate::fem::condense::{TraceFactor, TraceOrdering};
@@ -50,13 +51,27 @@ pub struct Discretization {
     stiffness_warning: Option<Warning>,
     /// G = T C Tᵀ for each rule met so far.
     couplings: Mutex<HashMap<Rule, Arc<Mat<f64>>>>,
+    /// Nitsche's method's own factor and couplings, built on its first solve
+    /// ([`crate::contact::nitsche`]).
+    pub(crate) nitsche: NitscheCache,
 }
 
 impl Discretization {
     pub fn new(mesh: Mesh, material: Material, integration: Integration) -> Result<Self, SolveError> {
+        let dofs = DofMap::model(&mesh);
+        Self::with_dofs(mesh, dofs, material, integration)
+    }
+
+    /// As [`Discretization::new`] with other supports than the model's (`dofs`), e.g. rollers
+    /// on both sides for a patch test. Γ_C's normal dofs must be free.
+    pub fn with_dofs(
+        mesh: Mesh,
+        dofs: DofMap,
+        material: Material,
+        integration: Integration,
+    ) -> Result<Self, SolveError> {
         let mesh_element = mesh.element;
         let t = Instant::now();
-        let dofs = DofMap::model(&mesh);
         let stiffness = assemble(&mesh, &dofs, Form::Elasticity(material, integration));
         let assembly_ms = ms_since(t);
         let contact_dofs: Vec<usize> = mesh
@@ -89,7 +104,18 @@ impl Discretization {
             young: material.young,
             stiffness_warning: warning::of_material(&material, mesh_element, integration),
             couplings: Mutex::new(HashMap::new()),
+            nitsche: NitscheCache::new(material, integration),
         })
+    }
+
+    /// What is known to be poor about this stiffness before any solve (locking).
+    pub fn stiffness_warning(&self) -> Option<Warning> {
+        self.stiffness_warning.clone()
+    }
+
+    /// The body's height H (the range of the depth).
+    pub fn height(&self) -> f64 {
+        self.mesh.ys.last().copied().unwrap_or(0.0)
     }
 
     /// The discretisation of `scenario` at `level` with `element`, refused before anything is
@@ -162,7 +188,7 @@ impl Discretization {
 
     /// `params` checked against what this discretisation can answer ([`check_params`]).
     pub fn check(&self, params: &ContactParams, n_points: usize) -> Result<(), SolveError> {
-        let height = self.mesh.ys.last().copied().unwrap_or(0.0);
+        let height = self.height();
         let (range, normals) = (self.epsilon_range(), self.contact_dofs.len());
         check_params(params, range, height, n_points, normals)
     }
@@ -193,7 +219,7 @@ pub fn epsilon_range(young: f64, h: f64) -> (f64, f64) {
 }
 
 /// The solver's error for a failure of the finite element layer on `n` unknowns.
-fn fem_error(e: FemError, n: usize) -> SolveError {
+pub(crate) fn fem_error(e: FemError, n: usize) -> SolveError {
     match e {
         FemError::NotPositiveDefinite => SolveError::Factorization("a zero or negative pivot".into()),
         FemError::OutOfMemory(what) => SolveError::TooLarge(format!(
@@ -298,12 +324,21 @@ pub struct Solution {
     pub timing: Timing,
     /// What is known to be poor about this answer ([`crate::warning`]).
     pub warnings: Vec<Warning>,
+    /// The load f on the free dofs, K u = f, when the contact acts on more than Γ_C's normal
+    /// dofs (Nitsche's σ_n terms); None when u = −K⁻¹ Eᵀ Tᵀ y.
+    pub nodal_forces: Option<Vec<f64>>,
 }
 
 impl Solution {
-    /// Displacement on every dof (zero on the constrained ones): u = −K⁻¹ Eᵀ Tᵀ y, one solve
-    /// with the mesh's factor, done only when asked.
+    /// Displacement on every dof (zero on the constrained ones): u = −K⁻¹ Eᵀ Tᵀ y (or
+    /// K⁻¹ f with [`Solution::nodal_forces`]), one solve with the mesh's factor, done only
+    /// when asked.
     pub fn displacement(&self, disc: &Discretization) -> Vec<f64> {
+        if let Some(f) = &self.nodal_forces {
+            let mut u = f.clone();
+            disc.factor.solve_in_place(&mut u, 1);
+            return disc.dofs.expand(&u, |_| 0.0);
+        }
         let forces = Discretization::nodal_forces(&self.points, &self.newton.forces, disc.contact_dofs.len());
         let mut u = vec![0.0; disc.n_dofs()];
         for (&d, f) in disc.contact_dofs.iter().zip(&forces) {
@@ -394,6 +429,7 @@ pub fn solve_contact(
         load,
         timing,
         warnings,
+        nodal_forces: None,
     })
 }
 

@@ -3,6 +3,7 @@
 
 pub mod gap;
 pub mod hertz;
+pub mod nitsche;
 pub mod penalty;
 pub mod pressure;
 pub mod rule;
