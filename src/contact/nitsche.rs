@@ -39,10 +39,15 @@
 //! (W_A⁻¹Γ_A + H_AA) ỹ_A = −Γ_A g_A by LU (H is non-symmetric unless θ = 1). A depth change
 //! costs only the Newton; θ or γ₀ costs O(n³) dense work; K is never refactorised.
 //!
-//! **Stability of θ = 1.** K_1 is positive definite exactly when the symmetric matrix
-//! I − D^½ G_SS D^½ is; its Cholesky factorisation decides, and the threshold
-//! γ₀* = λ_max(C^½ G_SS C^½), C = diag(w_q h_q / E), is [`stability_threshold`]. Below it the
-//! solve is refused with a typed error. For θ ≤ 0, K_θ is positive definite for every γ₀ > 0.
+//! **Stability.** On any active set the symmetric part of the Jacobian is bounded below by
+//! K − κ(1/γ)SᵀWS, κ = (1 + θ)²/4 (Young's inequality on the cross term (1 + θ)σ_n v_n; the
+//! inactive points give K − (θ/γ)SᵀWS, and θ ≤ κ): the method is well posed (its operator
+//! strongly monotone) when that matrix is positive definite, i.e. when the symmetric matrix
+//! I − κ C_γ^½ G_SS C_γ^½ is, C_γ = WΓ⁻¹. Its Cholesky factorisation decides, and the
+//! threshold is γ₀ > κ γ₀* with γ₀* = λ_max(C^½ G_SS C^½), C = diag(w_q h_q / E)
+//! ([`stability_threshold`]): γ₀* for θ = 1 (where it is also exactly where K_1 stops being
+//! positive definite, the loss of the energy's convexity), γ₀*/4 for θ = 0, nothing for
+//! θ = −1. Below it the solve is refused with a typed error, never a result.
 
 use std::collections::HashMap;
 use std::ops::ControlFlow;
@@ -381,24 +386,30 @@ impl Operator {
                 + gamma[i] * cp.bb(i, j) * gamma[j]
         });
         let v = Mat::<f64>::from_fn(n, n, |i, j| theta * cp.ss(i, j) - cp.sb(i, j) * gamma[j]);
+        // Well-posedness: on every active set the symmetric part of the Jacobian is at least
+        // K − κ (1/γ) SᵀWS with κ = (1 + θ)²/4 (Young's inequality on (1 + θ) σ_n v_n), so it
+        // is positive definite for γ₀ > κ γ₀*; θ = −1 needs nothing.
+        let kappa = (1.0 + theta).powi(2) / 4.0;
+        let scaled = cp.scaled_ss(&c);
+        let shifted = |factor: f64| {
+            Mat::<f64>::from_fn(n, n, |i, j| f64::from(u8::from(i == j)) - factor * scaled[(i, j)])
+        };
+        let refused = || SolveError::Input {
+            what: "Nitsche's γ₀",
+            message: format!(
+                "{} is too small for θ = {theta}: K − ((1 + θ)²/4)(1/γ)∫σ_n σ_n is not positive definite on this mesh, so the method is not stable (Chouly and Hild's condition, γ₀ > ((1 + θ)²/4)·γ₀*); choose a larger γ₀ or θ = −1",
+                params.gamma0
+            ),
+        };
+        if kappa > 0.0 && kappa != theta && shifted(kappa).llt(Side::Lower).is_err() {
+            return Err(refused());
+        }
         let mut zv = Mat::<f64>::zeros(n, n);
         if theta != 0.0 {
-            // Z = (I − D G_SS)⁻¹ D = θ C^½ N⁻¹ C^½ with N = I − θ C^½ G_SS C^½ symmetric.
+            // Z = (I − D G_SS)⁻¹ D = θ C^½ N⁻¹ C^½ with N = I − θ C^½ G_SS C^½ symmetric,
+            // positive definite when the check above passed (θ ≤ κ).
             let r: Vec<f64> = c.iter().map(|v| v.sqrt()).collect();
-            let mut nm = cp.scaled_ss(&c);
-            for i in 0..n {
-                for j in 0..n {
-                    nm[(i, j)] *= -theta;
-                }
-                nm[(i, i)] += 1.0;
-            }
-            let llt = nm.llt(Side::Lower).map_err(|_| SolveError::Input {
-                what: "Nitsche's γ₀",
-                message: format!(
-                    "{} is too small for θ = {theta}: K − (θ/γ)∫σ_n σ_n is not positive definite on this mesh (the symmetric method's stability condition); choose a larger γ₀ or θ ≤ 0",
-                    params.gamma0
-                ),
-            })?;
+            let llt = shifted(theta).llt(Side::Lower).map_err(|_| refused())?;
             let rhs = Mat::<f64>::from_fn(n, n, |i, j| r[i] * v[(i, j)]);
             let sol = llt.solve(&rhs);
             zv = Mat::<f64>::from_fn(n, n, |i, j| theta * r[i] * sol[(i, j)]);
