@@ -170,7 +170,8 @@ fn contact_patch_test_is_passed_to_round_off() {
 /// The reported pressure is Nitsche's p = (γ(u_n − g) − σ_n(u))⁺ of the displacement field the
 /// solution gives (σ_n evaluated by the mesh's own field evaluation, inside each boundary
 /// cell, with the material's tensor; the two one-sided values averaged at a point two edges
-/// share), and the body is in equilibrium: the clamped base carries the load P = I(p, 1).
+/// share), the vertices' u_y is the field's, and the body is in equilibrium: the clamped base
+/// carries the load P = I(p, 1).
 #[test]
 fn pressure_is_the_nitsche_pressure_of_the_displacement() {
     let scenario = Scenario::paper();
@@ -220,6 +221,12 @@ fn pressure_is_the_nitsche_pressure_of_the_displacement() {
                 in_contact += usize::from(p > 0.0);
             }
             assert!(in_contact >= 3, "{element:?} {rule:?}: a contact zone");
+            // The vertices' u_y (from the condensed couplings) is the field's.
+            let order = element.order();
+            for (k, uy) in sol.vertex_uy.iter().enumerate() {
+                let node = disc.mesh.node(k * order, disc.mesh.node_y.len() - 1);
+                assert!((uy - u[2 * node + 1]).abs() < 1e-10, "{element:?} vertex {k}: {uy}");
+            }
             let reaction = bottom_reaction(&scenario, &disc, &sol);
             assert!(
                 rel(reaction, sol.load, 1.0) < 1e-8,

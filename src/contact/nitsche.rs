@@ -138,6 +138,8 @@ struct EdgePoint {
 struct Couplings {
     points: Vec<EdgePoint>,
     g: Mat<f64>,
+    /// E K⁻¹ Rᵀ, E the u_y of Γ_C's vertices: their displacement under the point loads.
+    vertex: Mat<f64>,
 }
 
 /// Everything one (rule, θ, γ₀) needs: H and the maps back to σ_n.
@@ -275,11 +277,12 @@ impl Layer {
         })
     }
 
-    /// G = R K⁻¹ Rᵀ for the σ_n rows then the u_n rows of `points`.
-    fn couplings(&self, points: Vec<EdgePoint>) -> Couplings {
+    /// G = R K⁻¹ Rᵀ for the σ_n rows then the u_n rows of `points`, and E K⁻¹ Rᵀ for the
+    /// u_y dofs `vertices` of Γ_C's vertices.
+    fn couplings(&self, points: Vec<EdgePoint>, vertices: &[usize]) -> Couplings {
         let n = points.len();
         let nb = self.l.nrows();
-        let mut x = Mat::<f64>::zeros(nb, 2 * n);
+        let mut x = Mat::<f64>::zeros(nb, 2 * n + vertices.len());
         for (q, pt) in points.iter().enumerate() {
             for &(d, c) in &pt.sigma {
                 x[(self.position[d], q)] += c;
@@ -288,11 +291,17 @@ impl Layer {
                 x[(self.position[d], n + q)] += c;
             }
         }
+        for (k, &d) in vertices.iter().enumerate() {
+            x[(self.position[d], 2 * n + k)] = 1.0;
+        }
         let par = crate::fem::parallelism();
         faer::linalg::triangular_solve::solve_lower_triangular_in_place(self.l.as_ref(), x.as_mut(), par);
+        let (rows, ends) = x.as_ref().split_at_col(2 * n);
         let mut g = Mat::<f64>::zeros(2 * n, 2 * n);
-        faer::linalg::matmul::matmul(g.as_mut(), Accum::Replace, x.transpose(), x.as_ref(), 1.0, par);
-        Couplings { points, g }
+        faer::linalg::matmul::matmul(g.as_mut(), Accum::Replace, rows.transpose(), rows, 1.0, par);
+        let mut vertex = Mat::<f64>::zeros(vertices.len(), 2 * n);
+        faer::linalg::matmul::matmul(vertex.as_mut(), Accum::Replace, ends.transpose(), rows, 1.0, par);
+        Couplings { points, g, vertex }
     }
 }
 
@@ -336,7 +345,15 @@ fn couplings(disc: &Discretization, points: &ContactPoints) -> Result<Arc<Coupli
     let mut map = cache.couplings.lock().unwrap_or_else(|e| e.into_inner());
     Ok(map
         .entry(points.rule)
-        .or_insert_with(|| Arc::new(layer.couplings(edge_points(disc, &cache.material, points))))
+        .or_insert_with(|| {
+            let vertices: Vec<usize> = disc
+                .contact_dofs
+                .iter()
+                .step_by(disc.mesh.element.order())
+                .copied()
+                .collect();
+            Arc::new(layer.couplings(edge_points(disc, &cache.material, points), &vertices))
+        })
         .clone())
 }
 
@@ -450,7 +467,8 @@ impl Operator {
         Ok(op)
     }
 
-    /// σ_n and u_n at the edge points for the scaled forces ỹ, and the nodal load f of K u = f.
+    /// u_n at the edge points and u_y at Γ_C's vertices for the scaled forces ỹ, and the
+    /// nodal load f of K u = f.
     fn fields(&self, y: &[f64], n_dofs: usize) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
         let cp = &self.couplings;
         let n = cp.n();
@@ -472,6 +490,9 @@ impl Operator {
         let normal: Vec<f64> = (0..n)
             .map(|i| (0..n).map(|j| cp.bs(i, j) * a[j] + cp.bb(i, j) * b[j]).sum())
             .collect();
+        let vertex_uy: Vec<f64> = (0..cp.vertex.nrows())
+            .map(|i| (0..n).map(|j| cp.vertex[(i, j)] * a[j] + cp.vertex[(i, n + j)] * b[j]).sum())
+            .collect();
         let mut f = vec![0.0; n_dofs];
         for (q, pt) in cp.points.iter().enumerate() {
             for &(d, c) in &pt.sigma {
@@ -481,7 +502,7 @@ impl Operator {
                 f[d] += c * b[q];
             }
         }
-        (sigma, normal, f)
+        (normal, vertex_uy, f)
     }
 }
 
@@ -662,7 +683,7 @@ pub fn solve(
     // d = −Γg (−∞ where the obstacle does not reach).
     let d: Vec<f64> = (0..n).map(|q| -op.gamma[q] * g[q]).collect();
     let (y, v, mut newton) = newton(&op, &c, &d, initial, opts, on_iteration)?;
-    let (_, normal, forces) = op.fields(&y, disc.n_dofs());
+    let (normal, vertex_uy, forces) = op.fields(&y, disc.n_dofs());
     newton.violation = (0..n).map(|q| normal[q] - g[q]).collect();
     // p at the distinct points: the weighted mean of the edge points' p = v⁺.
     let mut p = vec![0.0; points.len()];
@@ -673,14 +694,6 @@ pub fn solve(
         *pq /= pt.weight;
     }
     let pbar = smoothed_pressure(&points, &p);
-    let mut u = forces.clone();
-    disc.factor.solve_in_place(&mut u, 1);
-    let vertex_uy: Vec<f64> = disc
-        .contact_dofs
-        .iter()
-        .step_by(disc.mesh.element.order())
-        .map(|&dof| u[dof])
-        .collect();
     let load = load(&points, &p);
     let finite = |v: &[f64]| v.iter().all(|x| x.is_finite());
     if newton.converged
