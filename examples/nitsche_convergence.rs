@@ -22,7 +22,12 @@ const PAIRS: [(Element, Rule); 3] = [
     (Element::P1, Rule::Trapezoid),
 ];
 
-fn nitsche_solve(disc: &Discretization, params: &ContactParams, theta: f64, gamma0: f64) -> Result<Solution, String> {
+fn nitsche_solve(
+    disc: &Discretization,
+    params: &ContactParams,
+    theta: f64,
+    gamma0: f64,
+) -> Result<Solution, String> {
     nitsche::solve(
         disc,
         params,
@@ -35,7 +40,8 @@ fn nitsche_solve(disc: &Discretization, params: &ContactParams, theta: f64, gamm
 }
 
 fn row(label: &str, level: u32, e: &Errors, prev: Option<&Errors>, iterations: usize, converged: bool) {
-    let rate = |a: f64, b: Option<f64>| b.map_or(String::from("     "), |b| format!("{:5.2}", (b / a).log2()));
+    let rate =
+        |a: f64, b: Option<f64>| b.map_or(String::from("     "), |b| format!("{:5.2}", (b / a).log2()));
     println!(
         "| {label} | {level} | {iterations}{} | {:.3e} | {} | {:.3e} | {} | {:.3e} |",
         if converged { "" } else { " (not converged)" },
@@ -60,7 +66,9 @@ fn main() {
     );
     for (element, rule) in PAIRS {
         println!("### {} + {}\n", element.name(), rule.name());
-        println!("| method | level | Newton | u (H¹) | rate | p (L²) | rate | load |\n|---|---|---|---|---|---|---|---|");
+        println!(
+            "| method | level | Newton | u (H¹) | rate | p (L²) | rate | load |\n|---|---|---|---|---|---|---|---|"
+        );
         let params = ContactParams {
             rule,
             epsilon: 0.0,
@@ -75,18 +83,41 @@ fn main() {
                 ControlFlow::Continue(())
             })
             .unwrap();
-            rows[0].push((level, errors(&reference, &disc, &exact), exact.newton.iterations, exact.newton.converged));
+            rows[0].push((
+                level,
+                errors(&reference, &disc, &exact),
+                exact.newton.iterations,
+                exact.newton.converged,
+            ));
             for (k, theta) in [1.0, 0.0, -1.0].into_iter().enumerate() {
                 let sol = nitsche_solve(&disc, &params, theta, 10.0 * star).unwrap();
-                rows[k + 1].push((level, errors(&reference, &disc, &sol), sol.newton.iterations, sol.newton.converged));
+                rows[k + 1].push((
+                    level,
+                    errors(&reference, &disc, &sol),
+                    sol.newton.iterations,
+                    sol.newton.converged,
+                ));
             }
         }
-        for (k, label) in ["exact", "nitsche θ = 1", "nitsche θ = 0", "nitsche θ = −1"].iter().enumerate() {
+        for (k, label) in ["exact", "nitsche θ = 1", "nitsche θ = 0", "nitsche θ = −1"]
+            .iter()
+            .enumerate()
+        {
             for (i, (level, e, it, ok)) in rows[k].iter().enumerate() {
-                row(label, *level, e, i.checked_sub(1).map(|j| &rows[k][j].1), *it, *ok);
+                row(
+                    label,
+                    *level,
+                    e,
+                    i.checked_sub(1).map(|j| &rows[k][j].1),
+                    *it,
+                    *ok,
+                );
             }
         }
-        println!("\nγ₀* = {star:.4} (Nitsche rows at γ₀ = 10 γ₀* = {:.3})\n", 10.0 * star);
+        println!(
+            "\nγ₀* = {star:.4} (Nitsche rows at γ₀ = 10 γ₀* = {:.3})\n",
+            10.0 * star
+        );
     }
     println!("### γ₀ sweep at level 3\n");
     println!("| pair | γ₀* | γ₀ | θ = 1: u, p | θ = 0: u, p | θ = −1: u, p |\n|---|---|---|---|---|---|");
@@ -98,7 +129,22 @@ fn main() {
             obstacle: scenario.obstacle.clone(),
         };
         let star = nitsche::stability_threshold(&disc, rule).unwrap();
-        let mut gammas = vec![1e-4, 1e-3, 1e-2, 1e-1, 0.2 * star, 0.3 * star, 0.99 * star, 1.01 * star, 1.1 * star, 2.0 * star, 10.0 * star, 1e2, 1e3, 1e4];
+        let mut gammas = vec![
+            1e-4,
+            1e-3,
+            1e-2,
+            1e-1,
+            0.2 * star,
+            0.3 * star,
+            0.99 * star,
+            1.01 * star,
+            1.1 * star,
+            2.0 * star,
+            10.0 * star,
+            1e2,
+            1e3,
+            1e4,
+        ];
         gammas.sort_by(f64::total_cmp);
         for g in gammas {
             let cell = |theta: f64| match nitsche_solve(&disc, &params, theta, g) {

@@ -11,8 +11,8 @@ use std::sync::{Arc, Mutex};
 use faer::Mat;
 use serde::Serialize;
 
-use crate::contact::penalty::{self, Iteration, NewtonOptions, NewtonResult, Penalty, SolveError};
 use crate::contact::nitsche::NitscheCache;
+use crate::contact::penalty::{self, Iteration, NewtonOptions, NewtonResult, Penalty, SolveError};
 use crate::contact::signorini::solve_exact;
 use crate::contact::{ContactPoints, Obstacle, Rule, load, raw_pressure, smoothed_pressure};
 use crate::fem::condense::{TraceFactor, TraceOrdering};

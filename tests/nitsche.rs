@@ -24,7 +24,12 @@ use riplab::study::{Errors, Reference, errors};
 
 const THETAS: [f64; 3] = [1.0, 0.0, -1.0];
 
-fn run(disc: &Discretization, params: &ContactParams, theta: f64, gamma0: f64) -> Result<Solution, SolveError> {
+fn run(
+    disc: &Discretization,
+    params: &ContactParams,
+    theta: f64,
+    gamma0: f64,
+) -> Result<Solution, SolveError> {
     nitsche::solve(
         disc,
         params,
@@ -93,12 +98,20 @@ fn contact_patch_test_is_passed_to_round_off() {
         let gamma0 = |rule| 10.0 * nitsche::stability_threshold(&disc, rule).unwrap();
         let check = |sol: &Solution, expect: f64, what: &str| {
             for (q, p) in sol.points.points.iter().zip(&sol.p) {
-                assert!(rel(*p, expect, 1.0) < 1e-10, "{what}: p = {p} at x = {} against {expect}", q.x);
+                assert!(
+                    rel(*p, expect, 1.0) < 1e-10,
+                    "{what}: p = {p} at x = {} against {expect}",
+                    q.x
+                );
             }
             for pb in &sol.pbar {
                 assert!(rel(*pb, expect, 1.0) < 1e-10, "{what}: p̄ = {pb}");
             }
-            assert!(rel(sol.load, expect * width, 1.0) < 1e-10, "{what}: P = {}", sol.load);
+            assert!(
+                rel(sol.load, expect * width, 1.0) < 1e-10,
+                "{what}: P = {}",
+                sol.load
+            );
             let uy_top = -depth + (exact_p - expect) / modulus * height;
             let u = sol.displacement(&disc);
             for node in 0..disc.mesh.n_nodes() {
@@ -128,7 +141,11 @@ fn contact_patch_test_is_passed_to_round_off() {
             }
             for theta in THETAS {
                 let sol = converged(&disc, &params, theta, gamma0(rule));
-                check(&sol, exact_p, &format!("nitsche {element:?} {rule:?} θ = {theta}"));
+                check(
+                    &sol,
+                    exact_p,
+                    &format!("nitsche {element:?} {rule:?} θ = {theta}"),
+                );
             }
             let epsilon = 1e-5;
             let penalty = solve_contact(
@@ -225,7 +242,10 @@ fn pressure_is_the_nitsche_pressure_of_the_displacement() {
             let order = element.order();
             for (k, uy) in sol.vertex_uy.iter().enumerate() {
                 let node = disc.mesh.node(k * order, disc.mesh.node_y.len() - 1);
-                assert!((uy - u[2 * node + 1]).abs() < 1e-10, "{element:?} vertex {k}: {uy}");
+                assert!(
+                    (uy - u[2 * node + 1]).abs() < 1e-10,
+                    "{element:?} vertex {k}: {uy}"
+                );
             }
             let reaction = bottom_reaction(&scenario, &disc, &sol);
             assert!(
@@ -263,7 +283,10 @@ fn symmetric_nitsche_is_stable_above_its_threshold_only() {
                     Err(SolveError::Input { what, message }) => {
                         assert!(what.contains("γ₀") && message.contains("not positive definite"));
                     }
-                    other => panic!("{element:?} level {level} γ₀ = {below}: {:?}", other.map(|s| s.load)),
+                    other => panic!(
+                        "{element:?} level {level} γ₀ = {below}: {:?}",
+                        other.map(|s| s.load)
+                    ),
                 }
                 // θ = −1 has no threshold: its operator stays monotone.
                 converged(&disc, &params, -1.0, below);
@@ -343,7 +366,10 @@ fn nitsche_converges_like_the_exact_constraint() {
             }
         }
         let exact_rate = ls_rate(&levels, &exact_u);
-        assert!(exact_rate > 0.9, "{element:?}: the exact method's u rate {exact_rate}");
+        assert!(
+            exact_rate > 0.9,
+            "{element:?}: the exact method's u rate {exact_rate}"
+        );
         for (k, theta) in THETAS.into_iter().enumerate() {
             let rate = ls_rate(&levels, &nitsche_u[k]);
             assert!(
