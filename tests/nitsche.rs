@@ -447,7 +447,8 @@ fn cached_operators_give_the_fresh_answer() {
     assert!(rel(warm.load, fresh.load, 1.0) < 1e-10);
 }
 
-/// Bad parameters are typed input errors naming the parameter and its range.
+/// Bad parameters are typed input errors naming the parameter and its range; a cancelled
+/// solve says so; an iteration limit gives a non-converged result with a diagnosis.
 #[test]
 fn bad_nitsche_parameters_are_refused() {
     let scenario = Scenario::paper();
@@ -468,4 +469,29 @@ fn bad_nitsche_parameters_are_refused() {
             other => panic!("θ = {theta}, γ₀ = {gamma0}: {:?}", other.map(|s| s.load)),
         }
     }
+    let too_deep = ContactParams {
+        obstacle: scenario.obstacle.with_depth(scenario.height),
+        ..params.clone()
+    };
+    assert!(
+        matches!(run(&disc, &too_deep, 1.0, 10.0), Err(SolveError::Input { what, .. }) if what.contains("depth"))
+    );
+    let stop = NitscheParams {
+        theta: 1.0,
+        gamma0: 30.0,
+    };
+    let cancelled = nitsche::solve(&disc, &params, stop, None, &NewtonOptions::default(), &mut |_| {
+        ControlFlow::Break(())
+    });
+    assert!(matches!(cancelled, Err(SolveError::Cancelled)));
+    let short = NewtonOptions {
+        max_iterations: 0,
+        ..NewtonOptions::default()
+    };
+    let sol = nitsche::solve(&disc, &params, stop, None, &short, &mut |_| {
+        ControlFlow::Continue(())
+    })
+    .unwrap();
+    assert!(!sol.newton.converged);
+    assert!(sol.newton.diagnosis.unwrap().contains("no convergence in 0"));
 }

@@ -62,6 +62,8 @@ use super::{ContactPoints, Rule, load, smoothed_pressure};
 use crate::error::SolveError;
 use crate::fem::basis::lagrange_1d;
 use crate::fem::condense::{TraceFactor, TraceOrdering};
+use crate::fem::error::gib;
+use crate::fem::memory::Limits;
 use crate::fem::{Form, Integration, assemble};
 use crate::material::Material;
 use crate::mesh::{Diagonal, Element, Mesh};
@@ -259,6 +261,19 @@ impl Layer {
             }
         }
         let n = disc.n_dofs();
+        // The dense work: L_BB, the couplings' right-hand sides (at most 3 points per edge, and
+        // the vertices), G and the operator's n×n matrices.
+        let (nb, points) = (dofs.len() as u64, 3 * mesh.nx() as u64);
+        let need = 8 * (nb * nb + nb * (2 * points + points / 3 + 1) + 12 * points * points);
+        if let Some(available) = Limits::of_process().available()
+            && need > available
+        {
+            return Err(SolveError::TooLarge(format!(
+                "Nitsche's method at this level needs about {} for its dense work on the {nb} unknowns along Γ_C, and this process has {} available: choose a coarser level",
+                gib(need),
+                gib(available)
+            )));
+        }
         let stiffness = assemble(
             mesh,
             &disc.dofs,
