@@ -69,6 +69,7 @@ use crate::material::Material;
 use crate::mesh::{Diagonal, Element, Mesh};
 use crate::solve::{ContactParams, Discretization, Solution, Timing, fem_error};
 use crate::stress::Stress;
+use crate::text::num;
 use crate::warning;
 
 /// Nitsche's parameters: θ ∈ [−1, 1] (1 symmetric, 0 incomplete, −1 skew-symmetric) and
@@ -429,12 +430,22 @@ impl Operator {
         let shifted = |factor: f64| {
             Mat::<f64>::from_fn(n, n, |i, j| f64::from(u8::from(i == j)) - factor * scaled[(i, j)])
         };
-        let refused = || SolveError::Input {
-            what: "Nitsche's γ₀",
-            message: format!(
-                "{} is too small for θ = {theta}: K − ((1 + θ)²/4)(1/γ)∫σ_n σ_n is not positive definite on this mesh, so the method is not stable (Chouly and Hild's condition, γ₀ > ((1 + θ)²/4)·γ₀*); choose a larger γ₀ or θ = −1",
-                params.gamma0
-            ),
+        // λ_max(C_γ^½ G_SS C_γ^½) = γ₀*/γ₀: computed only to say what γ₀ would do.
+        let refused = || {
+            let star = scaled
+                .self_adjoint_eigenvalues(Side::Lower)
+                .ok()
+                .and_then(|e| e.last().copied())
+                .map_or(String::new(), |l| {
+                    format!(" (here γ₀* = {:.3})", l * params.gamma0)
+                });
+            SolveError::Input {
+                what: "Nitsche's γ₀",
+                message: format!(
+                    "{} is too small for θ = {theta}: the method is stable for γ₀ > ((1 + θ)²/4)·γ₀*{star}, where K − ((1 + θ)²/4)(1/γ)∫σ_n σ_n stays positive definite (Chouly and Hild's condition); choose a larger γ₀ or θ = −1",
+                    num(params.gamma0)
+                ),
+            }
         };
         if kappa > 0.0 && kappa != theta && shifted(kappa).llt(Side::Lower).is_err() {
             return Err(refused());
