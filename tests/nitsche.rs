@@ -257,6 +257,77 @@ fn pressure_is_the_nitsche_pressure_of_the_displacement() {
     }
 }
 
+/// The displacement solves the discrete Nitsche equations themselves, assembled here without
+/// the solver's condensation: for every free dof k,
+/// (K u)_k = Σ_q w_q [(θ/γ) σ_n(u) σ_n(φ_k) − (1/γ) [P_γ(u)]₋ (θ σ_n(φ_k) − γ (φ_k)_n)] at the
+/// rule's points on each edge, with K applied cell by cell (`fem::apply`), and σ_n and u_n of u
+/// and of each shape function φ_k evaluated by the mesh's field evaluation inside the edge's
+/// cell. This checks the signs of every term for θ = 1, 0, −1 and each element.
+#[test]
+fn displacement_solves_the_nitsche_equations() {
+    use riplab::fem::{Form, apply};
+    let scenario = Scenario::paper();
+    let (lambda, mu) = scenario.material.lame();
+    let young = scenario.material.young;
+    for (element, rule) in [
+        (Element::Q1, Rule::Trapezoid),
+        (Element::Q2, Rule::Simpson),
+        (Element::P1, Rule::Gauss2),
+    ] {
+        let disc = Discretization::of(&scenario, 1, element).unwrap();
+        let mesh = &disc.mesh;
+        let params = paper_params(&scenario, rule, 0.0);
+        let gamma0 = 10.0 * nitsche::stability_threshold(&disc, rule).unwrap();
+        let (ny, top) = (mesh.ny(), *mesh.ys.last().unwrap());
+        let height = top - mesh.ys[ny - 1];
+        for theta in THETAS {
+            let sol = converged(&disc, &params, theta, gamma0);
+            let u = sol.displacement(&disc);
+            let ku = apply(
+                mesh,
+                Form::Elasticity(scenario.material, scenario.integration),
+                &u,
+            );
+            let mut rhs = vec![0.0; u.len()];
+            let mut unit = vec![0.0; u.len()];
+            for e in 0..mesh.nx() {
+                let (x0, x1) = (mesh.xs[e], mesh.xs[e + 1]);
+                let delta = 1e-9 * (x1 - x0);
+                let gamma = gamma0 * young / (x1 - x0).max(height);
+                for (s, w) in rule.points() {
+                    let xq = x0 + s * (x1 - x0);
+                    let (x, y) = (xq.clamp(x0 + delta, x1 - delta), top - delta);
+                    let normal_stress = |v: &[f64]| {
+                        let (val, grad) = evaluate(mesh, v, x, y);
+                        (lambda * (grad[0] + grad[3]) + 2.0 * mu * grad[3], val[1])
+                    };
+                    let (sigma, un) = normal_stress(&u);
+                    let m = (sigma - gamma * (un - scenario.obstacle.gap(xq))).min(0.0);
+                    let weight = w * (x1 - x0);
+                    for node in mesh.cell_nodes(e, ny - 1) {
+                        for c in 0..2 {
+                            unit[2 * node + c] = 1.0;
+                            let (sk, bk) = normal_stress(&unit);
+                            unit[2 * node + c] = 0.0;
+                            rhs[2 * node + c] +=
+                                weight * (theta / gamma * sigma * sk - m / gamma * (theta * sk - gamma * bk));
+                        }
+                    }
+                }
+            }
+            let free: Vec<usize> = (0..u.len())
+                .filter(|&g| disc.dofs.free_index(g).is_some())
+                .collect();
+            let scale = free.iter().map(|&g| ku[g].abs()).fold(0.0, f64::max);
+            let worst = free.iter().map(|&g| (ku[g] - rhs[g]).abs()).fold(0.0, f64::max);
+            assert!(
+                worst < 1e-7 * scale,
+                "{element:?} {rule:?} θ = {theta}: residual {worst} against {scale}"
+            );
+        }
+    }
+}
+
 /// γ₀* of the symmetric method, λ_max of the scaled σ_n coupling, is a property of the element
 /// and rule, not of h (the discrete trace inequality): the same at levels 1–3. Above it
 /// (10 γ₀*) θ = 1 converges; below it (γ₀*/10, and just below, 0.99 γ₀*) the solve is refused
