@@ -5,7 +5,7 @@
 //! **Signs** (docs/design.md §1): Γ_C is the top side, n = (0, 1), u_n = u_y, σ_n(u) = σ_yy(u),
 //! and the constraint is u_n − g ≤ 0. The contact conditions u_n − g ≤ 0, σ_n ≤ 0,
 //! σ_n (u_n − g) = 0 are equivalent, for any γ > 0, to σ_n = [P_γ(u)]₋ with
-//! P_γ(u) = σ_n(u) − γ(u_n − g) and [x]₋ = min(x, 0). Green's formula on the body (no body
+//! P_γ(u) = σ_n(u) − γ(u_n − g) and \[x\]₋ = min(x, 0). Green's formula on the body (no body
 //! force or traction; the sides free or held, Γ_D clamped, no friction on Γ_C) gives
 //! a(u, v) = ∫_ΓC σ_n(u) v_n, and writing γ v_n = θσ_n(v) − P_θγ(v), P_θγ(v) = θσ_n(v) − γv_n,
 //! then replacing σ_n(u) by [P_γ(u)]₋ in the second part gives Nitsche's problem
@@ -141,6 +141,8 @@ struct Couplings {
     g: Mat<f64>,
     /// E K⁻¹ Rᵀ, E the u_y of Γ_C's vertices: their displacement under the point loads.
     vertex: Mat<f64>,
+    /// γ₀* ([`stability_threshold`]), computed when first asked.
+    threshold: OnceLock<f64>,
 }
 
 /// Everything one (rule, θ, γ₀) needs: H and the maps back to σ_n.
@@ -338,7 +340,12 @@ impl Layer {
         faer::linalg::matmul::matmul(g.as_mut(), Accum::Replace, rows.transpose(), rows, 1.0, par);
         let mut vertex = Mat::<f64>::zeros(vertices.len(), 2 * n);
         faer::linalg::matmul::matmul(vertex.as_mut(), Accum::Replace, ends.transpose(), rows, 1.0, par);
-        Couplings { points, g, vertex }
+        Couplings {
+            points,
+            g,
+            vertex,
+            threshold: OnceLock::new(),
+        }
     }
 }
 
@@ -395,17 +402,22 @@ fn couplings(disc: &Discretization, points: &ContactPoints) -> Result<Arc<Coupli
 }
 
 /// γ₀* of θ = 1 for `rule` on `disc`: K − (1/γ)SᵀWS is positive definite exactly for
-/// γ₀ > γ₀* = λ_max(C^½ G_SS C^½), C = diag(w_q h_q / E).
+/// γ₀ > γ₀* = λ_max(C^½ G_SS C^½), C = diag(w_q h_q / E). θ needs γ₀ > ((1 + θ)²/4)·γ₀*
+/// (module doc). Computed once per rule (a dense symmetric eigenproblem of the edge points'
+/// size), then kept.
 pub fn stability_threshold(disc: &Discretization, rule: Rule) -> Result<f64, SolveError> {
     let points = disc.contact_points(rule);
     let cp = couplings(disc, &points)?;
+    if let Some(&star) = cp.threshold.get() {
+        return Ok(star);
+    }
     let young = disc.nitsche.material.young;
     let c: Vec<f64> = cp.points.iter().map(|q| q.weight * q.h / young).collect();
     let eig = cp
         .scaled_ss(&c)
         .self_adjoint_eigenvalues(Side::Lower)
         .map_err(|e| SolveError::Eigen(format!("{e:?}")))?;
-    Ok(eig.last().copied().unwrap_or(0.0))
+    Ok(*cp.threshold.get_or_init(|| eig.last().copied().unwrap_or(0.0)))
 }
 
 /// θ and γ₀ checked: θ ∈ [−1, 1], γ₀ within [`GAMMA0_RANGE`].
