@@ -33,8 +33,9 @@
 //! once per mesh, K is factorised a second time with the layer's dofs last; its trailing block
 //! L_BB gives G = R K⁻¹ Rᵀ for R = [S; B] as (L_BB⁻¹ R_Bᵀ)ᵀ(L_BB⁻¹ R_Bᵀ), once per rule. Per
 //! (θ, γ₀), Woodbury turns K⁻¹ into K_θ⁻¹ = K⁻¹ + K⁻¹Sᵀ Z S K⁻¹, Z = (I − D G_SS)⁻¹ D, and
-//! gives H = P_1 K_θ⁻¹ P_θᵀ Γ⁻¹, an n×n dense matrix. The semismooth Newton on the scaled forces
-//! ỹ = Γ⁻¹y then lives on the points like the penalty's (`super::penalty`): with
+//! gives H = P_1 K_θ⁻¹ P_θᵀ, an n×n dense matrix with P_1 u = H ỹ for the scaled forces
+//! ỹ = Γ⁻¹y. The semismooth Newton on ỹ then lives on the points like the penalty's
+//! (`super::penalty`): with
 //! v = −Γg − H ỹ = γ(u_n − g) − σ_n and the active set A = {v > 0}, each step solves
 //! (W_A⁻¹Γ_A + H_AA) ỹ_A = −Γ_A g_A by LU (H is non-symmetric unless θ = 1). A depth change
 //! costs only the Newton; θ or γ₀ costs O(n³) dense work; K is never refactorised.
@@ -151,7 +152,7 @@ struct Operator {
     params: NitscheParams,
     couplings: Arc<Couplings>,
     gamma: Vec<f64>,
-    /// H = P_1 K_θ⁻¹ P_θᵀ Γ⁻¹ ... stored without the Γ⁻¹ (it acts on ỹ = Γ⁻¹y).
+    /// H = P_1 K_θ⁻¹ P_θᵀ: P_1 u = H ỹ for the scaled forces ỹ = Γ⁻¹y.
     h: Mat<f64>,
     /// V = S K⁻¹ P_θᵀ and ZV: σ = (V + G_SS ZV) ỹ.
     v: Mat<f64>,
