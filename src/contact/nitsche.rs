@@ -121,6 +121,9 @@ struct Layer {
     l: Mat<f64>,
 }
 
+/// A linear functional of the displacement: Σ c·u over (free dof, c).
+type Row = Vec<(usize, f64)>;
+
 /// One point of the rule on one edge of Γ_C, with the rows of σ_n and u_n there.
 #[derive(Clone, Debug)]
 struct EdgePoint {
@@ -130,10 +133,10 @@ struct EdgePoint {
     weight: f64,
     /// The boundary cell's longest side.
     h: f64,
-    /// σ_n = Σ c·u over (free dof, c).
-    sigma: Vec<(usize, f64)>,
-    /// u_n = Σ c·u over (free dof, c).
-    normal: Vec<(usize, f64)>,
+    /// σ_n.
+    sigma: Row,
+    /// u_n.
+    normal: Row,
 }
 
 /// G = R K⁻¹ Rᵀ for R = [S; B] at the edge points of one rule.
@@ -201,13 +204,7 @@ fn top_shape(mesh: &Mesh, ci: usize, s: f64) -> Vec<(usize, f64, [f64; 2])> {
 
 /// The rows of σ_n = σ_yy (the full tensor of (2) at the point, [`Stress`]) and u_n = u_y at
 /// s on the top edge of cell `ci`, over free dofs.
-#[allow(clippy::type_complexity)]
-fn rows(
-    disc: &Discretization,
-    material: &Material,
-    ci: usize,
-    s: f64,
-) -> (Vec<(usize, f64)>, Vec<(usize, f64)>) {
+fn rows(disc: &Discretization, material: &Material, ci: usize, s: f64) -> (Row, Row) {
     let (mut sigma, mut normal) = (Vec::new(), Vec::new());
     for (node, value, g) in top_shape(&disc.mesh, ci, s) {
         for comp in 0..2 {
