@@ -574,3 +574,40 @@ fn bad_nitsche_parameters_are_refused() {
     assert!(!sol.newton.converged);
     assert!(sol.newton.diagnosis.unwrap().contains("no convergence in 0"));
 }
+
+/// Every scenario under `scenarios/` solves by Nitsche's method at level 1 with every element
+/// and θ at γ₀ = 10 γ₀* (its own rule, or simpson for q2 and trapezoid otherwise when its rule
+/// under-integrates), with a positive load in equilibrium with the clamped base.
+#[test]
+fn every_scenario_solves_by_nitsche() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios");
+    let mut files: Vec<_> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    files.sort();
+    assert!(files.len() >= 5);
+    for path in files {
+        let scenario = Scenario::load(&path).unwrap();
+        for element in Element::ALL {
+            let rule = match (element, scenario.rule) {
+                (Element::Q2, Rule::Gauss1 | Rule::Trapezoid) => Rule::Simpson,
+                (_, rule) => rule,
+            };
+            let disc = Discretization::of(&scenario, 1, element).unwrap();
+            let params = paper_params(&scenario, rule, 0.0);
+            let star = nitsche::stability_threshold(&disc, rule).unwrap();
+            for theta in THETAS {
+                let sol = converged(&disc, &params, theta, 10.0 * star);
+                let what = format!("{} {element:?} {rule:?} θ = {theta}", path.display());
+                assert!(sol.load > 0.0, "{what}: P = {}", sol.load);
+                let reaction = bottom_reaction(&scenario, &disc, &sol);
+                assert!(
+                    rel(reaction, sol.load, 1.0) < 1e-8,
+                    "{what}: {reaction} against {}",
+                    sol.load
+                );
+            }
+        }
+    }
+}
