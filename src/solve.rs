@@ -11,6 +11,7 @@ use std::sync::{Arc, Mutex};
 use faer::Mat;
 use serde::Serialize;
 
+use crate::contact::nitsche::{self, NitscheCache, NitscheParams};
 use crate::contact::penalty::{self, Iteration, NewtonOptions, NewtonResult, Penalty, SolveError};
 use crate::contact::signorini::solve_exact;
 use crate::contact::{ContactPoints, Method, Obstacle, Rule, alm, load, raw_pressure, smoothed_pressure};
@@ -50,13 +51,27 @@ pub struct Discretization {
     stiffness_warning: Option<Warning>,
     /// G = T C Tᵀ for each rule met so far.
     couplings: Mutex<HashMap<Rule, Arc<Mat<f64>>>>,
+    /// Nitsche's method's own factor and couplings, built on its first solve
+    /// ([`crate::contact::nitsche`]).
+    pub(crate) nitsche: NitscheCache,
 }
 
 impl Discretization {
     pub fn new(mesh: Mesh, material: Material, integration: Integration) -> Result<Self, SolveError> {
+        let dofs = DofMap::model(&mesh);
+        Self::with_dofs(mesh, dofs, material, integration)
+    }
+
+    /// As [`Discretization::new`] with other supports than the model's (`dofs`), e.g. rollers
+    /// on both sides for a patch test. Γ_C's normal dofs must be free.
+    pub fn with_dofs(
+        mesh: Mesh,
+        dofs: DofMap,
+        material: Material,
+        integration: Integration,
+    ) -> Result<Self, SolveError> {
         let mesh_element = mesh.element;
         let t = Instant::now();
-        let dofs = DofMap::model(&mesh);
         let stiffness = assemble(&mesh, &dofs, Form::Elasticity(material, integration));
         let assembly_ms = ms_since(t);
         let contact_dofs: Vec<usize> = mesh
@@ -89,7 +104,18 @@ impl Discretization {
             young: material.young,
             stiffness_warning: warning::of_material(&material, mesh_element, integration),
             couplings: Mutex::new(HashMap::new()),
+            nitsche: NitscheCache::new(material, integration),
         })
+    }
+
+    /// What is known to be poor about this stiffness before any solve (locking).
+    pub fn stiffness_warning(&self) -> Option<Warning> {
+        self.stiffness_warning.clone()
+    }
+
+    /// The body's height H (the range of the depth).
+    pub fn height(&self) -> f64 {
+        self.mesh.ys.last().copied().unwrap_or(0.0)
     }
 
     /// The discretisation of `scenario` at `level` with `element`, refused before anything is
@@ -162,7 +188,7 @@ impl Discretization {
 
     /// `params` checked against what this discretisation can answer ([`check_params`]).
     pub fn check(&self, params: &ContactParams, n_points: usize) -> Result<(), SolveError> {
-        let height = self.mesh.ys.last().copied().unwrap_or(0.0);
+        let height = self.height();
         let (range, normals) = (self.epsilon_range(), self.contact_dofs.len());
         check_params(params, range, height, n_points, normals)
     }
@@ -193,7 +219,7 @@ pub fn epsilon_range(young: f64, h: f64) -> (f64, f64) {
 }
 
 /// The solver's error for a failure of the finite element layer on `n` unknowns.
-fn fem_error(e: FemError, n: usize) -> SolveError {
+pub(crate) fn fem_error(e: FemError, n: usize) -> SolveError {
     match e {
         FemError::NotPositiveDefinite => SolveError::Factorization("a zero or negative pivot".into()),
         FemError::OutOfMemory(what) => SolveError::TooLarge(format!(
@@ -337,12 +363,21 @@ pub struct Solution {
     pub timing: Timing,
     /// What is known to be poor about this answer ([`crate::warning`]).
     pub warnings: Vec<Warning>,
+    /// The load f on the free dofs, K u = f, when the contact acts on more than Γ_C's normal
+    /// dofs (Nitsche's σ_n terms); None when u = −K⁻¹ Eᵀ Tᵀ y.
+    pub nodal_forces: Option<Vec<f64>>,
 }
 
 impl Solution {
-    /// Displacement on every dof (zero on the constrained ones): u = −K⁻¹ Eᵀ Tᵀ y, one solve
-    /// with the mesh's factor, done only when asked.
+    /// Displacement on every dof (zero on the constrained ones): u = −K⁻¹ Eᵀ Tᵀ y (or
+    /// K⁻¹ f with [`Solution::nodal_forces`]), one solve with the mesh's factor, done only
+    /// when asked.
     pub fn displacement(&self, disc: &Discretization) -> Vec<f64> {
+        if let Some(f) = &self.nodal_forces {
+            let mut u = f.clone();
+            disc.factor.solve_in_place(&mut u, 1);
+            return disc.dofs.expand(&u, |_| 0.0);
+        }
         let forces = Discretization::nodal_forces(&self.points, &self.newton.forces, disc.contact_dofs.len());
         let mut u = vec![0.0; disc.n_dofs()];
         for (&d, f) in disc.contact_dofs.iter().zip(&forces) {
@@ -365,6 +400,13 @@ pub fn solve_contact(
     let t = Instant::now();
     let points = disc.contact_points(params.rule);
     disc.check(params, points.len())?;
+    if let Method::Nitsche { theta, gamma0 } = params.method {
+        let nitsche = NitscheParams {
+            theta: f64::from(theta),
+            gamma0,
+        };
+        return nitsche::solve(disc, params, nitsche, initial, opts, on_iteration);
+    }
     let coupling = disc.coupling(params.rule, &points);
     let weight: Vec<f64> = points.points.iter().map(|q| q.weight).collect();
     // No body force or traction (docs/design.md §1): u₀ = 0 and d = −g.
@@ -384,7 +426,8 @@ pub fn solve_contact(
             let p = per_length(&newton.forces);
             (newton, p, None)
         }
-        Method::Penalty => {
+        // The penalty (Nitsche's solve returned above, on its own operator).
+        Method::Penalty | Method::Nitsche { .. } => {
             let newton = penalty::solve(&problem, initial, opts, on_iteration)?;
             let p = raw_pressure(&newton.violation, params.epsilon);
             (newton, p, None)
@@ -395,12 +438,6 @@ pub fn solve_contact(
             let result = alm::solve(&problem, unique, tolerance, initial, opts, on_iteration)?;
             let p = per_length(&result.newton.forces);
             (result.newton, p, Some(result.outer))
-        }
-        Method::Nitsche { .. } => {
-            return Err(SolveError::Input {
-                what: "the method",
-                message: "nitsche is not available in this build".into(),
-            });
         }
     };
     let pbar = smoothed_pressure(&points, &p);
@@ -452,6 +489,7 @@ pub fn solve_contact(
         load,
         timing,
         warnings,
+        nodal_forces: None,
     })
 }
 
@@ -481,7 +519,8 @@ impl Timing {
     pub fn include_mesh_work(&mut self, disc: &Discretization) {
         self.assembly = disc.assembly_ms;
         self.symbolic = disc.symbolic_ms;
-        self.factorization = disc.factorization_ms;
+        // Added: a Nitsche solve has charged its own operator here already.
+        self.factorization += disc.factorization_ms;
         self.total += disc.assembly_ms + disc.symbolic_ms + disc.factorization_ms;
     }
 }

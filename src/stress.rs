@@ -46,7 +46,7 @@ pub struct Stress {
 impl Stress {
     /// σ = E : ε for the displacement gradient ordered (u_x,x, u_x,y, u_y,x, u_y,y), with
     /// `volumetric` (λ div u) taken from elsewhere when given (selective integration).
-    fn of_gradient(material: &Material, grad: [f64; 4], volumetric: Option<f64>) -> Stress {
+    pub(crate) fn of_gradient(material: &Material, grad: [f64; 4], volumetric: Option<f64>) -> Stress {
         let (lambda, mu) = material.lame();
         let div = grad[0] + grad[3];
         let vol = volumetric.unwrap_or(lambda * div);

@@ -237,13 +237,15 @@ fn bad_methods_on_the_command_line_exit_2_with_the_allowed_values() {
             assert!(stderr.contains(f), "{args:?}: message lacks {f:?}:\n{stderr}");
         }
     }
-    // Nitsche is a method of the interface; its solver is not in this build (exit 2, said so).
-    let (code, _, stderr) = riplab(&["solve", "--method", "nitsche", "--theta", "-1", "--gamma0", "10"]);
+    // The symmetric Nitsche below this mesh's stability threshold γ₀* is refused (exit 2),
+    // naming the threshold; the skew-symmetric variant is stable for any γ₀ > 0.
+    let (code, _, stderr) = riplab(&["solve", "--method", "nitsche", "--theta", "1", "--gamma0", "0.1"]);
     assert_eq!(code, 2, "{stderr}");
-    assert!(
-        stderr.contains("nitsche is not available in this build"),
-        "{stderr}"
-    );
+    assert!(stderr.contains("γ₀"), "{stderr}");
+    let (code, stdout, stderr) =
+        riplab(&["solve", "--method", "nitsche", "--theta", "-1", "--gamma0", "0.1"]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(stdout.contains("nitsche"), "{stdout}");
 }
 
 /// Issue 14: a scenario's `[contact] method` and parameters: bad values give the file, line,

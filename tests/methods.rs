@@ -177,6 +177,30 @@ fn contact_patch_test() {
         (Method::Exact, 0.0, 1.0),
         (Method::Alm { tolerance: 1e-12 }, 1e-3, 1.0),
         (Method::Penalty, eps_penalty, 1.0 / (1.0 + eps_penalty * k)),
+        (
+            Method::Nitsche {
+                theta: 1,
+                gamma0: 100.0,
+            },
+            1e-3,
+            1.0,
+        ),
+        (
+            Method::Nitsche {
+                theta: 0,
+                gamma0: 100.0,
+            },
+            1e-3,
+            1.0,
+        ),
+        (
+            Method::Nitsche {
+                theta: -1,
+                gamma0: 1.0,
+            },
+            1e-3,
+            1.0,
+        ),
     ];
     let cases = [
         (Element::Q1, Rule::Gauss1),
@@ -201,7 +225,8 @@ fn contact_patch_test() {
             let what = format!("{} {}+{}", method.name(), element.name(), rule.name());
             let sol = solve(&disc, rule, method, epsilon, &flat);
             let expect = factor * p_exact;
-            if unique || method == Method::Penalty {
+            // Nitsche's p lives on its own points, one per edge and rule point: no kernel.
+            if unique || matches!(method, Method::Penalty | Method::Nitsche { .. }) {
                 for (q, p) in sol.p.iter().enumerate() {
                     assert!(
                         (p - expect).abs() < 1e-10 * expect,

@@ -1,11 +1,12 @@
 //! Unilateral contact: the gap, the contact rules, the methods that impose the constraint
-//! (the reduced-integration penalty, the exact multipliers, the augmented Lagrangian) and the
+//! (the reduced-integration penalty, the exact multipliers, the augmented Lagrangian, Nitsche) and the
 //! pressures (docs/design.md §2–§4, §10).
 
 pub mod alm;
 pub mod gap;
 pub mod hertz;
 pub mod method;
+pub mod nitsche;
 pub mod penalty;
 pub mod pressure;
 pub mod rule;

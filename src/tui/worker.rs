@@ -9,8 +9,8 @@ use std::sync::mpsc::{self, Receiver, Sender};
 use std::sync::{Arc, OnceLock};
 use std::time::{Duration, Instant};
 
-use crate::contact::Rule;
 use crate::contact::penalty::{NewtonOptions, SolveError};
+use crate::contact::{Method, Rule};
 use crate::mesh::Element;
 use crate::scenario::Scenario;
 use crate::solve::{ContactParams, Discretization, Solution, solve_contact};
@@ -87,8 +87,9 @@ impl std::fmt::Debug for Solved {
 pub struct Engine {
     scenario: Scenario,
     cache: Vec<(u32, Element, Arc<Discretization>)>,
-    /// The last contact forces and the mesh and rule they belong to (the warm start).
-    warm: Option<(u32, Element, Rule, Vec<f64>)>,
+    /// The last contact forces and the mesh, rule and kind of method they belong to (the
+    /// warm start): Nitsche's state lives on its own points, the other methods' on the rule's.
+    warm: Option<(u32, Element, Rule, bool, Vec<f64>)>,
     /// The last study (a study takes seconds; a second app on the same engine reuses it).
     study: Option<Arc<Study>>,
     /// How long builds take here (for the time left).
@@ -247,11 +248,12 @@ impl Engine {
             epsilon,
             obstacle: self.scenario.obstacle.with_depth(key.depth),
         };
+        let nitsche = matches!(key.method, Method::Nitsche { .. });
         let warm = self
             .warm
             .as_ref()
-            .filter(|(l, e, r, _)| (*l, *e, *r) == (key.level, key.element, key.rule))
-            .map(|(_, _, _, y)| y.as_slice());
+            .filter(|(l, e, r, n, _)| (*l, *e, *r, *n) == (key.level, key.element, key.rule, nitsche))
+            .map(|(_, _, _, _, y)| y.as_slice());
         let result = solve_contact(&disc, &params, warm, &NewtonOptions::default(), &mut |it| {
             if !is_current(generation) {
                 return ControlFlow::Break(());
@@ -268,7 +270,13 @@ impl Engine {
         });
         match result {
             Ok(solution) => {
-                self.warm = Some((key.level, key.element, key.rule, solution.newton.forces.clone()));
+                self.warm = Some((
+                    key.level,
+                    key.element,
+                    key.rule,
+                    nitsche,
+                    solution.newton.forces.clone(),
+                ));
                 Response::Solved {
                     generation,
                     result: Ok(Arc::new(Solved {
