@@ -12,7 +12,7 @@ use crate::plot::{chart_title, pressure_svg_string, write_file};
 use crate::report::SolveReport;
 use crate::scenario::Scenario;
 
-use super::worker::Solved;
+use super::protocol::Solved;
 
 /// How many numbered names to try before giving up.
 const MAX_TRIES: u32 = 1000;

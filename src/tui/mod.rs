@@ -13,6 +13,7 @@ pub mod eta;
 pub mod export;
 pub mod keys;
 mod prefetch;
+pub mod protocol;
 mod runtime;
 pub mod theme;
 pub mod tour;

@@ -13,75 +13,24 @@ use crate::contact::penalty::{NewtonOptions, SolveError};
 use crate::contact::{Method, Rule};
 use crate::mesh::Element;
 use crate::scenario::Scenario;
-use crate::solve::{ContactParams, Discretization, Solution, solve_contact};
-use crate::stress::StressField;
+use crate::solve::{ContactParams, Discretization, solve_contact};
 
 use crate::scheme::Scheme;
 use crate::study::{StudyRow, convergence};
 
-use super::app::{
-    App, Command, InfSupKey, InfSupRequest, MAX_APP_LEVEL, Msg, Progress, Response, SolveKey, SolveRequest,
-    StressRequest, Study, StudyKey, StudyRequest,
-};
+use super::app::{App, Command, MAX_APP_LEVEL, Msg};
 use super::beta::{self, InfSup};
 use super::eta::Eta;
 use super::prefetch::{Built, Prefetch};
+use super::protocol::{
+    InfSupKey, InfSupRequest, Progress, Response, SolveRequest, Solved, StressRequest, Study, StudyKey,
+    StudyRequest,
+};
 
 /// How many discretisations (meshes with their factorisations) are kept at most…
 const CACHE_SIZE: usize = 4;
 /// …and how many unknowns they may hold together (the newest is kept whatever its size).
 const CACHE_DOFS: usize = 600_000;
-
-/// A finished solve with the discretisation it was computed on.
-#[derive(Clone)]
-pub struct Solved {
-    pub key: SolveKey,
-    pub disc: Arc<Discretization>,
-    pub solution: Solution,
-    /// Displacement on every dof, node-major (u_x = [2n], u_y = [2n + 1]): one solve with
-    /// the whole factor, computed by the worker just after the solution is shown
-    /// ([`Engine::displace`]), so that a level step shows its pressures without waiting for it.
-    pub displacement: OnceLock<Vec<f64>>,
-    /// Wall time of the request, mesh work included, in ms.
-    pub total_ms: f64,
-    /// The stresses, computed by the worker when the stress scene first shows this solution
-    /// ([`Engine::stresses`]).
-    pub stresses: OnceLock<Result<Arc<StressField>, String>>,
-}
-
-impl Solved {
-    /// The displacement ([`Solved::displacement`]), computed on first use and kept.
-    pub fn u(&self) -> &[f64] {
-        self.displacement
-            .get_or_init(|| self.solution.displacement(&self.disc))
-    }
-
-    /// The stresses of this solution (on `scenario`'s material), computed on first use and
-    /// kept.
-    pub fn stress_field(&self, scenario: &Scenario) -> Result<Arc<StressField>, String> {
-        self.stresses
-            .get_or_init(|| {
-                StressField::new(
-                    &self.disc.mesh,
-                    &scenario.material,
-                    scenario.integration,
-                    self.u(),
-                )
-                .map(Arc::new)
-                .map_err(|e| e.to_string())
-            })
-            .clone()
-    }
-}
-
-impl std::fmt::Debug for Solved {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("Solved")
-            .field("key", &self.key)
-            .field("load", &self.solution.load)
-            .finish_non_exhaustive()
-    }
-}
 
 /// Owns the discretisation cache (least recently used last out) and the warm start.
 pub struct Engine {

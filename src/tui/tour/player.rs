@@ -13,7 +13,7 @@ use crate::scenario::Scenario;
 use super::super::app::{App, Command, InfSupKey, Msg};
 use super::super::beta::InfSup;
 use super::super::keys::{TourAction, tour_action};
-use super::super::worker::Solved;
+use super::super::protocol::Solved;
 use super::Tour;
 use super::view::caption_rows;
 

@@ -12,7 +12,7 @@ use ratatui::widgets::{Block, Paragraph};
 use crate::contact::Obstacle;
 
 use super::super::app::App;
-use super::super::worker::Solved;
+use super::super::protocol::Solved;
 use super::Look;
 use super::fmt::{sig, title_fit};
 use super::zone::zoom_range;

@@ -15,8 +15,8 @@ use ratatui::widgets::{Block, Paragraph};
 use crate::stress::{Peak, Quantity, StressField};
 
 use super::super::app::App;
+use super::super::protocol::Solved;
 use super::super::theme::Theme;
-use super::super::worker::Solved;
 use super::Look;
 use super::fmt::sig;
 use super::zone::zoom_range;

@@ -2,7 +2,7 @@
 //! contact, with the neighbouring vertices where p̄ falls to 0), mirrored for a half model,
 //! widened by a margin. Computed here from the solution's p̄ (the library has no such call).
 
-use super::super::worker::Solved;
+use super::super::protocol::Solved;
 
 /// The x range to zoom to: the contact zone plus a quarter of its width on each side (at
 /// least two of the mesh's cells at the zone's edges), within `[lo, hi]`; None without
