@@ -1,14 +1,12 @@
 //! The command line (clap): `riplab [SCENARIO]`, `riplab solve`, and the other commands.
 
 use std::io::Write as _;
-use std::ops::ControlFlow;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Args, Parser, Subcommand};
 
 use crate::contact::method::MethodError;
-use crate::contact::penalty::NewtonOptions;
 use crate::contact::{Method, Rule};
 use crate::error::SolveError;
 use crate::infsup::{TraceCompliance, estimate};
@@ -18,7 +16,7 @@ use crate::report::{
 };
 use crate::scenario::{MAX_LEVEL, Scenario, ScenarioError, check};
 use crate::scheme::Scheme;
-use crate::solve::{ContactParams, Discretization, check_request, solve_contact};
+use crate::solve::{ContactParams, Discretization, check_request, sweep};
 use crate::stress::StressField;
 use crate::study::{all_ok, convergence, epsilon_sweep};
 use crate::tui::{MarkerChoice, TuiOptions, render_to_string};
@@ -459,9 +457,9 @@ fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
     } else {
         args.depth.clone()
     };
-    let sweep = epsilons.len() > 1 || depths.len() > 1;
+    let many = epsilons.len() > 1 || depths.len() > 1;
     if let Some(path) = &args.plot {
-        if sweep {
+        if many {
             return Err(usage("--plot", "plots one solve; a sweep has several".into()));
         }
         crate::plot::check_target(path, args.force).map_err(|e| plot_error(path, &e))?;
@@ -477,7 +475,7 @@ fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
     };
     // A single solve's request with no answer is refused before any assembly; in a sweep each
     // row says for itself.
-    if !sweep {
+    if !many {
         check_request(
             &scenario,
             level,
@@ -485,7 +483,7 @@ fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
             &params(epsilons[0], depths[0]),
         )?;
     }
-    if sweep && args.vtu.is_some() {
+    if many && args.vtu.is_some() {
         return Err(usage("--vtu", "exports one solve; a sweep has several".into()));
     }
     // Before any work: an existing file is refused unless --force, and then only a regular one.
@@ -494,59 +492,48 @@ fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
     }
 
     let disc = Discretization::of(&scenario, level, scenario.element)?;
+    let instances: Vec<ContactParams> = epsilons
+        .iter()
+        .flat_map(|&e| depths.iter().map(move |&d| (e, d)))
+        .map(|(e, d)| params(e, d))
+        .collect();
     let mut rows: Vec<Result<SolveReport, SweepFailure>> = Vec::new();
-    let mut previous: Option<Vec<f64>> = None;
-    for &epsilon in &epsilons {
-        for &depth in &depths {
-            let params = params(epsilon, depth);
-            let solved = solve_contact(
-                &disc,
-                &params,
-                previous.as_deref(),
-                &NewtonOptions::default(),
-                &mut |_| ControlFlow::Continue(()),
-            );
-            let mut sol = match solved {
-                Ok(sol) => sol,
-                Err(e) if sweep => {
-                    rows.push(Err(SweepFailure::new(&scenario, &disc, &params, &e)));
-                    continue;
-                }
-                Err(e) => return Err(e.into()),
-            };
-            if rows.is_empty() {
-                // The first solve pays for the mesh's work; later ones in a sweep reuse it.
-                sol.timing.include_mesh_work(&disc);
+    for (params, solved) in instances.iter().zip(sweep(&disc, &instances)) {
+        let sol = match solved {
+            Ok(sol) => sol,
+            Err(e) if many => {
+                rows.push(Err(SweepFailure::new(&scenario, &disc, params, &e)));
+                continue;
             }
-            previous = Some(sol.newton.forces.clone());
-            for w in &sol.warnings {
-                note(&format!(
-                    "warning: ε = {:e}, depth = {}: {w}",
-                    epsilon,
-                    crate::text::num(depth)
-                ));
-            }
-            rows.push(Ok(SolveReport::new(&scenario, level, &disc, &sol)));
-            if let Some(path) = &args.plot {
-                let title = crate::plot::chart_title(&scenario.name, disc.mesh.element, level, &sol);
-                crate::plot::pressure_svg(path, &title, &sol, scenario.half_model, args.force)
-                    .map_err(|e| CliError::Failed(format!("--plot {e}")))?;
-            }
-            if let Some(path) = &args.vtu {
-                let field = StressField::of_solution(&scenario, &disc, &sol)
-                    .map_err(|e| CliError::Failed(format!("the stress field: {e}")))?;
-                let [body, contact] = vtu::write(path, &disc, &sol, &field, args.force)
-                    .map_err(|e| CliError::Failed(format!("--vtu {e}")))?;
-                note(&format!("wrote {} and {}", body.display(), contact.display()));
-            }
+            Err(e) => return Err(e.into()),
+        };
+        for w in &sol.warnings {
+            note(&format!(
+                "warning: ε = {:e}, depth = {}: {w}",
+                params.epsilon,
+                crate::text::num(params.obstacle.depth())
+            ));
+        }
+        rows.push(Ok(SolveReport::new(&scenario, level, &disc, &sol)));
+        if let Some(path) = &args.plot {
+            let title = crate::plot::chart_title(&scenario.name, disc.mesh.element, level, &sol);
+            crate::plot::pressure_svg(path, &title, &sol, scenario.half_model, args.force)
+                .map_err(|e| CliError::Failed(format!("--plot {e}")))?;
+        }
+        if let Some(path) = &args.vtu {
+            let field = StressField::of_solution(&scenario, &disc, &sol)
+                .map_err(|e| CliError::Failed(format!("the stress field: {e}")))?;
+            let [body, contact] = vtu::write(path, &disc, &sol, &field, args.force)
+                .map_err(|e| CliError::Failed(format!("--vtu {e}")))?;
+            note(&format!("wrote {} and {}", body.display(), contact.display()));
         }
     }
     let out = match (args.format, &rows[..]) {
-        (Format::Json, [Ok(report)]) if !sweep => {
+        (Format::Json, [Ok(report)]) if !many => {
             serde_json::to_string_pretty(report).expect("serialisable") + "\n"
         }
-        (Format::Csv, [Ok(report)]) if !sweep => report.csv(),
-        (Format::Table, [Ok(report)]) if !sweep => report.table(),
+        (Format::Csv, [Ok(report)]) if !many => report.csv(),
+        (Format::Table, [Ok(report)]) if !many => report.table(),
         (format, _) => sweep_output(&rows, format),
     };
     print(&out)?;

@@ -514,6 +514,33 @@ pub fn solve_scenario(scenario: &Scenario) -> Result<(Discretization, Solution),
     Ok((disc, sol))
 }
 
+/// Solve every instance of `params` on `disc` in order, each warm-started from the contact
+/// forces of the last one that solved (a sweep over ε or the depth costs one mesh's work and
+/// a few Newton steps per value). The first solution is charged with the mesh's work; a
+/// failure is its instance's result, and the sweep goes on.
+pub fn sweep(disc: &Discretization, params: &[ContactParams]) -> Vec<Result<Solution, SolveError>> {
+    let mut previous: Option<Vec<f64>> = None;
+    let mut results = Vec::with_capacity(params.len());
+    for p in params {
+        let solved = solve_contact(
+            disc,
+            p,
+            previous.as_deref(),
+            &NewtonOptions::default(),
+            &mut |_| ControlFlow::Continue(()),
+        );
+        let solved = solved.map(|mut sol| {
+            if results.is_empty() {
+                sol.timing.include_mesh_work(disc);
+            }
+            previous = Some(sol.newton.forces.clone());
+            sol
+        });
+        results.push(solved);
+    }
+    results
+}
+
 impl Timing {
     /// Charge this solve with the mesh's work too (a fresh solve).
     pub fn include_mesh_work(&mut self, disc: &Discretization) {
@@ -552,5 +579,32 @@ mod tests {
         );
         let pivot = fem_error(FemError::NotPositiveDefinite, 7);
         assert!(matches!(pivot, SolveError::Factorization(_)) && pivot.to_string().contains("rigid motion"));
+    }
+
+    /// Issue 11 item 5: a sweep on one mesh gives each instance the solution a fresh solve
+    /// gives, charges the mesh's work to the first only, and goes on past a failure.
+    #[test]
+    fn a_sweep_equals_fresh_solves_and_goes_on_past_a_failure() {
+        let mut scenario = Scenario::paper();
+        scenario.level = 1;
+        let disc = Discretization::of(&scenario, 1, scenario.element).unwrap();
+        let at = |epsilon: f64, depth: f64| {
+            ContactParams::by_epsilon(scenario.rule, epsilon, scenario.obstacle.with_depth(depth))
+        };
+        // The middle instance's depth is beyond the body: refused, the sweep goes on.
+        let params = [at(1e-6, 0.8), at(1e-6, 1e9), at(1e-7, 0.6)];
+        let results = sweep(&disc, &params);
+        assert!(matches!(results[1], Err(SolveError::Input { .. })));
+        for k in [0, 2] {
+            let swept = results[k].as_ref().unwrap();
+            let fresh = solve_contact(&disc, &params[k], None, &NewtonOptions::default(), &mut |_| {
+                ControlFlow::Continue(())
+            })
+            .unwrap();
+            assert!((swept.load - fresh.load).abs() < 1e-9 * fresh.load, "{k}");
+        }
+        let first = &results[0].as_ref().unwrap().timing;
+        let last = &results[2].as_ref().unwrap().timing;
+        assert!(first.assembly > 0.0 && last.assembly == 0.0);
     }
 }
