@@ -1607,3 +1607,30 @@ fn the_method_key_cycles_and_the_method_line_shows() {
     }
     assert_eq!(seen, ["exact", "alm", "nitsche", "penalty"]);
 }
+
+/// The settings line at 80 columns never cuts a number: with a long method label (Nitsche's
+/// parameters) at the finest level, the counts and then the parameters give way and the depth
+/// is whole ("d=0" was drawn for d = 0.8).
+#[test]
+fn the_settings_line_drops_fields_rather_than_cutting_a_number() {
+    use riplab::contact::Method;
+    for method in [
+        Method::Penalty,
+        Method::Exact,
+        Method::Alm { tolerance: 1e-10 },
+        Method::Nitsche {
+            theta: -1,
+            gamma0: 100.0,
+        },
+    ] {
+        for level in [0, MAX_APP_LEVEL] {
+            let mut app = App::new(Scenario::paper());
+            (app.settings.method, app.settings.level) = (method, level);
+            app.settings.rule = Rule::Trapezoid;
+            let text = render_app(&app, &LOOK, 80, 24);
+            let line = text.lines().nth(1).unwrap().trim_end();
+            assert!(line.ends_with("│ d=0.8"), "{method:?} level {level}: {line}");
+            assert!(line.contains(&format!("level {level} ")), "{line}");
+        }
+    }
+}

@@ -45,11 +45,13 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, theme: Theme) {
         Paragraph::new(Line::from(tabs)).alignment(Alignment::Right),
         right,
     );
-    frame.render_widget(Paragraph::new(settings_line(app, theme)), second);
+    frame.render_widget(Paragraph::new(settings_line(app, theme, second.width)), second);
 }
 
-/// "M1 q1+gauss1 │ level 0 h=1 │ 32 el 90 dofs │ ε=1e-6 │ d=0.8" (dofs once solved).
-fn settings_line(app: &App, theme: Theme) -> Line<'static> {
+/// "M1 q1+gauss1 │ level 0 h=1 │ 32 el 90 dofs │ ε=1e-6 │ d=0.8" (dofs once solved), within
+/// `width` columns: the element and dof counts go first, then the method's parameters, so
+/// that no number is ever cut (a cut "d=0.8" would read "d=0").
+fn settings_line(app: &App, theme: Theme, width: u16) -> Line<'static> {
     let s = &app.settings;
     let scheme = match Scheme::new(s.element, s.rule).name() {
         Some(m) => format!("{m} "),
@@ -59,28 +61,46 @@ fn settings_line(app: &App, theme: Theme) -> Line<'static> {
         .current()
         .map(|c| format!(" {} dofs", c.disc.n_dofs()))
         .unwrap_or_default();
-    let sep = || Span::styled(" │ ", theme.faint());
-    Line::from(vec![
-        Span::raw(" "),
-        Span::styled(
-            format!("{scheme}{}+{}", s.element.name(), s.rule.name()),
-            theme.title(),
-        ),
-        sep(),
-        Span::raw(format!("level {} h={}", s.level, sig(app.scenario.h(s.level), 3))),
-        sep(),
-        Span::raw(format!(
-            "{} el{dofs}",
-            app.scenario.n_elements(s.level, s.element)
-        )),
-        sep(),
-        // The penalty is the paper's method: its ε alone (the method line names it).
-        Span::raw(match s.method {
-            Method::Penalty => format!("ε={:e}", s.epsilon),
-            Method::Alm { .. } => format!("alm ε={:e}", s.epsilon),
-            m => m.label(),
-        }),
-        sep(),
-        Span::raw(format!("d={}", sig(s.depth, 4))),
-    ])
+    let counts = format!("{} el{dofs}", app.scenario.n_elements(s.level, s.element));
+    // The penalty is the paper's method: its ε alone (the method line names it).
+    let method = match s.method {
+        Method::Penalty => format!("ε={:e}", s.epsilon),
+        Method::Alm { .. } => format!("alm ε={:e}", s.epsilon),
+        m => m.label(),
+    };
+    let short_method = match s.method {
+        Method::Penalty | Method::Alm { .. } => method.clone(),
+        m => m.name().to_string(),
+    };
+    let fields = |counts: Option<&str>, method: &str| -> Line<'static> {
+        let sep = || Span::styled(" │ ", theme.faint());
+        let mut spans = vec![
+            Span::raw(" "),
+            Span::styled(
+                format!("{scheme}{}+{}", s.element.name(), s.rule.name()),
+                theme.title(),
+            ),
+            sep(),
+            Span::raw(format!("level {} h={}", s.level, sig(app.scenario.h(s.level), 3))),
+        ];
+        if let Some(c) = counts {
+            spans.extend([sep(), Span::raw(c.to_string())]);
+        }
+        spans.extend([
+            sep(),
+            Span::raw(method.to_string()),
+            sep(),
+            Span::raw(format!("d={}", sig(s.depth, 4))),
+        ]);
+        Line::from(spans)
+    };
+    let fits = |line: &Line| line.width() <= usize::from(width);
+    [
+        fields(Some(&counts), &method),
+        fields(None, &method),
+        fields(None, &short_method),
+    ]
+    .into_iter()
+    .find(fits)
+    .unwrap_or_else(|| fields(None, &short_method))
 }
