@@ -206,11 +206,15 @@ impl SolveReport {
         let outer = self
             .outer_iterations
             .map_or(String::new(), |n| format!("{n} multiplier updates, "));
+        let epsilon = if self.method.uses_epsilon() {
+            format!(", ε = {:e}", self.epsilon)
+        } else {
+            String::new()
+        };
         let _ = writeln!(
             s,
-            "method {}, ε = {:e}, depth = {}, {outer}Newton: {} iterations, {state} (relative residual {:.1e})",
+            "method {}{epsilon}, depth = {}, {outer}Newton: {} iterations, {state} (relative residual {:.1e})",
             self.method.label(),
-            self.epsilon,
             self.depth,
             self.newton_iterations,
             self.residual
@@ -344,8 +348,8 @@ pub fn sweep_output(rows: &[Result<SolveReport, SweepFailure>], format: Format) 
         let _ = match row {
             Ok(r) => writeln!(
                 s,
-                "{:>10.1e} {:>8} {:>7} {:>10} {:>14.6} {:>12.4} {:>12.4} {:>10.1}  {}",
-                r.epsilon,
+                "{} {:>8} {:>7} {:>10} {:>14.6} {:>12.4} {:>12.4} {:>10.1}  {}",
+                r.method.epsilon_text(r.epsilon, 10),
                 r.depth,
                 r.newton_iterations,
                 r.converged,
@@ -598,8 +602,12 @@ pub fn study_output(scenario: &str, reference: &Reference, rows: &[StudyRow], fo
             s.push('\n');
         }
         let head = format!(
-            "{:<14} {:>5} {:>9.6} {:>8.1e} {:>8}",
-            r.scheme, r.level, r.h, r.epsilon, r.n_dofs
+            "{:<14} {:>5} {:>9.6} {} {:>8}",
+            r.scheme,
+            r.level,
+            r.h,
+            r.method.epsilon_text(r.epsilon, 8),
+            r.n_dofs
         );
         let (Some(e), Some(iterations), Some(ms)) = (&r.errors, r.newton_iterations, r.solve_ms) else {
             // No result: the reason in place of the numbers.

@@ -406,3 +406,22 @@ fn the_method_is_in_every_output() {
         assert_eq!(col(row, "theta"), "");
     }
 }
+
+/// Nitsche does not use ε (γ₀ takes its place): its tables print no ε rather than the
+/// scenario's, which meant nothing.
+#[test]
+fn nitsche_tables_print_no_epsilon() {
+    let base = ["solve", "--scheme", "M3", "--level", "0", "--method", "nitsche"];
+    let (code, out, err) = riplab(&base);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        out.contains("method nitsche (θ = 1, γ₀ = 100), depth = 0.8"),
+        "{out}"
+    );
+    assert!(!out.contains("ε ="), "{out}");
+    let (code, out, err) = riplab(&[&base[..], &["--depth", "0.6,0.8"]].concat());
+    assert_eq!(code, 0, "{err}");
+    let rows: Vec<&str> = out.lines().filter(|l| l.contains("nitsche (θ")).collect();
+    assert_eq!(rows.len(), 2, "{out}");
+    assert!(rows.iter().all(|r| r.trim_start().starts_with('—')), "{out}");
+}

@@ -264,6 +264,21 @@ impl MethodFields {
         }
     }
 
+    /// Whether ε means anything for this method (not for Nitsche, whose γ₀ takes its place):
+    /// the tables print "—" for it otherwise.
+    pub fn uses_epsilon(&self) -> bool {
+        self.method != "nitsche"
+    }
+
+    /// ε as the tables print it, `width` wide: "—" when the method does not use it.
+    pub fn epsilon_text(&self, epsilon: f64, width: usize) -> String {
+        if self.uses_epsilon() {
+            format!("{epsilon:>width$.1e}")
+        } else {
+            format!("{:>width$}", "—")
+        }
+    }
+
     /// The CSV cells of these fields (empty for None).
     pub fn csv(&self) -> String {
         let opt = |v: Option<String>| v.unwrap_or_default();
