@@ -105,6 +105,8 @@ pub struct TourArgs {
 pub struct RenderArgs {
     #[command(flatten)]
     pub select: Select,
+    #[command(flatten)]
+    pub method: MethodArgs,
     /// Scene: explore, infsup, mesh, convergence (the study takes seconds) or stress.
     #[arg(long, default_value = "explore", value_parser = ["explore", "infsup", "mesh", "convergence", "stress"])]
     pub scene: String,
@@ -740,7 +742,10 @@ fn lab(scenario: Option<PathBuf>, opts: TuiOptions) -> Result<ExitCode, CliError
 fn render(args: &RenderArgs) -> Result<ExitCode, CliError> {
     // The size first: nothing is loaded or allocated for a frame that cannot be drawn.
     let (width, height) = crate::tui::parse_size(&args.size).map_err(|m| usage("--size", m))?;
-    let scenario = args.select.resolve()?;
+    let mut scenario = args.select.resolve()?;
+    if let Some(method) = args.method.resolve(&scenario)? {
+        scenario.method = method;
+    }
     if let Some(e) = args.epsilon {
         check::positive(e)
             .and_then(|()| check::epsilon_in(e, scenario.epsilon_range(scenario.level)))

@@ -425,3 +425,18 @@ fn nitsche_tables_print_no_epsilon() {
     assert_eq!(rows.len(), 2, "{out}");
     assert!(rows.iter().all(|r| r.trim_start().starts_with('—')), "{out}");
 }
+
+/// Issue 14: `riplab render` takes the method and its parameters like `solve` (a frame of any
+/// method for logs and documents); a bad one is refused with the allowed values.
+#[test]
+fn render_takes_the_method() {
+    let (code, out, err) = riplab(&[
+        "render", "--method", "nitsche", "--theta", "-1", "--size", "80x24",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("nitsche (θ = -1, γ₀ = 100)"), "{out}");
+    assert!(out.contains("nitsche: needs γ₀"), "{out}");
+    let (code, _, err) = riplab(&["render", "--method", "foo"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("allowed: penalty, exact, alm, nitsche"), "{err}");
+}
