@@ -94,13 +94,14 @@ fn settings_line(app: &App, theme: Theme, width: u16) -> Line<'static> {
         ]);
         Line::from(spans)
     };
-    let fits = |line: &Line| line.width() <= usize::from(width);
-    [
+    // The fullest line that fits; the shortest when none does.
+    let [full, no_counts, shortest] = [
         fields(Some(&counts), &method),
         fields(None, &method),
         fields(None, &short_method),
-    ]
-    .into_iter()
-    .find(fits)
-    .unwrap_or_else(|| fields(None, &short_method))
+    ];
+    [full, no_counts]
+        .into_iter()
+        .find(|line| line.width() <= usize::from(width))
+        .unwrap_or(shortest)
 }
