@@ -1,9 +1,7 @@
 //! The inf-sup estimate of docs/design.md §5 against a brute-force dense computation, a case done by
 //! hand, and the paper's claims about M1–M4.
 
-mod common;
-
-use common::{paper_with, rel};
+use crate::common::{paper_with, rel};
 use nalgebra::{DMatrix, SymmetricEigen};
 use riplab::contact::{ContactPoints, Rule};
 use riplab::fem::{Form, Integration, assemble};
