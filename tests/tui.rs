@@ -766,12 +766,35 @@ fn w_makes_a_study_of_the_methods() {
         panic!("the study is cached: {:?}", app.studies);
     };
     assert_eq!(methods_of(study), ["penalty", "alm", "nitsche", "exact"]);
-    assert!(study.rows.iter().all(|r| r.scheme == "M1" && r.status == Status::Ok));
-    let load = |name: &str| study.rows.iter().find(|r| r.method.method == name).unwrap().load.unwrap();
+    assert!(
+        study
+            .rows
+            .iter()
+            .all(|r| r.scheme == "M1" && r.status == Status::Ok)
+    );
+    let load = |name: &str| {
+        study
+            .rows
+            .iter()
+            .find(|r| r.method.method == name)
+            .unwrap()
+            .load
+            .unwrap()
+    };
     let rel = |a: f64, b: f64| (a - b).abs() / b.abs();
     // The ALM has no penalty error: its load is the exact one; the penalty's is not.
-    assert!(rel(load("alm"), load("exact")) < 1e-9, "{} {}", load("alm"), load("exact"));
-    assert!(rel(load("penalty"), load("exact")) > 1e-6, "{} {}", load("penalty"), load("exact"));
+    assert!(
+        rel(load("alm"), load("exact")) < 1e-9,
+        "{} {}",
+        load("alm"),
+        load("exact")
+    );
+    assert!(
+        rel(load("penalty"), load("exact")) > 1e-6,
+        "{} {}",
+        load("penalty"),
+        load("exact")
+    );
     // Only the ALM updates a multiplier.
     let updates: Vec<bool> = study.rows.iter().map(|r| r.outer_iterations.is_some()).collect();
     assert_eq!(updates, [false, true, false, false]);
@@ -800,6 +823,14 @@ fn the_schemes_study_runs_the_labs_method() {
     assert_ne!(alm[0].key, penalty.key);
     assert_eq!(alm[0].key.methods, [app.settings.method]);
     assert_eq!(alm[0].key.label(), "M1–M4 (exact)");
+    // ε: the methods' study runs at the lab's (the penalty's error depends on it), the
+    // schemes' at the scenario's.
+    app.update(ch('w'));
+    assert_eq!(app.study_key().epsilon, 1e-6);
+    app.update(ch('+'));
+    assert_eq!(app.study_key().epsilon, 1e-5);
+    app.update(ch('w'));
+    assert_eq!(app.study_key().epsilon, 1e-6);
 }
 
 /// A made-up study of the methods on M2 at levels 0..=2 (fixed timings): `exact` has no
@@ -816,7 +847,15 @@ fn methods_app() -> App {
     for (i, &method) in key.methods.iter().enumerate() {
         for level in 0..=2u32 {
             let f = f64::from(1 << level);
-            let mut r = row("M2", level, [90, 306, 1122][level as usize], 2.0 * f * f * (1.0 + i as f64), 0.5 / f, 0.2 / f, 0.05 / f);
+            let mut r = row(
+                "M2",
+                level,
+                [90, 306, 1122][level as usize],
+                2.0 * f * f * (1.0 + i as f64),
+                0.5 / f,
+                0.2 / f,
+                0.05 / f,
+            );
             r.rule = "gauss2";
             r.method = method.into();
             r.outer_iterations = (method.name() == "alm").then_some(3);
@@ -839,14 +878,20 @@ fn methods_app() -> App {
 #[test]
 fn convergence_methods_80x24() {
     let app = methods_app();
-    assert!(app.clone().update(Msg::Resize).commands.is_empty(), "a cached study asks for nothing more");
+    assert!(
+        app.clone().update(Msg::Resize).commands.is_empty(),
+        "a cached study asks for nothing more"
+    );
     let text = frame(&app, 80, 24);
     assert!(text.contains("exact: kernel"), "{text}");
     let mono = render_app(&app, &MONO, 80, 24);
     for entry in ["⠒P⠒ penalty p̄", "⠒A⠒ alm p̄", "⠒N⠒ nitsche p̄", "⠒E⠒ exact: kernel"] {
         assert!(mono.contains(entry), "legend entry `{entry}` in\n{mono}");
     }
-    assert!(mono.contains("kernel: ε = 0 imposes"), "the table says why:\n{mono}");
+    assert!(
+        mono.contains("kernel: ε = 0 imposes"),
+        "the table says why:\n{mono}"
+    );
     snap!("tui__convergence_methods_80x24", text);
 }
 

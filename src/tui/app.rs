@@ -15,8 +15,8 @@ use crate::stress::Quantity;
 use super::beta::InfSup;
 use super::keys::{LabAction, lab_action};
 pub use super::protocol::{
-    Compare, InfSupKey, InfSupRequest, Progress, Response, SolveKey, SolveRequest, Solved, StressRequest, Study,
-    StudyKey, StudyRequest,
+    Compare, InfSupKey, InfSupRequest, Progress, Response, SolveKey, SolveRequest, Solved, StressRequest,
+    Study, StudyKey, StudyRequest,
 };
 
 /// The finest level the interactive lab (and `riplab render`) offers: a change at level 6
@@ -287,15 +287,21 @@ impl App {
     }
 
     /// The study the convergence scene shows at the current settings: M1–M4 with the lab's
-    /// method, or the methods ([`compared_methods`]) on the lab's scheme.
+    /// method at the scenario's ε ([`App::defaults`]), or the methods ([`compared_methods`]) on
+    /// the lab's scheme at the lab's ε (what the penalty's error depends on).
     pub fn study_key(&self) -> StudyKey {
         let s = &self.settings;
-        let (schemes, methods) = match self.compare {
+        let (schemes, methods, epsilon) = match self.compare {
             Compare::Schemes => (
                 Scheme::PAPER.iter().map(|m| (m.element, m.rule)).collect(),
                 vec![s.method],
+                App::defaults(&self.scenario).epsilon,
             ),
-            Compare::Methods => (vec![(s.element, s.rule)], compared_methods(s.method).to_vec()),
+            Compare::Methods => (
+                vec![(s.element, s.rule)],
+                compared_methods(s.method).to_vec(),
+                s.epsilon,
+            ),
         };
         StudyKey {
             scenario: self.scenario.name.clone(),
@@ -303,6 +309,7 @@ impl App {
             compare: self.compare,
             schemes,
             methods,
+            epsilon,
         }
     }
 

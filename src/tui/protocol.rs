@@ -49,7 +49,7 @@ pub enum Compare {
 
 /// What a work–precision study depends on: the scenario (by name), the finest level
 /// studied, and the schemes and methods it runs (each scheme with each method at levels
-/// 0..=`max_level`, at the scenario's ε) against the Q2 reference at `max_level + 1`.
+/// 0..=`max_level`, at `epsilon`) against the Q2 reference at `max_level + 1`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct StudyKey {
     pub scenario: String,
@@ -60,9 +60,12 @@ pub struct StudyKey {
     pub schemes: Vec<(Element, Rule)>,
     /// The methods run, in the legend's order.
     pub methods: Vec<Method>,
+    /// The penalty parameter of `penalty` and `alm` (the others do not use it).
+    pub epsilon: f64,
 }
 
-/// A method's parameters are finite ([`Method::check`]), so equality is an equivalence.
+/// A method's parameters and ε are finite ([`Method::check`], [`super::app::EPSILON_RANGE`]),
+/// so equality is an equivalence.
 impl Eq for StudyKey {}
 
 impl std::hash::Hash for StudyKey {
@@ -71,6 +74,7 @@ impl std::hash::Hash for StudyKey {
         self.max_level.hash(state);
         self.compare.hash(state);
         self.schemes.hash(state);
+        self.epsilon.to_bits().hash(state);
         for m in &self.methods {
             m.name().hash(state);
             m.theta().hash(state);
@@ -94,8 +98,11 @@ impl StudyKey {
                 format!("M1–M4 ({})", methods.join(", "))
             }
             Compare::Methods => {
-                let schemes: Vec<String> =
-                    self.schemes.iter().map(|&(e, r)| Scheme::new(e, r).label()).collect();
+                let schemes: Vec<String> = self
+                    .schemes
+                    .iter()
+                    .map(|&(e, r)| Scheme::new(e, r).label())
+                    .collect();
                 format!("the methods on {}", schemes.join(", "))
             }
         }

@@ -260,8 +260,8 @@ impl Engine {
     }
 
     /// The work–precision study of `key`: each of its schemes with each of its methods at
-    /// levels 0..=max against the Q2 reference one level finer, at the scenario's ε (the lab's
-    /// default: [`App::defaults`]; fresh solves, so the timings are comparable); each stage
+    /// levels 0..=max against the Q2 reference one level finer, at the key's ε (fresh solves,
+    /// so the timings are comparable); each stage
     /// (the reference, then each level) is announced to `report` with its estimate. A method
     /// a scheme cannot run (`exact` on a rule with a kernel) gives rows that say why.
     pub fn study(&mut self, key: &StudyKey, report: &mut dyn FnMut(Progress)) -> Result<Arc<Study>, String> {
@@ -285,7 +285,6 @@ impl Engine {
         let dir = crate::cache::default_dir();
         let (reference, _) = crate::cache::reference(&self.scenario, key.reference_level(), dir.as_deref())
             .map_err(|e| e.to_string())?;
-        let epsilon = App::defaults(&self.scenario).epsilon;
         let mut rows = Vec::new();
         for level in 0..=key.max_level {
             // One build per element and method at this level.
@@ -307,7 +306,7 @@ impl Engine {
                     &key.schemes,
                     &[level],
                     Some(method),
-                    epsilon,
+                    key.epsilon,
                 ));
             }
         }

@@ -112,15 +112,16 @@ fn bounds(values: impl Iterator<Item = f64>) -> [f64; 2] {
     }
 }
 
-/// The ε of the study's penalty and ALM rows, said as whose it is: the scenario's, or the
-/// paper's when the scenario's is 0 ([`App::defaults`]).
+/// The ε of the study's penalty and ALM rows, said as whose it is: the scenario's (the paper's
+/// when the scenario's is 0, [`App::defaults`]) for M1–M4, the lab's for the methods.
 pub fn study_epsilon(app: &App) -> String {
-    let whose = if app.scenario.epsilon > 0.0 {
-        "the scenario's"
-    } else {
-        "the paper's"
+    let key = app.study_key();
+    let whose = match key.compare {
+        Compare::Methods => "the lab's",
+        Compare::Schemes if app.scenario.epsilon > 0.0 => "the scenario's",
+        Compare::Schemes => "the paper's",
     };
-    format!("{whose} ε={:e}", App::defaults(&app.scenario).epsilon)
+    format!("{whose} ε={:e}", key.epsilon)
 }
 
 /// One curve of the chart: the rows of a scheme (M1–M4) or of a method, its colour and glyph.
@@ -230,14 +231,22 @@ fn table(frame: &mut Frame, area: Rect, theme: Theme, study: &Study, levels: &[u
     let mut lines = vec![Line::styled(head, theme.title())];
     let curves = curves(study);
     for r in study.rows.iter().filter(|r| levels.contains(&r.level)) {
-        let name = if methods { r.method.method } else { r.scheme.as_str() };
+        let name = if methods {
+            r.method.method
+        } else {
+            r.scheme.as_str()
+        };
         let color = curves
             .iter()
             .find(|c| c.name == name)
             .map_or(Color::Reset, |c| c.color);
         let count = |n: Option<usize>| n.map_or("–".to_string(), |n| n.to_string());
         let iterations = if methods {
-            format!(" {:>3} {:>3}", count(r.newton_iterations), count(r.outer_iterations))
+            format!(
+                " {:>3} {:>3}",
+                count(r.newton_iterations),
+                count(r.outer_iterations)
+            )
         } else {
             String::new()
         };
@@ -253,7 +262,9 @@ fn table(frame: &mut Frame, area: Rect, theme: Theme, study: &Study, levels: &[u
             ),
             // Why there is no answer, when the table has room to say it.
             (_, _, status) => match (&r.reason, methods) {
-                (Some(reason), true) => format!(" {:>2} {:>7}  {}: {reason}", r.level, r.n_dofs, status.word()),
+                (Some(reason), true) => {
+                    format!(" {:>2} {:>7}  {}: {reason}", r.level, r.n_dofs, status.word())
+                }
                 _ => format!(" {:>2} {:>7}  {}", r.level, r.n_dofs, status.word()),
             },
         };

@@ -9,9 +9,9 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::Paragraph;
 
 use super::super::app::{App, Compare, Progress, Scene};
-use super::convergence::study_epsilon;
 use super::super::eta::time_left;
 use super::super::theme::Theme;
+use super::convergence::study_epsilon;
 use super::fmt::sig;
 
 pub fn render(app: &App, frame: &mut Frame, area: Rect, theme: Theme) {
@@ -157,12 +157,12 @@ fn state(app: &App, theme: Theme) -> Vec<Span<'static>> {
                 0 => "level 0".to_string(),
                 max => format!("levels 0 to {max}"),
             };
-            let other = match key.compare {
-                Compare::Schemes => "the methods",
-                Compare::Methods => "M1–M4",
+            let (other, plus_minus) = match key.compare {
+                Compare::Schemes => ("the methods", "do not apply"),
+                Compare::Methods => ("M1–M4", "change it"),
             };
             spans.push(Span::raw(format!(
-                "{} at {levels} against q2 level {reference} · w compares {other} · {} (+ − do not apply)",
+                "{} at {levels} against q2 level {reference} · w compares {other} · {} (+ − {plus_minus})",
                 key.label(),
                 study_epsilon(app)
             )));
