@@ -15,6 +15,7 @@ use crate::stress::StressField;
 use crate::study::StudyRow;
 
 use super::beta::InfSup;
+use super::shown::Shown;
 
 /// Everything a contact solve depends on (the scenario aside).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -229,6 +230,8 @@ pub struct Solved {
     /// the whole factor, computed by the worker just after the solution is shown
     /// ([`Engine::displace`]), so that a level step shows its pressures without waiting for it.
     pub displacement: OnceLock<Vec<f64>>,
+    /// What the views show of the solution, computed with it.
+    pub shown: Shown,
     /// Wall time of the request, mesh work included, in ms.
     pub total_ms: f64,
     /// The stresses, computed by the worker when the stress scene first shows this solution

@@ -26,6 +26,7 @@ use super::protocol::{
     InfSupKey, InfSupRequest, Progress, Response, SolveRequest, Solved, StressRequest, Study, StudyKey,
     StudyRequest,
 };
+use super::shown::Shown;
 
 /// How many discretisations (meshes with their factorisations) are kept at most…
 const CACHE_SIZE: usize = 4;
@@ -231,6 +232,7 @@ impl Engine {
                     result: Ok(Arc::new(Solved {
                         key,
                         disc,
+                        shown: Shown::new(&self.scenario, &solution),
                         solution,
                         displacement: OnceLock::new(),
                         total_ms: t.elapsed().as_secs_f64() * 1e3,

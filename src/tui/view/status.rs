@@ -194,10 +194,7 @@ fn state(app: &App, theme: Theme) -> Vec<Span<'static>> {
         sig(solved.solution.load, 5)
     )));
     if app.scenario.half_model {
-        spans.push(Span::raw(format!(
-            " (full {})",
-            sig(2.0 * solved.solution.load, 5)
-        )));
+        spans.push(Span::raw(format!(" (full {})", sig(solved.shown.full_load, 5))));
     }
     if app.show_timing {
         spans.push(Span::raw(format!(" · {} ms", sig(solved.total_ms, 3))));
