@@ -7,6 +7,7 @@ use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use ratatui::symbols::Marker;
 
 use riplab::contact::Rule;
+use riplab::contact::hertz::Hertz;
 use riplab::mesh::Element;
 use riplab::scenario::Scenario;
 use std::sync::Arc;
@@ -893,6 +894,47 @@ fn convergence_methods_80x24() {
         "the table says why:\n{mono}"
     );
     snap!("tui__convergence_methods_80x24", text);
+}
+
+// ---- issue 11 item 7: views only draw ----------------------------------------------------
+
+/// What the views show of a solution is computed once with it ([`riplab::tui::shown::Shown`]),
+/// checked against the solution itself: a half model's p̄ mirrored about x = 0, the whole
+/// body's load twice the half's, Hertz for that load, and a zoom range that is symmetric and
+/// holds every vertex in contact; a full model is neither mirrored nor doubled.
+#[test]
+fn shown_is_the_solution_mirrored_once() {
+    let app = settled(1, Scene::Explore);
+    let solved = app.current().expect("solved");
+    let (sol, shown) = (&solved.solution, &solved.shown);
+    let xs = &sol.points.vertex_x;
+    let n = sol.pbar.len();
+    assert_eq!(shown.pbar.len(), 2 * n);
+    for i in 0..n {
+        assert_eq!(shown.pbar[n + i], (xs[i], sol.pbar[i]));
+        assert_eq!(shown.pbar[n - 1 - i], (-xs[i], sol.pbar[i]));
+    }
+    let half_width = app.scenario.width / 2.0;
+    assert_eq!(shown.x_range, [-half_width, half_width]);
+    assert_eq!(shown.full_load, 2.0 * sol.load);
+    let hertz = Hertz::for_load(&sol.params.obstacle, &app.scenario.material, 2.0 * sol.load);
+    assert!(hertz.is_some());
+    assert_eq!(shown.hertz, hertz);
+    let [a, b] = shown.zone.expect("in contact");
+    assert_eq!(a, -b);
+    let in_contact = (0..n).filter(|&i| sol.pbar[i] > 0.0);
+    assert!(in_contact.clone().count() > 0);
+    for i in in_contact {
+        assert!(a < -xs[i] && xs[i] < b, "x = ±{} in [{a}, {b}]", xs[i]);
+    }
+    let full = Scenario::load(std::path::Path::new("scenarios/hertz-paper-full.toml")).unwrap();
+    assert!(!full.half_model);
+    let mut app = App::new(full.clone());
+    app.settings.level = 0;
+    settle(&mut app, &mut Engine::new(full));
+    let solved = app.current().expect("solved");
+    assert_eq!(solved.shown.full_load, solved.solution.load);
+    assert_eq!(solved.shown.pbar.len(), solved.solution.pbar.len());
 }
 
 // ---- issue 12: the lab draws as exactly as it computes ------------------------------------
