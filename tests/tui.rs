@@ -910,9 +910,9 @@ fn shown_is_the_solution_mirrored_once() {
     let xs = &sol.points.vertex_x;
     let n = sol.pbar.len();
     assert_eq!(shown.pbar.len(), 2 * n);
-    for i in 0..n {
-        assert_eq!(shown.pbar[n + i], (xs[i], sol.pbar[i]));
-        assert_eq!(shown.pbar[n - 1 - i], (-xs[i], sol.pbar[i]));
+    for (i, (&x, &p)) in xs.iter().zip(&sol.pbar).enumerate() {
+        assert_eq!(shown.pbar[n + i], (x, p));
+        assert_eq!(shown.pbar[n - 1 - i], (-x, p));
     }
     let half_width = app.scenario.width / 2.0;
     assert_eq!(shown.x_range, [-half_width, half_width]);

@@ -19,9 +19,12 @@ use super::Look;
 use super::fmt::sig;
 use super::plot::{Axis, Plot, Scale, Series, Stroke};
 
+/// A curve's name, colour and glyph.
+type Legend = (&'static str, Color, char);
+
 /// The schemes in the order of the legend, with their colours and glyphs (as in the
 /// inf-sup scene).
-const SCHEMES: [(&str, Color, char); 4] = [
+const SCHEMES: [Legend; 4] = [
     ("M1", Color::Red, '1'),
     ("M2", Color::Yellow, '2'),
     ("M3", Color::Green, '3'),
@@ -29,7 +32,7 @@ const SCHEMES: [(&str, Color, char); 4] = [
 ];
 /// The methods in the order of the legend ([`super::super::app::compared_methods`]), with
 /// their colours and glyphs.
-const METHODS: [(&str, Color, char); 4] = [
+const METHODS: [Legend; 4] = [
     ("penalty", Color::Red, 'P'),
     ("alm", Color::Green, 'A'),
     ("nitsche", Color::Magenta, 'N'),
@@ -134,7 +137,7 @@ struct Curve<'a> {
 
 /// The curves of `study`: one per scheme or one per method, as the key compares.
 fn curves(study: &Study) -> Vec<Curve<'_>> {
-    let (table, of): (&[(&str, Color, char)], fn(&StudyRow) -> &str) = match study.key.compare {
+    let (table, of): (&[Legend], fn(&StudyRow) -> &str) = match study.key.compare {
         Compare::Schemes => (&SCHEMES, |r| r.scheme.as_str()),
         Compare::Methods => (&METHODS, |r| r.method.method),
     };
