@@ -532,25 +532,6 @@ pub fn study_output(scenario: &str, study: &Study, format: Format) -> String {
         Format::Csv => {
             s.push_str("kind,scheme,element,rule,level,refinements,h,epsilon,method,theta,gamma0,alm_tol,n_dofs,status,newton_iterations,outer_iterations,converged,solve_ms,load,err_p,err_pbar,err_u,err_load,rate_p,rate_pbar,rate_u,rate_load,reason\n");
             let opt = |v: Option<String>| v.unwrap_or_default();
-            // The reference: its estimated error in the error columns (no p̄), why its
-            // refinement stopped short of the target in `reason`.
-            let est = reference.estimate.as_ref();
-            let _ = writeln!(
-                s,
-                "reference,reference,{},{},{},{},{},0,exact,,,,{},ok,,,true,{},{},{},,{},{},,,,,{}",
-                reference.element.name(),
-                reference.rule.name(),
-                reference.level,
-                reference.grid.refinements,
-                reference.grid.h_min(),
-                reference.n_dofs,
-                reference.ms,
-                reference.load,
-                opt(est.map(|e| e.p.to_string())),
-                opt(est.map(|e| e.u.to_string())),
-                opt(est.map(|e| e.load.to_string())),
-                csv_field(reference.stopped.as_deref().unwrap_or(""))
-            );
             for r in rows {
                 let e = r.errors.as_ref();
                 let err = |f: fn(&Errors) -> f64| opt(e.map(|e| f(e).to_string()));
@@ -597,6 +578,25 @@ pub fn study_output(scenario: &str, study: &Study, format: Format) -> String {
                     rate(&f.rates, |e| e.load),
                 );
             }
+            // Last, the reference: its estimated error in the error columns (no p̄), why its
+            // refinement stopped short of the target in `reason`.
+            let est = reference.estimate.as_ref();
+            let _ = writeln!(
+                s,
+                "reference,reference,{},{},{},{},{},0,exact,,,,{},ok,,,true,{},{},{},,{},{},,,,,{}",
+                reference.element.name(),
+                reference.rule.name(),
+                reference.level,
+                reference.grid.refinements,
+                reference.grid.h_min(),
+                reference.n_dofs,
+                reference.ms,
+                reference.load,
+                opt(est.map(|e| e.p.to_string())),
+                opt(est.map(|e| e.u.to_string())),
+                opt(est.map(|e| e.load.to_string())),
+                csv_field(reference.stopped.as_deref().unwrap_or(""))
+            );
             return s;
         }
         Format::Table => {}
