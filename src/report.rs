@@ -744,8 +744,11 @@ fn reference_estimate(reference: &Reference) -> String {
     line
 }
 
+/// Formats one rate of a row's (or a fit's) rates, empty when there are none.
+type RateText = dyn Fn(&Option<Errors>, fn(&Errors) -> f64) -> String;
+
 /// The table's `fit` line of a scheme: its least-squares rates in the rate columns.
-fn fit_line(f: &crate::study::Fit, rate: &dyn Fn(&Option<Errors>, fn(&Errors) -> f64) -> String) -> String {
+fn fit_line(f: &crate::study::Fit, rate: &RateText) -> String {
     format!(
         "{:<66} {:>10} {:>5} {:>10} {:>5} {:>10} {:>5} {:>10} {:>5}",
         format!("  fit: least squares over {} rows", f.rows),

@@ -140,9 +140,7 @@ impl ReferenceMesh {
         let nx = self.xs.len() - 1;
         let mut split = vec![false; nx];
         for &e in &edges {
-            for c in e.saturating_sub(EDGE_WIDTH)..=(e + EDGE_WIDTH).min(nx - 1) {
-                split[c] = true;
-            }
+            split[e.saturating_sub(EDGE_WIDTH)..=(e + EDGE_WIDTH).min(nx - 1)].fill(true);
         }
         let ny = self.ys.len() - 1;
         let top: Vec<bool> = (0..ny).map(|c| c + EDGE_WIDTH >= ny).collect();
