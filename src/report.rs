@@ -724,8 +724,13 @@ fn reference_estimate(reference: &Reference) -> String {
     let Some(e) = &reference.estimate else {
         return "reference's estimated error: none (no coarser reference)".into();
     };
+    let u_note = if reference.grid.refinements > 0 {
+        " (the uniform level's)"
+    } else {
+        ""
+    };
     let mut line = format!(
-        "reference's estimated error (difference from {}): p {:.3e}, u {:.3e}, load {:.3e}",
+        "reference's estimated error (difference from {}): p {:.3e}, u {:.3e}{u_note}, load {:.3e}",
         e.against, e.p, e.u, e.load
     );
     if let Some(t) = &reference.target {

@@ -168,12 +168,15 @@ fn bisect_marked(lines: &[f64], split: &[bool]) -> Vec<f64> {
 
 /// The reference's estimated error: its relative difference from the next coarser reference
 /// (the previous refinement, or the uniform level − 1), p in L²(Γ_C), u in H¹ (7), the load.
+/// After edge refinements u keeps the uniform level's estimate: a refinement leaves the
+/// body's error away from the contact edges as it was, so the difference of two refinements
+/// would miss it (docs/design.md §6).
 #[derive(Clone, Debug, Serialize, PartialEq)]
 pub struct Estimate {
     pub p: f64,
     pub u: f64,
     pub load: f64,
-    /// What it was compared with: `level L` (uniform) or `refinement k`.
+    /// What p and the load were compared with: `level L` (uniform) or `refinement k`.
     pub against: String,
 }
 
@@ -457,6 +460,10 @@ pub fn refine_reference(
             r.stopped = Some(why);
             (r, f)
         };
+        if reference.estimate.as_ref().is_some_and(|e| e.p <= target.p) {
+            let why = "u's estimated error is the uniform level's, which edge refinements do not lower: a finer --reference-level meets it".to_string();
+            return stop(reference, fields, why);
+        }
         if reference.grid.refinements >= max_refinements {
             let why = format!("the cap of {max_refinements} edge refinements (--reference-refinements)");
             return stop(reference, fields, why);
@@ -473,7 +480,11 @@ pub fn refine_reference(
             }
         };
         let mut next = Reference::from_fields(scenario, &grid, &finer);
-        next.estimate = Some(next.estimate_against(scenario, &reference.grid, &fields));
+        let mut estimate = next.estimate_against(scenario, &reference.grid, &fields);
+        if let Some(previous) = &reference.estimate {
+            estimate.u = previous.u;
+        }
+        next.estimate = Some(estimate);
         next.target = Some(target);
         (reference, fields) = (next, finer);
     }
