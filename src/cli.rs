@@ -726,7 +726,8 @@ fn study(args: &StudyArgs) -> Result<ExitCode, CliError> {
         (reference_level, args.reference_refinements as u32),
         &mut fetch,
     )?;
-    if let Some(why) = &study.reference.stopped {
+    // The table says it in its own lines; JSON and CSV carry it in a field.
+    if let (Some(why), false) = (&study.reference.stopped, args.format == Format::Table) {
         note(&format!(
             "warning: the reference's estimated error is above a tenth of the smallest row error; its refinement stopped at {}: {why}",
             study.reference.grid.refinements
