@@ -232,6 +232,29 @@ mod tests {
         fs::remove_dir_all(&dir).unwrap();
     }
 
+    /// A uniform level keeps the key it always had; a refined grid's key names its refinement
+    /// count and every line, so two refinements (or two grids with the same count) never share
+    /// an entry.
+    #[test]
+    fn a_refined_reference_is_keyed_by_its_lines() {
+        let s = Scenario::paper();
+        let uniform = ReferenceMesh::uniform(&s, 1);
+        assert!(!key(&s, &uniform).contains("refinements"));
+        assert!(key(&s, &uniform).contains("level 1\nbody"));
+        let mut once = uniform.clone();
+        once.refinements = 1;
+        once.xs.insert(1, 0.25);
+        let mut moved = once.clone();
+        moved.xs[1] = 0.125;
+        let (a, b) = (key(&s, &once), key(&s, &moved));
+        assert!(a.contains("refinements 1") && a.contains("0.25"), "{a}");
+        assert_ne!(a, b);
+        assert_ne!(a, key(&s, &uniform));
+        // Its lengths follow its lines (one more x-interval: two more Q2 node columns).
+        let ((u0, p0), (u1, p1)) = (uniform.lengths(), once.lengths());
+        assert_eq!((u1 - u0, p1 - p0), (2 * 2 * (2 * 4 * 2 + 1), 2));
+    }
+
     #[test]
     fn fnv1a_matches_its_published_test_vectors() {
         assert_eq!(fnv1a(b""), 0xcbf29ce484222325);
