@@ -8,8 +8,8 @@ use riplab::contact::{Method, Rule};
 use riplab::mesh::Element;
 use riplab::scenario::Scenario;
 use riplab::study::{
-    Errors, Reference, ReferenceFields, ReferenceMesh, Status, StudyRow, Target, convergence, fits,
-    least_squares_slope, refine_reference, uniform_reference,
+    Errors, Plan, Reference, ReferenceFields, ReferenceMesh, Status, StudyRow, Target, convergence, fits,
+    least_squares_slope, refine_reference, study, uniform_reference,
 };
 
 #[test]
@@ -386,4 +386,38 @@ fn reference_refinements_out_of_range_is_refused() {
         );
         assert!(!stderr.contains("the reference: q2"), "{stderr}");
     }
+}
+
+/// The whole study: after the reference is refined, every row's errors are what a fresh solve
+/// measures against the final reference (the rows are re-measured from what they kept, not
+/// solved again), the target is a tenth of the smallest final errors, and each scheme has a fit.
+#[test]
+fn a_refined_study_measures_its_rows_against_the_final_reference() {
+    let scenario = Scenario::paper();
+    let schemes = [(Element::Q1, Rule::Trapezoid), (Element::Q2, Rule::Simpson)];
+    let levels = [0, 1];
+    let mut fetch = |g: &ReferenceMesh| ReferenceFields::solve_on(&scenario, g);
+    let plan = Plan::Levels {
+        levels: &levels,
+        epsilon: 1e-8,
+    };
+    let s = study(&scenario, &schemes, None, plan, (2, 2), &mut fetch).unwrap();
+    assert_eq!(s.reference.grid.refinements, 2, "{:?}", s.reference.stopped);
+    let fresh = convergence(&scenario, &s.reference, &schemes, &levels, None, 1e-8);
+    for (a, b) in s.rows.iter().zip(&fresh) {
+        let (ea, eb) = (a.errors.unwrap(), b.errors.unwrap());
+        for (x, y) in [(ea.p, eb.p), (ea.pbar, eb.pbar), (ea.u, eb.u), (ea.load, eb.load)] {
+            assert!(
+                (x - y).abs() <= 1e-9 * y,
+                "{} level {}: {ea:?} vs {eb:?}",
+                a.scheme,
+                a.level
+            );
+        }
+        assert_eq!(a.rates.is_some(), a.level > 0);
+    }
+    let target = s.reference.target.unwrap();
+    assert_eq!(Some(target), Target::of(&s.rows));
+    assert_eq!(s.fits.len(), 2);
+    assert!(s.fits.iter().all(|f| f.rows == 2 && f.rates.is_some()));
 }
