@@ -309,9 +309,13 @@ fn fits_memory(scenario: &Scenario, grid: &ReferenceMesh) -> Result<(), SolveErr
         points: grid.lengths().1,
     };
     sizes.check(&Limits::of_process()).map_err(|e| {
+        let refined = match grid.refinements {
+            0 => String::new(),
+            k => format!(" + {k} edge refinements"),
+        };
         SolveError::TooLarge(format!(
-            "the reference at level {} with {} edge refinements ({} unknowns): {e}",
-            grid.level, grid.refinements, sizes.unknowns
+            "the reference (q2 + simpson) at level {}{refined}: {e}; choose a coarser --reference-level",
+            grid.level
         ))
     })
 }
