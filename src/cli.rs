@@ -10,7 +10,7 @@ use crate::contact::method::MethodError;
 use crate::contact::{Method, Rule};
 use crate::error::SolveError;
 use crate::mesh::Element;
-use crate::report::{Format, InfSupTable, SolveReport, Sweep, SweepFailure, SweepRow, output, study_output};
+use crate::report::{Format, InfSupTable, SolveReport, StudyReport, Sweep, SweepFailure, SweepRow, output};
 use crate::scenario::{MAX_LEVEL, Scenario, ScenarioError, check};
 use crate::scheme::Scheme;
 use crate::solve::{ContactParams, Discretization, check_request, sweep};
@@ -707,7 +707,13 @@ fn study(args: &StudyArgs) -> Result<ExitCode, CliError> {
             study.reference.grid.refinements
         ));
     }
-    print(&study_output(&scenario.name, &study, args.format))?;
+    print(&output(
+        &StudyReport {
+            scenario: &scenario.name,
+            study: &study,
+        },
+        args.format,
+    ))?;
     let rows = study.rows;
     if all_ok(&rows) {
         Ok(ExitCode::SUCCESS)

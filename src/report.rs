@@ -522,219 +522,231 @@ impl Report for InfSupTable {
     }
 }
 
-/// `riplab study` output: table, CSV, or JSON `{ "reference": …, "rows": […], "fits": […] }`
-/// (docs/design.md §7).
-pub fn study_output(scenario: &str, study: &Study, format: Format) -> String {
-    let (reference, rows) = (&study.reference, &study.rows);
-    let mut s = String::new();
-    let rate = |r: &Option<Errors>, f: fn(&Errors) -> f64| {
-        r.as_ref().map_or(String::new(), |e| format!("{:.2}", f(e)))
-    };
-    match format {
-        Format::Json => {
-            let value = serde_json::json!({
-                "scenario": scenario,
-                "reference": {
-                    "element": reference.element.name(), "rule": reference.rule.name(), "epsilon": 0.0,
-                    "level": reference.level, "refinements": reference.grid.refinements,
-                    "h_min": reference.grid.h_min(), "n_dofs": reference.n_dofs,
-                    "load": reference.load, "ms": reference.ms,
-                    "estimate": reference.estimate, "target": reference.target,
-                    "target_met": reference.target.map(|_| reference.stopped.is_none()), "stopped": reference.stopped,
-                },
-                "rows": rows,
-                "fits": study.fits,
-            });
-            return serde_json::to_string_pretty(&value).expect("serialisable") + "\n";
-        }
-        Format::Csv => {
-            s.push_str("kind,scheme,element,rule,level,refinements,h,epsilon,method,theta,gamma0,alm_tol,n_dofs,status,newton_iterations,outer_iterations,converged,solve_ms,load,err_p,err_pbar,err_u,err_load,rate_p,rate_pbar,rate_u,rate_load,reason\n");
-            let opt = |v: Option<String>| v.unwrap_or_default();
-            for r in rows {
-                let e = r.errors.as_ref();
-                let err = |f: fn(&Errors) -> f64| opt(e.map(|e| f(e).to_string()));
-                let _ = writeln!(
-                    s,
-                    "row,{},{},{},{},,{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
-                    r.scheme,
-                    r.element,
-                    r.rule,
-                    r.level,
-                    r.h,
-                    r.epsilon,
-                    r.method.csv(),
-                    r.n_dofs,
-                    r.status.token(),
-                    opt(r.newton_iterations.map(|n| n.to_string())),
-                    opt(r.outer_iterations.map(|n| n.to_string())),
-                    r.converged,
-                    opt(r.solve_ms.map(|v| v.to_string())),
-                    opt(r.load.map(|v| v.to_string())),
-                    err(|e| e.p),
-                    err(|e| e.pbar),
-                    err(|e| e.u),
-                    err(|e| e.load),
-                    rate(&r.rates, |e| e.p),
-                    rate(&r.rates, |e| e.pbar),
-                    rate(&r.rates, |e| e.u),
-                    rate(&r.rates, |e| e.load),
-                    csv_field(r.reason.as_deref().unwrap_or(""))
-                );
-            }
-            // The least-squares rates of each scheme in the rate columns.
-            for f in &study.fits {
-                let _ = writeln!(
-                    s,
-                    "fit,{},{},{},,,,,{},,,,,,,,,,,,{},{},{},{},",
-                    f.scheme,
-                    f.element,
-                    f.rule,
-                    f.method.csv(),
-                    rate(&f.rates, |e| e.p),
-                    rate(&f.rates, |e| e.pbar),
-                    rate(&f.rates, |e| e.u),
-                    rate(&f.rates, |e| e.load),
-                );
-            }
-            // Last, the reference: its estimated error in the error columns (no p̄), why its
-            // refinement stopped short of the target in `reason`.
-            let est = reference.estimate.as_ref();
-            let _ = writeln!(
-                s,
-                "reference,reference,{},{},{},{},{},0,exact,,,,{},ok,,,true,{},{},{},,{},{},,,,,{}",
-                reference.element.name(),
-                reference.rule.name(),
-                reference.level,
-                reference.grid.refinements,
-                reference.grid.h_min(),
-                reference.n_dofs,
-                reference.ms,
-                reference.load,
-                opt(est.map(|e| e.p.to_string())),
-                opt(est.map(|e| e.u.to_string())),
-                opt(est.map(|e| e.load.to_string())),
-                csv_field(reference.stopped.as_deref().unwrap_or(""))
-            );
-            return s;
-        }
-        Format::Table => {}
+/// `riplab study`: the reference, the rows and each scheme's least-squares fit; JSON
+/// `{ "scenario", "reference", "rows", "fits" }` (docs/design.md §7).
+pub struct StudyReport<'a> {
+    pub scenario: &'a str,
+    pub study: &'a Study,
+}
+
+impl StudyReport<'_> {
+    /// The JSON of the reference (the study's `reference` object).
+    fn reference_json(&self) -> serde_json::Value {
+        let reference = &self.study.reference;
+        serde_json::json!({
+            "element": reference.element.name(), "rule": reference.rule.name(), "epsilon": 0.0,
+            "level": reference.level, "refinements": reference.grid.refinements,
+            "h_min": reference.grid.h_min(), "n_dofs": reference.n_dofs,
+            "load": reference.load, "ms": reference.ms,
+            "estimate": reference.estimate, "target": reference.target,
+            "target_met": reference.target.map(|_| reference.stopped.is_none()), "stopped": reference.stopped,
+        })
     }
-    let _ = writeln!(
-        s,
-        "{scenario}: reference {}+{}, ε = 0 (exact constraint), level {}{}, {} dofs, load {:.6}",
-        reference.element.name(),
-        reference.rule.name(),
-        reference.level,
-        match reference.grid.refinements {
-            0 => String::new(),
-            1 => " + 1 edge refinement".into(),
-            k => format!(" + {k} edge refinements"),
-        },
-        reference.n_dofs,
-        reference.load
-    );
-    let _ = writeln!(s, "{}", reference_estimate(reference));
-    if let Some(why) = &reference.stopped {
+}
+
+impl Serialize for StudyReport<'_> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        serde_json::json!({
+            "scenario": self.scenario,
+            "reference": self.reference_json(),
+            "rows": self.study.rows,
+            "fits": self.study.fits,
+        })
+        .serialize(s)
+    }
+}
+
+/// The study's CSV columns. A line is a `row` (a [`StudyRow`]'s JSON), a `fit` (a
+/// [`crate::study::Fit`]'s: its rates in the `rate_*` columns) or, last, the `reference` (its
+/// smallest cell side as `h`, its estimated error in `err_*`, why its refinement stopped in
+/// `reason`).
+pub const STUDY_COLUMNS: [(&str, Cell); 28] = [
+    ("kind", Cell::Field("/kind")),
+    ("scheme", Cell::Field("/scheme")),
+    ("element", Cell::Field("/element")),
+    ("rule", Cell::Field("/rule")),
+    ("level", Cell::Field("/level")),
+    ("refinements", Cell::Field("/refinements")),
+    ("h", Cell::First(&["/h", "/h_min"])),
+    ("epsilon", Cell::Field("/epsilon")),
+    ("method", Cell::Field("/method")),
+    ("theta", Cell::Field("/theta")),
+    ("gamma0", Cell::Field("/gamma0")),
+    ("alm_tol", Cell::Field("/alm_tol")),
+    ("n_dofs", Cell::Field("/n_dofs")),
+    ("status", Cell::Field("/status")),
+    ("newton_iterations", Cell::Field("/newton_iterations")),
+    ("outer_iterations", Cell::Field("/outer_iterations")),
+    ("converged", Cell::Field("/converged")),
+    ("solve_ms", Cell::First(&["/solve_ms", "/ms"])),
+    ("load", Cell::Field("/load")),
+    ("err_p", Cell::First(&["/errors/p", "/estimate/p"])),
+    ("err_pbar", Cell::Field("/errors/pbar")),
+    ("err_u", Cell::First(&["/errors/u", "/estimate/u"])),
+    ("err_load", Cell::First(&["/errors/load", "/estimate/load"])),
+    ("rate_p", Cell::Field("/rates/p")),
+    ("rate_pbar", Cell::Field("/rates/pbar")),
+    ("rate_u", Cell::Field("/rates/u")),
+    ("rate_load", Cell::Field("/rates/load")),
+    ("reason", Cell::First(&["/reason", "/stopped"])),
+];
+
+/// `value`, an object, with `kind` first.
+fn kind(kind: &str, value: serde_json::Value) -> serde_json::Value {
+    let mut record = serde_json::Map::new();
+    record.insert("kind".into(), kind.into());
+    if let serde_json::Value::Object(fields) = value {
+        record.extend(fields);
+    }
+    serde_json::Value::Object(record)
+}
+
+impl Report for StudyReport<'_> {
+    fn csv(&self) -> String {
+        fn value(v: &impl Serialize) -> serde_json::Value {
+            serde_json::to_value(v).expect("a record is plain data")
+        }
+        let mut records: Vec<serde_json::Value> = Vec::new();
+        records.extend(self.study.rows.iter().map(|r| kind("row", value(r))));
+        records.extend(self.study.fits.iter().map(|f| kind("fit", value(f))));
+        let mut reference = kind("reference", self.reference_json());
+        // The reference is the exact method, solved (or read) and certified.
+        for (key, v) in [
+            ("scheme", "reference".into()),
+            ("method", "exact".into()),
+            ("status", "ok".into()),
+            ("converged", true.into()),
+        ] {
+            reference[key] = v;
+        }
+        records.push(reference);
+        csv_table(&records, &STUDY_COLUMNS)
+    }
+
+    fn table(&self) -> String {
+        let (scenario, study) = (self.scenario, self.study);
+        let (reference, rows) = (&study.reference, &study.rows);
+        let mut s = String::new();
+        let rate = |r: &Option<Errors>, f: fn(&Errors) -> f64| {
+            r.as_ref().map_or(String::new(), |e| format!("{:.2}", f(e)))
+        };
         let _ = writeln!(
             s,
-            "warning: the reference's refinement stopped short of the target: {why}"
+            "{scenario}: reference {}+{}, ε = 0 (exact constraint), level {}{}, {} dofs, load {:.6}",
+            reference.element.name(),
+            reference.rule.name(),
+            reference.level,
+            match reference.grid.refinements {
+                0 => String::new(),
+                1 => " + 1 edge refinement".into(),
+                k => format!(" + {k} edge refinements"),
+            },
+            reference.n_dofs,
+            reference.load
         );
-    }
-    let mut methods: Vec<String> = rows.iter().map(|r| r.method.label()).collect();
-    methods.dedup();
-    if !methods.is_empty() {
-        let _ = writeln!(s, "method: {}", methods.join(", "));
-    }
-    let _ = writeln!(
-        s,
-        "relative errors: p, p̄ in L²(Γ_C); u in H¹ (7); load P; rate = observed order between successive rows; fit = least-squares order over the scheme's rows"
-    );
-    let _ = writeln!(
-        s,
-        "{:<14} {:>5} {:>9} {:>8} {:>8} {:>7} {:>9} {:>10} {:>5} {:>10} {:>5} {:>10} {:>5} {:>10} {:>5}",
-        "scheme",
-        "level",
-        "h",
-        "ε",
-        "dofs",
-        "Newton",
-        "solve ms",
-        "p",
-        "rate",
-        "p̄",
-        "rate",
-        "u",
-        "rate",
-        "load",
-        "rate"
-    );
-    for (i, r) in rows.iter().enumerate() {
-        if i > 0 && rows[i - 1].scheme != r.scheme {
-            s.push('\n');
+        let _ = writeln!(s, "{}", reference_estimate(reference));
+        if let Some(why) = &reference.stopped {
+            let _ = writeln!(
+                s,
+                "warning: the reference's refinement stopped short of the target: {why}"
+            );
         }
-        let head = format!(
-            "{:<14} {:>5} {:>9.6} {} {:>8}",
-            r.scheme,
-            r.level,
-            r.h,
-            r.method.epsilon_text(r.epsilon, 8),
-            r.n_dofs
+        let mut methods: Vec<String> = rows.iter().map(|r| r.method.label()).collect();
+        methods.dedup();
+        if !methods.is_empty() {
+            let _ = writeln!(s, "method: {}", methods.join(", "));
+        }
+        let _ = writeln!(
+            s,
+            "relative errors: p, p̄ in L²(Γ_C); u in H¹ (7); load P; rate = observed order between successive rows; fit = least-squares order over the scheme's rows"
         );
-        let last = rows
-            .get(i + 1)
-            .is_none_or(|n| n.scheme != r.scheme || n.method != r.method);
-        let fit = study
-            .fits
-            .iter()
-            .find(|f| last && f.scheme == r.scheme && f.method == r.method);
-        let (Some(e), Some(iterations), Some(ms)) = (&r.errors, r.newton_iterations, r.solve_ms) else {
-            // No result: the reason in place of the numbers.
-            let reason = r.reason.as_deref().unwrap_or("");
-            let _ = writeln!(s, "{head}  {}: {}", r.status.word(), short_reason(reason));
+        let _ = writeln!(
+            s,
+            "{:<14} {:>5} {:>9} {:>8} {:>8} {:>7} {:>9} {:>10} {:>5} {:>10} {:>5} {:>10} {:>5} {:>10} {:>5}",
+            "scheme",
+            "level",
+            "h",
+            "ε",
+            "dofs",
+            "Newton",
+            "solve ms",
+            "p",
+            "rate",
+            "p̄",
+            "rate",
+            "u",
+            "rate",
+            "load",
+            "rate"
+        );
+        for (i, r) in rows.iter().enumerate() {
+            if i > 0 && rows[i - 1].scheme != r.scheme {
+                s.push('\n');
+            }
+            let head = format!(
+                "{:<14} {:>5} {:>9.6} {} {:>8}",
+                r.scheme,
+                r.level,
+                r.h,
+                r.method.epsilon_text(r.epsilon, 8),
+                r.n_dofs
+            );
+            let last = rows
+                .get(i + 1)
+                .is_none_or(|n| n.scheme != r.scheme || n.method != r.method);
+            let fit = study
+                .fits
+                .iter()
+                .find(|f| last && f.scheme == r.scheme && f.method == r.method);
+            let (Some(e), Some(iterations), Some(ms)) = (&r.errors, r.newton_iterations, r.solve_ms) else {
+                // No result: the reason in place of the numbers.
+                let reason = r.reason.as_deref().unwrap_or("");
+                let _ = writeln!(s, "{head}  {}: {}", r.status.word(), short_reason(reason));
+                if let Some(f) = fit {
+                    let _ = writeln!(s, "{}", fit_line(f, &rate));
+                }
+                continue;
+            };
+            let flag = if r.status == Status::Ok {
+                String::new()
+            } else {
+                format!("  {}", r.status.word().to_uppercase())
+            };
+            let _ = writeln!(
+                s,
+                "{head} {:>7} {:>9.1} {:>10.3e} {:>5} {:>10.3e} {:>5} {:>10.3e} {:>5} {:>10.3e} {:>5}{flag}",
+                iterations,
+                ms,
+                e.p,
+                rate(&r.rates, |e| e.p),
+                e.pbar,
+                rate(&r.rates, |e| e.pbar),
+                e.u,
+                rate(&r.rates, |e| e.u),
+                e.load,
+                rate(&r.rates, |e| e.load)
+            );
             if let Some(f) = fit {
                 let _ = writeln!(s, "{}", fit_line(f, &rate));
             }
-            continue;
-        };
-        let flag = if r.status == Status::Ok {
-            String::new()
-        } else {
-            format!("  {}", r.status.word().to_uppercase())
-        };
-        let _ = writeln!(
-            s,
-            "{head} {:>7} {:>9.1} {:>10.3e} {:>5} {:>10.3e} {:>5} {:>10.3e} {:>5} {:>10.3e} {:>5}{flag}",
-            iterations,
-            ms,
-            e.p,
-            rate(&r.rates, |e| e.p),
-            e.pbar,
-            rate(&r.rates, |e| e.pbar),
-            e.u,
-            rate(&r.rates, |e| e.u),
-            e.load,
-            rate(&r.rates, |e| e.load)
-        );
-        if let Some(f) = fit {
-            let _ = writeln!(s, "{}", fit_line(f, &rate));
         }
-    }
-    let reasons: Vec<String> = rows
-        .iter()
-        .filter(|r| r.status != Status::Ok)
-        .filter_map(|r| {
-            r.reason
-                .as_ref()
-                .map(|why| format!("{} level {} ε = {:e}: {why}", r.scheme, r.level, r.epsilon))
-        })
-        .collect();
-    if !reasons.is_empty() {
-        let _ = writeln!(s, "\nrows without a certified result:");
-        for why in reasons {
-            let _ = writeln!(s, "  {why}");
+        let reasons: Vec<String> = rows
+            .iter()
+            .filter(|r| r.status != Status::Ok)
+            .filter_map(|r| {
+                r.reason
+                    .as_ref()
+                    .map(|why| format!("{} level {} ε = {:e}: {why}", r.scheme, r.level, r.epsilon))
+            })
+            .collect();
+        if !reasons.is_empty() {
+            let _ = writeln!(s, "\nrows without a certified result:");
+            for why in reasons {
+                let _ = writeln!(s, "  {why}");
+            }
         }
+        s
     }
-    s
 }
 
 /// The table's lines on the reference's estimated error and what the study asked of it.

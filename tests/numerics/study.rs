@@ -418,4 +418,44 @@ fn a_refined_study_measures_its_rows_against_the_final_reference() {
     assert_eq!(Some(target), Target::of(&s.rows));
     assert_eq!(s.fits.len(), 2);
     assert!(s.fits.iter().all(|f| f.rows == 2 && f.rates.is_some()));
+    study_csv_is_its_json(&s);
+}
+
+/// The study's CSV (`riplab study --format csv`) is its JSON, line by line: a row per row, a
+/// fit per fit, the reference last; each error, rate and estimate is the JSON's number.
+fn study_csv_is_its_json(s: &riplab::study::Study) {
+    use riplab::report::{Report, STUDY_COLUMNS, StudyReport};
+    let report = StudyReport {
+        scenario: "paper",
+        study: s,
+    };
+    // The value itself (serde_json's text parser may round the last digit).
+    let json = serde_json::to_value(&report).unwrap();
+    let csv = report.csv();
+    let lines: Vec<Vec<&str>> = csv.lines().map(|l| l.split(',').collect()).collect();
+    let header = &lines[0];
+    assert_eq!(header, &STUDY_COLUMNS.map(|c| c.0).to_vec());
+    assert_eq!(lines.len(), 1 + s.rows.len() + s.fits.len() + 1);
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let num = |text: &str| text.parse::<f64>().unwrap();
+    for (i, row) in json["rows"].as_array().unwrap().iter().enumerate() {
+        let line = &lines[1 + i];
+        assert_eq!(line[col("kind")], "row");
+        assert_eq!(num(line[col("err_p")]), row["errors"]["p"].as_f64().unwrap());
+        assert_eq!(num(line[col("err_u")]), row["errors"]["u"].as_f64().unwrap());
+        assert_eq!(line[col("scheme")], row["scheme"].as_str().unwrap());
+    }
+    for (i, fit) in json["fits"].as_array().unwrap().iter().enumerate() {
+        let line = &lines[1 + s.rows.len() + i];
+        assert_eq!(line[col("kind")], "fit");
+        assert_eq!(num(line[col("rate_p")]), fit["rates"]["p"].as_f64().unwrap());
+    }
+    let reference = lines.last().unwrap();
+    assert_eq!(reference[col("kind")], "reference");
+    assert_eq!(num(reference[col("refinements")]), 2.0);
+    assert_eq!(
+        num(reference[col("err_p")]),
+        json["reference"]["estimate"]["p"].as_f64().unwrap()
+    );
+    assert_eq!(num(reference[col("h")]), json["reference"]["h_min"].as_f64().unwrap());
 }
