@@ -31,6 +31,7 @@ pub mod contact;
 pub mod error;
 pub mod fem;
 pub mod infsup;
+pub mod input;
 pub mod material;
 pub mod mesh;
 pub mod plot;

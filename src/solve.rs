@@ -21,7 +21,8 @@ use crate::fem::memory::{Limits, Sizes};
 use crate::fem::{DofMap, FemError, Form, Integration, assemble};
 use crate::material::Material;
 use crate::mesh::{Element, Mesh};
-use crate::scenario::{Scenario, check};
+use crate::input::check;
+use crate::scenario::Scenario;
 use crate::warning::{self, Warning};
 
 fn ms_since(t: Instant) -> f64 {
@@ -253,9 +254,9 @@ pub fn check_params(
         what: "the method",
         message: e.to_string(),
     })?;
-    check::epsilon_in(params.epsilon, range).map_err(|message| SolveError::Input {
+    check::epsilon_in(params.epsilon, range).map_err(|e| SolveError::Input {
         what: "the penalty parameter ε",
-        message,
+        message: e.to_string(),
     })?;
     if params.method.uses_epsilon() && params.epsilon == 0.0 {
         return Err(SolveError::Input {
@@ -266,9 +267,9 @@ pub fn check_params(
             ),
         });
     }
-    check::depth(params.obstacle.depth(), height).map_err(|message| SolveError::Input {
+    check::depth(params.obstacle.depth(), height).map_err(|e| SolveError::Input {
         what: "the indentation depth",
-        message,
+        message: e.to_string(),
     })?;
     if params.method == Method::Exact && n_points > normals {
         return Err(SolveError::Kernel {

@@ -742,10 +742,10 @@ pub fn solve(
     let t = Instant::now();
     check_params(&nitsche)?;
     let points = disc.contact_points(params.rule);
-    crate::scenario::check::depth(params.obstacle.depth(), disc.height()).map_err(|message| {
+    crate::input::check::depth(params.obstacle.depth(), disc.height()).map_err(|e| {
         SolveError::Input {
             what: "the indentation depth",
-            message,
+            message: e.to_string(),
         }
     })?;
     let op = Operator::of(disc, &points, nitsche)?;

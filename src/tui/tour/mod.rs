@@ -18,8 +18,9 @@ use toml::Spanned;
 
 use crate::contact::{Method, Rule};
 use crate::mesh::Element;
-use crate::scenario::Locator as Source;
-use crate::scenario::{Scenario, ScenarioError, check, read_toml};
+use crate::input::Locator as Source;
+use crate::input::{ScenarioError, check, read_toml};
+use crate::scenario::Scenario;
 use crate::scheme::Scheme;
 use crate::text::{sanitize, sanitize_lines};
 
