@@ -10,11 +10,11 @@ use crate::contact::method::MethodError;
 use crate::contact::{Method, Rule};
 use crate::error::SolveError;
 use crate::infsup::{TraceCompliance, estimate};
+use crate::input::{ScenarioError, check};
 use crate::mesh::Element;
 use crate::report::{
     Format, InfSupRow, SolveReport, SweepFailure, infsup_output, study_output, sweep_output,
 };
-use crate::input::{ScenarioError, check};
 use crate::scenario::{MAX_LEVEL, Scenario};
 use crate::scheme::Scheme;
 use crate::solve::{ContactParams, Discretization, check_request, sweep};

@@ -19,9 +19,9 @@ use crate::fem::condense::{TraceFactor, TraceOrdering};
 use crate::fem::error::gib;
 use crate::fem::memory::{Limits, Sizes};
 use crate::fem::{DofMap, FemError, Form, Integration, assemble};
+use crate::input::check;
 use crate::material::Material;
 use crate::mesh::{Element, Mesh};
-use crate::input::check;
 use crate::scenario::Scenario;
 use crate::warning::{self, Warning};
 

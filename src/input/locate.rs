@@ -143,4 +143,3 @@ impl Locator<'_> {
             .map_err(|e| self.error(Some(value.span()), Some(key.to_string()), e.to_string()))
     }
 }
-

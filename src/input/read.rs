@@ -91,4 +91,3 @@ fn file_kind(meta: &std::fs::Metadata) -> &'static str {
         "not a regular file"
     }
 }
-

@@ -113,4 +113,3 @@ pub(super) struct RawContact {
     pub(super) gamma0: Option<Spanned<f64>>,
     pub(super) alm_tol: Option<Spanned<f64>>,
 }
-

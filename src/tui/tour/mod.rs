@@ -17,9 +17,9 @@ use serde::Deserialize;
 use toml::Spanned;
 
 use crate::contact::{Method, Rule};
-use crate::mesh::Element;
 use crate::input::Locator as Source;
 use crate::input::{ScenarioError, check, read_toml};
+use crate::mesh::Element;
 use crate::scenario::Scenario;
 use crate::scheme::Scheme;
 use crate::text::{sanitize, sanitize_lines};
