@@ -6,11 +6,12 @@ use std::process::ExitCode;
 
 use clap::{Args, Parser, Subcommand};
 
+use crate::check;
 use crate::contact::method::MethodError;
 use crate::contact::{Method, Rule};
 use crate::error::SolveError;
 use crate::infsup::{TraceCompliance, estimate};
-use crate::input::{ScenarioError, check};
+use crate::input::ScenarioError;
 use crate::mesh::Element;
 use crate::report::{
     Format, InfSupRow, SolveReport, SweepFailure, infsup_output, study_output, sweep_output,

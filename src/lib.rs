@@ -25,6 +25,7 @@
 //! the terminal lab (`tui`) and the command line (`cli`).
 
 pub mod cache;
+pub mod check;
 #[cfg(feature = "cli")]
 pub mod cli;
 pub mod contact;

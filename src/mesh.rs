@@ -7,6 +7,9 @@
 
 use serde::{Deserialize, Serialize};
 
+/// The finest mesh level riplab accepts: level L bisects every level-0 cell L times.
+pub const MAX_LEVEL: u32 = 8;
+
 /// The finite element used for the displacement (docs/design.md §2).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[cfg_attr(feature = "cli", derive(clap::ValueEnum))]

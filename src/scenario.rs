@@ -12,8 +12,7 @@ pub const DEFAULT_SCENARIO: &str = include_str!("../scenarios/hertz-paper.toml")
 /// The name under which the embedded default is reported.
 pub const DEFAULT_SOURCE: &str = "<embedded hertz-paper.toml>";
 
-/// The finest mesh level riplab accepts.
-pub const MAX_LEVEL: u32 = 8;
+pub use crate::mesh::MAX_LEVEL;
 
 /// A validated problem.
 #[derive(Clone, Debug, PartialEq)]
@@ -91,9 +90,9 @@ impl Scenario {
         )
     }
 
-    /// The penalty parameters accepted at `level` ([`crate::solve::epsilon_range`]).
+    /// The penalty parameters accepted at `level` ([`crate::material::epsilon_range`]).
     pub fn epsilon_range(&self, level: u32) -> (f64, f64) {
-        crate::solve::epsilon_range(self.material.young, self.h(level))
+        crate::material::epsilon_range(self.material.young, self.h(level))
     }
 
     /// The largest cell side at `level` ([`mesh::cell_size`], as [`Mesh::h`]).

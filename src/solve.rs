@@ -11,6 +11,7 @@ use std::sync::{Arc, Mutex};
 use faer::Mat;
 use serde::Serialize;
 
+use crate::check;
 use crate::contact::nitsche::{self, NitscheCache, NitscheParams};
 use crate::contact::penalty::{self, Iteration, NewtonOptions, NewtonResult, Penalty, SolveError};
 use crate::contact::signorini::solve_exact;
@@ -19,8 +20,8 @@ use crate::fem::condense::{TraceFactor, TraceOrdering};
 use crate::fem::error::gib;
 use crate::fem::memory::{Limits, Sizes};
 use crate::fem::{DofMap, FemError, Form, Integration, assemble};
-use crate::input::check;
 use crate::material::Material;
+pub use crate::material::{KAPPA_RANGE, epsilon_range};
 use crate::mesh::{Element, Mesh};
 use crate::scenario::Scenario;
 use crate::warning::{self, Warning};
@@ -204,19 +205,6 @@ impl Discretization {
         }
         f
     }
-}
-
-/// The range of the dimensionless penalty κ = ε·E/h (the penalty stiffness w/ε against the
-/// body's stiffness E, per unit length) that riplab accepts. Below 1e-20 the products of the
-/// penalty (1/ε times squares of violations) leave double precision; round-off already swamps
-/// the contact forces near κ = 1e-13 (STABILITY.md), which the Newton test reports. Above
-/// 1e10 the penalty carries no load worth computing.
-pub const KAPPA_RANGE: (f64, f64) = (1e-20, 1e10);
-
-/// The penalty parameters ε > 0 accepted on a mesh of cell size `h` for Young's modulus
-/// `young`: [`KAPPA_RANGE`] times h/E.
-pub fn epsilon_range(young: f64, h: f64) -> (f64, f64) {
-    (KAPPA_RANGE.0 * h / young, KAPPA_RANGE.1 * h / young)
 }
 
 /// The solver's error for a failure of the finite element layer on `n` unknowns.

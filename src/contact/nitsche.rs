@@ -729,7 +729,7 @@ pub fn solve(
     let t = Instant::now();
     check_params(&nitsche)?;
     let points = disc.contact_points(params.rule);
-    crate::input::check::depth(params.obstacle.depth(), disc.height()).map_err(|e| SolveError::Input {
+    crate::check::depth(params.obstacle.depth(), disc.height()).map_err(|e| SolveError::Input {
         what: "the indentation depth",
         message: e.to_string(),
     })?;

@@ -2,25 +2,22 @@
 //! §1). Data flows one way, from here to the model: [`crate::scenario`] knows nothing of TOML.
 //!
 //! - [`read`]: bounded reading of a scenario or tour file;
-//! - [`schema`]: the TOML schema serde reads;
-//! - [`check`]: the allowed range of each value, shared with the command line and the solver;
+//! - `schema`: the TOML schema serde reads;
 //! - [`locate`]: the error locator (file, line, column, key, the offending line);
-//! - [`validate`]: the schema checked and turned into the model.
+//! - `validate`: the schema checked and turned into the model.
 //!
-//! Every value is checked against its allowed range; an error names the file, the line and
-//! column, the key, the value, and what is allowed.
+//! Every value is checked against its allowed range ([`crate::check`]); an error names the
+//! file, the line and column, the key, the value, and what is allowed.
 
 use std::path::Path;
 
 use crate::scenario::{DEFAULT_SCENARIO, DEFAULT_SOURCE, Scenario};
 
-pub mod check;
 pub mod locate;
 pub mod read;
 mod schema;
 mod validate;
 
-pub use check::CheckError;
 pub use locate::{Locator, ScenarioError};
 pub use read::{MAX_FILE_BYTES, read_toml};
 

@@ -1,14 +1,14 @@
 //! Validation: a scenario file's schema turned into the model, every value checked against
-//! its range ([`super::check`]) and every error located at its key ([`Locator`]).
+//! its range ([`crate::check`]) and every error located at its key ([`Locator`]).
 
 use std::ops::Range;
 use std::path::Path;
 
 use toml::Spanned;
 
-use super::check::{self, CheckError};
 use super::locate::{Locator, ScenarioError};
 use super::schema::{Model, RawContact, RawObstacle, RawScenario, Shape};
+use crate::check::{self, CheckError};
 use crate::contact::gap::Bump;
 use crate::contact::{Method, Obstacle};
 use crate::fem::Integration;
@@ -103,8 +103,8 @@ pub(super) fn scenario(text: &str, file: &str) -> Result<Scenario, ScenarioError
             ),
         ));
     }
-    let h = dx_max.max(dy_max) / f64::from(1u32 << level);
-    let range = crate::solve::epsilon_range(*raw.material.young.get_ref(), h);
+    let h = crate::mesh::cell_size(&x_lines, &y_lines, level);
+    let range = crate::material::epsilon_range(*raw.material.young.get_ref(), h);
     loc.check("contact.epsilon", &raw.contact.epsilon, |v| {
         check::epsilon_in(*v, range)
     })?;

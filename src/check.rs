@@ -1,10 +1,10 @@
 //! Checks of single values against their allowed ranges (docs/design.md §1, "Ranges"), shared
-//! by the scenario file, the tour file, the command-line overrides and the library's own
-//! checks of a solve's parameters.
+//! by the scenario file ([`crate::input`]), the tour file, the command-line overrides and the
+//! library's own checks of a solve's parameters. A leaf: it knows no scenario and no solver.
 
 use thiserror::Error;
 
-use crate::scenario::MAX_LEVEL;
+use crate::mesh::MAX_LEVEL;
 use crate::text::num;
 
 /// The largest and smallest magnitude of a length (body sizes, radii, coordinates): a
@@ -31,14 +31,14 @@ pub enum CheckError {
     /// An integer outside lo..=hi.
     #[error("{value} is out of range; allowed: {lo} to {hi}")]
     Integer { value: i64, lo: i64, hi: i64 },
-    /// ε > 0 outside the range of the mesh and the material ([`crate::solve::epsilon_range`]).
+    /// ε > 0 outside the range of the mesh and the material ([`crate::material::epsilon_range`]).
     #[error(
         "ε = {} is out of range; allowed: 0 (the exact constraint) or {} to {} here (ε·E/h from {} to {}, so that the penalty's products stay finite)",
         num(*value),
         num(range.0),
         num(range.1),
-        num(crate::solve::KAPPA_RANGE.0),
-        num(crate::solve::KAPPA_RANGE.1)
+        num(crate::material::KAPPA_RANGE.0),
+        num(crate::material::KAPPA_RANGE.1)
     )]
     Epsilon { value: f64, range: (f64, f64) },
     /// A polyline point that is not a pair [x, height].
@@ -112,7 +112,7 @@ pub fn young(value: f64) -> Result<(), CheckError> {
     )
 }
 /// The penalty parameter: ε > 0, or 0 for the exact constraint (its range depends on the
-/// mesh and the material: see [`crate::solve::epsilon_range`]).
+/// mesh and the material: see [`crate::material::epsilon_range`]).
 pub fn epsilon(value: f64) -> Result<(), CheckError> {
     if value == 0.0 {
         Ok(())
@@ -125,7 +125,7 @@ pub fn epsilon(value: f64) -> Result<(), CheckError> {
         )
     }
 }
-/// ε within `range` (from [`crate::solve::epsilon_range`]), or 0.
+/// ε within `range` (from [`crate::material::epsilon_range`]), or 0.
 pub fn epsilon_in(value: f64, range: (f64, f64)) -> Result<(), CheckError> {
     epsilon(value)?;
     if value == 0.0 || (range.0..=range.1).contains(&value) {
