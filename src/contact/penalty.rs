@@ -397,6 +397,62 @@ fn exact_step(s: &[f64], b: &[f64], w: &[f64], inv_eps: f64, lin: f64, quad: f64
 mod tests {
     use super::*;
 
+    /// The bookkeeping on a hand-made iterate: implied forces (3, 0) against assumed (0, 4)
+    /// give R = (3, −4), ‖R‖ = 5 against the scale max(3, 4) = 4; a floor of norm 3 > 4/2
+    /// swamps them; a sign change within the noise keeps the active set settled.
+    #[test]
+    fn progress_measures_by_hand() {
+        let opts = NewtonOptions::default();
+        let mut calls = 0;
+        let mut report = |_: &Iteration| {
+            calls += 1;
+            if calls < 4 {
+                ControlFlow::Continue(())
+            } else {
+                ControlFlow::Break(())
+            }
+        };
+        let mut progress = Progress::new(&opts, &mut report);
+        let zero = [0.0, 0.0];
+        let at = |gap, noise, floor| Iterate {
+            gap,
+            noise,
+            implied: &[3.0, 0.0],
+            assumed: &[0.0, 4.0],
+            mismatch: &[3.0, -4.0],
+            floor,
+        };
+        let m = progress.measure(0, 1.0, &at(&[1.0, -1.0], &zero, &zero)).unwrap();
+        assert_eq!(m.active, [true, false]);
+        assert_eq!(m.residual, 1.25);
+        assert!(m.settled && !m.accurate && !m.swamped);
+        assert!(!progress.repeated(&m.active) && progress.repeated(&m.active));
+        progress.advance(m.active);
+        // The first point turns inactive by more than its noise: not settled.
+        let m = progress
+            .measure(1, 0.5, &at(&[-1.0, -1.0], &zero, &zero))
+            .unwrap();
+        assert!(!m.settled);
+        // … by no more than its noise: settled; a floor of norm 3 swamps the scale 4.
+        let m = progress
+            .measure(2, 1.0, &at(&[-1.0, -1.0], &[1.0, 0.0], &[3.0, 0.0]))
+            .unwrap();
+        assert!(m.settled && m.swamped && !m.accurate);
+        // The fourth report is cancelled; the history keeps every iteration recorded.
+        assert!(matches!(
+            progress.measure(3, 1.0, &at(&zero, &zero, &zero)),
+            Err(SolveError::Cancelled)
+        ));
+        let result = progress.finish(vec![], vec![], 3, false, 1.5, Some(stalled(3, 1.5)));
+        let steps: Vec<f64> = result.history.iter().map(|i| i.step).collect();
+        assert_eq!(steps, [1.0, 0.5, 1.0, 1.0]);
+        assert_eq!(
+            result.diagnosis.as_deref(),
+            Some("no convergence in 3 Newton iterations (relative residual 1.5e0)")
+        );
+        assert_eq!(stalled(3, f64::NAN), "the residual is not finite");
+    }
+
     #[test]
     fn exact_step_minimises_the_piecewise_quadratic() {
         let s = [0.3, -0.2, -1.0, 0.05, f64::NEG_INFINITY];
