@@ -115,7 +115,7 @@ def determinism():
 
 
 def bad_input():
-    print("## Bad input (tests/bad/, run by `cargo test --test bad_input`)\n")
+    print("## Bad input (tests/bad/, run by `cargo test --test cli bad_input::`)\n")
     print("| file | exit | message (first line) |")
     print("|---|---|---|")
     bad = os.path.join(ROOT, "tests", "bad")

@@ -10,12 +10,9 @@ use crate::check;
 use crate::contact::method::MethodError;
 use crate::contact::{Method, Rule};
 use crate::error::SolveError;
-use crate::infsup::{TraceCompliance, estimate};
 use crate::input::ScenarioError;
 use crate::mesh::Element;
-use crate::report::{
-    Format, InfSupRow, SolveReport, SweepFailure, infsup_output, study_output, sweep_output,
-};
+use crate::report::{Format, InfSupTable, SolveReport, Sweep, SweepFailure, SweepRow, output, study_output};
 use crate::scenario::{MAX_LEVEL, Scenario};
 use crate::scheme::Scheme;
 use crate::solve::{ContactParams, Discretization, check_request, sweep};
@@ -501,12 +498,12 @@ fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
         .flat_map(|&e| depths.iter().map(move |&d| (e, d)))
         .map(|(e, d)| params(e, d))
         .collect();
-    let mut rows: Vec<Result<SolveReport, SweepFailure>> = Vec::new();
+    let mut rows: Vec<SweepRow> = Vec::new();
     for (params, solved) in instances.iter().zip(sweep(&disc, &instances)) {
         let sol = match solved {
             Ok(sol) => sol,
             Err(e) if many => {
-                rows.push(Err(SweepFailure::new(&scenario, &disc, params, &e)));
+                rows.push(SweepRow::Failed(SweepFailure::new(&scenario, &disc, params, &e)));
                 continue;
             }
             Err(e) => return Err(e.into()),
@@ -518,7 +515,9 @@ fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
                 crate::text::num(params.obstacle.depth())
             ));
         }
-        rows.push(Ok(SolveReport::new(&scenario, level, &disc, &sol)));
+        rows.push(SweepRow::Solved(Box::new(SolveReport::new(
+            &scenario, level, &disc, &sol,
+        ))));
         if let Some(path) = &args.plot {
             let title = crate::plot::chart_title(&scenario.name, disc.mesh.element, level, &sol);
             crate::plot::pressure_svg(path, &title, &sol, scenario.half_model, args.force)
@@ -532,26 +531,24 @@ fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
             note(&format!("wrote {} and {}", body.display(), contact.display()));
         }
     }
-    let out = match (args.format, &rows[..]) {
-        (Format::Json, [Ok(report)]) if !many => {
-            serde_json::to_string_pretty(report).expect("serialisable") + "\n"
-        }
-        (Format::Csv, [Ok(report)]) if !many => report.csv(),
-        (Format::Table, [Ok(report)]) if !many => report.table(),
-        (format, _) => sweep_output(&rows, format),
+    let sweep = Sweep { rows };
+    let out = match &sweep.rows[..] {
+        [SweepRow::Solved(report)] if !many => output(report.as_ref(), args.format),
+        _ => output(&sweep, args.format),
     };
     print(&out)?;
-    let failed: Vec<String> = rows
+    let failed: Vec<String> = sweep
+        .rows
         .iter()
         .filter_map(|row| match row {
-            Ok(r) if !r.converged => Some(format!(
+            SweepRow::Solved(r) if !r.converged => Some(format!(
                 "ε = {:e}, depth = {}: {}",
                 r.epsilon,
                 r.depth,
                 r.diagnosis.as_deref().unwrap_or("not converged")
             )),
-            Ok(_) => None,
-            Err(f) => Some(format!("ε = {:e}, depth = {}: {}", f.epsilon, f.depth, f.reason)),
+            SweepRow::Solved(_) => None,
+            SweepRow::Failed(f) => Some(format!("ε = {:e}, depth = {}: {}", f.epsilon, f.depth, f.reason)),
         })
         .collect();
     if failed.is_empty() {
@@ -585,31 +582,8 @@ fn infsup(args: &InfsupArgs) -> Result<ExitCode, CliError> {
     } else {
         vec![(scenario.element, scenario.rule)]
     };
-    let mut rows = Vec::new();
-    for element in Element::ALL
-        .into_iter()
-        .filter(|e| pairs.iter().any(|p| p.0 == *e))
-    {
-        for &level in &levels {
-            let t = std::time::Instant::now();
-            let disc = Discretization::of(&scenario, level, element).map_err(CliError::from)?;
-            let compliance = TraceCompliance::new(&disc)?;
-            let shared_ms = t.elapsed().as_secs_f64() * 1e3;
-            for &(_, rule) in pairs.iter().filter(|p| p.0 == element) {
-                let t = std::time::Instant::now();
-                let est = estimate(&disc, &compliance, rule)?;
-                let rule_ms = t.elapsed().as_secs_f64() * 1e3;
-                rows.push(InfSupRow::new(level, element, rule, est, shared_ms, rule_ms));
-            }
-        }
-    }
-    let order = |r: &InfSupRow| {
-        pairs
-            .iter()
-            .position(|p| p.0.name() == r.element && p.1.name() == r.rule)
-    };
-    rows.sort_by_key(|r| (order(r), r.level));
-    print(&infsup_output(&rows, args.format))?;
+    let rows = crate::infsup::table(&scenario, &pairs, &levels)?;
+    print(&output(&InfSupTable { rows }, args.format))?;
     Ok(ExitCode::SUCCESS)
 }
 

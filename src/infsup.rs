@@ -11,13 +11,19 @@
 //! the stiffness's ordering (same pattern, Γ_C dofs last: see [`crate::fem::condense`]).
 //! Every rule then costs only small dense work: B A⁻¹ Bᵀ = W T C Tᵀ W.
 
+use std::time::Instant;
+
 use faer::{Mat, Side};
+use serde::Serialize;
 
 use crate::contact::{ContactPoints, Rule, smoothed_pressure};
 use crate::error::SolveError;
 use crate::fem::condense::TraceFactor;
 use crate::fem::quadrature::gauss_legendre;
 use crate::fem::{Form, assemble};
+use crate::mesh::Element;
+use crate::scenario::Scenario;
+use crate::scheme::Scheme;
 use crate::solve::Discretization;
 
 /// The estimate for one element × rule pair on one mesh.
@@ -168,4 +174,100 @@ pub fn estimate(
 /// [`estimate`] for several rules on one mesh).
 pub fn inf_sup(disc: &Discretization, rule: Rule) -> Result<InfSup, SolveError> {
     estimate(disc, &TraceCompliance::new(disc)?, rule)
+}
+
+/// One row of `riplab infsup` (docs/design.md §7; `scheme`, `slope`, `kernel` and the timings
+/// are additions to the paper's β_h and β̄_h).
+#[derive(Serialize, Clone, Debug)]
+pub struct InfSupRow {
+    pub level: u32,
+    pub h: f64,
+    pub element: &'static str,
+    pub rule: &'static str,
+    pub scheme: Option<&'static str>,
+    pub beta: f64,
+    pub beta_over_sqrt_h: f64,
+    pub beta_bar: f64,
+    pub beta_bar_over_sqrt_h: f64,
+    /// The observed exponent of β_h ∝ h^slope from the previous level of the same pair (0.5:
+    /// β_h/√h constant); null on a pair's first row and where β_h = 0.
+    pub slope: Option<f64>,
+    pub kernel: Option<String>,
+    /// Assembly, factorisation and trace compliance of the mesh (shared by its rules), ms.
+    pub mesh_ms: f64,
+    /// The rule's own dense work, ms.
+    pub rule_ms: f64,
+}
+
+impl InfSupRow {
+    /// The row of `est` for `element` + `rule` at `level`, with the time it took (its slope
+    /// is set by [`table`], which knows the previous level).
+    pub fn new(level: u32, element: Element, rule: Rule, est: InfSup, mesh_ms: f64, rule_ms: f64) -> Self {
+        InfSupRow {
+            level,
+            h: est.h,
+            element: element.name(),
+            rule: rule.name(),
+            scheme: Scheme::new(element, rule).name(),
+            beta: est.beta,
+            beta_over_sqrt_h: est.beta_over_sqrt_h,
+            beta_bar: est.beta_bar,
+            beta_bar_over_sqrt_h: est.beta_bar_over_sqrt_h,
+            slope: None,
+            kernel: est.kernel,
+            mesh_ms,
+            rule_ms,
+        }
+    }
+
+    /// Whether two rows estimate the same element × rule pair.
+    pub fn same_pair(&self, other: &InfSupRow) -> bool {
+        self.element == other.element && self.rule == other.rule
+    }
+}
+
+/// The observed slope of log β_h against log h between two rows (None where β_h = 0).
+pub fn slope(prev: &InfSupRow, row: &InfSupRow) -> Option<f64> {
+    (prev.beta > 0.0 && row.beta > 0.0).then(|| (row.beta / prev.beta).ln() / (row.h / prev.h).ln())
+}
+
+/// The inf-sup table of `riplab infsup`: every pair of `pairs` at every level of `levels`,
+/// grouped per pair in `pairs`' order by ascending level, each row with its slope from the one
+/// before. One mesh, factorisation and trace compliance per element and level, shared by the
+/// rules of that element (each row says what the shared work and its own cost).
+pub fn table(
+    scenario: &Scenario,
+    pairs: &[(Element, Rule)],
+    levels: &[u32],
+) -> Result<Vec<InfSupRow>, SolveError> {
+    let mut rows = Vec::new();
+    for element in Element::ALL
+        .into_iter()
+        .filter(|e| pairs.iter().any(|p| p.0 == *e))
+    {
+        for &level in levels {
+            let t = Instant::now();
+            let disc = Discretization::of(scenario, level, element)?;
+            let compliance = TraceCompliance::new(&disc)?;
+            let mesh_ms = t.elapsed().as_secs_f64() * 1e3;
+            for &(_, rule) in pairs.iter().filter(|p| p.0 == element) {
+                let t = Instant::now();
+                let est = estimate(&disc, &compliance, rule)?;
+                let rule_ms = t.elapsed().as_secs_f64() * 1e3;
+                rows.push(InfSupRow::new(level, element, rule, est, mesh_ms, rule_ms));
+            }
+        }
+    }
+    let order = |r: &InfSupRow| {
+        pairs
+            .iter()
+            .position(|p| p.0.name() == r.element && p.1.name() == r.rule)
+    };
+    rows.sort_by_key(|r| (order(r), r.level));
+    for i in 1..rows.len() {
+        if rows[i - 1].same_pair(&rows[i]) {
+            rows[i].slope = slope(&rows[i - 1], &rows[i]);
+        }
+    }
+    Ok(rows)
 }

@@ -80,7 +80,7 @@ pub struct Mesh {
     /// Half model: u_x = 0 on the left side x = x₀ (the symmetry line).
     pub symmetric_left: bool,
     /// u_x = 0 on the right side x = x_nx too (a roller wall; no scenario sets it: the contact
-    /// patch test of tests/methods.rs, whose exact solution is a uniform compression).
+    /// patch test of tests/numerics/methods.rs, whose exact solution is a uniform compression).
     pub roller_right: bool,
 }
 

@@ -1,15 +1,15 @@
-//! Output of solutions: a human table, CSV, and the JSON object of docs/design.md §7.
+//! What the CLI prints (docs/design.md §7): every result is a [`Report`], printed by one
+//! function per format — a human table, CSV, or JSON — chosen once by [`output`]. CSV cells are
+//! read from the JSON of the same struct ([`csv_table`]), so the two cannot drift apart.
 
 use std::fmt::Write as _;
 
 use serde::Serialize;
 
-use crate::contact::Rule;
 use crate::contact::hertz::Hertz;
 use crate::contact::method::MethodFields;
 use crate::error::SolveError;
-use crate::infsup::InfSup;
-use crate::mesh::Element;
+use crate::infsup::InfSupRow;
 use crate::scenario::Scenario;
 use crate::scheme::Scheme;
 use crate::solve::{ContactParams, Discretization, Solution, Timing};
@@ -23,6 +23,81 @@ pub enum Format {
     Table,
     Csv,
     Json,
+}
+
+/// A result in each of the CLI's formats.
+pub trait Report: Serialize {
+    /// The human table.
+    fn table(&self) -> String;
+    /// CSV: a header line, then a row per record.
+    fn csv(&self) -> String;
+    /// JSON (docs/design.md §7), pretty-printed, with a final newline.
+    fn json(&self) -> String {
+        serde_json::to_string_pretty(self).expect("a report is plain data") + "\n"
+    }
+}
+
+/// `report` in `format` (the one place a format is chosen).
+pub fn output(report: &impl Report, format: Format) -> String {
+    match format {
+        Format::Table => report.table(),
+        Format::Csv => report.csv(),
+        Format::Json => report.json(),
+    }
+}
+
+/// Where a CSV column's cells come from, in the JSON of its record.
+#[derive(Clone, Copy, Debug)]
+pub enum Cell {
+    /// The field at this JSON pointer (`/errors/p`); empty where it is null or absent.
+    Field(&'static str),
+    /// The largest number of the array at this pointer.
+    Max(&'static str),
+    /// The first of these fields that is present and not null.
+    First(&'static [&'static str]),
+}
+
+/// CSV of `records` with `columns` (header, cell): each cell is read from the record's JSON, so
+/// a column names a field the JSON has (the tests check every column against a full record).
+pub fn csv_table<T: Serialize>(records: &[T], columns: &[(&str, Cell)]) -> String {
+    let mut s = columns.iter().map(|c| c.0).collect::<Vec<_>>().join(",");
+    s.push('\n');
+    for record in records {
+        let json = serde_json::to_value(record).expect("a record is plain data");
+        let cells: Vec<String> = columns.iter().map(|&(_, cell)| csv_cell(&json, cell)).collect();
+        s.push_str(&cells.join(","));
+        s.push('\n');
+    }
+    s
+}
+
+/// One cell of [`csv_table`].
+fn csv_cell(json: &serde_json::Value, cell: Cell) -> String {
+    use serde_json::Value;
+    let value = match cell {
+        Cell::Field(pointer) => json.pointer(pointer).cloned(),
+        Cell::Max(pointer) => json.pointer(pointer).and_then(Value::as_array).map(|a| {
+            let max = a.iter().filter_map(Value::as_f64).fold(0.0, f64::max);
+            Value::from(max)
+        }),
+        Cell::First(pointers) => pointers
+            .iter()
+            .filter_map(|p| json.pointer(p))
+            .find(|v| !v.is_null())
+            .cloned(),
+    };
+    match value {
+        None | Some(Value::Null) => String::new(),
+        Some(Value::String(text)) => csv_field(&text),
+        // Floats as Rust prints them (the shortest form that reads back the same).
+        Some(Value::Number(n)) => match (n.as_u64(), n.as_i64(), n.as_f64()) {
+            (Some(u), _, _) => u.to_string(),
+            (None, Some(i), _) => i.to_string(),
+            (None, None, Some(f)) => f.to_string(),
+            _ => n.to_string(),
+        },
+        Some(other) => csv_field(&other.to_string()),
+    }
 }
 
 #[derive(Serialize)]
@@ -179,9 +254,11 @@ impl SolveReport {
             None => format!("{} + {}", self.element, self.rule),
         }
     }
+}
 
-    /// A human-readable table.
-    pub fn table(&self) -> String {
+/// One solve: its header, Γ_C's vertices and the rule's points.
+impl Report for SolveReport {
+    fn table(&self) -> String {
         let mut s = String::new();
         let model = if self.half_model {
             "half model"
@@ -257,8 +334,9 @@ impl SolveReport {
         s
     }
 
-    /// CSV: one row per Γ_C vertex (`node`) and per rule point (`point`).
-    pub fn csv(&self) -> String {
+    /// One row per Γ_C vertex (`node`: x, u_y, p̄) and per rule point (`point`: x, p), from
+    /// `nodes` and `points`.
+    fn csv(&self) -> String {
         let mut s = String::from("kind,x,uy,pbar,p\n");
         for i in 0..self.nodes.x.len() {
             let _ = writeln!(
@@ -274,234 +352,174 @@ impl SolveReport {
     }
 }
 
-/// A sweep (several ε or depths on one mesh): a JSON array of docs/design.md §7's objects (a row
-/// with no result is `{…, "status", "reason"}`), or a summary table or CSV, a row each.
-pub fn sweep_output(rows: &[Result<SolveReport, SweepFailure>], format: Format) -> String {
-    let mut s = String::new();
-    let max = |v: &[f64]| v.iter().cloned().fold(0.0, f64::max);
-    match format {
-        Format::Json => {
-            let values: Vec<serde_json::Value> = rows
-                .iter()
-                .map(|r| match r {
-                    Ok(report) => serde_json::to_value(report),
-                    Err(failure) => serde_json::to_value(failure),
-                })
-                .collect::<Result<_, _>>()
-                .expect("serialisable");
-            return serde_json::to_string_pretty(&values).expect("serialisable") + "\n";
-        }
-        Format::Csv => {
-            s.push_str(
-                "epsilon,method,theta,gamma0,alm_tol,depth,status,newton_iterations,outer_iterations,converged,load,max_p,max_pbar,total_ms,reason\n",
+/// A row of a sweep: a solve's report, or why the row has none.
+#[derive(Serialize)]
+#[serde(untagged)]
+pub enum SweepRow {
+    Solved(Box<SolveReport>),
+    Failed(SweepFailure),
+}
+
+/// A sweep (several ε or depths on one mesh): in JSON an array of docs/design.md §7's objects (a
+/// row with no result is `{…, "status", "reason"}`); a summary table or CSV, a row each.
+#[derive(Serialize)]
+#[serde(transparent)]
+pub struct Sweep {
+    pub rows: Vec<SweepRow>,
+}
+
+/// The sweep's CSV columns: the parameters, the outcome, and each row's largest p and p̄.
+pub const SWEEP_COLUMNS: [(&str, Cell); 15] = [
+    ("epsilon", Cell::Field("/epsilon")),
+    ("method", Cell::Field("/method")),
+    ("theta", Cell::Field("/theta")),
+    ("gamma0", Cell::Field("/gamma0")),
+    ("alm_tol", Cell::Field("/alm_tol")),
+    ("depth", Cell::Field("/depth")),
+    ("status", Cell::Field("/status")),
+    ("newton_iterations", Cell::Field("/newton_iterations")),
+    ("outer_iterations", Cell::Field("/outer_iterations")),
+    ("converged", Cell::Field("/converged")),
+    ("load", Cell::Field("/load")),
+    ("max_p", Cell::Max("/points/p")),
+    ("max_pbar", Cell::Max("/nodes/pbar")),
+    ("total_ms", Cell::Field("/timing_ms/total")),
+    ("reason", Cell::First(&["/diagnosis", "/reason"])),
+];
+
+impl Report for Sweep {
+    fn csv(&self) -> String {
+        csv_table(&self.rows, &SWEEP_COLUMNS)
+    }
+
+    fn table(&self) -> String {
+        let mut s = String::new();
+        let max = |v: &[f64]| v.iter().cloned().fold(0.0, f64::max);
+        if let Some(SweepRow::Solved(r)) = self.rows.iter().find(|r| matches!(r, SweepRow::Solved(_))) {
+            let _ = writeln!(
+                s,
+                "{} — {}, level {} (h = {}), {} dofs",
+                r.scenario,
+                r.scheme_label(),
+                r.level,
+                r.h,
+                r.n_dofs
             );
-            for row in rows {
-                let _ = match row {
-                    Ok(r) => writeln!(
-                        s,
-                        "{},{},{},{},{},{},{},{},{},{},{},{}",
-                        r.epsilon,
-                        r.method.csv(),
-                        r.depth,
-                        r.status.token(),
-                        r.newton_iterations,
-                        r.outer_iterations.map_or(String::new(), |n| n.to_string()),
-                        r.converged,
-                        r.load,
-                        max(&r.points.p),
-                        max(&r.nodes.pbar),
-                        r.timing_ms.total,
-                        csv_field(r.diagnosis.as_deref().unwrap_or(""))
-                    ),
-                    Err(f) => writeln!(
-                        s,
-                        "{},{},{},{},,,false,,,,,{}",
-                        f.epsilon,
-                        f.method.csv(),
-                        f.depth,
-                        f.status.token(),
-                        csv_field(&f.reason)
-                    ),
-                };
-            }
-            return s;
         }
-        Format::Table => {}
-    }
-    if let Some(Ok(r)) = rows.iter().find(|r| r.is_ok()) {
         let _ = writeln!(
             s,
-            "{} — {}, level {} (h = {}), {} dofs",
-            r.scenario,
-            r.scheme_label(),
-            r.level,
-            r.h,
-            r.n_dofs
+            "{:>10} {:>8} {:>7} {:>10} {:>14} {:>12} {:>12} {:>10}  method",
+            "ε", "depth", "Newton", "converged", "load", "max p", "max p̄", "total ms"
         );
-    }
-    let _ = writeln!(
-        s,
-        "{:>10} {:>8} {:>7} {:>10} {:>14} {:>12} {:>12} {:>10}  method",
-        "ε", "depth", "Newton", "converged", "load", "max p", "max p̄", "total ms"
-    );
-    for row in rows {
-        let _ = match row {
-            Ok(r) => writeln!(
-                s,
-                "{} {:>8} {:>7} {:>10} {:>14.6} {:>12.4} {:>12.4} {:>10.1}  {}",
-                r.method.epsilon_text(r.epsilon, 10),
-                r.depth,
-                r.newton_iterations,
-                r.converged,
-                r.load,
-                max(&r.points.p),
-                max(&r.nodes.pbar),
-                r.timing_ms.total,
-                r.method.label()
-            ),
-            Err(f) => writeln!(
-                s,
-                "{:>10.1e} {:>8}  {}: {}",
-                f.epsilon,
-                f.depth,
-                f.status.word(),
-                short_reason(&f.reason)
-            ),
-        };
-    }
-    s
-}
-
-/// One row of `riplab infsup` (docs/design.md §7; `scheme`, `kernel` and the timings are additions).
-#[derive(Serialize, Clone, Debug)]
-pub struct InfSupRow {
-    pub level: u32,
-    pub h: f64,
-    pub element: &'static str,
-    pub rule: &'static str,
-    pub scheme: Option<&'static str>,
-    pub beta: f64,
-    pub beta_over_sqrt_h: f64,
-    pub beta_bar: f64,
-    pub beta_bar_over_sqrt_h: f64,
-    pub kernel: Option<String>,
-    /// Assembly, factorisation and trace compliance of the mesh (shared by its rules), ms.
-    pub mesh_ms: f64,
-    /// The rule's own dense work, ms.
-    pub rule_ms: f64,
-}
-
-impl InfSupRow {
-    /// The row of `est` for `element` + `rule` at `level`, with the time it took.
-    pub fn new(level: u32, element: Element, rule: Rule, est: InfSup, mesh_ms: f64, rule_ms: f64) -> Self {
-        InfSupRow {
-            level,
-            h: est.h,
-            element: element.name(),
-            rule: rule.name(),
-            scheme: Scheme::new(element, rule).name(),
-            beta: est.beta,
-            beta_over_sqrt_h: est.beta_over_sqrt_h,
-            beta_bar: est.beta_bar,
-            beta_bar_over_sqrt_h: est.beta_bar_over_sqrt_h,
-            kernel: est.kernel,
-            mesh_ms,
-            rule_ms,
-        }
-    }
-}
-
-/// Observed slope of log β against log h between two rows (None where β = 0).
-pub fn slope(prev: &InfSupRow, row: &InfSupRow) -> Option<f64> {
-    (prev.beta > 0.0 && row.beta > 0.0).then(|| (row.beta / prev.beta).ln() / (row.h / prev.h).ln())
-}
-
-/// `riplab infsup` output: table (with slopes), CSV or the JSON array of docs/design.md §7.
-pub fn infsup_output(rows: &[InfSupRow], format: Format) -> String {
-    let mut s = String::new();
-    match format {
-        Format::Json => return serde_json::to_string_pretty(rows).expect("serialisable") + "\n",
-        Format::Csv => {
-            s.push_str("level,h,element,rule,scheme,beta,beta_over_sqrt_h,beta_bar,beta_bar_over_sqrt_h,slope,kernel\n");
-            for (i, r) in rows.iter().enumerate() {
-                let sl = (i > 0 && same_pair(&rows[i - 1], r))
-                    .then(|| slope(&rows[i - 1], r))
-                    .flatten();
-                let _ = writeln!(
+        for row in &self.rows {
+            let _ = match row {
+                SweepRow::Solved(r) => writeln!(
                     s,
-                    "{},{},{},{},{},{},{},{},{},{},{}",
-                    r.level,
-                    r.h,
-                    r.element,
-                    r.rule,
-                    r.scheme.unwrap_or(""),
-                    r.beta,
-                    r.beta_over_sqrt_h,
-                    r.beta_bar,
-                    r.beta_bar_over_sqrt_h,
-                    sl.map_or(String::new(), |v| v.to_string()),
-                    r.kernel.is_some()
-                );
-            }
-            return s;
+                    "{} {:>8} {:>7} {:>10} {:>14.6} {:>12.4} {:>12.4} {:>10.1}  {}",
+                    r.method.epsilon_text(r.epsilon, 10),
+                    r.depth,
+                    r.newton_iterations,
+                    r.converged,
+                    r.load,
+                    max(&r.points.p),
+                    max(&r.nodes.pbar),
+                    r.timing_ms.total,
+                    r.method.label()
+                ),
+                SweepRow::Failed(f) => writeln!(
+                    s,
+                    "{:>10.1e} {:>8}  {}: {}",
+                    f.epsilon,
+                    f.depth,
+                    f.status.word(),
+                    short_reason(&f.reason)
+                ),
+            };
         }
-        Format::Table => {}
+        s
     }
-    let _ = writeln!(
-        s,
-        "{:<6} {:<15} {:>5} {:>9} {:>11} {:>11} {:>11} {:>11} {:>7} {:>9}",
-        "scheme", "pair", "level", "h", "β_h", "β_h/√h", "β̄_h", "β̄_h/√h", "slope", "ms"
-    );
-    for (i, r) in rows.iter().enumerate() {
-        if i > 0 && !same_pair(&rows[i - 1], r) {
-            s.push('\n');
-        }
-        let sl = (i > 0 && same_pair(&rows[i - 1], r))
-            .then(|| slope(&rows[i - 1], r))
-            .flatten();
-        let beta = if r.kernel.is_some() {
-            "0 (kernel)".to_string()
-        } else {
-            format!("{:.5}", r.beta)
-        };
-        let _ = writeln!(
-            s,
-            "{:<6} {:<15} {:>5} {:>9.6} {:>11} {:>11.5} {:>11.5} {:>11.5} {:>7} {:>9.1}",
-            r.scheme.unwrap_or("-"),
-            format!("{}+{}", r.element, r.rule),
-            r.level,
-            r.h,
-            beta,
-            r.beta_over_sqrt_h,
-            r.beta_bar,
-            r.beta_bar_over_sqrt_h,
-            sl.map_or("-".to_string(), |v| format!("{v:.3}")),
-            r.mesh_ms + r.rule_ms
-        );
-    }
-    let kernels: Vec<String> = rows
-        .iter()
-        .filter_map(|r| {
-            r.kernel
-                .as_ref()
-                .map(|k| format!("{}+{} level {}: {k}", r.element, r.rule, r.level))
-        })
-        .collect();
-    if let Some(first) = kernels.first() {
-        let _ = writeln!(
-            s,
-            "\nβ_h = 0 where the pressure space has a kernel, e.g. {first}."
-        );
-    }
-    let _ = writeln!(
-        s,
-        "slope: observed exponent of β_h ∝ h^slope between successive levels (0.5 means β_h/√h is constant)."
-    );
-    s
 }
 
-fn same_pair(a: &InfSupRow, b: &InfSupRow) -> bool {
-    a.element == b.element && a.rule == b.rule
+/// `riplab infsup`: a row per element × rule pair and level ([`crate::infsup::table`]); JSON
+/// is the array of docs/design.md §7.
+#[derive(Serialize)]
+#[serde(transparent)]
+pub struct InfSupTable {
+    pub rows: Vec<InfSupRow>,
+}
+
+/// The inf-sup CSV columns: the JSON's fields of the same names (the timings aside).
+pub const INFSUP_COLUMNS: [(&str, Cell); 11] = [
+    ("level", Cell::Field("/level")),
+    ("h", Cell::Field("/h")),
+    ("element", Cell::Field("/element")),
+    ("rule", Cell::Field("/rule")),
+    ("scheme", Cell::Field("/scheme")),
+    ("beta", Cell::Field("/beta")),
+    ("beta_over_sqrt_h", Cell::Field("/beta_over_sqrt_h")),
+    ("beta_bar", Cell::Field("/beta_bar")),
+    ("beta_bar_over_sqrt_h", Cell::Field("/beta_bar_over_sqrt_h")),
+    ("slope", Cell::Field("/slope")),
+    ("kernel", Cell::Field("/kernel")),
+];
+
+impl Report for InfSupTable {
+    fn csv(&self) -> String {
+        csv_table(&self.rows, &INFSUP_COLUMNS)
+    }
+
+    fn table(&self) -> String {
+        let rows = &self.rows;
+        let mut s = String::new();
+        let _ = writeln!(
+            s,
+            "{:<6} {:<15} {:>5} {:>9} {:>11} {:>11} {:>11} {:>11} {:>7} {:>9}",
+            "scheme", "pair", "level", "h", "β_h", "β_h/√h", "β̄_h", "β̄_h/√h", "slope", "ms"
+        );
+        for (i, r) in rows.iter().enumerate() {
+            if i > 0 && !rows[i - 1].same_pair(r) {
+                s.push('\n');
+            }
+            let beta = if r.kernel.is_some() {
+                "0 (kernel)".to_string()
+            } else {
+                format!("{:.5}", r.beta)
+            };
+            let _ = writeln!(
+                s,
+                "{:<6} {:<15} {:>5} {:>9.6} {:>11} {:>11.5} {:>11.5} {:>11.5} {:>7} {:>9.1}",
+                r.scheme.unwrap_or("-"),
+                format!("{}+{}", r.element, r.rule),
+                r.level,
+                r.h,
+                beta,
+                r.beta_over_sqrt_h,
+                r.beta_bar,
+                r.beta_bar_over_sqrt_h,
+                r.slope.map_or("-".to_string(), |v| format!("{v:.3}")),
+                r.mesh_ms + r.rule_ms
+            );
+        }
+        let kernels: Vec<String> = rows
+            .iter()
+            .filter_map(|r| {
+                r.kernel
+                    .as_ref()
+                    .map(|k| format!("{}+{} level {}: {k}", r.element, r.rule, r.level))
+            })
+            .collect();
+        if let Some(first) = kernels.first() {
+            let _ = writeln!(
+                s,
+                "\nβ_h = 0 where the pressure space has a kernel, e.g. {first}."
+            );
+        }
+        let _ = writeln!(
+            s,
+            "slope: observed exponent of β_h ∝ h^slope between successive levels (0.5 means β_h/√h is constant)."
+        );
+        s
+    }
 }
 
 /// `riplab study` output: table, CSV, or JSON `{ "reference": …, "rows": […] }`.
@@ -667,5 +685,93 @@ fn csv_field(text: &str) -> String {
         format!("\"{}\"", text.replace('"', "\"\""))
     } else {
         text.to_string()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::contact::Method;
+    use crate::mesh::Element;
+    use crate::solve::sweep;
+
+    /// A solved and a failed sweep row of the paper's problem at level 0.
+    fn rows() -> Vec<SweepRow> {
+        let scenario = Scenario::paper();
+        let disc = Discretization::of(&scenario, 0, Element::Q1).unwrap();
+        let params = ContactParams {
+            rule: scenario.rule,
+            method: Method::Penalty,
+            epsilon: scenario.epsilon,
+            obstacle: scenario.obstacle.clone(),
+        };
+        let sol = sweep(&disc, std::slice::from_ref(&params)).remove(0).unwrap();
+        let error = SolveError::Input {
+            what: "the method",
+            message: "a reason, with a comma".into(),
+        };
+        vec![
+            SweepRow::Solved(Box::new(SolveReport::new(&scenario, 0, &disc, &sol))),
+            SweepRow::Failed(SweepFailure::new(&scenario, &disc, &params, &error)),
+        ]
+    }
+
+    /// Every column names a field of the JSON (a renamed or removed field fails here, not in a
+    /// user's script): each of a solved row's cells is present, and a failed row has its
+    /// parameters, status and reason.
+    #[test]
+    fn every_csv_column_is_a_json_field() {
+        let rows = rows();
+        let solved = serde_json::to_value(&rows[0]).unwrap();
+        for (header, cell) in SWEEP_COLUMNS {
+            let present = match cell {
+                Cell::Field(p) | Cell::Max(p) => solved.pointer(p).is_some(),
+                Cell::First(ps) => ps.iter().any(|p| solved.pointer(p).is_some()),
+            };
+            assert!(present, "sweep column {header}");
+        }
+        let failed = serde_json::to_value(&rows[1]).unwrap();
+        for header in ["epsilon", "method", "depth", "status", "reason"] {
+            let (_, cell) = SWEEP_COLUMNS.iter().find(|c| c.0 == header).unwrap();
+            assert!(!csv_cell(&failed, *cell).is_empty(), "failed row's {header}");
+        }
+        let scenario = Scenario::paper();
+        let infsup = crate::infsup::table(
+            &scenario,
+            &[(Element::Q1, crate::contact::Rule::Simpson)],
+            &[0, 1],
+        )
+        .unwrap();
+        let json = serde_json::to_value(&infsup[1]).unwrap();
+        for (header, cell) in INFSUP_COLUMNS {
+            let Cell::Field(p) = cell else { panic!("{header}") };
+            assert!(json.pointer(p).is_some(), "infsup column {header}");
+        }
+    }
+
+    /// CSV cells are the JSON's values: numbers as Rust prints them, null as empty, text
+    /// quoted when it holds a comma, the largest of an array for `Max`.
+    #[test]
+    fn csv_cells_are_the_json_values() {
+        let rows = rows();
+        let csv = Sweep { rows }.csv();
+        let lines: Vec<&str> = csv.lines().collect();
+        assert_eq!(lines.len(), 3);
+        assert_eq!(lines[0], SWEEP_COLUMNS.map(|c| c.0).join(","));
+        let solved: Vec<&str> = lines[1].split(',').collect();
+        assert_eq!(solved.len(), SWEEP_COLUMNS.len());
+        assert_eq!(solved[0], "0.000001", "ε = 1e-6 as Rust prints it");
+        assert_eq!(solved[1], "penalty");
+        assert_eq!(solved[2], "", "θ is null for the penalty");
+        assert_eq!(solved[6], "ok");
+        let load: f64 = solved[10].parse().unwrap();
+        let max_p: f64 = solved[11].parse().unwrap();
+        assert!(load > 0.0 && max_p > 0.0);
+        assert!(
+            lines[2].ends_with(",\"the method: a reason, with a comma\""),
+            "{}",
+            lines[2]
+        );
+        assert!(lines[2].contains(",failed,"), "{}", lines[2]);
     }
 }

@@ -13,7 +13,7 @@
 //! with −p̄, and the symmetry line, where the Hertz check reads τ₁) have no patch of their own
 //! and must borrow one from the interior. The projection reproduces any stress field of the
 //! element's space exactly (the patch test) and is variationally consistent, so the checks
-//! of `tests/stresses.rs` measure it without special cases.
+//! of `tests/numerics/stresses.rs` measure it without special cases.
 //!
 //! **Plane strain**: ε_zz = 0 gives σ_zz = λ(ε_xx + ε_yy) = ν(σ_xx + σ_yy), which enters von
 //! Mises; in plane stress σ_zz = 0.

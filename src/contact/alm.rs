@@ -26,7 +26,7 @@
 //! the multiplier jumps to the updates' fixed point on A, G_AA y_A = d_A, dropping points
 //! whose force comes out as tension (the primal–dual active-set rule); the next update checks
 //! it. On the paper's problem at ε = 1e-3 this takes 3 to 7 updates at levels 0–5, each one
-//! or two warm-started inner Newton steps (tests/methods.rs, docs/convergence.md).
+//! or two warm-started inner Newton steps (tests/numerics/methods.rs, docs/convergence.md).
 //!
 //! Stopping test: the relative change of the contact forces ‖W(λ_{k+1} − λ_k)‖/‖Wλ_{k+1}‖ —
 //! the penetration of the active points in force units, ‖W s⁺‖/ε — below the tolerance, plus

@@ -24,7 +24,7 @@ static THREADS: AtomicUsize = AtomicUsize::new(1);
 
 /// Run the numeric factorisation and the trace compliance on `threads` threads; everything
 /// else (faer's dense eigensolvers among it) stays on the caller's thread. The results are
-/// bit-identical for any count (tests/threads.rs).
+/// bit-identical for any count (tests/numerics/threads.rs).
 pub fn set_threads(threads: usize) {
     THREADS.store(threads.max(1), Ordering::Relaxed);
     faer::set_global_parallelism(Par::Seq);

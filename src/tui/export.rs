@@ -9,7 +9,7 @@ use std::io::ErrorKind;
 use std::path::{Path, PathBuf};
 
 use crate::plot::{chart_title, pressure_svg_string, write_file};
-use crate::report::SolveReport;
+use crate::report::{Report, SolveReport};
 use crate::scenario::Scenario;
 
 use super::protocol::Solved;

@@ -1,8 +1,6 @@
 //! The lab's stress scene (issue 15): frames at 80×24 and 120×40, the monochrome rendering,
 //! the quantity key, computing the stresses only when shown, and the VTU export key.
 
-mod common;
-
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
@@ -11,7 +9,7 @@ use ratatui::symbols::Marker;
 
 use std::sync::Arc;
 
-use common::settled;
+use crate::common::settled;
 use riplab::scenario::Scenario;
 use riplab::stress::Quantity;
 use riplab::tui::app::{Command, ExportKind, Msg, Scene};

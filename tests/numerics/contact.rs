@@ -1,11 +1,9 @@
 //! The contact discretisation checked by identities and physics independent of the solver:
 //! the paper's identity (18), global equilibrium, mirror symmetry, and plane-strain Hertz.
 
-mod common;
-
 use std::ops::ControlFlow;
 
-use common::{Lcg, bottom_reaction, paper_with, rel};
+use crate::common::{Lcg, bottom_reaction, paper_with, rel};
 use riplab::contact::penalty::NewtonOptions;
 use riplab::contact::pressure::{rule_product, smoothed_pressure, trapezoid_product};
 use riplab::contact::{ContactPoints, Obstacle, Rule};

@@ -11,8 +11,6 @@
 //!
 //! A command whose comment says `exit N` must exit N; every other command must exit 0.
 
-mod common;
-
 use std::path::{Path, PathBuf};
 
 /// The finest level a documented command is run at here.
@@ -211,7 +209,7 @@ fn check_output(args: &[String], stdout: &str, tmp: &Path) -> Result<(), String>
         "completions" => expect("riplab"),
         "man" => expect(".TH riplab"),
         other => Err(format!(
-            "no check for `riplab {other}`: add one to tests/readme.rs"
+            "no check for `riplab {other}`: add one to tests/cli/readme.rs"
         )),
     }
 }
@@ -234,7 +232,7 @@ fn every_documented_command_runs() {
             .args(&args)
             .current_dir(root)
             .env("NO_COLOR", "1")
-            .env("XDG_CACHE_HOME", common::test_cache())
+            .env("XDG_CACHE_HOME", crate::common::test_cache())
             .output()
             .expect("runs");
         let (stdout, stderr) = (

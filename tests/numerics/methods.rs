@@ -2,11 +2,9 @@
 //! solution: the augmented Lagrangian reaches the exact-constraint answer at a finite ε, and a
 //! contact patch test whose uniform pressure is computed by hand from E, ν and the depth.
 
-mod common;
-
 use std::ops::ControlFlow;
 
-use common::paper_with;
+use crate::common::paper_with;
 use riplab::contact::penalty::NewtonOptions;
 use riplab::contact::{Method, Obstacle, Rule};
 use riplab::fem::Integration;

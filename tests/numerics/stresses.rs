@@ -2,9 +2,7 @@
 //! the code that computes them: a uniform strain by hand, Johnson's Hertz line contact, the
 //! contact pressure p̄ on Γ_C, and the load carried across every horizontal line.
 //!
-//! (`tests/stress.rs` is something else: the stability stress test of issue 6.)
-
-mod common;
+//! (`tests/numerics/stress.rs` is something else: the stability stress test of issue 6.)
 
 use riplab::contact::hertz::Hertz;
 use riplab::fem::Integration;
@@ -16,7 +14,7 @@ use riplab::scheme::Scheme;
 use riplab::solve::{Discretization, Solution, solve_scenario};
 use riplab::stress::{Quantity, Stress, StressField};
 
-use common::paper_with;
+use crate::common::paper_with;
 
 /// The paper's problem with the preset `scheme` at `level` (ε = `epsilon`), solved.
 fn paper(scheme: &str, level: u32, epsilon: f64) -> (Scenario, Discretization, Solution) {
@@ -167,7 +165,7 @@ fn uniform_strain_gives_the_exact_constant_stress() {
 /// contact) `20·scale` high and twice as wide, coarse cells added outside, with the cylinder
 /// pushed `depth` deep: hertz-block.toml itself is `hertz_block(8, 0.35)`.
 fn hertz_block(scale: u32, depth: f64) -> Scenario {
-    let mut text = include_str!("../scenarios/hertz-block.toml").to_string();
+    let mut text = include_str!("../../scenarios/hertz-block.toml").to_string();
     let mut replace = |key: &str, new: String| {
         let line = text.lines().find(|l| l.starts_with(key)).unwrap().to_string();
         text = text.replace(&line, &new);

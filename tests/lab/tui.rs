@@ -1,8 +1,6 @@
 //! The terminal lab: rendered frames (insta snapshots of the plain text, in `snapshots/`) and
 //! the key handling of `App::update`, without a terminal.
 
-mod common;
-
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use ratatui::symbols::Marker;
 
@@ -11,7 +9,7 @@ use riplab::mesh::Element;
 use riplab::scenario::Scenario;
 use std::sync::Arc;
 
-use common::settled;
+use crate::common::settled;
 use riplab::study::{Errors, Status, StudyRow};
 use riplab::tui::app::{
     App, Command, MAX_APP_LEVEL, MAX_STUDY_LEVEL, Msg, Response, Scene, Study, StudyRequest,
@@ -984,7 +982,7 @@ fn sizes_outside_the_rule_are_refused() {
     assert!(parse_size("eighty").unwrap_err().contains("not a size"));
     assert!(render_to_string(&Scenario::paper(), "mesh", 5, 5, Some(0), None, None, None).is_err());
     for (size, code) in [("10000x10000", 2), ("5x5", 2), ("1x1", 2), ("80×24", 0)] {
-        let (got, out, err) = common::riplab(&["render", "--size", size, "--level", "0"]);
+        let (got, out, err) = crate::common::riplab(&["render", "--size", size, "--level", "0"]);
         assert_eq!(got, code, "--size {size}: {err}");
         if code == 2 {
             assert!(err.contains("--size") && err.contains("allowed"), "{err}");
@@ -1040,7 +1038,7 @@ fn export_failures_show_and_names_carry_epsilon_and_depth() {
     );
     std::fs::remove_file(&file).unwrap();
     // The help says where files go; the command line sets it.
-    let (_, help, _) = common::riplab(&["--help"]);
+    let (_, help, _) = crate::common::riplab(&["--help"]);
     assert!(help.contains("--export-dir"), "{help}");
 }
 
@@ -1272,10 +1270,10 @@ fn smaller_things() {
     assert!(text.contains("kernel"), "M2's β_h is a kernel:\n{text}");
     let text = frame(&convergence_app(), 120, 40);
     assert!(text.contains("the scenario's ε"), "{text}");
-    let (code, _, err) = common::riplab(&["render", "--level", "7", "--size", "80x24"]);
+    let (code, _, err) = crate::common::riplab(&["render", "--level", "7", "--size", "80x24"]);
     assert_eq!(code, 2);
     assert!(err.contains("0 to 6") && err.contains("level 7 takes"), "{err}");
-    let (_, help, _) = common::riplab(&["render", "--help"]);
+    let (_, help, _) = crate::common::riplab(&["render", "--help"]);
     for scene in Scene::ALL {
         assert!(help.contains(scene.name()), "{scene:?} in\n{help}");
     }
@@ -1284,7 +1282,7 @@ fn smaller_things() {
         "{help}"
     );
     // Started without a terminal, the lab says what to use instead.
-    let (code, _, err) = common::riplab(&[]);
+    let (code, _, err) = crate::common::riplab(&[]);
     assert_eq!(code, 2);
     assert!(err.contains("riplab render"), "{err}");
 }
@@ -1359,7 +1357,7 @@ fn readme_frame_is_rendered() {
     let args: Vec<&str> = command.split_whitespace().collect();
     let fence = rest.find("```\n").unwrap() + 4;
     let frame = &rest[fence..fence + rest[fence..].find("```").unwrap()];
-    let (code, out, err) = common::riplab(&args);
+    let (code, out, err) = crate::common::riplab(&args);
     assert_eq!(code, 0, "{err}");
     assert_eq!(frame, out, "the README's frame differs from `riplab {command}`");
 }
@@ -1367,7 +1365,7 @@ fn readme_frame_is_rendered() {
 /// Issue 10, item 2: the lab's status line says what is known to be poor about the answer.
 #[test]
 fn the_status_line_shows_warnings() {
-    let locking = common::paper_with(&[("poisson", "poisson = 0.4999999")]);
+    let locking = crate::common::paper_with(&[("poisson", "poisson = 0.4999999")]);
     let mut app = App::new(locking.clone());
     app.show_timing = false;
     settle(&mut app, &mut Engine::new(locking));

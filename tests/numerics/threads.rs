@@ -1,11 +1,9 @@
 //! Results do not depend on the thread count (issue 13): one test in its own process, since
 //! the thread count is process-wide.
 
-mod common;
-
 use std::ops::ControlFlow;
 
-use common::paper_with;
+use crate::common::paper_with;
 use riplab::contact::penalty::NewtonOptions;
 use riplab::mesh::Element;
 use riplab::solve::{ContactParams, Discretization, solve_contact};

@@ -1,9 +1,7 @@
 //! Near-incompressibility (ν → 1/2): Q1 with full integration locks, selective reduced
 //! integration of the volumetric term removes the locking (issue 6).
 
-mod common;
-
-use common::{paper_with, rel};
+use crate::common::{paper_with, rel};
 use riplab::solve::solve_scenario;
 
 /// The exact-constraint load of the paper's problem with ν = 0.4999 and the given discretisation.

@@ -1,9 +1,7 @@
 //! Numeric snapshots of the pressures of the paper's problem (docs/design.md §1) at levels 0 and 1
 //! for M1–M4, and the oscillation claim of its Figure 4 as an assertion.
 
-mod common;
-
-use common::paper_with;
+use crate::common::paper_with;
 use riplab::scheme::Scheme;
 use riplab::solve::solve_scenario;
 

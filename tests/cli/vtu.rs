@@ -2,11 +2,9 @@
 //! counts, cell types, array names and values checked against the solution they came from,
 //! and the rules for existing files.
 
-mod common;
-
 use std::path::{Path, PathBuf};
 
-use common::riplab;
+use crate::common::riplab;
 use riplab::mesh::Element;
 use riplab::scenario::Scenario;
 use riplab::solve::{Discretization, Solution, solve_scenario};

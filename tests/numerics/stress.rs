@@ -1,11 +1,9 @@
 //! Stability at the extremes (issue 6): geometry that stresses the contact logic, sizes the
 //! machine cannot hold, and determinism.
 
-mod common;
-
 use std::ops::ControlFlow;
 
-use common::paper_with;
+use crate::common::paper_with;
 use riplab::contact::penalty::{NewtonOptions, SolveError};
 use riplab::contact::{Obstacle, Rule};
 use riplab::fem::DofMap;

@@ -4,12 +4,10 @@
 //! method's stability threshold, and convergence against the study's reference beside the
 //! exact-constraint method.
 
-mod common;
-
 use std::ops::ControlFlow;
 use std::sync::OnceLock;
 
-use common::{bottom_reaction, rel};
+use crate::common::{bottom_reaction, rel};
 use riplab::contact::nitsche::{self, NitscheParams};
 use riplab::contact::penalty::NewtonOptions;
 use riplab::contact::{Obstacle, Rule};

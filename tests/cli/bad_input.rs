@@ -1,9 +1,7 @@
 //! Bad scenarios and bad command lines: a clear message naming the file, line and key with
 //! the allowed range, exit code 2, no panic.
 
-mod common;
-
-use common::riplab;
+use crate::common::riplab;
 
 /// (file, expected fragments of the message)
 const CASES: &[(&str, &[&str])] = &[

@@ -1,9 +1,7 @@
 //! The convergence study's machinery: errors of the reference against itself vanish, and
 //! the observed behaviour matches Theorem 2 (26) and the paper's claim about p and p̄.
 
-mod common;
-
-use common::paper_with;
+use crate::common::paper_with;
 use riplab::contact::Rule;
 use riplab::mesh::Element;
 use riplab::study::{Reference, Status, convergence};

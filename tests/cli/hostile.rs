@@ -2,14 +2,12 @@
 //! clear message and exit 2, or answered honestly (never a non-finite number called
 //! converged), never a panic, an unbounded read or a hang.
 
-mod common;
-
 use std::io::Read as _;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-use common::{paper_text, riplab};
+use crate::common::{paper_text, riplab};
 
 /// A scratch file under the test target's temporary directory.
 fn scratch(name: &str, text: &str) -> PathBuf {
@@ -309,7 +307,7 @@ fn a_closed_stderr_is_not_a_crash() {
         drop(reader);
         let status = Command::new(env!("CARGO_BIN_EXE_riplab"))
             .args(args)
-            .env("XDG_CACHE_HOME", common::test_cache())
+            .env("XDG_CACHE_HOME", crate::common::test_cache())
             .stdout(Stdio::null())
             .stderr(writer)
             .status()

@@ -1,9 +1,7 @@
 //! The command line's own conventions: help documents the exit codes; completions and the man
 //! page are generated from the same definition.
 
-mod common;
-
-use common::riplab;
+use crate::common::riplab;
 
 #[test]
 fn help_documents_exit_codes() {

@@ -1,16 +1,13 @@
 //! The inf-sup estimate of docs/design.md §5 against a brute-force dense computation, a case done by
 //! hand, and the paper's claims about M1–M4.
 
-mod common;
-
-use common::{paper_with, rel};
+use crate::common::{paper_with, rel};
 use nalgebra::{DMatrix, SymmetricEigen};
 use riplab::contact::{ContactPoints, Rule};
 use riplab::fem::{Form, Integration, assemble};
-use riplab::infsup::{TraceCompliance, estimate, inf_sup};
+use riplab::infsup::{InfSupRow, inf_sup, table};
 use riplab::material::{Material, Plane};
 use riplab::mesh::{Element, Mesh};
-use riplab::report::{InfSupRow, slope};
 use riplab::scheme::Scheme;
 use riplab::solve::Discretization;
 
@@ -177,14 +174,40 @@ fn single_cell_by_hand() {
 }
 
 fn levels_of(element: Element, rule: Rule, levels: std::ops::RangeInclusive<u32>) -> Vec<InfSupRow> {
-    let scenario = paper_with(&[]);
-    levels
-        .map(|level| {
-            let disc = Discretization::of(&scenario, level, element).unwrap();
-            let est = estimate(&disc, &TraceCompliance::new(&disc).unwrap(), rule).unwrap();
-            InfSupRow::new(level, element, rule, est, 0.0, 0.0)
-        })
-        .collect()
+    let levels: Vec<u32> = levels.collect();
+    table(&paper_with(&[]), &[(element, rule)], &levels).unwrap()
+}
+
+/// The library's table groups the rows per pair in the order asked (not the elements'
+/// order), by ascending level, with each pair's first row slopeless and the others' slope
+/// log(β₁/β₀)/log(h₁/h₀) of their own pair; a pair with a kernel (β = 0) has none.
+#[test]
+fn the_table_groups_per_pair_with_slopes_of_the_pair() {
+    let pairs = [
+        (Element::Q2, Rule::Simpson),
+        (Element::Q1, Rule::Simpson),
+        (Element::Q1, Rule::Gauss1),
+    ];
+    let rows = table(&paper_with(&[]), &pairs, &[1, 0]).unwrap();
+    let got: Vec<(&str, &str, u32)> = rows.iter().map(|r| (r.element, r.rule, r.level)).collect();
+    assert_eq!(
+        got,
+        [
+            ("q2", "simpson", 0),
+            ("q2", "simpson", 1),
+            ("q1", "simpson", 0),
+            ("q1", "simpson", 1),
+            ("q1", "gauss1", 0),
+            ("q1", "gauss1", 1),
+        ]
+    );
+    for pair in rows.chunks(2) {
+        assert_eq!(pair[0].slope, None);
+        let by_hand = (pair[0].beta > 0.0).then(|| (pair[1].beta / pair[0].beta).ln() / 0.5f64.ln());
+        assert_eq!(pair[1].slope, by_hand, "{pair:?}");
+    }
+    assert_eq!(rows[3].slope, None, "q1 + simpson has a kernel: no slope");
+    assert!(rows[5].slope.is_some());
 }
 
 /// The paper's claims, levels 0..5 of its problem: M1 fails (13) — β_h/√h decreases strictly,
@@ -233,12 +256,8 @@ fn snapshot_table_m1_to_m4() {
     for m in ["M1", "M2", "M3", "M4"] {
         let Scheme { element, rule } = Scheme::parse(m).unwrap();
         let rows = levels_of(element, rule, 0..=4);
-        for (i, r) in rows.iter().enumerate() {
-            let sl = if i > 0 {
-                slope(&rows[i - 1], r).map_or("-".into(), |v| format!("{v:.3}"))
-            } else {
-                "-".into()
-            };
+        for r in &rows {
+            let sl = r.slope.map_or("-".into(), |v| format!("{v:.3}"));
             text += &format!(
                 "{m:<7} {:<6} {:<9} {:<11.5e} {:<13.5e} {:<11.5e} {:<17.5e} {sl}\n",
                 r.level, r.h, r.beta, r.beta_over_sqrt_h, r.beta_bar, r.beta_bar_over_sqrt_h

@@ -2,8 +2,6 @@
 //! tour as an insta snapshot (plain text, 100×30); the keys that move between steps; and the
 //! validation errors of bad tour files.
 
-mod common;
-
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 

@@ -1,8 +1,6 @@
 //! Every scenario under `scenarios/` loads, validates and solves; its numeric summary is
 //! locked by a snapshot; the analytic checks each one is documented with hold.
 
-mod common;
-
 use std::path::Path;
 
 use riplab::contact::hertz::Hertz;

@@ -1,0 +1,13 @@
+//! The command line as a user runs it: help and exit codes, bad and hostile input, every
+//! README command, the VTU and SVG outputs (one test binary).
+
+#[macro_use]
+#[path = "../common/mod.rs"]
+mod common;
+
+mod bad_input;
+mod help;
+mod hostile;
+mod plot;
+mod readme;
+mod vtu;

@@ -1,0 +1,10 @@
+//! The terminal lab and the tour without a terminal: frames, keys, the worker, the stress
+//! scene (one test binary).
+
+#[macro_use]
+#[path = "../common/mod.rs"]
+mod common;
+
+mod tour;
+mod tui;
+mod tui_stress;
