@@ -10,6 +10,10 @@
 //! same bytes). A file is read only when its size is exactly what its key implies, its key
 //! text equals the one asked for (no hash collision can mix two entries) and its checksum
 //! matches; anything else is recomputed and replaced.
+//!
+//! A reference refined at its contact edges ([`crate::study::ReferenceMesh::refined`]) is kept
+//! step by step, each keyed by its refinement count and its vertex lines too, so that a refined
+//! entry can never be read as another grid's.
 
 use std::fs;
 use std::io::{self, Write as _};
@@ -17,7 +21,7 @@ use std::path::{Path, PathBuf};
 
 use crate::error::SolveError;
 use crate::scenario::Scenario;
-use crate::study::{REFERENCE_SCHEME, Reference, ReferenceFields};
+use crate::study::{REFERENCE_SCHEME, Reference, ReferenceFields, ReferenceMesh};
 
 const MAGIC: &[u8; 8] = b"RIPREF01";
 
@@ -37,41 +41,55 @@ pub fn default_dir() -> Option<PathBuf> {
     dirs::cache_dir().map(|d| d.join("riplab"))
 }
 
-/// The reference of `scenario` at `level`: from `dir` when an entry is there and sound,
-/// otherwise computed (and stored in `dir`). `dir` None computes without the cache.
+/// The reference of `scenario` at the uniform `level`: from `dir` when an entry is there and
+/// sound, otherwise computed (and stored in `dir`). `dir` None computes without the cache.
 pub fn reference(
     scenario: &Scenario,
     level: u32,
     dir: Option<&Path>,
 ) -> Result<(Reference, Provenance), SolveError> {
+    let grid = ReferenceMesh::uniform(scenario, level);
+    let (fields, provenance) = fields(scenario, &grid, dir)?;
+    Ok((Reference::from_fields(scenario, &grid, &fields), provenance))
+}
+
+/// The reference's fields on `grid`: from `dir` when an entry is there and sound, otherwise
+/// computed (and stored in `dir`). `dir` None computes without the cache.
+pub fn fields(
+    scenario: &Scenario,
+    grid: &ReferenceMesh,
+    dir: Option<&Path>,
+) -> Result<(ReferenceFields, Provenance), SolveError> {
     // A custom outline has no text that identifies it: never cached.
     let dir = dir.filter(|_| !matches!(scenario.obstacle, crate::contact::Obstacle::Custom { .. }));
     let Some(dir) = dir else {
-        return Ok((Reference::compute(scenario, level)?, Provenance::Computed(None)));
-    };
-    let key = key(scenario, level);
-    let path = dir.join(format!("reference-{:016x}.bin", fnv1a(key.as_bytes())));
-    let (n_u, n_p) = lengths(scenario, level);
-    if let Some(fields) = read(&path, &key, n_u, n_p) {
         return Ok((
-            Reference::from_fields(scenario, level, &fields),
-            Provenance::Cached(path),
+            ReferenceFields::solve_on(scenario, grid)?,
+            Provenance::Computed(None),
         ));
+    };
+    let key = key(scenario, grid);
+    let path = dir.join(format!("reference-{:016x}.bin", fnv1a(key.as_bytes())));
+    let (n_u, n_p) = grid.lengths();
+    if let Some(fields) = read(&path, &key, n_u, n_p) {
+        return Ok((fields, Provenance::Cached(path)));
     }
-    let fields = ReferenceFields::solve(scenario, level)?;
+    let fields = ReferenceFields::solve_on(scenario, grid)?;
     let provenance = match write(dir, &path, &key, &fields) {
         Ok(()) => Provenance::Stored(path),
         Err(e) => Provenance::Computed(Some(format!("not stored in {}: {e}", dir.display()))),
     };
-    Ok((Reference::from_fields(scenario, level, &fields), provenance))
+    Ok((fields, provenance))
 }
 
-/// Everything the reference depends on, as text (f64's Debug form round-trips exactly).
-fn key(s: &Scenario, level: u32) -> String {
-    format!(
-        "riplab {} reference {:?} level {level}\nbody {:?} x {:?} y {:?} half {}\nmaterial {:?}\nintegration {:?}\nobstacle {:?}",
+/// Everything the reference depends on, as text (f64's Debug form round-trips exactly); a
+/// refined grid adds its refinement count and its vertex lines.
+fn key(s: &Scenario, grid: &ReferenceMesh) -> String {
+    let mut key = format!(
+        "riplab {} reference {:?} level {}\nbody {:?} x {:?} y {:?} half {}\nmaterial {:?}\nintegration {:?}\nobstacle {:?}",
         env!("CARGO_PKG_VERSION"),
         REFERENCE_SCHEME,
+        grid.level,
         (s.width, s.height),
         s.x_lines,
         s.y_lines,
@@ -79,15 +97,14 @@ fn key(s: &Scenario, level: u32) -> String {
         s.material,
         s.integration,
         s.obstacle
-    )
-}
-
-/// The lengths of u (every dof of the Q2 mesh) and p (Simpson's points) at `level`.
-fn lengths(s: &Scenario, level: u32) -> (usize, usize) {
-    let (element, rule) = REFERENCE_SCHEME;
-    let (ex, ey) = ((s.x_lines.len() - 1) << level, (s.y_lines.len() - 1) << level);
-    let p = element.order();
-    (2 * (p * ex + 1) * (p * ey + 1), rule.n_points(ex))
+    );
+    if grid.refinements > 0 {
+        key.push_str(&format!(
+            "\nrefinements {}\nxs {:?}\nys {:?}",
+            grid.refinements, grid.xs, grid.ys
+        ));
+    }
+    key
 }
 
 /// FNV-1a, 64 bits: the file name's hash and the payload's checksum (stable across builds,
@@ -213,6 +230,29 @@ mod tests {
         fs::write(&path, &good[..good.len() - 3]).unwrap();
         assert_eq!(read(&path, "key A", 4, 3), None);
         fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// A uniform level keeps the key it always had; a refined grid's key names its refinement
+    /// count and every line, so two refinements (or two grids with the same count) never share
+    /// an entry.
+    #[test]
+    fn a_refined_reference_is_keyed_by_its_lines() {
+        let s = Scenario::paper();
+        let uniform = ReferenceMesh::uniform(&s, 1);
+        assert!(!key(&s, &uniform).contains("refinements"));
+        assert!(key(&s, &uniform).contains("level 1\nbody"));
+        let mut once = uniform.clone();
+        once.refinements = 1;
+        once.xs.insert(1, 0.25);
+        let mut moved = once.clone();
+        moved.xs[1] = 0.125;
+        let (a, b) = (key(&s, &once), key(&s, &moved));
+        assert!(a.contains("refinements 1") && a.contains("0.25"), "{a}");
+        assert_ne!(a, b);
+        assert_ne!(a, key(&s, &uniform));
+        // Its lengths follow its lines (one more x-interval: two more Q2 node columns).
+        let ((u0, p0), (u1, p1)) = (uniform.lengths(), once.lengths());
+        assert_eq!((u1 - u0, p1 - p0), (2 * 2 * (2 * 4 * 2 + 1), 2));
     }
 
     #[test]

@@ -17,7 +17,7 @@ use crate::scenario::{MAX_LEVEL, Scenario};
 use crate::scheme::Scheme;
 use crate::solve::{ContactParams, Discretization, check_request, sweep};
 use crate::stress::StressField;
-use crate::study::{all_ok, convergence, epsilon_sweep};
+use crate::study::{Plan, all_ok};
 use crate::tui::{MarkerChoice, TuiOptions, render_to_string};
 use crate::vtu;
 
@@ -266,6 +266,10 @@ pub struct StudyArgs {
     /// Level of the Q2 exact-constraint reference (default: one finer than the finest studied).
     #[arg(long)]
     pub reference_level: Option<i64>,
+    /// At most this many refinements of the reference at its contact edges, made until its
+    /// estimated error is a tenth of the smallest row error (0: the uniform level only).
+    #[arg(long, default_value_t = 4, allow_negative_numbers = true)]
+    pub reference_refinements: i64,
     /// Compute the reference even if the user's cache directory holds it, and do not store it
     /// (by default it is kept in $XDG_CACHE_HOME/riplab, ~/.cache/riplab).
     #[arg(long)]
@@ -643,41 +647,70 @@ fn study(args: &StudyArgs) -> Result<ExitCode, CliError> {
             ),
         ));
     }
+    check::integer(
+        args.reference_refinements,
+        0,
+        i64::from(crate::study::MAX_REFINEMENTS),
+    )
+    .map_err(|m| usage("--reference-refinements", m))?;
     note(&format!(
-        "the reference: q2 + simpson, ε = 0 (exact constraint), level {reference_level} …"
+        "the reference: q2 + simpson, ε = 0 (exact constraint), level {reference_level} and, for its estimated error, level {} …",
+        reference_level - 1
     ));
     let dir = (!args.no_cache).then(crate::cache::default_dir).flatten();
-    let (reference, provenance) = crate::cache::reference(&scenario, reference_level, dir.as_deref())?;
-    match provenance {
-        crate::cache::Provenance::Cached(path) => note(&format!(
-            "reference read from {} (computed in {:.1} s; --no-cache recomputes it)",
-            path.display(),
-            reference.ms / 1e3
-        )),
-        other => {
-            note(&format!(
-                "reference done in {:.1} s ({} dofs)",
-                reference.ms / 1e3,
-                reference.n_dofs
-            ));
-            if let crate::cache::Provenance::Computed(Some(why)) = other {
-                note(&format!("warning: the reference is {why}"));
+    let mut fetch = |grid: &crate::study::ReferenceMesh| {
+        let (fields, provenance) = crate::cache::fields(&scenario, grid, dir.as_deref())?;
+        let what = match grid.refinements {
+            0 => format!("reference level {}", grid.level),
+            k => format!("reference level {} refinement {k}", grid.level),
+        };
+        match provenance {
+            crate::cache::Provenance::Cached(path) => note(&format!(
+                "{what} read from {} (computed in {:.1} s; --no-cache recomputes it)",
+                path.display(),
+                fields.ms / 1e3
+            )),
+            other => {
+                note(&format!(
+                    "{what} done in {:.1} s ({} dofs)",
+                    fields.ms / 1e3,
+                    fields.n_dofs
+                ));
+                if let crate::cache::Provenance::Computed(Some(why)) = other {
+                    note(&format!("warning: the reference is {why}"));
+                }
             }
         }
-    }
-    let rows = if args.sweep_epsilon.is_empty() {
-        convergence(&scenario, &reference, &schemes, &levels, method, epsilon)
-    } else {
-        epsilon_sweep(
-            &scenario,
-            &reference,
-            &schemes,
-            levels[0],
-            method,
-            &args.sweep_epsilon,
-        )
+        Ok(fields)
     };
-    print(&study_output(&scenario.name, &reference, &rows, args.format))?;
+    let plan = if args.sweep_epsilon.is_empty() {
+        Plan::Levels {
+            levels: &levels,
+            epsilon,
+        }
+    } else {
+        Plan::Sweep {
+            level: levels[0],
+            epsilons: &args.sweep_epsilon,
+        }
+    };
+    let study = crate::study::study(
+        &scenario,
+        &schemes,
+        method,
+        plan,
+        (reference_level, args.reference_refinements as u32),
+        &mut fetch,
+    )?;
+    // The table says it in its own lines; JSON and CSV carry it in a field.
+    if let (Some(why), false) = (&study.reference.stopped, args.format == Format::Table) {
+        note(&format!(
+            "warning: the reference's estimated error is above a tenth of the smallest row error; its refinement stopped at {}: {why}",
+            study.reference.grid.refinements
+        ));
+    }
+    print(&study_output(&scenario.name, &study, args.format))?;
+    let rows = study.rows;
     if all_ok(&rows) {
         Ok(ExitCode::SUCCESS)
     } else {

@@ -13,7 +13,7 @@ use crate::infsup::InfSupRow;
 use crate::scenario::Scenario;
 use crate::scheme::Scheme;
 use crate::solve::{ContactParams, Discretization, Solution, Timing};
-use crate::study::{Errors, Reference, Status, StudyRow};
+use crate::study::{Errors, Reference, Status, Study};
 use crate::warning::Warning;
 
 /// Output format of the CLI.
@@ -522,8 +522,10 @@ impl Report for InfSupTable {
     }
 }
 
-/// `riplab study` output: table, CSV, or JSON `{ "reference": …, "rows": […] }`.
-pub fn study_output(scenario: &str, reference: &Reference, rows: &[StudyRow], format: Format) -> String {
+/// `riplab study` output: table, CSV, or JSON `{ "reference": …, "rows": […], "fits": […] }`
+/// (docs/design.md §7).
+pub fn study_output(scenario: &str, study: &Study, format: Format) -> String {
+    let (reference, rows) = (&study.reference, &study.rows);
     let mut s = String::new();
     let rate = |r: &Option<Errors>, f: fn(&Errors) -> f64| {
         r.as_ref().map_or(String::new(), |e| format!("{:.2}", f(e)))
@@ -534,21 +536,26 @@ pub fn study_output(scenario: &str, reference: &Reference, rows: &[StudyRow], fo
                 "scenario": scenario,
                 "reference": {
                     "element": reference.element.name(), "rule": reference.rule.name(), "epsilon": 0.0,
-                    "level": reference.level, "n_dofs": reference.n_dofs, "load": reference.load, "ms": reference.ms,
+                    "level": reference.level, "refinements": reference.grid.refinements,
+                    "h_min": reference.grid.h_min(), "n_dofs": reference.n_dofs,
+                    "load": reference.load, "ms": reference.ms,
+                    "estimate": reference.estimate, "target": reference.target,
+                    "target_met": reference.target.map(|_| reference.stopped.is_none()), "stopped": reference.stopped,
                 },
                 "rows": rows,
+                "fits": study.fits,
             });
             return serde_json::to_string_pretty(&value).expect("serialisable") + "\n";
         }
         Format::Csv => {
-            s.push_str("scheme,element,rule,level,h,epsilon,method,theta,gamma0,alm_tol,n_dofs,status,newton_iterations,outer_iterations,converged,solve_ms,load,err_p,err_pbar,err_u,err_load,rate_p,rate_pbar,rate_u,rate_load,reason\n");
+            s.push_str("kind,scheme,element,rule,level,refinements,h,epsilon,method,theta,gamma0,alm_tol,n_dofs,status,newton_iterations,outer_iterations,converged,solve_ms,load,err_p,err_pbar,err_u,err_load,rate_p,rate_pbar,rate_u,rate_load,reason\n");
             let opt = |v: Option<String>| v.unwrap_or_default();
             for r in rows {
                 let e = r.errors.as_ref();
                 let err = |f: fn(&Errors) -> f64| opt(e.map(|e| f(e).to_string()));
                 let _ = writeln!(
                     s,
-                    "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
+                    "row,{},{},{},{},,{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
                     r.scheme,
                     r.element,
                     r.rule,
@@ -574,19 +581,65 @@ pub fn study_output(scenario: &str, reference: &Reference, rows: &[StudyRow], fo
                     csv_field(r.reason.as_deref().unwrap_or(""))
                 );
             }
+            // The least-squares rates of each scheme in the rate columns.
+            for f in &study.fits {
+                let _ = writeln!(
+                    s,
+                    "fit,{},{},{},,,,,{},,,,,,,,,,,,{},{},{},{},",
+                    f.scheme,
+                    f.element,
+                    f.rule,
+                    f.method.csv(),
+                    rate(&f.rates, |e| e.p),
+                    rate(&f.rates, |e| e.pbar),
+                    rate(&f.rates, |e| e.u),
+                    rate(&f.rates, |e| e.load),
+                );
+            }
+            // Last, the reference: its estimated error in the error columns (no p̄), why its
+            // refinement stopped short of the target in `reason`.
+            let est = reference.estimate.as_ref();
+            let _ = writeln!(
+                s,
+                "reference,reference,{},{},{},{},{},0,exact,,,,{},ok,,,true,{},{},{},,{},{},,,,,{}",
+                reference.element.name(),
+                reference.rule.name(),
+                reference.level,
+                reference.grid.refinements,
+                reference.grid.h_min(),
+                reference.n_dofs,
+                reference.ms,
+                reference.load,
+                opt(est.map(|e| e.p.to_string())),
+                opt(est.map(|e| e.u.to_string())),
+                opt(est.map(|e| e.load.to_string())),
+                csv_field(reference.stopped.as_deref().unwrap_or(""))
+            );
             return s;
         }
         Format::Table => {}
     }
     let _ = writeln!(
         s,
-        "{scenario}: reference {}+{}, ε = 0 (exact constraint), level {}, {} dofs, load {:.6}",
+        "{scenario}: reference {}+{}, ε = 0 (exact constraint), level {}{}, {} dofs, load {:.6}",
         reference.element.name(),
         reference.rule.name(),
         reference.level,
+        match reference.grid.refinements {
+            0 => String::new(),
+            1 => " + 1 edge refinement".into(),
+            k => format!(" + {k} edge refinements"),
+        },
         reference.n_dofs,
         reference.load
     );
+    let _ = writeln!(s, "{}", reference_estimate(reference));
+    if let Some(why) = &reference.stopped {
+        let _ = writeln!(
+            s,
+            "warning: the reference's refinement stopped short of the target: {why}"
+        );
+    }
     let mut methods: Vec<String> = rows.iter().map(|r| r.method.label()).collect();
     methods.dedup();
     if !methods.is_empty() {
@@ -594,7 +647,7 @@ pub fn study_output(scenario: &str, reference: &Reference, rows: &[StudyRow], fo
     }
     let _ = writeln!(
         s,
-        "relative errors: p, p̄ in L²(Γ_C); u in H¹ (7); load P; rate = observed order between successive rows"
+        "relative errors: p, p̄ in L²(Γ_C); u in H¹ (7); load P; rate = observed order between successive rows; fit = least-squares order over the scheme's rows"
     );
     let _ = writeln!(
         s,
@@ -627,10 +680,20 @@ pub fn study_output(scenario: &str, reference: &Reference, rows: &[StudyRow], fo
             r.method.epsilon_text(r.epsilon, 8),
             r.n_dofs
         );
+        let last = rows
+            .get(i + 1)
+            .is_none_or(|n| n.scheme != r.scheme || n.method != r.method);
+        let fit = study
+            .fits
+            .iter()
+            .find(|f| last && f.scheme == r.scheme && f.method == r.method);
         let (Some(e), Some(iterations), Some(ms)) = (&r.errors, r.newton_iterations, r.solve_ms) else {
             // No result: the reason in place of the numbers.
             let reason = r.reason.as_deref().unwrap_or("");
             let _ = writeln!(s, "{head}  {}: {}", r.status.word(), short_reason(reason));
+            if let Some(f) = fit {
+                let _ = writeln!(s, "{}", fit_line(f, &rate));
+            }
             continue;
         };
         let flag = if r.status == Status::Ok {
@@ -652,6 +715,9 @@ pub fn study_output(scenario: &str, reference: &Reference, rows: &[StudyRow], fo
             e.load,
             rate(&r.rates, |e| e.load)
         );
+        if let Some(f) = fit {
+            let _ = writeln!(s, "{}", fit_line(f, &rate));
+        }
     }
     let reasons: Vec<String> = rows
         .iter()
@@ -669,6 +735,55 @@ pub fn study_output(scenario: &str, reference: &Reference, rows: &[StudyRow], fo
         }
     }
     s
+}
+
+/// The table's lines on the reference's estimated error and what the study asked of it.
+fn reference_estimate(reference: &Reference) -> String {
+    let Some(e) = &reference.estimate else {
+        return "reference's estimated error: none (no coarser reference)".into();
+    };
+    let u_note = if reference.grid.refinements > 0 {
+        " (the uniform level's)"
+    } else {
+        ""
+    };
+    let mut line = format!(
+        "reference's estimated error (difference from {}): p {:.3e}, u {:.3e}{u_note}, load {:.3e}",
+        e.against, e.p, e.u, e.load
+    );
+    if let Some(t) = &reference.target {
+        let _ = write!(
+            line,
+            "\nreference's target (a tenth of the smallest row errors): p ≤ {:.3e}, u ≤ {:.3e}: {}",
+            t.p,
+            t.u,
+            if reference.stopped.is_none() {
+                "met"
+            } else {
+                "not met"
+            }
+        );
+    }
+    line
+}
+
+/// Formats one rate of a row's (or a fit's) rates, empty when there are none.
+type RateText = dyn Fn(&Option<Errors>, fn(&Errors) -> f64) -> String;
+
+/// The table's `fit` line of a scheme: its least-squares rates in the rate columns.
+fn fit_line(f: &crate::study::Fit, rate: &RateText) -> String {
+    format!(
+        "{:<66} {:>10} {:>5} {:>10} {:>5} {:>10} {:>5} {:>10} {:>5}",
+        format!("  fit: least squares over {} rows", f.rows),
+        "",
+        rate(&f.rates, |e| e.p),
+        "",
+        rate(&f.rates, |e| e.pbar),
+        "",
+        rate(&f.rates, |e| e.u),
+        "",
+        rate(&f.rates, |e| e.load)
+    )
 }
 
 /// The first clause of a reason, for a table cell (the whole reason follows the table).

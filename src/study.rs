@@ -6,6 +6,11 @@
 //! finer than any studied one. Coarse solutions live on nested meshes and are evaluated
 //! exactly at the reference's quadrature points: the pressures on every reference edge of
 //! Γ_C, the displacement in every reference cell.
+//!
+//! The reference carries its own estimated error (its difference from the next coarser
+//! reference) and is refined where it is weakest, at the contact edges where p has a
+//! square-root profile, until that estimate is at most a tenth of the smallest error any row
+//! reports ([`study`], docs/design.md §6).
 
 use std::ops::ControlFlow;
 use std::time::Instant;
@@ -16,8 +21,9 @@ use crate::contact::method::MethodFields;
 use crate::contact::penalty::{NewtonOptions, SolveError};
 use crate::contact::{ContactPoints, Method, Rule};
 use crate::fem::basis::{cell_points, evaluate};
+use crate::fem::memory::{Limits, Sizes};
 use crate::fem::quadrature::gauss_legendre;
-use crate::mesh::Element;
+use crate::mesh::{Element, Mesh};
 use crate::scenario::Scenario;
 use crate::scheme::Scheme;
 use crate::solve::{ContactParams, Discretization, Solution, solve_contact};
@@ -34,14 +40,198 @@ struct Sample {
     grad: [f64; 4],
 }
 
+/// How many vertex intervals on each side of a contact edge one refinement bisects, and how
+/// many of Γ_C's neighbouring rows of cells.
+const EDGE_WIDTH: usize = 2;
+
+/// The most edge refinements `--reference-refinements` accepts.
+pub const MAX_REFINEMENTS: u32 = 8;
+
+/// The reference's grid: the uniform level's vertex lines, with the intervals around the
+/// contact edges and next to Γ_C bisected `refinements` times ([`ReferenceMesh::refined`]).
+/// Its lines are a superset of the uniform level's, so every studied mesh stays nested in it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ReferenceMesh {
+    pub level: u32,
+    pub refinements: u32,
+    /// Vertex lines x₀ < … and y₀ < … (Γ_C is y = ys.last()).
+    pub xs: Vec<f64>,
+    pub ys: Vec<f64>,
+}
+
+impl ReferenceMesh {
+    /// The uniform grid of `level` (the lines of [`Scenario::mesh`]).
+    pub fn uniform(scenario: &Scenario, level: u32) -> Self {
+        let m = scenario.mesh(level, Element::Q1);
+        ReferenceMesh {
+            level,
+            refinements: 0,
+            xs: m.xs,
+            ys: m.ys,
+        }
+    }
+
+    /// The Q2 mesh on these lines.
+    pub fn mesh(&self, scenario: &Scenario) -> Mesh {
+        let (element, _) = REFERENCE_SCHEME;
+        Mesh::from_lines(element, self.xs.clone(), self.ys.clone(), scenario.half_model)
+    }
+
+    /// Q2 nodes per node row and per node column.
+    fn node_counts(&self) -> (usize, usize) {
+        let p = REFERENCE_SCHEME.0.order();
+        (p * (self.xs.len() - 1) + 1, p * (self.ys.len() - 1) + 1)
+    }
+
+    /// The free dofs (bottom clamped; u_x fixed on a half model's symmetry line), as
+    /// [`Scenario::n_dofs`] counts them on a uniform grid.
+    pub fn n_dofs(&self, scenario: &Scenario) -> usize {
+        let (nnx, nny) = self.node_counts();
+        let symmetric = if scenario.half_model { nny - 1 } else { 0 };
+        2 * nnx * (nny - 1) - symmetric
+    }
+
+    /// The lengths of u (every dof of the Q2 mesh) and of p (Simpson's points on Γ_C).
+    pub fn lengths(&self) -> (usize, usize) {
+        let (nnx, nny) = self.node_counts();
+        (2 * nnx * nny, REFERENCE_SCHEME.1.n_points(self.xs.len() - 1))
+    }
+
+    /// The smallest cell side (h of the uniform level when unrefined).
+    pub fn h_min(&self) -> f64 {
+        let narrowest = |v: &[f64]| v.windows(2).map(|w| w[1] - w[0]).fold(f64::INFINITY, f64::min);
+        narrowest(&self.xs).min(narrowest(&self.ys))
+    }
+
+    /// The contact edges of the pressure `p` (at Simpson's points on these lines): every
+    /// pair of neighbouring points where p goes from > 0 to 0, as the vertex interval that
+    /// holds both.
+    pub fn contact_edges(&self, p: &[f64]) -> Vec<usize> {
+        let (element, rule) = REFERENCE_SCHEME;
+        let (nnx, _) = self.node_counts();
+        let node_x: Vec<f64> = (0..nnx)
+            .map(|i| match i % 2 {
+                0 => self.xs[i / 2],
+                _ => 0.5 * (self.xs[i / 2] + self.xs[i / 2 + 1]),
+            })
+            .collect();
+        let points = ContactPoints::new(rule, &node_x, element.order());
+        let top = p.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let pressed = |v: f64| v > 1e-9 * top;
+        let mut edges: Vec<usize> = points
+            .points
+            .windows(2)
+            .zip(p.windows(2))
+            .filter(|(_, v)| pressed(v[0]) != pressed(v[1]))
+            .map(|(q, _)| q[0].edge.max(q[1].edge))
+            .collect();
+        edges.dedup();
+        edges
+    }
+
+    /// The next refinement: the [`EDGE_WIDTH`] x-intervals on each side of every contact edge
+    /// of `p` (and the edge's own) bisected, and the [`EDGE_WIDTH`] rows of cells next to
+    /// Γ_C; None when `p` has no contact edge (nothing to refine).
+    pub fn refined(&self, p: &[f64]) -> Option<Self> {
+        let edges = self.contact_edges(p);
+        if edges.is_empty() {
+            return None;
+        }
+        let nx = self.xs.len() - 1;
+        let mut split = vec![false; nx];
+        for &e in &edges {
+            split[e.saturating_sub(EDGE_WIDTH)..=(e + EDGE_WIDTH).min(nx - 1)].fill(true);
+        }
+        let ny = self.ys.len() - 1;
+        let top: Vec<bool> = (0..ny).map(|c| c + EDGE_WIDTH >= ny).collect();
+        Some(ReferenceMesh {
+            level: self.level,
+            refinements: self.refinements + 1,
+            xs: bisect_marked(&self.xs, &split),
+            ys: bisect_marked(&self.ys, &top),
+        })
+    }
+}
+
+/// `lines` with the intervals marked in `split` bisected (the old lines are kept: nested).
+fn bisect_marked(lines: &[f64], split: &[bool]) -> Vec<f64> {
+    let mut out = Vec::with_capacity(2 * lines.len());
+    for (w, &s) in lines.windows(2).zip(split) {
+        out.push(w[0]);
+        if s {
+            out.push(0.5 * (w[0] + w[1]));
+        }
+    }
+    out.push(lines[lines.len() - 1]);
+    out
+}
+
+/// The reference's estimated error: its relative difference from the next coarser reference
+/// (the previous refinement, or the uniform level − 1), p in L²(Γ_C), u in H¹ (7), the load.
+/// After edge refinements u keeps the uniform level's estimate: a refinement leaves the
+/// body's error away from the contact edges as it was, so the difference of two refinements
+/// would miss it (docs/design.md §6).
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct Estimate {
+    pub p: f64,
+    pub u: f64,
+    pub load: f64,
+    /// What p and the load were compared with: `level L` (uniform) or `refinement k`.
+    pub against: String,
+}
+
+/// What the study asks of its reference: an estimated error at most a tenth of the smallest
+/// error any row reports, for p (raw or smoothed) and for u.
+#[derive(Clone, Copy, Debug, Serialize, PartialEq)]
+pub struct Target {
+    pub p: f64,
+    pub u: f64,
+}
+
+/// The share of the smallest row error the reference's estimated error may reach.
+pub const TARGET_SHARE: f64 = 0.1;
+
+impl Target {
+    /// A tenth of the smallest p (or p̄) and u errors of the rows with a result (None when no
+    /// row has one).
+    pub fn of(rows: &[StudyRow]) -> Option<Self> {
+        let ok = || {
+            rows.iter()
+                .filter(|r| r.status == Status::Ok)
+                .filter_map(|r| r.errors)
+        };
+        let smallest =
+            |v: &mut dyn Iterator<Item = f64>| v.filter(|e| *e > 0.0).fold(f64::INFINITY, f64::min);
+        let p = smallest(&mut ok().flat_map(|e| [e.p, e.pbar]));
+        let u = smallest(&mut ok().map(|e| e.u));
+        (p.is_finite() && u.is_finite()).then_some(Target {
+            p: TARGET_SHARE * p,
+            u: TARGET_SHARE * u,
+        })
+    }
+
+    /// Whether `estimate` meets it.
+    pub fn met_by(&self, estimate: &Estimate) -> bool {
+        estimate.p <= self.p && estimate.u <= self.u
+    }
+}
+
 /// The reference solution, with its values where errors are integrated.
 pub struct Reference {
     pub level: u32,
     pub element: Element,
     pub rule: Rule,
+    /// Its grid (the uniform level, and its edge refinements).
+    pub grid: ReferenceMesh,
     pub n_dofs: usize,
     pub load: f64,
     pub ms: f64,
+    /// Its estimated error (None until compared with a coarser reference).
+    pub estimate: Option<Estimate>,
+    /// What the study asked of it (None before any row was computed).
+    pub target: Option<Target>,
+    /// Why the refinement stopped before the target was met (the cap), if it did.
+    pub stopped: Option<String>,
     /// (x, weight, p_ref) at Gauss points of every reference edge of Γ_C.
     edge_points: Vec<(f64, f64, f64)>,
     /// u_ref at Gauss points of every reference cell.
@@ -74,9 +264,16 @@ pub const REFERENCE_SCHEME: (Element, Rule) = (Element::Q2, Rule::Simpson);
 impl ReferenceFields {
     /// Solve Q2 + Simpson with the exact constraint at `level` (expensive: only when asked).
     pub fn solve(scenario: &Scenario, level: u32) -> Result<Self, SolveError> {
+        Self::solve_on(scenario, &ReferenceMesh::uniform(scenario, level))
+    }
+
+    /// Solve Q2 + Simpson with the exact constraint on `grid`, refused before anything is
+    /// allocated when it does not fit the memory ([`crate::fem::memory`]).
+    pub fn solve_on(scenario: &Scenario, grid: &ReferenceMesh) -> Result<Self, SolveError> {
         let t = Instant::now();
-        let (element, rule) = REFERENCE_SCHEME;
-        let disc = Discretization::of(scenario, level, element)?;
+        let rule = REFERENCE_SCHEME.1;
+        fits_memory(scenario, grid)?;
+        let disc = Discretization::new(grid.mesh(scenario), scenario.material, scenario.integration)?;
         let params = ContactParams {
             rule,
             method: Method::Exact,
@@ -102,22 +299,41 @@ impl ReferenceFields {
     }
 }
 
+/// Refuse `grid` when its memory estimate exceeds what this process may use.
+fn fits_memory(scenario: &Scenario, grid: &ReferenceMesh) -> Result<(), SolveError> {
+    let (nnx, _) = grid.node_counts();
+    let sizes = Sizes {
+        element: REFERENCE_SCHEME.0,
+        unknowns: grid.n_dofs(scenario),
+        trace: nnx,
+        points: grid.lengths().1,
+    };
+    sizes.check(&Limits::of_process()).map_err(|e| {
+        let refined = match grid.refinements {
+            0 => String::new(),
+            k => format!(" + {k} edge refinements"),
+        };
+        SolveError::TooLarge(format!(
+            "the reference (q2 + simpson) at level {}{refined}: {e}; choose a coarser --reference-level",
+            grid.level
+        ))
+    })
+}
+
 impl Reference {
     /// Q2 + Simpson with the exact constraint at `level` (expensive: compute only when asked;
     /// [`crate::cache::reference`] keeps it between runs).
     pub fn compute(scenario: &Scenario, level: u32) -> Result<Self, SolveError> {
-        Ok(Reference::from_fields(
-            scenario,
-            level,
-            &ReferenceFields::solve(scenario, level)?,
-        ))
+        let grid = ReferenceMesh::uniform(scenario, level);
+        let fields = ReferenceFields::solve_on(scenario, &grid)?;
+        Ok(Reference::from_fields(scenario, &grid, &fields))
     }
 
-    /// The reference from its fields (solved now or read from the cache): its values at the
-    /// points where errors are integrated.
-    pub fn from_fields(scenario: &Scenario, level: u32, fields: &ReferenceFields) -> Self {
+    /// The reference from its fields on `grid` (solved now or read from the cache): its
+    /// values at the points where errors are integrated.
+    pub fn from_fields(scenario: &Scenario, grid: &ReferenceMesh, fields: &ReferenceFields) -> Self {
         let (element, rule) = REFERENCE_SCHEME;
-        let mesh = scenario.mesh(level, element);
+        let mesh = grid.mesh(scenario);
         let points = ContactPoints::new(rule, &mesh.node_x[..mesh.nnx()], element.order());
         let (u, p) = (&fields.u, &fields.p);
         let gauss = gauss_legendre(ERROR_POINTS);
@@ -152,17 +368,129 @@ impl Reference {
             .sum::<f64>()
             .sqrt();
         Reference {
-            level,
+            level: grid.level,
             element,
             rule,
+            grid: grid.clone(),
             n_dofs: fields.n_dofs,
             load: fields.load,
             ms: fields.ms,
+            estimate: None,
+            target: None,
+            stopped: None,
             edge_points,
             cell_points: cells,
             p_norm,
             u_norm,
         }
+    }
+
+    /// This reference's difference from a coarser one (`fields` on `grid`, nested in this
+    /// one's): its [`Estimate`].
+    pub fn estimate_against(
+        &self,
+        scenario: &Scenario,
+        grid: &ReferenceMesh,
+        fields: &ReferenceFields,
+    ) -> Estimate {
+        let (element, rule) = REFERENCE_SCHEME;
+        let mesh = grid.mesh(scenario);
+        let points = ContactPoints::new(rule, &mesh.node_x[..mesh.nnx()], element.order());
+        let e = differences(
+            self,
+            &Field {
+                mesh: &mesh,
+                u: &fields.u,
+                points: &points,
+                p: &fields.p,
+                pbar: None,
+                load: fields.load,
+            },
+        );
+        Estimate {
+            p: e.p,
+            u: e.u,
+            load: e.load,
+            against: match grid.refinements {
+                0 => format!("level {}", grid.level),
+                k => format!("refinement {k}"),
+            },
+        }
+    }
+}
+
+/// Where a study's reference comes from: the fields on a grid, solved or read from a cache
+/// ([`crate::cache::fields`]), with whatever the caller reports on the way.
+pub type Fetch<'a> = dyn FnMut(&ReferenceMesh) -> Result<ReferenceFields, SolveError> + 'a;
+
+/// The uniform reference at `level` with its estimated error against level − 1 (none at
+/// level 0), and its fields.
+pub fn uniform_reference(
+    scenario: &Scenario,
+    level: u32,
+    fetch: &mut Fetch,
+) -> Result<(Reference, ReferenceFields), SolveError> {
+    let grid = ReferenceMesh::uniform(scenario, level);
+    let fields = fetch(&grid)?;
+    let mut reference = Reference::from_fields(scenario, &grid, &fields);
+    if let Some(coarser) = level.checked_sub(1) {
+        let coarse = ReferenceMesh::uniform(scenario, coarser);
+        reference.estimate = Some(reference.estimate_against(scenario, &coarse, &fetch(&coarse)?));
+    }
+    Ok((reference, fields))
+}
+
+/// Refine `reference` (whose fields are `fields`) at its contact edges until its estimated
+/// error meets `target`, to at most `max_refinements` refinements in all. The memory guard or
+/// the cap stops it without failing: [`Reference::stopped`] says why. A refinement that does
+/// not fit the memory, or whose solve fails, leaves the last good reference in place.
+pub fn refine_reference(
+    scenario: &Scenario,
+    (mut reference, mut fields): (Reference, ReferenceFields),
+    target: Option<Target>,
+    max_refinements: u32,
+    fetch: &mut Fetch,
+) -> (Reference, ReferenceFields) {
+    reference.target = target;
+    reference.stopped = None;
+    let Some(target) = target else {
+        return (reference, fields);
+    };
+    loop {
+        if reference.estimate.as_ref().is_some_and(|e| target.met_by(e)) {
+            return (reference, fields);
+        }
+        let stop = |mut r: Reference, f: ReferenceFields, why: String| {
+            r.stopped = Some(why);
+            (r, f)
+        };
+        if reference.estimate.as_ref().is_some_and(|e| e.p <= target.p) {
+            let why = "u's estimated error is the uniform level's, which edge refinements do not lower: a finer --reference-level meets it".to_string();
+            return stop(reference, fields, why);
+        }
+        if reference.grid.refinements >= max_refinements {
+            let why = format!("the cap of {max_refinements} edge refinements (--reference-refinements)");
+            return stop(reference, fields, why);
+        }
+        let Some(grid) = reference.grid.refined(&fields.p) else {
+            let why = "the reference's pressure has no contact edge to refine".to_string();
+            return stop(reference, fields, why);
+        };
+        let finer = match fits_memory(scenario, &grid).and_then(|()| fetch(&grid)) {
+            Ok(f) => f,
+            Err(e) => {
+                let why = format!("refinement {} failed: {e}", grid.refinements);
+                return stop(reference, fields, why);
+            }
+        };
+        let mut next = Reference::from_fields(scenario, &grid, &finer);
+        let mut estimate = next.estimate_against(scenario, &reference.grid, &fields);
+        if let Some(previous) = &reference.estimate {
+            estimate.u = previous.u;
+        }
+        next.estimate = Some(estimate);
+        next.target = Some(target);
+        (reference, fields) = (next, finer);
     }
 }
 
@@ -179,17 +507,30 @@ pub struct Errors {
     pub load: f64,
 }
 
-/// The errors of `sol` on `disc` (a mesh nested in the reference's).
-pub fn errors(reference: &Reference, disc: &Discretization, sol: &Solution) -> Errors {
+/// A solution as the error integrals see it: a displacement on a mesh nested in the
+/// reference's, its pressure at a rule's points, its smoothed pressure at Γ_C's vertices (None:
+/// p itself stands for it) and its load.
+struct Field<'a> {
+    mesh: &'a Mesh,
+    u: &'a [f64],
+    points: &'a ContactPoints,
+    p: &'a [f64],
+    pbar: Option<&'a [f64]>,
+    load: f64,
+}
+
+/// The relative differences of `field` from the reference.
+fn differences(reference: &Reference, field: &Field) -> Errors {
     let (mut ep, mut epbar) = (0.0, 0.0);
     for &(x, w, pref) in &reference.edge_points {
-        ep += w * (sol.points.interpolate(&sol.p, x) - pref).powi(2);
-        epbar += w * (sol.points.interpolate_vertices(&sol.pbar, x) - pref).powi(2);
+        let p = field.points.interpolate(field.p, x);
+        let pbar = field.pbar.map_or(p, |v| field.points.interpolate_vertices(v, x));
+        ep += w * (p - pref).powi(2);
+        epbar += w * (pbar - pref).powi(2);
     }
-    let u = sol.displacement(disc);
     let mut eu = 0.0;
     for c in &reference.cell_points {
-        let (vh, gh) = evaluate(&disc.mesh, &u, c.x, c.y);
+        let (vh, gh) = evaluate(field.mesh, field.u, c.x, c.y);
         let d2: f64 = vh
             .iter()
             .zip(&c.value)
@@ -202,8 +543,51 @@ pub fn errors(reference: &Reference, disc: &Discretization, sol: &Solution) -> E
         p: ep.sqrt() / reference.p_norm,
         pbar: epbar.sqrt() / reference.p_norm,
         u: eu.sqrt() / reference.u_norm,
-        load: (sol.load - reference.load).abs() / reference.load,
+        load: (field.load - reference.load).abs() / reference.load,
     }
+}
+
+/// What a row keeps of its solution, so that its errors can be measured again against a
+/// refined reference without solving again.
+struct Kept {
+    mesh: Mesh,
+    u: Vec<f64>,
+    points: ContactPoints,
+    p: Vec<f64>,
+    pbar: Vec<f64>,
+    load: f64,
+}
+
+impl Kept {
+    fn of(disc: &Discretization, sol: &Solution) -> Self {
+        Kept {
+            mesh: disc.mesh.clone(),
+            u: sol.displacement(disc),
+            points: sol.points.clone(),
+            p: sol.p.clone(),
+            pbar: sol.pbar.clone(),
+            load: sol.load,
+        }
+    }
+
+    fn errors(&self, reference: &Reference) -> Errors {
+        differences(
+            reference,
+            &Field {
+                mesh: &self.mesh,
+                u: &self.u,
+                points: &self.points,
+                p: &self.p,
+                pbar: Some(&self.pbar),
+                load: self.load,
+            },
+        )
+    }
+}
+
+/// The errors of `sol` on `disc` (a mesh nested in the reference's).
+pub fn errors(reference: &Reference, disc: &Discretization, sol: &Solution) -> Errors {
+    Kept::of(disc, sol).errors(reference)
 }
 
 /// Whether a row of a study or a sweep has a result, and if not, why.
@@ -286,7 +670,7 @@ pub struct StudyRow {
 }
 
 impl StudyRow {
-    /// The row of a solve: its result, or what stopped it.
+    /// The row of a solve: its result, or what stopped it, and what it keeps of its solution.
     fn new(
         reference: &Reference,
         scenario: &Scenario,
@@ -294,7 +678,8 @@ impl StudyRow {
         level: u32,
         (method, epsilon): (Method, f64),
         outcome: Result<(&Discretization, &Solution), &SolveError>,
-    ) -> Self {
+    ) -> (Self, Option<Kept>) {
+        let mut kept = None;
         let mut row = StudyRow {
             scheme: Scheme::new(element, rule).label(),
             element: element.name(),
@@ -321,7 +706,9 @@ impl StudyRow {
                 row.converged = sol.newton.converged;
                 row.solve_ms = Some(sol.timing.total);
                 row.load = Some(sol.load);
-                row.errors = Some(errors(reference, disc, sol));
+                let k = Kept::of(disc, sol);
+                row.errors = Some(k.errors(reference));
+                kept = Some(k);
                 if !sol.newton.converged {
                     row.status = Status::NotConverged;
                     row.reason = sol.newton.diagnosis.clone();
@@ -332,7 +719,7 @@ impl StudyRow {
                 row.reason = Some(e.to_string());
             }
         }
-        row
+        (row, kept)
     }
 }
 
@@ -410,7 +797,20 @@ pub fn convergence(
     method: Option<Method>,
     epsilon: f64,
 ) -> Vec<StudyRow> {
-    let mut groups: Vec<Vec<StudyRow>> = vec![Vec::new(); schemes.len()];
+    let groups = convergence_kept(scenario, reference, schemes, levels, method, epsilon);
+    with_rates(strip(groups), false)
+}
+
+/// The rows of [`convergence`] per scheme, each with what it keeps of its solution.
+fn convergence_kept(
+    scenario: &Scenario,
+    reference: &Reference,
+    schemes: &[(Element, Rule)],
+    levels: &[u32],
+    method: Option<Method>,
+    epsilon: f64,
+) -> Vec<Vec<(StudyRow, Option<Kept>)>> {
+    let mut groups: Vec<Vec<(StudyRow, Option<Kept>)>> = (0..schemes.len()).map(|_| Vec::new()).collect();
     for element in elements(schemes) {
         for &level in levels {
             let disc = Discretization::of(scenario, level, element);
@@ -434,7 +834,7 @@ pub fn convergence(
             }
         }
     }
-    with_rates(groups, false)
+    groups
 }
 
 /// Every scheme at one level over several ε (re-solves on one mesh, warm-started from the
@@ -448,7 +848,20 @@ pub fn epsilon_sweep(
     method: Option<Method>,
     epsilons: &[f64],
 ) -> Vec<StudyRow> {
-    let mut groups: Vec<Vec<StudyRow>> = vec![Vec::new(); schemes.len()];
+    let groups = epsilon_sweep_kept(scenario, reference, schemes, level, method, epsilons);
+    with_rates(strip(groups), true)
+}
+
+/// The rows of [`epsilon_sweep`] per scheme, each with what it keeps of its solution.
+fn epsilon_sweep_kept(
+    scenario: &Scenario,
+    reference: &Reference,
+    schemes: &[(Element, Rule)],
+    level: u32,
+    method: Option<Method>,
+    epsilons: &[f64],
+) -> Vec<Vec<(StudyRow, Option<Kept>)>> {
+    let mut groups: Vec<Vec<(StudyRow, Option<Kept>)>> = (0..schemes.len()).map(|_| Vec::new()).collect();
     for element in elements(schemes) {
         let disc = Discretization::of(scenario, level, element);
         for (i, &scheme) in schemes.iter().enumerate().filter(|(_, s)| s.0 == element) {
@@ -481,5 +894,162 @@ pub fn epsilon_sweep(
             }
         }
     }
-    with_rates(groups, true)
+    groups
+}
+
+/// The rows of every group, without what they keep.
+fn strip(groups: Vec<Vec<(StudyRow, Option<Kept>)>>) -> Vec<Vec<StudyRow>> {
+    groups
+        .into_iter()
+        .map(|g| g.into_iter().map(|(row, _)| row).collect())
+        .collect()
+}
+
+/// The least-squares slope of y against x over `points` (None with fewer than two distinct x).
+pub fn least_squares_slope(points: &[(f64, f64)]) -> Option<f64> {
+    let n = points.len() as f64;
+    let (mx, my) = points
+        .iter()
+        .fold((0.0, 0.0), |(a, b), (x, y)| (a + x / n, b + y / n));
+    let sxx: f64 = points.iter().map(|(x, _)| (x - mx).powi(2)).sum();
+    let sxy: f64 = points.iter().map(|(x, y)| (x - mx) * (y - my)).sum();
+    (points.len() >= 2 && sxx > 0.0).then(|| sxy / sxx)
+}
+
+/// The least-squares rates of one scheme (and method) over its rows: the slopes of log error
+/// against log h (an ε sweep: log ε), beside the row-to-row [`StudyRow::rates`].
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct Fit {
+    pub scheme: String,
+    pub element: &'static str,
+    pub rule: &'static str,
+    #[serde(flatten)]
+    pub method: MethodFields,
+    /// The rows fitted: those with a result ([`Status::Ok`]), every error > 0, and h (ε) > 0.
+    pub rows: usize,
+    /// The slopes (None with fewer than two such rows).
+    pub rates: Option<Errors>,
+}
+
+/// One [`Fit`] per run of rows with the same scheme and method, in the rows' order.
+pub fn fits(rows: &[StudyRow], by_epsilon: bool) -> Vec<Fit> {
+    let mut out: Vec<Fit> = Vec::new();
+    let mut start = 0;
+    while start < rows.len() {
+        let first = &rows[start];
+        let len = rows[start..]
+            .iter()
+            .take_while(|r| r.scheme == first.scheme && r.method == first.method)
+            .count();
+        let usable: Vec<(f64, Errors)> = rows[start..start + len]
+            .iter()
+            .filter(|r| r.status == Status::Ok)
+            .filter_map(|r| Some((if by_epsilon { r.epsilon } else { r.h }, r.errors?)))
+            .filter(|(x, e)| {
+                *x > 0.0
+                    && [e.p, e.pbar, e.u, e.load]
+                        .iter()
+                        .all(|v| *v > 0.0 && v.is_finite())
+            })
+            .collect();
+        let slope = |f: fn(&Errors) -> f64| {
+            let points: Vec<(f64, f64)> = usable.iter().map(|(x, e)| (x.ln(), f(e).ln())).collect();
+            least_squares_slope(&points)
+        };
+        let rates = (|| {
+            Some(Errors {
+                p: slope(|e| e.p)?,
+                pbar: slope(|e| e.pbar)?,
+                u: slope(|e| e.u)?,
+                load: slope(|e| e.load)?,
+            })
+        })();
+        out.push(Fit {
+            scheme: first.scheme.clone(),
+            element: first.element,
+            rule: first.rule,
+            method: first.method,
+            rows: usable.len(),
+            rates,
+        });
+        start += len;
+    }
+    out
+}
+
+/// What a study measures: a refinement over levels at one ε, or a sweep of ε at one level.
+#[derive(Clone, Copy, Debug)]
+pub enum Plan<'a> {
+    Levels { levels: &'a [u32], epsilon: f64 },
+    Sweep { level: u32, epsilons: &'a [f64] },
+}
+
+/// A study's result: its reference (with its estimated error and refinements), its rows with
+/// their row-to-row rates, and the least-squares rate of every scheme.
+pub struct Study {
+    pub reference: Reference,
+    pub rows: Vec<StudyRow>,
+    pub fits: Vec<Fit>,
+}
+
+/// Every scheme of `plan` against a reference at `reference_level` (≥ 1) that is refined at
+/// its contact edges, at most `max_refinements` times, until its estimated error is at most a
+/// tenth of the smallest error any row reports ([`Target`]). The rows are solved once: after a
+/// refinement their errors are measured again against the refined reference from what they
+/// kept. `fetch` provides the reference's fields on a grid (solved, or from the cache).
+pub fn study(
+    scenario: &Scenario,
+    schemes: &[(Element, Rule)],
+    method: Option<Method>,
+    plan: Plan,
+    (reference_level, max_refinements): (u32, u32),
+    fetch: &mut Fetch,
+) -> Result<Study, SolveError> {
+    let (mut reference, mut fields) = uniform_reference(scenario, reference_level, fetch)?;
+    let (mut groups, by_epsilon) = match plan {
+        Plan::Levels { levels, epsilon } => (
+            convergence_kept(scenario, &reference, schemes, levels, method, epsilon),
+            false,
+        ),
+        Plan::Sweep { level, epsilons } => (
+            epsilon_sweep_kept(scenario, &reference, schemes, level, method, epsilons),
+            true,
+        ),
+    };
+    let rows = |groups: &Vec<Vec<(StudyRow, Option<Kept>)>>| -> Vec<StudyRow> {
+        groups.iter().flatten().map(|(r, _)| r.clone()).collect()
+    };
+    let mut target = Target::of(&rows(&groups));
+    // Refine, measure the rows again, and refine on if their new errors ask for more.
+    loop {
+        let refinements = reference.grid.refinements;
+        (reference, fields) = refine_reference(scenario, (reference, fields), target, max_refinements, fetch);
+        if reference.grid.refinements == refinements {
+            break;
+        }
+        for (row, kept) in groups.iter_mut().flatten() {
+            if let Some(kept) = kept {
+                row.errors = Some(kept.errors(&reference));
+            }
+        }
+        target = Target::of(&rows(&groups));
+        reference.target = target;
+        let met = match (&target, &reference.estimate) {
+            (Some(t), Some(e)) => t.met_by(e),
+            _ => true,
+        };
+        if met {
+            reference.stopped = None;
+        }
+        if met || reference.stopped.is_some() {
+            break;
+        }
+    }
+    let rows = with_rates(strip(groups), by_epsilon);
+    let fits = fits(&rows, by_epsilon);
+    Ok(Study {
+        reference,
+        rows,
+        fits,
+    })
 }

@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use crossterm::event::{KeyEvent, KeyEventKind, KeyModifiers};
 
-use crate::contact::Rule;
+use crate::contact::{Method, Rule};
 use crate::mesh::Element;
 use crate::scenario::{MAX_LEVEL, Scenario};
 use crate::scheme::Scheme;
@@ -15,8 +15,8 @@ use crate::stress::Quantity;
 use super::beta::InfSup;
 use super::keys::{LabAction, lab_action};
 pub use super::protocol::{
-    InfSupKey, InfSupRequest, Progress, Response, SolveKey, SolveRequest, Solved, StressRequest, Study,
-    StudyKey, StudyRequest,
+    Compare, InfSupKey, InfSupRequest, Progress, Response, SolveKey, SolveRequest, Solved, StressRequest,
+    Study, StudyKey, StudyRequest,
 };
 
 /// The finest level the interactive lab (and `riplab render`) offers: a change at level 6
@@ -175,6 +175,8 @@ pub struct App {
     pub all_levels: bool,
     /// What the stress scene shows (`c` cycles).
     pub stress_quantity: Quantity,
+    /// What the convergence scene compares (`w` toggles).
+    pub compare: Compare,
     quit: bool,
     /// Bumped on every change of the settings.
     pub generation: u64,
@@ -221,6 +223,7 @@ impl App {
             show_timing: true,
             all_levels: false,
             stress_quantity: Quantity::PrincipalShear,
+            compare: Compare::Schemes,
             quit: false,
             generation: 0,
             solved: None,
@@ -283,11 +286,30 @@ impl App {
         self.infsup_pending.contains(key)
     }
 
-    /// The study the convergence scene shows at the current settings.
+    /// The study the convergence scene shows at the current settings: M1–M4 with the lab's
+    /// method at the scenario's ε ([`App::defaults`]), or the methods ([`compared_methods`]) on
+    /// the lab's scheme at the lab's ε (what the penalty's error depends on).
     pub fn study_key(&self) -> StudyKey {
+        let s = &self.settings;
+        let (schemes, methods, epsilon) = match self.compare {
+            Compare::Schemes => (
+                Scheme::PAPER.iter().map(|m| (m.element, m.rule)).collect(),
+                vec![s.method],
+                App::defaults(&self.scenario).epsilon,
+            ),
+            Compare::Methods => (
+                vec![(s.element, s.rule)],
+                compared_methods(s.method).to_vec(),
+                s.epsilon,
+            ),
+        };
         StudyKey {
             scenario: self.scenario.name.clone(),
-            max_level: self.settings.level.min(MAX_STUDY_LEVEL),
+            max_level: s.level.min(MAX_STUDY_LEVEL),
+            compare: self.compare,
+            schemes,
+            methods,
+            epsilon,
         }
     }
 
@@ -398,6 +420,18 @@ impl App {
                 }
             }
             LabAction::NextMethod => self.settings.method = self.settings.method.next(),
+            LabAction::Compare => {
+                self.compare = match self.compare {
+                    Compare::Schemes => Compare::Methods,
+                    Compare::Methods => Compare::Schemes,
+                };
+                if self.scene != Scene::Convergence {
+                    self.notice = Some(Notice::info(match self.compare {
+                        Compare::Schemes => "the convergence scene compares M1–M4 (Tab to it)",
+                        Compare::Methods => "the convergence scene compares the methods (Tab to it)",
+                    }));
+                }
+            }
             LabAction::EpsilonUp => self.shift_epsilon(1),
             LabAction::EpsilonDown => self.shift_epsilon(-1),
             LabAction::Shallower => self.shift_depth(-DEPTH_STEP),
@@ -648,6 +682,19 @@ impl App {
         }
         out
     }
+}
+
+/// The methods the convergence scene compares, in the legend's order: penalty, alm, nitsche
+/// and exact, each with the lab's parameters when it is the lab's method (else its defaults).
+pub fn compared_methods(current: Method) -> [Method; 4] {
+    let like = |name: &str| {
+        if current.name() == name {
+            current
+        } else {
+            Method::parse(name, None, None, None).expect("the names parse")
+        }
+    };
+    [like("penalty"), like("alm"), like("nitsche"), like("exact")]
 }
 
 /// `value` × 10^`decades`, computed in decimal so that 1e-6 becomes 1e-5 exactly.

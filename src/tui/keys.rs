@@ -24,6 +24,8 @@ pub enum LabAction {
     EpsilonDown,
     /// The next contact method (penalty, exact, alm, nitsche).
     NextMethod,
+    /// The convergence scene compares the schemes or the methods.
+    Compare,
     /// Depth − [`super::app::DEPTH_STEP`].
     Shallower,
     /// Depth + [`super::app::DEPTH_STEP`].
@@ -117,6 +119,11 @@ pub const LAB: &[Row<LabAction>] = &[
         keys: "m",
         what: &["next method: penalty, exact, alm, nitsche"],
         bindings: &[(Char('m'), L::NextMethod)],
+    },
+    Row {
+        keys: "w",
+        what: &["convergence: compare schemes / methods"],
+        bindings: &[(Char('w'), L::Compare)],
     },
     Row {
         keys: "d  D",

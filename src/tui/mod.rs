@@ -15,6 +15,7 @@ pub mod keys;
 mod prefetch;
 pub mod protocol;
 mod runtime;
+pub mod shown;
 pub mod theme;
 pub mod tour;
 pub mod view;

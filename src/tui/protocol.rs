@@ -9,11 +9,13 @@ use std::time::Instant;
 use crate::contact::{Method, Rule};
 use crate::mesh::Element;
 use crate::scenario::Scenario;
+use crate::scheme::Scheme;
 use crate::solve::{Discretization, Solution};
 use crate::stress::StressField;
 use crate::study::StudyRow;
 
 use super::beta::InfSup;
+use super::shown::Shown;
 
 /// Everything a contact solve depends on (the scenario aside).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -36,12 +38,51 @@ pub struct InfSupKey {
     pub rule: Rule,
 }
 
-/// What a work–precision study depends on: the scenario (by name) and the finest level
-/// studied; M1–M4 run at levels 0..=`max_level` against the Q2 reference at `max_level + 1`.
-#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+/// What the convergence scene compares (`w` toggles).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Compare {
+    /// The paper's schemes M1–M4, each with the lab's method.
+    #[default]
+    Schemes,
+    /// The contact methods (penalty, alm, nitsche, exact), each on the lab's scheme.
+    Methods,
+}
+
+/// What a work–precision study depends on: the scenario (by name), the finest level
+/// studied, and the schemes and methods it runs (each scheme with each method at levels
+/// 0..=`max_level`, at `epsilon`) against the Q2 reference at `max_level + 1`.
+#[derive(Clone, Debug, PartialEq)]
 pub struct StudyKey {
     pub scenario: String,
     pub max_level: u32,
+    /// What the scene compares (and so how it draws the rows).
+    pub compare: Compare,
+    /// The schemes (element, rule) run, in the legend's order.
+    pub schemes: Vec<(Element, Rule)>,
+    /// The methods run, in the legend's order.
+    pub methods: Vec<Method>,
+    /// The penalty parameter of `penalty` and `alm` (the others do not use it).
+    pub epsilon: f64,
+}
+
+/// A method's parameters and ε are finite ([`Method::check`], [`super::app::EPSILON_RANGE`]),
+/// so equality is an equivalence.
+impl Eq for StudyKey {}
+
+impl std::hash::Hash for StudyKey {
+    fn hash<H: std::hash::Hasher>(&self, state: &mut H) {
+        self.scenario.hash(state);
+        self.max_level.hash(state);
+        self.compare.hash(state);
+        self.schemes.hash(state);
+        self.epsilon.to_bits().hash(state);
+        for m in &self.methods {
+            m.name().hash(state);
+            m.theta().hash(state);
+            m.gamma0().map(f64::to_bits).hash(state);
+            m.alm_tol().map(f64::to_bits).hash(state);
+        }
+    }
 }
 
 impl StudyKey {
@@ -49,9 +90,28 @@ impl StudyKey {
     pub fn reference_level(&self) -> u32 {
         self.max_level + 1
     }
+
+    /// What is compared, for messages: `M1–M4 (penalty)` or `the methods on M3`.
+    pub fn label(&self) -> String {
+        match self.compare {
+            Compare::Schemes => {
+                let methods: Vec<&str> = self.methods.iter().map(|m| m.name()).collect();
+                format!("M1–M4 ({})", methods.join(", "))
+            }
+            Compare::Methods => {
+                let schemes: Vec<String> = self
+                    .schemes
+                    .iter()
+                    .map(|&(e, r)| Scheme::new(e, r).label())
+                    .collect();
+                format!("the methods on {}", schemes.join(", "))
+            }
+        }
+    }
 }
 
-/// A finished study: one row per scheme and level, M1–M4 in order.
+/// A finished study: one row per scheme, method and level, in the key's order (scheme, then
+/// method, then level).
 #[derive(Clone, Debug)]
 pub struct Study {
     pub key: StudyKey,
@@ -170,6 +230,8 @@ pub struct Solved {
     /// the whole factor, computed by the worker just after the solution is shown
     /// ([`Engine::displace`]), so that a level step shows its pressures without waiting for it.
     pub displacement: OnceLock<Vec<f64>>,
+    /// What the views show of the solution, computed with it.
+    pub shown: Shown,
     /// Wall time of the request, mesh work included, in ms.
     pub total_ms: f64,
     /// The stresses, computed by the worker when the stress scene first shows this solution

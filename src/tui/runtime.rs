@@ -1,6 +1,7 @@
-//! The interactive loop: the terminal (raw mode, alternate screen, restored on exit and on
-//! panic by ratatui), an input thread and the worker feeding one channel, and a redraw only
-//! when an update says the screen changed, inside synchronized-output brackets.
+//! The interactive loop of the lab and the tour ([`run_program`], driving a [`Program`]): the
+//! terminal (raw mode, alternate screen, restored on exit and on panic by ratatui), an input
+//! thread and the workers feeding one channel, and a redraw only when an update says the
+//! screen changed, inside synchronized-output brackets.
 
 use std::io;
 use std::path::{Path, PathBuf};
@@ -9,6 +10,7 @@ use std::time::Duration;
 
 use crossterm::event::Event;
 use crossterm::terminal::{BeginSynchronizedUpdate, EndSynchronizedUpdate};
+use ratatui::layout::Size;
 use ratatui::{DefaultTerminal, Frame};
 
 use crate::scenario::Scenario;
@@ -19,27 +21,59 @@ use super::view::{Look, view};
 use super::worker::Worker;
 
 /// Everything the loop waits for.
-enum Input {
+pub(super) enum Input {
     Terminal(Event),
-    Worker(Response),
+    /// A reply of the worker of the given epoch (a program that replaces its worker drops
+    /// the replies of the old one; the lab's worker is epoch 0).
+    Worker(u64, Response),
     /// Reading the terminal failed: the loop ends with this error.
     Broken(io::Error),
 }
 
-/// Forward the terminal's events to `tx` from a thread of their own, as `event(e)`; a failed
-/// read is sent as `broken(err)` and ends the thread (so does a closed channel).
-pub(super) fn forward_terminal<T: Send + 'static>(
-    tx: mpsc::Sender<T>,
-    event: fn(Event) -> T,
-    broken: fn(io::Error) -> T,
-) -> io::Result<()> {
+/// What an update asks of the loop.
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct Flow {
+    /// The screen changed.
+    pub redraw: bool,
+    /// Ctrl-Z: give the terminal back until resumed.
+    pub suspend: bool,
+}
+
+impl std::ops::BitOrAssign for Flow {
+    fn bitor_assign(&mut self, other: Flow) {
+        self.redraw |= other.redraw;
+        self.suspend |= other.suspend;
+    }
+}
+
+/// What the one event loop ([`run_program`]) drives: the lab ([`Lab`]) or the tour.
+pub(super) trait Program {
+    /// The first update, before the first frame.
+    fn start(&mut self) -> Flow;
+    /// One input from the terminal or a worker (never [`Input::Broken`]).
+    fn input(&mut self, input: Input) -> Flow;
+    /// The wait of [`Program::wait`] is over with no input.
+    fn tick(&mut self) -> Flow;
+    /// After a batch of inputs (the tour's auto-advance).
+    fn after_inputs(&mut self) -> Flow {
+        Flow::default()
+    }
+    /// How long to wait for input before [`Program::tick`]; None: for ever.
+    fn wait(&self) -> Option<Duration>;
+    fn should_quit(&self) -> bool;
+    fn draw(&self, frame: &mut Frame);
+}
+
+/// Forward the terminal's events to `tx` from a thread of their own; a failed read is sent
+/// as [`Input::Broken`] and ends the thread (so does a closed channel).
+fn forward_terminal(tx: mpsc::Sender<Input>) -> io::Result<()> {
     std::thread::Builder::new()
         .name("riplab-input".into())
         .spawn(move || {
             loop {
                 let (input, end) = match crossterm::event::read() {
-                    Ok(e) => (event(e), false),
-                    Err(e) => (broken(e), true),
+                    Ok(e) => (Input::Terminal(e), false),
+                    Err(e) => (Input::Broken(e), true),
                 };
                 if tx.send(input).is_err() || end {
                     return;
@@ -55,84 +89,138 @@ pub(super) const TICK: Duration = Duration::from_millis(250);
 /// Run the lab on `scenario` until the user quits, exporting into `dir` (absolute); the
 /// terminal is restored in every case.
 pub fn run(scenario: Scenario, look: Look, dir: PathBuf) -> io::Result<()> {
+    run_program(|tx, _| {
+        let worker = Worker::spawn(scenario.clone(), move |r| tx.send(Input::Worker(0, r)).is_ok());
+        Ok(Lab {
+            app: App::new(scenario),
+            worker,
+            look,
+            dir,
+        })
+    })
+}
+
+/// The one event loop of the lab and the tour: the terminal (raw mode, alternate screen,
+/// restored on every path, a panic included, by ratatui's hook), an input thread and the
+/// program's workers feeding one channel, and a redraw only when an update says the screen
+/// changed, inside synchronized-output brackets. `start` makes the program from the
+/// channel's sender (for its workers) and the terminal's size.
+pub(super) fn run_program<P: Program>(
+    start: impl FnOnce(mpsc::Sender<Input>, Size) -> io::Result<P>,
+) -> io::Result<()> {
     let mut terminal = ratatui::try_init()?;
-    let result = event_loop(&mut terminal, scenario, &look, &dir);
+    let result = event_loop(&mut terminal, start);
     ratatui::restore();
     result
 }
 
-/// Wait for the next input: for ever, or at most one [`TICK`] when `tick` (then None).
-pub(super) fn next<T>(rx: &mpsc::Receiver<T>, tick: bool) -> Result<Option<T>, ()> {
-    if tick {
-        match rx.recv_timeout(TICK) {
-            Ok(input) => Ok(Some(input)),
-            Err(RecvTimeoutError::Timeout) => Ok(None),
-            Err(RecvTimeoutError::Disconnected) => Err(()),
-        }
-    } else {
-        rx.recv().map(Some).map_err(|_| ())
-    }
-}
-
-fn event_loop(terminal: &mut DefaultTerminal, scenario: Scenario, look: &Look, dir: &Path) -> io::Result<()> {
+fn event_loop<P: Program>(
+    terminal: &mut DefaultTerminal,
+    start: impl FnOnce(mpsc::Sender<Input>, Size) -> io::Result<P>,
+) -> io::Result<()> {
     let (tx, rx) = mpsc::channel::<Input>();
-    let to_app = tx.clone();
-    let worker = Worker::spawn(scenario.clone(), move |r| to_app.send(Input::Worker(r)).is_ok());
-    forward_terminal(tx, Input::Terminal, Input::Broken)?;
-
-    let mut app = App::new(scenario);
-    let mut redraw = apply(terminal, &mut app, &worker, Msg::Resize, dir)?;
-    while !app.should_quit() {
-        if redraw {
-            draw(terminal, &app, look)?;
+    forward_terminal(tx.clone())?;
+    let mut program = start(tx, terminal.size()?)?;
+    let mut flow = program.start();
+    while !program.should_quit() {
+        if flow.suspend {
+            suspend(terminal)?;
+            flow.redraw = true;
         }
-        // Block for one input (or a tick while a long job runs), then take whatever else is
-        // queued before drawing again.
-        let Ok(first) = next(&rx, app.wants_tick()) else {
-            break;
+        if flow.redraw {
+            draw_with(terminal, |frame| program.draw(frame))?;
+        }
+        // Block for one input (or until the program's wait is over), then take whatever else
+        // is queued before drawing again.
+        let first = match program.wait() {
+            Some(timeout) => match rx.recv_timeout(timeout) {
+                Ok(input) => Some(input),
+                Err(RecvTimeoutError::Timeout) => None,
+                Err(RecvTimeoutError::Disconnected) => break,
+            },
+            None => match rx.recv() {
+                Ok(input) => Some(input),
+                Err(_) => break,
+            },
         };
-        redraw = false;
+        flow = Flow::default();
         if first.is_none() {
-            redraw |= apply(terminal, &mut app, &worker, Msg::Tick, dir)?;
+            flow |= program.tick();
         }
         for input in first.into_iter().chain(std::iter::from_fn(|| rx.try_recv().ok())) {
-            let msg = match input {
-                Input::Terminal(Event::Key(key)) => Msg::Key(key),
-                Input::Terminal(Event::Resize(..)) => Msg::Resize,
-                Input::Terminal(_) => continue,
-                Input::Worker(r) => Msg::Worker(r),
-                Input::Broken(e) => return Err(e),
-            };
-            redraw |= apply(terminal, &mut app, &worker, msg, dir)?;
-            if app.should_quit() {
-                break;
+            if let Input::Broken(e) = input {
+                return Err(e);
+            }
+            flow |= program.input(input);
+            if program.should_quit() {
+                return Ok(());
             }
         }
+        flow |= program.after_inputs();
     }
     Ok(())
 }
 
-/// Update the app and carry out its commands; returns whether to redraw.
-fn apply(
-    terminal: &mut DefaultTerminal,
-    app: &mut App,
-    worker: &Worker,
-    msg: Msg,
-    dir: &Path,
-) -> io::Result<bool> {
-    let effect = app.update(msg);
-    let mut redraw = effect.redraw;
-    for command in effect.commands {
-        match command {
-            Command::Export => redraw |= apply(terminal, app, worker, export(app, dir), dir)?,
-            Command::Suspend => {
-                suspend(terminal)?;
-                redraw = true;
+/// The lab in the loop: the app, its worker, how it draws and where exports go.
+struct Lab {
+    app: App,
+    worker: Worker,
+    look: Look,
+    dir: PathBuf,
+}
+
+impl Lab {
+    /// Update the app and carry out its commands.
+    fn apply(&mut self, msg: Msg) -> Flow {
+        let effect = self.app.update(msg);
+        let mut flow = Flow {
+            redraw: effect.redraw,
+            suspend: false,
+        };
+        for command in effect.commands {
+            match command {
+                Command::Export => {
+                    let reply = export(&self.app, &self.dir);
+                    flow |= self.apply(reply);
+                }
+                Command::Suspend => flow.suspend = true,
+                other => self.worker.send(&other),
             }
-            other => worker.send(&other),
         }
+        flow
     }
-    Ok(redraw)
+}
+
+impl Program for Lab {
+    fn start(&mut self) -> Flow {
+        self.apply(Msg::Resize)
+    }
+
+    fn input(&mut self, input: Input) -> Flow {
+        let msg = match input {
+            Input::Terminal(Event::Key(key)) => Msg::Key(key),
+            Input::Terminal(Event::Resize(..)) => Msg::Resize,
+            Input::Terminal(_) | Input::Broken(_) => return Flow::default(),
+            Input::Worker(_, r) => Msg::Worker(r),
+        };
+        self.apply(msg)
+    }
+
+    fn tick(&mut self) -> Flow {
+        self.apply(Msg::Tick)
+    }
+
+    fn wait(&self) -> Option<Duration> {
+        self.app.wants_tick().then_some(TICK)
+    }
+
+    fn should_quit(&self) -> bool {
+        self.app.should_quit()
+    }
+
+    fn draw(&self, frame: &mut Frame) {
+        view(&self.app, frame, &self.look);
+    }
 }
 
 /// Ctrl-Z: restore the terminal, stop the process as the shell's Ctrl-Z would (SIGTSTP,
@@ -167,11 +255,6 @@ pub(super) fn export(app: &App, dir: &Path) -> Msg {
         None => Err("no solution to export".into()),
     };
     Msg::Exported(result)
-}
-
-/// One frame of the lab inside synchronized-output brackets (no tearing over SSH).
-fn draw(terminal: &mut DefaultTerminal, app: &App, look: &Look) -> io::Result<()> {
-    draw_with(terminal, |frame| view(app, frame, look))
 }
 
 /// What `render` draws, as one frame inside synchronized-output brackets.

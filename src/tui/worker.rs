@@ -26,6 +26,7 @@ use super::protocol::{
     InfSupKey, InfSupRequest, Progress, Response, SolveRequest, Solved, StressRequest, Study, StudyKey,
     StudyRequest,
 };
+use super::shown::Shown;
 
 /// How many discretisations (meshes with their factorisations) are kept at most…
 const CACHE_SIZE: usize = 4;
@@ -231,6 +232,7 @@ impl Engine {
                     result: Ok(Arc::new(Solved {
                         key,
                         disc,
+                        shown: Shown::new(&self.scenario, &solution),
                         solution,
                         displacement: OnceLock::new(),
                         total_ms: t.elapsed().as_secs_f64() * 1e3,
@@ -259,9 +261,11 @@ impl Engine {
         Response::Stresses { key: req.solved.key }
     }
 
-    /// The work–precision study of `key`: M1–M4 at levels 0..=max against the Q2 reference
-    /// one level finer, at the scenario's ε (fresh solves: the timings are comparable); each
-    /// stage (the reference, then each level) is announced to `report` with its estimate.
+    /// The work–precision study of `key`: each of its schemes with each of its methods at
+    /// levels 0..=max against the Q2 reference one level finer, at the key's ε (fresh solves,
+    /// so the timings are comparable); each stage
+    /// (the reference, then each level) is announced to `report` with its estimate. A method
+    /// a scheme cannot run (`exact` on a rule with a kernel) gives rows that say why.
     pub fn study(&mut self, key: &StudyKey, report: &mut dyn FnMut(Progress)) -> Result<Arc<Study>, String> {
         if let Some(study) = self.study.as_ref().filter(|s| s.key == *key) {
             return Ok(study.clone());
@@ -283,28 +287,39 @@ impl Engine {
         let dir = crate::cache::default_dir();
         let (reference, _) = crate::cache::reference(&self.scenario, key.reference_level(), dir.as_deref())
             .map_err(|e| e.to_string())?;
-        let schemes: Vec<(Element, Rule)> = Scheme::PAPER.iter().map(|s| (s.element, s.rule)).collect();
         let mut rows = Vec::new();
         for level in 0..=key.max_level {
-            // One Q1 and one Q2 build per level.
-            let unknowns = self.unknowns(level, Element::Q1) + self.unknowns(level, Element::Q2);
+            // One build per element and method at this level.
+            let mut elements: Vec<Element> = key.schemes.iter().map(|s| s.0).collect();
+            elements.dedup();
+            let unknowns: usize = elements
+                .iter()
+                .map(|&e| key.methods.len() * self.unknowns(level, e))
+                .sum();
             report(Progress::Study {
                 level: Some(level),
                 started: Instant::now(),
                 estimate_ms: self.eta.predict_ms(unknowns),
             });
-            rows.extend(convergence(
-                &self.scenario,
-                &reference,
-                &schemes,
-                &[level],
-                None,
-                self.scenario.epsilon,
-            ));
+            for &method in &key.methods {
+                rows.extend(convergence(
+                    &self.scenario,
+                    &reference,
+                    &key.schemes,
+                    &[level],
+                    Some(method),
+                    key.epsilon,
+                ));
+            }
         }
-        // M1–M4 in order, each by ascending level.
-        let order = |r: &StudyRow| schemes_index(&r.scheme);
-        rows.sort_by_key(|r| (order(r), r.level));
+        // The key's order: by scheme, then method, then ascending level.
+        let scheme_index = |r: &StudyRow| {
+            key.schemes
+                .iter()
+                .position(|&(e, rule)| Scheme::new(e, rule).label() == r.scheme)
+        };
+        let method_index = |r: &StudyRow| key.methods.iter().position(|m| m.name() == r.method.method);
+        rows.sort_by_key(|r| (scheme_index(r), method_index(r), r.level));
         let study = Arc::new(Study {
             key: key.clone(),
             rows,
@@ -318,14 +333,6 @@ impl Engine {
         let disc = self.discretization(key.level, key.element)?;
         beta::estimate(&disc, key.rule)
     }
-}
-
-/// The position of the scheme labelled `label` among M1–M4 (others last).
-fn schemes_index(label: &str) -> usize {
-    Scheme::PAPER
-        .iter()
-        .position(|s| s.label() == label)
-        .unwrap_or(Scheme::PAPER.len())
 }
 
 /// A request to the worker thread.

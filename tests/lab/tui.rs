@@ -5,6 +5,7 @@ use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use ratatui::symbols::Marker;
 
 use riplab::contact::Rule;
+use riplab::contact::hertz::Hertz;
 use riplab::mesh::Element;
 use riplab::scenario::Scenario;
 use std::sync::Arc;
@@ -12,7 +13,7 @@ use std::sync::Arc;
 use crate::common::settled;
 use riplab::study::{Errors, Status, StudyRow};
 use riplab::tui::app::{
-    App, Command, MAX_APP_LEVEL, MAX_STUDY_LEVEL, Msg, Response, Scene, Study, StudyRequest,
+    App, Command, Compare, MAX_APP_LEVEL, MAX_STUDY_LEVEL, Msg, Response, Scene, Study, StudyRequest,
 };
 use riplab::tui::theme::Theme;
 use riplab::tui::view::Look;
@@ -722,6 +723,216 @@ fn newer_studies_supersede_older_ones() {
     // Levels above the study's cap share the capped study.
     app.settings.level = MAX_APP_LEVEL;
     assert_eq!(app.study_key().max_level, MAX_APP_LEVEL.min(MAX_STUDY_LEVEL));
+}
+
+// ---- issue 14: the convergence scene compares the methods -------------------------------
+
+/// The methods' names in the rows of `study`, in order.
+fn methods_of(study: &Study) -> Vec<&'static str> {
+    study.rows.iter().map(|r| r.method.method).collect()
+}
+
+/// `w` turns the study of M1–M4 with the lab's method into a study of the methods on the
+/// lab's scheme; its rows carry each method (checked on the real engine: the ALM gives the
+/// exact load where the penalty misses it by its ε term), and the chart has one series per
+/// method, each with its own glyph (legible without colour).
+#[test]
+fn w_makes_a_study_of_the_methods() {
+    let mut app = App::new(Scenario::paper());
+    app.scene = Scene::Convergence;
+    let schemes = studies(&app.update(Msg::Resize).commands).remove(0);
+    assert_eq!(schemes.key.compare, Compare::Schemes);
+    assert_eq!(schemes.key.methods, [app.settings.method]);
+    assert_eq!(schemes.key.schemes.len(), 4, "M1–M4");
+    let asked = studies(&app.update(ch('w')).commands);
+    assert_eq!(asked.len(), 1, "one study: {asked:?}");
+    let req = asked[0].clone();
+    assert_eq!(req.key.compare, Compare::Methods);
+    let names: Vec<&str> = req.key.methods.iter().map(|m| m.name()).collect();
+    assert_eq!(names, ["penalty", "alm", "nitsche", "exact"]);
+    assert_eq!(req.key.schemes, [(app.settings.element, app.settings.rule)]);
+    let text = frame(&app, 120, 40);
+    assert!(text.contains("then the methods on M1 at levels 0 to 0"), "{text}");
+    // The study runs on the real engine: level 0 against the q2 reference at level 1.
+    let mut engine = Engine::new(Scenario::paper());
+    let reply = Response::Study {
+        generation: req.generation,
+        result: Some(engine.study(&req.key, &mut |_| {})),
+        key: req.key.clone(),
+    };
+    assert!(app.update(Msg::Worker(reply)).redraw);
+    let Some(Ok(study)) = app.studies.get(&req.key) else {
+        panic!("the study is cached: {:?}", app.studies);
+    };
+    assert_eq!(methods_of(study), ["penalty", "alm", "nitsche", "exact"]);
+    assert!(
+        study
+            .rows
+            .iter()
+            .all(|r| r.scheme == "M1" && r.status == Status::Ok)
+    );
+    let load = |name: &str| {
+        study
+            .rows
+            .iter()
+            .find(|r| r.method.method == name)
+            .unwrap()
+            .load
+            .unwrap()
+    };
+    let rel = |a: f64, b: f64| (a - b).abs() / b.abs();
+    // The ALM has no penalty error: its load is the exact one; the penalty's is not.
+    assert!(
+        rel(load("alm"), load("exact")) < 1e-9,
+        "{} {}",
+        load("alm"),
+        load("exact")
+    );
+    assert!(
+        rel(load("penalty"), load("exact")) > 1e-6,
+        "{} {}",
+        load("penalty"),
+        load("exact")
+    );
+    // Only the ALM updates a multiplier.
+    let updates: Vec<bool> = study.rows.iter().map(|r| r.outer_iterations.is_some()).collect();
+    assert_eq!(updates, [false, true, false, false]);
+    // One series per method, each with its glyph in the legend; no raw-p curve here.
+    let text = render_app(&app, &MONO, 120, 40);
+    for entry in ["⠒P⠒ penalty p̄", "⠒A⠒ alm p̄", "⠒N⠒ nitsche p̄", "⠒E⠒ exact p̄"] {
+        assert!(text.contains(entry), "legend entry `{entry}` in\n{text}");
+    }
+    assert!(!text.contains("M1 p (raw)"), "{text}");
+    assert!(text.contains("work–precision of the methods on M1"), "{text}");
+    assert!(text.contains("w compares M1–M4"), "{text}");
+    // Back to the schemes: that study is asked for again (the first was never answered).
+    let back = studies(&app.update(ch('w')).commands);
+    assert_eq!(back.len(), 1);
+    assert_eq!(back[0].key, schemes.key);
+}
+
+/// `m` changes the method of the schemes' study, which is a study of its own.
+#[test]
+fn the_schemes_study_runs_the_labs_method() {
+    let mut app = App::new(Scenario::paper());
+    app.scene = Scene::Convergence;
+    let penalty = studies(&app.update(Msg::Resize).commands).remove(0);
+    let alm = studies(&app.update(ch('m')).commands);
+    assert_eq!(alm.len(), 1);
+    assert_ne!(alm[0].key, penalty.key);
+    assert_eq!(alm[0].key.methods, [app.settings.method]);
+    assert_eq!(alm[0].key.label(), "M1–M4 (exact)");
+    // ε: the methods' study runs at the lab's (the penalty's error depends on it), the
+    // schemes' at the scenario's.
+    app.update(ch('w'));
+    assert_eq!(app.study_key().epsilon, 1e-6);
+    app.update(ch('+'));
+    assert_eq!(app.study_key().epsilon, 1e-5);
+    app.update(ch('w'));
+    assert_eq!(app.study_key().epsilon, 1e-6);
+}
+
+/// A made-up study of the methods on M2 at levels 0..=2 (fixed timings): `exact` has no
+/// answer on a rule with a kernel, and says so.
+fn methods_app() -> App {
+    let mut app = App::new(Scenario::paper());
+    app.show_timing = false;
+    app.scene = Scene::Convergence;
+    app.compare = Compare::Methods;
+    app.settings.level = 2;
+    app.settings.rule = Rule::Gauss2;
+    let key = app.study_key();
+    let mut rows = Vec::new();
+    for (i, &method) in key.methods.iter().enumerate() {
+        for level in 0..=2u32 {
+            let f = f64::from(1 << level);
+            let mut r = row(
+                "M2",
+                level,
+                [90, 306, 1122][level as usize],
+                2.0 * f * f * (1.0 + i as f64),
+                0.5 / f,
+                0.2 / f,
+                0.05 / f,
+            );
+            r.rule = "gauss2";
+            r.method = method.into();
+            r.outer_iterations = (method.name() == "alm").then_some(3);
+            if method.name() == "exact" {
+                r.status = Status::Kernel;
+                r.reason = Some("ε = 0 imposes the constraint exactly at the 8 points of gauss2, more than the 5 normal displacements on Γ_C".into());
+                r.errors = None;
+                r.solve_ms = None;
+                r.newton_iterations = None;
+            }
+            rows.push(r);
+        }
+    }
+    app.studies.insert(key.clone(), Ok(Arc::new(Study { key, rows })));
+    app
+}
+
+/// The methods' chart and table at 80×24, with colour and without: `exact` says why it has
+/// no curve, in the legend and in the table.
+#[test]
+fn convergence_methods_80x24() {
+    let app = methods_app();
+    assert!(
+        app.clone().update(Msg::Resize).commands.is_empty(),
+        "a cached study asks for nothing more"
+    );
+    let text = frame(&app, 80, 24);
+    assert!(text.contains("exact: kernel"), "{text}");
+    let mono = render_app(&app, &MONO, 80, 24);
+    for entry in ["⠒P⠒ penalty p̄", "⠒A⠒ alm p̄", "⠒N⠒ nitsche p̄", "⠒E⠒ exact: kernel"] {
+        assert!(mono.contains(entry), "legend entry `{entry}` in\n{mono}");
+    }
+    assert!(
+        mono.contains("kernel: ε = 0 imposes"),
+        "the table says why:\n{mono}"
+    );
+    snap!("tui__convergence_methods_80x24", text);
+}
+
+// ---- issue 11 item 7: views only draw ----------------------------------------------------
+
+/// What the views show of a solution is computed once with it ([`riplab::tui::shown::Shown`]),
+/// checked against the solution itself: a half model's p̄ mirrored about x = 0, the whole
+/// body's load twice the half's, Hertz for that load, and a zoom range that is symmetric and
+/// holds every vertex in contact; a full model is neither mirrored nor doubled.
+#[test]
+fn shown_is_the_solution_mirrored_once() {
+    let app = settled(1, Scene::Explore);
+    let solved = app.current().expect("solved");
+    let (sol, shown) = (&solved.solution, &solved.shown);
+    let xs = &sol.points.vertex_x;
+    let n = sol.pbar.len();
+    assert_eq!(shown.pbar.len(), 2 * n);
+    for (i, (&x, &p)) in xs.iter().zip(&sol.pbar).enumerate() {
+        assert_eq!(shown.pbar[n + i], (x, p));
+        assert_eq!(shown.pbar[n - 1 - i], (-x, p));
+    }
+    let half_width = app.scenario.width / 2.0;
+    assert_eq!(shown.x_range, [-half_width, half_width]);
+    assert_eq!(shown.full_load, 2.0 * sol.load);
+    let hertz = Hertz::for_load(&sol.params.obstacle, &app.scenario.material, 2.0 * sol.load);
+    assert!(hertz.is_some());
+    assert_eq!(shown.hertz, hertz);
+    let [a, b] = shown.zone.expect("in contact");
+    assert_eq!(a, -b);
+    let in_contact = (0..n).filter(|&i| sol.pbar[i] > 0.0);
+    assert!(in_contact.clone().count() > 0);
+    for i in in_contact {
+        assert!(a < -xs[i] && xs[i] < b, "x = ±{} in [{a}, {b}]", xs[i]);
+    }
+    let full = Scenario::load(std::path::Path::new("scenarios/hertz-paper-full.toml")).unwrap();
+    assert!(!full.half_model);
+    let mut app = App::new(full.clone());
+    app.settings.level = 0;
+    settle(&mut app, &mut Engine::new(full));
+    let solved = app.current().expect("solved");
+    assert_eq!(solved.shown.full_load, solved.solution.load);
+    assert_eq!(solved.shown.pbar.len(), solved.solution.pbar.len());
 }
 
 // ---- issue 12: the lab draws as exactly as it computes ------------------------------------

@@ -25,7 +25,7 @@ use crate::scenario::Scenario;
 use crate::scheme::Scheme;
 use crate::text::{sanitize, sanitize_lines};
 
-use super::app::{App, MAX_APP_LEVEL, Scene};
+use super::app::{App, Compare, MAX_APP_LEVEL, Scene};
 
 pub use player::{TourApp, TourEffect, TourMsg};
 pub use runtime::run_tour;
@@ -71,6 +71,8 @@ pub struct Step {
     pub method: Option<Method>,
     pub depth: Option<f64>,
     pub scene: Option<Scene>,
+    /// What the convergence scene compares (`w` in the lab; default: the schemes).
+    pub compare: Compare,
     pub gap: bool,
     pub hertz: bool,
     pub all_levels: bool,
@@ -97,6 +99,7 @@ struct RawStep {
     method: Option<Spanned<String>>,
     depth: Option<Spanned<f64>>,
     scene: Option<Spanned<String>>,
+    compare: Option<Spanned<String>>,
     overlays: Option<Spanned<Vec<Spanned<String>>>>,
 }
 
@@ -194,6 +197,7 @@ impl Tour {
         let s = &mut app.settings;
         s.depth = step.depth.unwrap_or(s.depth).clamp(0.0, max.max(0.0));
         app.scene = step.scene.unwrap_or(Scene::Explore);
+        app.compare = step.compare;
         app.show_gap = step.gap;
         app.show_hertz = step.hertz;
         app.all_levels = step.all_levels;
@@ -315,6 +319,20 @@ fn step(src: &Source, n: usize, raw: &RawStep, dir: Option<&Path>) -> Result<Ste
         })?),
         None => None,
     };
+    let compare = match &raw.compare {
+        Some(name) => match name.get_ref().as_str() {
+            "schemes" => Compare::Schemes,
+            "methods" => Compare::Methods,
+            other => {
+                return Err(src.error(
+                    Some(name.span()),
+                    Some(key("compare")),
+                    format!("`{other}` is not a comparison; allowed: schemes, methods"),
+                ));
+            }
+        },
+        None => Compare::Schemes,
+    };
     let mut on = [false; 3];
     for overlay in raw.overlays.iter().flat_map(|o| o.get_ref()) {
         let i = OVERLAYS
@@ -345,6 +363,7 @@ fn step(src: &Source, n: usize, raw: &RawStep, dir: Option<&Path>) -> Result<Ste
         method,
         depth: raw.depth.as_ref().map(|d| *d.get_ref()),
         scene,
+        compare,
         gap: on[0],
         hertz: on[1],
         all_levels: on[2],

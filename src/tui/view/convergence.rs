@@ -1,6 +1,9 @@
 //! The convergence scene: a work–precision chart (relative error of p̄ against solve time,
-//! log-log, one curve per scheme M1–M4 with a marker at each level, and M1's raw p dotted)
-//! over a table of the numbers. The study runs on request (see [`App::study_key`]).
+//! log-log, a marker at each level) over a table of the numbers. It compares either the
+//! schemes M1–M4 with the lab's method (M1's raw p dotted) or the contact methods on the
+//! lab's scheme (`w` toggles, [`Compare`]); a method that has no answer on the scheme (`exact`
+//! on a rule with a kernel) says so in the legend and the table. The study runs on request
+//! (see [`App::study_key`]).
 
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Rect};
@@ -10,19 +13,30 @@ use ratatui::widgets::{Block, Paragraph, Wrap};
 
 use crate::study::{Errors, Status, StudyRow};
 
-use super::super::app::{App, Study};
+use super::super::app::{App, Compare, Study};
 use super::super::theme::Theme;
 use super::Look;
 use super::fmt::sig;
 use super::plot::{Axis, Plot, Scale, Series, Stroke};
 
+/// A curve's name, colour and glyph.
+type Legend = (&'static str, Color, char);
+
 /// The schemes in the order of the legend, with their colours and glyphs (as in the
 /// inf-sup scene).
-const SCHEMES: [(&str, Color, char); 4] = [
+const SCHEMES: [Legend; 4] = [
     ("M1", Color::Red, '1'),
     ("M2", Color::Yellow, '2'),
     ("M3", Color::Green, '3'),
     ("M4", Color::Blue, '4'),
+];
+/// The methods in the order of the legend ([`super::super::app::compared_methods`]), with
+/// their colours and glyphs.
+const METHODS: [Legend; 4] = [
+    ("penalty", Color::Red, 'P'),
+    ("alm", Color::Green, 'A'),
+    ("nitsche", Color::Magenta, 'N'),
+    ("exact", Color::Blue, 'E'),
 ];
 /// The colour of M1's raw pressure (the dotted curve).
 const RAW_COLOR: Color = Color::Cyan;
@@ -37,15 +51,16 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
             let rows = study.rows.iter().filter(|r| levels.contains(&r.level)).count() as u16;
             let [top, bottom] =
                 Layout::vertical([Constraint::Fill(1), Constraint::Length(rows + 3)]).areas(area);
-            chart(frame, top, look, study);
+            chart(frame, top, look, app, study);
             table(frame, bottom, look.theme, study, &levels);
         }
         other => {
             let text = match other {
                 Some(Err(e)) => format!("the study failed: {e}"),
                 _ if app.study_pending() == Some(&key) => format!(
-                    "⟳ computing the reference (q2, level {}), then M1–M4 at levels 0 to {}…",
+                    "⟳ computing the reference (q2, level {}), then {} at levels 0 to {}…",
                     key.reference_level(),
+                    key.label(),
                     key.max_level
                 ),
                 _ => "the study starts when this scene is shown".into(),
@@ -100,38 +115,90 @@ fn bounds(values: impl Iterator<Item = f64>) -> [f64; 2] {
     }
 }
 
-fn chart(frame: &mut Frame, area: Rect, look: &Look, study: &Study) {
-    let of = |name: &str| -> Vec<&StudyRow> { study.rows.iter().filter(|r| r.scheme == name).collect() };
+/// The ε of the study's penalty and ALM rows, said as whose it is: the scenario's (the paper's
+/// when the scenario's is 0, [`App::defaults`]) for M1–M4, the lab's for the methods.
+pub fn study_epsilon(app: &App) -> String {
+    let key = app.study_key();
+    let whose = match key.compare {
+        Compare::Methods => "the lab's",
+        Compare::Schemes if app.scenario.epsilon > 0.0 => "the scenario's",
+        Compare::Schemes => "the paper's",
+    };
+    format!("{whose} ε={:e}", key.epsilon)
+}
+
+/// One curve of the chart: the rows of a scheme (M1–M4) or of a method, its colour and glyph.
+struct Curve<'a> {
+    name: &'a str,
+    color: Color,
+    glyph: char,
+    rows: Vec<&'a StudyRow>,
+}
+
+/// The curves of `study`: one per scheme or one per method, as the key compares.
+fn curves(study: &Study) -> Vec<Curve<'_>> {
+    let (table, of): (&[Legend], fn(&StudyRow) -> &str) = match study.key.compare {
+        Compare::Schemes => (&SCHEMES, |r| r.scheme.as_str()),
+        Compare::Methods => (&METHODS, |r| r.method.method),
+    };
+    table
+        .iter()
+        .map(|&(name, color, glyph)| Curve {
+            name,
+            color,
+            glyph,
+            rows: study.rows.iter().filter(|r| of(r) == name).collect(),
+        })
+        .filter(|c| !c.rows.is_empty())
+        .collect()
+}
+
+/// The legend's name of `curve`: `M1 p̄`, or why it has no point (`exact: kernel`).
+fn legend(curve: &Curve) -> String {
+    if curve.rows.iter().any(|r| r.status == Status::Ok) {
+        return format!("{} p̄", curve.name);
+    }
+    let word = curve.rows.first().map_or("no rows", |r| r.status.word());
+    format!("{}: {word}", curve.name)
+}
+
+fn chart(frame: &mut Frame, area: Rect, look: &Look, app: &App, study: &Study) {
     let pbar: fn(&Errors) -> f64 = |e| e.pbar;
     let raw: fn(&Errors) -> f64 = |e| e.p;
-    let curves: Vec<Vec<(f64, f64)>> = SCHEMES.iter().map(|(name, ..)| points(&of(name), pbar)).collect();
-    let m1_raw = points(&of("M1"), raw);
-    let all = || curves.iter().flatten().chain(&m1_raw);
+    let curves = curves(study);
+    let points_of: Vec<Vec<(f64, f64)>> = curves.iter().map(|c| points(&c.rows, pbar)).collect();
+    // M1's raw p, dotted, beside the schemes.
+    let m1_raw = curves
+        .iter()
+        .find(|c| study.key.compare == Compare::Schemes && c.name == "M1")
+        .map(|c| points(&c.rows, raw));
+    let all = || points_of.iter().flatten().chain(m1_raw.iter().flatten());
     let xb = bounds(all().map(|p| p.0));
     let yb = bounds(all().map(|p| p.1));
-    let mut series = vec![Series {
-        name: "M1 p (raw)".into(),
-        color: RAW_COLOR,
-        stroke: Stroke::Dotted,
-        glyph: Some('r'),
-        data: &m1_raw,
-    }];
-    for ((name, color, glyph), pts) in SCHEMES.iter().zip(&curves) {
+    let mut series = Vec::new();
+    if let Some(data) = &m1_raw {
         series.push(Series {
-            name: format!("{name} p̄"),
-            color: *color,
+            name: "M1 p (raw)".into(),
+            color: RAW_COLOR,
+            stroke: Stroke::Dotted,
+            glyph: Some('r'),
+            data,
+        });
+    }
+    for (curve, pts) in curves.iter().zip(&points_of) {
+        series.push(Series {
+            name: legend(curve),
+            color: curve.color,
             stroke: Stroke::Solid,
-            glyph: Some(*glyph),
+            glyph: Some(curve.glyph),
             data: pts,
         });
     }
     Plot {
         title: format!(
-            " work–precision: relative error of p̄ against solve time (log-log){} ",
-            study
-                .rows
-                .first()
-                .map_or(String::new(), |r| format!(" · the scenario's ε={:e}", r.epsilon))
+            " work–precision of {}: relative error of p̄ against solve time (log-log) · {} ",
+            study.key.label(),
+            study_epsilon(app)
         ),
         x: Axis {
             title: "solve ms".into(),
@@ -151,19 +218,44 @@ fn chart(frame: &mut Frame, area: Rect, look: &Look, study: &Study) {
 }
 
 fn table(frame: &mut Frame, area: Rect, theme: Theme, study: &Study, levels: &[u32]) {
-    let head = format!(
-        " {:<6} {:>2} {:>7} {:>8} {:>9} {:>9} {:>9}",
-        "scheme", "L", "dofs", "ms", "err p", "err p̄", "err u"
-    );
+    let methods = study.key.compare == Compare::Methods;
+    // The methods' rows add their Newton steps and the ALM's multiplier updates.
+    let head = if methods {
+        format!(
+            " {:<8} {:>2} {:>7} {:>8} {:>3} {:>3} {:>9} {:>9} {:>9}",
+            "method", "L", "dofs", "ms", "it", "upd", "err p", "err p̄", "err u"
+        )
+    } else {
+        format!(
+            " {:<6} {:>2} {:>7} {:>8} {:>9} {:>9} {:>9}",
+            "scheme", "L", "dofs", "ms", "err p", "err p̄", "err u"
+        )
+    };
     let mut lines = vec![Line::styled(head, theme.title())];
+    let curves = curves(study);
     for r in study.rows.iter().filter(|r| levels.contains(&r.level)) {
-        let color = SCHEMES
+        let name = if methods {
+            r.method.method
+        } else {
+            r.scheme.as_str()
+        };
+        let color = curves
             .iter()
-            .find(|(name, ..)| *name == r.scheme)
-            .map_or(Color::Reset, |(_, c, _)| *c);
+            .find(|c| c.name == name)
+            .map_or(Color::Reset, |c| c.color);
+        let count = |n: Option<usize>| n.map_or("–".to_string(), |n| n.to_string());
+        let iterations = if methods {
+            format!(
+                " {:>3} {:>3}",
+                count(r.newton_iterations),
+                count(r.outer_iterations)
+            )
+        } else {
+            String::new()
+        };
         let numbers = match (&r.errors, r.solve_ms, r.status) {
             (Some(e), Some(ms), Status::Ok) => format!(
-                " {:>2} {:>7} {:>8} {:>9} {:>9} {:>9}",
+                " {:>2} {:>7} {:>8}{iterations} {:>9} {:>9} {:>9}",
                 r.level,
                 r.n_dofs,
                 sig(ms, 3),
@@ -171,10 +263,17 @@ fn table(frame: &mut Frame, area: Rect, theme: Theme, study: &Study, levels: &[u
                 sig(e.pbar, 3),
                 sig(e.u, 3),
             ),
-            (_, _, status) => format!(" {:>2} {:>7}  {}", r.level, r.n_dofs, status.word()),
+            // Why there is no answer, when the table has room to say it.
+            (_, _, status) => match (&r.reason, methods) {
+                (Some(reason), true) => {
+                    format!(" {:>2} {:>7}  {}: {reason}", r.level, r.n_dofs, status.word())
+                }
+                _ => format!(" {:>2} {:>7}  {}", r.level, r.n_dofs, status.word()),
+            },
         };
+        let width = if methods { 8 } else { 6 };
         lines.push(Line::from(vec![
-            Span::styled(format!(" {:<6}", r.scheme), Style::new().fg(theme.ink(color))),
+            Span::styled(format!(" {name:<width$}"), Style::new().fg(theme.ink(color))),
             Span::raw(numbers),
         ]));
     }

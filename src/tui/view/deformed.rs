@@ -15,7 +15,6 @@ use super::super::app::App;
 use super::super::protocol::Solved;
 use super::Look;
 use super::fmt::{sig, title_fit};
-use super::zone::zoom_range;
 
 /// How much of the body to show.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -127,11 +126,7 @@ fn window(app: &App, solved: &Solved, extent: Extent, cols: f64, rows: f64) -> (
         }
         Extent::NearContact => {
             let obstacle = &solved.solution.params.obstacle;
-            let zoomed = if app.zoom {
-                zoom_range(solved, s.half_model, (xlo, xhi))
-            } else {
-                None
-            };
+            let zoomed = if app.zoom { solved.shown.zone } else { None };
             let (center, half_width) = match zoomed {
                 // The contact zone with its margin, as the zoomed pressure chart shows it.
                 Some([a, b]) => (0.5 * (a + b), 0.5 * (b - a)),

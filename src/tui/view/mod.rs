@@ -13,7 +13,6 @@ pub mod plot;
 mod pressure;
 mod status;
 mod stress_map;
-mod zone;
 
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Rect};

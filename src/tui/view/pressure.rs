@@ -1,4 +1,4 @@
-//! The main chart: raw pressure p (the function of Q_h through the rule's points, so steps
+//! The main chart (drawn from the solution's [`super::super::shown::Shown`]): raw pressure p (the function of Q_h through the rule's points, so steps
 //! for gauss1, a dotted line) against the smoothed p̄ (a solid line through the vertices)
 //! along Γ_C, mirrored to the full width for a half model, with optional overlays of the gap
 //! and the Hertz profile. p is drawn last so that its oscillation stays visible on fine
@@ -8,14 +8,10 @@ use ratatui::Frame;
 use ratatui::layout::Rect;
 use ratatui::widgets::{Block, Paragraph};
 
-use crate::contact::hertz::Hertz;
-use crate::plot::raw_pressure_edges;
-
 use super::super::app::App;
 use super::Look;
 use super::fmt::{nice_ceil, sig};
 use super::plot::{Axis, Plot, Scale, Series, Stroke};
-use super::zone::zoom_range;
 
 /// Samples of the overlays across the width.
 const OVERLAY_SAMPLES: usize = 41;
@@ -30,36 +26,13 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
         return;
     };
     let sol = &solved.solution;
+    let shown = &solved.shown;
     let half = app.scenario.half_model;
-    let mirror = |pts: Vec<(f64, f64)>| -> Vec<(f64, f64)> {
-        if !half {
-            return pts;
-        }
-        let mut out: Vec<(f64, f64)> = pts.iter().rev().map(|&(x, y)| (-x, y)).collect();
-        out.extend(pts);
-        out
-    };
-    let raw = mirror(raw_pressure_edges(&sol.points, &sol.p).concat());
-    let pbar = mirror(
-        sol.points
-            .vertex_x
-            .iter()
-            .copied()
-            .zip(sol.pbar.iter().copied())
-            .collect(),
-    );
-    let (x0, x1) = app.scenario.x_range();
-    let full = if half { [-x1, x1] } else { [x0, x1] };
-    let zoomed = if app.zoom {
-        zoom_range(solved, half, (full[0], full[1]))
-    } else {
-        None
-    };
+    let full = shown.x_range;
+    let zoomed = if app.zoom { shown.zone } else { None };
     let xb = zoomed.unwrap_or(full);
-    let full_load = if half { 2.0 * sol.load } else { sol.load };
-    let hertz =
-        Hertz::for_load(&sol.params.obstacle, &app.scenario.material, full_load).filter(|_| app.show_hertz);
-    let data_max = sol.p.iter().chain(&sol.pbar).fold(0.0f64, |m, &v| m.max(v));
+    let hertz = shown.hertz.filter(|_| app.show_hertz);
+    let data_max = shown.peak;
     let peak = data_max.max(hertz.map_or(0.0, |h| h.p0));
     let ymax = nice_ceil(peak * 1.05);
 
@@ -106,18 +79,17 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
         color: theme.smooth_color(),
         stroke: Stroke::Solid,
         glyph: None,
-        data: &pbar,
+        data: &shown.pbar,
     });
     series.push(Series {
         name: format!("p {}", sol.params.rule.name()),
         color: theme.raw_color(),
         stroke: Stroke::Dotted,
         glyph: None,
-        data: &raw,
+        data: &shown.raw,
     });
     // A contact zone under a sixth of the axis is worth zooming into: say so.
-    let narrow =
-        zoom_range(solved, half, (full[0], full[1])).is_some_and(|[a, b]| b - a < (full[1] - full[0]) / 6.0);
+    let narrow = shown.zone.is_some_and(|[a, b]| b - a < (full[1] - full[0]) / 6.0);
     let key = solved.key;
     let title = format!(
         " pressure on Γ_C{}{} · {}+{} level {} ",

@@ -8,9 +8,10 @@ use ratatui::style::Style;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::Paragraph;
 
-use super::super::app::{App, Progress, Scene};
+use super::super::app::{App, Compare, Progress, Scene};
 use super::super::eta::time_left;
 use super::super::theme::Theme;
+use super::convergence::study_epsilon;
 use super::fmt::sig;
 
 pub fn render(app: &App, frame: &mut Frame, area: Rect, theme: Theme) {
@@ -141,7 +142,7 @@ fn state(app: &App, theme: Theme) -> Vec<Span<'static>> {
                 }) => {
                     let stage = match level {
                         None => format!("the reference (q2, level {reference})"),
-                        Some(l) => format!("M1–M4 at level {l} of {}", key.max_level),
+                        Some(l) => format!("{} at level {l} of {}", key.label(), key.max_level),
                     };
                     let left = time_left(estimate_ms, started.elapsed().as_secs_f64() * 1e3)
                         .map(|t| format!(" · {t}"))
@@ -156,9 +157,14 @@ fn state(app: &App, theme: Theme) -> Vec<Span<'static>> {
                 0 => "level 0".to_string(),
                 max => format!("levels 0 to {max}"),
             };
+            let (other, plus_minus) = match key.compare {
+                Compare::Schemes => ("the methods", "do not apply"),
+                Compare::Methods => ("M1–M4", "change it"),
+            };
             spans.push(Span::raw(format!(
-                "M1–M4 at {levels} against q2 level {reference}, the scenario's ε={:e} (+ − do not apply)",
-                app.scenario.epsilon
+                "{} at {levels} against q2 level {reference} · w compares {other} · {} (+ − {plus_minus})",
+                key.label(),
+                study_epsilon(app)
             )));
         }
         return spans;
@@ -188,10 +194,7 @@ fn state(app: &App, theme: Theme) -> Vec<Span<'static>> {
         sig(solved.solution.load, 5)
     )));
     if app.scenario.half_model {
-        spans.push(Span::raw(format!(
-            " (full {})",
-            sig(2.0 * solved.solution.load, 5)
-        )));
+        spans.push(Span::raw(format!(" (full {})", sig(solved.shown.full_load, 5))));
     }
     if app.show_timing {
         spans.push(Span::raw(format!(" · {} ms", sig(solved.total_ms, 3))));

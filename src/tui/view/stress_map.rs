@@ -19,7 +19,6 @@ use super::super::protocol::Solved;
 use super::super::theme::Theme;
 use super::Look;
 use super::fmt::sig;
-use super::zone::zoom_range;
 
 /// The shading of the levels, lowest first, and their colours.
 const GLYPHS: [&str; 5] = ["·", "░", "▒", "▓", "█"];
@@ -83,11 +82,7 @@ impl HeatMap {
         let full = if s.half_model { (-x_hi, x_hi) } else { (x_lo, x_hi) };
         // Zoomed: the window of the zoomed pressure chart. Otherwise 2.5 times the contact
         // zone's half-width (the farthest Γ_C vertex from the centre where p̄ > 0).
-        let zoomed = if app.zoom {
-            zoom_range(solved, s.half_model, full)
-        } else {
-            None
-        };
+        let zoomed = if app.zoom { solved.shown.zone } else { None };
         let (a, b) = match zoomed {
             Some([a, b]) => (a, b),
             None => {
