@@ -7,12 +7,9 @@
 //! change of γ₀ (the operator rebuilt, dense work on the points). depth: a re-solve after a
 //! change of depth (the operator reused: Newton alone). θ = 1, γ₀ = 10 γ₀*-ish values.
 
-use std::ops::ControlFlow;
-
 use divan::Bencher;
 use riplab::contact::Rule;
-use riplab::contact::nitsche::{NitscheParams, solve};
-use riplab::contact::penalty::NewtonOptions;
+use riplab::contact::nitsche::{NitscheParams, solve_once};
 use riplab::mesh::Element;
 use riplab::scenario::Scenario;
 use riplab::solve::{ContactParams, Discretization};
@@ -41,15 +38,7 @@ fn setup(level: u32, scheme: &str) -> (Discretization, ContactParams) {
 }
 
 fn run(disc: &Discretization, params: &ContactParams, gamma0: f64) {
-    let sol = solve(
-        disc,
-        params,
-        NitscheParams { theta: 1.0, gamma0 },
-        None,
-        &NewtonOptions::default(),
-        &mut |_| ControlFlow::Continue(()),
-    )
-    .unwrap();
+    let sol = solve_once(disc, params, NitscheParams { theta: 1.0, gamma0 }).unwrap();
     assert!(sol.newton.converged);
 }
 

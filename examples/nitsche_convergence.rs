@@ -13,7 +13,7 @@ use riplab::contact::nitsche::{self, NitscheParams};
 use riplab::contact::penalty::NewtonOptions;
 use riplab::mesh::Element;
 use riplab::scenario::Scenario;
-use riplab::solve::{ContactParams, Discretization, Solution, solve_contact};
+use riplab::solve::{ContactParams, Discretization, solve_contact};
 use riplab::study::{Errors, Reference, errors};
 
 const PAIRS: [(Element, Rule); 3] = [
@@ -21,23 +21,6 @@ const PAIRS: [(Element, Rule); 3] = [
     (Element::Q2, Rule::Simpson),
     (Element::P1, Rule::Trapezoid),
 ];
-
-fn nitsche_solve(
-    disc: &Discretization,
-    params: &ContactParams,
-    theta: f64,
-    gamma0: f64,
-) -> Result<Solution, String> {
-    nitsche::solve(
-        disc,
-        params,
-        NitscheParams { theta, gamma0 },
-        None,
-        &NewtonOptions::default(),
-        &mut |_| ControlFlow::Continue(()),
-    )
-    .map_err(|e| e.to_string())
-}
 
 fn row(label: &str, level: u32, e: &Errors, prev: Option<&Errors>, iterations: usize, converged: bool) {
     let rate =
@@ -86,7 +69,15 @@ fn main() {
                 exact.newton.converged,
             ));
             for (k, theta) in [1.0, 0.0, -1.0].into_iter().enumerate() {
-                let sol = nitsche_solve(&disc, &params, theta, 10.0 * star).unwrap();
+                let sol = nitsche::solve_once(
+                    &disc,
+                    &params,
+                    NitscheParams {
+                        theta,
+                        gamma0: 10.0 * star,
+                    },
+                )
+                .unwrap();
                 rows[k + 1].push((
                     level,
                     errors(&reference, &disc, &sol),
@@ -139,14 +130,15 @@ fn main() {
         ];
         gammas.sort_by(f64::total_cmp);
         for g in gammas {
-            let cell = |theta: f64| match nitsche_solve(&disc, &params, theta, g) {
-                Ok(s) if s.newton.converged => {
-                    let e = errors(&reference, &disc, &s);
-                    format!("{:.2e}, {:.2e}", e.u, e.p)
-                }
-                Ok(s) => format!("not converged ({} it.)", s.newton.iterations),
-                Err(_) => "refused".to_string(),
-            };
+            let cell =
+                |theta: f64| match nitsche::solve_once(&disc, &params, NitscheParams { theta, gamma0: g }) {
+                    Ok(s) if s.newton.converged => {
+                        let e = errors(&reference, &disc, &s);
+                        format!("{:.2e}, {:.2e}", e.u, e.p)
+                    }
+                    Ok(s) => format!("not converged ({} it.)", s.newton.iterations),
+                    Err(_) => "refused".to_string(),
+                };
             println!(
                 "| {} + {} | {star:.3} | {g:.3e} | {} | {} | {} |",
                 element.name(),

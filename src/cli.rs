@@ -6,12 +6,14 @@ use std::process::ExitCode;
 
 use clap::{Args, Parser, Subcommand};
 
+use crate::check;
 use crate::contact::method::MethodError;
 use crate::contact::{Method, Rule};
 use crate::error::SolveError;
+use crate::input::ScenarioError;
 use crate::mesh::Element;
 use crate::report::{Format, InfSupTable, SolveReport, StudyReport, Sweep, SweepFailure, SweepRow, output};
-use crate::scenario::{MAX_LEVEL, Scenario, ScenarioError, check};
+use crate::scenario::{MAX_LEVEL, Scenario};
 use crate::scheme::Scheme;
 use crate::solve::{ContactParams, Discretization, check_request, sweep};
 use crate::stress::StressField;
@@ -281,7 +283,7 @@ pub fn parse_levels(text: &str) -> Result<Vec<u32>, String> {
     let bad = || format!("`{text}`; allowed: a level 0..={MAX_LEVEL} or a range like 0..6 (inclusive)");
     let num = |t: &str| -> Result<u32, String> {
         let v: i64 = t.trim().parse().map_err(|_| bad())?;
-        check::level(v)?;
+        check::level(v).map_err(|e| e.to_string())?;
         Ok(v as u32)
     };
     let (a, b) = match text.split_once("..") {
@@ -324,7 +326,7 @@ impl CliError {
     }
 }
 
-fn usage(flag: &str, msg: String) -> CliError {
+fn usage(flag: &str, msg: impl std::fmt::Display) -> CliError {
     CliError::Usage(format!("invalid value for {flag}: {msg}"))
 }
 
@@ -463,7 +465,7 @@ fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
     let many = epsilons.len() > 1 || depths.len() > 1;
     if let Some(path) = &args.plot {
         if many {
-            return Err(usage("--plot", "plots one solve; a sweep has several".into()));
+            return Err(usage("--plot", "plots one solve; a sweep has several"));
         }
         crate::plot::check_target(path, args.force).map_err(|e| plot_error(path, &e))?;
     }
@@ -487,7 +489,7 @@ fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
         )?;
     }
     if many && args.vtu.is_some() {
-        return Err(usage("--vtu", "exports one solve; a sweep has several".into()));
+        return Err(usage("--vtu", "exports one solve; a sweep has several"));
     }
     // Before any work: an existing file is refused unless --force, and then only a regular one.
     if let Some(path) = &args.vtu {

@@ -25,12 +25,14 @@
 //! the terminal lab (`tui`) and the command line (`cli`).
 
 pub mod cache;
+pub mod check;
 #[cfg(feature = "cli")]
 pub mod cli;
 pub mod contact;
 pub mod error;
 pub mod fem;
 pub mod infsup;
+pub mod input;
 pub mod material;
 pub mod mesh;
 pub mod plot;

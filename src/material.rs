@@ -47,3 +47,16 @@ impl Material {
         tr * tr.transpose() * lambda + normal * (2.0 * mu) + shear * shear.transpose() * mu
     }
 }
+
+/// The range of the dimensionless penalty κ = ε·E/h (the penalty stiffness w/ε against the
+/// body's stiffness E, per unit length) that riplab accepts. Below 1e-20 the products of the
+/// penalty (1/ε times squares of violations) leave double precision; round-off already swamps
+/// the contact forces near κ = 1e-13 (STABILITY.md), which the Newton test reports. Above
+/// 1e10 the penalty carries no load worth computing.
+pub const KAPPA_RANGE: (f64, f64) = (1e-20, 1e10);
+
+/// The penalty parameters ε > 0 accepted on a mesh of cell size `h` for Young's modulus
+/// `young`: [`KAPPA_RANGE`] times h/E.
+pub fn epsilon_range(young: f64, h: f64) -> (f64, f64) {
+    (KAPPA_RANGE.0 * h / young, KAPPA_RANGE.1 * h / young)
+}

@@ -7,6 +7,9 @@
 
 use serde::{Deserialize, Serialize};
 
+/// The finest mesh level riplab accepts: level L bisects every level-0 cell L times.
+pub const MAX_LEVEL: u32 = 8;
+
 /// The finite element used for the displacement (docs/design.md §2).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
@@ -38,6 +41,20 @@ impl Element {
     }
 
     pub const ALL: [Element; 3] = [Element::Q1, Element::Q2, Element::P1];
+
+    /// The node lines across `cells` cells in one direction: the vertex lines, and for Q2 the
+    /// mid-lines too.
+    pub fn node_lines(self, cells: usize) -> usize {
+        self.order() * cells + 1
+    }
+
+    /// The number of elements in `cells` cells (two triangles per cell for P1).
+    pub fn elements(self, cells: usize) -> usize {
+        match self {
+            Element::P1 => 2 * cells,
+            Element::Q1 | Element::Q2 => cells,
+        }
+    }
 }
 
 /// Which diagonal splits a P1 cell.
@@ -85,6 +102,8 @@ impl Mesh {
         };
         let node_x = refine(&xs);
         let node_y = refine(&ys);
+        debug_assert_eq!(node_x.len(), element.node_lines(xs.len() - 1));
+        debug_assert_eq!(node_y.len(), element.node_lines(ys.len() - 1));
         Mesh {
             element,
             xs,
@@ -127,10 +146,7 @@ impl Mesh {
     }
     /// Number of finite elements (two triangles per cell for P1).
     pub fn n_elements(&self) -> usize {
-        match self.element {
-            Element::P1 => 2 * self.n_cells(),
-            _ => self.n_cells(),
-        }
+        self.element.elements(self.n_cells())
     }
     /// Index of the node on node column `i`, node row `j`.
     pub fn node(&self, i: usize, j: usize) -> usize {
@@ -175,9 +191,15 @@ impl Mesh {
 
     /// The largest cell side, the h of the paper's estimates.
     pub fn h(&self) -> f64 {
-        let widest = |v: &[f64]| v.windows(2).map(|w| w[1] - w[0]).fold(0.0, f64::max);
-        widest(&self.xs).max(widest(&self.ys))
+        cell_size(&self.xs, &self.ys, 0)
     }
+}
+
+/// The largest cell side (the h of the paper's estimates) of the grid with vertex lines `xs`
+/// and `ys` after `level` bisections of every cell, computed from the unbisected lines.
+pub fn cell_size(xs: &[f64], ys: &[f64], level: u32) -> f64 {
+    let widest = |v: &[f64]| v.windows(2).map(|w| w[1] - w[0]).fold(0.0, f64::max);
+    widest(xs).max(widest(ys)) / f64::from(1u32 << level)
 }
 
 #[cfg(test)]

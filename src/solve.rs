@@ -11,6 +11,7 @@ use std::sync::{Arc, Mutex};
 use faer::Mat;
 use serde::Serialize;
 
+use crate::check;
 use crate::contact::nitsche::{self, NitscheCache, NitscheParams};
 use crate::contact::penalty::{self, Iteration, NewtonOptions, NewtonResult, Penalty, SolveError};
 use crate::contact::signorini::solve_exact;
@@ -20,8 +21,9 @@ use crate::fem::error::gib;
 use crate::fem::memory::{Limits, Sizes};
 use crate::fem::{DofMap, FemError, Form, Integration, assemble};
 use crate::material::Material;
+pub use crate::material::{KAPPA_RANGE, epsilon_range};
 use crate::mesh::{Element, Mesh};
-use crate::scenario::{Scenario, check};
+use crate::scenario::Scenario;
 use crate::warning::{self, Warning};
 
 fn ms_since(t: Instant) -> f64 {
@@ -205,19 +207,6 @@ impl Discretization {
     }
 }
 
-/// The range of the dimensionless penalty κ = ε·E/h (the penalty stiffness w/ε against the
-/// body's stiffness E, per unit length) that riplab accepts. Below 1e-20 the products of the
-/// penalty (1/ε times squares of violations) leave double precision; round-off already swamps
-/// the contact forces near κ = 1e-13 (STABILITY.md), which the Newton test reports. Above
-/// 1e10 the penalty carries no load worth computing.
-pub const KAPPA_RANGE: (f64, f64) = (1e-20, 1e10);
-
-/// The penalty parameters ε > 0 accepted on a mesh of cell size `h` for Young's modulus
-/// `young`: [`KAPPA_RANGE`] times h/E.
-pub fn epsilon_range(young: f64, h: f64) -> (f64, f64) {
-    (KAPPA_RANGE.0 * h / young, KAPPA_RANGE.1 * h / young)
-}
-
 /// The solver's error for a failure of the finite element layer on `n` unknowns.
 pub(crate) fn fem_error(e: FemError, n: usize) -> SolveError {
     match e {
@@ -253,9 +242,9 @@ pub fn check_params(
         what: "the method",
         message: e.to_string(),
     })?;
-    check::epsilon_in(params.epsilon, range).map_err(|message| SolveError::Input {
+    check::epsilon_in(params.epsilon, range).map_err(|e| SolveError::Input {
         what: "the penalty parameter ε",
-        message,
+        message: e.to_string(),
     })?;
     if params.method.uses_epsilon() && params.epsilon == 0.0 {
         return Err(SolveError::Input {
@@ -266,9 +255,9 @@ pub fn check_params(
             ),
         });
     }
-    check::depth(params.obstacle.depth(), height).map_err(|message| SolveError::Input {
+    check::depth(params.obstacle.depth(), height).map_err(|e| SolveError::Input {
         what: "the indentation depth",
-        message,
+        message: e.to_string(),
     })?;
     if params.method == Method::Exact && n_points > normals {
         return Err(SolveError::Kernel {

@@ -163,7 +163,7 @@ impl Method {
     pub fn check(self) -> Result<(), MethodError> {
         match self {
             Method::Penalty | Method::Exact => Ok(()),
-            Method::Alm { tolerance } => crate::scenario::check::open(
+            Method::Alm { tolerance } => crate::check::open(
                 tolerance,
                 0.0,
                 1.0,
@@ -173,7 +173,7 @@ impl Method {
             Method::Nitsche { theta, gamma0 } => {
                 check_theta(f64::from(theta)).map_err(MethodError::Theta)?;
                 let (lo, hi) = GAMMA0_RANGE;
-                crate::scenario::check::closed(
+                crate::check::closed(
                     gamma0,
                     lo,
                     hi,
@@ -323,9 +323,9 @@ pub enum MethodError {
     #[error("{0}")]
     Theta(String),
     #[error("{0}")]
-    Gamma0(String),
+    Gamma0(crate::check::CheckError),
     #[error("{0}")]
-    Tolerance(String),
+    Tolerance(crate::check::CheckError),
     #[error("`{key}` is a parameter of {takes}, not of {method}")]
     NotTaken {
         key: &'static str,

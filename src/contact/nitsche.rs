@@ -58,7 +58,7 @@ use std::time::Instant;
 use faer::linalg::solvers::Solve;
 use faer::{Accum, Mat, Side};
 
-use super::penalty::{Iteration, NewtonOptions, NewtonResult, dot};
+use super::penalty::{Iterate, Iteration, NewtonOptions, NewtonResult, Progress, dot, round_off, stalled};
 use super::{ContactPoints, Rule, load, smoothed_pressure};
 use crate::error::SolveError;
 use crate::fem::basis::lagrange_1d;
@@ -86,9 +86,6 @@ pub const GAMMA0_RANGE: (f64, f64) = (1e-8, 1e8);
 
 /// Columns per triangular solve in [`Layer::couplings`].
 const SOLVE_BLOCK: usize = 64;
-
-/// Relative size of the round-off in v = −Γg − Hỹ (as in `super::penalty`).
-const ROUNDOFF: f64 = 16.0 * f64::EPSILON;
 
 /// The per-mesh state of Nitsche's method, built only when a Nitsche solve asks for it and
 /// kept with the [`Discretization`]: the layer's factor, then the point couplings of each rule
@@ -634,54 +631,39 @@ fn newton(
         (v, hy, r)
     };
     let norm = |v: &[f64]| dot(v, v).sqrt();
-    let mut seen = std::collections::HashSet::new();
-    let mut previous: Option<Vec<bool>> = None;
-    let mut history = Vec::new();
+    let mut progress = Progress::new(opts, on_iteration);
     let mut step = 1.0;
     for it in 0.. {
         let (v, hy, r) = mismatch(&y);
-        let active: Vec<bool> = v.iter().map(|&x| x > 0.0).collect();
         // In force units: the contact forces w p against Γỹ, and the round-off floor in v.
         let force: Vec<f64> = (0..n).map(|q| gamma[q] * c[q] * v[q].max(0.0)).collect();
         let scaled: Vec<f64> = (0..n).map(|q| gamma[q] * y[q]).collect();
-        let noise: Vec<f64> = (0..n)
-            .map(|q| {
-                if d[q].is_finite() {
-                    ROUNDOFF * (d[q].abs() + hy[q].abs())
-                } else {
-                    0.0
-                }
-            })
-            .collect();
+        let noise = round_off(d, &hy);
         let floor: Vec<f64> = (0..n).map(|q| gamma[q] * c[q] * noise[q]).collect();
-        let scale = norm(&force).max(norm(&scaled));
-        let residual = if scale > 0.0 { norm(&r) / scale } else { 0.0 };
-        let info = Iteration {
-            iteration: it,
-            residual,
-            active: active.iter().filter(|&&a| a).count(),
+        let m = progress.measure(
+            it,
             step,
-        };
-        history.push(info);
-        if on_iteration(&info).is_break() {
-            return Err(SolveError::Cancelled);
-        }
-        let settled = previous
-            .as_ref()
-            .is_none_or(|prev| (0..n).all(|q| prev[q] == active[q] || v[q].abs() <= noise[q]));
-        let done = settled && norm(&r) <= opts.rtol * scale + norm(&floor) && residual.is_finite();
-        let a: Vec<usize> = (0..n).filter(|&q| active[q]).collect();
-        let target = if done || it == opts.max_iterations || !residual.is_finite() {
+            &Iterate {
+                gap: &v,
+                noise: &noise,
+                implied: &force,
+                assumed: &scaled,
+                mismatch: &r,
+                floor: &floor,
+            },
+        )?;
+        let done = m.settled && m.accurate && m.residual.is_finite();
+        let a: Vec<usize> = (0..n).filter(|&q| m.active[q]).collect();
+        let stop = done || it == opts.max_iterations || !m.residual.is_finite();
+        let target = if stop {
             None
         } else {
             active_forces(&op.h, c, d, &a)
         };
         let Some(target) = target else {
             let diagnosis = (!done).then(|| {
-                if !residual.is_finite() {
-                    "the residual is not finite".to_string()
-                } else if it == opts.max_iterations {
-                    format!("no convergence in {it} Newton iterations (relative residual {residual:.1e})")
+                if stop {
+                    stalled(it, m.residual)
                 } else {
                     format!(
                         "the Newton system of the active set is singular (θ = {}, γ₀ = {}): choose a larger γ₀",
@@ -689,24 +671,12 @@ fn newton(
                     )
                 }
             });
-            let forces = scaled;
-            return Ok((
-                y,
-                v,
-                NewtonResult {
-                    forces,
-                    violation: Vec::new(),
-                    iterations: it,
-                    converged: done,
-                    residual,
-                    history,
-                    diagnosis,
-                },
-            ));
+            let result = progress.finish(scaled, Vec::new(), it, done, m.residual, diagnosis);
+            return Ok((y, v, result));
         };
         step = 1.0;
         let delta: Vec<f64> = (0..n).map(|q| target[q] - y[q]).collect();
-        if !seen.insert(active.clone()) {
+        if progress.repeated(&m.active) {
             // A repeated active set: halve the step until the residual decreases.
             let r0 = norm(&r);
             step = 0.5;
@@ -721,9 +691,26 @@ fn newton(
         for q in 0..n {
             y[q] += step * delta[q];
         }
-        previous = Some(active);
+        progress.advance(m.active);
     }
     unreachable!("the loop returns")
+}
+
+/// [`solve`] once from rest: no earlier forces, the default Newton options, no progress
+/// report (a one-off solve, as in the tests and `examples/nitsche_convergence.rs`).
+pub fn solve_once(
+    disc: &Discretization,
+    params: &ContactParams,
+    nitsche: NitscheParams,
+) -> Result<Solution, SolveError> {
+    solve(
+        disc,
+        params,
+        nitsche,
+        None,
+        &NewtonOptions::default(),
+        &mut |_| ControlFlow::Continue(()),
+    )
 }
 
 /// Solve the contact problem on `disc` by Nitsche's method (module doc), from the forces of an
@@ -742,11 +729,9 @@ pub fn solve(
     let t = Instant::now();
     check_params(&nitsche)?;
     let points = disc.contact_points(params.rule);
-    crate::scenario::check::depth(params.obstacle.depth(), disc.height()).map_err(|message| {
-        SolveError::Input {
-            what: "the indentation depth",
-            message,
-        }
+    crate::check::depth(params.obstacle.depth(), disc.height()).map_err(|e| SolveError::Input {
+        what: "the indentation depth",
+        message: e.to_string(),
     })?;
     let op = Operator::of(disc, &points, nitsche)?;
     let prepared_ms = t.elapsed().as_secs_f64() * 1e3;

@@ -9,11 +9,10 @@
 //! A rule whose points outnumber the normal trace dofs (a kernel) has no unique multipliers
 //! and is refused.
 
-use std::collections::HashSet;
 use std::ops::ControlFlow;
 
 use super::penalty::{
-    Iteration, NewtonOptions, NewtonResult, Penalty, SolveError, active_forces, apply, dot,
+    Iteration, NewtonOptions, NewtonResult, Penalty, Progress, SolveError, active_forces, apply, dot,
 };
 
 /// Solve the exact-constraint problem (`pb.epsilon` is ignored), from the multipliers
@@ -31,8 +30,7 @@ pub fn solve_exact(
     let mut y = initial
         .filter(|y| y.len() == n)
         .map_or_else(|| vec![0.0; n], <[f64]>::to_vec);
-    let mut seen: HashSet<Vec<bool>> = HashSet::new();
-    let mut history = Vec::new();
+    let mut progress = Progress::new(opts, on_iteration);
     for it in 0.. {
         let support: Vec<usize> = (0..n).filter(|&q| y[q] != 0.0).collect();
         let gy = apply(g, &y, &support);
@@ -49,17 +47,8 @@ pub fn solve_exact(
         } else {
             dot(&bad, &bad).sqrt()
         };
-        let info = Iteration {
-            iteration: it,
-            residual,
-            active: active.iter().filter(|&&a| a).count(),
-            step: 1.0,
-        };
-        history.push(info);
-        if on_iteration(&info).is_break() {
-            return Err(SolveError::Cancelled);
-        }
-        let repeated = !seen.insert(active.clone());
+        progress.record(it, residual, &active, 1.0)?;
+        let repeated = progress.repeated(&active);
         let done = residual <= opts.rtol;
         if done || repeated || it == opts.max_iterations || !residual.is_finite() {
             let diagnosis = (!done).then(|| {
@@ -69,15 +58,7 @@ pub fn solve_exact(
                     format!("no convergence in {it} iterations (relative residual {residual:.1e})")
                 }
             });
-            return Ok(NewtonResult {
-                forces: y,
-                violation: s,
-                iterations: it,
-                converged: done,
-                residual,
-                history,
-                diagnosis,
-            });
+            return Ok(progress.finish(y, s, it, done, residual, diagnosis));
         }
         let a: Vec<usize> = (0..n).filter(|&q| active[q]).collect();
         y = active_forces(&exact, &a);

@@ -110,33 +110,6 @@ pub fn exact_order(element: Element) -> usize {
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn shape_functions_partition_unity_and_weights_give_area() {
-        for el in Element::ALL {
-            let m = Mesh::uniform(el, (-1.0, 2.0, 3), (0.0, 2.0, 1), false);
-            for ci in 0..3 {
-                let pts = cell_points(&m, ci, 0, 3);
-                let area: f64 = pts.iter().map(|q| q.weight).sum();
-                assert!((area - 2.0).abs() < 1e-14, "{el:?}: area {area}");
-                for q in &pts {
-                    assert!((q.n.iter().sum::<f64>() - 1.0).abs() < 1e-14);
-                    let gx: f64 = q.grad.iter().map(|g| g[0]).sum();
-                    let gy: f64 = q.grad.iter().map(|g| g[1]).sum();
-                    assert!(gx.abs() < 1e-13 && gy.abs() < 1e-13);
-                    // x = Σ x_k N_k reproduces the point (isoparametric consistency).
-                    let nodes = m.cell_nodes(ci, 0);
-                    let x: f64 = nodes.iter().zip(&q.n).map(|(&k, n)| m.node_coords(k).0 * n).sum();
-                    assert!((x - q.x).abs() < 1e-14);
-                }
-            }
-        }
-    }
-}
-
 /// Locate x among ascending lines: the interval index i with lines[i] ≤ x ≤ lines[i+1].
 fn interval(lines: &[f64], x: f64) -> usize {
     lines.partition_point(|&l| l <= x).clamp(1, lines.len() - 1) - 1
@@ -207,8 +180,30 @@ pub fn evaluate(mesh: &Mesh, u: &[f64], x: f64, y: f64) -> ([f64; 2], [f64; 4]) 
 }
 
 #[cfg(test)]
-mod evaluate_tests {
+mod tests {
     use super::*;
+
+    #[test]
+    fn shape_functions_partition_unity_and_weights_give_area() {
+        for el in Element::ALL {
+            let m = Mesh::uniform(el, (-1.0, 2.0, 3), (0.0, 2.0, 1), false);
+            for ci in 0..3 {
+                let pts = cell_points(&m, ci, 0, 3);
+                let area: f64 = pts.iter().map(|q| q.weight).sum();
+                assert!((area - 2.0).abs() < 1e-14, "{el:?}: area {area}");
+                for q in &pts {
+                    assert!((q.n.iter().sum::<f64>() - 1.0).abs() < 1e-14);
+                    let gx: f64 = q.grad.iter().map(|g| g[0]).sum();
+                    let gy: f64 = q.grad.iter().map(|g| g[1]).sum();
+                    assert!(gx.abs() < 1e-13 && gy.abs() < 1e-13);
+                    // x = Σ x_k N_k reproduces the point (isoparametric consistency).
+                    let nodes = m.cell_nodes(ci, 0);
+                    let x: f64 = nodes.iter().zip(&q.n).map(|(&k, n)| m.node_coords(k).0 * n).sum();
+                    assert!((x - q.x).abs() < 1e-14);
+                }
+            }
+        }
+    }
 
     /// Every element reproduces a linear field and its gradient anywhere, and matches its own
     /// quadrature-point values.

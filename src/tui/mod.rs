@@ -123,7 +123,7 @@ pub fn render_to_string(
         app.settings.rule = rule;
     }
     if let Some(epsilon) = epsilon {
-        crate::scenario::check::positive(epsilon).map_err(|e| format!("ε: {e}"))?;
+        crate::check::positive(epsilon).map_err(|e| format!("ε: {e}"))?;
         app.settings.epsilon = epsilon;
     }
     settle(&mut app, &mut Engine::new(scenario.clone()));

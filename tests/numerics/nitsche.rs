@@ -22,24 +22,9 @@ use riplab::study::{Errors, Reference, errors};
 
 const THETAS: [f64; 3] = [1.0, 0.0, -1.0];
 
-fn run(
-    disc: &Discretization,
-    params: &ContactParams,
-    theta: f64,
-    gamma0: f64,
-) -> Result<Solution, SolveError> {
-    nitsche::solve(
-        disc,
-        params,
-        NitscheParams { theta, gamma0 },
-        None,
-        &NewtonOptions::default(),
-        &mut |_| ControlFlow::Continue(()),
-    )
-}
-
 fn converged(disc: &Discretization, params: &ContactParams, theta: f64, gamma0: f64) -> Solution {
-    let sol = run(disc, params, theta, gamma0).unwrap_or_else(|e| panic!("θ = {theta}, γ₀ = {gamma0}: {e}"));
+    let sol = nitsche::solve_once(disc, params, NitscheParams { theta, gamma0 })
+        .unwrap_or_else(|e| panic!("θ = {theta}, γ₀ = {gamma0}: {e}"));
     assert!(
         sol.newton.converged,
         "θ = {theta}, γ₀ = {gamma0}: {:?}",
@@ -333,7 +318,14 @@ fn symmetric_nitsche_is_stable_above_its_threshold_only() {
             converged(&disc, &params, 1.0, 10.0 * star);
             converged(&disc, &params, 1.0, 1.01 * star);
             for below in [0.99 * star, 0.1 * star] {
-                match run(&disc, &params, 1.0, below) {
+                match nitsche::solve_once(
+                    &disc,
+                    &params,
+                    NitscheParams {
+                        theta: 1.0,
+                        gamma0: below,
+                    },
+                ) {
                     Err(SolveError::Input { what, message }) => {
                         assert!(what.contains("γ₀") && message.contains("positive definite"));
                         // The message names γ₀*, which the test computed independently.
@@ -355,7 +347,14 @@ fn symmetric_nitsche_is_stable_above_its_threshold_only() {
             }
             converged(&disc, &params, 0.0, 10.0 * star);
             assert!(matches!(
-                run(&disc, &params, 0.0, 0.9 * star / 4.0),
+                nitsche::solve_once(
+                    &disc,
+                    &params,
+                    NitscheParams {
+                        theta: 0.0,
+                        gamma0: 0.9 * star / 4.0
+                    }
+                ),
                 Err(SolveError::Input { .. })
             ));
             thresholds.push(star);
@@ -523,7 +522,7 @@ fn bad_nitsche_parameters_are_refused() {
         (1.0, -3.0, "γ₀"),
         (1.0, f64::INFINITY, "γ₀"),
     ] {
-        match run(&disc, &params, theta, gamma0) {
+        match nitsche::solve_once(&disc, &params, NitscheParams { theta, gamma0 }) {
             Err(e @ SolveError::Input { .. }) => {
                 assert!(e.to_string().contains(name), "{e}");
                 assert_eq!(e.exit_code(), 2);
@@ -536,7 +535,7 @@ fn bad_nitsche_parameters_are_refused() {
         ..params.clone()
     };
     assert!(
-        matches!(run(&disc, &too_deep, 1.0, 10.0), Err(SolveError::Input { what, .. }) if what.contains("depth"))
+        matches!(nitsche::solve_once(&disc, &too_deep, NitscheParams { theta: 1.0, gamma0: 10.0 }), Err(SolveError::Input { what, .. }) if what.contains("depth"))
     );
     let stop = NitscheParams {
         theta: 1.0,

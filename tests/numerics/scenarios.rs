@@ -136,3 +136,33 @@ fn two_bumps_make_two_zones() {
     let width = |v: &[f64]| v.last().unwrap() - v.first().unwrap();
     assert!(width(&right) < width(&left), "the lifted bump touches less");
 }
+
+/// The scenario counts dofs and elements and sizes cells without building a mesh (the lab's
+/// header asks per frame); the counts must be those of the mesh, the dof map and the
+/// discretisation built from it, for every scenario, element and level 0–3 (the
+/// discretisation, which factors, at levels 0–1). By hand: the paper's Q1 mesh at level 1 has
+/// 17 × 9 nodes, 2·17·8 = 272 dofs above the clamped base less 8 u_x on the symmetry line.
+#[test]
+fn scenario_counts_are_the_meshes() {
+    use riplab::fem::DofMap;
+    use riplab::mesh::Element;
+    use riplab::solve::Discretization;
+    assert_eq!(Scenario::paper().n_dofs(1, Element::Q1), 264);
+    for path in scenario_files() {
+        let s = Scenario::load(&path).unwrap();
+        for element in Element::ALL {
+            for level in 0..=3 {
+                let mesh = s.mesh(level, element);
+                let at = format!("{} {element:?} level {level}", path.display());
+                assert_eq!(s.h(level), mesh.h(), "h: {at}");
+                assert_eq!(s.n_elements(level, element), mesh.n_elements(), "elements: {at}");
+                let n = s.n_dofs(level, element);
+                assert_eq!(n, DofMap::model(&mesh).n_free(), "dofs: {at}");
+                if level <= 1 {
+                    let disc = Discretization::of(&s, level, element).unwrap();
+                    assert_eq!(n, disc.n_dofs(), "discretisation: {at}");
+                }
+            }
+        }
+    }
+}

@@ -457,5 +457,8 @@ fn study_csv_is_its_json(s: &riplab::study::Study) {
         num(reference[col("err_p")]),
         json["reference"]["estimate"]["p"].as_f64().unwrap()
     );
-    assert_eq!(num(reference[col("h")]), json["reference"]["h_min"].as_f64().unwrap());
+    assert_eq!(
+        num(reference[col("h")]),
+        json["reference"]["h_min"].as_f64().unwrap()
+    );
 }

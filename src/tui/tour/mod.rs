@@ -16,10 +16,12 @@ use std::time::Duration;
 use serde::Deserialize;
 use toml::Spanned;
 
+use crate::check;
 use crate::contact::{Method, Rule};
+use crate::input::Locator as Source;
+use crate::input::{ScenarioError, read_toml};
 use crate::mesh::Element;
-use crate::scenario::Locator as Source;
-use crate::scenario::{Scenario, ScenarioError, check, read_toml};
+use crate::scenario::Scenario;
 use crate::scheme::Scheme;
 use crate::text::{sanitize, sanitize_lines};
 

@@ -1,0 +1,211 @@
+//! Checks of single values against their allowed ranges (docs/design.md §1, "Ranges"), shared
+//! by the scenario file ([`crate::input`]), the tour file, the command-line overrides and the
+//! library's own checks of a solve's parameters. A leaf: it knows no scenario and no solver.
+
+use thiserror::Error;
+
+use crate::mesh::MAX_LEVEL;
+use crate::text::num;
+
+/// The largest and smallest magnitude of a length (body sizes, radii, coordinates): a
+/// scenario's units must put its lengths within 1e-6 to 1e6, so that the stiffness, the
+/// gaps and the forces stay far from the limits of double precision.
+pub const LENGTH: (f64, f64) = (1e-6, 1e6);
+/// The range of Young's modulus E (any units).
+pub const YOUNG: (f64, f64) = (1e-6, 1e12);
+/// The largest aspect ratio of a level-0 cell: beyond it the stiffness of a cell is lost
+/// to round-off (Q1's entries scale with hx/hy and hy/hx).
+pub const ASPECT: f64 = 1e4;
+/// The largest level-0 grid in either direction.
+pub const MAX_CELLS_0: i64 = 4096;
+
+/// A value outside its allowed range; the message says what is allowed.
+#[derive(Clone, Debug, PartialEq, Error)]
+pub enum CheckError {
+    /// NaN or ±∞ where a finite number in `allowed` is needed.
+    #[error("{} is not a finite number; allowed: {allowed}", num(*value))]
+    NotFinite { value: f64, allowed: String },
+    /// A finite number outside `allowed`.
+    #[error("{} is out of range; allowed: {allowed}", num(*value))]
+    OutOfRange { value: f64, allowed: String },
+    /// An integer outside lo..=hi.
+    #[error("{value} is out of range; allowed: {lo} to {hi}")]
+    Integer { value: i64, lo: i64, hi: i64 },
+    /// ε > 0 outside the range of the mesh and the material ([`crate::material::epsilon_range`]).
+    #[error(
+        "ε = {} is out of range; allowed: 0 (the exact constraint) or {} to {} here (ε·E/h from {} to {}, so that the penalty's products stay finite)",
+        num(*value),
+        num(range.0),
+        num(range.1),
+        num(crate::material::KAPPA_RANGE.0),
+        num(crate::material::KAPPA_RANGE.1)
+    )]
+    Epsilon { value: f64, range: (f64, f64) },
+    /// A polyline point that is not a pair [x, height].
+    #[error("a point has {0} coordinates; allowed: [x, height]")]
+    Point(usize),
+}
+
+/// A finite number in (lo, hi) (open ends).
+pub fn open(value: f64, lo: f64, hi: f64, allowed: &str) -> Result<(), CheckError> {
+    let allowed = allowed.to_string();
+    if !value.is_finite() {
+        Err(CheckError::NotFinite { value, allowed })
+    } else if value > lo && value < hi {
+        Ok(())
+    } else {
+        Err(CheckError::OutOfRange { value, allowed })
+    }
+}
+/// A finite number in [lo, hi] (closed ends).
+pub fn closed(value: f64, lo: f64, hi: f64, allowed: &str) -> Result<(), CheckError> {
+    if value.is_finite() && value >= lo && value <= hi {
+        Ok(())
+    } else {
+        open(value, f64::NAN, f64::NAN, allowed)
+    }
+}
+/// A finite number > 0.
+pub fn positive(value: f64) -> Result<(), CheckError> {
+    open(value, 0.0, f64::INFINITY, "a finite number > 0")
+}
+/// A finite number ≥ 0.
+pub fn nonnegative(value: f64) -> Result<(), CheckError> {
+    if value == 0.0 {
+        Ok(())
+    } else {
+        open(value, 0.0, f64::INFINITY, "a finite number ≥ 0")
+    }
+}
+/// A length: within [`LENGTH`].
+pub fn length(value: f64) -> Result<(), CheckError> {
+    let (lo, hi) = LENGTH;
+    closed(
+        value,
+        lo,
+        hi,
+        &format!("a length from {} to {}", num(lo), num(hi)),
+    )
+}
+/// A length that may be 0 (a punch's flat half-width).
+pub fn length_or_zero(value: f64) -> Result<(), CheckError> {
+    if value == 0.0 { Ok(()) } else { length(value) }
+}
+/// A coordinate or a signed offset: |value| at most [`LENGTH`]'s upper end.
+pub fn coordinate(value: f64) -> Result<(), CheckError> {
+    let hi = LENGTH.1;
+    closed(
+        value,
+        -hi,
+        hi,
+        &format!("a finite number from {} to {}", num(-hi), num(hi)),
+    )
+}
+/// Young's modulus: within [`YOUNG`].
+pub fn young(value: f64) -> Result<(), CheckError> {
+    let (lo, hi) = YOUNG;
+    closed(
+        value,
+        lo,
+        hi,
+        &format!("a modulus from {} to {}", num(lo), num(hi)),
+    )
+}
+/// The penalty parameter: ε > 0, or 0 for the exact constraint (its range depends on the
+/// mesh and the material: see [`crate::material::epsilon_range`]).
+pub fn epsilon(value: f64) -> Result<(), CheckError> {
+    if value == 0.0 {
+        Ok(())
+    } else {
+        open(
+            value,
+            0.0,
+            f64::INFINITY,
+            "a finite number > 0, or 0 for the exact constraint",
+        )
+    }
+}
+/// ε within `range` (from [`crate::material::epsilon_range`]), or 0.
+pub fn epsilon_in(value: f64, range: (f64, f64)) -> Result<(), CheckError> {
+    epsilon(value)?;
+    if value == 0.0 || (range.0..=range.1).contains(&value) {
+        Ok(())
+    } else {
+        Err(CheckError::Epsilon { value, range })
+    }
+}
+/// The indentation depth: beyond the body's height it is meaningless (the obstacle would
+/// pass through the clamped base).
+pub fn depth(value: f64, height: f64) -> Result<(), CheckError> {
+    open(
+        value,
+        -height,
+        height,
+        &format!(
+            "a depth between {} and {} (the body is {} high)",
+            num(-height),
+            num(height),
+            num(height)
+        ),
+    )
+}
+/// Poisson's ratio ν of an isotropic solid, short of incompressibility.
+pub fn poisson(value: f64) -> Result<(), CheckError> {
+    open(
+        value,
+        -1.0,
+        0.5,
+        "−1 < ν < 0.5 (ν = 0.5 is incompressible, which the displacement formulation cannot represent)",
+    )
+}
+/// An integer in lo..=hi.
+pub fn integer(value: i64, lo: i64, hi: i64) -> Result<(), CheckError> {
+    if (lo..=hi).contains(&value) {
+        Ok(())
+    } else {
+        Err(CheckError::Integer { value, lo, hi })
+    }
+}
+/// A mesh level: 0 to [`MAX_LEVEL`].
+pub fn level(value: i64) -> Result<(), CheckError> {
+    integer(value, 0, i64::from(MAX_LEVEL))
+}
+/// A point of a polyline: a pair [x, height] of coordinates.
+pub fn point(value: &[f64]) -> Result<(), CheckError> {
+    match value {
+        [x, y] => coordinate(*x).and(coordinate(*y)),
+        _ => Err(CheckError::Point(value.len())),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The messages the files, the CLI and the tests quote, spelled out once by hand.
+    #[test]
+    fn messages_name_the_value_and_the_range() {
+        assert_eq!(
+            positive(f64::NAN).unwrap_err().to_string(),
+            "NaN is not a finite number; allowed: a finite number > 0"
+        );
+        assert_eq!(
+            level(9).unwrap_err().to_string(),
+            "9 is out of range; allowed: 0 to 8"
+        );
+        assert_eq!(
+            point(&[1.0]).unwrap_err().to_string(),
+            "a point has 1 coordinates; allowed: [x, height]"
+        );
+        assert_eq!(closed(1.0, 1.0, 1.0, "one"), Ok(()));
+        assert!(matches!(
+            closed(2.0, 1.0, 1.0, "one"),
+            Err(CheckError::OutOfRange { value: 2.0, .. })
+        ));
+        assert!(matches!(
+            epsilon_in(1.0, (1e-3, 1e-2)),
+            Err(CheckError::Epsilon { value: 1.0, .. })
+        ));
+        assert_eq!(epsilon_in(0.0, (1e-3, 1e-2)), Ok(()));
+    }
+}

@@ -1,0 +1,145 @@
+//! The error locator: a byte span of a TOML text turned into the file, the 1-based line and
+//! column, the dotted key and the offending line, in a [`ScenarioError`] (used for scenarios
+//! and tours).
+
+use std::fmt::{self, Display};
+use std::ops::Range;
+
+use toml::Spanned;
+
+use crate::text::{sanitize, sanitize_lines};
+
+/// What went wrong in a scenario, and where.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ScenarioError {
+    pub file: String,
+    /// 1-based (line, column), when known.
+    pub location: Option<(usize, usize)>,
+    /// Dotted key, e.g. `material.poisson`, when known.
+    pub key: Option<String>,
+    pub message: String,
+    /// The offending source line, for display.
+    pub source_line: Option<String>,
+}
+
+impl std::error::Error for ScenarioError {}
+
+/// Every piece of text that came from the file (its name, keys, the message that may quote
+/// the file, the source line) is sanitised: an error must not replay escape sequences.
+impl fmt::Display for ScenarioError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}", sanitize(&self.file))?;
+        if let Some((line, col)) = self.location {
+            write!(f, ":{line}:{col}")?;
+        }
+        write!(f, ": ")?;
+        if let Some(key) = &self.key {
+            write!(f, "`{}`: ", sanitize(key))?;
+        }
+        write!(f, "{}", sanitize_lines(&self.message))?;
+        if let (Some((line, col)), Some(text)) = (self.location, &self.source_line) {
+            write!(f, "\n {line:>4} | {}\n      | {:>col$}", sanitize(text), "^")?;
+        }
+        Ok(())
+    }
+}
+
+/// Turns byte spans of a TOML text into located errors (used for scenarios and tours).
+pub struct Locator<'a> {
+    pub file: &'a str,
+    pub text: &'a str,
+}
+
+impl Locator<'_> {
+    /// An error at `span` about `key` (inferred from the line's `key = value` when None).
+    pub fn error(&self, span: Option<Range<usize>>, key: Option<String>, message: String) -> ScenarioError {
+        let (location, source_line) = match span {
+            Some(span) => {
+                let start = span.start.min(self.text.len());
+                let start = (0..=start)
+                    .rev()
+                    .find(|&i| self.text.is_char_boundary(i))
+                    .unwrap_or(0);
+                let before = &self.text[..start];
+                let line = before.matches('\n').count() + 1;
+                let line_start = before.rfind('\n').map_or(0, |i| i + 1);
+                let column = self.text[line_start..start].chars().count() + 1;
+                let text = self.text[line_start..].lines().next().unwrap_or("").to_string();
+                (Some((line, column)), Some(text))
+            }
+            None => (None, None),
+        };
+        // A missing field is reported at the table that lacks it: name the field.
+        let missing = message
+            .strip_prefix("missing field `")
+            .and_then(|rest| rest.split('`').next())
+            .map(str::to_string);
+        let key = key.or_else(|| {
+            let at = location.and_then(|(l, _)| self.key_at(l));
+            match (missing, at) {
+                (Some(field), Some(at)) if location.is_some_and(|(l, c)| l > 1 || c > 1) => {
+                    Some(format!("{at}.{field}"))
+                }
+                (Some(field), _) => Some(field),
+                (None, at) => at,
+            }
+        });
+        ScenarioError {
+            file: self.file.to_string(),
+            location,
+            key,
+            message,
+            source_line,
+        }
+    }
+
+    /// The dotted key assigned on 1-based `line` (`table.key`), found from the text; inside
+    /// an array of inline tables (`bumps = [ { … }, … ]`), the array's key.
+    fn key_at(&self, line: usize) -> Option<String> {
+        let lines: Vec<&str> = self.text.lines().collect();
+        let here = lines.get(line - 1)?.trim();
+        let header = |l: &str| l.trim_matches(|c| c == '[' || c == ']').trim().to_string();
+        if here.starts_with('[') {
+            return Some(header(here));
+        }
+        let above = &lines[..line - 1];
+        let start = above
+            .iter()
+            .rposition(|l| l.trim().starts_with('['))
+            .map_or(0, |i| i + 1);
+        let table = start.checked_sub(1).map(|i| header(above[i].trim()));
+        let join = |key: &str| match &table {
+            Some(t) => format!("{t}.{key}"),
+            None => key.to_string(),
+        };
+        let bare = |k: &str| !k.is_empty() && k.chars().all(|c| c.is_alphanumeric() || "_-.".contains(c));
+        let key = here
+            .split('=')
+            .next()
+            .map(str::trim)
+            .filter(|k| bare(k) && here.contains('='));
+        if let Some(key) = key {
+            return Some(join(key));
+        }
+        // Inside a multi-line array: the key of the line that opened it.
+        let opened = above[start..]
+            .iter()
+            .rev()
+            .find_map(|l| l.split_once('=').filter(|(_, v)| v.trim_start().starts_with('[')));
+        match opened {
+            Some((key, _)) if bare(key.trim()) => Some(join(key.trim())),
+            _ => table,
+        }
+    }
+
+    /// `test` of a spanned value, failing with an error at the value about `key`.
+    pub fn check<T, E: Display>(
+        &self,
+        key: &str,
+        value: &Spanned<T>,
+        test: impl Fn(&T) -> Result<(), E>,
+    ) -> Result<(), ScenarioError> {
+        test(value.get_ref())
+            .map_err(|e| self.error(Some(value.span()), Some(key.to_string()), e.to_string()))
+    }
+}

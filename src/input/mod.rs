@@ -1,0 +1,41 @@
+//! Scenario files: everything between a TOML file and the model [`Scenario`] (docs/design.md
+//! §1). Data flows one way, from here to the model: [`crate::scenario`] knows nothing of TOML.
+//!
+//! - [`read`]: bounded reading of a scenario or tour file;
+//! - `schema`: the TOML schema serde reads;
+//! - [`locate`]: the error locator (file, line, column, key, the offending line);
+//! - `validate`: the schema checked and turned into the model.
+//!
+//! Every value is checked against its allowed range ([`crate::check`]); an error names the
+//! file, the line and column, the key, the value, and what is allowed.
+
+use std::path::Path;
+
+use crate::scenario::{DEFAULT_SCENARIO, DEFAULT_SOURCE, Scenario};
+
+pub mod locate;
+pub mod read;
+mod schema;
+mod validate;
+
+pub use locate::{Locator, ScenarioError};
+pub use read::{MAX_FILE_BYTES, read_toml};
+
+/// Reading a scenario: from the embedded default, a file or a text.
+impl Scenario {
+    /// The embedded default: the paper's problem.
+    pub fn paper() -> Scenario {
+        Scenario::parse(DEFAULT_SCENARIO, DEFAULT_SOURCE).expect("the embedded scenario is valid")
+    }
+
+    /// Read and validate a scenario file.
+    pub fn load(path: &Path) -> Result<Scenario, ScenarioError> {
+        let (file, text) = read_toml(path, "a scenario")?;
+        Scenario::parse(&text, &file)
+    }
+
+    /// Parse and validate scenario text; `file` names it in errors.
+    pub fn parse(text: &str, file: &str) -> Result<Scenario, ScenarioError> {
+        validate::scenario(text, file)
+    }
+}

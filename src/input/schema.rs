@@ -1,0 +1,115 @@
+//! The TOML schema of a scenario file: the tables and keys serde reads (unknown keys are
+//! refused), every value still raw and spanned for the error locator.
+
+use serde::Deserialize;
+use toml::Spanned;
+
+use crate::contact::Rule;
+use crate::fem::Integration;
+use crate::material::Plane;
+use crate::mesh::Element;
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawScenario {
+    pub(super) name: Option<String>,
+    #[serde(default)]
+    pub(super) description: String,
+    pub(super) body: RawBody,
+    pub(super) material: RawMaterial,
+    pub(super) obstacle: RawObstacle,
+    pub(super) mesh: RawMesh,
+    pub(super) contact: RawContact,
+}
+
+#[derive(Deserialize, Clone, Copy, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub(super) enum Model {
+    Half,
+    Full,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawBody {
+    pub(super) width: Spanned<f64>,
+    pub(super) height: Spanned<f64>,
+    pub(super) model: Model,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawMaterial {
+    pub(super) young: Spanned<f64>,
+    pub(super) poisson: Spanned<f64>,
+    pub(super) plane: Plane,
+}
+
+#[derive(Deserialize, Clone, Copy, PartialEq, Eq, Debug)]
+#[serde(rename_all = "lowercase")]
+pub(super) enum Shape {
+    Cylinder,
+    Punch,
+    Bumps,
+    Polyline,
+}
+
+impl Shape {
+    /// The keys of `[obstacle]` that each shape takes (besides `shape` and `depth`).
+    pub(super) fn keys(self) -> &'static [&'static str] {
+        match self {
+            Shape::Cylinder => &["radius", "center"],
+            Shape::Punch => &["half_width", "corner_radius", "center"],
+            Shape::Bumps => &["bumps"],
+            Shape::Polyline => &["points"],
+        }
+    }
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawObstacle {
+    pub(super) shape: Spanned<Shape>,
+    pub(super) depth: Spanned<f64>,
+    pub(super) radius: Option<Spanned<f64>>,
+    pub(super) center: Option<Spanned<f64>>,
+    pub(super) half_width: Option<Spanned<f64>>,
+    pub(super) corner_radius: Option<Spanned<f64>>,
+    pub(super) bumps: Option<Spanned<Vec<RawBump>>>,
+    pub(super) points: Option<Spanned<Vec<Spanned<Vec<f64>>>>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawBump {
+    pub(super) center: Spanned<f64>,
+    pub(super) radius: Spanned<f64>,
+    #[serde(default)]
+    pub(super) lift: Option<Spanned<f64>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawMesh {
+    pub(super) element: Element,
+    pub(super) nx: Option<Spanned<i64>>,
+    pub(super) ny: Option<Spanned<i64>>,
+    pub(super) x_lines: Option<Spanned<Vec<f64>>>,
+    pub(super) y_lines: Option<Spanned<Vec<f64>>>,
+    #[serde(default)]
+    pub(super) level: Option<Spanned<i64>>,
+    #[serde(default)]
+    pub(super) integration: Option<Integration>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawContact {
+    pub(super) rule: Rule,
+    pub(super) epsilon: Spanned<f64>,
+    /// `penalty`, `exact`, `alm` or `nitsche` ([`Method::parse`]).
+    pub(super) method: Option<Spanned<String>>,
+    pub(super) theta: Option<Spanned<f64>>,
+    pub(super) gamma0: Option<Spanned<f64>>,
+    pub(super) alm_tol: Option<Spanned<f64>>,
+}
