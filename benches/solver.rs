@@ -41,8 +41,8 @@ fn stiffness(level: u32) -> (Discretization, SymCsc) {
     let s = Scenario::paper();
     let disc = Discretization::of(&s, level, Element::Q1).unwrap();
     let k = assemble(
-        &disc.mesh,
-        &disc.dofs,
+        disc.mesh(),
+        disc.dofs(),
         Form::Elasticity(s.material, s.integration),
     );
     (disc, k)
@@ -51,13 +51,13 @@ fn stiffness(level: u32) -> (Discretization, SymCsc) {
 #[divan::bench(args = LEVELS, sample_count = 10)]
 fn ordering(bencher: Bencher, level: u32) {
     let (disc, k) = stiffness(level);
-    bencher.bench(|| TraceOrdering::grid(&k, &disc.mesh, &disc.dofs, &disc.contact_dofs).unwrap());
+    bencher.bench(|| TraceOrdering::grid(&k, disc.mesh(), disc.dofs(), disc.contact_dofs()).unwrap());
 }
 
 #[divan::bench(args = LEVELS, sample_count = 10)]
 fn factorisation(bencher: Bencher, level: u32) {
     let (disc, k) = stiffness(level);
-    bencher.bench(|| TraceFactor::new(&disc.ordering, &k).unwrap().compliance());
+    bencher.bench(|| TraceFactor::new(disc.ordering(), &k).unwrap().compliance());
 }
 
 #[divan::bench(args = LEVELS, sample_count = 10)]

@@ -33,20 +33,20 @@ fn ms_since(t: Instant) -> f64 {
 /// Everything that depends on the mesh alone: K assembled, analysed and factorised once
 /// with the Γ_C normal dofs last, and its trace compliance C (see [`crate::fem::condense`]).
 pub struct Discretization {
-    pub mesh: Mesh,
-    pub dofs: DofMap,
+    pub(crate) mesh: Mesh,
+    pub(crate) dofs: DofMap,
     /// The symbolic analysis of K's pattern (shared by every form on this mesh).
-    pub ordering: TraceOrdering,
+    pub(crate) ordering: TraceOrdering,
     /// K = Pᵀ L Lᵀ P.
-    pub factor: TraceFactor,
+    pub(crate) factor: TraceFactor,
     /// C = E K⁻¹ Eᵀ on the Γ_C normal dofs, ascending x.
-    pub compliance: Mat<f64>,
+    pub(crate) compliance: Mat<f64>,
     /// The free dof of u_n = u_y at each Γ_C node, in ascending x.
-    pub contact_dofs: Vec<usize>,
-    pub assembly_ms: f64,
-    pub symbolic_ms: f64,
+    pub(crate) contact_dofs: Vec<usize>,
+    pub(crate) assembly_ms: f64,
+    pub(crate) symbolic_ms: f64,
     /// Numeric factorisation and the trace compliance.
-    pub factorization_ms: f64,
+    pub(crate) factorization_ms: f64,
     /// Young's modulus, the scale of the penalty parameter's range ([`epsilon_range`]).
     young: f64,
     /// What is known to be poor about this stiffness before any solve (locking).
@@ -59,6 +59,36 @@ pub struct Discretization {
 }
 
 impl Discretization {
+    /// The mesh of the body.
+    pub fn mesh(&self) -> &Mesh {
+        &self.mesh
+    }
+
+    /// The map from nodes to free dofs (the roller on a half model's axis removed).
+    pub fn dofs(&self) -> &DofMap {
+        &self.dofs
+    }
+
+    /// The symbolic analysis of K's pattern, Γ_C's normal dofs last (docs/design.md §6).
+    pub fn ordering(&self) -> &TraceOrdering {
+        &self.ordering
+    }
+
+    /// The factor K = Pᵀ L Lᵀ P.
+    pub fn factor(&self) -> &TraceFactor {
+        &self.factor
+    }
+
+    /// The trace compliance C = E K⁻¹ Eᵀ on the Γ_C normal dofs, ascending x.
+    pub fn compliance(&self) -> &Mat<f64> {
+        &self.compliance
+    }
+
+    /// The free dof of u_n = u_y at each Γ_C node, ascending x.
+    pub fn contact_dofs(&self) -> &[usize] {
+        &self.contact_dofs
+    }
+
     pub fn new(mesh: Mesh, material: Material, integration: Integration) -> Result<Self, SolveError> {
         let dofs = DofMap::model(&mesh);
         Self::with_dofs(mesh, dofs, material, integration)

@@ -94,7 +94,7 @@ fn body_and_contact_side_read_back_with_their_counts_names_and_values() {
         );
 
         // The body.
-        let mesh = &disc.mesh;
+        let mesh = disc.mesh();
         let body = read(&path);
         assert_eq!(body.num_points(), mesh.n_nodes(), "{element:?}");
         assert_eq!(body.cells.types.len(), mesh.n_elements());

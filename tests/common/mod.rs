@@ -77,12 +77,12 @@ pub fn bottom_reaction(
 ) -> f64 {
     use riplab::fem::{Form, apply};
     let ku = apply(
-        &disc.mesh,
+        disc.mesh(),
         Form::Elasticity(scenario.material, scenario.integration),
         &sol.displacement(disc),
     );
-    (0..disc.mesh.nnx())
-        .map(|i| ku[2 * disc.mesh.node(i, 0) + 1])
+    (0..disc.mesh().nnx())
+        .map(|i| ku[2 * disc.mesh().node(i, 0) + 1])
         .sum()
 }
 

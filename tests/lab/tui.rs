@@ -1725,7 +1725,7 @@ fn the_pressures_are_shown_before_the_displacement_is_computed() {
     assert!(!then.contains("computing the displacement"), "{then}");
     assert_eq!(
         solved.displacement.get().map(Vec::len),
-        Some(2 * solved.disc.mesh.n_nodes())
+        Some(2 * solved.disc.mesh().n_nodes())
     );
 }
 

@@ -111,7 +111,7 @@ fn half_and_full_model_agree() {
                     .unwrap();
                 assert!((sf.p[mirror] - pf).abs() <= 1e-8 * pmax);
             }
-            let offset = df.mesh.xs.len() / 2;
+            let offset = df.mesh().xs.len() / 2;
             for (i, ph) in sh.pbar.iter().enumerate() {
                 assert!(
                     (sf.pbar[offset + i] - ph).abs() <= 1e-8 * pmax,

@@ -51,7 +51,7 @@ fn brute_mass(cp: &ContactPoints) -> DMatrix<f64> {
 
 /// β_h² and (for gauss1 and trapezoid) β̄_h² from dense A on every free dof.
 fn brute_force(disc: &Discretization, rule: Rule) -> (f64, Option<f64>) {
-    let a = assemble(&disc.mesh, &disc.dofs, Form::H1);
+    let a = assemble(disc.mesh(), disc.dofs(), Form::H1);
     let n = a.n;
     let mut dense = DMatrix::<f64>::zeros(n, n);
     for c in 0..n {
@@ -65,7 +65,7 @@ fn brute_force(disc: &Discretization, rule: Rule) -> (f64, Option<f64>) {
     let mut b = DMatrix::<f64>::zeros(cp.len(), n);
     for (k, q) in cp.points.iter().enumerate() {
         for (&node, &t) in q.nodes.iter().zip(&q.trace) {
-            b[(k, disc.contact_dofs[node])] += q.weight * t;
+            b[(k, disc.contact_dofs()[node])] += q.weight * t;
         }
     }
     let s = &b * dense.try_inverse().unwrap() * b.transpose();

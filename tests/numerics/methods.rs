@@ -104,7 +104,7 @@ fn alm_converges_in_u_where_the_multipliers_are_not_unique() {
         {
             let what = format!("q1+{} level {level}", rule.name());
             // κ = εE/h = 1e-5.
-            let epsilon = 1e-5 * disc.mesh.h() / scenario.material.young;
+            let epsilon = 1e-5 * disc.mesh().h() / scenario.material.young;
             let alm = solve(
                 &disc,
                 rule,
@@ -215,7 +215,7 @@ fn contact_patch_test() {
         mesh.roller_right = true;
         let disc = Discretization::new(mesh, material, Integration::Full).unwrap();
         let points = disc.contact_points(rule);
-        let unique = points.len() <= disc.contact_dofs.len();
+        let unique = points.len() <= disc.contact_dofs().len();
         for &(method, epsilon, factor) in &methods {
             if method == Method::Exact && !unique {
                 continue;

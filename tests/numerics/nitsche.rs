@@ -93,8 +93,8 @@ fn contact_patch_test_is_passed_to_round_off() {
             );
             let uy_top = -depth + (exact_p - expect) / modulus * height;
             let u = sol.displacement(&disc);
-            for node in 0..disc.mesh.n_nodes() {
-                let (_, y) = disc.mesh.node_coords(node);
+            for node in 0..disc.mesh().n_nodes() {
+                let (_, y) = disc.mesh().node_coords(node);
                 assert!(u[2 * node].abs() < 1e-12, "{what}: u_x = {}", u[2 * node]);
                 assert!(
                     (u[2 * node + 1] - uy_top * y / height).abs() < 1e-12,
@@ -169,7 +169,7 @@ fn pressure_is_the_nitsche_pressure_of_the_displacement() {
         (Element::P1, Rule::Gauss1),
     ] {
         let disc = Discretization::of(&scenario, 2, element).unwrap();
-        let mesh = &disc.mesh;
+        let mesh = disc.mesh();
         let gamma = gamma0 * scenario.material.young / mesh.h();
         let top = *mesh.ys.last().unwrap();
         let delta = 1e-9 * mesh.h();
@@ -209,7 +209,7 @@ fn pressure_is_the_nitsche_pressure_of_the_displacement() {
             // The vertices' u_y (from the condensed couplings) is the field's.
             let order = element.order();
             for (k, uy) in sol.vertex_uy.iter().enumerate() {
-                let node = disc.mesh.node(k * order, disc.mesh.node_y.len() - 1);
+                let node = disc.mesh().node(k * order, disc.mesh().node_y.len() - 1);
                 assert!(
                     (uy - u[2 * node + 1]).abs() < 1e-10,
                     "{element:?} vertex {k}: {uy}"
@@ -243,7 +243,7 @@ fn displacement_solves_the_nitsche_equations() {
         (Element::P1, Rule::Gauss2),
     ] {
         let disc = Discretization::of(&scenario, 1, element).unwrap();
-        let mesh = &disc.mesh;
+        let mesh = disc.mesh();
         let params = paper_params(&scenario, rule, 0.0);
         let gamma0 = 10.0 * nitsche::stability_threshold(&disc, rule).unwrap();
         let (ny, top) = (mesh.ny(), *mesh.ys.last().unwrap());
@@ -284,7 +284,7 @@ fn displacement_solves_the_nitsche_equations() {
                 }
             }
             let free: Vec<usize> = (0..u.len())
-                .filter(|&g| disc.dofs.free_index(g).is_some())
+                .filter(|&g| disc.dofs().free_index(g).is_some())
                 .collect();
             let scale = free.iter().map(|&g| ku[g].abs()).fold(0.0, f64::max);
             let worst = free.iter().map(|&g| (ku[g] - rhs[g]).abs()).fold(0.0, f64::max);

@@ -18,7 +18,7 @@ fn run(threads: usize, element: Element, level: u32) -> Vec<u64> {
         ControlFlow::Continue(())
     })
     .unwrap();
-    let c = &disc.compliance;
+    let c = disc.compliance();
     (0..c.ncols())
         .flat_map(|j| (0..c.nrows()).map(move |i| c[(i, j)]))
         .chain(
