@@ -17,7 +17,7 @@ use crate::scenario::{MAX_LEVEL, Scenario};
 use crate::scheme::Scheme;
 use crate::solve::{ContactParams, Discretization, check_request, sweep};
 use crate::stress::StressField;
-use crate::study::{Plan, all_ok};
+use crate::study::{Plan, ReferenceLevelError, all_ok};
 use crate::tui::{MarkerChoice, TuiOptions, render_to_string};
 use crate::vtu;
 
@@ -624,29 +624,17 @@ fn study(args: &StudyArgs) -> Result<ExitCode, CliError> {
             check::epsilon_in(e, range).map_err(|m| usage("--sweep-epsilon", m))?;
         }
     }
-    let finest = *levels.iter().max().expect("at least one level");
-    let reference_level = match args.reference_level {
+    let requested = match args.reference_level {
         Some(l) => {
             check::level(l).map_err(|m| usage("--reference-level", m))?;
-            if (l as u32) <= finest {
-                return Err(usage(
-                    "--reference-level",
-                    format!("{l} must be finer than the finest studied level {finest}"),
-                ));
-            }
-            l as u32
+            Some(l as u32)
         }
-        None => (finest + 1).min(MAX_LEVEL),
+        None => None,
     };
-    if reference_level <= finest {
-        return Err(usage(
-            "--levels",
-            format!(
-                "the reference needs a level finer than {finest}; allowed up to {}",
-                MAX_LEVEL - 1
-            ),
-        ));
-    }
+    let reference_level = crate::study::reference_level(&levels, requested).map_err(|e| match e {
+        ReferenceLevelError::NotFiner { .. } => usage("--reference-level", e),
+        ReferenceLevelError::NoFinerLevel { .. } => usage("--levels", e),
+    })?;
     check::integer(
         args.reference_refinements,
         0,

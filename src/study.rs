@@ -23,7 +23,7 @@ use crate::contact::{ContactPoints, Method, Rule};
 use crate::fem::basis::{cell_points, evaluate};
 use crate::fem::memory::{Limits, Sizes};
 use crate::fem::quadrature::gauss_legendre;
-use crate::mesh::{Element, Mesh};
+use crate::mesh::{Element, MAX_LEVEL, Mesh};
 use crate::scenario::Scenario;
 use crate::scheme::Scheme;
 use crate::solve::{ContactParams, Discretization, Solution, solve_contact};
@@ -46,6 +46,30 @@ const EDGE_WIDTH: usize = 2;
 
 /// The most edge refinements `--reference-refinements` accepts.
 pub const MAX_REFINEMENTS: u32 = 8;
+
+/// Why a study's levels and reference level do not fit together.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum ReferenceLevelError {
+    /// The requested reference is not finer than every studied level.
+    #[error("{requested} must be finer than the finest studied level {finest}")]
+    NotFiner { requested: u32, finest: u32 },
+    /// The finest studied level leaves no finer level for the reference.
+    #[error("the reference needs a level finer than {finest}; allowed up to {}", MAX_LEVEL - 1)]
+    NoFinerLevel { finest: u32 },
+}
+
+/// The uniform level of a study's reference (docs/design.md §6): `requested`, or one finer than
+/// the finest of `levels`; either way finer than every studied level (coarse solutions are
+/// measured on the reference's nested mesh) and at most [`MAX_LEVEL`].
+pub fn reference_level(levels: &[u32], requested: Option<u32>) -> Result<u32, ReferenceLevelError> {
+    let finest = levels.iter().copied().max().unwrap_or(0);
+    match requested {
+        Some(requested) if requested <= finest => Err(ReferenceLevelError::NotFiner { requested, finest }),
+        Some(requested) => Ok(requested),
+        None if finest >= MAX_LEVEL => Err(ReferenceLevelError::NoFinerLevel { finest }),
+        None => Ok(finest + 1),
+    }
+}
 
 /// The reference's grid: the uniform level's vertex lines, with the intervals around the
 /// contact edges and next to Γ_C bisected `refinements` times ([`ReferenceMesh::refined`]).
@@ -1052,4 +1076,31 @@ pub fn study(
         rows,
         fits,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The reference is one level finer than the finest studied by default, any finer level
+    /// when asked; never one a studied mesh is not nested in, never past MAX_LEVEL.
+    #[test]
+    fn the_reference_level_is_finer_than_every_studied_level() {
+        assert_eq!(reference_level(&[0, 3, 1], None), Ok(4));
+        assert_eq!(reference_level(&[0, 1], Some(5)), Ok(5));
+        assert_eq!(
+            reference_level(&[0, 3], Some(3)),
+            Err(ReferenceLevelError::NotFiner {
+                requested: 3,
+                finest: 3
+            })
+        );
+        assert_eq!(reference_level(&[7], None), Ok(8));
+        let none = reference_level(&[MAX_LEVEL], None).unwrap_err();
+        assert_eq!(none, ReferenceLevelError::NoFinerLevel { finest: MAX_LEVEL });
+        assert_eq!(
+            none.to_string(),
+            "the reference needs a level finer than 8; allowed up to 7"
+        );
+    }
 }
