@@ -132,6 +132,27 @@ fn error_banner_keeps_the_last_result() {
     snap!("tui__error_banner_80x24", frame(&app, 80, 24));
 }
 
+/// A refusal longer than two lines (Nitsche's γ₀ below its threshold, seen on hertz-block)
+/// is shown whole at 80×24: the banner grows to hold it, up to five rows.
+#[test]
+fn a_long_error_is_shown_whole() {
+    let mut app = settled(0, Scene::Explore);
+    let effect = app.update(key(KeyCode::Right));
+    let Some(Command::Solve(req)) = effect.commands.first() else {
+        panic!("a new level asks for a solve: {effect:?}");
+    };
+    let refusal = "the method: Nitsche's γ₀: 100 is too small for θ = 1: the method is stable for γ₀ > ((1 + θ)²/4)·γ₀* (here γ₀* = 1245.043), where K − ((1 + θ)²/4)(1/γ)∫σ_n σ_n stays positive definite (Chouly and Hild's condition); choose a larger γ₀ or θ = −1";
+    app.update(Msg::Worker(Response::Solved {
+        generation: req.generation,
+        result: Err(refusal.into()),
+    }));
+    let text = frame(&app, 80, 24);
+    let shown: String = text.split_whitespace().collect::<Vec<_>>().join(" ");
+    assert!(shown.contains("choose a larger γ₀ or θ = −1"), "{text}");
+    assert!(shown.contains("(Chouly and Hild's condition)"), "{text}");
+    assert_eq!(text.lines().count(), 24);
+}
+
 // ---- numbers on screen -----------------------------------------------------------------
 
 #[test]

@@ -17,7 +17,7 @@ mod stress_map;
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::symbols::Marker;
-use ratatui::text::Line;
+use ratatui::text::{Line, Span};
 use ratatui::widgets::{Paragraph, Wrap};
 
 use super::app::{App, Scene};
@@ -47,6 +47,27 @@ pub fn view(app: &App, frame: &mut Frame, look: &Look) {
     view_in(app, frame, area, look);
 }
 
+/// The most rows the error banner takes from the scene.
+const MAX_BANNER_ROWS: u16 = 5;
+
+/// The rows `text` takes when wrapped at word boundaries to `width` columns (a word longer
+/// than the line is broken).
+fn wrapped_rows(text: &str, width: u16) -> u16 {
+    let width = usize::from(width.max(1));
+    let (mut rows, mut used) = (1usize, 0usize);
+    for word in text.split(' ') {
+        let w = Span::raw(word).width();
+        let need = if used == 0 { w } else { used + 1 + w };
+        if need <= width {
+            used = need;
+        } else {
+            rows += 1 + w.saturating_sub(1) / width;
+            used = w % width;
+        }
+    }
+    u16::try_from(rows).unwrap_or(u16::MAX)
+}
+
 /// Draw `app` into `area` of the frame (at least [`MIN_AREA`]; the guided tour puts its
 /// caption below).
 pub fn view_in(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
@@ -54,7 +75,11 @@ pub fn view_in(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
         too_small(frame, area, look.theme);
         return;
     }
-    let banner_height = if app.error.is_some() { 2 } else { 0 };
+    let message = app.error.as_ref().map(|error| format!(" ✗ {error}"));
+    // The whole message, word-wrapped (at least 2 rows, at most MAX_BANNER_ROWS).
+    let banner_height = message
+        .as_deref()
+        .map_or(0, |text| wrapped_rows(text, area.width).clamp(2, MAX_BANNER_ROWS));
     let [top, body, banner, bottom] = Layout::vertical([
         Constraint::Length(2),
         Constraint::Fill(1),
@@ -70,8 +95,7 @@ pub fn view_in(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
         Scene::Convergence => convergence::render(app, frame, body, look),
         Scene::Stress => stress_map::render(app, frame, body, look),
     }
-    if let Some(error) = &app.error {
-        let text = format!(" ✗ {error}");
+    if let Some(text) = message {
         frame.render_widget(
             Paragraph::new(text)
                 .style(look.theme.banner())
