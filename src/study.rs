@@ -808,6 +808,25 @@ fn row_method(method: Option<Method>, epsilon: f64) -> Result<(Method, f64), Sol
     })
 }
 
+/// A row's contact parameters with `rule` at `epsilon`, and whether its method resolves (a row
+/// whose method does not still gets parameters, the penalty's, to name it in the table).
+fn row_params(
+    scenario: &Scenario,
+    rule: Rule,
+    method: Option<Method>,
+    epsilon: f64,
+) -> (Result<(), SolveError>, ContactParams) {
+    let resolved = row_method(method, epsilon);
+    let (method, epsilon) = resolved.clone().unwrap_or((Method::Penalty, epsilon));
+    let params = ContactParams {
+        rule,
+        method,
+        epsilon,
+        obstacle: scenario.obstacle.clone(),
+    };
+    (resolved.map(|_| ()), params)
+}
+
 /// Every scheme at every level (fresh solves with `method` at ε; None: penalty, or exact for
 /// ε = 0), against `reference`.
 /// Each mesh is assembled and factorised once and shared by the schemes of its element; each
@@ -839,14 +858,8 @@ fn convergence_kept(
         for &level in levels {
             let disc = Discretization::of(scenario, level, element);
             for (i, &scheme) in schemes.iter().enumerate().filter(|(_, s)| s.0 == element) {
-                let resolved = row_method(method, epsilon);
-                let (m, e) = resolved.clone().unwrap_or((Method::Penalty, epsilon));
-                let params = ContactParams {
-                    rule: scheme.1,
-                    method: m,
-                    epsilon: e,
-                    obstacle: scenario.obstacle.clone(),
-                };
+                let (resolved, params) = row_params(scenario, scheme.1, method, epsilon);
+                let (m, e) = (params.method, params.epsilon);
                 let solved = disc.as_ref().map_err(Clone::clone).and_then(|disc| {
                     resolved?;
                     let mut sol = solve_fresh(disc, &params)?;
@@ -891,14 +904,8 @@ fn epsilon_sweep_kept(
         for (i, &scheme) in schemes.iter().enumerate().filter(|(_, s)| s.0 == element) {
             let mut previous: Option<Vec<f64>> = None;
             for &epsilon in epsilons {
-                let resolved = row_method(method, epsilon);
-                let (m, e) = resolved.clone().unwrap_or((Method::Penalty, epsilon));
-                let params = ContactParams {
-                    rule: scheme.1,
-                    method: m,
-                    epsilon: e,
-                    obstacle: scenario.obstacle.clone(),
-                };
+                let (resolved, params) = row_params(scenario, scheme.1, method, epsilon);
+                let (m, e) = (params.method, params.epsilon);
                 let solved = disc.as_ref().map_err(Clone::clone).and_then(|disc| {
                     resolved?;
                     let sol = solve_contact(
