@@ -7,7 +7,7 @@ use std::process::ExitCode;
 use clap::{Args, Parser, Subcommand};
 
 use crate::check;
-use crate::contact::method::MethodError;
+use crate::contact::method::{Gamma0, MethodError};
 use crate::contact::{Method, Rule};
 use crate::error::SolveError;
 use crate::input::ScenarioError;
@@ -146,9 +146,10 @@ pub struct MethodArgs {
     /// Nitsche's θ: 1 (symmetric), 0 (incomplete) or -1 (skew-symmetric) [default: 1]
     #[arg(long, allow_negative_numbers = true)]
     pub theta: Option<f64>,
-    /// Nitsche's γ₀ (γ = γ₀·E/h), from 1e-8 to 1e8 [default: 100]
-    #[arg(long, allow_negative_numbers = true)]
-    pub gamma0: Option<f64>,
+    /// Nitsche's γ₀ (γ = γ₀·E/h): `auto` (10·γ₀*, ten times the symmetric variant's stability
+    /// threshold on the mesh and rule) or a number from 1e-8 to 1e8 [default: auto]
+    #[arg(long, allow_negative_numbers = true, value_name = "auto|GAMMA0")]
+    pub gamma0: Option<String>,
     /// The ALM's relative tolerance on the multiplier's change, 0 < tol < 1 [default: 1e-10]
     #[arg(long, allow_negative_numbers = true)]
     pub alm_tol: Option<f64>,
@@ -166,7 +167,13 @@ impl MethodArgs {
             };
             usage(&flag, e.to_string())
         };
-        let (theta, gamma0, tol) = (self.theta, self.gamma0, self.alm_tol);
+        let gamma0 = self
+            .gamma0
+            .as_deref()
+            .map(Gamma0::parse)
+            .transpose()
+            .map_err(fail)?;
+        let (theta, tol) = (self.theta, self.alm_tol);
         match &self.method {
             Some(name) => Method::parse(name, theta, gamma0, tol).map(Some).map_err(fail),
             None => {
@@ -512,10 +519,15 @@ fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
             }
             Err(e) => return Err(e.into()),
         };
+        // The setting that tells the sweep's rows apart: ε where the method uses it.
+        let setting = if params.method.uses_epsilon() {
+            format!("ε = {:e}", params.epsilon)
+        } else {
+            sol.method_fields().label()
+        };
         for w in &sol.warnings {
             note(&format!(
-                "warning: ε = {:e}, depth = {}: {w}",
-                params.epsilon,
+                "warning: {setting}, depth = {}: {w}",
                 crate::text::num(params.obstacle.depth())
             ));
         }

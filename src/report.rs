@@ -205,7 +205,7 @@ impl SolveReport {
             level,
             h: disc.mesh.h(),
             epsilon: sol.params.epsilon,
-            method: sol.params.method.into(),
+            method: sol.method_fields(),
             depth: sol.params.obstacle.depth(),
             half_model: disc.mesh.symmetric_left,
             n_elements: disc.mesh.n_elements(),
@@ -280,9 +280,10 @@ impl Report for SolveReport {
         } else {
             "NOT CONVERGED"
         };
+        let plural = |n: usize| if n == 1 { "" } else { "s" };
         let outer = self
             .outer_iterations
-            .map_or(String::new(), |n| format!("{n} multiplier updates, "));
+            .map_or(String::new(), |n| format!("{n} multiplier update{}, ", plural(n)));
         let epsilon = if self.method.uses_epsilon() {
             format!(", ε = {:e}", self.epsilon)
         } else {
@@ -290,10 +291,11 @@ impl Report for SolveReport {
         };
         let _ = writeln!(
             s,
-            "method {}{epsilon}, depth = {}, {outer}Newton: {} iterations, {state} (relative residual {:.1e})",
+            "method {}{epsilon}, depth = {}, {outer}Newton: {} iteration{}, {state} (relative residual {:.1e})",
             self.method.label(),
             self.depth,
             self.newton_iterations,
+            plural(self.newton_iterations),
             self.residual
         );
         let full = if self.half_model {
@@ -369,11 +371,12 @@ pub struct Sweep {
 }
 
 /// The sweep's CSV columns: the parameters, the outcome, and each row's largest p and p̄.
-pub const SWEEP_COLUMNS: [(&str, Cell); 15] = [
+pub const SWEEP_COLUMNS: [(&str, Cell); 16] = [
     ("epsilon", Cell::Field("/epsilon")),
     ("method", Cell::Field("/method")),
     ("theta", Cell::Field("/theta")),
     ("gamma0", Cell::Field("/gamma0")),
+    ("gamma0_auto", Cell::Field("/gamma0_auto")),
     ("alm_tol", Cell::Field("/alm_tol")),
     ("depth", Cell::Field("/depth")),
     ("status", Cell::Field("/status")),
@@ -560,7 +563,7 @@ impl Serialize for StudyReport<'_> {
 /// [`crate::study::Fit`]'s: its rates in the `rate_*` columns) or, last, the `reference` (its
 /// smallest cell side as `h`, its estimated error in `err_*`, why its refinement stopped in
 /// `reason`).
-pub const STUDY_COLUMNS: [(&str, Cell); 28] = [
+pub const STUDY_COLUMNS: [(&str, Cell); 29] = [
     ("kind", Cell::Field("/kind")),
     ("scheme", Cell::Field("/scheme")),
     ("element", Cell::Field("/element")),
@@ -572,6 +575,7 @@ pub const STUDY_COLUMNS: [(&str, Cell); 28] = [
     ("method", Cell::Field("/method")),
     ("theta", Cell::Field("/theta")),
     ("gamma0", Cell::Field("/gamma0")),
+    ("gamma0_auto", Cell::Field("/gamma0_auto")),
     ("alm_tol", Cell::Field("/alm_tol")),
     ("n_dofs", Cell::Field("/n_dofs")),
     ("status", Cell::Field("/status")),
@@ -734,9 +738,14 @@ impl Report for StudyReport<'_> {
             .iter()
             .filter(|r| r.status != Status::Ok)
             .filter_map(|r| {
-                r.reason
-                    .as_ref()
-                    .map(|why| format!("{} level {} ε = {:e}: {why}", r.scheme, r.level, r.epsilon))
+                r.reason.as_ref().map(|why| {
+                    let setting = if r.method.uses_epsilon() {
+                        format!("ε = {:e}", r.epsilon)
+                    } else {
+                        r.method.label()
+                    };
+                    format!("{} level {} {setting}: {why}", r.scheme, r.level)
+                })
             })
             .collect();
         if !reasons.is_empty() {
@@ -890,9 +899,9 @@ mod tests {
         assert_eq!(solved[0], "0.000001", "ε = 1e-6 as Rust prints it");
         assert_eq!(solved[1], "penalty");
         assert_eq!(solved[2], "", "θ is null for the penalty");
-        assert_eq!(solved[6], "ok");
-        let load: f64 = solved[10].parse().unwrap();
-        let max_p: f64 = solved[11].parse().unwrap();
+        assert_eq!(solved[7], "ok");
+        let load: f64 = solved[11].parse().unwrap();
+        let max_p: f64 = solved[12].parse().unwrap();
         assert!(load > 0.0 && max_p > 0.0);
         assert!(
             lines[2].ends_with(",\"the method: a reason, with a comma\""),

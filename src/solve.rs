@@ -12,6 +12,7 @@ use faer::Mat;
 use serde::Serialize;
 
 use crate::check;
+use crate::contact::method::MethodFields;
 use crate::contact::nitsche::{self, NitscheCache, NitscheParams};
 use crate::contact::penalty::{self, Iteration, NewtonOptions, NewtonResult, Penalty, SolveError};
 use crate::contact::signorini::solve_exact;
@@ -385,6 +386,15 @@ pub struct Solution {
     /// The load f on the free dofs, K u = f, when the contact acts on more than Γ_C's normal
     /// dofs (Nitsche's σ_n terms); None when u = −K⁻¹ Eᵀ Tᵀ y.
     pub nodal_forces: Option<Vec<f64>>,
+    /// Nitsche's γ₀ as used (`auto`'s choice included); None for the other methods.
+    pub gamma0: Option<f64>,
+}
+
+impl Solution {
+    /// The method and the parameters this solve used, as every output carries them.
+    pub fn method_fields(&self) -> MethodFields {
+        MethodFields::used(self.params.method, self.gamma0)
+    }
 }
 
 impl Solution {
@@ -420,11 +430,16 @@ pub fn solve_contact(
     let points = disc.contact_points(params.rule);
     disc.check(params, points.len())?;
     if let Method::Nitsche { theta, gamma0 } = params.method {
+        // `auto`'s γ₀* is computed once per rule on this mesh; its time is the preparation's.
         let nitsche = NitscheParams {
             theta: f64::from(theta),
-            gamma0,
+            gamma0: nitsche::gamma0(disc, params.rule, gamma0)?,
         };
-        return nitsche::solve(disc, params, nitsche, initial, opts, on_iteration);
+        let chosen_ms = ms_since(t);
+        let mut sol = nitsche::solve(disc, params, nitsche, initial, opts, on_iteration)?;
+        sol.timing.factorization += chosen_ms;
+        sol.timing.total += chosen_ms;
+        return Ok(sol);
     }
     let coupling = disc.coupling(params.rule, &points);
     let weight: Vec<f64> = points.points.iter().map(|q| q.weight).collect();
@@ -509,6 +524,7 @@ pub fn solve_contact(
         timing,
         warnings,
         nodal_forces: None,
+        gamma0: None,
     })
 }
 

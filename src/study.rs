@@ -725,6 +725,7 @@ impl StudyRow {
         };
         match outcome {
             Ok((disc, sol)) => {
+                row.method = sol.method_fields();
                 row.newton_iterations = Some(sol.newton.iterations);
                 row.outer_iterations = sol.outer_iterations;
                 row.converged = sol.newton.converged;

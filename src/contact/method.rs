@@ -7,7 +7,10 @@
 //! - `alm`: the augmented Lagrangian at a finite ε ([`super::alm`]): Uzawa updates of the
 //!   multiplier around the penalty Newton; no penalty error.
 //! - `nitsche`: Nitsche's method, θ ∈ {1, 0, −1}, γ = γ₀·E/h (Chouly and Hild 2013): no
-//!   multiplier, no inf-sup condition.
+//!   multiplier, no inf-sup condition. γ₀ is a number or [`Gamma0::Auto`]: a multiple of the
+//!   symmetric variant's stability threshold γ₀* on the mesh and rule, which varies by orders
+//!   of magnitude between elements, rules and cell shapes (1.57 for q1 + gauss1 on the paper's
+//!   mesh, 9.1 for q2 + simpson, 1.3·10³ on the tall cells of `hertz-block`).
 
 use serde::Serialize;
 
@@ -21,9 +24,46 @@ pub const THETAS: [i8; 3] = [1, 0, -1];
 /// and representable in every product. Whether a γ₀ is *stable* (the symmetric variant
 /// needs it large enough) is the method's to report, not an input error.
 pub const GAMMA0_RANGE: (f64, f64) = (1e-8, 1e8);
-/// Nitsche's default parameters: symmetric, γ₀ = 100.
+/// Nitsche's default parameters: symmetric, γ₀ chosen from the mesh ([`Gamma0::Auto`]).
 pub const DEFAULT_THETA: i8 = 1;
-pub const DEFAULT_GAMMA0: f64 = 100.0;
+pub const DEFAULT_GAMMA0: Gamma0 = Gamma0::Auto;
+/// `auto`'s γ₀ = 10·γ₀*: ten times the threshold of the symmetric variant (θ = 1), forty times
+/// the incomplete one's (θ = 0), past the 2·γ₀* from which γ₀ no longer changes the errors
+/// (docs/convergence.md, "The default γ₀").
+pub const AUTO_GAMMA0_FACTOR: f64 = 10.0;
+
+/// Nitsche's γ₀: a number, or `auto` ([`AUTO_GAMMA0_FACTOR`]·γ₀*, γ₀* computed on the mesh
+/// and rule of the solve by `nitsche::stability_threshold`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Gamma0 {
+    Auto,
+    Given(f64),
+}
+
+impl Gamma0 {
+    /// `auto` (any case) or a number; the range is [`Method::check`]'s.
+    pub fn parse(text: &str) -> Result<Gamma0, MethodError> {
+        let text = text.trim();
+        if text.eq_ignore_ascii_case("auto") {
+            return Ok(Gamma0::Auto);
+        }
+        text.parse().map(Gamma0::Given).map_err(|_| {
+            MethodError::Gamma0Text(format!(
+                "`{}` is neither `auto` nor a number",
+                crate::text::sanitize(text)
+            ))
+        })
+    }
+}
+
+impl std::fmt::Display for Gamma0 {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Gamma0::Auto => f.write_str("auto"),
+            Gamma0::Given(g) => f.write_str(&num(*g)),
+        }
+    }
+}
 /// The ALM's default relative tolerance on the multiplier's change.
 pub const DEFAULT_ALM_TOL: f64 = 1e-10;
 
@@ -38,7 +78,7 @@ pub enum Method {
     /// relative change falls below `tolerance` ∈ (0, 1).
     Alm { tolerance: f64 },
     /// Nitsche's method with θ ∈ {1, 0, −1} and γ = γ₀·E/h.
-    Nitsche { theta: i8, gamma0: f64 },
+    Nitsche { theta: i8, gamma0: Gamma0 },
 }
 
 /// The names [`Method::parse`] accepts, in the order the lab cycles them.
@@ -55,7 +95,8 @@ impl Method {
         }
     }
 
-    /// A short label with the parameters, e.g. `alm (tol 1e-10)`, `nitsche (θ = 1, γ₀ = 100)`.
+    /// A short label with the parameters, e.g. `alm (tol 1e-10)`, `nitsche (θ = 1, γ₀ = 100)`
+    /// or `nitsche (θ = 1, γ₀ auto)`.
     pub fn label(self) -> String {
         MethodFields::from(self).label()
     }
@@ -66,7 +107,7 @@ impl Method {
             Method::Penalty => "needs ε > 0 (error O(√ε)); p̄ smooths p",
             Method::Exact => "needs inf-sup (a rule without kernel); no ε",
             Method::Alm { .. } => "needs ε > 0 (no ε error); p unique with inf-sup",
-            Method::Nitsche { .. } => "needs γ₀ (large for θ = 1); no multiplier, no inf-sup",
+            Method::Nitsche { .. } => "needs γ₀ > γ₀* (θ = 1); no multiplier, no inf-sup",
         }
     }
 
@@ -76,7 +117,7 @@ impl Method {
     pub fn parse(
         name: &str,
         theta: Option<f64>,
-        gamma0: Option<f64>,
+        gamma0: Option<Gamma0>,
         alm_tol: Option<f64>,
     ) -> Result<Method, MethodError> {
         let method = match name.trim().to_ascii_lowercase().as_str() {
@@ -103,7 +144,7 @@ impl Method {
     pub fn with(
         self,
         theta: Option<f64>,
-        gamma0: Option<f64>,
+        gamma0: Option<Gamma0>,
         alm_tol: Option<f64>,
     ) -> Result<Method, MethodError> {
         let foreign = |key: &'static str, takes: &'static str| {
@@ -158,8 +199,8 @@ impl Method {
         Ok(method)
     }
 
-    /// The parameters' ranges: θ ∈ {1, 0, −1}, γ₀ in [`GAMMA0_RANGE`], the ALM's tolerance in
-    /// (0, 1).
+    /// The parameters' ranges: θ ∈ {1, 0, −1}, a given γ₀ in [`GAMMA0_RANGE`], the ALM's
+    /// tolerance in (0, 1).
     pub fn check(self) -> Result<(), MethodError> {
         match self {
             Method::Penalty | Method::Exact => Ok(()),
@@ -172,13 +213,16 @@ impl Method {
             .map_err(MethodError::Tolerance),
             Method::Nitsche { theta, gamma0 } => {
                 check_theta(f64::from(theta)).map_err(MethodError::Theta)?;
+                let Gamma0::Given(gamma0) = gamma0 else {
+                    return Ok(());
+                };
                 let (lo, hi) = GAMMA0_RANGE;
                 crate::check::closed(
                     gamma0,
                     lo,
                     hi,
                     &format!(
-                        "γ₀ from {} to {} (γ = γ₀·E/h; γ₀ ≤ 1e8 keeps Nitsche's equivalent penalty εE/h = 1/γ₀ above round-off)",
+                        "`auto` or γ₀ from {} to {} (γ = γ₀·E/h; γ₀ ≤ 1e8 keeps Nitsche's equivalent penalty εE/h = 1/γ₀ above round-off)",
                         num(lo),
                         num(hi)
                     ),
@@ -219,7 +263,7 @@ impl Method {
     }
 
     /// γ₀, when the method takes it.
-    pub fn gamma0(self) -> Option<f64> {
+    pub fn gamma0(self) -> Option<Gamma0> {
         match self {
             Method::Nitsche { gamma0, .. } => Some(gamma0),
             _ => None,
@@ -241,24 +285,44 @@ impl Method {
 }
 
 /// The method and its parameters as the JSON and CSV of every output carry them (flattened
-/// into a row: `method`, `theta`, `gamma0`, `alm_tol`; null or empty where the method has
-/// no such parameter).
+/// into a row: `method`, `theta`, `gamma0`, `gamma0_auto`, `alm_tol`; null or empty where the
+/// method has no such parameter). `gamma0` is the γ₀ a solve used, `auto`'s included
+/// ([`MethodFields::used`]); null for `auto` before a solve chose it.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct MethodFields {
     pub method: &'static str,
     pub theta: Option<i8>,
     pub gamma0: Option<f64>,
+    /// Whether γ₀ was chosen from the mesh ([`Gamma0::Auto`]).
+    pub gamma0_auto: Option<bool>,
     pub alm_tol: Option<f64>,
 }
 
 impl MethodFields {
-    /// The CSV header of these fields, the JSON names.
-    pub const CSV_HEADER: &'static str = "method,theta,gamma0,alm_tol";
+    /// The fields of a solve by `method` that used Nitsche's γ₀ `gamma0` (None for the other
+    /// methods).
+    pub fn used(method: Method, gamma0: Option<f64>) -> Self {
+        MethodFields {
+            gamma0: gamma0.or(MethodFields::from(method).gamma0),
+            ..MethodFields::from(method)
+        }
+    }
 
-    /// The method with its parameters, e.g. `alm (tol 1e-10)` ([`Method::label`]).
+    /// The method with its parameters, e.g. `alm (tol 1e-10)`, `nitsche (θ = 1, γ₀ = 15.69
+    /// auto)` ([`Method::label`]).
     pub fn label(&self) -> String {
+        let auto = self.gamma0_auto == Some(true);
         match (self.theta, self.gamma0, self.alm_tol) {
-            (Some(theta), Some(gamma0), _) => format!("{} (θ = {theta}, γ₀ = {})", self.method, num(gamma0)),
+            // `auto`'s choice to four significant digits (the JSON has every digit).
+            (Some(theta), Some(gamma0), _) if auto && (1e-4..1e6).contains(&gamma0) => {
+                let decimals = (3.0 - gamma0.log10().floor()).max(0.0) as usize;
+                format!("{} (θ = {theta}, γ₀ = {gamma0:.decimals$} auto)", self.method)
+            }
+            (Some(theta), Some(gamma0), _) => {
+                let auto = if auto { " auto" } else { "" };
+                format!("{} (θ = {theta}, γ₀ = {}{auto})", self.method, num(gamma0))
+            }
+            (Some(theta), None, _) => format!("{} (θ = {theta}, γ₀ auto)", self.method),
             (_, _, Some(tol)) => format!("{} (tol {tol:e})", self.method),
             _ => self.method.to_string(),
         }
@@ -278,18 +342,6 @@ impl MethodFields {
             format!("{:>width$}", "—")
         }
     }
-
-    /// The CSV cells of these fields (empty for None).
-    pub fn csv(&self) -> String {
-        let opt = |v: Option<String>| v.unwrap_or_default();
-        format!(
-            "{},{},{},{}",
-            self.method,
-            opt(self.theta.map(|t| t.to_string())),
-            opt(self.gamma0.map(|g| g.to_string())),
-            opt(self.alm_tol.map(|t| t.to_string()))
-        )
-    }
 }
 
 impl From<Method> for MethodFields {
@@ -297,7 +349,11 @@ impl From<Method> for MethodFields {
         MethodFields {
             method: m.name(),
             theta: m.theta(),
-            gamma0: m.gamma0(),
+            gamma0: match m.gamma0() {
+                Some(Gamma0::Given(g)) => Some(g),
+                _ => None,
+            },
+            gamma0_auto: m.gamma0().map(|g| g == Gamma0::Auto),
             alm_tol: m.alm_tol(),
         }
     }
@@ -325,6 +381,8 @@ pub enum MethodError {
     #[error("{0}")]
     Gamma0(crate::check::CheckError),
     #[error("{0}")]
+    Gamma0Text(String),
+    #[error("{0}")]
     Tolerance(crate::check::CheckError),
     #[error("`{key}` is a parameter of {takes}, not of {method}")]
     NotTaken {
@@ -342,7 +400,7 @@ impl MethodError {
         match self {
             MethodError::Name(_) => "method",
             MethodError::Theta(_) => "theta",
-            MethodError::Gamma0(_) => "gamma0",
+            MethodError::Gamma0(_) | MethodError::Gamma0Text(_) => "gamma0",
             MethodError::Tolerance(_) => "alm_tol",
             MethodError::NotTaken { key, .. } => key,
             MethodError::NeedsEpsilon(_) => "epsilon",
@@ -370,10 +428,17 @@ mod tests {
     fn parameters_are_checked_in_one_place() {
         let n = |t, g| Method::parse("nitsche", t, g, None);
         assert_eq!(
-            n(Some(-1.0), Some(5.0)).unwrap(),
+            n(Some(-1.0), Some(Gamma0::Given(5.0))).unwrap(),
             Method::Nitsche {
                 theta: -1,
-                gamma0: 5.0
+                gamma0: Gamma0::Given(5.0)
+            }
+        );
+        assert_eq!(
+            n(None, None).unwrap(),
+            Method::Nitsche {
+                theta: 1,
+                gamma0: Gamma0::Auto
             }
         );
         for bad in [2.0, 0.5, -2.0, f64::NAN] {
@@ -382,8 +447,16 @@ mod tests {
             );
         }
         for bad in [-1.0, 0.0, 1e-9, 1e9, f64::INFINITY] {
-            assert!(matches!(n(None, Some(bad)), Err(MethodError::Gamma0(_))), "{bad}");
+            assert!(
+                matches!(n(None, Some(Gamma0::Given(bad))), Err(MethodError::Gamma0(_))),
+                "{bad}"
+            );
         }
+        assert_eq!(Gamma0::parse(" AUTO "), Ok(Gamma0::Auto));
+        assert_eq!(Gamma0::parse("1e3"), Ok(Gamma0::Given(1e3)));
+        assert!(
+            matches!(Gamma0::parse("automatic"), Err(MethodError::Gamma0Text(m)) if m.contains("neither `auto` nor a number"))
+        );
         for bad in [0.0, 1.0, -1e-3, f64::NAN] {
             assert!(matches!(
                 Method::parse("alm", None, None, Some(bad)),
@@ -398,6 +471,28 @@ mod tests {
             Method::parse("penalty", None, None, Some(1e-3)),
             Err(MethodError::NotTaken { key: "alm_tol", .. })
         ));
+    }
+
+    /// `auto` is said before a solve and its choice after, to four significant digits.
+    #[test]
+    fn labels_say_what_gamma0_is() {
+        let auto = Method::parse("nitsche", None, None, None).unwrap();
+        assert_eq!(auto.label(), "nitsche (θ = 1, γ₀ auto)");
+        assert_eq!(
+            MethodFields::used(auto, Some(15.690_123)).label(),
+            "nitsche (θ = 1, γ₀ = 15.69 auto)"
+        );
+        assert_eq!(
+            MethodFields::used(auto, Some(12_758.057)).label(),
+            "nitsche (θ = 1, γ₀ = 12758 auto)"
+        );
+        let given = Method::parse("nitsche", Some(0.0), Some(Gamma0::Given(100.0)), None).unwrap();
+        assert_eq!(given.label(), "nitsche (θ = 0, γ₀ = 100)");
+        assert_eq!(MethodFields::used(given, Some(100.0)), MethodFields::from(given));
+        let fields = MethodFields::used(auto, Some(2.5));
+        assert_eq!((fields.gamma0, fields.gamma0_auto), (Some(2.5), Some(true)));
+        let penalty = MethodFields::from(Method::Penalty);
+        assert_eq!((penalty.gamma0, penalty.gamma0_auto), (None, None));
     }
 
     #[test]

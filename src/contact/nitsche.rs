@@ -58,6 +58,7 @@ use std::time::Instant;
 use faer::linalg::solvers::Solve;
 use faer::{Accum, Mat, Side};
 
+use super::method::{AUTO_GAMMA0_FACTOR, GAMMA0_RANGE, Gamma0};
 use super::penalty::{Iterate, Iteration, NewtonOptions, NewtonResult, Progress, dot, round_off, stalled};
 use super::{ContactPoints, Rule, load, smoothed_pressure};
 use crate::error::SolveError;
@@ -80,9 +81,6 @@ pub struct NitscheParams {
     pub theta: f64,
     pub gamma0: f64,
 }
-
-/// The range of γ₀ accepted: beyond it γ's products leave what double precision resolves.
-pub const GAMMA0_RANGE: (f64, f64) = (1e-8, 1e8);
 
 /// Columns per triangular solve in [`Layer::couplings`].
 const SOLVE_BLOCK: usize = 64;
@@ -413,6 +411,28 @@ pub fn stability_threshold(disc: &Discretization, rule: Rule) -> Result<f64, Sol
         .self_adjoint_eigenvalues(Side::Lower)
         .map_err(|e| SolveError::Eigen(format!("{e:?}")))?;
     Ok(*cp.threshold.get_or_init(|| eig.last().copied().unwrap_or(0.0)))
+}
+
+/// The γ₀ a solve with `gamma0` uses for `rule` on `disc`: the given one, or for `auto`
+/// [`AUTO_GAMMA0_FACTOR`]·γ₀* ([`stability_threshold`]), raised to [`GAMMA0_RANGE`]'s lower
+/// end and refused above its upper end (cells so thin that γ₀* leaves double precision).
+pub fn gamma0(disc: &Discretization, rule: Rule, gamma0: Gamma0) -> Result<f64, SolveError> {
+    let Gamma0::Given(given) = gamma0 else {
+        let (lo, hi) = GAMMA0_RANGE;
+        let chosen = (AUTO_GAMMA0_FACTOR * stability_threshold(disc, rule)?).max(lo);
+        if chosen.is_nan() || chosen > hi {
+            return Err(SolveError::Input {
+                what: "Nitsche's γ₀",
+                message: format!(
+                    "`auto` would choose {} (10·γ₀*), above {} where γ's products leave double precision: the cells along Γ_C are too thin for Nitsche's method",
+                    num(chosen),
+                    num(hi)
+                ),
+            });
+        }
+        return Ok(chosen);
+    };
+    Ok(given)
 }
 
 /// θ and γ₀ checked: θ ∈ [−1, 1], γ₀ within [`GAMMA0_RANGE`].
@@ -790,6 +810,7 @@ pub fn solve(
         timing,
         warnings,
         nodal_forces: Some(forces),
+        gamma0: Some(nitsche.gamma0),
     })
 }
 

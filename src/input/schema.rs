@@ -110,6 +110,15 @@ pub(super) struct RawContact {
     /// `penalty`, `exact`, `alm` or `nitsche` ([`Method::parse`]).
     pub(super) method: Option<Spanned<String>>,
     pub(super) theta: Option<Spanned<f64>>,
-    pub(super) gamma0: Option<Spanned<f64>>,
+    pub(super) gamma0: Option<Spanned<RawGamma0>>,
     pub(super) alm_tol: Option<Spanned<f64>>,
+}
+
+/// Nitsche's γ₀ as written: a number, or text (`"auto"`, checked by
+/// [`crate::contact::method::Gamma0::parse`]).
+#[derive(Deserialize)]
+#[serde(untagged)]
+pub(super) enum RawGamma0 {
+    Number(f64),
+    Text(String),
 }

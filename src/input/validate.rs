@@ -7,9 +7,10 @@ use std::path::Path;
 use toml::Spanned;
 
 use super::locate::{Locator, ScenarioError};
-use super::schema::{Model, RawContact, RawObstacle, RawScenario, Shape};
+use super::schema::{Model, RawContact, RawGamma0, RawObstacle, RawScenario, Shape};
 use crate::check::{self, CheckError};
 use crate::contact::gap::Bump;
+use crate::contact::method::Gamma0;
 use crate::contact::{Method, Obstacle};
 use crate::fem::Integration;
 use crate::material::Material;
@@ -97,7 +98,7 @@ pub(super) fn scenario(text: &str, file: &str) -> Result<Scenario, ScenarioError
             Some(span),
             Some(key.into()),
             format!(
-                "the level-0 cells are up to {} times longer than they are high (or high than long): allowed at most {}; change mesh.nx/mesh.ny (or the lines) so that the cells are closer to square",
+                "the level-0 cells are up to {} times longer than they are high (or high than long): allowed at most {}; change body.width, body.height or mesh.nx/mesh.ny (or the lines) so that the cells are closer to square",
                 num(aspect),
                 num(check::ASPECT)
             ),
@@ -159,7 +160,16 @@ impl Locator<'_> {
             self.error(span, Some(format!("contact.{key}")), e.to_string())
         };
         let get = |v: &Option<Spanned<f64>>| v.as_ref().map(|v| *v.get_ref());
-        let (theta, gamma0, alm_tol) = (get(&raw.theta), get(&raw.gamma0), get(&raw.alm_tol));
+        let gamma0 = raw
+            .gamma0
+            .as_ref()
+            .map(|g| match g.get_ref() {
+                RawGamma0::Number(v) => Ok(Gamma0::Given(*v)),
+                RawGamma0::Text(t) => Gamma0::parse(t),
+            })
+            .transpose()
+            .map_err(fail)?;
+        let (theta, alm_tol) = (get(&raw.theta), get(&raw.alm_tol));
         let method = match &raw.method {
             Some(name) => Some(Method::parse(name.get_ref(), theta, gamma0, alm_tol).map_err(fail)?),
             None => {

@@ -6,6 +6,7 @@
 use std::sync::{Arc, OnceLock};
 use std::time::Instant;
 
+use crate::contact::method::Gamma0;
 use crate::contact::{Method, Rule};
 use crate::mesh::Element;
 use crate::scenario::Scenario;
@@ -79,7 +80,13 @@ impl std::hash::Hash for StudyKey {
         for m in &self.methods {
             m.name().hash(state);
             m.theta().hash(state);
-            m.gamma0().map(f64::to_bits).hash(state);
+            // `auto` as None, a given γ₀ as its bits.
+            m.gamma0()
+                .map(|g| match g {
+                    Gamma0::Auto => None,
+                    Gamma0::Given(g) => Some(g.to_bits()),
+                })
+                .hash(state);
             m.alm_tol().map(f64::to_bits).hash(state);
         }
     }

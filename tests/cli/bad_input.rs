@@ -275,6 +275,12 @@ fn bad_methods_in_a_scenario_are_located() {
             "γ₀ from 1e-8 to 1e8",
         ),
         (
+            "gamma0-text",
+            "method = \"nitsche\"\ngamma0 = \"automatic\"",
+            "contact.gamma0",
+            "`automatic` is neither `auto` nor a number",
+        ),
+        (
             "tol-big",
             "method = \"alm\"\nalm_tol = 2.0",
             "contact.alm_tol",
@@ -413,7 +419,7 @@ fn nitsche_tables_print_no_epsilon() {
     let (code, out, err) = riplab(&base);
     assert_eq!(code, 0, "{err}");
     assert!(
-        out.contains("method nitsche (θ = 1, γ₀ = 100), depth = 0.8"),
+        out.contains("method nitsche (θ = 1, γ₀ = 25.49 auto), depth = 0.8"),
         "{out}"
     );
     assert!(!out.contains("ε ="), "{out}");
@@ -432,9 +438,76 @@ fn render_takes_the_method() {
         "render", "--method", "nitsche", "--theta", "-1", "--size", "80x24",
     ]);
     assert_eq!(code, 0, "{err}");
-    assert!(out.contains("nitsche (θ = -1, γ₀ = 100)"), "{out}");
+    assert!(out.contains("nitsche (θ = -1, γ₀ = 15.69 auto)"), "{out}");
     assert!(out.contains("nitsche: needs γ₀"), "{out}");
     let (code, _, err) = riplab(&["render", "--method", "foo"]);
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("allowed: penalty, exact, alm, nitsche"), "{err}");
+}
+
+/// Issue 14: Nitsche's default γ₀ is chosen from the mesh (`auto`, 10·γ₀*): the fixed default
+/// γ₀ = 100 was refused on `hertz-block` (γ₀* ≈ 1.2·10³, tall cells) and `near-incompressible`
+/// (γ₀* ≈ 408), so `--method nitsche` failed there with its own defaults. The choice is checked
+/// against γ₀* as the refusal of a too small γ₀ reports it (computed with γ in place of E/h:
+/// another scaling of the same eigenproblem), and `--gamma0 auto` is the default spelled out.
+#[test]
+fn nitsche_chooses_gamma0_from_the_mesh() {
+    for (scenario, at_least) in [("hertz-block", 1000.0), ("near-incompressible", 400.0)] {
+        let file = format!("{}/scenarios/{scenario}.toml", env!("CARGO_MANIFEST_DIR"));
+        let base = ["solve", &file, "--level", "1", "--method", "nitsche"];
+        let json = |extra: &[&str]| -> serde_json::Value {
+            let (code, out, err) = riplab(&[&base[..], extra, &["--format", "json"]].concat());
+            assert_eq!(code, 0, "{scenario} {extra:?}: {err}");
+            serde_json::from_str(&out).unwrap()
+        };
+        let auto = json(&[]);
+        assert_eq!(auto["status"], "ok", "{scenario}: {auto}");
+        assert_eq!(auto["gamma0_auto"], true);
+        assert_eq!(json(&["--gamma0", "AUTO"])["gamma0"], auto["gamma0"]);
+        let gamma0 = auto["gamma0"].as_f64().unwrap();
+        let (code, _, err) = riplab(&[&base[..], &["--gamma0", "1e-6"]].concat());
+        assert_eq!(code, 2, "{err}");
+        let star: f64 = err
+            .split("here γ₀* = ")
+            .nth(1)
+            .and_then(|t| t.split(')').next())
+            .and_then(|t| t.parse().ok())
+            .unwrap_or_else(|| panic!("{scenario}: no γ₀* in {err}"));
+        assert!(star > at_least, "{scenario}: γ₀* = {star}");
+        assert!(
+            (gamma0 / (10.0 * star) - 1.0).abs() < 1e-3,
+            "{scenario}: γ₀ = {gamma0}, γ₀* = {star}"
+        );
+        // A given γ₀ is used as given and said to be given.
+        let given = json(&["--gamma0", "20000"]);
+        assert_eq!(
+            (given["gamma0"].as_f64(), &given["gamma0_auto"]),
+            (Some(20000.0), &serde_json::Value::Bool(false))
+        );
+    }
+    let (code, _, err) = riplab(&["solve", "--method", "nitsche", "--gamma0", "automatic"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("--gamma0") && err.contains("neither `auto` nor a number"),
+        "{err}"
+    );
+    // A scenario file may say `auto` too.
+    let path = std::env::temp_dir().join(format!("riplab-gamma0-auto-{}.toml", std::process::id()));
+    let text = riplab::scenario::DEFAULT_SCENARIO.trim_end();
+    std::fs::write(
+        &path,
+        format!("{text}\nmethod = \"nitsche\"\ngamma0 = \"auto\"\n"),
+    )
+    .unwrap();
+    let (code, out, err) = riplab(&[
+        "solve",
+        path.to_str().unwrap(),
+        "--level",
+        "0",
+        "--format",
+        "json",
+    ]);
+    std::fs::remove_file(&path).unwrap();
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("\"gamma0_auto\": true"), "{out}");
 }

@@ -151,6 +151,14 @@ fn a_long_error_is_shown_whole() {
     assert!(shown.contains("choose a larger γ₀ or θ = −1"), "{text}");
     assert!(shown.contains("(Chouly and Hild's condition)"), "{text}");
     assert_eq!(text.lines().count(), 24);
+    // The status line does not go on saying the last solve converged: it says these settings
+    // have no result and whose result the charts keep.
+    let status = text.lines().last().unwrap();
+    assert!(!status.contains("converged"), "{status}");
+    assert!(
+        status.contains("✗ no result for these settings · shown: the last solve (level 0"),
+        "{status}"
+    );
 }
 
 // ---- numbers on screen -----------------------------------------------------------------
@@ -1844,13 +1852,18 @@ fn the_method_key_cycles_and_the_method_line_shows() {
 #[test]
 fn the_settings_line_drops_fields_rather_than_cutting_a_number() {
     use riplab::contact::Method;
+    use riplab::contact::method::Gamma0;
     for method in [
         Method::Penalty,
         Method::Exact,
         Method::Alm { tolerance: 1e-10 },
         Method::Nitsche {
             theta: -1,
-            gamma0: 100.0,
+            gamma0: Gamma0::Given(100.0),
+        },
+        Method::Nitsche {
+            theta: 1,
+            gamma0: Gamma0::Auto,
         },
     ] {
         for level in [0, MAX_APP_LEVEL] {

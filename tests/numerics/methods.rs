@@ -5,6 +5,7 @@
 use std::ops::ControlFlow;
 
 use crate::common::paper_with;
+use riplab::contact::method::Gamma0;
 use riplab::contact::penalty::NewtonOptions;
 use riplab::contact::{Method, Obstacle, Rule};
 use riplab::fem::Integration;
@@ -178,7 +179,7 @@ fn contact_patch_test() {
         (
             Method::Nitsche {
                 theta: 1,
-                gamma0: 100.0,
+                gamma0: Gamma0::Auto,
             },
             1e-3,
             1.0,
@@ -186,7 +187,7 @@ fn contact_patch_test() {
         (
             Method::Nitsche {
                 theta: 0,
-                gamma0: 100.0,
+                gamma0: Gamma0::Given(100.0),
             },
             1e-3,
             1.0,
@@ -194,7 +195,7 @@ fn contact_patch_test() {
         (
             Method::Nitsche {
                 theta: -1,
-                gamma0: 1.0,
+                gamma0: Gamma0::Given(1.0),
             },
             1e-3,
             1.0,

@@ -66,7 +66,11 @@ fn settings_line(app: &App, theme: Theme, width: u16) -> Line<'static> {
     let method = match s.method {
         Method::Penalty => format!("ε={:e}", s.epsilon),
         Method::Alm { .. } => format!("alm ε={:e}", s.epsilon),
-        m => m.label(),
+        // Nitsche's γ₀ as the shown solve used it (`auto`'s value once chosen).
+        m => match app.current() {
+            Some(c) if c.solution.params.method == m => c.solution.method_fields().label(),
+            _ => m.label(),
+        },
     };
     let short_method = match s.method {
         Method::Penalty | Method::Alm { .. } => method.clone(),

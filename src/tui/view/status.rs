@@ -176,6 +176,18 @@ fn state(app: &App, theme: Theme) -> Vec<Span<'static>> {
         // The previous result stays on screen; the progress above says what is coming.
         return spans;
     }
+    if app.error.is_some() {
+        // The banner says why; the charts keep the last result, which is not these settings'.
+        spans.push(Span::styled("✗ no result for these settings", theme.bad()));
+        if app.current().is_none() {
+            spans.push(Span::raw(format!(
+                " · shown: the last solve (level {}, {})",
+                solved.key.level,
+                solved.key.method.name()
+            )));
+        }
+        return spans;
+    }
     let newton = &solved.solution.newton;
     if newton.converged {
         spans.push(Span::styled("✓ converged", theme.good()));
