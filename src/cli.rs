@@ -16,7 +16,6 @@ use crate::report::{Format, InfSupTable, SolveReport, StudyReport, Sweep, SweepF
 use crate::scenario::{MAX_LEVEL, Scenario};
 use crate::scheme::Scheme;
 use crate::solve::{ContactParams, Discretization, check_request, sweep};
-use crate::stress::StressField;
 use crate::study::{Plan, ReferenceLevelError, all_ok};
 use crate::tui::{MarkerChoice, TuiOptions, render_to_string};
 use crate::vtu;
@@ -540,7 +539,8 @@ fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
                 .map_err(|e| CliError::Failed(format!("--plot {e}")))?;
         }
         if let Some(path) = &args.vtu {
-            let field = StressField::of_solution(&scenario, &disc, &sol)
+            let field = sol
+                .stress_field(&scenario, &disc)
                 .map_err(|e| CliError::Failed(format!("the stress field: {e}")))?;
             let [body, contact] = vtu::write(path, &disc, &sol, &field, args.force)
                 .map_err(|e| CliError::Failed(format!("--vtu {e}")))?;

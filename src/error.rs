@@ -2,7 +2,6 @@
 //! each variant carrying what its message needs, and whether the fault is the input's (a
 //! request that has no answer: exit 2) or the solver's (exit 1).
 
-use crate::contact::Rule;
 use crate::text::num;
 
 /// Why a discretisation or a contact solve produced no result.
@@ -16,11 +15,11 @@ pub enum SolveError {
     Factorization(String),
     /// ε = 0 asks for more multipliers than there are normal displacements.
     #[error(
-        "ε = 0 imposes the constraint exactly at the {points} points of {}, more than the {normals} normal displacements on Γ_C: the multipliers are not unique; use a rule without kernel (trapezoid, or simpson with q2)",
-        rule.name()
+        "ε = 0 imposes the constraint exactly at the {points} points of {rule}, more than the {normals} normal displacements on Γ_C: the multipliers are not unique; use a rule without kernel (trapezoid, or simpson with q2)"
     )]
     Kernel {
-        rule: Rule,
+        /// The contact rule's name ([`crate::contact::Rule::name`]).
+        rule: &'static str,
         points: usize,
         normals: usize,
     },

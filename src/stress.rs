@@ -30,8 +30,6 @@ use crate::fem::Integration;
 use crate::fem::basis::{QuadPoint, cell_points, evaluate, exact_order};
 use crate::material::{Material, Plane};
 use crate::mesh::{Diagonal, Element, Mesh};
-use crate::scenario::Scenario;
-use crate::solve::{Discretization, Solution};
 
 /// A plane stress state with its out-of-plane normal stress.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -284,20 +282,6 @@ pub fn quadrature_stresses(
 }
 
 impl StressField {
-    /// The stresses of `sol` on `disc`, with the scenario's material and integration.
-    pub fn of_solution(
-        scenario: &Scenario,
-        disc: &Discretization,
-        sol: &Solution,
-    ) -> Result<Self, StressError> {
-        Self::new(
-            &disc.mesh,
-            &scenario.material,
-            scenario.integration,
-            &sol.displacement(disc),
-        )
-    }
-
     /// The stresses of the displacement `u` (every dof, node-major) on `mesh`.
     pub fn new(
         mesh: &Mesh,

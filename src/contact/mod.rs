@@ -6,7 +6,7 @@ pub mod alm;
 pub mod gap;
 pub mod hertz;
 pub mod method;
-pub mod nitsche;
+pub mod params;
 pub mod penalty;
 pub mod pressure;
 pub mod rule;
@@ -14,5 +14,6 @@ pub mod signorini;
 
 pub use gap::{Obstacle, Outline};
 pub use method::Method;
+pub use params::ContactParams;
 pub use pressure::{load, raw_pressure, smoothed_pressure};
 pub use rule::{ContactPoints, Rule};

@@ -13,6 +13,7 @@ use crate::scheme::Scheme;
 use crate::stress::Quantity;
 
 use super::beta::InfSup;
+pub use super::keys::ExportKind;
 use super::keys::{LabAction, lab_action};
 pub use super::protocol::{
     Compare, InfSupKey, InfSupRequest, Progress, Response, SolveKey, SolveRequest, Solved, StressRequest,
@@ -112,18 +113,6 @@ pub enum Command {
     Export,
     /// Ctrl-Z: give the terminal back and stop until resumed.
     Suspend,
-}
-
-/// What [`Command::Export`] writes.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum ExportKind {
-    /// `s`: the solution's numbers as CSV.
-    #[default]
-    Csv,
-    /// `S`: the pressure chart as SVG.
-    Svg,
-    /// `v`: the body and Γ_C as VTU files.
-    Vtu,
 }
 
 /// What an update asks of the runtime.

@@ -5,7 +5,17 @@
 
 use crossterm::event::KeyCode;
 
-use super::app::ExportKind;
+/// What an export key writes ([`super::app::Command::Export`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ExportKind {
+    /// `s`: the solution's numbers as CSV.
+    #[default]
+    Csv,
+    /// `S`: the pressure chart as SVG.
+    Svg,
+    /// `v`: the body and Γ_C as VTU files.
+    Vtu,
+}
 
 /// What a key does in the lab.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -1,5 +1,5 @@
 //! The command line as a user runs it: help and exit codes, bad and hostile input, every
-//! README command, the VTU and SVG outputs (one test binary).
+//! README command, the VTU and SVG outputs, and the library's module graph (one test binary).
 
 #[macro_use]
 #[path = "../common/mod.rs"]
@@ -8,6 +8,7 @@ mod common;
 mod bad_input;
 mod help;
 mod hostile;
+mod modules;
 mod plot;
 mod readme;
 mod vtu;

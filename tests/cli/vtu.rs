@@ -8,7 +8,6 @@ use crate::common::riplab;
 use riplab::mesh::Element;
 use riplab::scenario::Scenario;
 use riplab::solve::{Discretization, Solution, solve_scenario};
-use riplab::stress::StressField;
 use riplab::vtu::{VtuError, check_target, check_targets, contact_path, write};
 use vtkio::model::{Attribute, CellType, DataSet, Piece, UnstructuredGridPiece, Vtk};
 
@@ -82,7 +81,7 @@ fn body_and_contact_side_read_back_with_their_counts_names_and_values() {
         (Element::P1, "trapezoid", CellType::Triangle, CellType::Line, 3),
     ] {
         let (s, disc, sol) = solve(element, rule, 1);
-        let field = StressField::of_solution(&s, &disc, &sol).unwrap();
+        let field = sol.stress_field(&s, &disc).unwrap();
         let path = dir.join(format!("{}.vtu", element.name()));
         let [body_path, contact] = write(&path, &disc, &sol, &field, false).unwrap();
         assert_eq!(
@@ -192,7 +191,7 @@ fn body_and_contact_side_read_back_with_their_counts_names_and_values() {
 fn existing_files_are_kept_unless_forced_and_only_regular_files_are_replaced() {
     let dir = scratch("keep");
     let (s, disc, sol) = solve(Element::Q1, "gauss1", 0);
-    let field = StressField::of_solution(&s, &disc, &sol).unwrap();
+    let field = sol.stress_field(&s, &disc).unwrap();
     let path = dir.join("out.vtu");
     // The name must end in .vtu.
     assert!(matches!(

@@ -30,7 +30,7 @@ fn paper(scheme: &str, level: u32, epsilon: f64) -> (Scenario, Discretization, S
 
 /// ‖σ̂_yy + p̄‖ / ‖p̄‖ in L²(Γ_C): the recovered normal stress against the smoothed pressure.
 fn traction_mismatch(s: &Scenario, disc: &Discretization, sol: &Solution) -> f64 {
-    let field = StressField::of_solution(s, disc, sol).unwrap();
+    let field = sol.stress_field(s, disc).unwrap();
     let cp = &sol.points;
     let gauss = gauss_legendre(6);
     let (mut err, mut norm) = (0.0, 0.0);
@@ -202,7 +202,8 @@ fn hertz_peak(s: &Scenario) -> (f64, f64) {
     let (disc, sol) = solve_scenario(s).unwrap();
     assert!(sol.newton.converged && s.half_model);
     let hertz = Hertz::for_load(&s.obstacle, &s.material, 2.0 * sol.load).unwrap();
-    let peak = StressField::of_solution(s, &disc, &sol)
+    let peak = sol
+        .stress_field(s, &disc)
         .unwrap()
         .peak(disc.mesh(), Quantity::PrincipalShear);
     assert_eq!(peak.x, 0.0, "on the axis");
@@ -270,7 +271,7 @@ fn paper_stress_maxima_snapshot() {
     for scheme in ["M1", "M2", "M3", "M4"] {
         for level in 0..=2 {
             let (s, disc, sol) = paper(scheme, level, 1e-6);
-            let field = StressField::of_solution(&s, &disc, &sol).unwrap();
+            let field = sol.stress_field(&s, &disc).unwrap();
             for q in Quantity::ALL {
                 let p = field.peak(disc.mesh(), q);
                 assert!(p.value.is_finite());
@@ -334,7 +335,7 @@ fn cases() -> Vec<(String, Scenario, Discretization, Solution)> {
 #[test]
 fn equilibrium_every_layer_carries_the_load_exactly() {
     for (label, s, disc, sol) in cases() {
-        let field = StressField::of_solution(&s, &disc, &sol).unwrap();
+        let field = sol.stress_field(&s, &disc).unwrap();
         let ys = &disc.mesh().ys;
         let mut layer = vec![0.0; ys.len() - 1];
         for p in field.elements.iter().flatten() {
@@ -362,7 +363,7 @@ fn equilibrium_recovered_sigma_yy_over_horizontal_lines_is_the_load() {
     let worst = |level: u32| -> f64 {
         let (s, disc, sol) = paper("M1", level, 1e-6);
         assert!(s.half_model);
-        let field = StressField::of_solution(&s, &disc, &sol).unwrap();
+        let field = sol.stress_field(&s, &disc).unwrap();
         heights
             .iter()
             .map(|&y| (line_integral(&field, disc.mesh(), y) + sol.load).abs() / sol.load)

@@ -58,18 +58,21 @@ use std::time::Instant;
 use faer::linalg::solvers::Solve;
 use faer::{Accum, Mat, Side};
 
-use super::method::{AUTO_GAMMA0_FACTOR, GAMMA0_RANGE, Gamma0};
-use super::penalty::{Iterate, Iteration, NewtonOptions, NewtonResult, Progress, dot, round_off, stalled};
-use super::{ContactPoints, Rule, load, smoothed_pressure};
+use crate::contact::method::{AUTO_GAMMA0_FACTOR, GAMMA0_RANGE, Gamma0};
+use crate::contact::penalty::{
+    Iterate, Iteration, NewtonOptions, NewtonResult, Progress, dot, round_off, stalled,
+};
+use crate::contact::{ContactParams, ContactPoints, Rule, load, smoothed_pressure};
+use crate::discretization::{Discretization, fem_error};
 use crate::error::SolveError;
 use crate::fem::basis::lagrange_1d;
 use crate::fem::condense::{TraceFactor, TraceOrdering};
 use crate::fem::error::gib;
 use crate::fem::memory::Limits;
-use crate::fem::{Form, Integration, assemble};
+use crate::fem::{Form, assemble};
 use crate::material::Material;
 use crate::mesh::{Diagonal, Element, Mesh};
-use crate::solve::{ContactParams, Discretization, Solution, Timing, fem_error};
+use crate::solution::{Solution, Timing};
 use crate::stress::Stress;
 use crate::text::num;
 use crate::warning;
@@ -86,26 +89,18 @@ pub struct NitscheParams {
 const SOLVE_BLOCK: usize = 64;
 
 /// The per-mesh state of Nitsche's method, built only when a Nitsche solve asks for it and
-/// kept with the [`Discretization`]: the layer's factor, then the point couplings of each rule
-/// and the last (rule, θ, γ₀)'s operator.
-pub struct NitscheCache {
-    material: Material,
-    integration: Integration,
+/// kept with the [`Discretization`] ([`cache`]): the layer's factor, then the point couplings
+/// of each rule and the last (rule, θ, γ₀)'s operator.
+#[derive(Default)]
+struct NitscheCache {
     layer: OnceLock<Result<Arc<Layer>, SolveError>>,
     couplings: Mutex<HashMap<Rule, Arc<Couplings>>>,
     operator: Mutex<Option<Arc<Operator>>>,
 }
 
-impl NitscheCache {
-    pub fn new(material: Material, integration: Integration) -> Self {
-        NitscheCache {
-            material,
-            integration,
-            layer: OnceLock::new(),
-            couplings: Mutex::new(HashMap::new()),
-            operator: Mutex::new(None),
-        }
-    }
+/// The Nitsche state kept with `disc`, made empty on first use.
+fn cache(disc: &Discretization) -> Arc<NitscheCache> {
+    disc.kept.get_or_init(NitscheCache::default)
 }
 
 /// K factorised with the layer's dofs last: L_BB, the trailing block, with L_BB L_BBᵀ the
@@ -245,7 +240,7 @@ fn edge_points(disc: &Discretization, material: &Material, points: &ContactPoint
 
 impl Layer {
     /// Factorise K with the dofs of the boundary cells last and keep the trailing block.
-    fn build(disc: &Discretization, cache: &NitscheCache) -> Result<Layer, SolveError> {
+    fn build(disc: &Discretization) -> Result<Layer, SolveError> {
         let mesh = &disc.mesh;
         let rows = mesh.element.order() + 1;
         let nny = mesh.node_y.len();
@@ -278,7 +273,7 @@ impl Layer {
         let stiffness = assemble(
             mesh,
             &disc.dofs,
-            Form::Elasticity(cache.material, cache.integration),
+            Form::Elasticity(disc.material, disc.integration),
         );
         let ordering =
             TraceOrdering::grid(&stiffness, mesh, &disc.dofs, &dofs).map_err(|e| fem_error(e, n))?;
@@ -368,17 +363,16 @@ impl Couplings {
 
 /// The layer of `disc`, built on first use.
 fn layer(disc: &Discretization) -> Result<Arc<Layer>, SolveError> {
-    let cache = &disc.nitsche;
-    cache
+    cache(disc)
         .layer
-        .get_or_init(|| Layer::build(disc, cache).map(Arc::new))
+        .get_or_init(|| Layer::build(disc).map(Arc::new))
         .clone()
 }
 
 /// The couplings of `rule` on `disc`, computed once per rule.
 fn couplings(disc: &Discretization, points: &ContactPoints) -> Result<Arc<Couplings>, SolveError> {
     let layer = layer(disc)?;
-    let cache = &disc.nitsche;
+    let cache = cache(disc);
     let mut map = cache.couplings.lock().unwrap_or_else(|e| e.into_inner());
     Ok(map
         .entry(points.rule)
@@ -389,7 +383,7 @@ fn couplings(disc: &Discretization, points: &ContactPoints) -> Result<Arc<Coupli
                 .step_by(disc.mesh.element.order())
                 .copied()
                 .collect();
-            Arc::new(layer.couplings(edge_points(disc, &cache.material, points), &vertices))
+            Arc::new(layer.couplings(edge_points(disc, &disc.material, points), &vertices))
         })
         .clone())
 }
@@ -404,7 +398,7 @@ pub fn stability_threshold(disc: &Discretization, rule: Rule) -> Result<f64, Sol
     if let Some(&star) = cp.threshold.get() {
         return Ok(star);
     }
-    let young = disc.nitsche.material.young;
+    let young = disc.material.young;
     let c: Vec<f64> = cp.points.iter().map(|q| q.weight * q.h / young).collect();
     let eig = cp
         .scaled_ss(&c)
@@ -535,7 +529,8 @@ impl Operator {
         params: NitscheParams,
     ) -> Result<Arc<Self>, SolveError> {
         let cp = couplings(disc, points)?;
-        let mut last = disc.nitsche.operator.lock().unwrap_or_else(|e| e.into_inner());
+        let cache = cache(disc);
+        let mut last = cache.operator.lock().unwrap_or_else(|e| e.into_inner());
         if let Some(op) = last.as_ref()
             && op.rule == points.rule
             && op.params == params
@@ -543,12 +538,7 @@ impl Operator {
         {
             return Ok(op.clone());
         }
-        let op = Arc::new(Operator::new(
-            points.rule,
-            cp,
-            params,
-            disc.nitsche.material.young,
-        )?);
+        let op = Arc::new(Operator::new(points.rule, cp, params, disc.material.young)?);
         *last = Some(op.clone());
         Ok(op)
     }

@@ -1,0 +1,369 @@
+//! The work that depends on the mesh alone (docs/design.md §6): K assembled, analysed and
+//! factorised once with Γ_C's normal dofs last, and its trace compliance C; every contact
+//! solve on the mesh ([`crate::solve`]) reuses it.
+
+use std::any::Any;
+use std::collections::HashMap;
+use std::sync::{Arc, Mutex};
+use std::time::Instant;
+
+use faer::Mat;
+
+use crate::check;
+use crate::contact::penalty::SolveError;
+use crate::contact::{ContactParams, ContactPoints, Method, Rule};
+use crate::fem::condense::{TraceFactor, TraceOrdering};
+use crate::fem::error::gib;
+use crate::fem::memory::{Limits, Sizes};
+use crate::fem::{DofMap, FemError, Form, Integration, assemble};
+use crate::material::{Material, epsilon_range};
+use crate::mesh::{Element, Mesh};
+use crate::scenario::Scenario;
+use crate::warning::{self, Warning};
+
+/// Milliseconds since `t`.
+pub(crate) fn ms_since(t: Instant) -> f64 {
+    t.elapsed().as_secs_f64() * 1e3
+}
+
+/// Everything that depends on the mesh alone: K assembled, analysed and factorised once
+/// with the Γ_C normal dofs last, and its trace compliance C (see [`crate::fem::condense`]).
+pub struct Discretization {
+    pub(crate) mesh: Mesh,
+    pub(crate) dofs: DofMap,
+    /// The symbolic analysis of K's pattern (shared by every form on this mesh).
+    pub(crate) ordering: TraceOrdering,
+    /// K = Pᵀ L Lᵀ P.
+    pub(crate) factor: TraceFactor,
+    /// C = E K⁻¹ Eᵀ on the Γ_C normal dofs, ascending x.
+    pub(crate) compliance: Mat<f64>,
+    /// The free dof of u_n = u_y at each Γ_C node, in ascending x.
+    pub(crate) contact_dofs: Vec<usize>,
+    pub(crate) assembly_ms: f64,
+    pub(crate) symbolic_ms: f64,
+    /// Numeric factorisation and the trace compliance.
+    pub(crate) factorization_ms: f64,
+    /// Young's modulus, the scale of the penalty parameter's range ([`epsilon_range`]).
+    young: f64,
+    /// The material and the stiffness's integration, for the methods that need more than K
+    /// (Nitsche's σ_n).
+    pub(crate) material: Material,
+    pub(crate) integration: Integration,
+    /// What is known to be poor about this stiffness before any solve (locking).
+    stiffness_warning: Option<Warning>,
+    /// G = T C Tᵀ for each rule met so far.
+    couplings: Mutex<HashMap<Rule, Arc<Mat<f64>>>>,
+    /// What a method builds on its first solve on this mesh and keeps with it (Nitsche's layer
+    /// factor and couplings, [`crate::nitsche`]).
+    pub(crate) kept: Kept,
+}
+
+/// Per-mesh state of the solve methods, one value per type, made on first use and dropped
+/// with the [`Discretization`]. The discretisation does not know the methods' types (they sit
+/// above it).
+#[derive(Default)]
+pub(crate) struct Kept(Mutex<Vec<Arc<dyn Any + Send + Sync>>>);
+
+impl Kept {
+    /// The kept value of type `T`, made by `make` the first time.
+    pub(crate) fn get_or_init<T: Any + Send + Sync>(&self, make: impl FnOnce() -> T) -> Arc<T> {
+        let mut kept = self.0.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(found) = kept.iter().find_map(|v| v.clone().downcast::<T>().ok()) {
+            return found;
+        }
+        let made = Arc::new(make());
+        kept.push(made.clone());
+        made
+    }
+}
+
+impl Discretization {
+    /// The mesh of the body.
+    pub fn mesh(&self) -> &Mesh {
+        &self.mesh
+    }
+
+    /// The map from nodes to free dofs (the roller on a half model's axis removed).
+    pub fn dofs(&self) -> &DofMap {
+        &self.dofs
+    }
+
+    /// The symbolic analysis of K's pattern, Γ_C's normal dofs last (docs/design.md §6).
+    pub fn ordering(&self) -> &TraceOrdering {
+        &self.ordering
+    }
+
+    /// The factor K = Pᵀ L Lᵀ P.
+    pub fn factor(&self) -> &TraceFactor {
+        &self.factor
+    }
+
+    /// The trace compliance C = E K⁻¹ Eᵀ on the Γ_C normal dofs, ascending x.
+    pub fn compliance(&self) -> &Mat<f64> {
+        &self.compliance
+    }
+
+    /// The free dof of u_n = u_y at each Γ_C node, ascending x.
+    pub fn contact_dofs(&self) -> &[usize] {
+        &self.contact_dofs
+    }
+
+    pub fn new(mesh: Mesh, material: Material, integration: Integration) -> Result<Self, SolveError> {
+        let dofs = DofMap::model(&mesh);
+        Self::with_dofs(mesh, dofs, material, integration)
+    }
+
+    /// As [`Discretization::new`] with other supports than the model's (`dofs`), e.g. rollers
+    /// on both sides for a patch test. Γ_C's normal dofs must be free.
+    pub fn with_dofs(
+        mesh: Mesh,
+        dofs: DofMap,
+        material: Material,
+        integration: Integration,
+    ) -> Result<Self, SolveError> {
+        let mesh_element = mesh.element;
+        let t = Instant::now();
+        let stiffness = assemble(&mesh, &dofs, Form::Elasticity(material, integration));
+        let assembly_ms = ms_since(t);
+        let contact_dofs: Vec<usize> = mesh
+            .top_nodes()
+            .iter()
+            .map(|&n| {
+                dofs.free_index(2 * n + 1)
+                    .expect("Γ_C is not on the clamped side")
+            })
+            .collect();
+        let n = dofs.n_free();
+        let t = Instant::now();
+        let ordering =
+            TraceOrdering::grid(&stiffness, &mesh, &dofs, &contact_dofs).map_err(|e| fem_error(e, n))?;
+        let symbolic_ms = ms_since(t);
+        let t = Instant::now();
+        let factor = TraceFactor::new(&ordering, &stiffness).map_err(|e| fem_error(e, n))?;
+        let compliance = factor.compliance();
+        let factorization_ms = ms_since(t);
+        Ok(Discretization {
+            mesh,
+            dofs,
+            ordering,
+            factor,
+            compliance,
+            contact_dofs,
+            assembly_ms,
+            symbolic_ms,
+            factorization_ms,
+            young: material.young,
+            material,
+            integration,
+            stiffness_warning: warning::of_material(&material, mesh_element, integration),
+            couplings: Mutex::new(HashMap::new()),
+            kept: Kept::default(),
+        })
+    }
+
+    /// What is known to be poor about this stiffness before any solve (locking).
+    pub fn stiffness_warning(&self) -> Option<Warning> {
+        self.stiffness_warning.clone()
+    }
+
+    /// The body's height H (the range of the depth).
+    pub fn height(&self) -> f64 {
+        self.mesh.ys.last().copied().unwrap_or(0.0)
+    }
+
+    /// The discretisation of `scenario` at `level` with `element`, refused before anything is
+    /// allocated when its memory estimate exceeds the memory this process may use
+    /// ([`crate::fem::memory`]).
+    pub fn of(scenario: &Scenario, level: u32, element: Element) -> Result<Self, SolveError> {
+        let mesh = scenario.mesh(level, element);
+        let trace = mesh.nnx();
+        let sizes = Sizes {
+            element,
+            unknowns: scenario.n_dofs(level, element),
+            trace,
+            points: Rule::ALL
+                .iter()
+                .map(|&rule| ContactPoints::new(rule, &mesh.node_x, element.order()).len())
+                .max()
+                .unwrap_or(trace),
+        };
+        sizes.check(&Limits::of_process()).map_err(|e| match e {
+            FemError::TooLarge {
+                unknowns,
+                need,
+                available,
+            } => SolveError::TooLarge(format!(
+                "level {level} with {} has {unknowns} unknowns ({trace} on Γ_C) and needs about {}; this process has {} available (free memory, ulimit -v and the control group's limit): choose a coarser level",
+                element.name(),
+                gib(need),
+                gib(available)
+            )),
+            e => fem_error(e, sizes.unknowns),
+        })?;
+        Self::new(mesh, scenario.material, scenario.integration)
+    }
+
+    /// `rule` laid on Γ_C.
+    pub fn contact_points(&self, rule: Rule) -> ContactPoints {
+        let nnx = self.mesh.nnx();
+        ContactPoints::new(rule, &self.mesh.node_x[..nnx], self.mesh.element.order())
+    }
+
+    /// G = B K⁻¹ Bᵀ = T C Tᵀ between the points of `rule` (computed once per rule).
+    pub fn coupling(&self, rule: Rule, points: &ContactPoints) -> Arc<Mat<f64>> {
+        let mut cache = self.couplings.lock().unwrap_or_else(|e| e.into_inner());
+        cache
+            .entry(rule)
+            .or_insert_with(|| {
+                let c = &self.compliance;
+                let nq = points.len();
+                // C Tᵀ, column by column, then T (C Tᵀ).
+                let ct = Mat::<f64>::from_fn(c.nrows(), nq, |i, q| {
+                    let pt = &points.points[q];
+                    pt.nodes.iter().zip(&pt.trace).map(|(&k, t)| t * c[(i, k)]).sum()
+                });
+                Arc::new(Mat::<f64>::from_fn(nq, nq, |p, q| {
+                    let pt = &points.points[p];
+                    pt.nodes.iter().zip(&pt.trace).map(|(&k, t)| t * ct[(k, q)]).sum()
+                }))
+            })
+            .clone()
+    }
+
+    pub fn n_dofs(&self) -> usize {
+        self.dofs.n_free()
+    }
+
+    /// The penalty parameters this mesh and material can represent ([`epsilon_range`]).
+    pub fn epsilon_range(&self) -> (f64, f64) {
+        epsilon_range(self.young, self.mesh.h())
+    }
+
+    /// `params` checked against what this discretisation can answer ([`check_params`]).
+    pub fn check(&self, params: &ContactParams, n_points: usize) -> Result<(), SolveError> {
+        let height = self.height();
+        let (range, normals) = (self.epsilon_range(), self.contact_dofs.len());
+        check_params(params, range, height, n_points, normals)
+    }
+
+    /// Nodal contact forces Tᵀy on the Γ_C nodes from the forces y at the rule's points.
+    pub(crate) fn nodal_forces(points: &ContactPoints, forces: &[f64], n_nodes: usize) -> Vec<f64> {
+        let mut f = vec![0.0; n_nodes];
+        for (q, &y) in points.points.iter().zip(forces) {
+            for (&k, t) in q.nodes.iter().zip(&q.trace) {
+                f[k] += t * y;
+            }
+        }
+        f
+    }
+}
+
+/// The solver's error for a failure of the finite element layer on `n` unknowns.
+pub(crate) fn fem_error(e: FemError, n: usize) -> SolveError {
+    match e {
+        FemError::NotPositiveDefinite => SolveError::Factorization("a zero or negative pivot".into()),
+        FemError::OutOfMemory(what) => SolveError::TooLarge(format!(
+            "out of memory in {what} with {n} unknowns: choose a coarser level"
+        )),
+        FemError::TooLarge {
+            unknowns,
+            need,
+            available,
+        } => SolveError::TooLarge(format!(
+            "{unknowns} unknowns need about {} and {} is available: choose a coarser level",
+            gib(need),
+            gib(available)
+        )),
+    }
+}
+
+/// A contact solve's parameters checked against what it can answer: the method's own
+/// parameters ([`Method::check`]), ε within `range` (from [`epsilon_range`]) and > 0 for the
+/// methods that use it (ε = 0 for `exact`), the depth within the body's `height`, and `exact`
+/// only for a rule with no more points (`n_points`) than Γ_C has normal displacements
+/// (`normals`).
+pub fn check_params(
+    params: &ContactParams,
+    range: (f64, f64),
+    height: f64,
+    n_points: usize,
+    normals: usize,
+) -> Result<(), SolveError> {
+    params.method.check().map_err(|e| SolveError::Input {
+        what: "the method",
+        message: e.to_string(),
+    })?;
+    check::epsilon_in(params.epsilon, range).map_err(|e| SolveError::Input {
+        what: "the penalty parameter ε",
+        message: e.to_string(),
+    })?;
+    if params.method.uses_epsilon() && params.epsilon == 0.0 {
+        return Err(SolveError::Input {
+            what: "the penalty parameter ε",
+            message: format!(
+                "{} needs ε > 0; ε = 0 is the exact method (`exact`)",
+                params.method.name()
+            ),
+        });
+    }
+    check::depth(params.obstacle.depth(), height).map_err(|e| SolveError::Input {
+        what: "the indentation depth",
+        message: e.to_string(),
+    })?;
+    if params.method == Method::Exact && n_points > normals {
+        return Err(SolveError::Kernel {
+            rule: params.rule.name(),
+            points: n_points,
+            normals,
+        });
+    }
+    Ok(())
+}
+
+/// [`check_params`] before anything is built: from the scenario's numbers at `level` with
+/// `element`, so that a request with no answer is refused without assembling a stiffness.
+pub fn check_request(
+    scenario: &Scenario,
+    level: u32,
+    element: Element,
+    params: &ContactParams,
+) -> Result<(), SolveError> {
+    let n_edges = (scenario.x_lines.len() - 1) << level;
+    check_params(
+        params,
+        scenario.epsilon_range(level),
+        scenario.height,
+        params.rule.n_points(n_edges),
+        element.order() * n_edges + 1,
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Issue 10 item 5: an allocation failure is reported as out of memory (exit 2 through
+    /// `TooLarge`), and only a non-positive pivot asks about rigid motion.
+    #[test]
+    fn out_of_memory_is_not_called_a_rigid_motion() {
+        let oom = fem_error(FemError::OutOfMemory("the factor"), 1000);
+        assert!(
+            matches!(&oom, SolveError::TooLarge(m) if m.contains("out of memory in the factor with 1000 unknowns"))
+        );
+        assert!(!oom.to_string().contains("rigid"));
+        let big = fem_error(
+            FemError::TooLarge {
+                unknowns: 7,
+                need: 3 << 30,
+                available: 1 << 30,
+            },
+            7,
+        );
+        assert_eq!(
+            big.to_string(),
+            "7 unknowns need about 3.0 GiB and 1.0 GiB is available: choose a coarser level"
+        );
+        let pivot = fem_error(FemError::NotPositiveDefinite, 7);
+        assert!(matches!(pivot, SolveError::Factorization(_)) && pivot.to_string().contains("rigid motion"));
+    }
+}
