@@ -163,7 +163,7 @@ impl Method {
                     return foreign("alm_tol", "alm");
                 }
                 let theta = match theta {
-                    Some(t) => check_theta(t).map_err(MethodError::Theta)?,
+                    Some(t) => check_theta(t)?,
                     None => t0,
                 };
                 Method::Nitsche {
@@ -212,7 +212,7 @@ impl Method {
             )
             .map_err(MethodError::Tolerance),
             Method::Nitsche { theta, gamma0 } => {
-                check_theta(f64::from(theta)).map_err(MethodError::Theta)?;
+                check_theta(f64::from(theta))?;
                 let Gamma0::Given(gamma0) = gamma0 else {
                     return Ok(());
                 };
@@ -359,15 +359,16 @@ impl From<Method> for MethodFields {
     }
 }
 
-fn check_theta(value: f64) -> Result<i8, String> {
+/// θ ∈ {1, 0, −1}, or the error that names the allowed values.
+fn check_theta(value: f64) -> Result<i8, MethodError> {
     THETAS
         .into_iter()
         .find(|&t| f64::from(t) == value)
         .ok_or_else(|| {
-            format!(
+            MethodError::Theta(format!(
                 "θ = {} is not allowed; allowed: 1 (symmetric), 0 (incomplete), -1 (skew-symmetric)",
                 num(value)
-            )
+            ))
         })
 }
 
