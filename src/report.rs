@@ -655,7 +655,7 @@ impl Report for StudyReport<'_> {
                 "warning: the reference's refinement stopped short of the target: {why}"
             );
         }
-        let mut methods: Vec<String> = rows.iter().map(|r| r.method.label()).collect();
+        let mut methods: Vec<String> = rows.iter().map(|r| r.method.setting().label()).collect();
         methods.dedup();
         if !methods.is_empty() {
             let _ = writeln!(s, "method: {}", methods.join(", "));
@@ -697,11 +697,11 @@ impl Report for StudyReport<'_> {
             );
             let last = rows
                 .get(i + 1)
-                .is_none_or(|n| n.scheme != r.scheme || n.method != r.method);
+                .is_none_or(|n| n.scheme != r.scheme || n.method.setting() != r.method.setting());
             let fit = study
                 .fits
                 .iter()
-                .find(|f| last && f.scheme == r.scheme && f.method == r.method);
+                .find(|f| last && f.scheme == r.scheme && f.method == r.method.setting());
             let (Some(e), Some(iterations), Some(ms)) = (&r.errors, r.newton_iterations, r.solve_ms) else {
                 // No result: the reason in place of the numbers.
                 let reason = r.reason.as_deref().unwrap_or("");

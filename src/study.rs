@@ -956,6 +956,7 @@ pub struct Fit {
     pub element: &'static str,
     pub rule: &'static str,
     #[serde(flatten)]
+    /// The method as asked ([`MethodFields::setting`]: `auto`'s γ₀ varies by level).
     pub method: MethodFields,
     /// The rows fitted: those with a result ([`Status::Ok`]), every error > 0, and h (ε) > 0.
     pub rows: usize,
@@ -971,7 +972,7 @@ pub fn fits(rows: &[StudyRow], by_epsilon: bool) -> Vec<Fit> {
         let first = &rows[start];
         let len = rows[start..]
             .iter()
-            .take_while(|r| r.scheme == first.scheme && r.method == first.method)
+            .take_while(|r| r.scheme == first.scheme && r.method.setting() == first.method.setting())
             .count();
         let usable: Vec<(f64, Errors)> = rows[start..start + len]
             .iter()
@@ -1000,7 +1001,7 @@ pub fn fits(rows: &[StudyRow], by_epsilon: bool) -> Vec<Fit> {
             scheme: first.scheme.clone(),
             element: first.element,
             rule: first.rule,
-            method: first.method,
+            method: first.method.setting(),
             rows: usable.len(),
             rates,
         });

@@ -308,6 +308,19 @@ impl MethodFields {
         }
     }
 
+    /// The method as asked, which rows of a study share: `auto`'s γ₀, chosen on each mesh
+    /// (γ₀* varies in its last digits from level to level), left out.
+    pub fn setting(&self) -> MethodFields {
+        if self.gamma0_auto == Some(true) {
+            MethodFields {
+                gamma0: None,
+                ..*self
+            }
+        } else {
+            *self
+        }
+    }
+
     /// The method with its parameters, e.g. `alm (tol 1e-10)`, `nitsche (θ = 1, γ₀ = 15.69
     /// auto)` ([`Method::label`]).
     pub fn label(&self) -> String {
@@ -492,6 +505,13 @@ mod tests {
         assert_eq!(MethodFields::used(given, Some(100.0)), MethodFields::from(given));
         let fields = MethodFields::used(auto, Some(2.5));
         assert_eq!((fields.gamma0, fields.gamma0_auto), (Some(2.5), Some(true)));
+        // Two meshes' `auto` choices are one setting; a given γ₀ is part of it.
+        assert_eq!(fields.setting(), MethodFields::used(auto, Some(2.6)).setting());
+        assert_eq!(fields.setting().label(), "nitsche (θ = 1, γ₀ auto)");
+        assert_ne!(
+            MethodFields::from(given).setting(),
+            MethodFields::from(given.with(None, Some(Gamma0::Given(99.0)), None).unwrap()).setting()
+        );
         let penalty = MethodFields::from(Method::Penalty);
         assert_eq!((penalty.gamma0, penalty.gamma0_auto), (None, None));
     }

@@ -198,6 +198,44 @@ fn the_least_squares_rate_recovers_a_known_slope_and_ignores_rows_without_result
     assert_eq!((one[0].rows, one[0].rates), (1, None));
 }
 
+/// Nitsche's `auto` γ₀ is chosen on each level's mesh (γ₀* differs in its last digits): the
+/// rows are still one method, fitted together (each was its own fit, "least squares over 1
+/// rows"), and the fit carries the setting, not one level's γ₀.
+#[test]
+fn auto_gamma0_rows_are_fitted_together() {
+    use riplab::contact::method::{Gamma0, MethodFields};
+    let auto = Method::Nitsche {
+        theta: 1,
+        gamma0: Gamma0::Auto,
+    };
+    let rows: Vec<StudyRow> = (0..3)
+        .map(|l| {
+            let h = 0.5_f64.powi(l);
+            let mut row = made_row(
+                l as u32,
+                h,
+                Some(Errors {
+                    p: h,
+                    pbar: h,
+                    u: h,
+                    load: h,
+                }),
+                Status::Ok,
+            );
+            row.method = MethodFields::used(auto, Some(15.6899 + 1e-6 * f64::from(l)));
+            row
+        })
+        .collect();
+    let fitted = fits(&rows, false);
+    assert_eq!(fitted.len(), 1);
+    assert_eq!(fitted[0].rows, 3);
+    assert_eq!(
+        (fitted[0].method.gamma0, fitted[0].method.gamma0_auto),
+        (None, Some(true))
+    );
+    assert!((fitted[0].rates.unwrap().u - 1.0).abs() < 1e-12);
+}
+
 /// The fit of two rows is their row-to-row rate.
 fn fits_of_two(rows: &[StudyRow]) -> Option<Errors> {
     let (a, b) = (rows[0].errors.unwrap(), rows[1].errors.unwrap());
