@@ -9,7 +9,8 @@ use std::ops::ControlFlow;
 use divan::Bencher;
 use riplab::contact::Rule;
 use riplab::contact::penalty::NewtonOptions;
-use riplab::fem::condense::{TraceFactor, TraceOrdering};
+use riplab::fem::condense::TraceOrdering;
+use riplab::fem::factor::Factor;
 use riplab::fem::{DofMap, Form, SymCsc, assemble};
 use riplab::infsup::{TraceCompliance, estimate};
 use riplab::mesh::Element;
@@ -57,7 +58,7 @@ fn ordering(bencher: Bencher, level: u32) {
 #[divan::bench(args = LEVELS, sample_count = 10)]
 fn factorisation(bencher: Bencher, level: u32) {
     let (disc, k) = stiffness(level);
-    bencher.bench(|| TraceFactor::new(disc.ordering(), &k).unwrap().compliance());
+    bencher.bench(|| Factor::new(disc.ordering(), &k).unwrap().compliance());
 }
 
 #[divan::bench(args = LEVELS, sample_count = 10)]

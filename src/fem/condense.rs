@@ -10,7 +10,10 @@
 use std::sync::Arc;
 
 use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::matmul::matmul;
+use faer::linalg::triangular_solve;
 use faer::perm::PermRef;
+use faer::reborrow::{Reborrow, ReborrowMut};
 use faer::sparse::SymbolicSparseColMatRef;
 use faer::sparse::linalg::cholesky::supernodal::SupernodalLltRef;
 use faer::sparse::linalg::cholesky::{
@@ -18,9 +21,6 @@ use faer::sparse::linalg::cholesky::{
     factorize_symbolic_cholesky,
 };
 use faer::sparse::linalg::{SupernodalThreshold, amd};
-use faer::linalg::matmul::matmul;
-use faer::linalg::triangular_solve;
-use faer::reborrow::{Reborrow, ReborrowMut};
 use faer::{Accum, Conj, Mat, MatMut, MatRef, Par, Side};
 
 use super::SymCsc;
@@ -289,7 +289,11 @@ impl TraceFactor {
             let m = width.min(n0 - b.start);
             let (head, tail) = x.rb_mut().split_at_row_mut(b.start + m);
             let mut top = head.subrows_mut(b.start, m);
-            triangular_solve::solve_lower_triangular_in_place(b.val.submatrix(0, 0, m, m), top.rb_mut(), Par::Seq);
+            triangular_solve::solve_lower_triangular_in_place(
+                b.val.submatrix(0, 0, m, m),
+                top.rb_mut(),
+                Par::Seq,
+            );
             // The block's own columns after the interior (trace rows), then the rows below.
             matmul(
                 tail.subrows_mut(0, width - m),
@@ -403,7 +407,14 @@ pub(super) fn compliance_of(l: MatRef<'_, f64>, par: Par) -> Mat<f64> {
     let mut inv = Mat::<f64>::identity(nc, nc);
     triangular_solve::solve_lower_triangular_in_place(l, inv.as_mut(), par);
     let mut c = Mat::<f64>::zeros(nc, nc);
-    matmul(c.as_mut(), Accum::Replace, inv.transpose(), inv.as_ref(), 1.0, par);
+    matmul(
+        c.as_mut(),
+        Accum::Replace,
+        inv.transpose(),
+        inv.as_ref(),
+        1.0,
+        par,
+    );
     c
 }
 
@@ -511,7 +522,11 @@ mod tests {
                     let l = factor.schur_factor();
                     let n0 = a.n - trace.len();
                     let mut trailing = x.as_mut().subrows_mut(n0, trace.len());
-                    triangular_solve::solve_lower_triangular_in_place(l.as_ref(), trailing.rb_mut(), Par::Seq);
+                    triangular_solve::solve_lower_triangular_in_place(
+                        l.as_ref(),
+                        trailing.rb_mut(),
+                        Par::Seq,
+                    );
                     triangular_solve::solve_upper_triangular_in_place(l.transpose(), trailing, Par::Seq);
                     factor.back_substitute_interior(x.as_mut());
                     let scale = expect.iter().fold(0.0f64, |m, v| m.max(v.abs()));

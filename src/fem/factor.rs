@@ -1,8 +1,10 @@
 //! The factorisation of a form on the grid with Γ_C's normal dofs last: one factor
-//! ([`super::condense`]) on small meshes, two subdomains on two cores ([`super::split`]) from
-//! [`SPLIT_UNKNOWNS`] on. Both give the same trace compliance and solves to round-off.
+//! ([`super::condense`]), or, on two or more threads from [`SPLIT_UNKNOWNS`] unknowns on, two
+//! subdomains factorised side by side ([`super::split`]). Both give the same trace compliance
+//! and solves to round-off (within 10⁻¹² relative, tests/numerics/fem.rs); on one thread the
+//! split only adds work (its dense S), so one thread keeps the single factor.
 
-use faer::Mat;
+use faer::{Mat, Par};
 
 use super::SymCsc;
 use super::condense::{TraceFactor, TraceOrdering};
@@ -11,8 +13,10 @@ use super::error::FemError;
 use super::split::{SplitFactor, SplitOrdering};
 use crate::mesh::Mesh;
 
-/// The number of free dofs from which the grid is factorised as two subdomains.
-pub const SPLIT_UNKNOWNS: usize = 200_000;
+/// The number of free dofs from which two threads factorise the grid as two subdomains
+/// (BENCHMARKS.md, "Two subdomains on two cores": on two threads the split is as fast as the
+/// single factor at level 4 Q1, 16,448 unknowns, and 1.5× faster at level 5, 65,664).
+pub const SPLIT_UNKNOWNS: usize = 50_000;
 
 /// The symbolic analysis of a form's pattern on the grid, Γ_C's normal dofs last (one per
 /// mesh, shared by every form on it).
@@ -26,9 +30,10 @@ pub enum Analysis {
 
 impl Analysis {
     /// The analysis of `a`, the form on `mesh` over `dofs`, with `trace` last: two subdomains
-    /// from [`SPLIT_UNKNOWNS`] free dofs on (when the grid has a middle column), else one.
+    /// when [`super::set_threads`] chose two threads or more and `a` has [`SPLIT_UNKNOWNS`]
+    /// free dofs or more (and the grid a middle column), else one factor.
     pub fn grid(a: &SymCsc, mesh: &Mesh, dofs: &DofMap, trace: &[usize]) -> Result<Self, FemError> {
-        if a.n >= SPLIT_UNKNOWNS {
+        if a.n >= SPLIT_UNKNOWNS && super::parallelism() != Par::Seq {
             Self::split(a, mesh, dofs, trace)
         } else {
             Self::whole(a, mesh, dofs, trace)

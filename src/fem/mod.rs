@@ -49,7 +49,9 @@ pub(crate) fn join<A: Send, B: Send>(a: impl FnOnce() -> A + Send, b: impl FnOnc
     std::thread::scope(|scope| {
         let second = scope.spawn(b);
         let first = a();
-        let second = second.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+        let second = second
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
         (first, second)
     })
 }

@@ -127,14 +127,24 @@ impl SplitOrdering {
     /// The stored values of both halves' factors and of S's dense factor (its lower triangle).
     pub fn factor_len(&self) -> usize {
         let ng = self.0.gamma.len();
-        self.0.halves.iter().map(|h| h.ordering.factor_len()).sum::<usize>() + ng * (ng + 1) / 2
+        self.0
+            .halves
+            .iter()
+            .map(|h| h.ordering.factor_len())
+            .sum::<usize>()
+            + ng * (ng + 1) / 2
     }
 
     /// Floating point operations of one factorisation ([`factor_flops`]): both halves', and
     /// S's dense Cholesky factor (Σ_{c=1}^{|Γ|} c²).
     pub fn factor_flops(&self) -> f64 {
         let dense: f64 = (1..=self.0.gamma.len()).map(|c| (c as f64) * (c as f64)).sum();
-        self.0.halves.iter().map(|h| h.ordering.factor_flops()).sum::<f64>() + dense
+        self.0
+            .halves
+            .iter()
+            .map(|h| h.ordering.factor_flops())
+            .sum::<f64>()
+            + dense
     }
 }
 
@@ -247,8 +257,12 @@ impl SplitFactor {
             s[(gr.max(gc), gr.min(gc))] -= a.values[k];
         }
         let par = super::parallelism();
-        let mut mem = MemBuffer::try_new(llt::factor::cholesky_in_place_scratch::<f64>(ng, par, Default::default()))
-            .map_err(|_| FemError::OutOfMemory("the factorisation's workspace"))?;
+        let mut mem = MemBuffer::try_new(llt::factor::cholesky_in_place_scratch::<f64>(
+            ng,
+            par,
+            Default::default(),
+        ))
+        .map_err(|_| FemError::OutOfMemory("the factorisation's workspace"))?;
         llt::factor::cholesky_in_place(
             s.as_mut(),
             Default::default(),
@@ -294,7 +308,12 @@ impl SplitFactor {
                 }
             }
         }
-        llt::solve::solve_in_place(self.s.as_ref(), u.as_mut(), super::parallelism(), MemStack::new(&mut []));
+        llt::solve::solve_in_place(
+            self.s.as_ref(),
+            u.as_mut(),
+            super::parallelism(),
+            MemStack::new(&mut []),
+        );
         let back = |h: &Half, f: &TraceFactor, x: &mut Mat<f64>| {
             let n0 = h.interior.len();
             for j in 0..ncols {
