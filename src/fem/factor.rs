@@ -74,7 +74,9 @@ impl Analysis {
 
 /// A numeric factorisation on an [`Analysis`].
 pub enum Factor {
+    /// One factor of the whole grid.
     Whole(TraceFactor),
+    /// Both halves' factors and S's.
     Split(SplitFactor),
 }
 
