@@ -99,8 +99,46 @@ impl TraceOrdering {
         )
     }
 
+    /// The symbolic analysis of `a` in its own order, its last `n_trace` dofs the trace,
+    /// supernodal.
+    pub(super) fn in_given_order(a: &SymCsc, n_trace: usize) -> Result<Self, FemError> {
+        // faer 0.24 analyses an unpermuted pattern as its upper triangle whatever side it is
+        // told (the permuted path converts): give it the transpose of `a`'s lower triangle.
+        let n = a.n;
+        let mut col_ptr = vec![0usize; n + 1];
+        for &r in &a.row_idx {
+            col_ptr[r + 1] += 1;
+        }
+        for j in 0..n {
+            col_ptr[j + 1] += col_ptr[j];
+        }
+        let mut next = col_ptr.clone();
+        let mut row_idx = vec![0usize; a.nnz()];
+        for c in 0..n {
+            for &r in &a.row_idx[a.col_ptr[c]..a.col_ptr[c + 1]] {
+                row_idx[next[r]] = c;
+                next[r] += 1;
+            }
+        }
+        let upper = SymbolicSparseColMatRef::new_checked(n, n, &col_ptr, None, &row_idx);
+        let symbolic = factorize_symbolic_cholesky(
+            upper,
+            Side::Upper,
+            SymmetricOrdering::Identity,
+            CholeskySymbolicParams {
+                supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
+                ..Default::default()
+            },
+        )
+        .map_err(FemError::from_faer("the symbolic factorisation"))?;
+        Ok(TraceOrdering {
+            symbolic: Arc::new(symbolic),
+            trace: (n - n_trace..n).collect(),
+        })
+    }
+
     /// The symbolic analysis for the elimination order `interior` followed by `trace`.
-    pub(super) fn with_interior_order(
+    fn with_interior_order(
         a: &SymCsc,
         interior: Vec<usize>,
         trace: &[usize],

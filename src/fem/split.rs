@@ -25,7 +25,6 @@ use std::sync::Arc;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt;
 use faer::linalg::matmul::triangular::{self, BlockStructure};
-use faer::sparse::linalg::SupernodalThreshold;
 use faer::{Accum, Mat, MatMut, MatRef, Par};
 
 use super::SymCsc;
@@ -55,11 +54,11 @@ struct Split {
 
 /// One half h: the principal submatrix K[h ∪ Γ_h] and its analysis.
 struct Half {
-    /// The pattern of K_h (h ∪ Γ_h in ascending dof order); its values are not used.
+    /// The pattern of K_h in elimination order (h, then Γ_h); its values are not used.
     pattern: SymCsc,
     /// The position in K's values of each entry of `pattern`.
     gather: Vec<usize>,
-    /// The analysis of K_h with Γ_h last.
+    /// The analysis of K_h (in its own order, Γ_h last).
     ordering: TraceOrdering,
     /// The dof of K at each elimination position of h.
     interior: Vec<usize>,
@@ -162,43 +161,57 @@ impl Half {
         column: &[usize],
         gamma: &[usize],
     ) -> Result<Self, FemError> {
-        // h ∪ Γ_h: the dofs of the half's columns and of the middle column.
-        let member = |d: usize| (columns.0..columns.1).contains(&column[d]) || column[d] == s;
-        let mut local = vec![usize::MAX; a.n];
-        let mut members = 0;
-        for d in (0..a.n).filter(|&d| member(d)) {
-            local[d] = members;
-            members += 1;
+        // h ∪ Γ_h in elimination order: the half's nested dissection, then the dofs of Γ on
+        // the middle column or in the half's columns.
+        let interior = nested_dissection_of_columns(mesh, dofs, trace, columns);
+        let inside = |d: usize| (columns.0..columns.1).contains(&column[d]) || column[d] == s;
+        let half_gamma: Vec<usize> = (0..gamma.len()).filter(|&g| inside(gamma[g])).collect();
+        let mut position = vec![usize::MAX; a.n];
+        for (p, &d) in interior
+            .iter()
+            .chain(half_gamma.iter().map(|&g| &gamma[g]))
+            .enumerate()
+        {
+            position[d] = p;
         }
-        let (mut col_ptr, mut row_idx, mut gather) = (vec![0], Vec::new(), Vec::new());
-        for c in (0..a.n).filter(|&d| member(d)) {
-            for k in a.col_ptr[c]..a.col_ptr[c + 1] {
-                let r = local[a.row_idx[k]];
-                if r != usize::MAX {
-                    row_idx.push(r);
-                    gather.push(k);
-                }
+        let n_h = interior.len() + half_gamma.len();
+        // K_h's lower triangle in that order (so that faer need not permute it): entry (r, c)
+        // of K goes to column min(p_r, p_c), then each column is sorted by row.
+        let mut col_ptr = vec![0usize; n_h + 1];
+        let position = &position;
+        let entries = |c: usize| {
+            (a.col_ptr[c]..a.col_ptr[c + 1])
+                .map(move |k| (position[a.row_idx[k]], position[c], k))
+                .filter(|&(pr, pc, _)| pr != usize::MAX && pc != usize::MAX)
+        };
+        for c in 0..a.n {
+            for (pr, pc, _) in entries(c) {
+                col_ptr[pr.min(pc) + 1] += 1;
             }
-            col_ptr.push(row_idx.len());
         }
+        for j in 0..n_h {
+            col_ptr[j + 1] += col_ptr[j];
+        }
+        let mut next = col_ptr.clone();
+        let mut slots = vec![(0usize, 0usize); col_ptr[n_h]];
+        for c in 0..a.n {
+            for (pr, pc, k) in entries(c) {
+                let j = pr.min(pc);
+                slots[next[j]] = (pr.max(pc), k);
+                next[j] += 1;
+            }
+        }
+        for j in 0..n_h {
+            slots[col_ptr[j]..col_ptr[j + 1]].sort_unstable();
+        }
+        let (row_idx, gather) = slots.into_iter().unzip();
         let pattern = SymCsc {
-            n: members,
+            n: n_h,
             col_ptr,
             row_idx,
             values: Vec::new(),
         };
-        let interior = nested_dissection_of_columns(mesh, dofs, trace, columns);
-        let half_gamma: Vec<usize> = (0..gamma.len())
-            .filter(|&g| local[gamma[g]] != usize::MAX)
-            .collect();
-        let trailing: Vec<usize> = half_gamma.iter().map(|&g| local[gamma[g]]).collect();
-        let ordering = TraceOrdering::with_interior_order(
-            &pattern,
-            interior.iter().map(|&d| local[d]).collect(),
-            &trailing,
-            SupernodalThreshold::FORCE_SUPERNODAL,
-        )?;
-        debug_assert_eq!(interior.len() + half_gamma.len(), members);
+        let ordering = TraceOrdering::in_given_order(&pattern, half_gamma.len())?;
         Ok(Half {
             pattern,
             gather,
