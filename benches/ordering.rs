@@ -2,7 +2,8 @@
 //!
 //! In one run, on the paper's problem (Q1, M1) at `RIPLAB_LEVELS` (default 6 and 7):
 //! - `fresh_m1`: the whole fresh solve (assembly, the grid's nested dissection with Γ_C last,
-//!   symbolic and numeric factorisation, the trace compliance, Newton), as `riplab solve`;
+//!   symbolic and numeric factorisation, the trace compliance, Newton), as `riplab solve`
+//!   (on two threads or more, two subdomains side by side: `riplab::fem::split`);
 //! - `faer_default`: faer's Cholesky of the same K with its default (AMD) ordering, symbolic
 //!   and numeric, no compliance;
 //! - `constrained_amd`: the previous ordering (AMD on all but Γ_C, then Γ_C), symbolic and
@@ -21,6 +22,7 @@ use faer::sparse::linalg::cholesky::{
 use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
 use riplab::contact::penalty::NewtonOptions;
 use riplab::fem::condense::{TraceFactor, TraceOrdering, factor_flops};
+use riplab::fem::factor::Analysis;
 use riplab::fem::{DofMap, Form, SymCsc, assemble};
 use riplab::mesh::Element;
 use riplab::scenario::Scenario;
@@ -46,6 +48,7 @@ fn main() {
         let (k, mesh, dofs, trace) = stiffness(level);
         let grid = TraceOrdering::grid(&k, &mesh, &dofs, &trace).unwrap();
         let amd = TraceOrdering::new(&k, &trace).unwrap();
+        let split = Analysis::split(&k, &mesh, &dofs, &trace).unwrap();
         let faer = factorize_symbolic_cholesky(
             k.symbolic(),
             Side::Lower,
@@ -58,6 +61,11 @@ fn main() {
                 "grid nested dissection, Γ_C last",
                 grid.factor_len(),
                 grid.factor_flops(),
+            ),
+            (
+                "two subdomains (each half's nested dissection, its side of Γ last) and the dense S",
+                split.factor_len(),
+                split.factor_flops(),
             ),
             ("AMD, Γ_C last (before)", amd.factor_len(), amd.factor_flops()),
             ("faer default (AMD)", faer.len_val(), factor_flops(&faer)),

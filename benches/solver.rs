@@ -2,14 +2,16 @@
 //!
 //! assembly → ordering (symbolic analysis with Γ_C last) → factorisation (numeric, plus the
 //! trace compliance) → Newton (a fresh contact solve) → re-solve (ε changed, warm start) →
-//! inf-sup (H¹ condensation and the dense eigenproblems of one rule).
+//! inf-sup (H¹ condensation and the dense eigenproblems of one rule). One thread, as the
+//! binary's default; `RIPLAB_THREADS=2` as `--threads 2` (two subdomains side by side from
+//! level 5 on, `riplab::fem::factor`).
 
 use std::ops::ControlFlow;
 
 use divan::Bencher;
 use riplab::contact::Rule;
 use riplab::contact::penalty::NewtonOptions;
-use riplab::fem::condense::{TraceFactor, TraceOrdering};
+use riplab::fem::factor::{Analysis, Factor};
 use riplab::fem::{DofMap, Form, SymCsc, assemble};
 use riplab::infsup::{TraceCompliance, estimate};
 use riplab::mesh::Element;
@@ -19,8 +21,13 @@ use riplab::solve::{ContactParams, Discretization, solve_contact};
 const LEVELS: &[u32] = &[3, 4, 5, 6];
 
 fn main() {
-    // As the binary does: one thread, faer's dense kernels sequential.
-    riplab::fem::set_threads(1);
+    // As the binary does: one thread unless `RIPLAB_THREADS` says more (`--threads`; two
+    // factorise K as two subdomains from level 5 on, `riplab::fem::factor`).
+    let threads = std::env::var("RIPLAB_THREADS")
+        .ok()
+        .and_then(|t| t.parse().ok())
+        .unwrap_or(1);
+    riplab::fem::set_threads(threads);
     divan::main();
 }
 
@@ -51,13 +58,13 @@ fn stiffness(level: u32) -> (Discretization, SymCsc) {
 #[divan::bench(args = LEVELS, sample_count = 10)]
 fn ordering(bencher: Bencher, level: u32) {
     let (disc, k) = stiffness(level);
-    bencher.bench(|| TraceOrdering::grid(&k, disc.mesh(), disc.dofs(), disc.contact_dofs()).unwrap());
+    bencher.bench(|| Analysis::grid(&k, disc.mesh(), disc.dofs(), disc.contact_dofs()).unwrap());
 }
 
 #[divan::bench(args = LEVELS, sample_count = 10)]
 fn factorisation(bencher: Bencher, level: u32) {
     let (disc, k) = stiffness(level);
-    bencher.bench(|| TraceFactor::new(disc.ordering(), &k).unwrap().compliance());
+    bencher.bench(|| Factor::new(disc.ordering(), &k).unwrap().compliance());
 }
 
 #[divan::bench(args = LEVELS, sample_count = 10)]

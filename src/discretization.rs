@@ -12,8 +12,8 @@ use faer::Mat;
 use crate::check;
 use crate::contact::penalty::SolveError;
 use crate::contact::{ContactParams, ContactPoints, Method, Rule};
-use crate::fem::condense::{TraceFactor, TraceOrdering};
 use crate::fem::error::gib;
+use crate::fem::factor::{Analysis, Factor};
 use crate::fem::memory::{Limits, Sizes};
 use crate::fem::{DofMap, FemError, Form, Integration, assemble};
 use crate::material::{Material, epsilon_range};
@@ -32,9 +32,9 @@ pub struct Discretization {
     pub(crate) mesh: Mesh,
     pub(crate) dofs: DofMap,
     /// The symbolic analysis of K's pattern (shared by every form on this mesh).
-    pub(crate) ordering: TraceOrdering,
-    /// K = Pᵀ L Lᵀ P.
-    pub(crate) factor: TraceFactor,
+    pub(crate) ordering: Analysis,
+    /// K factorised: one factor, or two subdomains and the dense S (see [`crate::fem::factor`]).
+    pub(crate) factor: Factor,
     /// C = E K⁻¹ Eᵀ on the Γ_C normal dofs, ascending x.
     pub(crate) compliance: Mat<f64>,
     /// The free dof of u_n = u_y at each Γ_C node, in ascending x.
@@ -89,12 +89,12 @@ impl Discretization {
     }
 
     /// The symbolic analysis of K's pattern, Γ_C's normal dofs last (docs/design.md §6).
-    pub fn ordering(&self) -> &TraceOrdering {
+    pub fn ordering(&self) -> &Analysis {
         &self.ordering
     }
 
-    /// The factor K = Pᵀ L Lᵀ P.
-    pub fn factor(&self) -> &TraceFactor {
+    /// The factorisation of K (one factor, or two subdomains and the dense S).
+    pub fn factor(&self) -> &Factor {
         &self.factor
     }
 
@@ -136,10 +136,10 @@ impl Discretization {
         let n = dofs.n_free();
         let t = Instant::now();
         let ordering =
-            TraceOrdering::grid(&stiffness, &mesh, &dofs, &contact_dofs).map_err(|e| fem_error(e, n))?;
+            Analysis::grid(&stiffness, &mesh, &dofs, &contact_dofs).map_err(|e| fem_error(e, n))?;
         let symbolic_ms = ms_since(t);
         let t = Instant::now();
-        let factor = TraceFactor::new(&ordering, &stiffness).map_err(|e| fem_error(e, n))?;
+        let factor = Factor::new(&ordering, &stiffness).map_err(|e| fem_error(e, n))?;
         let compliance = factor.compliance();
         let factorization_ms = ms_since(t);
         Ok(Discretization {

@@ -18,7 +18,7 @@ use serde::Serialize;
 
 use crate::contact::{ContactPoints, Rule, smoothed_pressure};
 use crate::error::SolveError;
-use crate::fem::condense::TraceFactor;
+use crate::fem::factor::Factor;
 use crate::fem::quadrature::gauss_legendre;
 use crate::fem::{Form, assemble};
 use crate::mesh::Element;
@@ -47,7 +47,7 @@ impl TraceCompliance {
     /// Assemble A on the mesh and condense it onto Γ_C on the stiffness's ordering.
     pub fn new(disc: &Discretization) -> Result<Self, SolveError> {
         let a = assemble(&disc.mesh, &disc.dofs, Form::H1);
-        let factor = TraceFactor::new(&disc.ordering, &a)
+        let factor = Factor::new(&disc.ordering, &a)
             .map_err(|e| SolveError::Factorization(format!("the H¹ Gram matrix: {e}")))?;
         Ok(TraceCompliance {
             c: factor.compliance(),

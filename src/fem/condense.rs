@@ -10,16 +10,18 @@
 use std::sync::Arc;
 
 use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::matmul::matmul;
+use faer::linalg::triangular_solve;
 use faer::perm::PermRef;
+use faer::reborrow::{Reborrow, ReborrowMut};
 use faer::sparse::SymbolicSparseColMatRef;
-use faer::sparse::linalg::cholesky::simplicial::SimplicialLltRef;
 use faer::sparse::linalg::cholesky::supernodal::SupernodalLltRef;
 use faer::sparse::linalg::cholesky::{
     CholeskySymbolicParams, LltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
     factorize_symbolic_cholesky,
 };
 use faer::sparse::linalg::{SupernodalThreshold, amd};
-use faer::{Accum, Conj, Mat, MatMut, Par, Side};
+use faer::{Accum, Conj, Mat, MatMut, MatRef, Par, Side};
 
 use super::SymCsc;
 use super::dofs::DofMap;
@@ -97,6 +99,44 @@ impl TraceOrdering {
         )
     }
 
+    /// The symbolic analysis of `a` in its own order, its last `n_trace` dofs the trace,
+    /// supernodal.
+    pub(super) fn in_given_order(a: &SymCsc, n_trace: usize) -> Result<Self, FemError> {
+        // faer 0.24 analyses an unpermuted pattern as its upper triangle whatever side it is
+        // told (the permuted path converts): give it the transpose of `a`'s lower triangle.
+        let n = a.n;
+        let mut col_ptr = vec![0usize; n + 1];
+        for &r in &a.row_idx {
+            col_ptr[r + 1] += 1;
+        }
+        for j in 0..n {
+            col_ptr[j + 1] += col_ptr[j];
+        }
+        let mut next = col_ptr.clone();
+        let mut row_idx = vec![0usize; a.nnz()];
+        for c in 0..n {
+            for &r in &a.row_idx[a.col_ptr[c]..a.col_ptr[c + 1]] {
+                row_idx[next[r]] = c;
+                next[r] += 1;
+            }
+        }
+        let upper = SymbolicSparseColMatRef::new_checked(n, n, &col_ptr, None, &row_idx);
+        let symbolic = factorize_symbolic_cholesky(
+            upper,
+            Side::Upper,
+            SymmetricOrdering::Identity,
+            CholeskySymbolicParams {
+                supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
+                ..Default::default()
+            },
+        )
+        .map_err(FemError::from_faer("the symbolic factorisation"))?;
+        Ok(TraceOrdering {
+            symbolic: Arc::new(symbolic),
+            trace: (n - n_trace..n).collect(),
+        })
+    }
+
     /// The symbolic analysis for the elimination order `interior` followed by `trace`.
     fn with_interior_order(
         a: &SymCsc,
@@ -171,8 +211,18 @@ impl TraceFactor {
     /// Factorise `a`, whose pattern is the one `ordering` analysed, on the threads of
     /// [`super::set_threads`].
     pub fn new(ordering: &TraceOrdering, a: &SymCsc) -> Result<Self, FemError> {
+        Self::with_values(ordering, a, &a.values, super::parallelism())
+    }
+
+    /// Factorise the matrix with the pattern of `pattern` (whose own values are not read) and
+    /// the entries `values`, on `par`.
+    pub(super) fn with_values(
+        ordering: &TraceOrdering,
+        pattern: &SymCsc,
+        values: &[f64],
+        par: Par,
+    ) -> Result<Self, FemError> {
         let symbolic = &ordering.symbolic;
-        let par = super::parallelism();
         let scratch = symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default());
         // The factor's exact size is known now: refuse it, rather than be killed for it, when
         // it does not fit in what the process may still use.
@@ -180,24 +230,24 @@ impl TraceFactor {
         match Limits::of_process().available() {
             Some(available) if need > available => {
                 return Err(FemError::TooLarge {
-                    unknowns: a.n,
+                    unknowns: pattern.n,
                     need,
                     available,
                 });
             }
             _ => {}
         }
-        let mut values = Vec::new();
-        values
+        let mut factor = Vec::new();
+        factor
             .try_reserve_exact(symbolic.len_val())
             .map_err(|_| FemError::OutOfMemory("the factor"))?;
-        values.resize(symbolic.len_val(), 0.0);
+        factor.resize(symbolic.len_val(), 0.0);
         let mut mem = MemBuffer::try_new(scratch)
             .map_err(|_| FemError::OutOfMemory("the factorisation's workspace"))?;
         symbolic
             .factorize_numeric_llt(
-                &mut values,
-                a.view(&a.values),
+                &mut factor,
+                pattern.view(values),
                 Side::Lower,
                 Default::default(),
                 par,
@@ -208,7 +258,7 @@ impl TraceFactor {
             .map_err(|_| FemError::NotPositiveDefinite)?;
         Ok(TraceFactor {
             ordering: ordering.clone(),
-            values,
+            values: factor,
         })
     }
 
@@ -225,41 +275,150 @@ impl TraceFactor {
         );
     }
 
-    /// The trailing block L_cc of L (trace dofs, in the ordering's trace order):
-    /// L_cc L_ccᵀ is the Schur complement of A on the trace dofs.
-    pub fn schur_factor(&self) -> Mat<f64> {
-        let symbolic = &*self.ordering.symbolic;
-        let n = symbolic.nrows();
-        let nc = self.ordering.trace.len();
-        let n0 = n - nc;
-        let mut l = Mat::<f64>::zeros(nc, nc);
-        match symbolic.raw() {
+    /// The number of blocks of columns of L ([`TraceFactor::block`]).
+    fn n_blocks(&self) -> usize {
+        match self.ordering.symbolic.raw() {
+            SymbolicCholeskyRaw::Supernodal(sym) => sym.n_supernodes(),
+            SymbolicCholeskyRaw::Simplicial(sym) => sym.nrows(),
+        }
+    }
+
+    /// The `s`-th block of consecutive columns of L (in elimination order): a supernode, or
+    /// one column of the simplicial layout (whose first stored row is the diagonal).
+    fn block(&self, s: usize) -> Block<'_> {
+        match self.ordering.symbolic.raw() {
             SymbolicCholeskyRaw::Supernodal(sym) => {
-                let llt = SupernodalLltRef::new(sym, &self.values);
-                for s in 0..sym.n_supernodes() {
-                    let node = llt.supernode(s);
-                    let (start, val) = (node.start(), node.val());
-                    let width = val.ncols();
-                    for jc in (0..width).filter(|&jc| start + jc >= n0) {
-                        let j = start + jc - n0;
-                        for ir in jc..width {
-                            l[(start + ir - n0, j)] = val[(ir, jc)];
-                        }
-                        for (p, &row) in node.pattern().iter().enumerate() {
-                            l[(row - n0, j)] = val[(width + p, jc)];
-                        }
-                    }
+                let node = SupernodalLltRef::new(sym, &self.values).supernode(s);
+                Block {
+                    start: node.start(),
+                    val: node.val(),
+                    below: node.pattern(),
                 }
             }
             SymbolicCholeskyRaw::Simplicial(sym) => {
-                let llt = SimplicialLltRef::new(sym, &self.values);
-                let (col_ptr, row_idx) = (sym.col_ptr(), sym.row_idx());
-                for j in n0..n {
-                    for k in col_ptr[j]..col_ptr[j + 1] {
-                        if row_idx[k] >= j {
-                            l[(row_idx[k] - n0, j - n0)] = llt.values()[k];
-                        }
-                    }
+                let (lo, hi) = (sym.col_ptr()[s], sym.col_ptr()[s + 1]);
+                Block {
+                    start: s,
+                    val: MatRef::from_column_major_slice(&self.values[lo..hi], hi - lo, 1),
+                    below: &sym.row_idx()[lo + 1..hi],
+                }
+            }
+        }
+    }
+
+    /// The number of dofs eliminated before the trace.
+    fn n_interior(&self) -> usize {
+        self.ordering.symbolic.nrows() - self.ordering.trace.len()
+    }
+
+    /// Forward elimination of the interior, in elimination order: with
+    /// L = [L₁₁ 0; L₂₁ L₂₂] split after the interior and x = [f₁; f₂],
+    /// x ← [L₁₁⁻¹ f₁; f₂ − L₂₁ L₁₁⁻¹ f₁] (the trace's right-hand side of the Schur complement
+    /// system, since L₂₁ L₁₁⁻¹ = A₂₁ A₁₁⁻¹ L₁₁).
+    pub(super) fn eliminate_interior(&self, mut x: MatMut<'_, f64>) {
+        let n0 = self.n_interior();
+        let mut tmp = Mat::<f64>::zeros(0, 0);
+        for s in 0..self.n_blocks() {
+            let b = self.block(s);
+            if b.start >= n0 {
+                break;
+            }
+            let width = b.val.ncols();
+            let m = width.min(n0 - b.start);
+            let (head, tail) = x.rb_mut().split_at_row_mut(b.start + m);
+            let mut top = head.subrows_mut(b.start, m);
+            triangular_solve::solve_lower_triangular_in_place(
+                b.val.submatrix(0, 0, m, m),
+                top.rb_mut(),
+                Par::Seq,
+            );
+            // The block's own columns after the interior (trace rows), then the rows below.
+            matmul(
+                tail.subrows_mut(0, width - m),
+                Accum::Add,
+                b.val.submatrix(m, 0, width - m, m),
+                top.rb(),
+                -1.0,
+                Par::Seq,
+            );
+            tmp.resize_with(b.below.len(), top.ncols(), |_, _| 0.0);
+            matmul(
+                tmp.as_mut(),
+                Accum::Replace,
+                b.val.submatrix(width, 0, b.below.len(), m),
+                top.rb(),
+                1.0,
+                Par::Seq,
+            );
+            for j in 0..x.ncols() {
+                for (k, &row) in b.below.iter().enumerate() {
+                    x[(row, j)] -= tmp[(k, j)];
+                }
+            }
+        }
+    }
+
+    /// Back substitution of the interior, in elimination order: with x = [y₁; u₂] (u₂ the
+    /// trace's solution), x ← [L₁₁⁻ᵀ (y₁ − L₂₁ᵀ u₂); u₂], which completes A u = f after
+    /// [`TraceFactor::eliminate_interior`].
+    pub(super) fn back_substitute_interior(&self, mut x: MatMut<'_, f64>) {
+        let n0 = self.n_interior();
+        let mut tmp = Mat::<f64>::zeros(0, 0);
+        for s in (0..self.n_blocks()).rev() {
+            let b = self.block(s);
+            if b.start >= n0 {
+                continue;
+            }
+            let width = b.val.ncols();
+            let m = width.min(n0 - b.start);
+            tmp.resize_with(b.below.len(), x.ncols(), |_, _| 0.0);
+            for j in 0..x.ncols() {
+                for (k, &row) in b.below.iter().enumerate() {
+                    tmp[(k, j)] = x[(row, j)];
+                }
+            }
+            let (head, tail) = x.rb_mut().split_at_row_mut(b.start + m);
+            let mut top = head.subrows_mut(b.start, m);
+            matmul(
+                top.rb_mut(),
+                Accum::Add,
+                b.val.submatrix(m, 0, width - m, m).transpose(),
+                tail.rb().subrows(0, width - m),
+                -1.0,
+                Par::Seq,
+            );
+            matmul(
+                top.rb_mut(),
+                Accum::Add,
+                b.val.submatrix(width, 0, b.below.len(), m).transpose(),
+                tmp.as_ref(),
+                -1.0,
+                Par::Seq,
+            );
+            triangular_solve::solve_upper_triangular_in_place(
+                b.val.submatrix(0, 0, m, m).transpose(),
+                top,
+                Par::Seq,
+            );
+        }
+    }
+
+    /// The trailing block L_cc of L (trace dofs, in the ordering's trace order):
+    /// L_cc L_ccᵀ is the Schur complement of A on the trace dofs.
+    pub fn schur_factor(&self) -> Mat<f64> {
+        let n0 = self.n_interior();
+        let nc = self.ordering.trace.len();
+        let mut l = Mat::<f64>::zeros(nc, nc);
+        for s in 0..self.n_blocks() {
+            let b = self.block(s);
+            let width = b.val.ncols();
+            for jc in (0..width).filter(|&jc| b.start + jc >= n0) {
+                let j = b.start + jc - n0;
+                for ir in jc..width {
+                    l[(b.start + ir - n0, j)] = b.val[(ir, jc)];
+                }
+                for (p, &row) in b.below.iter().enumerate() {
+                    l[(row - n0, j)] = b.val[(width + p, jc)];
                 }
             }
         }
@@ -268,22 +427,33 @@ impl TraceFactor {
 
     /// The trace compliance C = E A⁻¹ Eᵀ = (L_cc L_ccᵀ)⁻¹ = L_cc⁻ᵀ L_cc⁻¹.
     pub fn compliance(&self) -> Mat<f64> {
-        let l = self.schur_factor();
-        let nc = l.nrows();
-        let mut inv = Mat::<f64>::identity(nc, nc);
-        let par = super::parallelism();
-        faer::linalg::triangular_solve::solve_lower_triangular_in_place(l.as_ref(), inv.as_mut(), par);
-        let mut c = Mat::<f64>::zeros(nc, nc);
-        faer::linalg::matmul::matmul(
-            c.as_mut(),
-            Accum::Replace,
-            inv.transpose(),
-            inv.as_ref(),
-            1.0,
-            par,
-        );
-        c
+        compliance_of(self.schur_factor().as_ref(), super::parallelism())
     }
+}
+
+/// Consecutive columns start.. of a factor L: `val` holds their rows from the diagonal down
+/// (the diagonal block, then the rows `below`).
+struct Block<'a> {
+    start: usize,
+    val: MatRef<'a, f64>,
+    below: &'a [usize],
+}
+
+/// C = S⁻¹ = L⁻ᵀ L⁻¹ from the Cholesky factor L of S (lower triangle read), on `par`.
+pub(super) fn compliance_of(l: MatRef<'_, f64>, par: Par) -> Mat<f64> {
+    let nc = l.nrows();
+    let mut inv = Mat::<f64>::identity(nc, nc);
+    triangular_solve::solve_lower_triangular_in_place(l, inv.as_mut(), par);
+    let mut c = Mat::<f64>::zeros(nc, nc);
+    matmul(
+        c.as_mut(),
+        Accum::Replace,
+        inv.transpose(),
+        inv.as_ref(),
+        1.0,
+        par,
+    );
+    c
 }
 
 #[cfg(test)]
@@ -356,6 +526,61 @@ mod tests {
             [true, true],
             "both the simplicial and the supernodal layout are checked"
         );
+    }
+
+    /// Eliminating the interior, solving with the trailing block L_cc L_ccᵀ = S and
+    /// back-substituting the interior is a solve with A, on both layouts of the factor and
+    /// for supernodes that straddle the interior's end.
+    #[test]
+    fn interior_elimination_and_back_substitution_solve_with_a() {
+        let mut layouts = [false, false];
+        for element in Element::ALL {
+            for n in [3, 12, 40] {
+                let mesh = Mesh::uniform(element, (0.0, 2.0, n), (0.0, 1.0, n / 2 + 1), false);
+                let dofs = DofMap::model(&mesh);
+                let a = assemble(&mesh, &dofs, Form::H1);
+                let trace: Vec<usize> = mesh
+                    .top_nodes()
+                    .iter()
+                    .map(|&t| dofs.free_index(2 * t + 1).unwrap())
+                    .collect();
+                for ordering in [
+                    TraceOrdering::new(&a, &trace).unwrap(),
+                    TraceOrdering::grid(&a, &mesh, &dofs, &trace).unwrap(),
+                ] {
+                    layouts[usize::from(ordering.is_supernodal())] = true;
+                    let factor = TraceFactor::new(&ordering, &a).unwrap();
+                    let perm = ordering.symbolic.perm().unwrap().arrays().0.to_vec();
+                    let f: Vec<f64> = (0..2 * a.n).map(|k| ((k * 7919) % 113) as f64 - 56.0).collect();
+                    let mut expect = f.clone();
+                    factor.solve_in_place(&mut expect, 2);
+                    // In elimination order: eliminate, solve S u_c = x_c, back-substitute.
+                    let mut x = Mat::<f64>::from_fn(a.n, 2, |p, j| f[j * a.n + perm[p]]);
+                    factor.eliminate_interior(x.as_mut());
+                    let l = factor.schur_factor();
+                    let n0 = a.n - trace.len();
+                    let mut trailing = x.as_mut().subrows_mut(n0, trace.len());
+                    triangular_solve::solve_lower_triangular_in_place(
+                        l.as_ref(),
+                        trailing.rb_mut(),
+                        Par::Seq,
+                    );
+                    triangular_solve::solve_upper_triangular_in_place(l.transpose(), trailing, Par::Seq);
+                    factor.back_substitute_interior(x.as_mut());
+                    let scale = expect.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+                    for j in 0..2 {
+                        for (p, &d) in perm.iter().enumerate() {
+                            assert!(
+                                (x[(p, j)] - expect[j * a.n + d]).abs() <= 1e-12 * scale,
+                                "{element:?} n={n} supernodal={}",
+                                ordering.is_supernodal()
+                            );
+                        }
+                    }
+                }
+            }
+        }
+        assert_eq!(layouts, [true, true], "both layouts are checked");
     }
 
     /// The grid's nested dissection beats minimum degree with Γ_C last (issue 13: 1.5× the

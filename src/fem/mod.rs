@@ -6,9 +6,11 @@ pub mod basis;
 pub mod condense;
 pub mod dofs;
 pub mod error;
+pub mod factor;
 pub mod memory;
 pub mod ordering;
 pub mod quadrature;
+pub mod split;
 
 use std::num::NonZeroUsize;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -36,4 +38,20 @@ pub fn parallelism() -> Par {
         Some(n) if n.get() > 1 => Par::Rayon(n),
         _ => Par::Seq,
     }
+}
+
+/// Run `a` and `b`, on two threads when [`set_threads`] chose more than one, else one after
+/// the other on the caller's (the results are the same: `a` and `b` share nothing mutable).
+pub(crate) fn join<A: Send, B: Send>(a: impl FnOnce() -> A + Send, b: impl FnOnce() -> B + Send) -> (A, B) {
+    if THREADS.load(Ordering::Relaxed) < 2 {
+        return (a(), b());
+    }
+    std::thread::scope(|scope| {
+        let second = scope.spawn(b);
+        let first = a();
+        let second = second
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+        (first, second)
+    })
 }

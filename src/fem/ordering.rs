@@ -20,11 +20,29 @@ const LEAF_NODES: usize = 8;
 /// The free dofs of `mesh` except `trace`, in elimination order: the grid's nested
 /// dissection, with every node's free dofs next to each other.
 pub fn nested_dissection(mesh: &Mesh, dofs: &DofMap, trace: &[usize]) -> Vec<usize> {
+    nested_dissection_of_columns(mesh, dofs, trace, (0, mesh.nnx()))
+}
+
+/// The node column that splits the grid into two halves of (nearly) equal width, the first
+/// separator of [`nested_dissection`] on a grid wider than high; None when the grid has no
+/// node column strictly inside (fewer than three node columns, or Q2 with one cell across).
+pub fn middle_column(mesh: &Mesh) -> Option<usize> {
+    separator(0, mesh.nnx(), mesh.element.order())
+}
+
+/// As [`nested_dissection`] for the nodes of the node columns `columns.0 ≤ i < columns.1`
+/// alone: the order of one half of the grid beside a [`middle_column`].
+pub fn nested_dissection_of_columns(
+    mesh: &Mesh,
+    dofs: &DofMap,
+    trace: &[usize],
+    columns: (usize, usize),
+) -> Vec<usize> {
     let mut is_trace = vec![false; dofs.n_free()];
     for &d in trace {
         is_trace[d] = true;
     }
-    let mut order = Vec::with_capacity(dofs.n_free() - trace.len());
+    let mut order = Vec::new();
     let mut emit = |i: usize, j: usize| {
         let node = mesh.node(i, j);
         for comp in 0..2 {
@@ -34,7 +52,7 @@ pub fn nested_dissection(mesh: &Mesh, dofs: &DofMap, trace: &[usize]) -> Vec<usi
         }
     };
     let part = Part {
-        i: (0, mesh.nnx()),
+        i: columns,
         j: (0, mesh.node_y.len()),
     };
     dissect(part, mesh.element.order(), &mut emit);

@@ -2,7 +2,8 @@
 //! manufactured elasticity solution with the expected H¹ convergence rates.
 
 use riplab::fem::condense::{TraceFactor, TraceOrdering};
-use riplab::fem::{DofMap, Form, Integration, apply, assemble, body_load, h1_error};
+use riplab::fem::split::{SplitFactor, SplitOrdering};
+use riplab::fem::{DofMap, Form, Integration, SymCsc, apply, assemble, body_load, h1_error};
 use riplab::material::{Material, Plane};
 use riplab::mesh::{Element, Mesh};
 
@@ -159,4 +160,105 @@ fn manufactured_solution_converges_at_rate_two_for_q2() {
     let rates = manufactured_rates(Element::Q2);
     let last = *rates.last().unwrap();
     assert!((1.9..2.15).contains(&last), "Q2: H¹ rates {rates:?}");
+}
+
+/// The stiffness of a body of the paper's kind (bottom clamped, Γ_C on top; a half model when
+/// `symmetric`) with `nx` × `ny` cells, its dofs and Γ_C's normal dofs.
+fn contact_body(
+    element: Element,
+    nx: usize,
+    ny: usize,
+    symmetric: bool,
+) -> (Mesh, DofMap, SymCsc, Vec<usize>) {
+    let mesh = Mesh::uniform(element, (0.0, 8.0, nx), (0.0, 4.0, ny), symmetric);
+    let dofs = DofMap::model(&mesh);
+    let k = assemble(&mesh, &dofs, Form::Elasticity(STEEL_LIKE, Integration::Full));
+    let trace = mesh
+        .top_nodes()
+        .iter()
+        .map(|&t| dofs.free_index(2 * t + 1).unwrap())
+        .collect();
+    (mesh, dofs, k, trace)
+}
+
+/// Every element, half and full models, even and odd numbers of cells across (Q2's middle
+/// column is a vertex line, so its halves differ by a cell when the count is odd), wider and
+/// higher than wide.
+fn split_cases() -> impl Iterator<Item = (Element, usize, usize, bool)> {
+    Element::ALL.into_iter().flat_map(|element| {
+        [(16, 4), (13, 5), (6, 9)]
+            .into_iter()
+            .flat_map(move |(nx, ny)| [true, false].map(|symmetric| (element, nx, ny, symmetric)))
+    })
+}
+
+/// The largest absolute entry.
+fn max_abs(values: impl IntoIterator<Item = f64>) -> f64 {
+    values.into_iter().fold(0.0, |m, v| m.max(v.abs()))
+}
+
+/// The two-subdomain factor gives the single factor's trace compliance C = E K⁻¹ Eᵀ and
+/// Schur complement factor (issue 13).
+#[test]
+fn the_split_factor_has_the_single_factors_compliance() {
+    for (element, nx, ny, symmetric) in split_cases() {
+        let (mesh, dofs, k, trace) = contact_body(element, nx, ny, symmetric);
+        let single = TraceFactor::new(&TraceOrdering::grid(&k, &mesh, &dofs, &trace).unwrap(), &k).unwrap();
+        let split = SplitOrdering::new(&k, &mesh, &dofs, &trace)
+            .unwrap()
+            .expect("a middle column");
+        let split = SplitFactor::new(&split, &k).unwrap();
+        for (name, a, b) in [
+            ("C", single.compliance(), split.compliance()),
+            ("L_T", single.schur_factor(), split.schur_factor()),
+        ] {
+            assert_eq!((a.nrows(), a.ncols()), (trace.len(), trace.len()));
+            let scale = max_abs(a.col_iter().flat_map(|c| c.iter().copied().collect::<Vec<_>>()));
+            let diff = max_abs(
+                (0..a.ncols())
+                    .flat_map(|j| (0..a.nrows()).map(move |i| (i, j)))
+                    .map(|(i, j)| a[(i, j)] - b[(i, j)]),
+            );
+            assert!(
+                diff <= 1e-12 * scale,
+                "{element:?} {nx}×{ny} symmetric={symmetric}: {name} differs by {diff:e} (scale {scale:e})"
+            );
+        }
+    }
+}
+
+/// Right-hand sides with every entry non-zero, the same on every run.
+fn right_hand_sides(n: usize, ncols: usize) -> Vec<f64> {
+    (0..n * ncols)
+        .map(|k| ((k * 7919 + 17) % 2003) as f64 / 1001.0 - 1.0)
+        .collect()
+}
+
+/// A solve with the two-subdomain factor is the single factor's, and K u = f.
+#[test]
+fn the_split_factor_solves_as_the_single_factor() {
+    for (element, nx, ny, symmetric) in split_cases() {
+        let (mesh, dofs, k, trace) = contact_body(element, nx, ny, symmetric);
+        let single = TraceFactor::new(&TraceOrdering::grid(&k, &mesh, &dofs, &trace).unwrap(), &k).unwrap();
+        let split = SplitOrdering::new(&k, &mesh, &dofs, &trace).unwrap().unwrap();
+        let split = SplitFactor::new(&split, &k).unwrap();
+        let f = right_hand_sides(k.n, 3);
+        let (mut u, mut expect) = (f.clone(), f.clone());
+        split.solve_in_place(&mut u, 3);
+        single.solve_in_place(&mut expect, 3);
+        let scale = max_abs(expect.iter().copied());
+        let diff = max_abs(u.iter().zip(&expect).map(|(a, b)| a - b));
+        assert!(
+            diff <= 1e-12 * scale,
+            "{element:?} {nx}×{ny}: u differs by {diff:e} (scale {scale:e})"
+        );
+        for j in 0..3 {
+            let (uj, fj) = (&u[j * k.n..(j + 1) * k.n], &f[j * k.n..(j + 1) * k.n]);
+            let residual = max_abs(k.mul(uj).iter().zip(fj).map(|(a, b)| a - b));
+            assert!(
+                residual <= 1e-10,
+                "{element:?} {nx}×{ny}: ‖K u − f‖∞ = {residual:e}"
+            );
+        }
+    }
 }

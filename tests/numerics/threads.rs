@@ -1,15 +1,20 @@
-//! Results do not depend on the thread count (issue 13): one test in its own process, since
-//! the thread count is process-wide.
+//! Results do not depend on the thread count beyond round-off (issue 13): the thread count is
+//! process-wide, so each run reads which factorisation it got from its discretisation.
 
 use std::ops::ControlFlow;
 
 use crate::common::paper_with;
 use riplab::contact::penalty::NewtonOptions;
-use riplab::mesh::Element;
+use riplab::fem::factor::Factor;
+use riplab::fem::split::{SplitFactor, SplitOrdering};
+use riplab::fem::{DofMap, Form, Integration, assemble};
+use riplab::material::{Material, Plane};
+use riplab::mesh::{Element, Mesh};
 use riplab::solve::{ContactParams, Discretization, solve_contact};
 
-/// Everything a solve reports, and the trace compliance, as bits.
-fn run(threads: usize, element: Element, level: u32) -> Vec<u64> {
+/// What a solve reports, by quantity: the trace compliance C, p, p̄, u and the load; and
+/// whether K was factorised as two subdomains.
+fn run(threads: usize, element: Element, level: u32) -> ([(&'static str, Vec<f64>); 5], bool) {
     riplab::fem::set_threads(threads);
     let s = paper_with(&[]);
     let disc = Discretization::of(&s, level, element).unwrap();
@@ -19,34 +24,110 @@ fn run(threads: usize, element: Element, level: u32) -> Vec<u64> {
     })
     .unwrap();
     let c = disc.compliance();
-    (0..c.ncols())
+    let c = (0..c.ncols())
         .flat_map(|j| (0..c.nrows()).map(move |i| c[(i, j)]))
-        .chain(
-            sol.p
-                .iter()
-                .chain(&sol.pbar)
-                .chain(&sol.displacement(&disc))
-                .copied(),
-        )
-        .chain([sol.load])
-        .map(f64::to_bits)
-        .collect()
+        .collect();
+    let split = matches!(disc.factor(), Factor::Split(_));
+    let u = sol.displacement(&disc);
+    riplab::fem::set_threads(1);
+    (
+        [
+            ("C", c),
+            ("p", sol.p),
+            ("p̄", sol.pbar),
+            ("u", u),
+            ("load", vec![sol.load]),
+        ],
+        split,
+    )
 }
 
-/// One and two threads give the same bits, on meshes large enough for faer to split its
-/// dense blocks (level 6 Q1: a last separator of 513 dofs; level 4 Q2).
+/// One and two threads give the same bits when both use one factor of K (level 4 Q1, below
+/// the split's size: faer's parallel kernels sum in the same order). When two threads
+/// factorise K as two subdomains (levels 5 Q1 and P1, level 4 Q2) the same K⁻¹ is summed in
+/// another order: C agrees to 10⁻¹³ relative (measured: 4·10⁻¹⁵, u 2·10⁻¹⁵), p, p̄ and the
+/// load to 10⁻¹¹ (measured: 4·10⁻¹², 2·10⁻¹², 2·10⁻¹³): the penalty's active-set system
+/// G_AA + ε W⁻¹ with ε = 10⁻⁶ amplifies C's round-off by its condition number.
+/// The split factor itself gives the same bits on one thread (its halves one after the
+/// other) and on two (side by side). One test, so that no other changes the thread count
+/// while it runs.
 #[test]
-fn one_and_two_threads_agree_bit_for_bit() {
-    for (element, level) in [(Element::Q1, 6), (Element::Q2, 4), (Element::P1, 5)] {
-        let one = run(1, element, level);
-        let two = run(2, element, level);
-        assert_eq!(one.len(), two.len());
-        let differ = one.iter().zip(&two).filter(|(a, b)| a != b).count();
+fn one_and_two_threads_agree() {
+    split_factor_bits_do_not_depend_on_threads();
+    for (element, level) in [
+        (Element::Q1, 4),
+        (Element::Q1, 5),
+        (Element::Q2, 4),
+        (Element::P1, 5),
+    ] {
+        let (one, _) = run(1, element, level);
+        let (two, split) = run(2, element, level);
         assert_eq!(
-            differ,
-            0,
-            "{element:?} level {level}: {differ} of {} values differ",
-            one.len()
+            split,
+            level == 5 || element == Element::Q2,
+            "{element:?} level {level}"
         );
+        for ((name, a), (_, b)) in one.iter().zip(&two) {
+            assert_eq!(a.len(), b.len());
+            if split {
+                let scale = a.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+                let worst = a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max);
+                let tolerance = if *name == "C" { 1e-13 } else { 1e-11 };
+                assert!(
+                    worst <= tolerance * scale,
+                    "{element:?} level {level}: {name} differs by {worst:e} (scale {scale:e})"
+                );
+            } else {
+                let differ = a
+                    .iter()
+                    .zip(b)
+                    .filter(|(x, y)| x.to_bits() != y.to_bits())
+                    .count();
+                assert_eq!(
+                    differ,
+                    0,
+                    "{element:?} level {level}: {differ} of {} values of {name} differ",
+                    a.len()
+                );
+            }
+        }
     }
+}
+
+/// The two-subdomain factor's solve and compliance as bits, on one and on two threads: each
+/// half's arithmetic is the same, and S is summed in the same order.
+fn split_factor_bits_do_not_depend_on_threads() {
+    let bits = |threads: usize| {
+        riplab::fem::set_threads(threads);
+        let mesh = Mesh::uniform(Element::Q1, (0.0, 8.0, 64), (0.0, 4.0, 16), true);
+        let dofs = DofMap::model(&mesh);
+        let material = Material {
+            young: 1000.0,
+            poisson: 0.3,
+            plane: Plane::Strain,
+        };
+        let k = assemble(&mesh, &dofs, Form::Elasticity(material, Integration::Full));
+        let trace: Vec<usize> = mesh
+            .top_nodes()
+            .iter()
+            .map(|&t| dofs.free_index(2 * t + 1).unwrap())
+            .collect();
+        let split = SplitOrdering::new(&k, &mesh, &dofs, &trace).unwrap().unwrap();
+        let split = SplitFactor::new(&split, &k).unwrap();
+        let mut u: Vec<f64> = (0..2 * k.n)
+            .map(|i| ((i * 7919 + 17) % 2003) as f64 - 1001.0)
+            .collect();
+        split.solve_in_place(&mut u, 2);
+        let c = split.compliance();
+        riplab::fem::set_threads(1);
+        let c: Vec<f64> = (0..c.ncols())
+            .flat_map(|j| (0..c.nrows()).map(move |i| (i, j)))
+            .map(|(i, j)| c[(i, j)])
+            .collect();
+        u.into_iter().chain(c).map(f64::to_bits).collect::<Vec<_>>()
+    };
+    assert!(
+        bits(1) == bits(2),
+        "the split factor differs on one and two threads"
+    );
 }

@@ -1,0 +1,116 @@
+//! The factorisation of a form on the grid with Γ_C's normal dofs last: one factor
+//! ([`super::condense`]), or, on two or more threads from [`SPLIT_UNKNOWNS`] unknowns on, two
+//! subdomains factorised side by side ([`super::split`]). Both give the same trace compliance
+//! and solves to round-off (within 10⁻¹² relative, tests/numerics/fem.rs); on one thread the
+//! split only adds work (its dense S), so one thread keeps the single factor.
+
+use faer::{Mat, Par};
+
+use super::SymCsc;
+use super::condense::{TraceFactor, TraceOrdering};
+use super::dofs::DofMap;
+use super::error::FemError;
+use super::split::{SplitFactor, SplitOrdering};
+use crate::mesh::Mesh;
+
+/// The number of free dofs from which two threads factorise the grid as two subdomains
+/// (BENCHMARKS.md, "Two subdomains on two cores": on two threads the split is as fast as the
+/// single factor at level 4 Q1, 16,448 unknowns, and 1.5× faster at level 5, 65,664).
+pub const SPLIT_UNKNOWNS: usize = 50_000;
+
+/// The symbolic analysis of a form's pattern on the grid, Γ_C's normal dofs last (one per
+/// mesh, shared by every form on it).
+#[derive(Clone)]
+pub enum Analysis {
+    /// One factor of the whole grid.
+    Whole(TraceOrdering),
+    /// Two halves beside the middle column, and S on the column and the trace.
+    Split(SplitOrdering),
+}
+
+impl Analysis {
+    /// The analysis of `a`, the form on `mesh` over `dofs`, with `trace` last: two subdomains
+    /// when [`super::set_threads`] chose two threads or more and `a` has [`SPLIT_UNKNOWNS`]
+    /// free dofs or more (and the grid a middle column), else one factor.
+    pub fn grid(a: &SymCsc, mesh: &Mesh, dofs: &DofMap, trace: &[usize]) -> Result<Self, FemError> {
+        if a.n >= SPLIT_UNKNOWNS && super::parallelism() != Par::Seq {
+            Self::split(a, mesh, dofs, trace)
+        } else {
+            Self::whole(a, mesh, dofs, trace)
+        }
+    }
+
+    /// One factor of the whole grid ([`TraceOrdering::grid`]).
+    pub fn whole(a: &SymCsc, mesh: &Mesh, dofs: &DofMap, trace: &[usize]) -> Result<Self, FemError> {
+        TraceOrdering::grid(a, mesh, dofs, trace).map(Analysis::Whole)
+    }
+
+    /// Two subdomains ([`SplitOrdering::new`]), or one factor when the grid has no middle
+    /// column.
+    pub fn split(a: &SymCsc, mesh: &Mesh, dofs: &DofMap, trace: &[usize]) -> Result<Self, FemError> {
+        match SplitOrdering::new(a, mesh, dofs, trace)? {
+            Some(split) => Ok(Analysis::Split(split)),
+            None => Self::whole(a, mesh, dofs, trace),
+        }
+    }
+
+    /// The number of stored values of the factors: eight bytes each.
+    pub fn factor_len(&self) -> usize {
+        match self {
+            Analysis::Whole(o) => o.factor_len(),
+            Analysis::Split(o) => o.factor_len(),
+        }
+    }
+
+    /// Floating point operations of one numeric factorisation
+    /// ([`super::condense::factor_flops`]).
+    pub fn factor_flops(&self) -> f64 {
+        match self {
+            Analysis::Whole(o) => o.factor_flops(),
+            Analysis::Split(o) => o.factor_flops(),
+        }
+    }
+}
+
+/// A numeric factorisation on an [`Analysis`].
+pub enum Factor {
+    /// One factor of the whole grid.
+    Whole(TraceFactor),
+    /// Both halves' factors and S's.
+    Split(SplitFactor),
+}
+
+impl Factor {
+    /// Factorise `a`, whose pattern is the one `analysis` analysed, on the threads of
+    /// [`super::set_threads`].
+    pub fn new(analysis: &Analysis, a: &SymCsc) -> Result<Self, FemError> {
+        Ok(match analysis {
+            Analysis::Whole(o) => Factor::Whole(TraceFactor::new(o, a)?),
+            Analysis::Split(o) => Factor::Split(SplitFactor::new(o, a)?),
+        })
+    }
+
+    /// Solve A X = B in place for the `ncols` columns of the column-major `b`.
+    pub fn solve_in_place(&self, b: &mut [f64], ncols: usize) {
+        match self {
+            Factor::Whole(f) => f.solve_in_place(b, ncols),
+            Factor::Split(f) => f.solve_in_place(b, ncols),
+        }
+    }
+
+    /// The Cholesky factor of the Schur complement of A on the trace (in the trace's order).
+    pub fn schur_factor(&self) -> Mat<f64> {
+        match self {
+            Factor::Whole(f) => f.schur_factor(),
+            Factor::Split(f) => f.schur_factor(),
+        }
+    }
+
+    /// The trace compliance C = E A⁻¹ Eᵀ.
+    pub fn compliance(&self) -> Mat<f64> {
+        match self {
+            Factor::Whole(f) => f.compliance(),
+            Factor::Split(f) => f.compliance(),
+        }
+    }
+}

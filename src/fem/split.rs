@@ -1,0 +1,368 @@
+//! K factorised as two subdomains, one per core (issue 13).
+//!
+//! The grid's middle node column ([`super::ordering::middle_column`]) splits the free dofs into
+//! L (left of it), R (right of it) and Γ: the column's own dofs J and the trace T (Γ_C's normal
+//! dofs). No cell has nodes on both sides of a node column, so no entry of K couples L and R:
+//!
+//!   K = [K_LL 0 K_LΓ; 0 K_RR K_RΓ; K_ΓL K_ΓR K_ΓΓ],
+//!   S = K_ΓΓ − K_ΓL K_LL⁻¹ K_LΓ − K_ΓR K_RR⁻¹ K_RΓ   (K's Schur complement on Γ).
+//!
+//! Each half h factorises the principal submatrix K_h = K[h ∪ Γ_h] (Γ_h: J and the trace dofs
+//! on its side of the column, the only dofs of Γ that couple with h; SPD as K is) with Γ_h last,
+//! on a thread of its own: the grid's nested dissection of the half, then Γ_h. Its trailing
+//! block L₂₂ gives S_h = L₂₂ L₂₂ᵀ = K[Γ_h, Γ_h] − K_Γh K_hh⁻¹ K_hΓ, so that
+//!
+//!   S = S_L + S_R − K on (Γ_L ∩ Γ_R)²
+//!
+//! (the column's dofs, where both halves count K). S is dense, ordered J then T; the trailing
+//! block of its Cholesky factor is the Schur complement factor on the trace that a single
+//! factor's trailing block is ([`super::condense`]), and the compliance C = S_T⁻¹ follows.
+//! A solve eliminates L and R (each half's forward substitution), solves with S on Γ and
+//! back-substitutes each half.
+
+use std::sync::Arc;
+
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::cholesky::llt;
+use faer::linalg::matmul::triangular::{self, BlockStructure};
+use faer::{Accum, Mat, MatMut, MatRef, Par};
+
+use super::SymCsc;
+use super::condense::{TraceFactor, TraceOrdering, compliance_of};
+use super::dofs::DofMap;
+use super::error::FemError;
+use super::ordering::{middle_column, nested_dissection_of_columns};
+use crate::mesh::Mesh;
+
+/// The symbolic analysis of both halves (one per mesh; cheap to clone).
+#[derive(Clone)]
+pub struct SplitOrdering(Arc<Split>);
+
+struct Split {
+    /// The number of free dofs of K.
+    n: usize,
+    /// Γ: the column's dofs J, then the trace in the caller's order.
+    gamma: Vec<usize>,
+    /// The number of trace dofs (the last of Γ).
+    n_trace: usize,
+    /// The left and the right half.
+    halves: [Half; 2],
+    /// K's entries on (Γ_L ∩ Γ_R)², its lower triangle: (row in Γ, column in Γ, position in
+    /// K's values).
+    overlap: Vec<(usize, usize, usize)>,
+}
+
+/// One half h: the principal submatrix K[h ∪ Γ_h] and its analysis.
+struct Half {
+    /// The pattern of K_h in elimination order (h, then Γ_h); its values are not used.
+    pattern: SymCsc,
+    /// The position in K's values of each entry of `pattern`.
+    gather: Vec<usize>,
+    /// The analysis of K_h (in its own order, Γ_h last).
+    ordering: TraceOrdering,
+    /// The dof of K at each elimination position of h.
+    interior: Vec<usize>,
+    /// The index in Γ of each trailing position (Γ_h, ascending in Γ).
+    gamma: Vec<usize>,
+}
+
+impl SplitOrdering {
+    /// Analyse `a`, the form on `mesh` over `dofs`, as two halves beside the grid's middle
+    /// column with Γ = (the column's dofs, `trace`) last; None when the grid has no middle
+    /// column. The halves are analysed on two threads when [`super::set_threads`] allows.
+    pub fn new(a: &SymCsc, mesh: &Mesh, dofs: &DofMap, trace: &[usize]) -> Result<Option<Self>, FemError> {
+        let Some(s) = middle_column(mesh) else {
+            return Ok(None);
+        };
+        let n = a.n;
+        // The node column of every free dof, and Γ's index of Γ's dofs.
+        let mut column = vec![0usize; n];
+        let mut gamma = Vec::new();
+        for j in 0..mesh.node_y.len() {
+            for i in 0..mesh.nnx() {
+                let node = mesh.node(i, j);
+                for comp in 0..2 {
+                    if let Some(d) = dofs.free_index(2 * node + comp) {
+                        column[d] = i;
+                        if i == s {
+                            gamma.push(d);
+                        }
+                    }
+                }
+            }
+        }
+        let mut in_gamma = vec![usize::MAX; n];
+        for &d in trace {
+            in_gamma[d] = 0;
+        }
+        gamma.retain(|&d| in_gamma[d] == usize::MAX);
+        gamma.extend_from_slice(trace);
+        for (k, &d) in gamma.iter().enumerate() {
+            in_gamma[d] = k;
+        }
+        let n_columns = mesh.nnx();
+        let (left, right) = super::join(
+            || Half::new(a, mesh, dofs, trace, (0, s), s, &column, &gamma),
+            || Half::new(a, mesh, dofs, trace, (s + 1, n_columns), s, &column, &gamma),
+        );
+        let mut overlap = Vec::new();
+        for &c in gamma.iter().filter(|&&d| column[d] == s) {
+            for k in a.col_ptr[c]..a.col_ptr[c + 1] {
+                let r = a.row_idx[k];
+                if in_gamma[r] != usize::MAX && column[r] == s {
+                    overlap.push((in_gamma[r], in_gamma[c], k));
+                }
+            }
+        }
+        Ok(Some(SplitOrdering(Arc::new(Split {
+            n,
+            n_trace: trace.len(),
+            gamma,
+            halves: [left?, right?],
+            overlap,
+        }))))
+    }
+
+    /// The stored values of both halves' factors and of S's dense factor (its lower triangle).
+    pub fn factor_len(&self) -> usize {
+        let ng = self.0.gamma.len();
+        self.0
+            .halves
+            .iter()
+            .map(|h| h.ordering.factor_len())
+            .sum::<usize>()
+            + ng * (ng + 1) / 2
+    }
+
+    /// Floating point operations of one factorisation ([`super::condense::factor_flops`]): both
+    /// halves', and S's dense Cholesky factor (Σ_{c=1}^{|Γ|} c²).
+    pub fn factor_flops(&self) -> f64 {
+        let dense: f64 = (1..=self.0.gamma.len()).map(|c| (c as f64) * (c as f64)).sum();
+        self.0
+            .halves
+            .iter()
+            .map(|h| h.ordering.factor_flops())
+            .sum::<f64>()
+            + dense
+    }
+}
+
+impl Half {
+    /// The half of the node columns `columns` beside the middle column `s`; `column` is the
+    /// node column of every dof and `gamma` Γ's dofs.
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        a: &SymCsc,
+        mesh: &Mesh,
+        dofs: &DofMap,
+        trace: &[usize],
+        columns: (usize, usize),
+        s: usize,
+        column: &[usize],
+        gamma: &[usize],
+    ) -> Result<Self, FemError> {
+        // h ∪ Γ_h in elimination order: the half's nested dissection, then the dofs of Γ on
+        // the middle column or in the half's columns.
+        let interior = nested_dissection_of_columns(mesh, dofs, trace, columns);
+        let inside = |d: usize| (columns.0..columns.1).contains(&column[d]) || column[d] == s;
+        let half_gamma: Vec<usize> = (0..gamma.len()).filter(|&g| inside(gamma[g])).collect();
+        let mut position = vec![usize::MAX; a.n];
+        for (p, &d) in interior
+            .iter()
+            .chain(half_gamma.iter().map(|&g| &gamma[g]))
+            .enumerate()
+        {
+            position[d] = p;
+        }
+        let n_h = interior.len() + half_gamma.len();
+        // K_h's lower triangle in that order (so that faer need not permute it): entry (r, c)
+        // of K goes to column min(p_r, p_c), then each column is sorted by row.
+        let mut col_ptr = vec![0usize; n_h + 1];
+        let position = &position;
+        let entries = |c: usize| {
+            (a.col_ptr[c]..a.col_ptr[c + 1])
+                .map(move |k| (position[a.row_idx[k]], position[c], k))
+                .filter(|&(pr, pc, _)| pr != usize::MAX && pc != usize::MAX)
+        };
+        for c in 0..a.n {
+            for (pr, pc, _) in entries(c) {
+                col_ptr[pr.min(pc) + 1] += 1;
+            }
+        }
+        for j in 0..n_h {
+            col_ptr[j + 1] += col_ptr[j];
+        }
+        let mut next = col_ptr.clone();
+        let mut slots = vec![(0usize, 0usize); col_ptr[n_h]];
+        for c in 0..a.n {
+            for (pr, pc, k) in entries(c) {
+                let j = pr.min(pc);
+                slots[next[j]] = (pr.max(pc), k);
+                next[j] += 1;
+            }
+        }
+        for j in 0..n_h {
+            slots[col_ptr[j]..col_ptr[j + 1]].sort_unstable();
+        }
+        let (row_idx, gather) = slots.into_iter().unzip();
+        let pattern = SymCsc {
+            n: n_h,
+            col_ptr,
+            row_idx,
+            values: Vec::new(),
+        };
+        let ordering = TraceOrdering::in_given_order(&pattern, half_gamma.len())?;
+        Ok(Half {
+            pattern,
+            gather,
+            ordering,
+            interior,
+            gamma: half_gamma,
+        })
+    }
+}
+
+/// A numeric factorisation on a [`SplitOrdering`]: both halves' factors and S's.
+pub struct SplitFactor {
+    ordering: SplitOrdering,
+    halves: [TraceFactor; 2],
+    /// The Cholesky factor of S (its lower triangle; Γ's order: J, then the trace).
+    s: Mat<f64>,
+}
+
+impl SplitFactor {
+    /// Factorise `a`, whose pattern is the one `ordering` analysed: the halves on two threads
+    /// when [`super::set_threads`] allows (each sequential), then S on the threads allowed.
+    pub fn new(ordering: &SplitOrdering, a: &SymCsc) -> Result<Self, FemError> {
+        let split = &*ordering.0;
+        let half = |h: &Half| -> Result<(TraceFactor, Mat<f64>), FemError> {
+            let values: Vec<f64> = h.gather.iter().map(|&k| a.values[k]).collect();
+            let factor = TraceFactor::with_values(&h.ordering, &h.pattern, &values, Par::Seq)?;
+            // S_h = L₂₂ L₂₂ᵀ, its lower triangle.
+            let l = factor.schur_factor();
+            let mut s_h = Mat::<f64>::zeros(l.nrows(), l.nrows());
+            triangular::matmul(
+                s_h.as_mut(),
+                BlockStructure::TriangularLower,
+                Accum::Replace,
+                l.as_ref(),
+                BlockStructure::TriangularLower,
+                l.transpose(),
+                BlockStructure::TriangularUpper,
+                1.0,
+                Par::Seq,
+            );
+            Ok((factor, s_h))
+        };
+        let (left, right) = super::join(|| half(&split.halves[0]), || half(&split.halves[1]));
+        let (left, right) = (left?, right?);
+        // S = S_L + S_R − K on (Γ_L ∩ Γ_R)², lower triangle (each half's Γ is ascending in Γ).
+        let ng = split.gamma.len();
+        let mut s = Mat::<f64>::zeros(ng, ng);
+        for (h, s_h) in split.halves.iter().zip([&left.1, &right.1]) {
+            for (j, &gj) in h.gamma.iter().enumerate() {
+                for (i, &gi) in h.gamma.iter().enumerate().skip(j) {
+                    s[(gi, gj)] += s_h[(i, j)];
+                }
+            }
+        }
+        for &(gr, gc, k) in &split.overlap {
+            s[(gr.max(gc), gr.min(gc))] -= a.values[k];
+        }
+        let par = super::parallelism();
+        let mut mem = MemBuffer::try_new(llt::factor::cholesky_in_place_scratch::<f64>(
+            ng,
+            par,
+            Default::default(),
+        ))
+        .map_err(|_| FemError::OutOfMemory("the factorisation's workspace"))?;
+        llt::factor::cholesky_in_place(
+            s.as_mut(),
+            Default::default(),
+            par,
+            MemStack::new(&mut mem),
+            Default::default(),
+        )
+        .map_err(|_| FemError::NotPositiveDefinite)?;
+        Ok(SplitFactor {
+            ordering: ordering.clone(),
+            halves: [left.0, right.0],
+            s,
+        })
+    }
+
+    /// Solve K X = B in place for the `ncols` columns of the column-major `b`: eliminate each
+    /// half's interior, solve S u_Γ = f_Γ − Σ_h K_Γh K_hh⁻¹ f_h, back-substitute each half.
+    pub fn solve_in_place(&self, b: &mut [f64], ncols: usize) {
+        let split = &*self.ordering.0;
+        let ng = split.gamma.len();
+        let rhs = MatRef::from_column_major_slice(&*b, split.n, ncols);
+        // Each half's [K_hh⁻¹-forward of f_h; −K_Γh K_hh⁻¹ f_h] in its elimination order.
+        let eliminate = |h: &Half, f: &TraceFactor| {
+            let mut x = Mat::<f64>::zeros(h.pattern.n, ncols);
+            for j in 0..ncols {
+                for (p, &d) in h.interior.iter().enumerate() {
+                    x[(p, j)] = rhs[(d, j)];
+                }
+            }
+            f.eliminate_interior(x.as_mut());
+            x
+        };
+        let (mut xl, mut xr) = super::join(
+            || eliminate(&split.halves[0], &self.halves[0]),
+            || eliminate(&split.halves[1], &self.halves[1]),
+        );
+        let mut u = Mat::<f64>::from_fn(ng, ncols, |g, j| rhs[(split.gamma[g], j)]);
+        for (h, x) in split.halves.iter().zip([&xl, &xr]) {
+            let n0 = h.interior.len();
+            for j in 0..ncols {
+                for (t, &g) in h.gamma.iter().enumerate() {
+                    u[(g, j)] += x[(n0 + t, j)];
+                }
+            }
+        }
+        llt::solve::solve_in_place(
+            self.s.as_ref(),
+            u.as_mut(),
+            super::parallelism(),
+            MemStack::new(&mut []),
+        );
+        let back = |h: &Half, f: &TraceFactor, x: &mut Mat<f64>| {
+            let n0 = h.interior.len();
+            for j in 0..ncols {
+                for (t, &g) in h.gamma.iter().enumerate() {
+                    x[(n0 + t, j)] = u[(g, j)];
+                }
+            }
+            f.back_substitute_interior(x.as_mut());
+        };
+        super::join(
+            || back(&split.halves[0], &self.halves[0], &mut xl),
+            || back(&split.halves[1], &self.halves[1], &mut xr),
+        );
+        let mut out = MatMut::from_column_major_slice_mut(b, split.n, ncols);
+        for j in 0..ncols {
+            for (h, x) in split.halves.iter().zip([&xl, &xr]) {
+                for (p, &d) in h.interior.iter().enumerate() {
+                    out[(d, j)] = x[(p, j)];
+                }
+            }
+            for (g, &d) in split.gamma.iter().enumerate() {
+                out[(d, j)] = u[(g, j)];
+            }
+        }
+    }
+
+    /// The Cholesky factor L_T of the Schur complement of K on the trace (in the trace's
+    /// order): the trailing block of S's factor, L_T L_Tᵀ = S_TT − S_TJ S_JJ⁻¹ S_JT.
+    pub fn schur_factor(&self) -> Mat<f64> {
+        let nt = self.ordering.0.n_trace;
+        let n0 = self.s.nrows() - nt;
+        Mat::from_fn(nt, nt, |i, j| if i >= j { self.s[(n0 + i, n0 + j)] } else { 0.0 })
+    }
+
+    /// The trace compliance C = E K⁻¹ Eᵀ = (L_T L_Tᵀ)⁻¹.
+    pub fn compliance(&self) -> Mat<f64> {
+        compliance_of(self.schur_factor().as_ref(), super::parallelism())
+    }
+}
