@@ -24,13 +24,30 @@ pub const MAX_CELLS_0: i64 = 4096;
 pub enum CheckError {
     /// NaN or ±∞ where a finite number in `allowed` is needed.
     #[error("{} is not a finite number; allowed: {allowed}", num(*value))]
-    NotFinite { value: f64, allowed: String },
+    NotFinite {
+        /// The value given.
+        value: f64,
+        /// What is allowed, for the message.
+        allowed: String,
+    },
     /// A finite number outside `allowed`.
     #[error("{} is out of range; allowed: {allowed}", num(*value))]
-    OutOfRange { value: f64, allowed: String },
+    OutOfRange {
+        /// The value given.
+        value: f64,
+        /// What is allowed, for the message.
+        allowed: String,
+    },
     /// An integer outside lo..=hi.
     #[error("{value} is out of range; allowed: {lo} to {hi}")]
-    Integer { value: i64, lo: i64, hi: i64 },
+    Integer {
+        /// The value given.
+        value: i64,
+        /// The smallest allowed.
+        lo: i64,
+        /// The largest allowed.
+        hi: i64,
+    },
     /// ε > 0 outside the range of the mesh and the material ([`crate::material::epsilon_range`]).
     #[error(
         "ε = {} is out of range; allowed: 0 (the exact constraint) or {} to {} here (ε·E/h from {} to {}, so that the penalty's products stay finite)",
@@ -40,7 +57,12 @@ pub enum CheckError {
         num(crate::material::KAPPA_RANGE.0),
         num(crate::material::KAPPA_RANGE.1)
     )]
-    Epsilon { value: f64, range: (f64, f64) },
+    Epsilon {
+        /// The ε given.
+        value: f64,
+        /// The allowed ε > 0 of this mesh and material, (smallest, largest).
+        range: (f64, f64),
+    },
     /// A polyline point that is not a pair [x, height].
     #[error("a point has {0} coordinates; allowed: [x, height]")]
     Point(usize),

@@ -108,6 +108,8 @@ impl Discretization {
         &self.contact_dofs
     }
 
+    /// The per-mesh work for `mesh` with the model's supports ([`DofMap::model`]): K assembled,
+    /// analysed and factorised with Γ_C's normal dofs last, and the trace compliance C.
     pub fn new(mesh: Mesh, material: Material, integration: Integration) -> Result<Self, SolveError> {
         let dofs = DofMap::model(&mesh);
         Self::with_dofs(mesh, dofs, material, integration)
@@ -230,6 +232,7 @@ impl Discretization {
             .clone()
     }
 
+    /// The number of free dofs.
     pub fn n_dofs(&self) -> usize {
         self.dofs.n_free()
     }

@@ -7,6 +7,7 @@ use crate::text::num;
 /// Why a discretisation or a contact solve produced no result.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SolveError {
+    /// The caller cancelled the solve (from its progress callback).
     #[error("the solve was cancelled")]
     Cancelled,
     /// The stiffness's Cholesky factorisation failed: with the checks on the input this means
@@ -20,7 +21,9 @@ pub enum SolveError {
     Kernel {
         /// The contact rule's name ([`crate::contact::Rule::name`]).
         rule: &'static str,
+        /// How many points the rule has on Γ_C (one multiplier each).
         points: usize,
+        /// How many normal displacements Γ_C has (one per Γ_C node).
         normals: usize,
     },
     /// The problem does not fit the memory this process may use.
@@ -29,13 +32,22 @@ pub enum SolveError {
     /// A parameter of the solve is outside the range where its answer means something (or
     /// where double precision can represent it).
     #[error("{what}: {message}")]
-    Input { what: &'static str, message: String },
+    Input {
+        /// The parameter, e.g. "the indentation depth".
+        what: &'static str,
+        /// What is wrong with it, and what is allowed.
+        message: String,
+    },
     /// The solver stopped without a result it can certify.
     #[error("{what} did not converge after {iterations} iterations (relative residual {}): {diagnosis}", num(*residual))]
     NotConverged {
+        /// What did not converge, e.g. the reference solution.
         what: &'static str,
+        /// Iterations taken.
         iterations: usize,
+        /// The last relative residual.
         residual: f64,
+        /// Why, as far as the solver knows.
         diagnosis: String,
     },
     /// A dense eigenvalue solve failed (faer's message).

@@ -29,10 +29,15 @@ use crate::solve::Discretization;
 /// The estimate for one element × rule pair on one mesh.
 #[derive(Clone, Debug, PartialEq)]
 pub struct InfSup {
+    /// The mesh's h (its largest cell side).
     pub h: f64,
+    /// β_h of (13).
     pub beta: f64,
+    /// β_h/√h (constant where β_h ∝ √h).
     pub beta_over_sqrt_h: f64,
+    /// β̄_h of (21), on the smoothed pressures.
     pub beta_bar: f64,
+    /// β̄_h/√h.
     pub beta_bar_over_sqrt_h: f64,
     /// Why β_h = 0 when Q_h has a kernel (more pressure dofs than normal-trace dofs).
     pub kernel: Option<String>,
@@ -40,6 +45,7 @@ pub struct InfSup {
 
 /// C = E A⁻¹ Eᵀ on the Γ_C normal dofs (rule-independent, one per mesh).
 pub struct TraceCompliance {
+    /// C, dense, on the Γ_C normal dofs in ascending x.
     pub c: Mat<f64>,
 }
 
@@ -180,18 +186,28 @@ pub fn inf_sup(disc: &Discretization, rule: Rule) -> Result<InfSup, SolveError> 
 /// are additions to the paper's β_h and β̄_h).
 #[derive(Serialize, Clone, Debug)]
 pub struct InfSupRow {
+    /// The mesh level.
     pub level: u32,
+    /// The mesh's h (its largest cell side).
     pub h: f64,
+    /// The element's name ([`Element::name`]).
     pub element: &'static str,
+    /// The rule's name ([`Rule::name`]).
     pub rule: &'static str,
+    /// The paper's name of the pair (M1–M4); None for the others.
     pub scheme: Option<&'static str>,
+    /// β_h of (13).
     pub beta: f64,
+    /// β_h/√h.
     pub beta_over_sqrt_h: f64,
+    /// β̄_h of (21).
     pub beta_bar: f64,
+    /// β̄_h/√h.
     pub beta_bar_over_sqrt_h: f64,
     /// The observed exponent of β_h ∝ h^slope from the previous level of the same pair (0.5:
     /// β_h/√h constant); null on a pair's first row and where β_h = 0.
     pub slope: Option<f64>,
+    /// Why β_h = 0 when Q_h has a kernel ([`InfSup::kernel`]).
     pub kernel: Option<String>,
     /// Assembly, factorisation and trace compliance of the mesh (shared by its rules), ms.
     pub mesh_ms: f64,

@@ -6,16 +6,20 @@ use serde::{Deserialize, Serialize};
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Plane {
+    /// Plane strain, ε_zz = 0 (the paper's).
     Strain,
+    /// Plane stress, σ_zz = 0.
     Stress,
 }
 
+/// An isotropic linear elastic material (docs/design.md §1).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Material {
     /// Young's modulus E > 0.
     pub young: f64,
     /// Poisson's ratio, −1 < ν < 1/2.
     pub poisson: f64,
+    /// Plane strain or plane stress.
     pub plane: Plane,
 }
 

@@ -32,6 +32,7 @@ impl Element {
         }
     }
 
+    /// The element's name in scenario files, the command line and the outputs, e.g. `q1`.
     pub fn name(self) -> &'static str {
         match self {
             Element::Q1 => "q1",
@@ -40,6 +41,7 @@ impl Element {
         }
     }
 
+    /// Every element.
     pub const ALL: [Element; 3] = [Element::Q1, Element::Q2, Element::P1];
 
     /// The node lines across `cells` cells in one direction: the vertex lines, and for Q2 the
@@ -69,6 +71,7 @@ pub enum Diagonal {
 /// A structured mesh of a rectangle.
 #[derive(Clone, Debug)]
 pub struct Mesh {
+    /// The element kind.
     pub element: Element,
     /// Vertex lines x₀ < x₁ < … < x_nx.
     pub xs: Vec<f64>,
@@ -76,6 +79,7 @@ pub struct Mesh {
     pub ys: Vec<f64>,
     /// Node lines (equal to the vertex lines for Q1 and P1, with mid-lines added for Q2).
     pub node_x: Vec<f64>,
+    /// Node lines in y, as `node_x`.
     pub node_y: Vec<f64>,
     /// Half model: u_x = 0 on the left side x = x₀ (the symmetry line).
     pub symmetric_left: bool,
@@ -128,9 +132,11 @@ impl Mesh {
         Self::from_lines(element, lines(x0, x1, nx), lines(y0, y1, ny), symmetric_left)
     }
 
+    /// The number of cells across.
     pub fn nx(&self) -> usize {
         self.xs.len() - 1
     }
+    /// The number of cells up.
     pub fn ny(&self) -> usize {
         self.ys.len() - 1
     }
@@ -138,9 +144,11 @@ impl Mesh {
     pub fn nnx(&self) -> usize {
         self.node_x.len()
     }
+    /// The number of nodes.
     pub fn n_nodes(&self) -> usize {
         self.node_x.len() * self.node_y.len()
     }
+    /// The number of cells.
     pub fn n_cells(&self) -> usize {
         self.nx() * self.ny()
     }
@@ -152,6 +160,7 @@ impl Mesh {
     pub fn node(&self, i: usize, j: usize) -> usize {
         i + j * self.nnx()
     }
+    /// The coordinates (x, y) of node `n`.
     pub fn node_coords(&self, n: usize) -> (f64, f64) {
         let nnx = self.nnx();
         (self.node_x[n % nnx], self.node_y[n / nnx])

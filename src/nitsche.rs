@@ -81,7 +81,9 @@ use crate::warning;
 /// γ₀ > 0, the dimensionless γ = γ₀·E/h.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct NitscheParams {
+    /// θ ∈ [−1, 1].
     pub theta: f64,
+    /// γ₀ > 0, dimensionless.
     pub gamma0: f64,
 }
 

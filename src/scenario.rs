@@ -17,24 +17,34 @@ pub use crate::mesh::MAX_LEVEL;
 /// A validated problem.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Scenario {
+    /// Its name: the file's `name`, or the file name without extension (sanitised).
     pub name: String,
+    /// The file's `description`, free text (sanitised).
     pub description: String,
     /// Where it was read from (a path, or [`DEFAULT_SOURCE`]).
     pub source: String,
     /// Full width and height of the body.
     pub width: f64,
+    /// Full height of the body.
     pub height: f64,
+    /// Model the right half only, u_x = 0 on the symmetry line x = 0.
     pub half_model: bool,
+    /// The body's material.
     pub material: Material,
+    /// The rigid obstacle pressed into the top Γ_C.
     pub obstacle: Obstacle,
+    /// The element of the displacement.
     pub element: Element,
     /// Vertex lines of the level-0 grid across the modelled width and the height (uniform,
     /// or graded); each level bisects every cell.
     pub x_lines: Vec<f64>,
+    /// Vertex lines of the level-0 grid up the height (see `x_lines`).
     pub y_lines: Vec<f64>,
     /// Integration of the stiffness: full, or selective (reduced for the volumetric part).
     pub integration: Integration,
+    /// The mesh level, 0 ..= [`MAX_LEVEL`].
     pub level: u32,
+    /// The contact rule on Γ_C.
     pub rule: Rule,
     /// How the constraint is imposed: `[contact] method` (with its parameters), or by ε:
     /// `penalty` for ε > 0, `exact` for ε = 0 ([`Method::resolve`]).

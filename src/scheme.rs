@@ -11,11 +11,14 @@ use crate::mesh::Element;
 /// An element and the contact rule of the penalty term.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct Scheme {
+    /// The element of the displacement.
     pub element: Element,
+    /// The contact rule on Γ_C.
     pub rule: Rule,
 }
 
 impl Scheme {
+    /// The scheme of `element` with `rule`.
     pub const fn new(element: Element, rule: Rule) -> Self {
         Scheme { element, rule }
     }

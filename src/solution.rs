@@ -30,7 +30,9 @@ pub struct Timing {
 /// The solution of (11) with its pressures.
 #[derive(Clone, Debug)]
 pub struct Solution {
+    /// What the solve depended on beyond the mesh.
     pub params: ContactParams,
+    /// The rule's points on Γ_C.
     pub points: ContactPoints,
     /// The (inner) Newton's result; for the ALM its iterations are summed over the updates.
     pub newton: NewtonResult,
@@ -45,6 +47,7 @@ pub struct Solution {
     pub vertex_uy: Vec<f64>,
     /// P = I(p, 1), the load carried by the modelled body.
     pub load: f64,
+    /// Where the time went.
     pub timing: Timing,
     /// What is known to be poor about this answer ([`crate::warning`]).
     pub warnings: Vec<Warning>,

@@ -34,8 +34,11 @@ use crate::mesh::{Diagonal, Element, Mesh};
 /// A plane stress state with its out-of-plane normal stress.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Stress {
+    /// σ_xx.
     pub xx: f64,
+    /// σ_yy.
     pub yy: f64,
+    /// σ_xy.
     pub xy: f64,
     /// ν(σ_xx + σ_yy) in plane strain, 0 in plane stress.
     pub zz: f64,
@@ -105,6 +108,7 @@ impl Stress {
 /// The scalar quantities shown and exported.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Quantity {
+    /// The von Mises stress, with σ_zz ([`Stress::zz`]).
     VonMises,
     /// τ₁ = (σ₁ − σ₂)/2, whose maximum lies below the surface under a cylinder (Johnson §4.2).
     PrincipalShear,
@@ -113,6 +117,7 @@ pub enum Quantity {
 }
 
 impl Quantity {
+    /// Every quantity, in the order [`Quantity::next`] cycles through.
     pub const ALL: [Quantity; 3] = [Quantity::PrincipalShear, Quantity::VonMises, Quantity::SigmaYy];
 
     /// A short name, also the array name in the VTU export.
@@ -143,29 +148,43 @@ impl Quantity {
 /// σ at one quadrature point.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct StressPoint {
+    /// Its x.
     pub x: f64,
+    /// Its y.
     pub y: f64,
     /// The quadrature weight including the Jacobian.
     pub weight: f64,
+    /// σ there.
     pub stress: Stress,
 }
 
 /// Where a quantity is largest in magnitude, and its value there.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Peak {
+    /// The quantity.
     pub quantity: Quantity,
     /// Signed (σ_yy is negative in compression).
     pub value: f64,
+    /// Where: x.
     pub x: f64,
+    /// Where: y.
     pub y: f64,
     /// Below the contact side Γ_C (y = top).
     pub depth: f64,
 }
 
+/// Why the stresses of a displacement could not be computed.
 #[derive(Debug, thiserror::Error)]
 pub enum StressError {
+    /// The displacement is not one value per dof of the mesh.
     #[error("the displacement has {got} values; the mesh has {expected} dofs")]
-    Length { got: usize, expected: usize },
+    Length {
+        /// The length of the displacement given.
+        got: usize,
+        /// The mesh's dofs, 2 per node.
+        expected: usize,
+    },
+    /// The L² projection's solve failed (the message says why).
     #[error("the L² projection of the stresses failed: {0}")]
     Projection(String),
 }
@@ -173,6 +192,7 @@ pub enum StressError {
 /// The stresses of a displacement field on a mesh.
 #[derive(Clone, Debug)]
 pub struct StressField {
+    /// The element of the mesh.
     pub element: Element,
     /// σ at the quadrature points of each element (cells row by row from the bottom, x fastest;
     /// a P1 cell's two triangles one after the other).

@@ -33,16 +33,22 @@ use crate::plot::write_file;
 use crate::solve::{Discretization, Solution};
 use crate::stress::{Stress, StressField};
 
+/// Why a VTU export failed.
 #[derive(Debug, thiserror::Error)]
 pub enum VtuError {
+    /// The file name does not end in `.vtu`.
     #[error("{0}: the file name must end in .vtu (ParaView chooses its reader by it)")]
     Extension(PathBuf),
+    /// The file exists and replacing it was not asked for (`--force`).
     #[error("{0}: exists; not overwritten (--force replaces it)")]
     Exists(PathBuf),
+    /// The path exists and is not a regular file.
     #[error("{0}: not a regular file (a directory, link, FIFO or device); not replaced")]
     NotRegular(PathBuf),
+    /// Reading or writing the path failed.
     #[error("{0}: {1}")]
     Io(PathBuf, io::Error),
+    /// vtkio could not write the VTK XML.
     #[error("VTK XML: {0}")]
     Vtk(String),
 }

@@ -23,15 +23,30 @@ pub const MIN_CONTACT_ELEMENTS: usize = 3;
 pub enum Warning {
     /// Near-incompressible plane strain with an element that locks as integrated.
     Locking {
+        /// Poisson's ratio ν ≥ [`LOCKING_POISSON`].
         poisson: f64,
+        /// The element.
         element: Element,
+        /// The stiffness's integration.
         integration: Integration,
     },
     /// The obstacle overlaps the body on an interval that holds none of the rule's points: the
     /// solve cannot see it, and its load of 0 is wrong.
-    Unresolved { from: f64, to: f64, h: f64 },
+    Unresolved {
+        /// The left end of the overlap, x.
+        from: f64,
+        /// The right end of the overlap, x.
+        to: f64,
+        /// The mesh's h (its largest cell side).
+        h: f64,
+    },
     /// Contact on fewer than [`MIN_CONTACT_ELEMENTS`] elements of Γ_C.
-    NarrowContact { elements: usize, h: f64 },
+    NarrowContact {
+        /// The elements of Γ_C with a positive pressure.
+        elements: usize,
+        /// The mesh's h (its largest cell side).
+        h: f64,
+    },
 }
 
 impl fmt::Display for Warning {

@@ -47,6 +47,7 @@ const ROUNDOFF: f64 = 16.0 * f64::EPSILON;
 /// inner iterations summed) and the number of multiplier updates.
 #[derive(Clone, Debug)]
 pub struct AlmResult {
+    /// The last inner Newton's result, its iterations summed over the updates.
     pub newton: NewtonResult,
     /// Multiplier updates (outer iterations).
     pub outer: usize,

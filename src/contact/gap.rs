@@ -58,29 +58,58 @@ impl PartialEq for dyn Outline {
 #[derive(Clone, Debug, PartialEq)]
 pub enum Obstacle {
     /// A rigid cylinder of radius R with its axis at x = `center` (the paper's, docs/design.md §1).
-    Cylinder { radius: f64, depth: f64, center: f64 },
+    Cylinder {
+        /// The radius R > 0.
+        radius: f64,
+        /// The indentation depth d.
+        depth: f64,
+        /// x of the axis.
+        center: f64,
+    },
     /// A flat rigid punch: a flat face of half-width `half_width` with rounded corners of
     /// radius `corner_radius`, vertical flanks beyond them.
     Punch {
+        /// Half-width of the flat face, > 0.
         half_width: f64,
+        /// Radius of the rounded corners, > 0.
         corner_radius: f64,
+        /// The indentation depth d.
         depth: f64,
+        /// x of the face's centre.
         center: f64,
     },
     /// Several cylinders side by side, each lifted by `lift` above the lowest point: the
     /// obstacle's outline is the lowest of them at each x.
-    Bumps { bumps: Vec<Bump>, depth: f64 },
+    Bumps {
+        /// The cylinders.
+        bumps: Vec<Bump>,
+        /// The indentation depth d of the lowest point.
+        depth: f64,
+    },
     /// A polyline outline through (x, height) points, heights measured upwards; +∞ outside.
-    Polyline { points: Vec<(f64, f64)>, depth: f64 },
+    Polyline {
+        /// The outline's (x, height) points.
+        points: Vec<(f64, f64)>,
+        /// The indentation depth d of the lowest point.
+        depth: f64,
+    },
     /// An outline of the library user's own.
-    Custom { outline: Arc<dyn Outline>, depth: f64 },
+    Custom {
+        /// The outline η(x).
+        outline: Arc<dyn Outline>,
+        /// The indentation depth d.
+        depth: f64,
+    },
 }
 
 /// One cylinder of [`Obstacle::Bumps`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Bump {
+    /// x of the cylinder's axis.
     pub center: f64,
+    /// The cylinder's radius R > 0.
     pub radius: f64,
+    /// Height of its lowest point; only the differences between bumps count.
     pub lift: f64,
 }
 

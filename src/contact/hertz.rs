@@ -11,8 +11,11 @@ use crate::material::{Material, Plane};
 /// The Hertz contact half-width, peak pressure and centre for a given load.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Hertz {
+    /// The contact half-width a = √(4PR/(πE*)).
     pub a: f64,
+    /// The peak pressure p₀ = 2P/(πa), at the centre.
     pub p0: f64,
+    /// The centre c of the contact: x of the obstacle's lowest point.
     pub center: f64,
 }
 

@@ -26,6 +26,7 @@ pub const THETAS: [i8; 3] = [1, 0, -1];
 pub const GAMMA0_RANGE: (f64, f64) = (1e-8, 1e8);
 /// Nitsche's default parameters: symmetric, γ₀ chosen from the mesh ([`Gamma0::Auto`]).
 pub const DEFAULT_THETA: i8 = 1;
+/// Nitsche's default γ₀: [`Gamma0::Auto`].
 pub const DEFAULT_GAMMA0: Gamma0 = Gamma0::Auto;
 /// `auto`'s γ₀ = 10·γ₀*: ten times the threshold of the symmetric variant (θ = 1), forty times
 /// the incomplete one's (θ = 0), past the 2·γ₀* from which γ₀ no longer changes the errors
@@ -36,7 +37,9 @@ pub const AUTO_GAMMA0_FACTOR: f64 = 10.0;
 /// and rule of the solve by `nitsche::stability_threshold`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Gamma0 {
+    /// γ₀ = [`AUTO_GAMMA0_FACTOR`]·γ₀*, chosen from the mesh and rule of the solve.
     Auto,
+    /// The given γ₀ > 0.
     Given(f64),
 }
 
@@ -76,9 +79,17 @@ pub enum Method {
     Exact,
     /// The augmented Lagrangian at the scenario's ε > 0, stopped when the multiplier's
     /// relative change falls below `tolerance` ∈ (0, 1).
-    Alm { tolerance: f64 },
+    Alm {
+        /// The relative tolerance on the multiplier's change, in (0, 1).
+        tolerance: f64,
+    },
     /// Nitsche's method with θ ∈ {1, 0, −1} and γ = γ₀·E/h.
-    Nitsche { theta: i8, gamma0: Gamma0 },
+    Nitsche {
+        /// θ: 1 symmetric, 0 incomplete, −1 skew-symmetric.
+        theta: i8,
+        /// γ₀, a number or `auto`.
+        gamma0: Gamma0,
+    },
 }
 
 /// The names [`Method::parse`] accepts, in the order the lab cycles them.
@@ -290,11 +301,16 @@ impl Method {
 /// ([`MethodFields::used`]); null for `auto` before a solve chose it.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct MethodFields {
+    /// The method's name: `penalty`, `exact`, `alm` or `nitsche` ([`Method::name`]).
     pub method: &'static str,
+    /// Nitsche's θ ∈ {1, 0, −1}; None for the other methods.
     pub theta: Option<i8>,
+    /// Nitsche's γ₀ as given or as a solve used it; None for the other methods and for `auto`
+    /// before a solve.
     pub gamma0: Option<f64>,
     /// Whether γ₀ was chosen from the mesh ([`Gamma0::Auto`]).
     pub gamma0_auto: Option<bool>,
+    /// The ALM's relative tolerance on the multiplier's change; None for the other methods.
     pub alm_tol: Option<f64>,
 }
 
@@ -388,22 +404,32 @@ fn check_theta(value: f64) -> Result<i8, MethodError> {
 /// A method or one of its parameters that is not allowed; the message names what is.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum MethodError {
+    /// Not one of the methods ([`NAMES`]).
     #[error("{0}")]
     Name(String),
+    /// A θ not in [`THETAS`].
     #[error("{0}")]
     Theta(String),
+    /// A given γ₀ outside [`GAMMA0_RANGE`].
     #[error("{0}")]
     Gamma0(crate::check::CheckError),
+    /// A γ₀ that is neither `auto` nor a number.
     #[error("{0}")]
     Gamma0Text(String),
+    /// An ALM tolerance outside (0, 1).
     #[error("{0}")]
     Tolerance(crate::check::CheckError),
+    /// A parameter given to a method that does not take it.
     #[error("`{key}` is a parameter of {takes}, not of {method}")]
     NotTaken {
+        /// The parameter's key, e.g. `alm_tol`.
         key: &'static str,
+        /// The method it was given to.
         method: &'static str,
+        /// The method that takes it.
         takes: &'static str,
     },
+    /// `penalty` or `alm` (the named one) at ε = 0.
     #[error("{0} needs a penalty parameter ε > 0; ε = 0 is the exact method (`exact`)")]
     NeedsEpsilon(&'static str),
 }

@@ -6,12 +6,14 @@ use super::{Method, Obstacle, Rule};
 /// What a contact solve depends on beyond the mesh.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ContactParams {
+    /// The contact rule of the penalty term (10) on Γ_C.
     pub rule: Rule,
     /// How the constraint is imposed ([`Method`]).
     pub method: Method,
     /// The penalty parameter ε > 0 of (8) for `penalty` and `alm`; 0 for `exact` (the
     /// limit; [`Method::resolve`]).
     pub epsilon: f64,
+    /// The rigid obstacle, whose outline gives the gap g.
     pub obstacle: Obstacle,
 }
 

@@ -32,11 +32,14 @@ pub struct Penalty<'a> {
     pub free_violation: &'a [f64],
     /// Rule weights w_q.
     pub weight: &'a [f64],
+    /// The penalty parameter ε > 0 of (8).
     pub epsilon: f64,
 }
 
+/// The stopping rules of the active-set Newton iteration.
 #[derive(Clone, Copy, Debug)]
 pub struct NewtonOptions {
+    /// The most Newton iterations before giving up (not converged).
     pub max_iterations: usize,
     /// Relative residual ‖Bᵀ(Wp − y)‖ / ‖BᵀWp‖ below which an unchanged active set is accepted
     /// (plus the floor that round-off in u_n − g sets at small ε).
@@ -55,22 +58,30 @@ impl Default for NewtonOptions {
 /// The state after `iteration` Newton steps, reported to the caller as it goes.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Iteration {
+    /// Newton steps taken so far.
     pub iteration: usize,
+    /// The relative residual of [`NewtonOptions::rtol`] after them.
     pub residual: f64,
+    /// The number of active points (u_n − g > 0).
     pub active: usize,
     /// The line search step that led here (1 for a full Newton step).
     pub step: f64,
 }
 
+/// The result of an active-set Newton solve on the rule's points.
 #[derive(Clone, Debug)]
 pub struct NewtonResult {
     /// Contact forces y = W p at the rule's points (the warm start of a later solve).
     pub forces: Vec<f64>,
     /// u_n − g at the contact points.
     pub violation: Vec<f64>,
+    /// Newton iterations taken.
     pub iterations: usize,
+    /// Whether the convergence test of [`NewtonOptions`] was met.
     pub converged: bool,
+    /// The final relative residual ([`NewtonOptions::rtol`]).
     pub residual: f64,
+    /// Every iteration, in order.
     pub history: Vec<Iteration>,
     /// Why the solve did not converge, when it did not.
     pub diagnosis: Option<String>,

@@ -26,8 +26,10 @@ pub enum Rule {
 }
 
 impl Rule {
+    /// Every rule, in the order of M1–M4.
     pub const ALL: [Rule; 4] = [Rule::Gauss1, Rule::Gauss2, Rule::Trapezoid, Rule::Simpson];
 
+    /// The rule's name in scenario files, the command line and the outputs, e.g. `gauss1`.
     pub fn name(self) -> &'static str {
         match self {
             Rule::Gauss1 => "gauss1",
@@ -63,26 +65,31 @@ impl Rule {
 /// One distinct point of the rule on Γ_C.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ContactPoint {
+    /// Its coordinate on Γ_C.
     pub x: f64,
     /// Sum of the weights w_i^e of (10) of every edge that has this point.
     pub weight: f64,
     /// The (first) edge it lies on and its parameter s ∈ [0, 1] there.
     pub edge: usize,
+    /// Its parameter s ∈ [0, 1] on `edge`.
     pub s: f64,
     /// Γ_C nodes of that edge (indices into the Γ_C node list) and the trace's shape values:
     /// u_n(x) = Σ trace[k] · u_n(nodes[k]).
     pub nodes: Vec<usize>,
+    /// The trace's shape values at the point, one per entry of `nodes`.
     pub trace: Vec<f64>,
 }
 
 /// The rule laid on Γ_C.
 #[derive(Clone, Debug)]
 pub struct ContactPoints {
+    /// The rule laid.
     pub rule: Rule,
     /// Vertex coordinates x₁ < … < x_{E+1} of Γ_C.
     pub vertex_x: Vec<f64>,
     /// Coordinates of every Γ_C node (vertices, and mid-edge nodes for Q2).
     pub node_x: Vec<f64>,
+    /// The distinct points of the rule (a point shared by two edges once).
     pub points: Vec<ContactPoint>,
     /// For each edge, the indices of its points in ascending s.
     pub edge_points: Vec<Vec<usize>>,
@@ -131,14 +138,17 @@ impl ContactPoints {
         }
     }
 
+    /// The number of distinct points.
     pub fn len(&self) -> usize {
         self.points.len()
     }
 
+    /// Whether there are no points.
     pub fn is_empty(&self) -> bool {
         self.points.is_empty()
     }
 
+    /// The number of edges E of Γ_C.
     pub fn n_edges(&self) -> usize {
         self.vertex_x.len() - 1
     }

@@ -120,9 +120,13 @@ fn cell_dofs(mesh: &Mesh, ci: usize, cj: usize) -> Vec<usize> {
 /// A symmetric sparse matrix stored as its lower triangle in compressed columns.
 #[derive(Clone, Debug)]
 pub struct SymCsc {
+    /// The order of the matrix (free dofs).
     pub n: usize,
+    /// Start of each column in `row_idx` and `values`, n + 1 entries.
     pub col_ptr: Vec<usize>,
+    /// Row of each stored entry, ascending within a column, row ≥ column.
     pub row_idx: Vec<usize>,
+    /// The stored entries, as `row_idx`.
     pub values: Vec<f64>,
 }
 
@@ -174,10 +178,12 @@ impl SymCsc {
         (k < hi && self.row_idx[k] == row).then_some(k)
     }
 
+    /// The number of stored entries (the lower triangle).
     pub fn nnz(&self) -> usize {
         self.row_idx.len()
     }
 
+    /// A faer view of the lower triangle's pattern.
     pub fn symbolic(&self) -> SymbolicSparseColMatRef<'_, usize> {
         SymbolicSparseColMatRef::new_checked(self.n, self.n, &self.col_ptr, None, &self.row_idx)
     }

@@ -11,10 +11,15 @@ use crate::mesh::{Diagonal, Element, Mesh};
 /// and gradient of every cell shape function there.
 #[derive(Clone, Debug)]
 pub struct QuadPoint {
+    /// Its x in physical coordinates.
     pub x: f64,
+    /// Its y in physical coordinates.
     pub y: f64,
+    /// The quadrature weight times the Jacobian.
     pub weight: f64,
+    /// The value of each cell shape function.
     pub n: Vec<f64>,
+    /// The gradient (∂/∂x, ∂/∂y) of each cell shape function.
     pub grad: Vec<[f64; 2]>,
 }
 

@@ -6,6 +6,7 @@ use crate::mesh::Mesh;
 /// Marks a constrained dof in [`DofMap::free`].
 const CONSTRAINED: usize = usize::MAX;
 
+/// The numbering of the free dofs among the 2 · nodes global ones.
 #[derive(Clone, Debug)]
 pub struct DofMap {
     /// For each global dof 2·node + component: its index among the free dofs, or CONSTRAINED.
@@ -49,6 +50,7 @@ impl DofMap {
         2 * nnx * above - if symmetric_left { above } else { 0 }
     }
 
+    /// The number of free dofs (the dimension of V_h).
     pub fn n_free(&self) -> usize {
         self.n_free
     }

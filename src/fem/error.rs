@@ -8,6 +8,7 @@ pub fn gib(bytes: u64) -> String {
     format!("{:.1} GiB", bytes as f64 / (1u64 << 30) as f64)
 }
 
+/// A failure of the finite element layer.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum FemError {
     /// A zero or negative pivot: the form has a kernel on the free dofs.
@@ -19,6 +20,7 @@ pub enum FemError {
     /// The memory estimate exceeds the memory this process may use: refused before allocating.
     #[error("{unknowns} unknowns need about {} and {} is available", gib(*need), gib(*available))]
     TooLarge {
+        /// The number of unknowns (free dofs).
         unknowns: usize,
         /// Estimated peak, bytes.
         need: u64,

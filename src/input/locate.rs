@@ -12,11 +12,13 @@ use crate::text::{sanitize, sanitize_lines};
 /// What went wrong in a scenario, and where.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ScenarioError {
+    /// The file's name as given (or [`crate::scenario::DEFAULT_SOURCE`]).
     pub file: String,
     /// 1-based (line, column), when known.
     pub location: Option<(usize, usize)>,
     /// Dotted key, e.g. `material.poisson`, when known.
     pub key: Option<String>,
+    /// What is wrong, and what is allowed.
     pub message: String,
     /// The offending source line, for display.
     pub source_line: Option<String>,
@@ -46,7 +48,9 @@ impl fmt::Display for ScenarioError {
 
 /// Turns byte spans of a TOML text into located errors (used for scenarios and tours).
 pub struct Locator<'a> {
+    /// The file's name, for the errors.
     pub file: &'a str,
+    /// The file's text, into which the spans point.
     pub text: &'a str,
 }
 
