@@ -32,6 +32,7 @@ macro_rules! exit_codes {
 }
 const EXIT_CODES: &str = exit_codes!();
 
+/// riplab's command line: the terminal lab on a scenario, or a command.
 #[derive(Parser, Debug)]
 #[command(name = "riplab", version, about = "A terminal laboratory for reduced-integration penalty contact (Kikuchi 1981)", after_help = EXIT_CODES, args_conflicts_with_subcommands = true)]
 pub struct Cli {
@@ -51,10 +52,12 @@ pub struct Cli {
     /// or more are factorised as two halves side by side (the results agree to round-off).
     #[arg(long, global = true, default_value_t = 1, value_parser = clap::value_parser!(u16).range(1..=256))]
     pub threads: u16,
+    /// The command; None opens the terminal lab.
     #[command(subcommand)]
     pub command: Option<Command>,
 }
 
+/// riplab's commands.
 #[derive(Subcommand, Debug)]
 pub enum Command {
     /// Solve the penalised contact problem and print the pressures.
@@ -73,7 +76,10 @@ pub enum Command {
     #[command(after_help = EXIT_CODES)]
     Tour(TourArgs),
     /// Print a shell completion script (e.g. `riplab completions bash > ~/.local/share/bash-completion/completions/riplab`).
-    Completions { shell: clap_complete::Shell },
+    Completions {
+        /// The shell to complete for.
+        shell: clap_complete::Shell,
+    },
     /// Print the man page (roff), e.g. `riplab man > riplab.1 && man ./riplab.1`.
     Man,
 }
@@ -87,6 +93,7 @@ and 1.7 GB, too slow for the lab; `riplab solve` goes to level 8).
     exit_codes!()
 );
 
+/// The arguments of `riplab tour`.
 #[derive(Args, Debug)]
 pub struct TourArgs {
     /// Scenario for the steps that name none; the paper's problem when omitted.
@@ -99,11 +106,14 @@ pub struct TourArgs {
     pub auto: Option<f64>,
 }
 
+/// The arguments of `riplab render`.
 #[derive(Args, Debug)]
 #[command(mut_arg("level", |a| a.help("Mesh level 0 to 6, the lab's levels (h halves with each level)")))]
 pub struct RenderArgs {
+    /// The scenario, level, element and rule.
     #[command(flatten)]
     pub select: Select,
+    /// The contact method and its parameters.
     #[command(flatten)]
     pub method: MethodArgs,
     /// Scene: explore, infsup, mesh, convergence (the study takes seconds) or stress.
@@ -199,11 +209,14 @@ fn method_at(method: Option<Method>, epsilon: f64, flag: &str) -> Result<(Method
     Method::resolve(method, epsilon).map_err(|e| usage(flag, e.to_string()))
 }
 
+/// The arguments of `riplab solve`.
 #[derive(Args, Debug)]
 #[command(group(clap::ArgGroup::new("output").args(["plot", "vtu"]).multiple(true)))]
 pub struct SolveArgs {
+    /// The scenario, level, element and rule.
     #[command(flatten)]
     pub select: Select,
+    /// The contact method and its parameters.
     #[command(flatten)]
     pub method: MethodArgs,
     /// Penalty parameter ε > 0 (0: the exact constraint); several, comma-separated, sweep on one mesh.
@@ -216,6 +229,7 @@ pub struct SolveArgs {
     /// Indentation depth; several, comma-separated, sweep on one mesh.
     #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
     pub depth: Vec<f64>,
+    /// Output format (docs/design.md §7).
     #[arg(long, short, value_enum, default_value_t = Format::Table)]
     pub format: Format,
     /// Also write the pressure chart (p and p̄ along Γ_C) as an SVG file.
@@ -230,8 +244,10 @@ pub struct SolveArgs {
     pub force: bool,
 }
 
+/// The arguments of `riplab infsup`.
 #[derive(Args, Debug)]
 pub struct InfsupArgs {
+    /// The scenario, level, element and rule.
     #[command(flatten)]
     pub select: Select,
     /// Levels, inclusive: `0..6`, `2..=4` or a single level [default: 0..4, or --level's].
@@ -240,10 +256,12 @@ pub struct InfsupArgs {
     /// Every element × rule pair (the paper's M1–M4 first).
     #[arg(long, conflicts_with_all = ["element", "rule", "scheme"])]
     pub all: bool,
+    /// Output format (docs/design.md §7).
     #[arg(long, short, value_enum, default_value_t = Format::Table)]
     pub format: Format,
 }
 
+/// The arguments of `riplab study`.
 #[derive(Args, Debug)]
 pub struct StudyArgs {
     /// Scenario file (TOML); the paper's problem when omitted.
@@ -254,6 +272,7 @@ pub struct StudyArgs {
     /// Schemes: presets M1–M4 or pairs like q2+gauss1, comma-separated.
     #[arg(long, value_delimiter = ',', default_value = "M1,M2,M3,M4")]
     pub schemes: Vec<String>,
+    /// The contact method and its parameters.
     #[command(flatten)]
     pub method: MethodArgs,
     /// Penalty parameter of the studied solves (the scenario's when omitted).
@@ -281,6 +300,7 @@ pub struct StudyArgs {
     /// (by default it is kept in $XDG_CACHE_HOME/riplab, ~/.cache/riplab).
     #[arg(long)]
     pub no_cache: bool,
+    /// Output format (docs/design.md §7).
     #[arg(long, short, value_enum, default_value_t = Format::Table)]
     pub format: Format,
 }
@@ -309,21 +329,27 @@ pub fn parse_levels(text: &str) -> Result<Vec<u32>, String> {
 /// A failure of a command, with its exit code.
 #[derive(Debug, thiserror::Error)]
 pub enum CliError {
+    /// A scenario file that cannot be read or is invalid (exit 2).
     #[error("{0}")]
     Scenario(#[from] ScenarioError),
+    /// A command-line value out of range or inconsistent (exit 2).
     #[error("{0}")]
     Usage(String),
+    /// The numerics failed (exit code per [`SolveError::exit_code`]).
     #[error("{0}")]
     Solve(#[from] SolveError),
     /// The command ran but some of what it was asked for has no result (rows of a study or a
     /// sweep, a terminal that failed).
     #[error("{0}")]
     Failed(String),
+    /// The output could not be written (exit 1).
     #[error("cannot write the output: {0}")]
     Output(std::io::Error),
 }
 
 impl CliError {
+    /// The process's exit code (docs/design.md §8): 2 for bad input, 1 for a failure; a solve
+    /// error's own ([`SolveError::exit_code`]).
     pub fn exit_code(&self) -> u8 {
         match self {
             CliError::Scenario(_) | CliError::Usage(_) => 2,

@@ -20,8 +20,11 @@ use crate::warning::Warning;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Format {
+    /// The human table.
     Table,
+    /// CSV: a header line, then a row per record.
     Csv,
+    /// JSON (docs/design.md §7), pretty-printed.
     Json,
 }
 
@@ -100,35 +103,54 @@ fn csv_cell(json: &serde_json::Value, cell: Cell) -> String {
     }
 }
 
+/// The `nodes` object of docs/design.md §7: Γ_C's vertices, ascending x.
 #[derive(Serialize)]
 pub struct Nodes {
+    /// The vertices' x.
     pub x: Vec<f64>,
+    /// u_n = u_y at each vertex.
     pub uy: Vec<f64>,
+    /// The smoothed pressure p̄ (16)–(17) at each vertex.
     pub pbar: Vec<f64>,
 }
 
+/// The `points` object of docs/design.md §7: the rule's points, ascending x, each distinct
+/// point once.
 #[derive(Serialize)]
 pub struct Points {
+    /// The points' x.
     pub x: Vec<f64>,
+    /// The raw pressure p (12) at each point, compression positive.
     pub p: Vec<f64>,
 }
 
 /// The JSON object of docs/design.md §7 (fields may be added, never change meaning).
 #[derive(Serialize)]
 pub struct SolveReport {
+    /// The scenario's name.
     pub scenario: String,
+    /// The element: `q1`, `q2` or `p1`.
     pub element: &'static str,
+    /// The contact rule: `gauss1`, `gauss2`, `trapezoid` or `simpson`.
     pub rule: &'static str,
+    /// The paper's scheme `M1`–`M4`; None for another element × rule pair.
     pub scheme: Option<&'static str>,
+    /// The mesh level (each level bisects every level-0 cell once more).
     pub level: u32,
+    /// The cell size h: the largest cell side.
     pub h: f64,
+    /// The penalty parameter ε (0 for `exact`).
     pub epsilon: f64,
     /// The contact method and its parameters (`method`, `theta`, `gamma0`, `alm_tol`).
     #[serde(flatten)]
     pub method: MethodFields,
+    /// The obstacle's depth d.
     pub depth: f64,
+    /// Whether the body is a half model (x ≥ 0; its load is half the full body's).
     pub half_model: bool,
+    /// The number of elements.
     pub n_elements: usize,
+    /// The number of free dofs.
     pub n_dofs: usize,
     /// Newton iterations (for the ALM, its inner iterations summed over the updates).
     pub newton_iterations: usize,
@@ -136,15 +158,21 @@ pub struct SolveReport {
     pub outer_iterations: Option<usize>,
     /// `ok`, or `not_converged` (the numbers are then the last iterate's).
     pub status: Status,
+    /// Whether Newton converged.
     pub converged: bool,
+    /// Newton's final relative residual.
     pub residual: f64,
     /// Why Newton did not converge, when it did not.
     pub diagnosis: Option<String>,
+    /// The load P = I(p, 1) of the modelled body (half the full body's for a half model).
     pub load: f64,
+    /// Γ_C's vertices: x, u_y, p̄.
     pub nodes: Nodes,
+    /// The rule's points: x, p.
     pub points: Points,
     /// For a cylinder: the Hertz profile of the computed load and p̄'s distance from it.
     pub hertz: Option<HertzReport>,
+    /// Wall time of the solve's parts, in milliseconds.
     pub timing_ms: Timing,
     /// What is known to be poor about this answer ([`crate::warning`]).
     pub warnings: Vec<Warning>,
@@ -153,19 +181,29 @@ pub struct SolveReport {
 /// A row of a sweep that has no result: which parameters, and why (`status`, `reason`).
 #[derive(Serialize)]
 pub struct SweepFailure {
+    /// The scenario's name.
     pub scenario: String,
+    /// The element: `q1`, `q2` or `p1`.
     pub element: &'static str,
+    /// The contact rule.
     pub rule: &'static str,
+    /// The mesh level.
     pub level: u32,
+    /// The penalty parameter ε of the row.
     pub epsilon: f64,
+    /// The contact method and its parameters (`method`, `theta`, `gamma0`, `alm_tol`).
     #[serde(flatten)]
     pub method: MethodFields,
+    /// The obstacle's depth d of the row.
     pub depth: f64,
+    /// `kernel`, `not_converged` or `failed`.
     pub status: Status,
+    /// Why the row has no result.
     pub reason: String,
 }
 
 impl SweepFailure {
+    /// The row of `params` on `disc` whose solve returned `error`.
     pub fn new(
         scenario: &Scenario,
         disc: &Discretization,
@@ -186,15 +224,20 @@ impl SweepFailure {
     }
 }
 
+/// The `hertz` object of docs/design.md §7: the plane Hertz solution for the computed load of
+/// the full body (docs/design.md §6).
 #[derive(Serialize)]
 pub struct HertzReport {
+    /// The contact half-width a.
     pub a: f64,
+    /// The peak pressure p₀.
     pub p0: f64,
     /// ‖p̄ − p_Hertz‖₀ / ‖p_Hertz‖₀ on Γ_C.
     pub relative_error: f64,
 }
 
 impl SolveReport {
+    /// The report of `sol` on `disc`, solved on `scenario` at `level`.
     pub fn new(scenario: &Scenario, level: u32, disc: &Discretization, sol: &Solution) -> Self {
         let element = disc.mesh.element;
         SolveReport {
@@ -358,7 +401,9 @@ impl Report for SolveReport {
 #[derive(Serialize)]
 #[serde(untagged)]
 pub enum SweepRow {
+    /// A solved row: docs/design.md §7's object.
     Solved(Box<SolveReport>),
+    /// A row with no result: its parameters, `status` and `reason`.
     Failed(SweepFailure),
 }
 
@@ -367,6 +412,7 @@ pub enum SweepRow {
 #[derive(Serialize)]
 #[serde(transparent)]
 pub struct Sweep {
+    /// A row per ε or depth, in the order asked.
     pub rows: Vec<SweepRow>,
 }
 
@@ -448,6 +494,7 @@ impl Report for Sweep {
 #[derive(Serialize)]
 #[serde(transparent)]
 pub struct InfSupTable {
+    /// A row per element × rule pair and level, each pair's levels together.
     pub rows: Vec<InfSupRow>,
 }
 
@@ -528,7 +575,9 @@ impl Report for InfSupTable {
 /// `riplab study`: the reference, the rows and each scheme's least-squares fit; JSON
 /// `{ "scenario", "reference", "rows", "fits" }` (docs/design.md §7).
 pub struct StudyReport<'a> {
+    /// The scenario's name.
     pub scenario: &'a str,
+    /// The study: reference, rows and fits.
     pub study: &'a Study,
 }
 

@@ -52,10 +52,18 @@ pub const MAX_REFINEMENTS: u32 = 8;
 pub enum ReferenceLevelError {
     /// The requested reference is not finer than every studied level.
     #[error("{requested} must be finer than the finest studied level {finest}")]
-    NotFiner { requested: u32, finest: u32 },
+    NotFiner {
+        /// The reference level asked for.
+        requested: u32,
+        /// The finest studied level.
+        finest: u32,
+    },
     /// The finest studied level leaves no finer level for the reference.
     #[error("the reference needs a level finer than {finest}; allowed up to {}", MAX_LEVEL - 1)]
-    NoFinerLevel { finest: u32 },
+    NoFinerLevel {
+        /// The finest studied level.
+        finest: u32,
+    },
 }
 
 /// The uniform level of a study's reference (docs/design.md §6): `requested`, or one finer than
@@ -76,10 +84,13 @@ pub fn reference_level(levels: &[u32], requested: Option<u32>) -> Result<u32, Re
 /// Its lines are a superset of the uniform level's, so every studied mesh stays nested in it.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ReferenceMesh {
+    /// The uniform level it refines.
     pub level: u32,
+    /// How many edge refinements it has had (0: the uniform level).
     pub refinements: u32,
     /// Vertex lines x₀ < … and y₀ < … (Γ_C is y = ys.last()).
     pub xs: Vec<f64>,
+    /// The horizontal vertex lines y₀ < …, Γ_C the last.
     pub ys: Vec<f64>,
 }
 
@@ -197,8 +208,11 @@ fn bisect_marked(lines: &[f64], split: &[bool]) -> Vec<f64> {
 /// would miss it (docs/design.md §6).
 #[derive(Clone, Debug, Serialize, PartialEq)]
 pub struct Estimate {
+    /// Relative difference of p in L²(Γ_C).
     pub p: f64,
+    /// Relative difference of u in H¹ (7) (after edge refinements the uniform level's).
     pub u: f64,
+    /// Relative difference of the load P.
     pub load: f64,
     /// What p and the load were compared with: `level L` (uniform) or `refinement k`.
     pub against: String,
@@ -208,7 +222,9 @@ pub struct Estimate {
 /// error any row reports, for p (raw or smoothed) and for u.
 #[derive(Clone, Copy, Debug, Serialize, PartialEq)]
 pub struct Target {
+    /// The largest estimated error of p allowed (relative, L²(Γ_C)).
     pub p: f64,
+    /// The largest estimated error of u allowed (relative, H¹ (7)).
     pub u: f64,
 }
 
@@ -242,13 +258,19 @@ impl Target {
 
 /// The reference solution, with its values where errors are integrated.
 pub struct Reference {
+    /// Its uniform level.
     pub level: u32,
+    /// Its element: Q2 ([`REFERENCE_SCHEME`]).
     pub element: Element,
+    /// Its rule: Simpson ([`REFERENCE_SCHEME`]).
     pub rule: Rule,
     /// Its grid (the uniform level, and its edge refinements).
     pub grid: ReferenceMesh,
+    /// Its number of free dofs.
     pub n_dofs: usize,
+    /// Its load P of the modelled body.
     pub load: f64,
+    /// The time its solve took, ms (as solved, also when read from the cache).
     pub ms: f64,
     /// Its estimated error (None until compared with a coarser reference).
     pub estimate: Option<Estimate>,
@@ -274,9 +296,13 @@ fn solve_fresh(disc: &Discretization, params: &ContactParams) -> Result<Solution
 /// exact-constraint pressure at Simpson's points (what [`crate::cache`] stores).
 #[derive(Clone, Debug, PartialEq)]
 pub struct ReferenceFields {
+    /// The displacement on every dof of the Q2 mesh, node-major (u_x = [2n], u_y = [2n + 1]).
     pub u: Vec<f64>,
+    /// The exact-constraint pressure at Simpson's points on Γ_C, ascending x.
     pub p: Vec<f64>,
+    /// The load P of the modelled body.
     pub load: f64,
+    /// The number of free dofs.
     pub n_dofs: usize,
     /// The time the solve took, ms.
     pub ms: f64,
@@ -668,26 +694,38 @@ impl Serialize for Status {
 /// One line of the study.
 #[derive(Clone, Debug, Serialize)]
 pub struct StudyRow {
+    /// The scheme's label: M1–M4 or `element+rule`.
     pub scheme: String,
+    /// The element: `q1`, `q2` or `p1`.
     pub element: &'static str,
+    /// The contact rule.
     pub rule: &'static str,
+    /// The mesh level.
     pub level: u32,
+    /// The cell size h of the level: the largest cell side.
     pub h: f64,
+    /// The penalty parameter ε (0 for `exact`).
     pub epsilon: f64,
     /// The contact method and its parameters (`method`, `theta`, `gamma0`, `alm_tol`).
     #[serde(flatten)]
     pub method: MethodFields,
+    /// The number of free dofs.
     pub n_dofs: usize,
+    /// Whether the row has a certified result.
     pub status: Status,
     /// Why the row has no (certified) result, when it has none.
     pub reason: Option<String>,
+    /// Newton iterations (for the ALM, summed over the updates); None without a result.
     pub newton_iterations: Option<usize>,
     /// The ALM's multiplier updates (null for the other methods, or without a result).
     pub outer_iterations: Option<usize>,
+    /// Whether Newton converged (false without a result).
     pub converged: bool,
     /// A fresh solve: the mesh's work and Newton (what the pressures need), ms.
     pub solve_ms: Option<f64>,
+    /// The load P of the modelled body; None without a result.
     pub load: Option<f64>,
+    /// Relative errors against the reference; None without a result.
     pub errors: Option<Errors>,
     /// Observed rates against h (or, in an ε sweep, against ε) from the previous row.
     pub rates: Option<Errors>,
@@ -952,9 +990,13 @@ pub fn least_squares_slope(points: &[(f64, f64)]) -> Option<f64> {
 /// against log h (an ε sweep: log ε), beside the row-to-row [`StudyRow::rates`].
 #[derive(Clone, Debug, Serialize, PartialEq)]
 pub struct Fit {
+    /// The scheme's label: M1–M4 or `element+rule`.
     pub scheme: String,
+    /// The element: `q1`, `q2` or `p1`.
     pub element: &'static str,
+    /// The contact rule.
     pub rule: &'static str,
+    /// The contact method and its parameters (`method`, `theta`, `gamma0`, `alm_tol`).
     #[serde(flatten)]
     /// The method as asked ([`MethodFields::setting`]: `auto`'s γ₀ varies by level).
     pub method: MethodFields,
@@ -1013,15 +1055,31 @@ pub fn fits(rows: &[StudyRow], by_epsilon: bool) -> Vec<Fit> {
 /// What a study measures: a refinement over levels at one ε, or a sweep of ε at one level.
 #[derive(Clone, Copy, Debug)]
 pub enum Plan<'a> {
-    Levels { levels: &'a [u32], epsilon: f64 },
-    Sweep { level: u32, epsilons: &'a [f64] },
+    /// Every scheme at each of `levels`, at `epsilon` ([`convergence`]).
+    Levels {
+        /// The levels studied.
+        levels: &'a [u32],
+        /// The penalty parameter ε of every row.
+        epsilon: f64,
+    },
+    /// Every scheme at `level`, at each of `epsilons` ([`epsilon_sweep`]).
+    Sweep {
+        /// The level of every row.
+        level: u32,
+        /// The ε swept.
+        epsilons: &'a [f64],
+    },
 }
 
 /// A study's result: its reference (with its estimated error and refinements), its rows with
 /// their row-to-row rates, and the least-squares rate of every scheme.
 pub struct Study {
+    /// The reference, as refined, with its estimated error.
     pub reference: Reference,
+    /// The rows, grouped per scheme in the order asked, each group in the plan's order of
+    /// levels (or ε).
     pub rows: Vec<StudyRow>,
+    /// One least-squares fit per scheme (and method), in the rows' order.
     pub fits: Vec<Fit>,
 }
 

@@ -50,6 +50,7 @@ pub enum Scene {
 }
 
 impl Scene {
+    /// Every scene, in the order Tab cycles through them.
     pub const ALL: [Scene; 5] = [
         Scene::Explore,
         Scene::InfSup,
@@ -58,6 +59,7 @@ impl Scene {
         Scene::Stress,
     ];
 
+    /// The scene's name, as `riplab render --scene` takes it.
     pub fn name(self) -> &'static str {
         match self {
             Scene::Explore => "explore",
@@ -90,9 +92,11 @@ pub const MAX_STUDY_LEVEL: u32 = 4;
 /// An input to [`App::update`].
 #[derive(Clone, Debug)]
 pub enum Msg {
+    /// A key pressed.
     Key(KeyEvent),
     /// The terminal was resized (redraw).
     Resize,
+    /// A message from the worker.
     Worker(Response),
     /// The result of [`Command::Export`]: the file written, or what went wrong.
     Exported(Result<String, String>),
@@ -103,8 +107,11 @@ pub enum Msg {
 /// Work for the runtime.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Command {
+    /// Solve the contact problem of the settings.
     Solve(SolveRequest),
+    /// Estimate β_h and β̄_h (docs/design.md §5) for a level, element and rule.
     InfSup(InfSupRequest),
+    /// Run the convergence scene's work–precision study.
     Study(StudyRequest),
     /// Compute the stresses of a solution the stress scene shows (kept with it).
     Stresses(StressRequest),
@@ -120,24 +127,28 @@ pub enum Command {
 pub struct Effect {
     /// The screen changed.
     pub redraw: bool,
+    /// The work to start, in order.
     pub commands: Vec<Command>,
 }
 
 /// A one-off message for the status line.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Notice {
+    /// The message.
     pub text: String,
     /// Something failed (drawn as bad news).
     pub failure: bool,
 }
 
 impl Notice {
+    /// A message that is not bad news.
     pub fn info(text: impl Into<String>) -> Self {
         Notice {
             text: text.into(),
             failure: false,
         }
     }
+    /// A message that something failed.
     pub fn failure(text: impl Into<String>) -> Self {
         Notice {
             text: text.into(),
@@ -149,12 +160,17 @@ impl Notice {
 /// The state of the lab.
 #[derive(Clone, Debug)]
 pub struct App {
+    /// The scenario the lab explores (its settings the starting values).
     pub scenario: Scenario,
     /// The settings the user chose (what the screen should show).
     pub settings: SolveKey,
+    /// The scene on screen.
     pub scene: Scene,
+    /// Draw −g, scaled, in the pressure chart (`g` toggles).
     pub show_gap: bool,
+    /// Draw Hertz's pressure for the computed load in the pressure chart (`h` toggles; a cylinder only).
     pub show_hertz: bool,
+    /// The help overlay is open (`?`).
     pub show_help: bool,
     /// Zoom the pressure chart and the contact-zone view to the contact zone.
     pub zoom: bool,
@@ -175,6 +191,7 @@ pub struct App {
     pending_solve: Option<u64>,
     /// The settings whose solve failed (not retried until they change).
     failed: Option<SolveKey>,
+    /// Where the solve in flight is; None when none runs.
     pub progress: Option<Progress>,
     /// A failure to show in a banner.
     pub error: Option<String>,

@@ -20,13 +20,19 @@ pub enum ExportKind {
 /// What a key does in the lab.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum LabAction {
+    /// Quit the lab.
     Quit,
+    /// Open the help overlay.
     Help,
+    /// The next coarser mesh level.
     Coarser,
+    /// The next finer mesh level (at most [`super::app::MAX_APP_LEVEL`]).
     Finer,
     /// The paper's scheme M1–M4 (1–4).
     Scheme(u8),
+    /// The next contact rule.
     NextRule,
+    /// The next element (q1, q2, p1).
     NextElement,
     /// ε × 10.
     EpsilonUp,
@@ -40,14 +46,23 @@ pub enum LabAction {
     Shallower,
     /// Depth + [`super::app::DEPTH_STEP`].
     Deeper,
+    /// The next scene.
     NextScene,
+    /// The previous scene.
     PreviousScene,
+    /// Toggle −g on the pressure chart.
     Gap,
+    /// Toggle Hertz's pressure on the pressure chart.
     Hertz,
+    /// Zoom to the contact zone (p̄ > 0) and back.
     Zoom,
+    /// Toggle the inf-sup estimate at every level up to the current one.
     AllLevels,
+    /// The stress scene's next quantity (τ₁, von Mises, σ_yy).
     NextQuantity,
+    /// Write the displayed solution to a new file of this kind.
     Export(ExportKind),
+    /// Back to the scenario's settings.
     Reset,
     /// Ctrl-Z: give the terminal back until resumed.
     Suspend,
@@ -56,21 +71,32 @@ pub enum LabAction {
 /// What a key does in the tour (any other key is the lab's).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum TourAction {
+    /// The next step.
     Next,
+    /// The previous step.
     Previous,
+    /// The first step.
     First,
+    /// The last step.
     Last,
+    /// Scroll a long caption up a line.
     ScrollUp,
+    /// Scroll a long caption down a line.
     ScrollDown,
+    /// Quit the tour.
     Quit,
+    /// Open the help overlay.
     Help,
 }
 
 /// One row of a key table: the keys as the help writes them, what they do (one help line
 /// each; the README joins them), and the keys with their actions.
 pub struct Row<A: 'static> {
+    /// The keys as the help writes them (`Tab  Shift-Tab`).
     pub keys: &'static str,
+    /// What they do, one help line each.
     pub what: &'static [&'static str],
+    /// Each key with its action.
     pub bindings: &'static [(KeyCode, A)],
 }
 

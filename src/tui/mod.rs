@@ -52,6 +52,7 @@ pub enum MarkerChoice {
 }
 
 impl MarkerChoice {
+    /// The ratatui marker of this choice.
     pub fn marker(self) -> Marker {
         match self {
             MarkerChoice::Braille => Marker::Braille,
@@ -64,6 +65,7 @@ impl MarkerChoice {
 /// How the interactive app looks, and where it exports.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct TuiOptions {
+    /// The glyphs of charts and canvases (`--marker`).
     pub marker: MarkerChoice,
     /// Monochrome (the environment's NO_COLOR is honoured as well).
     pub no_color: bool,

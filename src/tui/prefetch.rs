@@ -17,9 +17,13 @@ use crate::solve::Discretization;
 
 /// A background build of the discretisation of `level` with `element`.
 pub struct Prefetch {
+    /// The level being built.
     pub level: u32,
+    /// The element being built.
     pub element: Element,
+    /// Its number of unknowns (for the time estimate).
     pub unknowns: usize,
+    /// When the build began.
     pub started: Instant,
     /// What the build is expected to take ([`super::eta`]).
     pub estimate_ms: f64,
@@ -79,6 +83,7 @@ impl Prefetch {
         }
     }
 
+    /// Whether this build is of `level` with `element`.
     pub fn is_for(&self, level: u32, element: Element) -> bool {
         (self.level, self.element) == (level, element)
     }

@@ -21,21 +21,28 @@ use super::shown::Shown;
 /// Everything a contact solve depends on (the scenario aside).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SolveKey {
+    /// The mesh level.
     pub level: u32,
+    /// The displacement element.
     pub element: Element,
+    /// The contact rule, whose points carry p.
     pub rule: Rule,
     /// The contact method (`m` cycles it).
     pub method: Method,
     /// The penalty parameter of `penalty` and `alm` (kept while another method is shown).
     pub epsilon: f64,
+    /// The obstacle's depth d.
     pub depth: f64,
 }
 
 /// Everything an inf-sup estimate depends on (the scenario aside).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct InfSupKey {
+    /// The mesh level.
     pub level: u32,
+    /// The displacement element.
     pub element: Element,
+    /// The contact rule, whose points span the pressure space Q_h.
     pub rule: Rule,
 }
 
@@ -54,7 +61,9 @@ pub enum Compare {
 /// 0..=`max_level`, at `epsilon`) against the Q2 reference at `max_level + 1`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct StudyKey {
+    /// The scenario's name.
     pub scenario: String,
+    /// The finest level studied (levels 0..=`max_level`).
     pub max_level: u32,
     /// What the scene compares (and so how it draws the rows).
     pub compare: Compare,
@@ -121,7 +130,9 @@ impl StudyKey {
 /// method, then level).
 #[derive(Clone, Debug)]
 pub struct Study {
+    /// What was studied.
     pub key: StudyKey,
+    /// The rows, in the key's order.
     pub rows: Vec<StudyRow>,
 }
 
@@ -129,20 +140,25 @@ pub struct Study {
 /// stopped, and its reply is dropped by the app if a newer study was asked for meanwhile).
 #[derive(Clone, Debug, PartialEq)]
 pub struct StudyRequest {
+    /// Orders the requests: a newer one supersedes this.
     pub generation: u64,
+    /// The study to run.
     pub key: StudyKey,
 }
 
 /// A solve to run; `generation` orders requests (a newer one cancels an older one).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SolveRequest {
+    /// Orders the requests: a newer one cancels this.
     pub generation: u64,
+    /// The solve to run.
     pub key: SolveKey,
 }
 
 /// The stresses of `solved` to compute (into its `stresses`, shared with the app).
 #[derive(Clone, Debug)]
 pub struct StressRequest {
+    /// The solve whose stresses to compute.
     pub solved: Arc<Solved>,
 }
 
@@ -156,7 +172,9 @@ impl PartialEq for StressRequest {
 /// An inf-sup estimate to run; dropped unstarted if a newer generation exists.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct InfSupRequest {
+    /// Orders the requests: this is dropped unstarted when a newer one exists.
     pub generation: u64,
+    /// The estimate to run.
     pub key: InfSupKey,
 }
 
@@ -166,21 +184,31 @@ pub enum Progress {
     /// Assembling and factorising K for a new mesh of `unknowns` unknowns at `level`, begun
     /// at `started` and expected to take `estimate_ms` (see [`super::eta`]).
     Assembling {
+        /// The level being built.
         level: u32,
+        /// Its number of unknowns.
         unknowns: usize,
+        /// When the build began.
         started: Instant,
+        /// What the build is expected to take, ms.
         estimate_ms: f64,
     },
     /// A study's stage: the reference (`level` None) or the schemes at `level`.
     Study {
+        /// The level of the schemes; None for the reference.
         level: Option<u32>,
+        /// When the stage began.
         started: Instant,
+        /// What the stage is expected to take, ms.
         estimate_ms: f64,
     },
     /// Newton iteration `iteration` reached relative residual `residual`.
     Newton {
+        /// The iteration's number.
         iteration: usize,
+        /// The relative residual it reached.
         residual: f64,
+        /// The size of the active set: the points in contact.
         active: usize,
     },
 }
@@ -188,41 +216,57 @@ pub enum Progress {
 /// A message from the worker.
 #[derive(Clone, Debug)]
 pub enum Response {
+    /// Where the solve asked for with `generation` is.
     Progress {
+        /// The request's generation.
         generation: u64,
+        /// Where it is.
         progress: Progress,
     },
+    /// The solve asked for with `generation` finished: its result, or why it has none.
     Solved {
+        /// The request's generation.
         generation: u64,
+        /// The finished solve, or why it failed.
         result: Result<Arc<Solved>, String>,
     },
     /// A stage of the study asked for with `generation` began.
     StudyProgress {
+        /// The request's generation.
         generation: u64,
+        /// The stage ([`Progress::Study`]).
         progress: Progress,
     },
     /// The solve of `generation` was superseded and stopped.
     Cancelled {
+        /// The request's generation.
         generation: u64,
     },
     /// `result` is None when the request was dropped as stale before it started.
     InfSup {
+        /// The estimate's key.
         key: InfSupKey,
+        /// The estimate, or why it failed; None when dropped unstarted.
         result: Option<Result<InfSup, String>>,
     },
     /// The displacement of the solution with `key` is computed.
     Displaced {
+        /// The solve's key.
         key: SolveKey,
     },
     /// The stresses of the solution with `key` are computed (or failed; see
     /// [`Solved::stresses`]).
     Stresses {
+        /// The solve's key.
         key: SolveKey,
     },
     /// `result` is None when the request was dropped as stale before it started.
     Study {
+        /// The request's generation.
         generation: u64,
+        /// The study's key.
         key: StudyKey,
+        /// The study, or why it failed; None when dropped unstarted.
         result: Option<Result<Arc<Study>, String>>,
     },
 }
@@ -230,8 +274,11 @@ pub enum Response {
 /// A finished solve with the discretisation it was computed on.
 #[derive(Clone)]
 pub struct Solved {
+    /// The settings it was solved with.
     pub key: SolveKey,
+    /// The discretisation of its mesh (shared with the worker's cache).
     pub disc: Arc<Discretization>,
+    /// The solution of the contact problem, with p and p̄.
     pub solution: Solution,
     /// Displacement on every dof, node-major (u_x = [2n], u_y = [2n + 1]): one solve with
     /// the whole factor, computed by the worker just after the solution is shown

@@ -49,6 +49,7 @@ pub struct Engine {
 }
 
 impl Engine {
+    /// An engine for `scenario` with an empty cache.
     pub fn new(scenario: Scenario) -> Self {
         Engine {
             scenario,

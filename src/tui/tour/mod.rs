@@ -47,9 +47,11 @@ pub const OVERLAYS: [&str; 3] = ["gap", "hertz", "all-levels"];
 /// A validated tour.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Tour {
+    /// The tour's title (one line of at most 200 characters).
     pub title: String,
     /// Where it was read from (a path, or [`PAPER_SOURCE`]).
     pub source: String,
+    /// The steps, in order.
     pub steps: Vec<Step>,
     /// The scenario of the steps that do not name their own.
     pub scenario: Scenario,
@@ -58,23 +60,33 @@ pub struct Tour {
 /// One screen of a tour.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Step {
+    /// The step's title (one line of at most [`MAX_TITLE_WIDTH`] characters).
     pub title: String,
     /// A few lines, shown as written.
     pub caption: String,
     /// The step's own scenario (loaded from its path), if it names one.
     pub scenario: Option<Scenario>,
+    /// The displacement element; None keeps the scenario's.
     pub element: Option<Element>,
+    /// The contact rule; None keeps the scenario's.
     pub rule: Option<Rule>,
+    /// The mesh level (clamped to [`MAX_APP_LEVEL`]); None keeps the scenario's.
     pub level: Option<u32>,
+    /// The penalty parameter ε (0: the `exact` method); None keeps the scenario's.
     pub epsilon: Option<f64>,
     /// The contact method ([`Method::parse`], default parameters); ε = 0 alone is `exact`.
     pub method: Option<Method>,
+    /// The obstacle's depth d (clamped to the lab's range); None keeps the scenario's.
     pub depth: Option<f64>,
+    /// The scene shown; None: [`Scene::Explore`].
     pub scene: Option<Scene>,
     /// What the convergence scene compares (`w` in the lab; default: the schemes).
     pub compare: Compare,
+    /// Draw −g in the pressure chart (overlay `gap`).
     pub gap: bool,
+    /// Draw Hertz's pressure in the pressure chart (overlay `hertz`).
     pub hertz: bool,
+    /// Estimate inf-sup at every level up to the step's (overlay `all-levels`).
     pub all_levels: bool,
 }
 

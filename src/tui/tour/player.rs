@@ -46,12 +46,14 @@ pub struct TourEffect {
 /// The state of a running tour.
 #[derive(Clone, Debug)]
 pub struct TourApp {
+    /// The tour being walked through.
     pub tour: Tour,
     index: usize,
     /// The lab at the current step.
     pub app: App,
     /// Advance by itself after this long on a step (once its numbers are on screen).
     pub auto: Option<Duration>,
+    /// The help overlay is open (`?`).
     pub show_help: bool,
     /// Show solve times (off for deterministic frames).
     pub show_timing: bool,

@@ -8,6 +8,8 @@ use ratatui::widgets::{Block, Clear, Paragraph};
 use super::super::keys;
 use super::super::theme::Theme;
 
+/// The lab's help overlay ([`keys::lab_help`]: its keys, the Ctrl keys, a note on units),
+/// centred over `area`.
 pub fn render(frame: &mut Frame, area: Rect, theme: Theme) {
     key_popup(frame, area, theme, " keys ", &keys::lab_help(), (62, 16));
 }

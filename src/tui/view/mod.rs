@@ -29,7 +29,9 @@ pub const MIN_SIZE: (u16, u16) = (80, 24);
 /// How to draw: colours and the marker of charts and canvases.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Look {
+    /// The colours (monochrome or not).
     pub theme: Theme,
+    /// The glyphs of charts and canvases.
     pub marker: Marker,
 }
 

@@ -21,6 +21,7 @@ use super::fmt::{sig, title_fit};
 /// How an axis maps values.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Scale {
+    /// The data are the values.
     Linear,
     /// The data are log10 of the values; labels show the values.
     Log10,
@@ -29,14 +30,18 @@ pub enum Scale {
 /// One axis: its title (with units), bounds (in data units) and scale.
 #[derive(Clone, Debug)]
 pub struct Axis {
+    /// The title, with units.
     pub title: String,
+    /// Lower and upper bound, in data units (log10 of the values on a [`Scale::Log10`] axis).
     pub bounds: [f64; 2],
+    /// How the axis maps values.
     pub scale: Scale,
 }
 
 /// How a series joins its points.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Stroke {
+    /// A solid line between the points.
     Solid,
     /// The line in every other cell along its path (the chart's marker).
     Dotted,
@@ -47,21 +52,31 @@ pub enum Stroke {
 /// One series.
 #[derive(Clone, Debug)]
 pub struct Series<'a> {
+    /// The name in the legend.
     pub name: String,
+    /// The colour of its line and glyphs.
     pub color: Color,
+    /// How it joins its points.
     pub stroke: Stroke,
     /// A character drawn at every point, over the lines.
     pub glyph: Option<char>,
+    /// The points (x, y), in data units.
     pub data: &'a [(f64, f64)],
 }
 
 /// A chart: a bordered block titled `title`, the legend row, the graph with its axes.
 pub struct Plot<'a> {
+    /// The block's title.
     pub title: String,
+    /// The horizontal axis.
     pub x: Axis,
+    /// The vertical axis.
     pub y: Axis,
+    /// The series, in the legend's order.
     pub series: Vec<Series<'a>>,
+    /// The glyphs of the canvas.
     pub marker: Marker,
+    /// The colours (monochrome or not).
     pub theme: Theme,
 }
 
