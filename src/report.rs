@@ -608,7 +608,7 @@ impl Serialize for StudyReport<'_> {
     }
 }
 
-/// The study's CSV columns. A line is a `row` (a [`StudyRow`]'s JSON), a `fit` (a
+/// The study's CSV columns. A line is a `row` (a [`crate::study::StudyRow`]'s JSON), a `fit` (a
 /// [`crate::study::Fit`]'s: its rates in the `rate_*` columns) or, last, the `reference` (its
 /// smallest cell side as `h`, its estimated error in `err_*`, why its refinement stopped in
 /// `reason`).

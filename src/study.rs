@@ -164,8 +164,8 @@ impl ReferenceMesh {
         edges
     }
 
-    /// The next refinement: the [`EDGE_WIDTH`] x-intervals on each side of every contact edge
-    /// of `p` (and the edge's own) bisected, and the [`EDGE_WIDTH`] rows of cells next to
+    /// The next refinement: the `EDGE_WIDTH` (2) x-intervals on each side of every contact edge
+    /// of `p` (and the edge's own) bisected, and the `EDGE_WIDTH` rows of cells next to
     /// Γ_C; None when `p` has no contact edge (nothing to refine).
     pub fn refined(&self, p: &[f64]) -> Option<Self> {
         let edges = self.contact_edges(p);
@@ -296,7 +296,7 @@ fn solve_fresh(disc: &Discretization, params: &ContactParams) -> Result<Solution
 /// exact-constraint pressure at Simpson's points (what [`crate::cache`] stores).
 #[derive(Clone, Debug, PartialEq)]
 pub struct ReferenceFields {
-    /// The displacement on every dof of the Q2 mesh, node-major (u_x = [2n], u_y = [2n + 1]).
+    /// The displacement on every dof of the Q2 mesh, node-major (u_x at `2n`, u_y at `2n + 1`).
     pub u: Vec<f64>,
     /// The exact-constraint pressure at Simpson's points on Γ_C, ascending x.
     pub p: Vec<f64>,

@@ -74,7 +74,7 @@ pub struct ContactPoint {
     /// Its parameter s ∈ [0, 1] on `edge`.
     pub s: f64,
     /// Γ_C nodes of that edge (indices into the Γ_C node list) and the trace's shape values:
-    /// u_n(x) = Σ trace[k] · u_n(nodes[k]).
+    /// u_n(x) = Σ `trace[k]` · u_n(`nodes[k]`).
     pub nodes: Vec<usize>,
     /// The trace's shape values at the point, one per entry of `nodes`.
     pub trace: Vec<f64>,

@@ -13,6 +13,7 @@ use crate::mesh::Element;
 /// The sizes that decide a discretisation's memory.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Sizes {
+    /// The element (its order sets the factor's fill per unknown).
     pub element: Element,
     /// Free dofs n (the order of K).
     pub unknowns: usize,

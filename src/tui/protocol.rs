@@ -280,16 +280,16 @@ pub struct Solved {
     pub disc: Arc<Discretization>,
     /// The solution of the contact problem, with p and p̄.
     pub solution: Solution,
-    /// Displacement on every dof, node-major (u_x = [2n], u_y = [2n + 1]): one solve with
+    /// Displacement on every dof, node-major (u_x at `2n`, u_y at `2n + 1`): one solve with
     /// the whole factor, computed by the worker just after the solution is shown
-    /// ([`Engine::displace`]), so that a level step shows its pressures without waiting for it.
+    /// (`Engine::displace`), so that a level step shows its pressures without waiting for it.
     pub displacement: OnceLock<Vec<f64>>,
     /// What the views show of the solution, computed with it.
     pub shown: Shown,
     /// Wall time of the request, mesh work included, in ms.
     pub total_ms: f64,
     /// The stresses, computed by the worker when the stress scene first shows this solution
-    /// ([`Engine::stresses`]).
+    /// (`Engine::stresses`).
     pub stresses: OnceLock<Result<Arc<StressField>, String>>,
 }
 

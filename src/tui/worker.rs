@@ -103,7 +103,7 @@ impl Engine {
 
     /// The level to build in the background next: the next finer, then the next coarser
     /// level of the mesh last used, up to [`MAX_APP_LEVEL`], when it is not built yet, did not
-    /// fail before, and fits beside the mesh in use within [`CACHE_DOFS`].
+    /// fail before, and fits beside the mesh in use within `CACHE_DOFS`.
     pub fn next_prefetch(&self) -> Option<(u32, Element)> {
         let (level, element, current) = self.cache.last()?;
         let candidates = [level.checked_add(1), level.checked_sub(1)];
