@@ -115,10 +115,34 @@ pub(super) struct RawContact {
 }
 
 /// Nitsche's γ₀ as written: a number, or text (`"auto"`, checked by
-/// [`crate::contact::method::Gamma0::parse`]).
-#[derive(Deserialize)]
-#[serde(untagged)]
+/// [`crate::contact::method::Gamma0::parse`]). Any other TOML value is refused naming what is
+/// allowed (serde's untagged enums would name this type instead).
 pub(super) enum RawGamma0 {
     Number(f64),
     Text(String),
+}
+
+impl<'de> Deserialize<'de> for RawGamma0 {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct Visitor;
+        impl serde::de::Visitor<'_> for Visitor {
+            type Value = RawGamma0;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("`\"auto\"` or a number γ₀ from 1e-8 to 1e8")
+            }
+            fn visit_f64<E>(self, v: f64) -> Result<RawGamma0, E> {
+                Ok(RawGamma0::Number(v))
+            }
+            fn visit_i64<E>(self, v: i64) -> Result<RawGamma0, E> {
+                Ok(RawGamma0::Number(v as f64))
+            }
+            fn visit_u64<E>(self, v: u64) -> Result<RawGamma0, E> {
+                Ok(RawGamma0::Number(v as f64))
+            }
+            fn visit_str<E>(self, v: &str) -> Result<RawGamma0, E> {
+                Ok(RawGamma0::Text(v.to_string()))
+            }
+        }
+        d.deserialize_any(Visitor)
+    }
 }

@@ -281,6 +281,12 @@ fn bad_methods_in_a_scenario_are_located() {
             "`automatic` is neither `auto` nor a number",
         ),
         (
+            "gamma0-list",
+            "method = \"nitsche\"\ngamma0 = [1]",
+            "contact.gamma0",
+            "expected `\"auto\"` or a number γ₀ from 1e-8 to 1e8",
+        ),
+        (
             "tol-big",
             "method = \"alm\"\nalm_tol = 2.0",
             "contact.alm_tol",
