@@ -43,10 +43,8 @@ pub struct Discretization {
     pub(crate) symbolic_ms: f64,
     /// Numeric factorisation and the trace compliance.
     pub(crate) factorization_ms: f64,
-    /// Young's modulus, the scale of the penalty parameter's range ([`epsilon_range`]).
-    young: f64,
-    /// The material and the stiffness's integration, for the methods that need more than K
-    /// (Nitsche's σ_n).
+    /// The material (its Young's modulus is the scale of ε's range, [`epsilon_range`]) and the
+    /// stiffness's integration, for the methods that need more than K (Nitsche's σ_n).
     pub(crate) material: Material,
     pub(crate) integration: Integration,
     /// What is known to be poor about this stiffness before any solve (locking).
@@ -154,7 +152,6 @@ impl Discretization {
             assembly_ms,
             symbolic_ms,
             factorization_ms,
-            young: material.young,
             material,
             integration,
             stiffness_warning: warning::of_material(&material, mesh_element, integration),
@@ -239,7 +236,7 @@ impl Discretization {
 
     /// The penalty parameters this mesh and material can represent ([`epsilon_range`]).
     pub fn epsilon_range(&self) -> (f64, f64) {
-        epsilon_range(self.young, self.mesh.h())
+        epsilon_range(self.material.young, self.mesh.h())
     }
 
     /// `params` checked against what this discretisation can answer ([`check_params`]).
