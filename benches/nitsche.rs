@@ -14,6 +14,10 @@ use riplab::nitsche::{NitscheParams, solve_once};
 use riplab::scenario::Scenario;
 use riplab::solve::{ContactParams, Discretization};
 
+/// As the binary: huge pages for the large blocks (`riplab::huge_pages`).
+#[global_allocator]
+static ALLOCATOR: riplab::huge_pages::HugePages = riplab::huge_pages::HugePages;
+
 const CASES: &[(u32, &str)] = &[(4, "m3"), (5, "m3"), (6, "m3"), (4, "m4"), (5, "m4"), (6, "m4")];
 
 fn main() {

@@ -10,7 +10,8 @@
 //!   numeric, no compliance.
 //!
 //! Before the timings it prints each ordering's factor size and flop count (no timing
-//! noise). `RIPLAB_THREADS` (default 1) sets the threads of every variant alike.
+//! noise). `RIPLAB_THREADS` (default: the cores available, as `--threads`) sets the threads of
+//! every variant alike; the binary's allocator serves all of them.
 
 use std::ops::ControlFlow;
 
@@ -28,6 +29,10 @@ use riplab::mesh::Element;
 use riplab::scenario::Scenario;
 use riplab::solve::{ContactParams, Discretization, solve_contact};
 
+/// As the binary: huge pages for the large blocks (`riplab::huge_pages`).
+#[global_allocator]
+static ALLOCATOR: riplab::huge_pages::HugePages = riplab::huge_pages::HugePages;
+
 fn levels() -> Vec<u32> {
     std::env::var("RIPLAB_LEVELS")
         .ok()
@@ -39,7 +44,7 @@ fn main() {
     let threads = std::env::var("RIPLAB_THREADS")
         .ok()
         .and_then(|t| t.parse().ok())
-        .unwrap_or(1);
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
     riplab::fem::set_threads(threads);
     println!("threads {threads}");
     println!("| level | unknowns | ordering | factor values | flops |");

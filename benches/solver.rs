@@ -2,9 +2,10 @@
 //!
 //! assembly → ordering (symbolic analysis with Γ_C last) → factorisation (numeric, plus the
 //! trace compliance) → Newton (a fresh contact solve) → re-solve (ε changed, warm start) →
-//! inf-sup (H¹ condensation and the dense eigenproblems of one rule). One thread, as the
-//! binary's default; `RIPLAB_THREADS=2` as `--threads 2` (two subdomains side by side from
-//! level 5 on, `riplab::fem::factor`).
+//! inf-sup (H¹ condensation and the dense eigenproblems of one rule). As the binary: the cores
+//! available, unless `RIPLAB_THREADS` says how many (`--threads`; K is factorised as two
+//! subdomains from level 5 on, side by side from two threads, `riplab::fem::factor`), and its
+//! allocator.
 
 use std::ops::ControlFlow;
 
@@ -20,14 +21,20 @@ use riplab::solve::{ContactParams, Discretization, solve_contact};
 
 const LEVELS: &[u32] = &[3, 4, 5, 6];
 
-fn main() {
-    // As the binary does: one thread unless `RIPLAB_THREADS` says more (`--threads`; two
-    // factorise K as two subdomains from level 5 on, `riplab::fem::factor`).
-    let threads = std::env::var("RIPLAB_THREADS")
+/// As the binary: huge pages for the large blocks (`riplab::huge_pages`).
+#[global_allocator]
+static ALLOCATOR: riplab::huge_pages::HugePages = riplab::huge_pages::HugePages;
+
+/// `RIPLAB_THREADS`, else the cores available (as `--threads`).
+fn threads() -> usize {
+    std::env::var("RIPLAB_THREADS")
         .ok()
         .and_then(|t| t.parse().ok())
-        .unwrap_or(1);
-    riplab::fem::set_threads(threads);
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
+}
+
+fn main() {
+    riplab::fem::set_threads(threads());
     divan::main();
 }
 
@@ -64,7 +71,9 @@ fn ordering(bencher: Bencher, level: u32) {
 #[divan::bench(args = LEVELS, sample_count = 10)]
 fn factorisation(bencher: Bencher, level: u32) {
     let (disc, k) = stiffness(level);
-    bencher.bench(|| Factor::new(disc.ordering(), &k).unwrap().compliance());
+    bencher
+        .with_inputs(|| k.clone())
+        .bench_values(|k| Factor::new(disc.ordering(), k).unwrap().compliance());
 }
 
 #[divan::bench(args = LEVELS, sample_count = 10)]

@@ -48,10 +48,11 @@ pub struct Cli {
     /// directory when omitted. Files are never overwritten.
     #[arg(long, global = true, value_name = "DIR")]
     pub export_dir: Option<PathBuf>,
-    /// Threads for the factorisation and the dense work on Γ_C: from 2, meshes of 50,000 unknowns
-    /// or more are factorised as two halves side by side (the results agree to round-off).
-    #[arg(long, global = true, default_value_t = 1, value_parser = clap::value_parser!(u16).range(1..=256))]
-    pub threads: u16,
+    /// Threads for the assembly, the factorisation and the dense work on Γ_C [default: the
+    /// cores available]. Meshes of 50,000 unknowns or more are factorised as two halves, side
+    /// by side from 2 threads; every result has the same bits for any thread count.
+    #[arg(long, global = true, value_parser = clap::value_parser!(u16).range(1..=256))]
+    pub threads: Option<u16>,
     /// The command; None opens the terminal lab.
     #[command(subcommand)]
     pub command: Option<Command>,
@@ -389,9 +390,15 @@ impl Select {
     }
 }
 
+/// The cores this process may run on (its CPU affinity and cgroup quota; 1 when unknown), at
+/// most 256 as `--threads`.
+fn available_cores() -> usize {
+    std::thread::available_parallelism().map_or(1, |n| n.get().min(256))
+}
+
 /// Run the command line; returns the process exit code.
 pub fn run(cli: Cli) -> ExitCode {
-    crate::fem::set_threads(usize::from(cli.threads));
+    crate::fem::set_threads(cli.threads.map_or_else(available_cores, usize::from));
     let result = match cli.command {
         Some(Command::Solve(args)) => solve(&args),
         Some(Command::Infsup(args)) => infsup(&args),

@@ -139,7 +139,7 @@ impl Discretization {
             Analysis::grid(&stiffness, &mesh, &dofs, &contact_dofs).map_err(|e| fem_error(e, n))?;
         let symbolic_ms = ms_since(t);
         let t = Instant::now();
-        let factor = Factor::new(&ordering, &stiffness).map_err(|e| fem_error(e, n))?;
+        let factor = Factor::new(&ordering, stiffness).map_err(|e| fem_error(e, n))?;
         let compliance = factor.compliance();
         let factorization_ms = ms_since(t);
         Ok(Discretization {

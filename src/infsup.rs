@@ -53,7 +53,7 @@ impl TraceCompliance {
     /// Assemble A on the mesh and condense it onto Γ_C on the stiffness's ordering.
     pub fn new(disc: &Discretization) -> Result<Self, SolveError> {
         let a = assemble(&disc.mesh, &disc.dofs, Form::H1);
-        let factor = Factor::new(&disc.ordering, &a)
+        let factor = Factor::new(&disc.ordering, a)
             .map_err(|e| SolveError::Factorization(format!("the H¹ Gram matrix: {e}")))?;
         Ok(TraceCompliance {
             c: factor.compliance(),

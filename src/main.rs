@@ -2,6 +2,11 @@
 
 use clap::Parser;
 
+/// The system allocator with huge pages for the large blocks of a solve (BENCHMARKS.md, "Huge
+/// pages").
+#[global_allocator]
+static ALLOCATOR: riplab::huge_pages::HugePages = riplab::huge_pages::HugePages;
+
 fn main() -> std::process::ExitCode {
     riplab::cli::run(riplab::cli::Cli::parse())
 }

@@ -132,34 +132,38 @@ pub struct SymCsc {
 
 impl SymCsc {
     /// The pattern of every form on `mesh` restricted to the free dofs: two dofs couple when
-    /// their nodes share a cell.
+    /// their nodes share a cell. On the grid, the nodes that share a cell with node (i, j) are
+    /// a rectangle of nodes ([`coupled_nodes`] in each direction), so each column's rows are
+    /// read off in ascending order without adjacency lists.
     pub fn pattern(mesh: &Mesh, dofs: &DofMap) -> Self {
-        let mut adjacency: Vec<Vec<usize>> = vec![Vec::new(); mesh.n_nodes()];
-        for (ci, cj) in cells(mesh) {
-            let nodes = mesh.cell_nodes(ci, cj);
-            for &a in &nodes {
-                adjacency[a].extend_from_slice(&nodes);
-            }
-        }
+        let (nnx, nny, p) = (mesh.nnx(), mesh.node_y.len(), mesh.element.order());
         let n = dofs.n_free();
+        // Each dof couples with at most (2p + 1)² nodes' two dofs; about half are below it.
+        let per_column = (2 * p + 1) * (2 * p + 1) + 1;
         let mut col_ptr = Vec::with_capacity(n + 1);
-        let mut row_idx = Vec::new();
+        let mut row_idx = Vec::with_capacity(n * per_column);
         col_ptr.push(0);
-        for (node, adj) in adjacency.iter_mut().enumerate() {
-            adj.sort_unstable();
-            adj.dedup();
-            for comp in 0..2 {
-                let Some(c) = dofs.free_index(2 * node + comp) else {
-                    continue;
-                };
-                for &m in adj.iter() {
-                    for b in 0..2 {
-                        if let Some(r) = dofs.free_index(2 * m + b).filter(|&r| r >= c) {
-                            row_idx.push(r);
+        for j in 0..nny {
+            let rows_j = coupled_nodes(j, nny, p);
+            for i in 0..nnx {
+                let rows_i = coupled_nodes(i, nnx, p);
+                let node = mesh.node(i, j);
+                for comp in 0..2 {
+                    let Some(c) = dofs.free_index(2 * node + comp) else {
+                        continue;
+                    };
+                    for jj in rows_j.clone() {
+                        for ii in rows_i.clone() {
+                            let m = mesh.node(ii, jj);
+                            for b in 0..2 {
+                                if let Some(r) = dofs.free_index(2 * m + b).filter(|&r| r >= c) {
+                                    row_idx.push(r);
+                                }
+                            }
                         }
                     }
+                    col_ptr.push(row_idx.len());
                 }
-                col_ptr.push(row_idx.len());
             }
         }
         let values = vec![0.0; row_idx.len()];
@@ -213,27 +217,78 @@ impl SymCsc {
     }
 }
 
-/// Assemble `form` on the free dofs of `dofs`.
+/// The node indices along one grid direction (`count` nodes, element order `p`) that share a
+/// cell with node `i`: the cells on both sides of a vertex line (i a multiple of p), the one
+/// cell around an inner node of a Q2 cell otherwise.
+fn coupled_nodes(i: usize, count: usize, p: usize) -> std::ops::RangeInclusive<usize> {
+    let first = i - i % p;
+    if i.is_multiple_of(p) {
+        first.saturating_sub(p)..=(first + p).min(count - 1)
+    } else {
+        first..=first + p
+    }
+}
+
+/// Assemble `form` on the free dofs of `dofs`: the pattern ([`SymCsc::pattern`]), then the
+/// cell matrices scattered into it, the columns of the lower and the upper node rows on two
+/// threads when [`super::set_threads`] allows (each thread writes only its own columns, so the
+/// sums, and the bits, do not depend on the threads).
 pub fn assemble(mesh: &Mesh, dofs: &DofMap, form: Form) -> SymCsc {
     let mut a = SymCsc::pattern(mesh, dofs);
+    // The columns of the node rows below `split` and from it on.
+    let split = mesh.node_y.len() / 2;
+    let first_upper = (2 * mesh.node(0, split)..2 * mesh.n_nodes())
+        .find_map(|g| dofs.free_index(g))
+        .unwrap_or(a.n);
+    let (lower, upper) = a.values.split_at_mut(a.col_ptr[first_upper]);
+    let (pattern, p) = ((&a.col_ptr[..], &a.row_idx[..]), mesh.element.order());
+    // A cell spans the node rows cj·p ..= cj·p + p.
+    let cells_lower = (0..mesh.ny()).filter(|&cj| cj * p < split);
+    let cells_upper = (0..mesh.ny()).filter(|&cj| cj * p + p >= split);
+    super::join(
+        || scatter(mesh, dofs, form, pattern, (0, first_upper), lower, cells_lower),
+        || scatter(mesh, dofs, form, pattern, (first_upper, a.n), upper, cells_upper),
+    );
+    a
+}
+
+/// Add the cell matrices of the cell rows `cell_rows` into `values`, the values of the
+/// columns `columns.0 ≤ c < columns.1` of the pattern (`col_ptr`, `row_idx`); entries of other
+/// columns are left to their owner.
+fn scatter(
+    mesh: &Mesh,
+    dofs: &DofMap,
+    form: Form,
+    (col_ptr, row_idx): (&[usize], &[usize]),
+    columns: (usize, usize),
+    values: &mut [f64],
+    cell_rows: impl Iterator<Item = usize>,
+) {
+    let offset = col_ptr[columns.0];
     let mut cellmats = CellMatrices::new(mesh, form);
-    for (ci, cj) in cells(mesh) {
-        let free: Vec<Option<usize>> = cell_dofs(mesh, ci, cj)
-            .iter()
-            .map(|&g| dofs.free_index(g))
-            .collect();
-        let ke = cellmats.get(ci, cj);
-        for (q, c) in free.iter().enumerate() {
-            let Some(c) = *c else { continue };
-            let (lo, hi) = (a.col_ptr[c], a.col_ptr[c + 1]);
-            for (p, r) in free.iter().enumerate() {
-                let Some(r) = r.filter(|&r| r >= c) else { continue };
-                let k = lo + a.row_idx[lo..hi].partition_point(|&x| x < r);
-                a.values[k] += ke[(p, q)];
+    let mut free = Vec::with_capacity(18);
+    for cj in cell_rows {
+        for ci in 0..mesh.nx() {
+            free.clear();
+            free.extend(
+                mesh.cell_nodes(ci, cj)
+                    .iter()
+                    .flat_map(|&n| [dofs.free_index(2 * n), dofs.free_index(2 * n + 1)]),
+            );
+            let ke = cellmats.get(ci, cj);
+            for (q, c) in free.iter().enumerate() {
+                let Some(c) = c.filter(|&c| (columns.0..columns.1).contains(&c)) else {
+                    continue;
+                };
+                let (lo, hi) = (col_ptr[c], col_ptr[c + 1]);
+                for (p, r) in free.iter().enumerate() {
+                    let Some(r) = r.filter(|&r| r >= c) else { continue };
+                    let k = lo + row_idx[lo..hi].partition_point(|&x| x < r);
+                    values[k - offset] += ke[(p, q)];
+                }
             }
         }
     }
-    a
 }
 
 /// K u on every dof (constraints ignored): the internal force, whose entries on the
@@ -298,4 +353,105 @@ pub fn h1_error(
         }
     }
     (err.sqrt(), norm.sqrt())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::material::Plane;
+    use crate::mesh::Element;
+
+    /// Meshes of every element, full and half models, from one cell to several across and up.
+    fn meshes() -> Vec<(Mesh, DofMap)> {
+        let mut out = Vec::new();
+        for element in Element::ALL {
+            for (nx, ny) in [(1, 1), (2, 1), (1, 3), (3, 5), (4, 4)] {
+                for symmetric in [false, true] {
+                    let mesh = Mesh::uniform(element, (0.0, 3.0, nx), (0.0, 2.0, ny), symmetric);
+                    let dofs = DofMap::model(&mesh);
+                    out.push((mesh, dofs));
+                }
+            }
+        }
+        out
+    }
+
+    /// The grid's pattern is the one of its cells: each free dof's column holds, ascending,
+    /// the free dofs below the diagonal of every node that shares a cell with its node (read
+    /// here from the cells' node lists, not from the grid's rectangles).
+    #[test]
+    fn the_pattern_is_the_cells_adjacency() {
+        for (mesh, dofs) in meshes() {
+            let mut adjacency: Vec<Vec<usize>> = vec![Vec::new(); mesh.n_nodes()];
+            for (ci, cj) in cells(&mesh) {
+                let nodes = mesh.cell_nodes(ci, cj);
+                for &a in &nodes {
+                    adjacency[a].extend_from_slice(&nodes);
+                }
+            }
+            let mut col_ptr = vec![0];
+            let mut row_idx = Vec::new();
+            for (node, adj) in adjacency.iter_mut().enumerate() {
+                adj.sort_unstable();
+                adj.dedup();
+                for c in (0..2).filter_map(|comp| dofs.free_index(2 * node + comp)) {
+                    let rows = adj.iter().flat_map(|&m| [2 * m, 2 * m + 1]);
+                    row_idx.extend(rows.filter_map(|g| dofs.free_index(g)).filter(|&r| r >= c));
+                    col_ptr.push(row_idx.len());
+                }
+            }
+            let a = SymCsc::pattern(&mesh, &dofs);
+            let what = format!("{:?} {}×{}", mesh.element, mesh.nx(), mesh.ny());
+            assert_eq!(a.col_ptr, col_ptr, "{what}");
+            assert_eq!(a.row_idx, row_idx, "{what}");
+        }
+    }
+
+    /// Each entry is the sum of its cells' contributions in the cells' order, to the bit: the
+    /// two column ranges (lower and upper node rows) miss no cell and count none twice.
+    #[test]
+    fn each_entry_sums_its_cells_in_order() {
+        let material = Material {
+            young: 210.0,
+            poisson: 0.3,
+            plane: Plane::Strain,
+        };
+        for (mesh, dofs) in meshes() {
+            for form in [Form::Elasticity(material, Integration::Full), Form::H1] {
+                let mut expected = SymCsc::pattern(&mesh, &dofs);
+                for (ci, cj) in cells(&mesh) {
+                    let ke = cell_matrix(&mesh, ci, cj, &form);
+                    let free: Vec<Option<usize>> = cell_dofs(&mesh, ci, cj)
+                        .iter()
+                        .map(|&g| dofs.free_index(g))
+                        .collect();
+                    for (q, c) in free.iter().enumerate() {
+                        for (p, r) in free.iter().enumerate() {
+                            if let (Some(c), Some(r)) = (*c, *r)
+                                && r >= c
+                            {
+                                let k = expected.position(r, c).unwrap();
+                                expected.values[k] += ke[(p, q)];
+                            }
+                        }
+                    }
+                }
+                let a = assemble(&mesh, &dofs, form);
+                let differ = a
+                    .values
+                    .iter()
+                    .zip(&expected.values)
+                    .filter(|(x, y)| x.to_bits() != y.to_bits())
+                    .count();
+                assert_eq!(
+                    differ,
+                    0,
+                    "{:?} {}×{} {form:?}",
+                    mesh.element,
+                    mesh.nx(),
+                    mesh.ny()
+                );
+            }
+        }
+    }
 }

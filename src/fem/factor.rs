@@ -1,10 +1,11 @@
 //! The factorisation of a form on the grid with Γ_C's normal dofs last: one factor
-//! ([`super::condense`]), or, on two or more threads from [`SPLIT_UNKNOWNS`] unknowns on, two
-//! subdomains factorised side by side ([`super::split`]). Both give the same trace compliance
-//! and solves to round-off (within 10⁻¹² relative, tests/numerics/fem.rs); on one thread the
-//! split only adds work (its dense S), so one thread keeps the single factor.
+//! ([`super::condense`]) below [`SPLIT_UNKNOWNS`] unknowns, two subdomains from there on
+//! ([`super::split`]), factorised side by side on two threads or one after the other on one.
+//! The choice depends on the mesh alone, never on the threads, so that every result has the
+//! same bits whatever `--threads` says (tests/numerics/threads.rs). The two factorisations
+//! agree to round-off (within 10⁻¹² relative, tests/numerics/fem.rs).
 
-use faer::{Mat, Par};
+use faer::Mat;
 
 use super::SymCsc;
 use super::condense::{TraceFactor, TraceOrdering};
@@ -13,9 +14,10 @@ use super::error::FemError;
 use super::split::{SplitFactor, SplitOrdering};
 use crate::mesh::Mesh;
 
-/// The number of free dofs from which two threads factorise the grid as two subdomains
+/// The number of free dofs from which the grid is factorised as two subdomains
 /// (BENCHMARKS.md, "Two subdomains on two cores": on two threads the split is as fast as the
-/// single factor at level 4 Q1, 16,448 unknowns, and 1.5× faster at level 5, 65,664).
+/// single factor at level 4 Q1, 16,448 unknowns, and 1.5× faster at level 5, 65,664; on one
+/// thread it costs 5–20% more at levels 5–6, the price of the same bits on any thread count).
 pub const SPLIT_UNKNOWNS: usize = 50_000;
 
 /// The symbolic analysis of a form's pattern on the grid, Γ_C's normal dofs last (one per
@@ -30,10 +32,10 @@ pub enum Analysis {
 
 impl Analysis {
     /// The analysis of `a`, the form on `mesh` over `dofs`, with `trace` last: two subdomains
-    /// when [`super::set_threads`] chose two threads or more and `a` has [`SPLIT_UNKNOWNS`]
-    /// free dofs or more (and the grid a middle column), else one factor.
+    /// when `a` has [`SPLIT_UNKNOWNS`] free dofs or more (and the grid a middle column), else
+    /// one factor.
     pub fn grid(a: &SymCsc, mesh: &Mesh, dofs: &DofMap, trace: &[usize]) -> Result<Self, FemError> {
-        if a.n >= SPLIT_UNKNOWNS && super::parallelism() != Par::Seq {
+        if a.n >= SPLIT_UNKNOWNS {
             Self::split(a, mesh, dofs, trace)
         } else {
             Self::whole(a, mesh, dofs, trace)
@@ -82,11 +84,17 @@ pub enum Factor {
 
 impl Factor {
     /// Factorise `a`, whose pattern is the one `analysis` analysed, on the threads of
-    /// [`super::set_threads`].
-    pub fn new(analysis: &Analysis, a: &SymCsc) -> Result<Self, FemError> {
+    /// [`super::set_threads`]. `a` is consumed: the split copies the entries it reads and
+    /// drops `a` before it factorises, so that K's memory is free for the factors (0.7 GB at
+    /// level 8, BENCHMARKS.md "Huge pages").
+    pub fn new(analysis: &Analysis, a: SymCsc) -> Result<Self, FemError> {
         Ok(match analysis {
-            Analysis::Whole(o) => Factor::Whole(TraceFactor::new(o, a)?),
-            Analysis::Split(o) => Factor::Split(SplitFactor::new(o, a)?),
+            Analysis::Whole(o) => Factor::Whole(TraceFactor::new(o, &a)?),
+            Analysis::Split(o) => {
+                let values = o.values(&a);
+                drop(a);
+                Factor::Split(SplitFactor::of_values(o, values)?)
+            }
         })
     }
 

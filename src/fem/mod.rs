@@ -21,12 +21,13 @@ pub use assembly::{Form, Integration, SymCsc, apply, assemble, body_load, h1_err
 pub use dofs::DofMap;
 pub use error::FemError;
 
-/// Threads of the numeric factorisation and the trace compliance (1: the caller's thread).
+/// Threads of the assembly, the factorisation and the trace compliance (1: the caller's thread).
 static THREADS: AtomicUsize = AtomicUsize::new(1);
 
-/// Run the numeric factorisation and the trace compliance on `threads` threads; everything
-/// else (faer's dense eigensolvers among it) stays on the caller's thread. The results are
-/// bit-identical for any count (tests/numerics/threads.rs).
+/// Run the assembly, the factorisation (both subdomains side by side) and the trace
+/// compliance on `threads` threads; everything else (faer's dense eigensolvers among it) stays
+/// on the caller's thread. The work and its order of summation are the same for any count, so
+/// the results are bit-identical (tests/numerics/threads.rs).
 pub fn set_threads(threads: usize) {
     THREADS.store(threads.max(1), Ordering::Relaxed);
     faer::set_global_parallelism(Par::Seq);

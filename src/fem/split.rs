@@ -230,14 +230,48 @@ pub struct SplitFactor {
     s: Mat<f64>,
 }
 
+/// The entries of K a [`SplitFactor`] reads: each half's K_h in its pattern's order, and K on
+/// (Γ_L ∩ Γ_R)² (as the ordering's `overlap`). With them, K itself may be dropped before the
+/// factorisation, which then holds only the halves' copies (one entry of K in each, but the
+/// column's in both).
+pub struct SplitValues {
+    halves: [Vec<f64>; 2],
+    overlap: Vec<f64>,
+}
+
+impl SplitOrdering {
+    /// The entries of `a` (with the pattern this ordering analysed) that its factorisation
+    /// reads.
+    pub fn values(&self, a: &SymCsc) -> SplitValues {
+        let split = &*self.0;
+        let gather = |h: &Half| h.gather.iter().map(|&k| a.values[k]).collect();
+        let (left, right) = super::join(|| gather(&split.halves[0]), || gather(&split.halves[1]));
+        SplitValues {
+            halves: [left, right],
+            overlap: split.overlap.iter().map(|&(_, _, k)| a.values[k]).collect(),
+        }
+    }
+}
+
 impl SplitFactor {
     /// Factorise `a`, whose pattern is the one `ordering` analysed: the halves on two threads
     /// when [`super::set_threads`] allows (each sequential), then S on the threads allowed.
     pub fn new(ordering: &SplitOrdering, a: &SymCsc) -> Result<Self, FemError> {
+        Self::of_values(ordering, ordering.values(a))
+    }
+
+    /// Factorise the matrix whose entries `ordering` gathered into `values`
+    /// ([`SplitOrdering::values`]). The arithmetic, and so the bits, are the same on one
+    /// thread and on two.
+    pub fn of_values(ordering: &SplitOrdering, values: SplitValues) -> Result<Self, FemError> {
         let split = &*ordering.0;
-        let half = |h: &Half| -> Result<(TraceFactor, Mat<f64>), FemError> {
-            let values: Vec<f64> = h.gather.iter().map(|&k| a.values[k]).collect();
+        let SplitValues {
+            halves: [left, right],
+            overlap,
+        } = values;
+        let half = |h: &Half, values: Vec<f64>| -> Result<(TraceFactor, Mat<f64>), FemError> {
             let factor = TraceFactor::with_values(&h.ordering, &h.pattern, &values, Par::Seq)?;
+            drop(values);
             // S_h = L₂₂ L₂₂ᵀ, its lower triangle.
             let l = factor.schur_factor();
             let mut s_h = Mat::<f64>::zeros(l.nrows(), l.nrows());
@@ -254,7 +288,7 @@ impl SplitFactor {
             );
             Ok((factor, s_h))
         };
-        let (left, right) = super::join(|| half(&split.halves[0]), || half(&split.halves[1]));
+        let (left, right) = super::join(|| half(&split.halves[0], left), || half(&split.halves[1], right));
         let (left, right) = (left?, right?);
         // S = S_L + S_R − K on (Γ_L ∩ Γ_R)², lower triangle (each half's Γ is ascending in Γ).
         let ng = split.gamma.len();
@@ -266,8 +300,8 @@ impl SplitFactor {
                 }
             }
         }
-        for &(gr, gc, k) in &split.overlap {
-            s[(gr.max(gc), gr.min(gc))] -= a.values[k];
+        for (&(gr, gc, _), k) in split.overlap.iter().zip(overlap) {
+            s[(gr.max(gc), gr.min(gc))] -= k;
         }
         let par = super::parallelism();
         let mut mem = MemBuffer::try_new(llt::factor::cholesky_in_place_scratch::<f64>(
