@@ -5,7 +5,7 @@
 //!   symbolic and numeric factorisation, the trace compliance, Newton), as `riplab solve`
 //!   (on two threads or more, two subdomains side by side: `riplab::fem::split`);
 //! - `faer_default`: faer's Cholesky of the same K with its default (AMD) ordering, symbolic
-//!   and numeric, no compliance;
+//!   and numeric, no compliance, on the same threads;
 //! - `constrained_amd`: the previous ordering (AMD on all but Γ_C, then Γ_C), symbolic and
 //!   numeric, no compliance.
 //!
@@ -112,10 +112,14 @@ fn fresh_m1(bencher: Bencher, level: u32) {
 #[divan::bench(args = levels(), sample_count = 3, sample_size = 1)]
 fn faer_default(bencher: Bencher, level: u32) {
     let (k, ..) = stiffness(level);
+    // faer's Cholesky on as many threads as riplab's (`riplab::fem::set_threads` leaves faer's
+    // global parallelism sequential for riplab's own dense eigensolvers).
+    faer::set_global_parallelism(riplab::fem::parallelism());
     bencher.bench(|| {
         let symbolic = SymbolicLlt::try_new(k.symbolic(), Side::Lower).unwrap();
         Llt::try_new_with_symbolic(symbolic, k.view(&k.values), Side::Lower).unwrap()
     });
+    faer::set_global_parallelism(faer::Par::Seq);
 }
 
 #[divan::bench(args = levels(), sample_count = 3, sample_size = 1)]
