@@ -307,7 +307,7 @@ impl Layer {
         for (k, &d) in vertices.iter().enumerate() {
             x[(self.position[d], 2 * n + k)] = 1.0;
         }
-        let par = crate::fem::parallelism();
+        let par = crate::fem::dense_parallelism(nb);
         // L⁻¹ keeps a column's leading zeros: solve each block of columns with the trailing
         // part of L below its first non-zero row (about a third of the full solve's work).
         let m = x.ncols();
@@ -510,7 +510,7 @@ impl Operator {
                 u.as_ref(),
                 zv.as_ref(),
                 1.0,
-                crate::fem::parallelism(),
+                crate::fem::dense_parallelism(n),
             );
         }
         Ok(Operator {

@@ -7,6 +7,7 @@
 
 use std::collections::HashMap;
 
+use faer::Par;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use nalgebra::{DMatrix, Matrix4};
 
@@ -231,8 +232,9 @@ fn coupled_nodes(i: usize, count: usize, p: usize) -> std::ops::RangeInclusive<u
 
 /// Assemble `form` on the free dofs of `dofs`: the pattern ([`SymCsc::pattern`]), then the
 /// cell matrices scattered into it, the columns of the lower and the upper node rows on two
-/// threads when [`super::set_threads`] allows (each thread writes only its own columns, so the
-/// sums, and the bits, do not depend on the threads).
+/// threads when [`super::set_threads`] allows and the mesh is large enough to gain
+/// ([`super::sparse_parallelism`]); each thread writes only its own columns, so the sums, and
+/// the bits, do not depend on the threads.
 pub fn assemble(mesh: &Mesh, dofs: &DofMap, form: Form) -> SymCsc {
     let mut a = SymCsc::pattern(mesh, dofs);
     // The columns of the node rows below `split` and from it on.
@@ -245,10 +247,14 @@ pub fn assemble(mesh: &Mesh, dofs: &DofMap, form: Form) -> SymCsc {
     // A cell spans the node rows cj·p ..= cj·p + p.
     let cells_lower = (0..mesh.ny()).filter(|&cj| cj * p < split);
     let cells_upper = (0..mesh.ny()).filter(|&cj| cj * p + p >= split);
-    super::join(
-        || scatter(mesh, dofs, form, pattern, (0, first_upper), lower, cells_lower),
-        || scatter(mesh, dofs, form, pattern, (first_upper, a.n), upper, cells_upper),
-    );
+    let lower = || scatter(mesh, dofs, form, pattern, (0, first_upper), lower, cells_lower);
+    let upper = || scatter(mesh, dofs, form, pattern, (first_upper, a.n), upper, cells_upper);
+    if super::sparse_parallelism(a.n) == Par::Seq {
+        lower();
+        upper();
+    } else {
+        super::join(lower, upper);
+    }
     a
 }
 

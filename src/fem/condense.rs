@@ -211,7 +211,7 @@ impl TraceFactor {
     /// Factorise `a`, whose pattern is the one `ordering` analysed, on the threads of
     /// [`super::set_threads`].
     pub fn new(ordering: &TraceOrdering, a: &SymCsc) -> Result<Self, FemError> {
-        Self::with_values(ordering, a, &a.values, super::parallelism())
+        Self::with_values(ordering, a, &a.values, super::sparse_parallelism(a.n))
     }
 
     /// Factorise the matrix with the pattern of `pattern` (whose own values are not read) and
@@ -427,7 +427,8 @@ impl TraceFactor {
 
     /// The trace compliance C = E A⁻¹ Eᵀ = (L_cc L_ccᵀ)⁻¹ = L_cc⁻ᵀ L_cc⁻¹.
     pub fn compliance(&self) -> Mat<f64> {
-        compliance_of(self.schur_factor().as_ref(), super::parallelism())
+        let l = self.schur_factor();
+        compliance_of(l.as_ref(), super::dense_parallelism(l.nrows()))
     }
 }
 

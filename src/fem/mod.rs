@@ -41,6 +41,34 @@ pub fn parallelism() -> Par {
     }
 }
 
+/// The sparse factorisations and dense matrices below these sizes (unknowns, order) run on
+/// the caller's thread whatever [`set_threads`] chose: faer's parallel kernels cost more in
+/// tasks than they save there (two threads made level 3's factorisation 2.5× slower and the
+/// contact Newton's dense solves 2× slower, BENCHMARKS.md "Huge pages"). faer sums in the
+/// same order either way, so the choice changes no bit.
+const PARALLEL_UNKNOWNS: usize = 50_000;
+const PARALLEL_ORDER: usize = 512;
+
+/// The parallelism for a sparse factorisation of `unknowns` unknowns: [`parallelism`] from
+/// [`PARALLEL_UNKNOWNS`] on, else sequential.
+pub(crate) fn sparse_parallelism(unknowns: usize) -> Par {
+    if unknowns >= PARALLEL_UNKNOWNS {
+        parallelism()
+    } else {
+        Par::Seq
+    }
+}
+
+/// The parallelism for dense work on matrices of order `order`: [`parallelism`] from
+/// [`PARALLEL_ORDER`] on, else sequential.
+pub(crate) fn dense_parallelism(order: usize) -> Par {
+    if order >= PARALLEL_ORDER {
+        parallelism()
+    } else {
+        Par::Seq
+    }
+}
+
 /// Run `a` and `b`, on two threads when [`set_threads`] chose more than one, else one after
 /// the other on the caller's (the results are the same: `a` and `b` share nothing mutable).
 pub(crate) fn join<A: Send, B: Send>(a: impl FnOnce() -> A + Send, b: impl FnOnce() -> B + Send) -> (A, B) {

@@ -303,7 +303,7 @@ impl SplitFactor {
         for (&(gr, gc, _), k) in split.overlap.iter().zip(overlap) {
             s[(gr.max(gc), gr.min(gc))] -= k;
         }
-        let par = super::parallelism();
+        let par = super::dense_parallelism(ng);
         let mut mem = MemBuffer::try_new(llt::factor::cholesky_in_place_scratch::<f64>(
             ng,
             par,
@@ -358,7 +358,7 @@ impl SplitFactor {
         llt::solve::solve_in_place(
             self.s.as_ref(),
             u.as_mut(),
-            super::parallelism(),
+            super::dense_parallelism(ng),
             MemStack::new(&mut []),
         );
         let back = |h: &Half, f: &TraceFactor, x: &mut Mat<f64>| {
@@ -397,6 +397,7 @@ impl SplitFactor {
 
     /// The trace compliance C = E K⁻¹ Eᵀ = (L_T L_Tᵀ)⁻¹.
     pub fn compliance(&self) -> Mat<f64> {
-        compliance_of(self.schur_factor().as_ref(), super::parallelism())
+        let l = self.schur_factor();
+        compliance_of(l.as_ref(), super::dense_parallelism(l.nrows()))
     }
 }
