@@ -17,7 +17,8 @@ use crate::mesh::Mesh;
 /// The number of free dofs from which the grid is factorised as two subdomains
 /// (BENCHMARKS.md, "Two subdomains on two cores": on two threads the split is as fast as the
 /// single factor at level 4 Q1, 16,448 unknowns, and 1.5× faster at level 5, 65,664; on one
-/// thread it costs 5–20% more at levels 5–6, the price of the same bits on any thread count).
+/// thread it costs 15–20% more at level 7, the price of the same bits on any thread count:
+/// "Huge pages, and the same bits on any thread count").
 pub const SPLIT_UNKNOWNS: usize = 50_000;
 
 /// The symbolic analysis of a form's pattern on the grid, Γ_C's normal dofs last (one per

@@ -43,9 +43,9 @@ pub fn parallelism() -> Par {
 
 /// The sparse factorisations and dense matrices below these sizes (unknowns, order) run on
 /// the caller's thread whatever [`set_threads`] chose: faer's parallel kernels cost more in
-/// tasks than they save there (two threads made level 3's factorisation 2.5× slower and the
-/// contact Newton's dense solves 2× slower, BENCHMARKS.md "Huge pages"). faer sums in the
-/// same order either way, so the choice changes no bit.
+/// tasks than they save there (two threads made level 3's factorisation 2.5× slower,
+/// BENCHMARKS.md "Huge pages"). faer sums in the same order either way, so the choice changes
+/// no bit.
 const PARALLEL_UNKNOWNS: usize = 50_000;
 const PARALLEL_ORDER: usize = 512;
 
