@@ -134,7 +134,7 @@ pub struct SymCsc {
 impl SymCsc {
     /// The pattern of every form on `mesh` restricted to the free dofs: two dofs couple when
     /// their nodes share a cell. On the grid, the nodes that share a cell with node (i, j) are
-    /// a rectangle of nodes ([`coupled_nodes`] in each direction), so each column's rows are
+    /// a rectangle of nodes (`coupled_nodes` in each direction), so each column's rows are
     /// read off in ascending order without adjacency lists.
     pub fn pattern(mesh: &Mesh, dofs: &DofMap) -> Self {
         let (nnx, nny, p) = (mesh.nnx(), mesh.node_y.len(), mesh.element.order());
@@ -232,8 +232,8 @@ fn coupled_nodes(i: usize, count: usize, p: usize) -> std::ops::RangeInclusive<u
 
 /// Assemble `form` on the free dofs of `dofs`: the pattern ([`SymCsc::pattern`]), then the
 /// cell matrices scattered into it, the columns of the lower and the upper node rows on two
-/// threads when [`super::set_threads`] allows and the mesh is large enough to gain
-/// ([`super::sparse_parallelism`]); each thread writes only its own columns, so the sums, and
+/// threads when [`super::set_threads`] allows and the mesh is large enough to gain (50,000
+/// unknowns, as the factorisation); each thread writes only its own columns, so the sums, and
 /// the bits, do not depend on the threads.
 pub fn assemble(mesh: &Mesh, dofs: &DofMap, form: Form) -> SymCsc {
     let mut a = SymCsc::pattern(mesh, dofs);
