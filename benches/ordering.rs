@@ -44,7 +44,7 @@ fn main() {
     let threads = std::env::var("RIPLAB_THREADS")
         .ok()
         .and_then(|t| t.parse().ok())
-        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+        .unwrap_or_else(riplab::fem::available_threads);
     riplab::fem::set_threads(threads);
     println!("threads {threads}");
     println!("| level | unknowns | ordering | factor values | flops |");

@@ -30,7 +30,7 @@ fn threads() -> usize {
     std::env::var("RIPLAB_THREADS")
         .ok()
         .and_then(|t| t.parse().ok())
-        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
+        .unwrap_or_else(riplab::fem::available_threads)
 }
 
 fn main() {

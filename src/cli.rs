@@ -390,15 +390,13 @@ impl Select {
     }
 }
 
-/// The cores this process may run on (its CPU affinity and cgroup quota; 1 when unknown), at
-/// most 256 as `--threads`.
-fn available_cores() -> usize {
-    std::thread::available_parallelism().map_or(1, |n| n.get().min(256))
-}
-
 /// Run the command line; returns the process exit code.
 pub fn run(cli: Cli) -> ExitCode {
-    crate::fem::set_threads(cli.threads.map_or_else(available_cores, usize::from));
+    // The cores available by default, at most 256 as `--threads`.
+    let threads = cli
+        .threads
+        .map_or_else(|| crate::fem::available_threads().min(256), usize::from);
+    crate::fem::set_threads(threads);
     let result = match cli.command {
         Some(Command::Solve(args)) => solve(&args),
         Some(Command::Infsup(args)) => infsup(&args),

@@ -33,6 +33,12 @@ pub fn set_threads(threads: usize) {
     faer::set_global_parallelism(Par::Seq);
 }
 
+/// The cores this process may run on (its CPU affinity and cgroup quota; 1 when unknown):
+/// the default of `--threads` and of the benchmarks.
+pub fn available_threads() -> usize {
+    std::thread::available_parallelism().map_or(1, |n| n.get())
+}
+
 /// The parallelism [`set_threads`] chose.
 pub fn parallelism() -> Par {
     match NonZeroUsize::new(THREADS.load(Ordering::Relaxed)) {
