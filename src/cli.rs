@@ -87,8 +87,8 @@ pub enum Command {
 
 /// The notes under `riplab render --help`.
 const RENDER_NOTES: &str = concat!(
-    "Levels: render draws what the lab shows, levels 0 to 6 (a change at level 7 takes about 10 s
-and 1.7 GB, too slow for the lab; `riplab solve` goes to level 8).
+    "Levels: render draws what the lab shows, levels 0 to 6 (a change at level 7 takes about 3–6 s
+and 1.4 GB, too slow for the lab; `riplab solve` goes to level 8).
 
 ",
     exit_codes!()

@@ -192,19 +192,35 @@ impl Half {
         for j in 0..n_h {
             col_ptr[j + 1] += col_ptr[j];
         }
+        // Rows and positions are written straight into their final arrays and each column is
+        // sorted through a buffer of one column: no array of pairs the size of K_h, which at
+        // level 8 was 0.3 GB of fresh memory per half (BENCHMARKS.md, "Fresh memory").
         let mut next = col_ptr.clone();
-        let mut slots = vec![(0usize, 0usize); col_ptr[n_h]];
+        let mut row_idx = vec![0usize; col_ptr[n_h]];
+        let mut gather = vec![0usize; col_ptr[n_h]];
         for c in 0..a.n {
             for (pr, pc, k) in entries(c) {
                 let j = pr.min(pc);
-                slots[next[j]] = (pr.max(pc), k);
+                row_idx[next[j]] = pr.max(pc);
+                gather[next[j]] = k;
                 next[j] += 1;
             }
         }
+        let mut one_column = Vec::new();
         for j in 0..n_h {
-            slots[col_ptr[j]..col_ptr[j + 1]].sort_unstable();
+            let range = col_ptr[j]..col_ptr[j + 1];
+            one_column.clear();
+            one_column.extend(
+                row_idx[range.clone()]
+                    .iter()
+                    .copied()
+                    .zip(gather[range.clone()].iter().copied()),
+            );
+            one_column.sort_unstable();
+            for (t, (r, k)) in range.zip(one_column.iter().copied()) {
+                (row_idx[t], gather[t]) = (r, k);
+            }
         }
-        let (row_idx, gather) = slots.into_iter().unzip();
         let pattern = SymCsc {
             n: n_h,
             col_ptr,
