@@ -211,15 +211,17 @@ impl TraceFactor {
     /// Factorise `a`, whose pattern is the one `ordering` analysed, on the threads of
     /// [`super::set_threads`].
     pub fn new(ordering: &TraceOrdering, a: &SymCsc) -> Result<Self, FemError> {
-        Self::with_values(ordering, a, &a.values, super::sparse_parallelism(a.n))
+        Self::with_values(ordering, a, &a.values, Vec::new(), super::sparse_parallelism(a.n))
     }
 
     /// Factorise the matrix with the pattern of `pattern` (whose own values are not read) and
-    /// the entries `values`, on `par`.
+    /// the entries `values`, on `par`, the factor in `storage`'s memory (its contents are
+    /// discarded; an empty vector when there is none to reuse).
     pub(super) fn with_values(
         ordering: &TraceOrdering,
         pattern: &SymCsc,
         values: &[f64],
+        storage: Vec<f64>,
         par: Par,
     ) -> Result<Self, FemError> {
         let symbolic = &ordering.symbolic;
@@ -237,7 +239,8 @@ impl TraceFactor {
             }
             _ => {}
         }
-        let mut factor = Vec::new();
+        let mut factor = storage;
+        factor.clear();
         factor
             .try_reserve_exact(symbolic.len_val())
             .map_err(|_| FemError::OutOfMemory("the factor"))?;

@@ -86,16 +86,12 @@ pub enum Factor {
 impl Factor {
     /// Factorise `a`, whose pattern is the one `analysis` analysed, on the threads of
     /// [`super::set_threads`]. `a` is consumed: the split copies the entries it reads and
-    /// drops `a` before it factorises, so that K's memory is free for the factors (0.7 GB at
-    /// level 8, BENCHMARKS.md "Huge pages").
+    /// gives K's memory to the factors (0.6 GB at level 8: BENCHMARKS.md, "Huge pages" and
+    /// "Fresh memory").
     pub fn new(analysis: &Analysis, a: SymCsc) -> Result<Self, FemError> {
         Ok(match analysis {
             Analysis::Whole(o) => Factor::Whole(TraceFactor::new(o, &a)?),
-            Analysis::Split(o) => {
-                let values = o.values(&a);
-                drop(a);
-                Factor::Split(SplitFactor::of_values(o, values)?)
-            }
+            Analysis::Split(o) => Factor::Split(SplitFactor::of_values(o, o.values_of(a))?),
         })
     }
 

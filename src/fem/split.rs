@@ -253,6 +253,10 @@ pub struct SplitFactor {
 pub struct SplitValues {
     halves: [Vec<f64>; 2],
     overlap: Vec<f64>,
+    /// Memory the halves' factors may reuse (K's values and row indices, when K was given up):
+    /// on a machine that is slow to hand out fresh pages this is time saved (BENCHMARKS.md,
+    /// "Fresh memory").
+    storage: [Vec<f64>; 2],
 }
 
 impl SplitOrdering {
@@ -265,7 +269,24 @@ impl SplitOrdering {
         SplitValues {
             halves: [left, right],
             overlap: split.overlap.iter().map(|&(_, _, k)| a.values[k]).collect(),
+            storage: [Vec::new(), Vec::new()],
         }
+    }
+
+    /// As [`SplitOrdering::values`], giving up `a`: its two largest arrays, the values and the
+    /// row indices (both eight bytes an entry), become the memory of the halves' factors, which
+    /// grow them in place (the pages K touched are not faulted in again).
+    pub fn values_of(&self, a: SymCsc) -> SplitValues {
+        let mut values = self.values(&a);
+        let SymCsc {
+            values: k_values,
+            row_idx,
+            ..
+        } = a;
+        // Where usize is not eight bytes the row indices are simply freed.
+        let row_idx = bytemuck::allocation::try_cast_vec(row_idx).unwrap_or_default();
+        values.storage = [k_values, row_idx];
+        values
     }
 }
 
@@ -284,9 +305,10 @@ impl SplitFactor {
         let SplitValues {
             halves: [left, right],
             overlap,
+            storage: [left_storage, right_storage],
         } = values;
-        let half = |h: &Half, values: Vec<f64>| -> Result<(TraceFactor, Mat<f64>), FemError> {
-            let factor = TraceFactor::with_values(&h.ordering, &h.pattern, &values, Par::Seq)?;
+        let half = |h: &Half, values: Vec<f64>, storage| -> Result<(TraceFactor, Mat<f64>), FemError> {
+            let factor = TraceFactor::with_values(&h.ordering, &h.pattern, &values, storage, Par::Seq)?;
             drop(values);
             // S_h = L₂₂ L₂₂ᵀ, its lower triangle.
             let l = factor.schur_factor();
@@ -304,7 +326,10 @@ impl SplitFactor {
             );
             Ok((factor, s_h))
         };
-        let (left, right) = super::join(|| half(&split.halves[0], left), || half(&split.halves[1], right));
+        let (left, right) = super::join(
+            || half(&split.halves[0], left, left_storage),
+            || half(&split.halves[1], right, right_storage),
+        );
         let (left, right) = (left?, right?);
         // S = S_L + S_R − K on (Γ_L ∩ Γ_R)², lower triangle (each half's Γ is ascending in Γ).
         let ng = split.gamma.len();
