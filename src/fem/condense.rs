@@ -14,13 +14,14 @@ use faer::linalg::matmul::matmul;
 use faer::linalg::triangular_solve;
 use faer::perm::PermRef;
 use faer::reborrow::{Reborrow, ReborrowMut};
-use faer::sparse::SymbolicSparseColMatRef;
 use faer::sparse::linalg::cholesky::supernodal::SupernodalLltRef;
 use faer::sparse::linalg::cholesky::{
     CholeskySymbolicParams, LltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
     factorize_symbolic_cholesky,
 };
 use faer::sparse::linalg::{SupernodalThreshold, amd};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
+use faer::traits::Index;
 use faer::{Accum, Conj, Mat, MatMut, MatRef, Par, Side};
 
 use super::SymCsc;
@@ -30,10 +31,12 @@ use super::memory::Limits;
 use super::ordering::nested_dissection;
 use crate::mesh::Mesh;
 
-/// The symbolic analysis of a pattern with the trace dofs ordered last (one per mesh).
+/// The symbolic analysis of a pattern with the trace dofs ordered last (one per mesh), its
+/// indices of type `I`: usize for K, u32 for the halves of [`super::split`], which halves the
+/// memory of their patterns and analyses (BENCHMARKS.md, "Fresh memory").
 #[derive(Clone)]
-pub struct TraceOrdering {
-    symbolic: Arc<SymbolicCholesky<usize>>,
+pub struct TraceOrdering<I: Index = usize> {
+    symbolic: Arc<SymbolicCholesky<I>>,
     /// The trace dofs, in the order of C's rows and columns.
     trace: Vec<usize>,
 }
@@ -99,44 +102,6 @@ impl TraceOrdering {
         )
     }
 
-    /// The symbolic analysis of `a` in its own order, its last `n_trace` dofs the trace,
-    /// supernodal.
-    pub(super) fn in_given_order(a: &SymCsc, n_trace: usize) -> Result<Self, FemError> {
-        // faer 0.24 analyses an unpermuted pattern as its upper triangle whatever side it is
-        // told (the permuted path converts): give it the transpose of `a`'s lower triangle.
-        let n = a.n;
-        let mut col_ptr = vec![0usize; n + 1];
-        for &r in &a.row_idx {
-            col_ptr[r + 1] += 1;
-        }
-        for j in 0..n {
-            col_ptr[j + 1] += col_ptr[j];
-        }
-        let mut next = col_ptr.clone();
-        let mut row_idx = vec![0usize; a.nnz()];
-        for c in 0..n {
-            for &r in &a.row_idx[a.col_ptr[c]..a.col_ptr[c + 1]] {
-                row_idx[next[r]] = c;
-                next[r] += 1;
-            }
-        }
-        let upper = SymbolicSparseColMatRef::new_checked(n, n, &col_ptr, None, &row_idx);
-        let symbolic = factorize_symbolic_cholesky(
-            upper,
-            Side::Upper,
-            SymmetricOrdering::Identity,
-            CholeskySymbolicParams {
-                supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
-                ..Default::default()
-            },
-        )
-        .map_err(FemError::from_faer("the symbolic factorisation"))?;
-        Ok(TraceOrdering {
-            symbolic: Arc::new(symbolic),
-            trace: (n - n_trace..n).collect(),
-        })
-    }
-
     /// The symbolic analysis for the elimination order `interior` followed by `trace`.
     fn with_interior_order(
         a: &SymCsc,
@@ -166,6 +131,50 @@ impl TraceOrdering {
             trace: trace.to_vec(),
         })
     }
+}
+
+impl<I: Index> TraceOrdering<I> {
+    /// The symbolic analysis of `lower` (a lower triangle) in its own order, its last
+    /// `n_trace` dofs the trace, supernodal.
+    pub(super) fn in_given_order(
+        lower: SymbolicSparseColMatRef<'_, I>,
+        n_trace: usize,
+    ) -> Result<Self, FemError> {
+        // faer 0.24 analyses an unpermuted pattern as its upper triangle whatever side it is
+        // told (the permuted path converts): give it the transpose of the lower triangle.
+        let n = lower.nrows();
+        let mut col_ptr = vec![I::truncate(0); n + 1];
+        for &r in lower.row_idx() {
+            col_ptr[r.zx() + 1] += I::truncate(1);
+        }
+        for j in 0..n {
+            let before = col_ptr[j];
+            col_ptr[j + 1] += before;
+        }
+        let mut next = col_ptr.clone();
+        let mut row_idx = vec![I::truncate(0); lower.row_idx().len()];
+        for c in 0..n {
+            for &r in lower.row_idx_of_col_raw(c) {
+                row_idx[next[r.zx()].zx()] = I::truncate(c);
+                next[r.zx()] += I::truncate(1);
+            }
+        }
+        let upper = SymbolicSparseColMatRef::new_checked(n, n, &col_ptr, None, &row_idx);
+        let symbolic = factorize_symbolic_cholesky(
+            upper,
+            Side::Upper,
+            SymmetricOrdering::Identity,
+            CholeskySymbolicParams {
+                supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
+                ..Default::default()
+            },
+        )
+        .map_err(FemError::from_faer("the symbolic factorisation"))?;
+        Ok(TraceOrdering {
+            symbolic: Arc::new(symbolic),
+            trace: (n - n_trace..n).collect(),
+        })
+    }
 
     /// The number of stored values of the factor L (explicit zeros of merged supernodes
     /// included): its memory is eight bytes each.
@@ -187,23 +196,27 @@ impl TraceOrdering {
 /// Floating point operations of one numeric factorisation on `symbolic`: Σ_j c_j² over the
 /// columns of L with c_j stored values (c_j divisions and about c_j² multiply-adds of the
 /// updates it sends, the count of George and Liu).
-pub fn factor_flops(symbolic: &SymbolicCholesky<usize>) -> f64 {
+pub fn factor_flops<I: Index>(symbolic: &SymbolicCholesky<I>) -> f64 {
     let square = |c: usize| (c as f64) * (c as f64);
     match symbolic.raw() {
         SymbolicCholeskyRaw::Supernodal(sym) => (0..sym.n_supernodes())
             .map(|s| {
                 let below = sym.supernode(s).pattern().len();
-                let width = sym.supernode_end()[s] - sym.supernode_begin()[s];
+                let width = sym.supernode_end()[s].zx() - sym.supernode_begin()[s].zx();
                 (1..=width).map(|k| square(k + below)).sum::<f64>()
             })
             .sum(),
-        SymbolicCholeskyRaw::Simplicial(sym) => sym.col_ptr().windows(2).map(|w| square(w[1] - w[0])).sum(),
+        SymbolicCholeskyRaw::Simplicial(sym) => sym
+            .col_ptr()
+            .windows(2)
+            .map(|w| square(w[1].zx() - w[0].zx()))
+            .sum(),
     }
 }
 
 /// A numeric factorisation on a [`TraceOrdering`].
-pub struct TraceFactor {
-    ordering: TraceOrdering,
+pub struct TraceFactor<I: Index = usize> {
+    ordering: TraceOrdering<I>,
     values: Vec<f64>,
 }
 
@@ -211,15 +224,23 @@ impl TraceFactor {
     /// Factorise `a`, whose pattern is the one `ordering` analysed, on the threads of
     /// [`super::set_threads`].
     pub fn new(ordering: &TraceOrdering, a: &SymCsc) -> Result<Self, FemError> {
-        Self::with_values(ordering, a, &a.values, Vec::new(), super::sparse_parallelism(a.n))
+        Self::with_values(
+            ordering,
+            a.symbolic(),
+            &a.values,
+            Vec::new(),
+            super::sparse_parallelism(a.n),
+        )
     }
+}
 
+impl<I: Index> TraceFactor<I> {
     /// Factorise the matrix with the pattern of `pattern` (whose own values are not read) and
     /// the entries `values`, on `par`, the factor in `storage`'s memory (its contents are
     /// discarded; an empty vector when there is none to reuse).
     pub(super) fn with_values(
-        ordering: &TraceOrdering,
-        pattern: &SymCsc,
+        ordering: &TraceOrdering<I>,
+        pattern: SymbolicSparseColMatRef<'_, I>,
         values: &[f64],
         storage: Vec<f64>,
         par: Par,
@@ -232,7 +253,7 @@ impl TraceFactor {
         match Limits::of_process().available() {
             Some(available) if need > available => {
                 return Err(FemError::TooLarge {
-                    unknowns: pattern.n,
+                    unknowns: pattern.nrows(),
                     need,
                     available,
                 });
@@ -250,7 +271,7 @@ impl TraceFactor {
         symbolic
             .factorize_numeric_llt(
                 &mut factor,
-                pattern.view(values),
+                SparseColMatRef::new(pattern, values),
                 Side::Lower,
                 Default::default(),
                 par,
@@ -288,7 +309,7 @@ impl TraceFactor {
 
     /// The `s`-th block of consecutive columns of L (in elimination order): a supernode, or
     /// one column of the simplicial layout (whose first stored row is the diagonal).
-    fn block(&self, s: usize) -> Block<'_> {
+    fn block(&self, s: usize) -> Block<'_, I> {
         match self.ordering.symbolic.raw() {
             SymbolicCholeskyRaw::Supernodal(sym) => {
                 let node = SupernodalLltRef::new(sym, &self.values).supernode(s);
@@ -299,7 +320,7 @@ impl TraceFactor {
                 }
             }
             SymbolicCholeskyRaw::Simplicial(sym) => {
-                let (lo, hi) = (sym.col_ptr()[s], sym.col_ptr()[s + 1]);
+                let (lo, hi) = (sym.col_ptr()[s].zx(), sym.col_ptr()[s + 1].zx());
                 Block {
                     start: s,
                     val: MatRef::from_column_major_slice(&self.values[lo..hi], hi - lo, 1),
@@ -355,7 +376,7 @@ impl TraceFactor {
             );
             for j in 0..x.ncols() {
                 for (k, &row) in b.below.iter().enumerate() {
-                    x[(row, j)] -= tmp[(k, j)];
+                    x[(row.zx(), j)] -= tmp[(k, j)];
                 }
             }
         }
@@ -377,7 +398,7 @@ impl TraceFactor {
             tmp.resize_with(b.below.len(), x.ncols(), |_, _| 0.0);
             for j in 0..x.ncols() {
                 for (k, &row) in b.below.iter().enumerate() {
-                    tmp[(k, j)] = x[(row, j)];
+                    tmp[(k, j)] = x[(row.zx(), j)];
                 }
             }
             let (head, tail) = x.rb_mut().split_at_row_mut(b.start + m);
@@ -421,7 +442,7 @@ impl TraceFactor {
                     l[(b.start + ir - n0, j)] = b.val[(ir, jc)];
                 }
                 for (p, &row) in b.below.iter().enumerate() {
-                    l[(row - n0, j)] = b.val[(width + p, jc)];
+                    l[(row.zx() - n0, j)] = b.val[(width + p, jc)];
                 }
             }
         }
@@ -437,10 +458,10 @@ impl TraceFactor {
 
 /// Consecutive columns start.. of a factor L: `val` holds their rows from the diagonal down
 /// (the diagonal block, then the rows `below`).
-struct Block<'a> {
+struct Block<'a, I> {
     start: usize,
     val: MatRef<'a, f64>,
-    below: &'a [usize],
+    below: &'a [I],
 }
 
 /// C = S⁻¹ = L⁻ᵀ L⁻¹ from the Cholesky factor L of S (lower triangle read), on `par`.

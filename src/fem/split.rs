@@ -25,6 +25,7 @@ use std::sync::Arc;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt;
 use faer::linalg::matmul::triangular::{self, BlockStructure};
+use faer::sparse::SymbolicSparseColMatRef;
 use faer::{Accum, Mat, MatMut, MatRef, Par};
 
 use super::SymCsc;
@@ -54,12 +55,16 @@ struct Split {
 
 /// One half h: the principal submatrix K[h ∪ Γ_h] and its analysis.
 struct Half {
-    /// The pattern of K_h in elimination order (h, then Γ_h); its values are not used.
-    pattern: SymCsc,
-    /// The position in K's values of each entry of `pattern`.
-    gather: Vec<usize>,
+    /// The order of K_h.
+    n: usize,
+    /// The pattern of K_h's lower triangle in elimination order (h, then Γ_h), compressed
+    /// columns; u32 indices, as every index of K fits ([`Half::new`]).
+    col_ptr: Vec<u32>,
+    row_idx: Vec<u32>,
+    /// The position in K's values of each entry of the pattern.
+    gather: Vec<u32>,
     /// The analysis of K_h (in its own order, Γ_h last).
-    ordering: TraceOrdering,
+    ordering: TraceOrdering<u32>,
     /// The dof of K at each elimination position of h.
     interior: Vec<usize>,
     /// The index in Γ of each trailing position (Γ_h, ascending in Γ).
@@ -175,6 +180,13 @@ impl Half {
             position[d] = p;
         }
         let n_h = interior.len() + half_gamma.len();
+        // Every index below (a dof, an entry of K_h, a position in K's values) is less than
+        // K's number of entries: when that fits in u32, so do they all. It does up to 4·10⁹
+        // entries, 64 GB of K, which the memory guard refuses long before.
+        if u32::try_from(a.nnz()).is_err() {
+            return Err(FemError::OutOfMemory("the ordering"));
+        }
+        let narrow = |i: usize| i as u32;
         // K_h's lower triangle in that order (so that faer need not permute it): entry (r, c)
         // of K goes to column min(p_r, p_c), then each column is sorted by row.
         let mut col_ptr = vec![0usize; n_h + 1];
@@ -196,13 +208,13 @@ impl Half {
         // sorted through a buffer of one column: no array of pairs the size of K_h, which at
         // level 8 was 0.3 GB of fresh memory per half (BENCHMARKS.md, "Fresh memory").
         let mut next = col_ptr.clone();
-        let mut row_idx = vec![0usize; col_ptr[n_h]];
-        let mut gather = vec![0usize; col_ptr[n_h]];
+        let mut row_idx = vec![0u32; col_ptr[n_h]];
+        let mut gather = vec![0u32; col_ptr[n_h]];
         for c in 0..a.n {
             for (pr, pc, k) in entries(c) {
                 let j = pr.min(pc);
-                row_idx[next[j]] = pr.max(pc);
-                gather[next[j]] = k;
+                row_idx[next[j]] = narrow(pr.max(pc));
+                gather[next[j]] = narrow(k);
                 next[j] += 1;
             }
         }
@@ -221,27 +233,30 @@ impl Half {
                 (row_idx[t], gather[t]) = (r, k);
             }
         }
-        let pattern = SymCsc {
+        let col_ptr: Vec<u32> = col_ptr.into_iter().map(narrow).collect();
+        let lower = SymbolicSparseColMatRef::new_checked(n_h, n_h, &col_ptr, None, &row_idx);
+        let ordering = TraceOrdering::in_given_order(lower, half_gamma.len())?;
+        Ok(Half {
             n: n_h,
             col_ptr,
             row_idx,
-            values: Vec::new(),
-        };
-        let ordering = TraceOrdering::in_given_order(&pattern, half_gamma.len())?;
-        Ok(Half {
-            pattern,
             gather,
             ordering,
             interior,
             gamma: half_gamma,
         })
     }
+
+    /// K_h's pattern (lower triangle, elimination order).
+    fn pattern(&self) -> SymbolicSparseColMatRef<'_, u32> {
+        SymbolicSparseColMatRef::new_checked(self.n, self.n, &self.col_ptr, None, &self.row_idx)
+    }
 }
 
 /// A numeric factorisation on a [`SplitOrdering`]: both halves' factors and S's.
 pub struct SplitFactor {
     ordering: SplitOrdering,
-    halves: [TraceFactor; 2],
+    halves: [TraceFactor<u32>; 2],
     /// The Cholesky factor of S (its lower triangle; Γ's order: J, then the trace).
     s: Mat<f64>,
 }
@@ -264,7 +279,7 @@ impl SplitOrdering {
     /// reads.
     pub fn values(&self, a: &SymCsc) -> SplitValues {
         let split = &*self.0;
-        let gather = |h: &Half| h.gather.iter().map(|&k| a.values[k]).collect();
+        let gather = |h: &Half| h.gather.iter().map(|&k| a.values[k as usize]).collect();
         let (left, right) = super::join(|| gather(&split.halves[0]), || gather(&split.halves[1]));
         SplitValues {
             halves: [left, right],
@@ -307,8 +322,8 @@ impl SplitFactor {
             overlap,
             storage: [left_storage, right_storage],
         } = values;
-        let half = |h: &Half, values: Vec<f64>, storage| -> Result<(TraceFactor, Mat<f64>), FemError> {
-            let factor = TraceFactor::with_values(&h.ordering, &h.pattern, &values, storage, Par::Seq)?;
+        let half = |h: &Half, values: Vec<f64>, storage| -> Result<(TraceFactor<u32>, Mat<f64>), FemError> {
+            let factor = TraceFactor::with_values(&h.ordering, h.pattern(), &values, storage, Par::Seq)?;
             drop(values);
             // S_h = L₂₂ L₂₂ᵀ, its lower triangle.
             let l = factor.schur_factor();
@@ -373,8 +388,8 @@ impl SplitFactor {
         let ng = split.gamma.len();
         let rhs = MatRef::from_column_major_slice(&*b, split.n, ncols);
         // Each half's [K_hh⁻¹-forward of f_h; −K_Γh K_hh⁻¹ f_h] in its elimination order.
-        let eliminate = |h: &Half, f: &TraceFactor| {
-            let mut x = Mat::<f64>::zeros(h.pattern.n, ncols);
+        let eliminate = |h: &Half, f: &TraceFactor<u32>| {
+            let mut x = Mat::<f64>::zeros(h.n, ncols);
             for j in 0..ncols {
                 for (p, &d) in h.interior.iter().enumerate() {
                     x[(p, j)] = rhs[(d, j)];
@@ -402,7 +417,7 @@ impl SplitFactor {
             super::dense_parallelism(ng),
             MemStack::new(&mut []),
         );
-        let back = |h: &Half, f: &TraceFactor, x: &mut Mat<f64>| {
+        let back = |h: &Half, f: &TraceFactor<u32>, x: &mut Mat<f64>| {
             let n0 = h.interior.len();
             for j in 0..ncols {
                 for (t, &g) in h.gamma.iter().enumerate() {
