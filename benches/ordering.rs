@@ -10,7 +10,8 @@
 //!   numeric, no compliance.
 //!
 //! Before the timings it prints each ordering's factor size and flop count (no timing
-//! noise). `RIPLAB_THREADS` (default: the cores available, as `--threads`) sets the threads of
+//! noise), METIS's nested dissection (`METIS_NodeND` on the graph of K without Γ_C, then
+//! Γ_C) among them, with the time METIS took. `RIPLAB_THREADS` (default: the cores available, as `--threads`) sets the threads of
 //! every variant alike; the binary's allocator serves all of them.
 
 use std::ops::ControlFlow;
@@ -54,6 +55,12 @@ fn main() {
         let grid = TraceOrdering::grid(&k, &mesh, &dofs, &trace).unwrap();
         let amd = TraceOrdering::new(&k, &trace).unwrap();
         let split = Analysis::split(&k, &mesh, &dofs, &trace).unwrap();
+        let started = std::time::Instant::now();
+        let metis = TraceOrdering::with_order(&k, metis_order(&k, &trace), &trace).unwrap();
+        println!(
+            "level {level}: METIS ordering and analysis {:.0} ms",
+            started.elapsed().as_secs_f64() * 1e3
+        );
         let faer = factorize_symbolic_cholesky(
             k.symbolic(),
             Side::Lower,
@@ -72,6 +79,11 @@ fn main() {
                 split.factor_len(),
                 split.factor_flops(),
             ),
+            (
+                "METIS nested dissection, Γ_C last",
+                metis.factor_len(),
+                metis.factor_flops(),
+            ),
             ("AMD, Γ_C last (before)", amd.factor_len(), amd.factor_flops()),
             ("faer default (AMD)", faer.len_val(), factor_flops(&faer)),
         ] {
@@ -79,6 +91,59 @@ fn main() {
         }
     }
     divan::main();
+}
+
+/// METIS's fill-reducing order (`METIS_NodeND`, default options) of the free dofs of `k` but
+/// `trace`: the graph of K's pattern without them.
+fn metis_order(k: &SymCsc, trace: &[usize]) -> Vec<usize> {
+    type Idx = metis_sys::idx_t;
+    let mut local = vec![usize::MAX; k.n];
+    let mut is_trace = vec![false; k.n];
+    for &d in trace {
+        is_trace[d] = true;
+    }
+    let interior: Vec<usize> = (0..k.n).filter(|&d| !is_trace[d]).collect();
+    for (i, &d) in interior.iter().enumerate() {
+        local[d] = i;
+    }
+    // Both triangles of K's pattern among the interior dofs, without the diagonal.
+    let mut neighbours = vec![Vec::new(); interior.len()];
+    for c in 0..k.n {
+        for &r in &k.row_idx[k.col_ptr[c]..k.col_ptr[c + 1]] {
+            if r != c && local[r] != usize::MAX && local[c] != usize::MAX {
+                neighbours[local[c]].push(local[r] as Idx);
+                neighbours[local[r]].push(local[c] as Idx);
+            }
+        }
+    }
+    let mut xadj = vec![0 as Idx];
+    let mut adjncy = Vec::new();
+    for list in &neighbours {
+        adjncy.extend_from_slice(list);
+        xadj.push(adjncy.len() as Idx);
+    }
+    let mut nvtxs = interior.len() as Idx;
+    let (mut perm, mut iperm) = (vec![0 as Idx; interior.len()], vec![0 as Idx; interior.len()]);
+    // SAFETY: xadj (nvtxs + 1 entries) and adjncy describe a symmetric graph on nvtxs vertices;
+    // perm and iperm have nvtxs entries; null vertex weights and options ask for the defaults.
+    let status = unsafe {
+        metis_sys::METIS_NodeND(
+            &mut nvtxs,
+            xadj.as_mut_ptr(),
+            adjncy.as_mut_ptr(),
+            std::ptr::null_mut(),
+            std::ptr::null_mut(),
+            perm.as_mut_ptr(),
+            iperm.as_mut_ptr(),
+        )
+    };
+    assert_eq!(
+        status,
+        metis_sys::rstatus_et_METIS_OK as std::os::raw::c_int,
+        "METIS_NodeND failed"
+    );
+    // Position i of the new order holds the old vertex perm[i] (the METIS manual).
+    perm.iter().map(|&v| interior[v as usize]).collect()
 }
 
 /// K of the paper's problem (Q1) at `level`, its mesh, dofs and Γ_C normal dofs.

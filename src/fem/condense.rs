@@ -102,6 +102,13 @@ impl TraceOrdering {
         )
     }
 
+    /// Analyse the pattern of `a` with `interior` (every free dof but the trace, in an order
+    /// made elsewhere) first and `trace` last, supernodal as [`TraceOrdering::grid`]: for
+    /// comparing other fill-reducing orders (the METIS row of `benches/ordering.rs`).
+    pub fn with_order(a: &SymCsc, interior: Vec<usize>, trace: &[usize]) -> Result<Self, FemError> {
+        Self::with_interior_order(a, interior, trace, SupernodalThreshold::FORCE_SUPERNODAL)
+    }
+
     /// The symbolic analysis for the elimination order `interior` followed by `trace`.
     fn with_interior_order(
         a: &SymCsc,
