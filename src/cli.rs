@@ -87,8 +87,10 @@ pub enum Command {
 
 /// The notes under `riplab render --help`.
 const RENDER_NOTES: &str = concat!(
-    "Levels: render draws what the lab shows, levels 0 to 6 (a change at level 7 takes about 3–6 s
-and 1.3 GB, too slow for the lab; `riplab solve` goes to level 8).
+    "Levels: render draws what the lab shows, levels 0 to 6 (",
+    crate::tui::app::level_7_cost!(),
+    " a change,
+too slow for the lab; `riplab solve` goes to level 8).
 
 ",
     exit_codes!()

@@ -24,9 +24,16 @@ pub use super::protocol::{
 /// costs about 1 s and 310 MB; level 7 about 3–6 s and 1.3 GB (BENCHMARKS.md, "Fresh memory"),
 /// too slow to explore by key. `riplab solve` goes to level 8.
 pub const MAX_APP_LEVEL: u32 = if MAX_LEVEL < 6 { MAX_LEVEL } else { 6 };
+/// What a change at level 7 costs (BENCHMARKS.md, "Fresh memory"), as a literal for
+/// `concat!`: the one place the lab's messages and `riplab render --help` read it from.
+macro_rules! level_7_cost {
+    () => {
+        "level 7 takes 3–6 s and 1.3 GB"
+    };
+}
+pub(crate) use level_7_cost;
 /// Why the lab stops at [`MAX_APP_LEVEL`], for messages.
-pub const LEVEL_LIMIT_WHY: &str =
-    "a change at level 7 takes about 3–6 s and 1.3 GB; `riplab solve --level 7` computes it";
+pub const LEVEL_LIMIT_WHY: &str = concat!(level_7_cost!(), " a change; `riplab solve --level 7` computes it");
 /// The range of ε reachable with `+`/`-`.
 pub const EPSILON_RANGE: (f64, f64) = (1e-14, 1e2);
 /// The ε that `penalty` and `alm` use in a scenario whose own is 0 (`exact`): the paper's.
@@ -394,7 +401,12 @@ impl App {
             LabAction::Finer => {
                 if self.settings.level >= MAX_APP_LEVEL {
                     self.notice = Some(Notice::info(format!(
-                        "level {MAX_APP_LEVEL} is the lab's finest: level 7 takes 3–6 s and 1.3 GB (riplab solve)"
+                        concat!(
+                            "level {} is the lab's finest: ",
+                            level_7_cost!(),
+                            " (riplab solve)"
+                        ),
+                        MAX_APP_LEVEL
                     )));
                 }
                 self.settings.level = (self.settings.level + 1).min(MAX_APP_LEVEL);

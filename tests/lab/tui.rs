@@ -1453,6 +1453,8 @@ fn keys_say_why_and_close_help_only() {
         notice.contains("level 6") && notice.contains("level 7"),
         "{notice}"
     );
+    // Whole on an 80-column status line (the cost is composed from `level_7_cost!`).
+    assert!(notice.chars().count() < 80, "{notice}");
     app.settings.level = 0;
     app.update(key(KeyCode::Left));
     assert!(app.notice.is_some());
