@@ -1,8 +1,10 @@
 #!/bin/bash
 # Key-to-frame latency of a level step in the lab, measured in tmux: send the key, poll the
 # pane until the header shows the new level and the status line a converged solve.
-# usage: benches/lab_latency.sh FROM TO WAIT   (steps up from level 1 to FROM, waits WAIT s idle, steps to TO)
-from=$1; to=$2; wait=$3
+# usage: benches/lab_latency.sh FROM TO WAIT [back]
+#   steps up from level 1 to FROM, waits WAIT s idle, steps to TO; with `back`, steps back to
+#   FROM as soon as the status line shows TO being built, and times that step instead.
+from=$1; to=$2; wait=$3; back=${4:-}
 tmux kill-session -t lat 2>/dev/null
 tmux new -d -s lat -x 100 -y 30 "NO_COLOR=1 ${RIPLAB:-target/release/riplab}"
 sleep 2
@@ -11,10 +13,21 @@ while [ "$cur" -lt "$from" ]; do tmux send-keys -t lat ']'; cur=$((cur+1));
   until tmux capture-pane -p -t lat | grep -q "level $cur .*" && tmux capture-pane -p -t lat | grep -q 'converged'; do sleep 0.05; done; done
 sleep "$wait"
 key=']'; [ "$to" -lt "$from" ] && key='['
-t0=$(date +%s%N)
-tmux send-keys -t lat "$key"
-until tmux capture-pane -p -t lat | grep -q "level $to " && tmux capture-pane -p -t lat | grep -q 'converged'; do sleep 0.002; done
-t1=$(date +%s%N)
-echo "level $from -> $to after ${wait}s idle: $(( (t1-t0)/1000000 )) ms"
+if [ "$back" = back ]; then
+  tmux send-keys -t lat "$key"
+  until tmux capture-pane -p -t lat | grep -q "building level $to"; do sleep 0.002; done
+  rkey='['; [ "$key" = '[' ] && rkey=']'
+  t0=$(date +%s%N)
+  tmux send-keys -t lat "$rkey"
+  until tmux capture-pane -p -t lat | grep -q "level $from " && tmux capture-pane -p -t lat | grep -q 'converged'; do sleep 0.002; done
+  t1=$(date +%s%N)
+  echo "level $from -> $to -> $from, back while $to is built: $(( (t1-t0)/1000000 )) ms"
+else
+  t0=$(date +%s%N)
+  tmux send-keys -t lat "$key"
+  until tmux capture-pane -p -t lat | grep -q "level $to " && tmux capture-pane -p -t lat | grep -q 'converged'; do sleep 0.002; done
+  t1=$(date +%s%N)
+  echo "level $from -> $to after ${wait}s idle: $(( (t1-t0)/1000000 )) ms"
+fi
 tmux capture-pane -p -t lat | sed -n "2p;$p"; sleep 1; tmux capture-pane -p -t lat | tail -3
 tmux kill-session -t lat

@@ -87,8 +87,8 @@ pub enum Command {
 
 /// The notes under `riplab render --help`.
 const RENDER_NOTES: &str = concat!(
-    "Levels: render draws what the lab shows, levels 0 to 6 (",
-    crate::tui::app::level_7_cost!(),
+    "Levels: render draws what the lab shows, levels 0 to 7 (",
+    crate::tui::app::level_8_cost!(),
     " a change,
 too slow for the lab; `riplab solve` goes to level 8).
 
@@ -111,7 +111,7 @@ pub struct TourArgs {
 
 /// The arguments of `riplab render`.
 #[derive(Args, Debug)]
-#[command(mut_arg("level", |a| a.help("Mesh level 0 to 6, the lab's levels (h halves with each level)")))]
+#[command(mut_arg("level", |a| a.help("Mesh level 0 to 7, the lab's levels (h halves with each level)")))]
 pub struct RenderArgs {
     /// The scenario, level, element and rule.
     #[command(flatten)]

@@ -174,9 +174,48 @@ impl Discretization {
     /// allocated when its memory estimate exceeds the memory this process may use
     /// ([`crate::fem::memory`]).
     pub fn of(scenario: &Scenario, level: u32, element: Element) -> Result<Self, SolveError> {
+        Self::of_beside(scenario, level, element, 0)
+    }
+
+    /// [`Discretization::of`] beside other work under way that may still take `reserved`
+    /// bytes: refused when its estimate exceeds what this process may use less `reserved`.
+    pub fn of_beside(
+        scenario: &Scenario,
+        level: u32,
+        element: Element,
+        reserved: u64,
+    ) -> Result<Self, SolveError> {
+        let sizes = Self::sizes(scenario, level, element);
+        sizes
+            .check(&Limits::of_process().less(reserved))
+            .map_err(|e| match e {
+                FemError::TooLarge {
+                    unknowns,
+                    need,
+                    available,
+                } => SolveError::TooLarge(format!(
+                    "level {level} with {} has {unknowns} unknowns ({} on Γ_C) and needs about {}; this process has {} available (free memory, ulimit -v and the control group's limit{}): choose a coarser level",
+                    element.name(),
+                    sizes.trace,
+                    gib(need),
+                    gib(available),
+                    if reserved > 0 { ", less the work under way" } else { "" }
+                )),
+                e => fem_error(e, sizes.unknowns),
+            })?;
+        Self::new(
+            scenario.mesh(level, element),
+            scenario.material,
+            scenario.integration,
+        )
+    }
+
+    /// The sizes that decide the memory of the discretisation of `scenario` at `level` with
+    /// `element` ([`Sizes::peak_bytes`]), counted on the mesh's lines without assembling.
+    pub fn sizes(scenario: &Scenario, level: u32, element: Element) -> Sizes {
         let mesh = scenario.mesh(level, element);
         let trace = mesh.nnx();
-        let sizes = Sizes {
+        Sizes {
             element,
             unknowns: scenario.n_dofs(level, element),
             trace,
@@ -185,21 +224,7 @@ impl Discretization {
                 .map(|&rule| ContactPoints::new(rule, &mesh.node_x, element.order()).len())
                 .max()
                 .unwrap_or(trace),
-        };
-        sizes.check(&Limits::of_process()).map_err(|e| match e {
-            FemError::TooLarge {
-                unknowns,
-                need,
-                available,
-            } => SolveError::TooLarge(format!(
-                "level {level} with {} has {unknowns} unknowns ({trace} on Γ_C) and needs about {}; this process has {} available (free memory, ulimit -v and the control group's limit): choose a coarser level",
-                element.name(),
-                gib(need),
-                gib(available)
-            )),
-            e => fem_error(e, sizes.unknowns),
-        })?;
-        Self::new(mesh, scenario.material, scenario.integration)
+        }
     }
 
     /// `rule` laid on Γ_C.

@@ -109,6 +109,17 @@ impl Limits {
         }
     }
 
+    /// These limits with `reserved` bytes already promised elsewhere (work under way on
+    /// other threads) taken from each known one.
+    pub fn less(self, reserved: u64) -> Limits {
+        let less = |v: Option<u64>| v.map(|v| v.saturating_sub(reserved));
+        Limits {
+            machine: less(self.machine),
+            address_space: less(self.address_space),
+            cgroup: less(self.cgroup),
+        }
+    }
+
     /// The memory a new allocation may take: the smallest known limit.
     pub fn available(&self) -> Option<u64> {
         [self.machine, self.address_space, self.cgroup]
@@ -201,6 +212,34 @@ pub fn cgroup_headroom(root: &Path, rel: &str, v2: bool) -> Option<u64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn work_under_way_is_taken_from_every_known_limit() {
+        let limits = Limits {
+            machine: Some(10 << 30),
+            address_space: None,
+            cgroup: Some(3 << 30),
+        };
+        let less = limits.clone().less(2 << 30);
+        assert_eq!(less.machine, Some(8 << 30));
+        assert_eq!(less.address_space, None, "unknown stays unknown");
+        assert_eq!(less.available(), Some(1 << 30));
+        assert_eq!(limits.less(5 << 30).available(), Some(0), "never below zero");
+        // A 1.5 GiB estimate fits 3 GiB, not 3 GiB less 2 GiB under way.
+        let sizes = Sizes {
+            element: Element::Q1,
+            unknowns: 1,
+            trace: 0,
+            points: 0,
+        };
+        let need = sizes.peak_bytes();
+        let room = Limits {
+            machine: Some(need),
+            ..Limits::default()
+        };
+        assert!(sizes.check(&room).is_ok());
+        assert!(sizes.check(&room.less(1)).is_err());
+    }
 
     #[test]
     fn proc_files_are_read_in_bytes() {

@@ -20,20 +20,23 @@ pub use super::protocol::{
     Study, StudyKey, StudyRequest,
 };
 
-/// The finest level the interactive lab (and `riplab render`) offers: a change at level 6
-/// costs about 1 s and 310 MB; level 7 about 3–6 s and 1.3 GB (BENCHMARKS.md, "Fresh memory"),
-/// too slow to explore by key. `riplab solve` goes to level 8.
-pub const MAX_APP_LEVEL: u32 = if MAX_LEVEL < 6 { MAX_LEVEL } else { 6 };
-/// What a change at level 7 costs (BENCHMARKS.md, "Fresh memory"), as a literal for
+/// The finest level the interactive lab (and `riplab render`) offers. A change at level 7
+/// costs about 3–6 s and 1.3 GB with Q1 or P1, and 18–28 s and 5.4 GB with Q2, whose level 7
+/// has the unknowns of Q1's level 8 (BENCHMARKS.md, "Fresh memory"): the lab builds it on a
+/// thread of its own with the time left shown, and the memory guard
+/// refuses it, saying why, where memory does not allow it. Level 8 is too slow to explore by
+/// key; `riplab solve` goes there.
+pub const MAX_APP_LEVEL: u32 = if MAX_LEVEL < 7 { MAX_LEVEL } else { 7 };
+/// What a change at level 8 costs (Q1, BENCHMARKS.md, "Fresh memory"), as a literal for
 /// `concat!`: the one place the lab's messages and `riplab render --help` read it from.
-macro_rules! level_7_cost {
+macro_rules! level_8_cost {
     () => {
-        "level 7 takes 3–6 s and 1.3 GB"
+        "level 8 takes 18–28 s and 5.4 GB"
     };
 }
-pub(crate) use level_7_cost;
+pub(crate) use level_8_cost;
 /// Why the lab stops at [`MAX_APP_LEVEL`], for messages.
-pub const LEVEL_LIMIT_WHY: &str = concat!(level_7_cost!(), " a change; `riplab solve --level 7` computes it");
+pub const LEVEL_LIMIT_WHY: &str = concat!(level_8_cost!(), " a change; `riplab solve --level 8` computes it");
 /// The range of ε reachable with `+`/`-`.
 pub const EPSILON_RANGE: (f64, f64) = (1e-14, 1e2);
 /// The ε that `penalty` and `alm` use in a scenario whose own is 0 (`exact`): the paper's.
@@ -127,6 +130,9 @@ pub enum Command {
     Export,
     /// Ctrl-Z: give the terminal back and stop until resumed.
     Suspend,
+    /// Every solve, estimate and study older than this generation is no longer wanted (the
+    /// settings came back to the solution shown while a solve of others was under way).
+    Supersede(u64),
 }
 
 /// What an update asks of the runtime.
@@ -403,7 +409,7 @@ impl App {
                     self.notice = Some(Notice::info(format!(
                         concat!(
                             "level {} is the lab's finest: ",
-                            level_7_cost!(),
+                            level_8_cost!(),
                             " (riplab solve)"
                         ),
                         MAX_APP_LEVEL
@@ -656,6 +662,12 @@ impl App {
     /// The requests the visible scene needs that are neither done nor in flight.
     fn requests(&mut self) -> Vec<Command> {
         let mut out = Vec::new();
+        if self.current().is_some() && self.pending_solve.is_some_and(|g| g != self.generation) {
+            // Back at the solution shown: the solve under way is for settings left behind.
+            self.pending_solve = None;
+            self.progress = None;
+            out.push(Command::Supersede(self.generation));
+        }
         let wants_solve = self.scene.needs_solution()
             && self.current().is_none()
             && self.failed != Some(self.settings)

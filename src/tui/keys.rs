@@ -220,7 +220,7 @@ pub const CONTROL: &[Row<LabAction>] = &[Row {
 /// The help's words for [`super::app::MAX_APP_LEVEL`], [`super::app::EPSILON_RANGE`] and
 /// [`super::app::DEPTH_STEP`] (a test
 /// keeps them equal).
-const LEVELS: &str = "coarser / finer mesh level (0 to 6)";
+const LEVELS: &str = "coarser / finer mesh level (0 to 7)";
 const EPSILON: &str = "ε × 10 / ε ÷ 10 (1e-14 to 1e2)";
 const DEPTH: &str = "depth − 0.1 / + 0.1";
 

@@ -9,10 +9,11 @@
 
 pub mod app;
 pub mod beta;
+mod build;
+mod estimating;
 pub mod eta;
 pub mod export;
 pub mod keys;
-mod prefetch;
 pub mod protocol;
 mod runtime;
 pub mod shown;

@@ -20,8 +20,9 @@ use crate::study::{StudyRow, convergence};
 
 use super::app::{App, Command, MAX_APP_LEVEL, Msg};
 use super::beta::{self, InfSup};
+use super::build::{Build, Built, Plan};
+use super::estimating::Estimating;
 use super::eta::Eta;
-use super::prefetch::{Built, Prefetch};
 use super::protocol::{
     InfSupKey, InfSupRequest, Progress, Response, SolveRequest, Solved, StressRequest, Study, StudyKey,
     StudyRequest,
@@ -30,8 +31,22 @@ use super::shown::Shown;
 
 /// How many discretisations (meshes with their factorisations) are kept at most…
 const CACHE_SIZE: usize = 4;
-/// …and how many unknowns they may hold together (the newest is kept whatever its size).
-const CACHE_DOFS: usize = 600_000;
+/// …and how much memory their estimated peaks ([`crate::fem::memory::Sizes::peak_bytes`], an
+/// upper bound on what a kept one holds) may add up to, bytes (the newest is kept whatever
+/// its size): in the default scenario, level 7 of Q1 or P1 beside level 6 (1.31 + 0.31 GiB)
+/// or level 6 of Q2 beside level 5 (1.41 + 0.33 GiB), but not level 7 of Q2 (6.16 GiB).
+pub const CACHE_BYTES: u64 = 2 << 30;
+
+/// What a finished build is for ([`Engine::adopt`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Use {
+    /// Built while idle, for a step to a neighbouring level.
+    Background,
+    /// A solve waits for it.
+    Solve,
+    /// An inf-sup estimate waits for it.
+    Estimate,
+}
 
 /// Owns the discretisation cache (least recently used last out) and the warm start.
 pub struct Engine {
@@ -66,6 +81,28 @@ impl Engine {
         self.scenario.n_dofs(level, element)
     }
 
+    /// What building `level` with `element` is expected to cost.
+    fn plan(&self, level: u32, element: Element) -> Plan {
+        let unknowns = self.unknowns(level, element);
+        Plan {
+            level,
+            element,
+            unknowns,
+            peak: Discretization::sizes(&self.scenario, level, element).peak_bytes(),
+            estimate_ms: self.eta.predict_ms(unknowns),
+        }
+    }
+
+    /// Whether the discretisations `meshes` (level, element) may be kept together: their
+    /// estimated peaks add up to [`CACHE_BYTES`] at most.
+    pub fn fits(&self, meshes: &[(u32, Element)]) -> bool {
+        let bytes: u64 = meshes
+            .iter()
+            .map(|&(level, element)| Discretization::sizes(&self.scenario, level, element).peak_bytes())
+            .sum();
+        bytes <= CACHE_BYTES
+    }
+
     fn cached(&mut self, level: u32, element: Element) -> Option<Arc<Discretization>> {
         let i = self
             .cache
@@ -90,22 +127,23 @@ impl Engine {
         Ok(disc)
     }
 
-    /// Drop the least recently used discretisations beyond [`CACHE_SIZE`] and [`CACHE_DOFS`]
+    /// Drop the least recently used discretisations beyond [`CACHE_SIZE`] and [`CACHE_BYTES`]
     /// (the newest is kept whatever its size).
     fn evict(&mut self) {
-        let dofs = |cache: &[(u32, Element, Arc<Discretization>)]| -> usize {
-            cache.iter().map(|(_, _, d)| d.n_dofs()).sum()
-        };
-        while self.cache.len() > 1 && (self.cache.len() > CACHE_SIZE || dofs(&self.cache) > CACHE_DOFS) {
+        loop {
+            let kept: Vec<(u32, Element)> = self.cache.iter().map(|(l, e, _)| (*l, *e)).collect();
+            if kept.len() <= 1 || (kept.len() <= CACHE_SIZE && self.fits(&kept)) {
+                return;
+            }
             self.cache.remove(0);
         }
     }
 
     /// The level to build in the background next: the next finer, then the next coarser
     /// level of the mesh last used, up to [`MAX_APP_LEVEL`], when it is not built yet, did not
-    /// fail before, and fits beside the mesh in use within `CACHE_DOFS`.
+    /// fail before, and [`Engine::fits`] beside the mesh in use.
     pub fn next_prefetch(&self) -> Option<(u32, Element)> {
-        let (level, element, current) = self.cache.last()?;
+        let (level, element, _) = self.cache.last()?;
         let candidates = [level.checked_add(1), level.checked_sub(1)];
         candidates
             .into_iter()
@@ -115,40 +153,42 @@ impl Engine {
                 l <= MAX_APP_LEVEL
                     && !self.has(l, e)
                     && !self.unfit.contains(&(l, e))
-                    && current.n_dofs() + self.unknowns(l, e) <= CACHE_DOFS
+                    && self.fits(&[(*level, *element), (l, e)])
             })
     }
 
-    /// Start the build [`Engine::next_prefetch`] names, if any.
-    fn start_prefetch(&self) -> Option<Prefetch> {
-        let (level, element) = self.next_prefetch()?;
-        let unknowns = self.unknowns(level, element);
-        Prefetch::start(
-            &self.scenario,
-            level,
-            element,
-            unknowns,
-            self.eta.predict_ms(unknowns),
-        )
-    }
-
-    /// Keep a finished background build of `level` with `element`, just behind the mesh in
-    /// use in the cache's order; unless a solve `wants` it, a build for another element than
-    /// the one in use now is dropped. A failed build is not tried again.
-    pub fn adopt(&mut self, level: u32, element: Element, built: Built, wants: bool) {
-        match built {
-            Ok((disc, ms)) => {
-                let in_use = self.cache.last().map(|(_, e, _)| *e);
-                if (!wants && in_use != Some(element)) || self.has(level, element) {
-                    return;
-                }
-                self.eta.record(disc.n_dofs(), ms);
-                let at = self.cache.len().saturating_sub(1);
-                self.cache.insert(at, (level, element, Arc::new(disc)));
-                self.evict();
+    /// Keep a finished build of `level` with `element` as its `use` says, and give it back
+    /// (None when it failed: a failed build is not tried in the background again). A solve's
+    /// becomes the mesh in use; an estimate's or a background one goes just behind the mesh
+    /// in use in the cache's order, kept while the budget allows (an estimate holds its mesh
+    /// meanwhile); a background one for another element than the one in use is dropped.
+    pub fn adopt(
+        &mut self,
+        level: u32,
+        element: Element,
+        built: Built,
+        use_: Use,
+    ) -> Option<Arc<Discretization>> {
+        let (disc, ms) = match built {
+            Ok(built) => built,
+            Err(_) => {
+                self.unfit.push((level, element));
+                return None;
             }
-            Err(_) => self.unfit.push((level, element)),
+        };
+        self.eta.record(disc.n_dofs(), ms);
+        let disc = Arc::new(disc);
+        let in_use = self.cache.last().map(|(_, e, _)| *e);
+        if (use_ == Use::Background && in_use != Some(element)) || self.has(level, element) {
+            return Some(disc);
         }
+        let at = match use_ {
+            Use::Solve => self.cache.len(),
+            Use::Estimate | Use::Background => self.cache.len().saturating_sub(1),
+        };
+        self.cache.insert(at, (level, element, disc.clone()));
+        self.evict();
+        Some(disc)
     }
 
     /// Whether the mesh of `level` with `element` is built.
@@ -363,9 +403,14 @@ impl Worker {
         Worker { tx, latest }
     }
 
-    /// Send a solve or an inf-sup request (anything else is not the worker's).
+    /// Send a solve or an inf-sup request, or say which are superseded (anything else is
+    /// not the worker's).
     pub fn send(&self, command: &Command) {
         let request = match command {
+            Command::Supersede(generation) => {
+                self.latest.fetch_max(*generation, Ordering::SeqCst);
+                return;
+            }
             Command::Solve(r) => Request::Solve(*r),
             Command::Stresses(r) => Request::Stresses(r.clone()),
             Command::InfSup(r) => Request::InfSup(*r),
@@ -422,39 +467,151 @@ impl Waiting {
             Request::InfSup(r) => self.queue.push_back(r),
         }
     }
+
+    /// The mesh the next request to run needs, and the generation of the solve that needs it
+    /// (None for an inf-sup estimate): the current solve's, or, when nothing else comes
+    /// first, the next current estimate's.
+    fn needs(&self, current: &dyn Fn(u64) -> bool, latest: u64) -> Option<(u32, Element, Option<u64>)> {
+        if let Some(r) = self.solve.as_ref().filter(|r| current(r.generation)) {
+            return Some((r.key.level, r.key.element, Some(r.generation)));
+        }
+        if self.solve.is_some() || self.displace.is_some() || self.stresses.is_some() || self.study.is_some()
+        {
+            return None;
+        }
+        let r = self.queue.front().filter(|r| latest <= r.generation)?;
+        Some((r.key.level, r.key.element, None))
+    }
+
+    /// Answer the request [`Waiting::needs`] named with why its mesh could not be built.
+    fn fail(&mut self, needed_by: Option<u64>, error: String) -> Option<Response> {
+        match needed_by {
+            Some(generation) => {
+                self.solve.take()?;
+                Some(Response::Solved {
+                    generation,
+                    result: Err(error),
+                })
+            }
+            None => self.queue.pop_front().map(|r| Response::InfSup {
+                key: r.key,
+                result: Some(Err(error)),
+            }),
+        }
+    }
 }
 
-/// How often the worker looks for new requests while it waits for a background build.
+/// How often the worker looks for new requests while it waits for a build.
 const POLL: Duration = Duration::from_millis(20);
 
+/// The builds under way on threads of their own ([`super::build`]): those requests wait for,
+/// and the one started while idle.
+#[derive(Default)]
+struct Builds(Vec<Build>);
+
+impl Builds {
+    /// The build of `level` with `element`, if one is under way.
+    fn of(&self, level: u32, element: Element) -> Option<&Build> {
+        self.0.iter().find(|b| b.is_for(level, element))
+    }
+
+    /// Start building `plan` beside the builds under way, their whole estimates reserved
+    /// (part of which they may already hold: the check errs on the safe side) and `extra`
+    /// bytes more; false when no thread could be started.
+    fn start(&mut self, scenario: &Scenario, plan: Plan, extra: u64) -> bool {
+        let reserved = self.0.iter().map(|b| b.peak).sum::<u64>() + extra;
+        match Build::start(scenario, plan, reserved) {
+            Some(b) => {
+                self.0.push(b);
+                true
+            }
+            None => false,
+        }
+    }
+
+    /// Adopt every finished build into `engine` (see [`Engine::adopt`]), waiting up to `wait`
+    /// for the one a request `needs` (with what it is for); that one's mesh, or why it
+    /// failed, once it has finished.
+    fn collect(
+        &mut self,
+        engine: &mut Engine,
+        needs: Option<(u32, Element, Use)>,
+        wait: Duration,
+    ) -> Option<Result<Arc<Discretization>, String>> {
+        let mut needed = None;
+        for b in std::mem::take(&mut self.0) {
+            let (level, element) = (b.level, b.element);
+            let wanted = needs.filter(|&(l, e, _)| (l, e) == (level, element));
+            match b.finished(if wanted.is_some() { wait } else { Duration::ZERO }) {
+                Ok(built) => {
+                    let failure = built.as_ref().err().map(|e| match e {
+                        SolveError::Cancelled => {
+                            format!(
+                                "the build of level {level} with {} ended without a result",
+                                element.name()
+                            )
+                        }
+                        e => e.to_string(),
+                    });
+                    let use_ = wanted.map_or(Use::Background, |(_, _, u)| u);
+                    let disc = engine.adopt(level, element, built, use_);
+                    if wanted.is_some() {
+                        needed = Some(disc.ok_or_else(|| failure.unwrap_or_default()));
+                    }
+                }
+                Err(b) => self.0.push(b),
+            }
+        }
+        needed
+    }
+}
+
 /// The worker loop: the newest solve first (older ones are dropped), then the displacement
-/// of the solution just sent, then the stresses of the solution shown, then the newest study (likewise), then inf-sup estimates in order;
-/// studies and estimates older than the newest generation are skipped. When nothing is
-/// waiting, the neighbouring levels of the mesh in use are built in the background
-/// ([`super::prefetch`]); a solve that needs the level being built waits for that build.
+/// of the solution just sent, then the stresses of the solution shown, then the newest study
+/// (likewise), then inf-sup estimates in order; studies and estimates older than the newest
+/// generation are skipped. A mesh a solve or an estimate needs that is not built is built on
+/// a thread of its own while the worker keeps answering: the solve is told its progress, and
+/// a newer request (a step back to a built level) is served at once. Estimates run on a
+/// thread of their own too, one at a time on built meshes, and each as soon as the mesh it
+/// waited for is built (held by the estimate alone when the cache's budget cannot keep it).
+/// When nothing is waiting, the neighbouring levels
+/// of the mesh in use are built in the background, each only while the memory would hold it
+/// twice (what it leaves for the next request).
 fn run(mut engine: Engine, rx: &Receiver<Request>, latest: &AtomicU64, sink: &dyn Fn(Response) -> bool) {
     let mut waiting = Waiting::default();
-    let mut prefetch: Option<Prefetch> = None;
-    // The solve generation told that it waits for a background build.
+    let mut builds = Builds::default();
+    let mut estimating: Vec<Estimating> = Vec::new();
+    // The solve generation told that it waits for a build.
     let mut announced = None;
     loop {
-        if let Some(p) = prefetch.take() {
-            prefetch = collect(&mut engine, p, Duration::ZERO, false);
+        for e in std::mem::take(&mut estimating) {
+            match e.finished(Duration::ZERO) {
+                Ok(response) => {
+                    if !sink(response) {
+                        return;
+                    }
+                }
+                Err(e) => estimating.push(e),
+            }
         }
         if waiting.is_empty() {
-            if prefetch.is_none() {
-                prefetch = engine.start_prefetch();
+            builds.collect(&mut engine, None, Duration::ZERO);
+            if builds.0.is_empty()
+                && let Some((level, element)) = engine.next_prefetch()
+            {
+                let plan = engine.plan(level, element);
+                builds.start(&engine.scenario, plan, plan.peak);
             }
-            let next = if prefetch.is_some() {
+            let next = if builds.0.is_empty() && estimating.is_empty() {
+                match rx.recv() {
+                    Ok(r) => Some(r),
+                    Err(_) => return,
+                }
+            } else {
                 match rx.recv_timeout(POLL) {
                     Ok(r) => Some(r),
                     Err(mpsc::RecvTimeoutError::Timeout) => None,
                     Err(mpsc::RecvTimeoutError::Disconnected) => return,
-                }
-            } else {
-                match rx.recv() {
-                    Ok(r) => Some(r),
-                    Err(_) => return,
                 }
             };
             if let Some(r) = next {
@@ -466,32 +623,59 @@ fn run(mut engine: Engine, rx: &Receiver<Request>, latest: &AtomicU64, sink: &dy
             waiting.take(r);
         }
         let current = |g: u64| latest.load(Ordering::SeqCst) == g;
-        // A solve of the level being built in the background waits for that build.
-        let builds = |req: &SolveRequest| {
-            prefetch
-                .as_ref()
-                .filter(|p| current(req.generation) && p.is_for(req.key.level, req.key.element))
-                .map(|p| Progress::Assembling {
-                    level: p.level,
-                    unknowns: p.unknowns,
-                    started: p.started,
-                    estimate_ms: p.estimate_ms,
-                })
-        };
-        if let Some((generation, progress)) = waiting
-            .solve
-            .as_ref()
-            .and_then(|r| Some((r.generation, builds(r)?)))
-        {
-            if announced != Some(generation) {
-                announced = Some(generation);
-                sink(Response::Progress { generation, progress });
+        let needs = waiting
+            .needs(&current, latest.load(Ordering::SeqCst))
+            .filter(|&(level, element, _)| !engine.has(level, element));
+        if let Some((level, element, needed_by)) = needs {
+            let under_way = builds.of(level, element).is_some()
+                || builds.start(&engine.scenario, engine.plan(level, element), 0);
+            // Without a thread of its own, the request below builds its mesh here.
+            if under_way {
+                if let (Some(generation), Some(b)) = (needed_by, builds.of(level, element))
+                    && announced != Some(generation)
+                {
+                    announced = Some(generation);
+                    sink(Response::Progress {
+                        generation,
+                        progress: Progress::Assembling {
+                            level,
+                            unknowns: b.unknowns,
+                            started: b.started,
+                            estimate_ms: b.estimate_ms,
+                        },
+                    });
+                }
+                let use_ = if needed_by.is_some() {
+                    Use::Solve
+                } else {
+                    Use::Estimate
+                };
+                let response = match builds.collect(&mut engine, Some((level, element, use_)), POLL) {
+                    Some(Err(error)) => waiting.fail(needed_by, error),
+                    // The estimate starts on the mesh just built, kept in the cache or not.
+                    Some(Ok(disc)) if use_ == Use::Estimate => waiting.queue.pop_front().and_then(|req| {
+                        match Estimating::start(disc.clone(), req.key) {
+                            Some(e) => {
+                                estimating.push(e);
+                                None
+                            }
+                            None => Some(Response::InfSup {
+                                key: req.key,
+                                result: Some(beta::estimate(&disc, req.key.rule)),
+                            }),
+                        }
+                    }),
+                    _ => None,
+                };
+                if let Some(response) = response
+                    && !sink(response)
+                {
+                    return;
+                }
+                continue;
             }
-            if let Some(p) = prefetch.take() {
-                prefetch = collect(&mut engine, p, POLL, true);
-            }
-            continue;
         }
+        builds.collect(&mut engine, None, Duration::ZERO);
         let response = if let Some(req) = waiting.solve.take() {
             if !current(req.generation) {
                 continue;
@@ -522,11 +706,34 @@ fn run(mut engine: Engine, rx: &Receiver<Request>, latest: &AtomicU64, sink: &dy
                 }),
                 key: req.key,
             }
+        } else if !estimating.is_empty() {
+            // The next estimate waits for those under way.
+            match estimating.remove(0).finished(POLL) {
+                Ok(response) => response,
+                Err(e) => {
+                    estimating.insert(0, e);
+                    continue;
+                }
+            }
         } else if let Some(req) = waiting.queue.pop_front() {
             let stale = latest.load(Ordering::SeqCst) > req.generation;
-            Response::InfSup {
-                key: req.key,
-                result: (!stale).then(|| engine.inf_sup(req.key)),
+            let key = req.key;
+            match engine.cached(key.level, key.element) {
+                Some(disc) if !stale => match Estimating::start(disc, key) {
+                    Some(e) => {
+                        estimating.push(e);
+                        continue;
+                    }
+                    None => Response::InfSup {
+                        key,
+                        result: Some(engine.inf_sup(key)),
+                    },
+                },
+                // Without its mesh (no thread for its build), the estimate builds it here.
+                _ => Response::InfSup {
+                    key,
+                    result: (!stale).then(|| engine.inf_sup(key)),
+                },
             }
         } else {
             continue;
@@ -534,19 +741,6 @@ fn run(mut engine: Engine, rx: &Receiver<Request>, latest: &AtomicU64, sink: &dy
         if !sink(response) {
             return;
         }
-    }
-}
-
-/// Adopt the background build `p` into `engine` if it finished within `wait` (`wanted` by a
-/// waiting solve or not, see [`Engine::adopt`]); otherwise give it back.
-fn collect(engine: &mut Engine, p: Prefetch, wait: Duration, wanted: bool) -> Option<Prefetch> {
-    let (level, element) = (p.level, p.element);
-    match p.finished(wait) {
-        Ok(built) => {
-            engine.adopt(level, element, built, wanted);
-            None
-        }
-        Err(p) => Some(p),
     }
 }
 
@@ -584,7 +778,7 @@ pub fn carry_out(app: &mut App, engine: &mut Engine, mut commands: Vec<Command>)
                 key: req.key,
             },
             Command::Stresses(req) => engine.stresses(&req),
-            Command::Export | Command::Suspend => continue,
+            Command::Export | Command::Suspend | Command::Supersede(_) => continue,
         };
         commands.extend(app.update(Msg::Worker(response)).commands);
     }

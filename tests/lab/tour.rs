@@ -356,7 +356,7 @@ fn bad_tours_name_the_file_line_key_and_allowed_values() {
     assert!(e.contains("colour") && e.contains("caption"), "{e}");
     let e = error(&format!("{STEP}level = 9\n"));
     assert!(
-        e.starts_with("bad.toml:5:9:") && e.contains("step[1].level") && e.contains("0 to 6"),
+        e.starts_with("bad.toml:5:9:") && e.contains("step[1].level") && e.contains("0 to 7"),
         "{e}"
     );
     let e = error(&format!("{STEP}scene = \"plot\"\n"));

@@ -17,7 +17,7 @@ use riplab::tui::app::{
 };
 use riplab::tui::theme::Theme;
 use riplab::tui::view::Look;
-use riplab::tui::worker::{Engine, settle};
+use riplab::tui::worker::{Engine, Use, settle};
 use riplab::tui::{render_app, render_to_string};
 
 const LOOK: Look = Look {
@@ -449,7 +449,7 @@ fn no_key_sequence_panics() {
                     result: Some(Err("test failure".into())),
                 },
                 Command::Stresses(r) => Response::Stresses { key: r.solved.key },
-                Command::Export | Command::Suspend => continue,
+                Command::Export | Command::Suspend | Command::Supersede(_) => continue,
             };
             app.update(Msg::Worker(reply));
         }
@@ -1312,7 +1312,10 @@ fn infsup_table_shows_the_current_level() {
             .filter(|l| l.contains(&format!("│▸ {current} ")))
             .collect();
         assert_eq!(marked.len(), 1, "level {current} marked:\n{text}");
-        assert!(text.contains(" of 7"), "the title says rows are hidden:\n{text}");
+        // Whole on its line (h at level 7, 0.00781, is a digit longer than the others).
+        assert!(marked[0].contains(" 0.9│"), "level {current}:\n{text}");
+        let of = format!(" of {}", MAX_APP_LEVEL + 1);
+        assert!(text.contains(&of), "the title says rows are hidden:\n{text}");
     }
 }
 
@@ -1450,10 +1453,10 @@ fn keys_say_why_and_close_help_only() {
     app.update(ch(']'));
     let notice = app.notice.clone().expect("says why").text;
     assert!(
-        notice.contains("level 6") && notice.contains("level 7"),
+        notice.contains("level 7") && notice.contains("level 8"),
         "{notice}"
     );
-    // Whole on an 80-column status line (the cost is composed from `level_7_cost!`).
+    // Whole on an 80-column status line (the cost is composed from `level_8_cost!`).
     assert!(notice.chars().count() < 80, "{notice}");
     app.settings.level = 0;
     app.update(key(KeyCode::Left));
@@ -1512,15 +1515,15 @@ fn smaller_things() {
     assert!(text.contains("kernel"), "M2's β_h is a kernel:\n{text}");
     let text = frame(&convergence_app(), 120, 40);
     assert!(text.contains("the scenario's ε"), "{text}");
-    let (code, _, err) = crate::common::riplab(&["render", "--level", "7", "--size", "80x24"]);
+    let (code, _, err) = crate::common::riplab(&["render", "--level", "8", "--size", "80x24"]);
     assert_eq!(code, 2);
-    assert!(err.contains("0 to 6") && err.contains("level 7 takes"), "{err}");
+    assert!(err.contains("0 to 7") && err.contains("level 8 takes"), "{err}");
     let (_, help, _) = crate::common::riplab(&["render", "--help"]);
     for scene in Scene::ALL {
         assert!(help.contains(scene.name()), "{scene:?} in\n{help}");
     }
     assert!(
-        help.contains("0 to 6") && help.contains("Mesh level 0 to 6"),
+        help.contains("0 to 7") && help.contains("Mesh level 0 to 7"),
         "{help}"
     );
     // Started without a terminal, the lab says what to use instead.
@@ -1634,14 +1637,14 @@ fn the_engine_prefetches_the_neighbouring_levels() {
     settle(&mut app, &mut engine);
     assert_eq!(engine.next_prefetch(), Some((3, Element::Q1)));
     let built = |level| Ok((Discretization::of(&scenario, level, Element::Q1).unwrap(), 1.0));
-    engine.adopt(3, Element::Q1, built(3), false);
+    engine.adopt(3, Element::Q1, built(3), Use::Background);
     assert!(engine.has(3, Element::Q1));
     assert_eq!(engine.next_prefetch(), Some((1, Element::Q1)));
-    engine.adopt(1, Element::Q1, built(1), false);
+    engine.adopt(1, Element::Q1, built(1), Use::Background);
     assert_eq!(engine.next_prefetch(), None, "both neighbours built");
     // A build for an element no longer in use is dropped.
     let q2 = Ok((Discretization::of(&scenario, 1, Element::Q2).unwrap(), 1.0));
-    engine.adopt(1, Element::Q2, q2, false);
+    assert!(engine.adopt(1, Element::Q2, q2, Use::Background).is_some());
     assert!(!engine.has(1, Element::Q2));
     // The step to level 3 assembles nothing.
     let key = riplab::tui::app::SolveKey {
@@ -1663,6 +1666,28 @@ fn the_engine_prefetches_the_neighbouring_levels() {
         )),
         "{progress:?}"
     );
+    // One an estimate waited for is kept within the budget, the mesh in use unchanged; one a
+    // solve waited for becomes the mesh in use.
+    let q2 = |level| Ok((Discretization::of(&scenario, level, Element::Q2).unwrap(), 1.0));
+    assert!(engine.adopt(2, Element::Q2, q2(2), Use::Estimate).is_some());
+    assert!(engine.has(2, Element::Q2));
+    assert_eq!(
+        engine.next_prefetch(),
+        Some((4, Element::Q1)),
+        "still level 3 of Q1 in use"
+    );
+    assert!(engine.adopt(1, Element::Q2, q2(1), Use::Solve).is_some());
+    assert_eq!(engine.next_prefetch(), Some((0, Element::Q2)));
+    assert!(
+        engine
+            .adopt(
+                0,
+                Element::Q1,
+                Err(riplab::error::SolveError::Cancelled),
+                Use::Solve
+            )
+            .is_none()
+    );
     // At the lab's finest level only the coarser neighbour; a failed build is not retried.
     // (One level-0 cell, so that level 6 is small.)
     let mut one_cell = scenario.clone();
@@ -1676,8 +1701,34 @@ fn the_engine_prefetches_the_neighbouring_levels() {
     assert!(app.current().is_some());
     assert_eq!(engine.next_prefetch(), Some((MAX_APP_LEVEL - 1, Element::Q2)));
     let too_large = riplab::error::SolveError::TooLarge("test".into());
-    engine.adopt(MAX_APP_LEVEL - 1, Element::Q2, Err(too_large), false);
+    engine.adopt(MAX_APP_LEVEL - 1, Element::Q2, Err(too_large), Use::Background);
     assert_eq!(engine.next_prefetch(), None, "not retried");
+}
+
+/// Issue 13 item 4: the lab keeps (and builds in the background) level 7 beside level 6 with
+/// Q1 or P1, and Q2's level 6 beside its level 5, but not Q2's level 7 (as many unknowns as
+/// Q1's level 8), whose estimate alone exceeds the budget.
+#[test]
+fn the_cache_budget_holds_level_7_of_q1_not_of_q2() {
+    use riplab::solve::Discretization;
+    use riplab::tui::worker::CACHE_BYTES;
+    let scenario = Scenario::paper();
+    let engine = Engine::new(scenario.clone());
+    let gib = |l, e| Discretization::sizes(&scenario, l, e).peak_bytes() as f64 / f64::from(1 << 30);
+    let sizes = format!(
+        "q1 6, 7: {:.2} {:.2} GiB; q2 5, 6, 7: {:.2} {:.2} {:.2} GiB; budget {} GiB",
+        gib(6, Element::Q1),
+        gib(7, Element::Q1),
+        gib(5, Element::Q2),
+        gib(6, Element::Q2),
+        gib(7, Element::Q2),
+        CACHE_BYTES >> 30
+    );
+    assert!(engine.fits(&[(6, Element::Q1), (7, Element::Q1)]), "{sizes}");
+    assert!(engine.fits(&[(6, Element::P1), (7, Element::P1)]), "{sizes}");
+    assert!(engine.fits(&[(5, Element::Q2), (6, Element::Q2)]), "{sizes}");
+    assert!(!engine.fits(&[(7, Element::Q2)]), "{sizes}");
+    assert!(!engine.fits(&[(7, Element::Q1), (7, Element::P1)]), "{sizes}");
 }
 
 /// Issue 13 item 4, end to end: a worker left idle after a solve builds the next level in
@@ -1723,6 +1774,196 @@ fn an_idle_worker_builds_the_next_level_before_it_is_asked_for() {
     std::thread::sleep(Duration::from_secs(2));
     let seen = solve(2, 3);
     assert!(!assembling(&seen), "level 3 was built while idle: {seen:?}");
+}
+
+/// Issue 13 item 4: a level that is not built is built beside the worker, which keeps
+/// answering: a step back to a built level during the build is served at once, and the
+/// solve left behind is neither run nor reported (before, the worker sat in the build and
+/// then reported the old solve cancelled).
+#[test]
+fn a_step_back_during_a_build_is_served_at_once() {
+    use riplab::tui::app::{Progress, SolveKey, SolveRequest};
+    use riplab::tui::worker::Worker;
+    use std::time::Duration;
+    let (tx, rx) = std::sync::mpsc::channel();
+    let worker = Worker::spawn(Scenario::paper(), move |r| tx.send(r).is_ok());
+    let key = |level| SolveKey {
+        level,
+        ..App::defaults(&Scenario::paper())
+    };
+    let next = || {
+        rx.recv_timeout(Duration::from_secs(120))
+            .expect("the worker answers")
+    };
+    worker.send(&Command::Solve(SolveRequest {
+        generation: 1,
+        key: key(2),
+    }));
+    while !matches!(next(), Response::Solved { result: Ok(_), .. }) {}
+    // Level 5 takes a few hundred ms to build; level 2 is built.
+    worker.send(&Command::Solve(SolveRequest {
+        generation: 2,
+        key: key(5),
+    }));
+    loop {
+        match next() {
+            Response::Progress {
+                generation: 2,
+                progress: Progress::Assembling { level: 5, .. },
+            } => break,
+            r => assert!(!matches!(r, Response::Solved { .. }), "{r:?}"),
+        }
+    }
+    worker.send(&Command::Solve(SolveRequest {
+        generation: 3,
+        key: key(2),
+    }));
+    loop {
+        match next() {
+            Response::Solved {
+                generation: 3,
+                result,
+            } => {
+                assert_eq!(result.map(|s| s.key.level).ok(), Some(2));
+                break;
+            }
+            r @ (Response::Solved { generation: 2, .. } | Response::Cancelled { generation: 2 }) => {
+                panic!("the step back waited for the build: {r:?}")
+            }
+            _ => {}
+        }
+    }
+}
+
+/// Issue 13 item 4: an inf-sup estimate (seconds at level 7: the H¹ form's factorisation and
+/// two eigenproblems) runs beside the worker, which answers a solve meanwhile (before, the
+/// solve waited for the estimate).
+#[test]
+fn a_solve_does_not_wait_for_an_estimate() {
+    use riplab::tui::app::{InfSupKey, InfSupRequest, SolveKey, SolveRequest};
+    use riplab::tui::worker::Worker;
+    use std::time::Duration;
+    let (tx, rx) = std::sync::mpsc::channel();
+    let worker = Worker::spawn(Scenario::paper(), move |r| tx.send(r).is_ok());
+    let settings = App::defaults(&Scenario::paper());
+    let solve = |generation, level| {
+        worker.send(&Command::Solve(SolveRequest {
+            generation,
+            key: SolveKey { level, ..settings },
+        }))
+    };
+    let next = || {
+        rx.recv_timeout(Duration::from_secs(120))
+            .expect("the worker answers")
+    };
+    // Level 5 built (its estimate takes ~100 ms: the H¹ factorisation), level 1 built.
+    solve(1, 1);
+    while !matches!(next(), Response::Solved { generation: 1, .. }) {}
+    solve(2, 5);
+    while !matches!(next(), Response::Solved { generation: 2, .. }) {}
+    worker.send(&Command::InfSup(InfSupRequest {
+        generation: 2,
+        key: InfSupKey {
+            level: 5,
+            element: settings.element,
+            rule: settings.rule,
+        },
+    }));
+    // Let the worker start the estimate, then ask for a solve of the same generation.
+    std::thread::sleep(Duration::from_millis(20));
+    solve(2, 1);
+    loop {
+        match next() {
+            Response::Solved {
+                generation: 2,
+                result,
+            } => {
+                assert_eq!(result.map(|s| s.key.level).ok(), Some(1));
+                break;
+            }
+            r @ Response::InfSup { .. } => panic!("the solve waited for the estimate: {r:?}"),
+            _ => {}
+        }
+    }
+    while !matches!(
+        next(),
+        Response::InfSup {
+            result: Some(Ok(_)),
+            ..
+        }
+    ) {}
+}
+
+/// Issue 13 item 4: a level whose build the memory guard refuses answers the solve that
+/// asked for it with the guard's reason, through the build thread.
+#[test]
+fn a_refused_build_answers_its_solve_with_why() {
+    use riplab::tui::app::{SolveKey, SolveRequest};
+    use riplab::tui::worker::Worker;
+    use std::time::Duration;
+    // 256 × 128 level-0 cells: level 7 has about 10⁹ unknowns.
+    let mut huge = Scenario::paper();
+    let lines = |a: f64, b: f64, n: usize| (0..=n).map(|i| a + (b - a) * i as f64 / n as f64).collect();
+    let ((x0, x1), (y0, y1)) = (
+        (huge.x_lines[0], *huge.x_lines.last().unwrap()),
+        (huge.y_lines[0], *huge.y_lines.last().unwrap()),
+    );
+    (huge.x_lines, huge.y_lines) = (lines(x0, x1, 256), lines(y0, y1, 128));
+    let (tx, rx) = std::sync::mpsc::channel();
+    let worker = Worker::spawn(huge.clone(), move |r| tx.send(r).is_ok());
+    worker.send(&Command::Solve(SolveRequest {
+        generation: 1,
+        key: SolveKey {
+            level: MAX_APP_LEVEL,
+            ..App::defaults(&huge)
+        },
+    }));
+    loop {
+        let r = rx
+            .recv_timeout(Duration::from_secs(60))
+            .expect("the worker answers");
+        if let Response::Solved { generation, result } = r {
+            assert_eq!(generation, 1);
+            let Err(e) = result else {
+                panic!("level {MAX_APP_LEVEL} of the huge grid was not refused")
+            };
+            assert!(e.contains("needs about") && e.contains("coarser level"), "{e}");
+            break;
+        }
+    }
+}
+
+/// Issue 13 item 4: coming back to the solution shown while a solve of other settings is
+/// under way (a level being built) shows that solution as settled, not "building", and
+/// tells the worker the solve is superseded.
+#[test]
+fn coming_back_to_the_solution_shown_supersedes_the_solve_under_way() {
+    use riplab::tui::app::Progress;
+    let mut app = settled(1, Scene::Explore);
+    assert!(!app.is_solving());
+    let step = app.update(key(KeyCode::Right)).commands;
+    let Some(Command::Solve(req)) = step.iter().find(|c| matches!(c, Command::Solve(_))) else {
+        panic!("{step:?}")
+    };
+    app.update(Msg::Worker(Response::Progress {
+        generation: req.generation,
+        progress: Progress::Assembling {
+            level: 2,
+            unknowns: 1,
+            started: std::time::Instant::now(),
+            estimate_ms: 1e4,
+        },
+    }));
+    assert!(app.is_solving() && app.wants_tick());
+    let back = app.update(key(KeyCode::Left)).commands;
+    assert!(app.current().is_some());
+    assert!(!app.is_solving() && !app.wants_tick(), "still building on screen");
+    assert!(
+        back.iter()
+            .any(|c| matches!(c, Command::Supersede(g) if *g > req.generation)),
+        "{back:?}"
+    );
+    assert!(!frame(&app, 80, 24).contains("building"));
 }
 
 /// Issue 13 item 4: a solve's reply carries the pressures at once; the displacement (a solve

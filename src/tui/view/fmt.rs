@@ -27,6 +27,24 @@ fn trim(s: &str) -> &str {
     }
 }
 
+/// A table row: `lead`, then each `(text, width)` cell right-aligned at the end of its
+/// column, one space after the column before. A cell wider than its column takes the padding
+/// of the cells after it (at least one space stays), so that one long value (h at level 7)
+/// shifts its row only as far as it must instead of pushing it out of its panel.
+pub fn table_row(lead: &str, cells: &[(&str, usize)]) -> String {
+    let mut out = String::from(lead);
+    let (mut len, mut end) = (lead.chars().count(), lead.chars().count());
+    for &(text, width) in cells {
+        end += 1 + width;
+        let n = text.chars().count();
+        let pad = end.saturating_sub(len + n).max(1);
+        out.push_str(&" ".repeat(pad));
+        out.push_str(text);
+        len += pad + n;
+    }
+    out
+}
+
 /// `text` cut to `width` characters, ending with "…" when cut (block titles).
 pub fn title_fit(text: &str, width: u16) -> String {
     let width = usize::from(width);
@@ -85,6 +103,21 @@ pub use crate::plot::nice_ceil;
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_table_row_is_the_columns_format_and_a_long_cell_borrows_padding() {
+        let cells = [("0.0156", 6), ("3e-4", 9), ("1.07", 9)];
+        assert_eq!(
+            table_row("▸ 6", &cells),
+            format!("▸ 6 {:>6} {:>9} {:>9}", "0.0156", "3e-4", "1.07")
+        );
+        // One character too long: the next cell's padding gives way, the row's end stays.
+        let long = table_row("▸ 7", &[("0.00781", 6), ("1.06e-4", 9), ("1.07", 9)]);
+        assert_eq!(long, "▸ 7 0.00781  1.06e-4      1.07");
+        assert_eq!(long.chars().count(), table_row("▸ 6", &cells).chars().count());
+        // Too long to absorb: one space always separates cells.
+        assert_eq!(table_row("", &[("abcd", 2), ("ef", 2)]), " abcd ef");
+    }
 
     #[test]
     fn significant_digits() {

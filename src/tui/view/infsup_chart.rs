@@ -16,7 +16,7 @@ use super::super::app::{App, InfSupKey, MAX_APP_LEVEL};
 use super::super::beta::InfSup;
 use super::super::theme::Theme;
 use super::Look;
-use super::fmt::sig;
+use super::fmt::{sig, table_row};
 use super::infsup_panel::{estimates, hidden_rows, trend, visible};
 use super::plot::{self, Axis, Plot, Scale, Stroke};
 
@@ -81,13 +81,18 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
         .collect();
     let table_height = (levels.len() as u16 + 5).min(area.height / 2);
     let [top, bottom] = Layout::vertical([Constraint::Fill(1), Constraint::Length(table_height)]).areas(area);
-    chart(app, frame, top, look, &all);
+    let finest = levels.last().map_or(CHART_FINEST, |&l| l.max(CHART_FINEST));
+    chart(app, frame, top, look, &all, finest);
     table(app, frame, bottom, look.theme, &all, &levels);
 }
 
-fn chart(app: &App, frame: &mut Frame, area: Rect, look: &Look, all: &[Series]) {
+/// The h axis spans levels 0 to 6 (so that curves read alike from visit to visit), or to the
+/// finest level estimated when that is finer.
+const CHART_FINEST: u32 = 6;
+
+fn chart(app: &App, frame: &mut Frame, area: Rect, look: &Look, all: &[Series], finest: u32) {
     let h_of = |level: u32| app.scenario.h(level).log10();
-    let xb = [h_of(MAX_APP_LEVEL), h_of(0)];
+    let xb = [h_of(finest), h_of(0)];
     let data: Vec<Vec<(f64, f64)>> = all
         .iter()
         .map(|s| {
@@ -161,7 +166,8 @@ fn table(app: &App, frame: &mut Frame, area: Rect, theme: Theme, all: &[Series],
     let shown = visible(levels, app.settings.level, rows);
     for &level in shown {
         let mark = if level == app.settings.level { '▸' } else { ' ' };
-        let mut row = format!("{mark}{level:>2} {:>7}", sig(app.scenario.h(level), 4));
+        let h = sig(app.scenario.h(level), 4);
+        let mut cells = vec![(h, 7)];
         for s in all {
             let k = InfSupKey {
                 level,
@@ -178,8 +184,10 @@ fn table(app: &App, frame: &mut Frame, area: Rect, theme: Theme, all: &[Series],
                 None if app.is_estimating(&k) => "⟳".to_string(),
                 None => "·".to_string(),
             };
-            row.push_str(&format!(" {cell:>8}"));
+            cells.push((cell, 8));
         }
+        let cells: Vec<(&str, usize)> = cells.iter().map(|(t, w)| (t.as_str(), *w)).collect();
+        let row = table_row(&format!("{mark}{level:>2}"), &cells);
         let style = if level == app.settings.level {
             theme.selected()
         } else {

@@ -13,7 +13,7 @@ use crate::scheme::Scheme;
 use super::super::app::{App, InfSupKey};
 use super::super::beta::InfSup;
 use super::super::theme::Theme;
-use super::fmt::sig;
+use super::fmt::{sig, table_row};
 
 /// Below this ratio of β/√h between two successive levels, the estimate is decaying.
 const DECAY: f64 = 0.8;
@@ -44,20 +44,21 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, theme: Theme) {
         let k = InfSupKey { level, ..key };
         let mark = if level == key.level { '▸' } else { ' ' };
         let text = match app.infsup.get(&k) {
-            Some(Ok(b)) if b.kernel.is_some() => format!(
-                "{mark}{level:>2} {:>6} {:>9} {:>9} {:>9}",
-                sig(b.h, 3),
-                "kernel",
-                "kernel",
-                sig(b.beta_bar_over_sqrt_h, 3)
-            ),
-            Some(Ok(b)) => format!(
-                "{mark}{level:>2} {:>6} {:>9} {:>9} {:>9}",
-                sig(b.h, 3),
-                sig(b.beta, 3),
-                sig(b.beta_over_sqrt_h, 3),
-                sig(b.beta_bar_over_sqrt_h, 3)
-            ),
+            Some(Ok(b)) => {
+                let (beta, over) = match b.kernel {
+                    Some(_) => ("kernel".to_string(), "kernel".to_string()),
+                    None => (sig(b.beta, 3), sig(b.beta_over_sqrt_h, 3)),
+                };
+                table_row(
+                    &format!("{mark}{level:>2}"),
+                    &[
+                        (&sig(b.h, 3), 6),
+                        (&beta, 9),
+                        (&over, 9),
+                        (&sig(b.beta_bar_over_sqrt_h, 3), 9),
+                    ],
+                )
+            }
             Some(Err(e)) => format!("{mark}{level:>2} {e}"),
             None => format!(
                 "{mark}{level:>2} {:>6} ⟳ estimating…",

@@ -1,11 +1,13 @@
-//! Building the discretisation of a neighbouring level while the lab is idle (issue 13,
-//! item 4), so that `]` and `[` find the next finer or coarser mesh assembled and factorised.
+//! Building a discretisation on a thread of its own (issue 13, item 4), so that the worker
+//! never waits on a factorisation: a level the user asks for shows its progress and the time
+//! left while the worker keeps answering (a step back to a built level is served at once),
+//! and a neighbouring level is built while the lab is idle, so that `]` and `[` find it ready.
 //!
-//! A build runs on a thread of its own, one at a time, and hands its result back through a
-//! channel; the worker adopts it into its cache ([`super::worker::Engine::adopt`]) or drops it
-//! when the user has moved on to another element. A factorisation cannot be interrupted, so
-//! "cancelling" a build means dropping its result; the memory it may use is bounded before it
-//! starts ([`super::worker::Engine::next_prefetch`]).
+//! A build hands its result back through a channel; the worker adopts it into its cache
+//! ([`super::worker::Engine::adopt`]) or drops it when the user has moved on. A factorisation
+//! cannot be interrupted, so "cancelling" a build means dropping its result; the memory it may
+//! use is checked before it starts, less what the builds already under way may still take
+//! ([`Discretization::of_beside`]).
 
 use std::sync::mpsc::{self, Receiver, RecvTimeoutError};
 use std::time::{Duration, Instant};
@@ -15,14 +17,16 @@ use crate::mesh::Element;
 use crate::scenario::Scenario;
 use crate::solve::Discretization;
 
-/// A background build of the discretisation of `level` with `element`.
-pub struct Prefetch {
+/// A build of the discretisation of `level` with `element` on a thread of its own.
+pub struct Build {
     /// The level being built.
     pub level: u32,
     /// The element being built.
     pub element: Element,
     /// Its number of unknowns (for the time estimate).
     pub unknowns: usize,
+    /// Its estimated peak memory, bytes ([`crate::fem::memory::Sizes::peak_bytes`]).
+    pub peak: u64,
     /// When the build began.
     pub started: Instant,
     /// What the build is expected to take ([`super::eta`]).
@@ -33,40 +37,52 @@ pub struct Prefetch {
 /// A finished build and its wall time in ms, or why there is none.
 pub type Built = Result<(Discretization, f64), SolveError>;
 
-impl Prefetch {
-    /// Start building `level` with `element` of `scenario`; None if no thread can be started
-    /// (the lab then simply builds on demand).
-    pub fn start(
-        scenario: &Scenario,
-        level: u32,
-        element: Element,
-        unknowns: usize,
-        estimate_ms: f64,
-    ) -> Option<Self> {
+/// What a build is of and what it is expected to cost.
+#[derive(Clone, Copy, Debug)]
+pub struct Plan {
+    /// The level to build.
+    pub level: u32,
+    /// The element to build.
+    pub element: Element,
+    /// Its number of unknowns.
+    pub unknowns: usize,
+    /// Its estimated peak memory, bytes.
+    pub peak: u64,
+    /// Its expected time, ms.
+    pub estimate_ms: f64,
+}
+
+impl Build {
+    /// Start the build `plan` of `scenario` beside other work that may still take `reserved`
+    /// bytes; None if no thread can be started (the caller then builds in its own thread).
+    pub fn start(scenario: &Scenario, plan: Plan, reserved: u64) -> Option<Self> {
         let (tx, done) = mpsc::channel();
         let scenario = scenario.clone();
+        let Plan { level, element, .. } = plan;
         std::thread::Builder::new()
-            .name("riplab-prefetch".into())
+            .name("riplab-build".into())
             .spawn(move || {
                 let t = Instant::now();
-                let built = Discretization::of(&scenario, level, element)
+                let built = Discretization::of_beside(&scenario, level, element, reserved)
                     .map(|d| (d, t.elapsed().as_secs_f64() * 1e3));
                 // Nobody listens any more when the worker has ended: nothing to do then.
                 let _ = tx.send(built);
             })
             .ok()?;
-        Some(Prefetch {
+        Some(Build {
             level,
             element,
-            unknowns,
+            unknowns: plan.unknowns,
+            peak: plan.peak,
             started: Instant::now(),
-            estimate_ms,
+            estimate_ms: plan.estimate_ms,
             done,
         })
     }
 
     /// The build's result if it finished within `wait` (a thread that ended without one
-    /// counts as cancelled: the level is then built on demand); `Err(self)` while it runs.
+    /// counts as cancelled: the level is then built again when asked for); `Err(self)` while
+    /// it runs.
     pub fn finished(self, wait: Duration) -> Result<Built, Self> {
         let got = if wait.is_zero() {
             self.done.try_recv().map_err(|e| match e {

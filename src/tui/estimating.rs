@@ -1,0 +1,46 @@
+//! Inf-sup estimates on a thread of their own (issue 13, item 4): at level 7 one takes
+//! seconds (the H¹ form's factorisation and two dense eigenproblems), and the worker serves
+//! solves meanwhile.
+
+use std::sync::Arc;
+use std::sync::mpsc::{self, Receiver, RecvTimeoutError};
+use std::time::Duration;
+
+use super::beta::{InfSup, estimate};
+use super::protocol::{InfSupKey, Response};
+use crate::solve::Discretization;
+
+/// An estimate under way on a thread of its own.
+pub struct Estimating {
+    /// What is estimated.
+    pub key: InfSupKey,
+    done: Receiver<Result<InfSup, String>>,
+}
+
+impl Estimating {
+    /// Start estimating `key` on `disc` (its mesh); None if no thread can be started.
+    pub fn start(disc: Arc<Discretization>, key: InfSupKey) -> Option<Self> {
+        let (tx, done) = mpsc::channel();
+        std::thread::Builder::new()
+            .name("riplab-estimate".into())
+            .spawn(move || {
+                // Nobody listens any more when the worker has ended: nothing to do then.
+                let _ = tx.send(estimate(&disc, key.rule));
+            })
+            .ok()?;
+        Some(Estimating { key, done })
+    }
+
+    /// The reply for the app if the estimate finished within `wait`; `Err(self)` while it runs.
+    pub fn finished(self, wait: Duration) -> Result<Response, Self> {
+        let result = match self.done.recv_timeout(wait) {
+            Ok(result) => result,
+            Err(RecvTimeoutError::Timeout) => return Err(self),
+            Err(RecvTimeoutError::Disconnected) => Err("the estimate ended without a result".into()),
+        };
+        Ok(Response::InfSup {
+            key: self.key,
+            result: Some(result),
+        })
+    }
+}
