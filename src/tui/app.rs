@@ -21,7 +21,7 @@ pub use super::protocol::{
 };
 
 /// The finest level the interactive lab (and `riplab render`) offers. A change at level 7
-/// costs about 3–6 s and 1.3 GB with Q1 or P1, and 18–28 s and 5.4 GB with Q2, whose level 7
+/// costs about 3–6 s and 1.3 GB with Q1 or P1, and 25–30 s and 5.8 GiB with Q2, whose level 7
 /// has the unknowns of Q1's level 8 (BENCHMARKS.md, "Fresh memory"): the lab builds it on a
 /// thread of its own with the time left shown, and the memory guard
 /// refuses it, saying why, where memory does not allow it. Level 8 is too slow to explore by
@@ -31,7 +31,7 @@ pub const MAX_APP_LEVEL: u32 = if MAX_LEVEL < 7 { MAX_LEVEL } else { 7 };
 /// `concat!`: the one place the lab's messages and `riplab render --help` read it from.
 macro_rules! level_8_cost {
     () => {
-        "level 8 takes 18–28 s and 5.4 GB"
+        "level 8 takes 18–28 s and 5.4 GiB"
     };
 }
 pub(crate) use level_8_cost;
@@ -215,6 +215,8 @@ pub struct App {
     /// Inf-sup estimates computed so far.
     pub infsup: HashMap<InfSupKey, Result<InfSup, String>>,
     infsup_pending: HashSet<InfSupKey>,
+    /// The estimate in flight whose mesh is being built, and where that build is.
+    pub infsup_progress: Option<(InfSupKey, Progress)>,
     /// Every estimate asked for (a row once shown stays, and is asked again if dropped).
     infsup_wanted: HashSet<InfSupKey>,
     /// Work–precision studies computed so far (failures too: they are not retried).
@@ -254,6 +256,7 @@ impl App {
             export_kind: ExportKind::Csv,
             infsup: HashMap::new(),
             infsup_pending: HashSet::new(),
+            infsup_progress: None,
             infsup_wanted: HashSet::new(),
             studies: HashMap::new(),
             study_pending: None,
@@ -283,6 +286,7 @@ impl App {
     pub fn wants_tick(&self) -> bool {
         matches!(self.progress, Some(Progress::Assembling { .. }))
             || (self.scene == Scene::Convergence && self.study_progress.is_some())
+            || (self.scene == Scene::InfSup && self.infsup_building().is_some())
     }
 
     /// Whether the user asked to quit.
@@ -293,6 +297,12 @@ impl App {
     /// Whether a solve is in flight.
     pub fn is_solving(&self) -> bool {
         self.pending_solve.is_some()
+    }
+
+    /// The estimate in flight whose mesh is being built, and where that build is.
+    pub fn infsup_building(&self) -> Option<(InfSupKey, Progress)> {
+        self.infsup_progress
+            .filter(|(key, _)| self.infsup_pending.contains(key))
     }
 
     /// The inf-sup estimates in flight.
@@ -594,8 +604,18 @@ impl App {
                 self.pending_solve = None;
                 self.progress = None;
             }
+            Response::InfSupProgress { key, progress } => {
+                if !self.infsup_pending.contains(&key) {
+                    return false;
+                }
+                self.infsup_progress = Some((key, progress));
+                return self.scene == Scene::InfSup;
+            }
             Response::InfSup { key, result } => {
                 self.infsup_pending.remove(&key);
+                if self.infsup_progress.is_some_and(|(k, _)| k == key) {
+                    self.infsup_progress = None;
+                }
                 match result {
                     Some(result) => {
                         self.infsup.insert(key, result);

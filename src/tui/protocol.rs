@@ -242,6 +242,13 @@ pub enum Response {
         /// The request's generation.
         generation: u64,
     },
+    /// The mesh the estimate of `key` waits for is being built ([`Progress::Assembling`]).
+    InfSupProgress {
+        /// The estimate's key.
+        key: InfSupKey,
+        /// Where its build is.
+        progress: Progress,
+    },
     /// `result` is None when the request was dropped as stale before it started.
     InfSup {
         /// The estimate's key.

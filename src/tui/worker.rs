@@ -581,8 +581,9 @@ fn run(mut engine: Engine, rx: &Receiver<Request>, latest: &AtomicU64, sink: &dy
     let mut waiting = Waiting::default();
     let mut builds = Builds::default();
     let mut estimating: Vec<Estimating> = Vec::new();
-    // The solve generation told that it waits for a build.
+    // The solve generation, and the estimate, told that it waits for a build.
     let mut announced = None;
+    let mut announced_estimate = None;
     loop {
         for e in std::mem::take(&mut estimating) {
             match e.finished(Duration::ZERO) {
@@ -631,26 +632,39 @@ fn run(mut engine: Engine, rx: &Receiver<Request>, latest: &AtomicU64, sink: &dy
                 || builds.start(&engine.scenario, engine.plan(level, element), 0);
             // Without a thread of its own, the request below builds its mesh here.
             if under_way {
-                if let (Some(generation), Some(b)) = (needed_by, builds.of(level, element))
-                    && announced != Some(generation)
-                {
-                    announced = Some(generation);
-                    sink(Response::Progress {
-                        generation,
-                        progress: Progress::Assembling {
-                            level,
-                            unknowns: b.unknowns,
-                            started: b.started,
-                            estimate_ms: b.estimate_ms,
-                        },
-                    });
+                if let Some(b) = builds.of(level, element) {
+                    let progress = Progress::Assembling {
+                        level,
+                        unknowns: b.unknowns,
+                        started: b.started,
+                        estimate_ms: b.estimate_ms,
+                    };
+                    match (needed_by, waiting.queue.front()) {
+                        (Some(generation), _) if announced != Some(generation) => {
+                            announced = Some(generation);
+                            sink(Response::Progress { generation, progress });
+                        }
+                        (None, Some(req)) if announced_estimate != Some(req.key) => {
+                            announced_estimate = Some(req.key);
+                            sink(Response::InfSupProgress {
+                                key: req.key,
+                                progress,
+                            });
+                        }
+                        _ => {}
+                    }
                 }
                 let use_ = if needed_by.is_some() {
                     Use::Solve
                 } else {
                     Use::Estimate
                 };
-                let response = match builds.collect(&mut engine, Some((level, element, use_)), POLL) {
+                let collected = builds.collect(&mut engine, Some((level, element, use_)), POLL);
+                if collected.is_some() {
+                    // Built or failed: a later estimate of the same key is told again.
+                    announced_estimate = None;
+                }
+                let response = match collected {
                     Some(Err(error)) => waiting.fail(needed_by, error),
                     // The estimate starts on the mesh just built, kept in the cache or not.
                     Some(Ok(disc)) if use_ == Use::Estimate => waiting.queue.pop_front().and_then(|req| {

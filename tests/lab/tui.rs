@@ -1894,6 +1894,80 @@ fn a_solve_does_not_wait_for_an_estimate() {
     ) {}
 }
 
+/// Issue 13 item 4: an estimate that waits for its mesh says so with the build's time left
+/// (M4 at level 7 builds Q2's level 7, 25–30 s), in the worker's replies and on the inf-sup
+/// scene's status line.
+#[test]
+fn an_estimate_waiting_for_its_mesh_shows_the_build() {
+    use riplab::tui::app::{InfSupKey, InfSupRequest, Progress};
+    use riplab::tui::worker::Worker;
+    use std::time::Duration;
+    let (tx, rx) = std::sync::mpsc::channel();
+    let worker = Worker::spawn(Scenario::paper(), move |r| tx.send(r).is_ok());
+    let asked = InfSupKey {
+        level: 3,
+        element: Element::Q2,
+        rule: Rule::Simpson,
+    };
+    worker.send(&Command::InfSup(InfSupRequest {
+        generation: 0,
+        key: asked,
+    }));
+    let first = rx
+        .recv_timeout(Duration::from_secs(120))
+        .expect("the worker answers");
+    assert!(
+        matches!(
+            first,
+            Response::InfSupProgress {
+                key: k,
+                progress: Progress::Assembling { level: 3, .. },
+            } if k == asked
+        ),
+        "{first:?}"
+    );
+    let then = rx
+        .recv_timeout(Duration::from_secs(120))
+        .expect("the worker answers");
+    assert!(
+        matches!(then, Response::InfSup { key: k, result: Some(Ok(_)) } if k == asked),
+        "{then:?}"
+    );
+    // The scene's status line.
+    let mut app = App::new(Scenario::paper());
+    app.settings.level = MAX_APP_LEVEL;
+    app.update(key(KeyCode::Tab));
+    assert_eq!(app.scene, Scene::InfSup);
+    let m4 = InfSupKey {
+        level: MAX_APP_LEVEL,
+        element: Element::Q2,
+        rule: Rule::Simpson,
+    };
+    assert!(app.is_estimating(&m4), "M4 asked for");
+    let progress = Progress::Assembling {
+        level: MAX_APP_LEVEL,
+        unknowns: 4_195_328,
+        started: std::time::Instant::now(),
+        estimate_ms: 27_000.0,
+    };
+    assert!(
+        app.update(Msg::Worker(Response::InfSupProgress { key: m4, progress }))
+            .redraw
+    );
+    assert!(app.wants_tick());
+    // Whole on an 80-column status line.
+    let status = frame(&app, 80, 24).lines().last().unwrap().to_string();
+    assert!(
+        status.contains("estimate(s) · building q2 level 7 · about 27 s left"),
+        "{status}"
+    );
+    app.update(Msg::Worker(Response::InfSup {
+        key: m4,
+        result: Some(Err("test".into())),
+    }));
+    assert!(app.infsup_building().is_none() && !app.wants_tick());
+}
+
 /// Issue 13 item 4: a level whose build the memory guard refuses answers the solve that
 /// asked for it with the guard's reason, through the build thread.
 #[test]

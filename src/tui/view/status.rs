@@ -13,6 +13,7 @@ use super::super::eta::time_left;
 use super::super::theme::Theme;
 use super::convergence::study_epsilon;
 use super::fmt::sig;
+use crate::mesh::Element;
 
 pub fn render(app: &App, frame: &mut Frame, area: Rect, theme: Theme) {
     frame.render_widget(
@@ -84,6 +85,28 @@ fn fit_words(spans: &[Span<'static>], width: usize) -> Vec<Span<'static>> {
     out
 }
 
+/// "building level 7 (1049088 unknowns) · about 3 s left", or with an element (an estimate's
+/// build, beside the estimates' count on an 80-column line) "building q2 level 7 · about 25
+/// s left".
+fn building(progress: Progress, element: Option<Element>) -> String {
+    let Progress::Assembling {
+        level,
+        unknowns,
+        started,
+        estimate_ms,
+    } = progress
+    else {
+        return "building".into();
+    };
+    let left = time_left(estimate_ms, started.elapsed().as_secs_f64() * 1e3)
+        .map(|t| format!(" · {t}"))
+        .unwrap_or_default();
+    match element {
+        Some(e) => format!("building {} level {level}{left}", e.name()),
+        None => format!("building level {level} ({unknowns} unknowns){left}"),
+    }
+}
+
 /// What the status line says, as styled spans.
 fn state(app: &App, theme: Theme) -> Vec<Span<'static>> {
     if let Some(notice) = &app.notice {
@@ -102,17 +125,7 @@ fn state(app: &App, theme: Theme) -> Vec<Span<'static>> {
                 "⟳ Newton {iteration}: residual {}, {active} active",
                 sig(residual, 2)
             ),
-            Some(Progress::Assembling {
-                level,
-                unknowns,
-                started,
-                estimate_ms,
-            }) => {
-                let left = time_left(estimate_ms, started.elapsed().as_secs_f64() * 1e3)
-                    .map(|t| format!(" · {t}"))
-                    .unwrap_or_default();
-                format!("⟳ building level {level} ({unknowns} unknowns){left}")
-            }
+            Some(progress @ Progress::Assembling { .. }) => format!("⟳ {}", building(progress, None)),
             _ => "⟳ solving".into(),
         };
         spans.push(Span::styled(what, theme.busy()));
@@ -121,10 +134,13 @@ fn state(app: &App, theme: Theme) -> Vec<Span<'static>> {
     if app.scene == Scene::InfSup {
         let n = app.infsup_pending();
         if n > 0 {
-            spans.push(Span::styled(
-                format!("⟳ {n} inf-sup estimate(s) running"),
-                theme.busy(),
-            ));
+            let text = match app.infsup_building() {
+                Some((key, progress)) => {
+                    format!("⟳ {n} estimate(s) · {}", building(progress, Some(key.element)))
+                }
+                None => format!("⟳ {n} inf-sup estimate(s) running"),
+            };
+            spans.push(Span::styled(text, theme.busy()));
         } else {
             spans.push(Span::raw(format!("{} inf-sup estimate(s)", app.infsup.len())));
         }
