@@ -22,10 +22,10 @@ pub use super::protocol::{
 
 /// The finest level the interactive lab (and `riplab render`) offers. A change at level 7
 /// costs about 3–6 s and 1.3 GB with Q1 or P1, and 25–30 s and 5.8 GiB with Q2, whose level 7
-/// has the unknowns of Q1's level 8 (BENCHMARKS.md, "Fresh memory"): the lab builds it on a
-/// thread of its own with the time left shown, and the memory guard
-/// refuses it, saying why, where memory does not allow it. Level 8 is too slow to explore by
-/// key; `riplab solve` goes there.
+/// has the unknowns of Q1's level 8 (BENCHMARKS.md, "Level 7 in the lab"): the lab builds it
+/// on a thread of its own with the time left shown, and the memory guard refuses it, saying
+/// why, where memory does not allow it. Level 8 is too slow to explore by key; `riplab solve`
+/// goes there.
 pub const MAX_APP_LEVEL: u32 = if MAX_LEVEL < 7 { MAX_LEVEL } else { 7 };
 /// What a change at level 8 costs (Q1, BENCHMARKS.md, "Fresh memory"), as a literal for
 /// `concat!`: the one place the lab's messages and `riplab render --help` read it from.
@@ -216,7 +216,7 @@ pub struct App {
     pub infsup: HashMap<InfSupKey, Result<InfSup, String>>,
     infsup_pending: HashSet<InfSupKey>,
     /// The estimate in flight whose mesh is being built, and where that build is.
-    pub infsup_progress: Option<(InfSupKey, Progress)>,
+    infsup_progress: Option<(InfSupKey, Progress)>,
     /// Every estimate asked for (a row once shown stays, and is asked again if dropped).
     infsup_wanted: HashSet<InfSupKey>,
     /// Work–precision studies computed so far (failures too: they are not retried).

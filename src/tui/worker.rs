@@ -574,9 +574,9 @@ impl Builds {
 /// a newer request (a step back to a built level) is served at once. Estimates run on a
 /// thread of their own too, one at a time on built meshes, and each as soon as the mesh it
 /// waited for is built (held by the estimate alone when the cache's budget cannot keep it).
-/// When nothing is waiting, the neighbouring levels
-/// of the mesh in use are built in the background, each only while the memory would hold it
-/// twice (what it leaves for the next request).
+/// When nothing is waiting, the neighbouring levels of the mesh in use are built in the
+/// background, each only while the memory would hold it twice (what it leaves for the next
+/// request).
 fn run(mut engine: Engine, rx: &Receiver<Request>, latest: &AtomicU64, sink: &dyn Fn(Response) -> bool) {
     let mut waiting = Waiting::default();
     let mut builds = Builds::default();
