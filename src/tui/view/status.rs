@@ -85,9 +85,9 @@ fn fit_words(spans: &[Span<'static>], width: usize) -> Vec<Span<'static>> {
     out
 }
 
-/// "building level 7 (1049088 unknowns) · about 3 s left", or with an element (an estimate's
-/// build, beside the estimates' count on an 80-column line) "building q2 level 7 · about 25
-/// s left".
+/// "building level 7 (1049088 unknowns) · about 3 s left"; with an element (an estimate's
+/// build, beside the estimates' count on an 80-column line) the shorter
+/// "building q2 level 7 · about 25 s left".
 fn building(progress: Progress, element: Option<Element>) -> String {
     let Progress::Assembling {
         level,
