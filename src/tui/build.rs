@@ -17,20 +17,12 @@ use crate::mesh::Element;
 use crate::scenario::Scenario;
 use crate::solve::Discretization;
 
-/// A build of the discretisation of `level` with `element` on a thread of its own.
+/// A build on a thread of its own.
 pub struct Build {
-    /// The level being built.
-    pub level: u32,
-    /// The element being built.
-    pub element: Element,
-    /// Its number of unknowns (for the time estimate).
-    pub unknowns: usize,
-    /// Its estimated peak memory, bytes ([`crate::fem::memory::Sizes::peak_bytes`]).
-    pub peak: u64,
+    /// What is being built and what it is expected to cost.
+    pub plan: Plan,
     /// When the build began.
     pub started: Instant,
-    /// What the build is expected to take ([`super::eta`]).
-    pub estimate_ms: f64,
     done: Receiver<Built>,
 }
 
@@ -46,9 +38,9 @@ pub struct Plan {
     pub element: Element,
     /// Its number of unknowns.
     pub unknowns: usize,
-    /// Its estimated peak memory, bytes.
+    /// Its estimated peak memory, bytes ([`crate::fem::memory::Sizes::peak_bytes`]).
     pub peak: u64,
-    /// Its expected time, ms.
+    /// Its expected time, ms ([`super::eta`]).
     pub estimate_ms: f64,
 }
 
@@ -70,12 +62,8 @@ impl Build {
             })
             .ok()?;
         Some(Build {
-            level,
-            element,
-            unknowns: plan.unknowns,
-            peak: plan.peak,
+            plan,
             started: Instant::now(),
-            estimate_ms: plan.estimate_ms,
             done,
         })
     }
@@ -101,6 +89,6 @@ impl Build {
 
     /// Whether this build is of `level` with `element`.
     pub fn is_for(&self, level: u32, element: Element) -> bool {
-        (self.level, self.element) == (level, element)
+        (self.plan.level, self.plan.element) == (level, element)
     }
 }

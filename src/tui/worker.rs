@@ -519,7 +519,7 @@ impl Builds {
     /// (part of which they may already hold: the check errs on the safe side) and `extra`
     /// bytes more; false when no thread could be started.
     fn start(&mut self, scenario: &Scenario, plan: Plan, extra: u64) -> bool {
-        let reserved = self.0.iter().map(|b| b.peak).sum::<u64>() + extra;
+        let reserved = self.0.iter().map(|b| b.plan.peak).sum::<u64>() + extra;
         match Build::start(scenario, plan, reserved) {
             Some(b) => {
                 self.0.push(b);
@@ -540,7 +540,7 @@ impl Builds {
     ) -> Option<Result<Arc<Discretization>, String>> {
         let mut needed = None;
         for b in std::mem::take(&mut self.0) {
-            let (level, element) = (b.level, b.element);
+            let (level, element) = (b.plan.level, b.plan.element);
             let wanted = needs.filter(|&(l, e, _)| (l, e) == (level, element));
             match b.finished(if wanted.is_some() { wait } else { Duration::ZERO }) {
                 Ok(built) => {
@@ -635,9 +635,9 @@ fn run(mut engine: Engine, rx: &Receiver<Request>, latest: &AtomicU64, sink: &dy
                 if let Some(b) = builds.of(level, element) {
                     let progress = Progress::Assembling {
                         level,
-                        unknowns: b.unknowns,
+                        unknowns: b.plan.unknowns,
                         started: b.started,
-                        estimate_ms: b.estimate_ms,
+                        estimate_ms: b.plan.estimate_ms,
                     };
                     match (needed_by, waiting.queue.front()) {
                         (Some(generation), _) if announced != Some(generation) => {
