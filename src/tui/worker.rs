@@ -2,7 +2,8 @@
 //! solves and inf-sup estimates, a [`Worker`] thread that drives it from a channel, and
 //! [`settle`], which drives it synchronously (for `render` and tests).
 
-use std::collections::VecDeque;
+use std::cell::RefCell;
+use std::collections::{HashMap, VecDeque};
 use std::ops::ControlFlow;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::mpsc::{self, Receiver, Sender};
@@ -61,6 +62,9 @@ pub struct Engine {
     eta: Eta,
     /// Levels whose background build failed (too large for this machine): not tried again.
     unfit: Vec<(u32, Element)>,
+    /// The estimated peak of each mesh asked about (computed once: it lays out the mesh's
+    /// lines and contact points, megabytes on a fine grid).
+    peaks: RefCell<HashMap<(u32, Element), u64>>,
 }
 
 impl Engine {
@@ -73,12 +77,22 @@ impl Engine {
             study: None,
             eta: Eta::default(),
             unfit: Vec::new(),
+            peaks: RefCell::default(),
         }
     }
 
     /// The unknowns of the mesh at `level` for `element`, counted without building it.
     fn unknowns(&self, level: u32, element: Element) -> usize {
         self.scenario.n_dofs(level, element)
+    }
+
+    /// The memory guard's estimated peak of the mesh of `level` with `element`, bytes.
+    fn peak(&self, level: u32, element: Element) -> u64 {
+        *self
+            .peaks
+            .borrow_mut()
+            .entry((level, element))
+            .or_insert_with(|| Discretization::sizes(&self.scenario, level, element).peak_bytes())
     }
 
     /// What building `level` with `element` is expected to cost.
@@ -88,7 +102,7 @@ impl Engine {
             level,
             element,
             unknowns,
-            peak: Discretization::sizes(&self.scenario, level, element).peak_bytes(),
+            peak: self.peak(level, element),
             estimate_ms: self.eta.predict_ms(unknowns),
         }
     }
@@ -96,10 +110,10 @@ impl Engine {
     /// Whether the discretisations `meshes` (level, element) may be kept together: their
     /// estimated peaks add up to [`CACHE_BYTES`] at most.
     pub fn fits(&self, meshes: &[(u32, Element)]) -> bool {
-        let bytes: u64 = meshes
+        let bytes = meshes
             .iter()
-            .map(|&(level, element)| Discretization::sizes(&self.scenario, level, element).peak_bytes())
-            .sum();
+            .map(|&(level, element)| self.peak(level, element))
+            .fold(0, u64::saturating_add);
         bytes <= CACHE_BYTES
     }
 
@@ -519,7 +533,11 @@ impl Builds {
     /// (part of which they may already hold: the check errs on the safe side) and `extra`
     /// bytes more; false when no thread could be started.
     fn start(&mut self, scenario: &Scenario, plan: Plan, extra: u64) -> bool {
-        let reserved = self.0.iter().map(|b| b.plan.peak).sum::<u64>() + extra;
+        let reserved = self
+            .0
+            .iter()
+            .map(|b| b.plan.peak)
+            .fold(extra, u64::saturating_add);
         match Build::start(scenario, plan, reserved) {
             Some(b) => {
                 self.0.push(b);

@@ -1787,24 +1787,23 @@ fn a_step_back_during_a_build_is_served_at_once() {
     use std::time::Duration;
     let (tx, rx) = std::sync::mpsc::channel();
     let worker = Worker::spawn(Scenario::paper(), move |r| tx.send(r).is_ok());
-    let key = |level| SolveKey {
-        level,
-        ..App::defaults(&Scenario::paper())
+    let solve = |generation, level| {
+        worker.send(&Command::Solve(SolveRequest {
+            generation,
+            key: SolveKey {
+                level,
+                ..App::defaults(&Scenario::paper())
+            },
+        }))
     };
     let next = || {
         rx.recv_timeout(Duration::from_secs(120))
             .expect("the worker answers")
     };
-    worker.send(&Command::Solve(SolveRequest {
-        generation: 1,
-        key: key(2),
-    }));
+    solve(1, 2);
     while !matches!(next(), Response::Solved { result: Ok(_), .. }) {}
     // Level 5 takes a few hundred ms to build; level 2 is built.
-    worker.send(&Command::Solve(SolveRequest {
-        generation: 2,
-        key: key(5),
-    }));
+    solve(2, 5);
     loop {
         match next() {
             Response::Progress {
@@ -1814,10 +1813,7 @@ fn a_step_back_during_a_build_is_served_at_once() {
             r => assert!(!matches!(r, Response::Solved { .. }), "{r:?}"),
         }
     }
-    worker.send(&Command::Solve(SolveRequest {
-        generation: 3,
-        key: key(2),
-    }));
+    solve(3, 2);
     loop {
         match next() {
             Response::Solved {
