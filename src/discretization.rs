@@ -241,15 +241,25 @@ impl Discretization {
             .or_insert_with(|| {
                 let c = &self.compliance;
                 let nq = points.len();
-                // C Tᵀ, column by column, then T (C Tᵀ).
-                let ct = Mat::<f64>::from_fn(c.nrows(), nq, |i, q| {
-                    let pt = &points.points[q];
-                    pt.nodes.iter().zip(&pt.trace).map(|(&k, t)| t * c[(i, k)]).sum()
-                });
-                Arc::new(Mat::<f64>::from_fn(nq, nq, |p, q| {
-                    let pt = &points.points[p];
-                    pt.nodes.iter().zip(&pt.trace).map(|(&k, t)| t * ct[(k, q)]).sum()
-                }))
+                // C Tᵀ, column by column (a point's column combines its nodes' columns of C),
+                // then T (C Tᵀ), column by column: contiguous slices, no index checks.
+                let mut ct = Mat::<f64>::zeros(c.nrows(), nq);
+                for (q, pt) in points.points.iter().enumerate() {
+                    let out = column_mut(&mut ct, q);
+                    for (&k, &t) in pt.nodes.iter().zip(&pt.trace) {
+                        for (o, v) in out.iter_mut().zip(column(c, k)) {
+                            *o += t * v;
+                        }
+                    }
+                }
+                let mut g = Mat::<f64>::zeros(nq, nq);
+                for q in 0..nq {
+                    let ctq = column(&ct, q);
+                    for (o, pt) in column_mut(&mut g, q).iter_mut().zip(&points.points) {
+                        *o = pt.nodes.iter().zip(&pt.trace).map(|(&k, t)| t * ctq[k]).sum();
+                    }
+                }
+                Arc::new(g)
             })
             .clone()
     }
@@ -363,9 +373,53 @@ pub fn check_request(
     )
 }
 
+/// Column `j` of `m` as a slice (a [`Mat`]'s columns are contiguous).
+fn column(m: &Mat<f64>, j: usize) -> &[f64] {
+    m.col(j)
+        .try_as_col_major()
+        .expect("a Mat's column is contiguous")
+        .as_slice()
+}
+
+/// Column `j` of `m` as a mutable slice.
+fn column_mut(m: &mut Mat<f64>, j: usize) -> &mut [f64] {
+    m.col_mut(j)
+        .try_as_col_major_mut()
+        .expect("a Mat's column is contiguous")
+        .as_slice_mut()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// G = T C Tᵀ, computed column by column, is the product of the dense trace matrix T (one
+    /// row per point: its shape values at its nodes) with C, by faer's matmul: for Q1 and Q2 and
+    /// every rule (two and three nodes per point).
+    #[test]
+    fn the_coupling_is_t_c_t_transposed() {
+        let scenario = crate::scenario::Scenario::paper();
+        for element in [Element::Q1, Element::Q2] {
+            let disc = Discretization::of(&scenario, 2, element).unwrap();
+            for rule in [Rule::Gauss1, Rule::Gauss2, Rule::Trapezoid] {
+                let points = disc.contact_points(rule);
+                let c = &disc.compliance;
+                let mut t = Mat::<f64>::zeros(points.len(), c.nrows());
+                for (q, pt) in points.points.iter().enumerate() {
+                    for (&k, &v) in pt.nodes.iter().zip(&pt.trace) {
+                        t[(q, k)] += v;
+                    }
+                }
+                let expect = &t * c * t.transpose();
+                let g = disc.coupling(rule, &points);
+                let scale = expect.norm_max();
+                assert!(
+                    (&*g - &expect).norm_max() <= 1e-14 * scale,
+                    "{element:?} {rule:?}"
+                );
+            }
+        }
+    }
 
     /// Issue 10 item 5: an allocation failure is reported as out of memory (exit 2 through
     /// `TooLarge`), and only a non-positive pivot asks about rigid motion.

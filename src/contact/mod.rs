@@ -15,5 +15,5 @@ pub mod signorini;
 pub use gap::{Obstacle, Outline};
 pub use method::Method;
 pub use params::ContactParams;
-pub use pressure::{load, raw_pressure, smoothed_pressure};
+pub use pressure::{carried_forces, load, raw_pressure, smoothed_pressure};
 pub use rule::{ContactPoints, Rule};

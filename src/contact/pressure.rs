@@ -45,6 +45,28 @@ pub fn trapezoid_product(x: &[f64], a: &[f64], b: &[f64]) -> f64 {
         .sum()
 }
 
+/// The contact forces y_q = w_q p(x_q) at the points of `to` for the pressure `p` given at
+/// the ascending abscissae `x` of another mesh's points: p piecewise linear between them and
+/// constant beyond. A start for the Newton iteration of a finer or coarser mesh (the forces
+/// are the iteration's state, docs/design.md §3); not a result.
+pub fn carried_forces(x: &[f64], p: &[f64], to: &ContactPoints) -> Vec<f64> {
+    to.points
+        .iter()
+        .map(|q| {
+            let at = match x.partition_point(|&xi| xi < q.x) {
+                _ if x.is_empty() => 0.0,
+                0 => p[0],
+                k if k == x.len() => p[k - 1],
+                k => {
+                    let t = (q.x - x[k - 1]) / (x[k] - x[k - 1]);
+                    p[k - 1] + t * (p[k] - p[k - 1])
+                }
+            };
+            q.weight * at
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -76,5 +98,18 @@ mod tests {
         for (a, b) in pbar.iter().zip(p) {
             assert!((a - b).abs() < 1e-14);
         }
+    }
+
+    #[test]
+    fn carried_forces_by_hand() {
+        // p = 2, 4, 0 at x = 0, 1, 3; the trapezoid's points at the vertices −1, 0.5, 2, 4
+        // weigh half of each neighbouring edge: 0.75, 1.5, 1.75, 1.
+        let to = ContactPoints::new(Rule::Trapezoid, &[-1.0, 0.5, 2.0, 4.0], 1);
+        let y = carried_forces(&[0.0, 1.0, 3.0], &[2.0, 4.0, 0.0], &to);
+        let expect = [0.75 * 2.0, 1.5 * 3.0, 1.75 * 2.0, 0.0];
+        for (a, b) in y.iter().zip(expect) {
+            assert!((a - b).abs() < 1e-14, "{y:?}");
+        }
+        assert_eq!(carried_forces(&[], &[], &to), vec![0.0; 4]);
     }
 }

@@ -36,10 +36,12 @@ pub fn solve_exact(
         let gy = apply(g, &y, &support);
         let s: Vec<f64> = (0..n).map(|q| d[q] - gy[q]).collect();
         let active: Vec<bool> = (0..n).map(|q| y[q] + s[q] / g[(q, q)] > 0.0).collect();
-        // Complementarity residual: penetration (in force units, c_q⁻¹ s_q⁺) and tension y⁻,
-        // relative to the contact forces.
+        // The natural residual of the complementarity, y − (y + c s)⁺ in force units: zero
+        // exactly when y ≥ 0, s ≤ 0 and y s = 0. On an iterate of this method (s = 0 on A,
+        // y = 0 off it) it is the penetration c s⁺ and the tension y⁻; from another start it
+        // also sees a force pressing across a gap (y > 0 where s < 0).
         let bad: Vec<f64> = (0..n)
-            .map(|q| (s[q].max(0.0) / g[(q, q)]).max((-y[q]).max(0.0)))
+            .map(|q| (y[q] - (y[q] + s[q] / g[(q, q)]).max(0.0)).abs())
             .collect();
         let scale = dot(&y, &y).sqrt();
         let residual = if scale > 0.0 {

@@ -12,6 +12,7 @@
 use std::sync::mpsc::{self, Receiver, RecvTimeoutError};
 use std::time::{Duration, Instant};
 
+use crate::contact::Rule;
 use crate::error::SolveError;
 use crate::mesh::Element;
 use crate::scenario::Scenario;
@@ -38,6 +39,9 @@ pub struct Plan {
     pub element: Element,
     /// Its number of unknowns.
     pub unknowns: usize,
+    /// The contact rule of the last solve: its coupling G ([`Discretization::coupling`]) is
+    /// computed with the mesh, so that a step to the mesh costs only the contact solve.
+    pub rule: Rule,
     /// Its estimated peak memory, bytes ([`crate::fem::memory::Sizes::peak_bytes`]).
     pub peak: u64,
     /// Its expected time, ms ([`super::eta`]).
@@ -50,13 +54,17 @@ impl Build {
     pub fn start(scenario: &Scenario, plan: Plan, reserved: u64) -> Option<Self> {
         let (tx, done) = mpsc::channel();
         let scenario = scenario.clone();
-        let Plan { level, element, .. } = plan;
+        let Plan {
+            level, element, rule, ..
+        } = plan;
         std::thread::Builder::new()
             .name("riplab-build".into())
             .spawn(move || {
                 let t = Instant::now();
-                let built = Discretization::of_beside(&scenario, level, element, reserved)
-                    .map(|d| (d, t.elapsed().as_secs_f64() * 1e3));
+                let built = Discretization::of_beside(&scenario, level, element, reserved).map(|d| {
+                    d.coupling(rule, &d.contact_points(rule));
+                    (d, t.elapsed().as_secs_f64() * 1e3)
+                });
                 // Nobody listens any more when the worker has ended: nothing to do then.
                 let _ = tx.send(built);
             })

@@ -11,7 +11,7 @@ use std::sync::{Arc, OnceLock};
 use std::time::{Duration, Instant};
 
 use crate::contact::penalty::{NewtonOptions, SolveError};
-use crate::contact::{Method, Rule};
+use crate::contact::{Method, Rule, carried_forces};
 use crate::mesh::Element;
 use crate::scenario::Scenario;
 use crate::solve::{ContactParams, Discretization, solve_contact};
@@ -49,13 +49,26 @@ pub enum Use {
     Estimate,
 }
 
+/// What the last contact solve leaves for the next to start from.
+struct Warm {
+    /// The mesh, rule and kind of method its forces belong to: Nitsche's state lives on its
+    /// own points (a point two edges share appears twice), the other methods' on the rule's.
+    on: (u32, Element, Rule, bool),
+    /// The contact forces, the Newton iteration's state (docs/design.md §3).
+    forces: Vec<f64>,
+    /// The abscissae of the rule's points and the pressure p there: carried to another mesh or
+    /// rule ([`carried_forces`]), they start its iteration next to its solution (a level step
+    /// at level 7 takes one to three Newton steps instead of 12 to 75, BENCHMARKS.md).
+    x: Vec<f64>,
+    p: Vec<f64>,
+}
+
 /// Owns the discretisation cache (least recently used last out) and the warm start.
 pub struct Engine {
     scenario: Scenario,
     cache: Vec<(u32, Element, Arc<Discretization>)>,
-    /// The last contact forces and the mesh, rule and kind of method they belong to (the
-    /// warm start): Nitsche's state lives on its own points, the other methods' on the rule's.
-    warm: Option<(u32, Element, Rule, bool, Vec<f64>)>,
+    /// The last contact solve's state: where the next one starts ([`Warm`]).
+    warm: Option<Warm>,
     /// The last study (a study takes seconds; a second app on the same engine reuses it).
     study: Option<Arc<Study>>,
     /// How long builds take here (for the time left).
@@ -102,6 +115,7 @@ impl Engine {
             level,
             element,
             unknowns,
+            rule: self.warm.as_ref().map_or(self.scenario.rule, |w| w.on.2),
             peak: self.peak(level, element),
             estimate_ms: self.eta.predict_ms(unknowns),
         }
@@ -254,34 +268,47 @@ impl Engine {
             obstacle: self.scenario.obstacle.with_depth(key.depth),
         };
         let nitsche = matches!(key.method, Method::Nitsche { .. });
-        let warm = self
-            .warm
-            .as_ref()
-            .filter(|(l, e, r, n, _)| (*l, *e, *r, *n) == (key.level, key.element, key.rule, nitsche))
-            .map(|(_, _, _, _, y)| y.as_slice());
-        let result = solve_contact(&disc, &params, warm, &NewtonOptions::default(), &mut |it| {
-            if !is_current(generation) {
-                return ControlFlow::Break(());
+        let on = (key.level, key.element, key.rule, nitsche);
+        // The last forces if they live on these points; else (not for Nitsche's edge points)
+        // the last pressure carried here.
+        let (warm, carried) = match &self.warm {
+            Some(w) if w.on == on => (Some(w.forces.clone()), false),
+            Some(w) if !nitsche => {
+                let to = disc.contact_points(key.rule);
+                (Some(carried_forces(&w.x, &w.p, &to)), true)
             }
-            report(Response::Progress {
-                generation,
-                progress: Progress::Newton {
-                    iteration: it.iteration,
-                    residual: it.residual,
-                    active: it.active,
-                },
-            });
-            ControlFlow::Continue(())
-        });
+            _ => (None, false),
+        };
+        let mut newton = |start: Option<&[f64]>| {
+            solve_contact(&disc, &params, start, &NewtonOptions::default(), &mut |it| {
+                if !is_current(generation) {
+                    return ControlFlow::Break(());
+                }
+                report(Response::Progress {
+                    generation,
+                    progress: Progress::Newton {
+                        iteration: it.iteration,
+                        residual: it.residual,
+                        active: it.active,
+                    },
+                });
+                ControlFlow::Continue(())
+            })
+        };
+        let mut result = newton(warm.as_deref());
+        // A carried start is a guess: one that does not lead to convergence is not the
+        // method's answer, so the solve starts again from rest.
+        if carried && result.as_ref().is_ok_and(|s| !s.newton.converged) {
+            result = newton(None);
+        }
         match result {
             Ok(solution) => {
-                self.warm = Some((
-                    key.level,
-                    key.element,
-                    key.rule,
-                    nitsche,
-                    solution.newton.forces.clone(),
-                ));
+                self.warm = Some(Warm {
+                    on,
+                    forces: solution.newton.forces.clone(),
+                    x: solution.points.points.iter().map(|q| q.x).collect(),
+                    p: solution.p.clone(),
+                });
                 Response::Solved {
                     generation,
                     result: Ok(Arc::new(Solved {

@@ -1625,6 +1625,85 @@ fn the_status_line_shows_warnings() {
 /// Issue 13 item 4: when idle, the engine names the next finer, then the next coarser level
 /// of the mesh in use to build in the background, up to the lab's finest level and within its
 /// memory budget; an adopted build is used without assembling again.
+/// Issue 13 (every level step instant): a solve on another mesh or rule starts its Newton
+/// iteration from the last solution's pressure carried to its points, so a level step at a
+/// fine level costs one to three Newton steps, not the 12 (penalty) or 21 (exact constraint)
+/// of a start from rest at level 5, and gives the same solution: the same final active set
+/// solves the same linear system, so the two agree to round-off.
+#[test]
+fn a_level_or_rule_step_starts_newton_from_the_last_pressure() {
+    use riplab::contact::Method;
+    use riplab::tui::app::{SolveKey, SolveRequest, Solved};
+    let scenario = Scenario::paper();
+    let settings = App::new(scenario.clone()).settings;
+    let solve = |engine: &mut Engine, key: SolveKey| -> Arc<Solved> {
+        match engine.solve(&SolveRequest { generation: 1, key }, &|_| true, &mut |_| {}) {
+            Response::Solved { result: Ok(s), .. } => s,
+            other => panic!("{other:?}"),
+        }
+    };
+    let same = |a: &Solved, b: &Solved| {
+        let (a, b) = (&a.solution, &b.solution);
+        assert!(a.newton.converged && b.newton.converged);
+        assert!((a.load - b.load).abs() <= 1e-10 * b.load, "{} {}", a.load, b.load);
+        let top = b.pbar.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        for (x, y) in a.pbar.iter().zip(&b.pbar) {
+            assert!((x - y).abs() <= 1e-10 * top, "{x} {y}");
+        }
+    };
+    // The exact constraint has unique multipliers only with as many points as nodes: its other
+    // rule is the trapezoid.
+    for (method, rest, rule) in [
+        (Method::Penalty, 12, Rule::Gauss2),
+        (Method::Exact, 21, Rule::Trapezoid),
+    ] {
+        let at = |level, rule| SolveKey {
+            level,
+            rule,
+            method,
+            ..settings
+        };
+        let (coarse, fine) = (at(4, Rule::Gauss1), at(5, Rule::Gauss1));
+        let cold = solve(&mut Engine::new(scenario.clone()), fine);
+        assert_eq!(cold.solution.newton.iterations, rest, "{method:?} from rest");
+        // Up from level 4, and back down from level 5.
+        let mut engine = Engine::new(scenario.clone());
+        solve(&mut engine, coarse);
+        let up = solve(&mut engine, fine);
+        assert!(
+            up.solution.newton.iterations <= 3,
+            "{method:?} up: {}",
+            up.solution.newton.iterations
+        );
+        same(&up, &cold);
+        let down = solve(&mut engine, coarse);
+        assert!(down.solution.newton.iterations <= 3, "{method:?} down");
+        same(&down, &solve(&mut Engine::new(scenario.clone()), coarse));
+        // To another rule on the same mesh.
+        let mut engine = Engine::new(scenario.clone());
+        solve(&mut engine, fine);
+        let other = solve(&mut engine, at(5, rule));
+        let rest = solve(&mut Engine::new(scenario.clone()), at(5, rule));
+        eprintln!(
+            "DEBUG {:?} {:?} {} {} | {:?} {} {}",
+            other.key.rule,
+            other.solution.params.rule,
+            other.solution.newton.iterations,
+            other.solution.load,
+            rest.key.rule,
+            rest.solution.newton.iterations,
+            rest.solution.load
+        );
+        assert!(
+            other.solution.newton.iterations < rest.solution.newton.iterations,
+            "{method:?} rule: {} against {}",
+            other.solution.newton.iterations,
+            rest.solution.newton.iterations
+        );
+        same(&other, &rest);
+    }
+}
+
 #[test]
 fn the_engine_prefetches_the_neighbouring_levels() {
     use riplab::solve::Discretization;

@@ -255,3 +255,50 @@ fn contact_patch_test() {
         }
     }
 }
+
+/// A solve started from another solution's contact forces (the lab's warm start after a depth
+/// change, a sweep, a level step) converges to the answer of a start from rest: same load and
+/// p̄ to 1e-9 relative, for every method on the condensed problem. A start whose forces press
+/// where the shallower obstacle leaves a gap must not pass the exact constraint's convergence
+/// test: y > 0 where u_n − g < 0 breaks complementarity.
+#[test]
+fn a_warm_start_from_another_depth_gives_the_answer_from_rest() {
+    let scenario = paper_with(&[]);
+    let disc = Discretization::of(&scenario, 3, scenario.element).unwrap();
+    let depth = scenario.obstacle.depth();
+    for (method, epsilon) in [
+        (Method::Penalty, scenario.epsilon),
+        (Method::Exact, 0.0),
+        (Method::Alm { tolerance: 1e-12 }, 1e-3),
+    ] {
+        for rule in [Rule::Gauss1, Rule::Trapezoid] {
+            let at = |d: f64| ContactParams {
+                rule,
+                method,
+                epsilon,
+                obstacle: scenario.obstacle.with_depth(d),
+            };
+            let first = solve(&disc, rule, method, epsilon, &at(depth).obstacle);
+            for d in [0.5 * depth, 1.5 * depth] {
+                let rest = solve(&disc, rule, method, epsilon, &at(d).obstacle);
+                let warm = solve_contact(
+                    &disc,
+                    &at(d),
+                    Some(&first.newton.forces),
+                    &NewtonOptions::default(),
+                    &mut |_| ControlFlow::Continue(()),
+                )
+                .unwrap();
+                let what = format!("{} {rule:?} depth {d}", method.name());
+                assert!(warm.newton.converged, "{what}");
+                assert!(
+                    (warm.load - rest.load).abs() <= 1e-9 * rest.load,
+                    "{what}: load {} against {}",
+                    warm.load,
+                    rest.load
+                );
+                assert!(rel_max(&warm.pbar, &rest.pbar) <= 1e-9, "{what}: p̄");
+            }
+        }
+    }
+}
