@@ -152,6 +152,40 @@ fn an_epsilon_sweep_prints_one_object_per_value() {
     assert!(assembly[1] == 0.0 && assembly[2] == 0.0);
 }
 
+/// A depth sweep of the exact constraint solves each depth from the last one's multipliers;
+/// the shallower depth's answer is the one a solve of that depth alone gives (before, the
+/// deeper depth's forces passed the convergence test unchanged: at level 2, load 643 at depth
+/// 0.4, which alone gives 242).
+#[test]
+fn an_exact_depth_sweep_gives_each_depths_own_answer() {
+    let load = |depths: &str| -> Vec<f64> {
+        let (code, stdout, stderr) = riplab(&[
+            "solve",
+            "--level",
+            "2",
+            "--epsilon",
+            "0",
+            "--depth",
+            depths,
+            "--format",
+            "json",
+        ]);
+        assert_eq!(code, 0, "{stderr}");
+        let v: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+        match v.as_array() {
+            Some(rows) => rows.iter().map(|o| o["load"].as_f64().unwrap()).collect(),
+            None => vec![v["load"].as_f64().unwrap()],
+        }
+    };
+    let swept = load("0.8,0.4");
+    let alone = load("0.4");
+    assert!(
+        (swept[1] - alone[0]).abs() <= 1e-9 * alone[0],
+        "{swept:?} against {alone:?}"
+    );
+    assert!(swept[1] < 0.5 * swept[0], "{swept:?}");
+}
+
 /// A 100 MB file is refused from its size, before it is read (a sparse file: no disk used).
 #[test]
 fn a_huge_file_is_refused_unread() {
