@@ -13,6 +13,7 @@ mod build;
 mod estimating;
 pub mod eta;
 pub mod export;
+mod job;
 pub mod keys;
 pub mod protocol;
 mod runtime;

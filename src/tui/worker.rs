@@ -24,6 +24,7 @@ use super::beta::{self, InfSup};
 use super::build::{Build, Built, Plan};
 use super::estimating::Estimating;
 use super::eta::Eta;
+use super::job::{Sink, detach};
 use super::protocol::{
     InfSupKey, InfSupRequest, Progress, Response, SolveRequest, Solved, StressRequest, Study, StudyKey,
     StudyRequest,
@@ -331,15 +332,16 @@ impl Engine {
     }
 
     /// Compute the displacement of `solved` (kept in it, shared with the app).
-    pub fn displace(&self, solved: &Solved) -> Response {
+    pub fn displace(solved: &Solved) -> Response {
         solved.u();
         Response::Displaced { key: solved.key }
     }
 
-    /// Compute the stresses of `req.solved` (kept in it, shared with the app).
-    pub fn stresses(&self, req: &StressRequest) -> Response {
+    /// Compute the stresses of `req.solved` on `scenario`'s material (kept in the solution,
+    /// shared with the app).
+    pub fn stresses(scenario: &Scenario, req: &StressRequest) -> Response {
         // Success or failure, the result is kept in the solution for the view to show.
-        let _ = req.solved.stress_field(&self.scenario);
+        let _ = req.solved.stress_field(scenario);
         Response::Stresses { key: req.solved.key }
     }
 
@@ -433,10 +435,11 @@ pub struct Worker {
 
 impl Worker {
     /// Start the thread; every response goes to `sink`, which returns false once nobody listens.
-    pub fn spawn(scenario: Scenario, sink: impl Fn(Response) -> bool + Send + 'static) -> Self {
+    pub fn spawn(scenario: Scenario, sink: impl Fn(Response) -> bool + Send + Sync + 'static) -> Self {
         let (tx, rx) = mpsc::channel();
         let latest = Arc::new(AtomicU64::new(0));
         let shared = latest.clone();
+        let sink: Sink = Arc::new(sink);
         std::thread::Builder::new()
             .name("riplab-worker".into())
             .spawn(move || run(Engine::new(scenario), &rx, &shared, &sink))
@@ -612,8 +615,8 @@ impl Builds {
 }
 
 /// The worker loop: the newest solve first (older ones are dropped), then the displacement
-/// of the solution just sent, then the stresses of the solution shown, then the newest study
-/// (likewise), then inf-sup estimates in order; studies and estimates older than the newest
+/// of the solution just sent and the stresses of the solution shown (each on a thread of its
+/// own, its reply sent from there: [`detach`]), then the newest study (likewise), then inf-sup estimates in order; studies and estimates older than the newest
 /// generation are skipped. A mesh a solve or an estimate needs that is not built is built on
 /// a thread of its own while the worker keeps answering: the solve is told its progress, and
 /// a newer request (a step back to a built level) is served at once. Estimates run on a
@@ -622,7 +625,7 @@ impl Builds {
 /// When nothing is waiting, the neighbouring levels of the mesh in use are built in the
 /// background, each only while the memory would hold it twice (what it leaves for the next
 /// request).
-fn run(mut engine: Engine, rx: &Receiver<Request>, latest: &AtomicU64, sink: &dyn Fn(Response) -> bool) {
+fn run(mut engine: Engine, rx: &Receiver<Request>, latest: &AtomicU64, sink: &Sink) {
     let mut waiting = Waiting::default();
     let mut builds = Builds::default();
     let mut estimating: Vec<Estimating> = Vec::new();
@@ -750,9 +753,16 @@ fn run(mut engine: Engine, rx: &Receiver<Request>, latest: &AtomicU64, sink: &dy
             }
             response
         } else if let Some(solved) = waiting.displace.take() {
-            engine.displace(&solved)
+            match detach("riplab-displace", sink, move || Engine::displace(&solved)) {
+                Some(response) => response,
+                None => continue,
+            }
         } else if let Some(req) = waiting.stresses.take() {
-            engine.stresses(&req)
+            let scenario = engine.scenario.clone();
+            match detach("riplab-stresses", sink, move || Engine::stresses(&scenario, &req)) {
+                Some(response) => response,
+                None => continue,
+            }
         } else if let Some(req) = waiting.study.take() {
             let stale = latest.load(Ordering::SeqCst) > req.generation;
             let generation = req.generation;
@@ -820,7 +830,7 @@ pub fn carry_out(app: &mut App, engine: &mut Engine, mut commands: Vec<Command>)
                     result: Ok(solved), ..
                 } = &response
                 {
-                    let displaced = engine.displace(solved);
+                    let displaced = Engine::displace(solved);
                     commands.extend(app.update(Msg::Worker(response)).commands);
                     displaced
                 } else {
@@ -836,7 +846,7 @@ pub fn carry_out(app: &mut App, engine: &mut Engine, mut commands: Vec<Command>)
                 result: Some(engine.study(&req.key, &mut |_| {})),
                 key: req.key,
             },
-            Command::Stresses(req) => engine.stresses(&req),
+            Command::Stresses(req) => Engine::stresses(&engine.scenario, &req),
             Command::Export | Command::Suspend | Command::Supersede(_) => continue,
         };
         commands.extend(app.update(Msg::Worker(response)).commands);
