@@ -1,9 +1,11 @@
 #!/bin/bash
 # Key-to-frame latency of a level step in the lab, measured in tmux: send the key, poll the
 # pane until the header shows the new level and the status line a converged solve.
-# usage: benches/lab_latency.sh FROM TO WAIT [back]
+# usage: benches/lab_latency.sh FROM TO WAIT [back|after|stress]
 #   steps up from level 1 to FROM, waits WAIT s idle, steps to TO; with `back`, steps back to
-#   FROM as soon as the status line shows TO being built, and times that step instead.
+#   FROM as soon as the status line shows TO being built, and times that step instead; with
+#   `after`, steps back as soon as TO is shown solved (its displacement still under way); with
+#   `stress`, opens the stress scene at FROM and steps to TO while the stresses are computed.
 from=$1; to=$2; wait=$3; back=${4:-}
 tmux kill-session -t lat 2>/dev/null
 tmux new -d -s lat -x 100 -y 30 "NO_COLOR=1 ${RIPLAB:-target/release/riplab}"
@@ -13,7 +15,24 @@ while [ "$cur" -lt "$from" ]; do tmux send-keys -t lat ']'; cur=$((cur+1));
   until tmux capture-pane -p -t lat | grep -q "level $cur .*" && tmux capture-pane -p -t lat | grep -q 'converged'; do sleep 0.05; done; done
 sleep "$wait"
 key=']'; [ "$to" -lt "$from" ] && key='['
-if [ "$back" = back ]; then
+if [ "$back" = stress ]; then
+  for i in 1 2 3 4; do tmux send-keys -t lat Tab; done
+  until tmux capture-pane -p -t lat | grep -q "computing the stresses"; do sleep 0.002; done
+  t0=$(date +%s%N)
+  tmux send-keys -t lat "$key"
+  until tmux capture-pane -p -t lat | grep -q "level $to " && tmux capture-pane -p -t lat | grep -q 'converged'; do sleep 0.002; done
+  t1=$(date +%s%N)
+  echo "level $from -> $to while the stresses of $from are computed: $(( (t1-t0)/1000000 )) ms"
+elif [ "$back" = after ]; then
+  tmux send-keys -t lat "$key"
+  until tmux capture-pane -p -t lat | grep -q "level $to " && tmux capture-pane -p -t lat | grep -q 'converged'; do sleep 0.002; done
+  rkey='['; [ "$key" = '[' ] && rkey=']'
+  t0=$(date +%s%N)
+  tmux send-keys -t lat "$rkey"
+  until tmux capture-pane -p -t lat | grep -q "level $from " && tmux capture-pane -p -t lat | grep -q 'converged'; do sleep 0.002; done
+  t1=$(date +%s%N)
+  echo "level $from -> $to -> $from, back as soon as $to is shown: $(( (t1-t0)/1000000 )) ms"
+elif [ "$back" = back ]; then
   tmux send-keys -t lat "$key"
   until tmux capture-pane -p -t lat | grep -q "building level $to"; do sleep 0.002; done
   rkey='['; [ "$key" = '[' ] && rkey=']'
