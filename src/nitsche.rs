@@ -726,7 +726,8 @@ pub fn solve_once(
 }
 
 /// Solve the contact problem on `disc` by Nitsche's method (module doc), from the forces of an
-/// earlier Nitsche solve with the same rule (`initial`, ignored if it does not fit).
+/// earlier Nitsche solve with the same rule, or forces at the rule's distinct points
+/// (`initial`, ignored if it fits neither).
 /// `params.epsilon` is not used. The result's `newton.forces` (w p) and `newton.violation`
 /// (u_n − g) are at the rule's points on each edge (a point two edges share appears twice);
 /// `p`, `pbar`, `load` and `vertex_uy` are as for the penalty, and `nodal_forces` gives u.
@@ -757,7 +758,23 @@ pub fn solve(
         .collect();
     // d = −Γg (−∞ where the obstacle does not reach).
     let d: Vec<f64> = (0..n).map(|q| -op.gamma[q] * g[q]).collect();
-    let (y, v, mut newton) = newton(&op, &c, &d, initial, opts, on_iteration)?;
+    // Forces at the distinct points (another method's, or carried from another mesh) are
+    // shared between the edges that have a point in proportion to their weights.
+    let start: Option<Vec<f64>> = initial.and_then(|y| {
+        if y.len() == n {
+            Some(y.to_vec())
+        } else if y.len() == points.len() {
+            Some(
+                cp.points
+                    .iter()
+                    .map(|q| q.weight * y[q.point] / points.points[q.point].weight)
+                    .collect(),
+            )
+        } else {
+            None
+        }
+    });
+    let (y, v, mut newton) = newton(&op, &c, &d, start.as_deref(), opts, on_iteration)?;
     let (normal, vertex_uy, forces) = op.fields(&y, disc.n_dofs());
     newton.violation = (0..n).map(|q| normal[q] - g[q]).collect();
     // p at the distinct points: the weighted mean of the edge points' p = v⁺.

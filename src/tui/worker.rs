@@ -270,15 +270,15 @@ impl Engine {
         };
         let nitsche = matches!(key.method, Method::Nitsche { .. });
         let on = (key.level, key.element, key.rule, nitsche);
-        // The last forces if they live on these points; else (not for Nitsche's edge points)
-        // the last pressure carried here.
+        // The last forces if they live on these points; else the last pressure carried to
+        // the rule's points (Nitsche shares them between its edge points).
         let (warm, carried) = match &self.warm {
             Some(w) if w.on == on => (Some(w.forces.clone()), false),
-            Some(w) if !nitsche => {
+            Some(w) => {
                 let to = disc.contact_points(key.rule);
                 (Some(carried_forces(&w.x, &w.p, &to)), true)
             }
-            _ => (None, false),
+            None => (None, false),
         };
         let mut newton = |start: Option<&[f64]>| {
             solve_contact(&disc, &params, start, &NewtonOptions::default(), &mut |it| {

@@ -1622,14 +1622,12 @@ fn the_status_line_shows_warnings() {
     assert!(!text.lines().last().unwrap().contains("⚠"));
 }
 
-/// Issue 13 item 4: when idle, the engine names the next finer, then the next coarser level
-/// of the mesh in use to build in the background, up to the lab's finest level and within its
-/// memory budget; an adopted build is used without assembling again.
 /// Issue 13 (every level step instant): a solve on another mesh or rule starts its Newton
-/// iteration from the last solution's pressure carried to its points, so a level step at a
-/// fine level costs one to three Newton steps, not the 12 (penalty) or 21 (exact constraint)
-/// of a start from rest at level 5, and gives the same solution: the same final active set
-/// solves the same linear system, so the two agree to round-off.
+/// iteration from the last solution's pressure carried to its points (shared between the edge
+/// points for Nitsche's method), so a level step at a fine level costs one to three Newton
+/// steps, not the 12 (penalty, Nitsche) or 21 (exact constraint) of a start from rest at level
+/// 5, and gives the same solution: the same final active set solves the same linear system, so
+/// the two agree to round-off.
 #[test]
 fn a_level_or_rule_step_starts_newton_from_the_last_pressure() {
     use riplab::contact::Method;
@@ -1656,6 +1654,7 @@ fn a_level_or_rule_step_starts_newton_from_the_last_pressure() {
     for (method, rest, rule) in [
         (Method::Penalty, 12, Rule::Gauss2),
         (Method::Exact, 21, Rule::Trapezoid),
+        (Method::Alm { tolerance: 1e-12 }.next(), 12, Rule::Trapezoid),
     ] {
         let at = |level, rule| SolveKey {
             level,
@@ -1684,16 +1683,6 @@ fn a_level_or_rule_step_starts_newton_from_the_last_pressure() {
         solve(&mut engine, fine);
         let other = solve(&mut engine, at(5, rule));
         let rest = solve(&mut Engine::new(scenario.clone()), at(5, rule));
-        eprintln!(
-            "DEBUG {:?} {:?} {} {} | {:?} {} {}",
-            other.key.rule,
-            other.solution.params.rule,
-            other.solution.newton.iterations,
-            other.solution.load,
-            rest.key.rule,
-            rest.solution.newton.iterations,
-            rest.solution.load
-        );
         assert!(
             other.solution.newton.iterations < rest.solution.newton.iterations,
             "{method:?} rule: {} against {}",
@@ -1704,6 +1693,9 @@ fn a_level_or_rule_step_starts_newton_from_the_last_pressure() {
     }
 }
 
+/// Issue 13 item 4: when idle, the engine names the next finer, then the next coarser level
+/// of the mesh in use to build in the background, up to the lab's finest level and within its
+/// memory budget; an adopted build is used without assembling again.
 #[test]
 fn the_engine_prefetches_the_neighbouring_levels() {
     use riplab::solve::Discretization;
