@@ -16,8 +16,8 @@ use super::beta::InfSup;
 pub use super::keys::ExportKind;
 use super::keys::{LabAction, lab_action};
 pub use super::protocol::{
-    Compare, InfSupKey, InfSupRequest, Progress, Response, SolveKey, SolveRequest, Solved, StressRequest,
-    Study, StudyKey, StudyRequest,
+    Compare, DisplaceRequest, InfSupKey, InfSupRequest, Progress, Response, SolveKey, SolveRequest, Solved,
+    StressRequest, Study, StudyKey, StudyRequest,
 };
 
 /// The finest level the interactive lab (and `riplab render`) offers. A change at level 7
@@ -125,6 +125,9 @@ pub enum Command {
     Study(StudyRequest),
     /// Compute the stresses of a solution the stress scene shows (kept with it).
     Stresses(StressRequest),
+    /// Compute the displacement of the solution shown (kept with it), when the worker passed
+    /// it over for a newer solve that the app then left behind.
+    Displace(DisplaceRequest),
     /// Write the displayed solution to a new file, as [`App::export_kind`] says (the kind
     /// travels in the app so that the variant stays a plain `Export`).
     Export,
@@ -687,6 +690,14 @@ impl App {
             self.pending_solve = None;
             self.progress = None;
             out.push(Command::Supersede(self.generation));
+            // Its displacement was passed over if the solve left behind was answered first.
+            if let Some(solved) = self.current()
+                && solved.displacement.get().is_none()
+            {
+                out.push(Command::Displace(DisplaceRequest {
+                    solved: solved.clone(),
+                }));
+            }
         }
         let wants_solve = self.scene.needs_solution()
             && self.current().is_none()

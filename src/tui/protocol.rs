@@ -169,6 +169,22 @@ impl PartialEq for StressRequest {
     }
 }
 
+/// The displacement of `solved` to compute (into its `displacement`): the worker computes it
+/// after every solve, and passes over one whose solve a newer one followed (a burst of keys);
+/// the app asks for it when it comes back to such a solution ([`super::app::Command::Supersede`]).
+#[derive(Clone, Debug)]
+pub struct DisplaceRequest {
+    /// The solve whose displacement to compute.
+    pub solved: Arc<Solved>,
+}
+
+/// Two requests are the same when they are for the same solution.
+impl PartialEq for DisplaceRequest {
+    fn eq(&self, other: &Self) -> bool {
+        Arc::ptr_eq(&self.solved, &other.solved)
+    }
+}
+
 /// An inf-sup estimate to run; dropped unstarted if a newer generation exists.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct InfSupRequest {

@@ -24,7 +24,7 @@ use super::beta::{self, InfSup};
 use super::build::{Build, Built, Plan};
 use super::estimating::Estimating;
 use super::eta::Eta;
-use super::job::{Sink, detach};
+use super::job::{Lane, Sink};
 use super::protocol::{
     InfSupKey, InfSupRequest, Progress, Response, SolveRequest, Solved, StressRequest, Study, StudyKey,
     StudyRequest,
@@ -423,6 +423,7 @@ impl Engine {
 enum Request {
     Solve(SolveRequest),
     Stresses(StressRequest),
+    Displace(Arc<Solved>),
     InfSup(InfSupRequest),
     Study(StudyRequest),
 }
@@ -457,13 +458,14 @@ impl Worker {
             }
             Command::Solve(r) => Request::Solve(*r),
             Command::Stresses(r) => Request::Stresses(r.clone()),
+            Command::Displace(r) => Request::Displace(r.solved.clone()),
             Command::InfSup(r) => Request::InfSup(*r),
             Command::Study(r) => Request::Study(r.clone()),
             Command::Export | Command::Suspend => return,
         };
         let generation = match &request {
             // Not ordered by generation: the stresses of a solution are wanted whenever shown.
-            Request::Stresses(_) => 0,
+            Request::Stresses(_) | Request::Displace(_) => 0,
             Request::Solve(r) => r.generation,
             Request::InfSup(r) => r.generation,
             Request::Study(r) => r.generation,
@@ -507,6 +509,7 @@ impl Waiting {
         match r {
             Request::Solve(r) => self.solve = Some(r),
             Request::Stresses(r) => self.stresses = Some(r),
+            Request::Displace(solved) => self.displace = Some(solved),
             Request::Study(r) => self.study = Some(r),
             Request::InfSup(r) => self.queue.push_back(r),
         }
@@ -616,8 +619,9 @@ impl Builds {
 
 /// The worker loop: the newest solve first (older ones are dropped), then the displacement
 /// of the solution just sent and the stresses of the solution shown (each on a thread of its
-/// own, its reply sent from there: [`detach`]), then the newest study (likewise), then inf-sup estimates in order; studies and estimates older than the newest
-/// generation are skipped. A mesh a solve or an estimate needs that is not built is built on
+/// own in its [`Lane`], its reply sent from there), then the newest study (likewise), then
+/// inf-sup estimates in order; studies and estimates older than the newest generation are
+/// skipped. A mesh a solve or an estimate needs that is not built is built on
 /// a thread of its own while the worker keeps answering: the solve is told its progress, and
 /// a newer request (a step back to a built level) is served at once. Estimates run on a
 /// thread of their own too, one at a time on built meshes, and each as soon as the mesh it
@@ -629,6 +633,7 @@ fn run(mut engine: Engine, rx: &Receiver<Request>, latest: &AtomicU64, sink: &Si
     let mut waiting = Waiting::default();
     let mut builds = Builds::default();
     let mut estimating: Vec<Estimating> = Vec::new();
+    let (displacing, stressing) = (Lane::new("riplab-displace"), Lane::new("riplab-stresses"));
     // The solve generation, and the estimate, told that it waits for a build.
     let mut announced = None;
     let mut announced_estimate = None;
@@ -753,13 +758,13 @@ fn run(mut engine: Engine, rx: &Receiver<Request>, latest: &AtomicU64, sink: &Si
             }
             response
         } else if let Some(solved) = waiting.displace.take() {
-            match detach("riplab-displace", sink, move || Engine::displace(&solved)) {
+            match displacing.submit(sink, move || Engine::displace(&solved)) {
                 Some(response) => response,
                 None => continue,
             }
         } else if let Some(req) = waiting.stresses.take() {
             let scenario = engine.scenario.clone();
-            match detach("riplab-stresses", sink, move || Engine::stresses(&scenario, &req)) {
+            match stressing.submit(sink, move || Engine::stresses(&scenario, &req)) {
                 Some(response) => response,
                 None => continue,
             }
@@ -847,6 +852,7 @@ pub fn carry_out(app: &mut App, engine: &mut Engine, mut commands: Vec<Command>)
                 key: req.key,
             },
             Command::Stresses(req) => Engine::stresses(&engine.scenario, &req),
+            Command::Displace(req) => Engine::displace(&req.solved),
             Command::Export | Command::Suspend | Command::Supersede(_) => continue,
         };
         commands.extend(app.update(Msg::Worker(response)).commands);

@@ -449,6 +449,7 @@ fn no_key_sequence_panics() {
                     result: Some(Err("test failure".into())),
                 },
                 Command::Stresses(r) => Response::Stresses { key: r.solved.key },
+                Command::Displace(r) => Response::Displaced { key: r.solved.key },
                 Command::Export | Command::Suspend | Command::Supersede(_) => continue,
             };
             app.update(Msg::Worker(reply));
@@ -2169,6 +2170,41 @@ fn coming_back_to_the_solution_shown_supersedes_the_solve_under_way() {
         "{back:?}"
     );
     assert!(!frame(&app, 80, 24).contains("building"));
+    // Its displacement is there (settled): nothing more to ask.
+    assert!(
+        !back.iter().any(|c| matches!(c, Command::Displace(_))),
+        "{back:?}"
+    );
+}
+
+/// The worker passes over the displacement of a solution whose solve a newer one followed
+/// (its lane runs the newest only), so an app that comes back to such a solution asks for it:
+/// before, the deformed view said "computing the displacement…" for good.
+#[test]
+fn coming_back_to_a_solution_without_its_displacement_asks_for_it() {
+    let scenario = Scenario::paper();
+    let mut engine = Engine::new(scenario.clone());
+    let mut app = App::new(scenario);
+    let request = app.update(Msg::Resize).commands;
+    let Some(Command::Solve(req)) = request.first() else {
+        panic!("{request:?}")
+    };
+    // The solution arrives; its displacement does not (passed over).
+    let reply = engine.solve(req, &|_| true, &mut |_| {});
+    app.update(Msg::Worker(reply));
+    let shown = app.current().expect("shown").clone();
+    assert!(shown.displacement.get().is_none());
+    app.update(key(KeyCode::Right));
+    let back = app.update(key(KeyCode::Left)).commands;
+    let Some(Command::Displace(again)) = back.iter().find(|c| matches!(c, Command::Displace(_))) else {
+        panic!("{back:?}")
+    };
+    assert!(Arc::ptr_eq(&again.solved, &shown));
+    let mut commands = back.clone();
+    commands.retain(|c| matches!(c, Command::Displace(_)));
+    riplab::tui::worker::carry_out(&mut app, &mut engine, commands);
+    assert!(shown.displacement.get().is_some());
+    assert!(!frame(&app, 100, 30).contains("computing the displacement"));
 }
 
 /// Issue 13 item 4: a solve's reply carries the pressures at once; the displacement (a solve
