@@ -5,7 +5,9 @@
 #   steps up from level 1 to FROM, waits WAIT s idle, steps to TO; with `back`, steps back to
 #   FROM as soon as the status line shows TO being built, and times that step instead; with
 #   `after`, steps back as soon as TO is shown solved (its displacement still under way); with
-#   `stress`, opens the stress scene at FROM and steps to TO while the stresses are computed.
+#   `stress`, opens the stress scene at FROM and steps to TO while the stresses are computed;
+#   with `burst`, presses `+` (TO − FROM + 1 times, 30 ms apart) at FROM instead of stepping and
+#   times the last key to the deformed view (its displacement computed).
 from=$1; to=$2; wait=$3; back=${4:-}
 tmux kill-session -t lat 2>/dev/null
 tmux new -d -s lat -x 100 -y 30 "NO_COLOR=1 ${RIPLAB:-target/release/riplab}"
@@ -15,7 +17,13 @@ while [ "$cur" -lt "$from" ]; do tmux send-keys -t lat ']'; cur=$((cur+1));
   until tmux capture-pane -p -t lat | grep -q "level $cur .*" && tmux capture-pane -p -t lat | grep -q 'converged'; do sleep 0.05; done; done
 sleep "$wait"
 key=']'; [ "$to" -lt "$from" ] && key='['
-if [ "$back" = stress ]; then
+if [ "$back" = burst ]; then
+  for i in $(seq $((to - from + 1))); do tmux send-keys -t lat '+'; sleep 0.03; done
+  t0=$(date +%s%N)
+  until ! tmux capture-pane -p -t lat | grep -q "computing the displacement" && tmux capture-pane -p -t lat | grep -q 'converged'; do sleep 0.005; done
+  t1=$(date +%s%N)
+  echo "level $from, $((to - from + 1)) × + 30 ms apart: last key + 30 ms to the deformed view $(( (t1-t0)/1000000 )) ms"
+elif [ "$back" = stress ]; then
   for i in 1 2 3 4; do tmux send-keys -t lat Tab; done
   until tmux capture-pane -p -t lat | grep -q "computing the stresses"; do sleep 0.002; done
   t0=$(date +%s%N)
