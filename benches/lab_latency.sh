@@ -9,6 +9,10 @@
 #   with `burst`, presses `+` (TO − FROM + 1 times, 30 ms apart) at FROM instead of stepping and
 #   times the last key to the deformed view (its displacement computed).
 from=$1; to=$2; wait=$3; back=${4:-}
+# Wait until the pane shows level $1 solved.
+shown() {
+  until tmux capture-pane -p -t lat | grep -q "level $1 " && tmux capture-pane -p -t lat | grep -q 'converged'; do sleep 0.002; done
+}
 tmux kill-session -t lat 2>/dev/null
 tmux new -d -s lat -x 100 -y 30 "NO_COLOR=1 ${RIPLAB:-target/release/riplab}"
 sleep 2
@@ -28,16 +32,16 @@ elif [ "$back" = stress ]; then
   until tmux capture-pane -p -t lat | grep -q "computing the stresses"; do sleep 0.002; done
   t0=$(date +%s%N)
   tmux send-keys -t lat "$key"
-  until tmux capture-pane -p -t lat | grep -q "level $to " && tmux capture-pane -p -t lat | grep -q 'converged'; do sleep 0.002; done
+  shown "$to"
   t1=$(date +%s%N)
   echo "level $from -> $to while the stresses of $from are computed: $(( (t1-t0)/1000000 )) ms"
 elif [ "$back" = after ]; then
   tmux send-keys -t lat "$key"
-  until tmux capture-pane -p -t lat | grep -q "level $to " && tmux capture-pane -p -t lat | grep -q 'converged'; do sleep 0.002; done
+  shown "$to"
   rkey='['; [ "$key" = '[' ] && rkey=']'
   t0=$(date +%s%N)
   tmux send-keys -t lat "$rkey"
-  until tmux capture-pane -p -t lat | grep -q "level $from " && tmux capture-pane -p -t lat | grep -q 'converged'; do sleep 0.002; done
+  shown "$from"
   t1=$(date +%s%N)
   echo "level $from -> $to -> $from, back as soon as $to is shown: $(( (t1-t0)/1000000 )) ms"
 elif [ "$back" = back ]; then
@@ -46,13 +50,13 @@ elif [ "$back" = back ]; then
   rkey='['; [ "$key" = '[' ] && rkey=']'
   t0=$(date +%s%N)
   tmux send-keys -t lat "$rkey"
-  until tmux capture-pane -p -t lat | grep -q "level $from " && tmux capture-pane -p -t lat | grep -q 'converged'; do sleep 0.002; done
+  shown "$from"
   t1=$(date +%s%N)
   echo "level $from -> $to -> $from, back while $to is built: $(( (t1-t0)/1000000 )) ms"
 else
   t0=$(date +%s%N)
   tmux send-keys -t lat "$key"
-  until tmux capture-pane -p -t lat | grep -q "level $to " && tmux capture-pane -p -t lat | grep -q 'converged'; do sleep 0.002; done
+  shown "$to"
   t1=$(date +%s%N)
   echo "level $from -> $to after ${wait}s idle: $(( (t1-t0)/1000000 )) ms"
 fi

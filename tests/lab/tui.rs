@@ -1848,30 +1848,48 @@ fn an_idle_worker_builds_the_next_level_before_it_is_asked_for() {
     assert!(!assembling(&seen), "level 3 was built while idle: {seen:?}");
 }
 
+/// A worker on the paper's problem and the replies it sends: for the tests of the order in
+/// which it answers.
+struct PaperWorker {
+    worker: riplab::tui::worker::Worker,
+    replies: std::sync::mpsc::Receiver<Response>,
+}
+
+impl PaperWorker {
+    fn spawn() -> Self {
+        let (tx, replies) = std::sync::mpsc::channel();
+        let worker = riplab::tui::worker::Worker::spawn(Scenario::paper(), move |r| tx.send(r).is_ok());
+        PaperWorker { worker, replies }
+    }
+
+    /// Ask for a solve of the lab's default settings at `level`.
+    fn solve(&self, generation: u64, level: u32) {
+        self.worker.send(&Command::Solve(riplab::tui::app::SolveRequest {
+            generation,
+            key: riplab::tui::app::SolveKey {
+                level,
+                ..App::defaults(&Scenario::paper())
+            },
+        }));
+    }
+
+    /// The next reply (two minutes at most).
+    fn next(&self) -> Response {
+        self.replies
+            .recv_timeout(std::time::Duration::from_secs(120))
+            .expect("the worker answers")
+    }
+}
+
 /// Issue 13 item 4: a level that is not built is built beside the worker, which keeps
 /// answering: a step back to a built level during the build is served at once, and the
 /// solve left behind is neither run nor reported (before, the worker sat in the build and
 /// then reported the old solve cancelled).
 #[test]
 fn a_step_back_during_a_build_is_served_at_once() {
-    use riplab::tui::app::{Progress, SolveKey, SolveRequest};
-    use riplab::tui::worker::Worker;
-    use std::time::Duration;
-    let (tx, rx) = std::sync::mpsc::channel();
-    let worker = Worker::spawn(Scenario::paper(), move |r| tx.send(r).is_ok());
-    let solve = |generation, level| {
-        worker.send(&Command::Solve(SolveRequest {
-            generation,
-            key: SolveKey {
-                level,
-                ..App::defaults(&Scenario::paper())
-            },
-        }))
-    };
-    let next = || {
-        rx.recv_timeout(Duration::from_secs(120))
-            .expect("the worker answers")
-    };
+    use riplab::tui::app::Progress;
+    let worker = PaperWorker::spawn();
+    let (solve, next) = (|g, l| worker.solve(g, l), || worker.next());
     solve(1, 2);
     while !matches!(next(), Response::Solved { result: Ok(_), .. }) {}
     // Level 5 takes a few hundred ms to build; level 2 is built.
@@ -1908,22 +1926,11 @@ fn a_step_back_during_a_build_is_served_at_once() {
 /// solve waited for the estimate).
 #[test]
 fn a_solve_does_not_wait_for_an_estimate() {
-    use riplab::tui::app::{InfSupKey, InfSupRequest, SolveKey, SolveRequest};
-    use riplab::tui::worker::Worker;
+    use riplab::tui::app::{InfSupKey, InfSupRequest};
     use std::time::Duration;
-    let (tx, rx) = std::sync::mpsc::channel();
-    let worker = Worker::spawn(Scenario::paper(), move |r| tx.send(r).is_ok());
+    let paper = PaperWorker::spawn();
+    let (worker, solve, next) = (&paper.worker, |g, l| paper.solve(g, l), || paper.next());
     let settings = App::defaults(&Scenario::paper());
-    let solve = |generation, level| {
-        worker.send(&Command::Solve(SolveRequest {
-            generation,
-            key: SolveKey { level, ..settings },
-        }))
-    };
-    let next = || {
-        rx.recv_timeout(Duration::from_secs(120))
-            .expect("the worker answers")
-    };
     // Level 5 built (its estimate takes ~100 ms: the H¹ factorisation), level 1 built.
     solve(1, 1);
     while !matches!(next(), Response::Solved { generation: 1, .. }) {}
@@ -1969,22 +1976,10 @@ fn a_solve_does_not_wait_for_an_estimate() {
 /// scene waited for the stresses.
 #[test]
 fn a_solve_waits_for_neither_a_displacement_nor_the_stresses() {
-    use riplab::tui::app::{SolveKey, SolveRequest, StressRequest};
-    use riplab::tui::worker::Worker;
+    use riplab::tui::app::StressRequest;
     use std::time::Duration;
-    let (tx, rx) = std::sync::mpsc::channel();
-    let worker = Worker::spawn(Scenario::paper(), move |r| tx.send(r).is_ok());
-    let settings = App::defaults(&Scenario::paper());
-    let solve = |generation, level| {
-        worker.send(&Command::Solve(SolveRequest {
-            generation,
-            key: SolveKey { level, ..settings },
-        }))
-    };
-    let next = || {
-        rx.recv_timeout(Duration::from_secs(120))
-            .expect("the worker answers")
-    };
+    let paper = PaperWorker::spawn();
+    let (worker, solve, next) = (&paper.worker, |g, l| paper.solve(g, l), || paper.next());
     let solved = |generation| loop {
         if let Response::Solved {
             generation: g,
