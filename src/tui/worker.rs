@@ -858,3 +858,41 @@ pub fn carry_out(app: &mut App, engine: &mut Engine, mut commands: Vec<Command>)
         commands.extend(app.update(Msg::Worker(response)).commands);
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::tui::app::{App, SolveKey};
+
+    /// A carried start that does not lead to convergence (here: a pressure that is not a
+    /// number, as a solve that did not converge may leave) is solved again from rest: the
+    /// answer and the Newton steps of a start from rest.
+    #[test]
+    fn a_carried_start_that_fails_is_solved_again_from_rest() {
+        let scenario = Scenario::paper();
+        let key = SolveKey {
+            level: 3,
+            ..App::defaults(&scenario)
+        };
+        let solve = |engine: &mut Engine| match engine.solve(
+            &SolveRequest { generation: 1, key },
+            &|_| true,
+            &mut |_| {},
+        ) {
+            Response::Solved { result: Ok(s), .. } => s,
+            other => panic!("{other:?}"),
+        };
+        let rest = solve(&mut Engine::new(scenario.clone()));
+        let mut engine = Engine::new(scenario.clone());
+        engine.warm = Some(Warm {
+            on: (2, key.element, key.rule, false),
+            forces: Vec::new(),
+            x: vec![-1.0, 1.0],
+            p: vec![f64::NAN, f64::NAN],
+        });
+        let again = solve(&mut engine);
+        assert!(again.solution.newton.converged);
+        assert_eq!(again.solution.newton.iterations, rest.solution.newton.iterations);
+        assert_eq!(again.solution.load, rest.solution.load);
+    }
+}
