@@ -13,6 +13,15 @@ from=$1; to=$2; wait=$3; back=${4:-}
 shown() {
   until tmux capture-pane -p -t lat | grep -q "level $1 " && tmux capture-pane -p -t lat | grep -q 'converged'; do sleep 0.002; done
 }
+# Send key $1 and print the ms until level $2 is shown solved.
+timed() {
+  local t0 t1
+  t0=$(date +%s%N)
+  tmux send-keys -t lat "$1"
+  shown "$2"
+  t1=$(date +%s%N)
+  echo $(( (t1-t0)/1000000 ))
+}
 tmux kill-session -t lat 2>/dev/null
 tmux new -d -s lat -x 100 -y 30 "NO_COLOR=1 ${RIPLAB:-target/release/riplab}"
 sleep 2
@@ -21,6 +30,7 @@ while [ "$cur" -lt "$from" ]; do tmux send-keys -t lat ']'; cur=$((cur+1));
   until tmux capture-pane -p -t lat | grep -q "level $cur .*" && tmux capture-pane -p -t lat | grep -q 'converged'; do sleep 0.05; done; done
 sleep "$wait"
 key=']'; [ "$to" -lt "$from" ] && key='['
+rkey='['; [ "$key" = '[' ] && rkey=']'
 if [ "$back" = burst ]; then
   for i in $(seq $((to - from + 1))); do tmux send-keys -t lat '+'; sleep 0.03; done
   t0=$(date +%s%N)
@@ -30,35 +40,17 @@ if [ "$back" = burst ]; then
 elif [ "$back" = stress ]; then
   for i in 1 2 3 4; do tmux send-keys -t lat Tab; done
   until tmux capture-pane -p -t lat | grep -q "computing the stresses"; do sleep 0.002; done
-  t0=$(date +%s%N)
-  tmux send-keys -t lat "$key"
-  shown "$to"
-  t1=$(date +%s%N)
-  echo "level $from -> $to while the stresses of $from are computed: $(( (t1-t0)/1000000 )) ms"
+  echo "level $from -> $to while the stresses of $from are computed: $(timed "$key" "$to") ms"
 elif [ "$back" = after ]; then
   tmux send-keys -t lat "$key"
   shown "$to"
-  rkey='['; [ "$key" = '[' ] && rkey=']'
-  t0=$(date +%s%N)
-  tmux send-keys -t lat "$rkey"
-  shown "$from"
-  t1=$(date +%s%N)
-  echo "level $from -> $to -> $from, back as soon as $to is shown: $(( (t1-t0)/1000000 )) ms"
+  echo "level $from -> $to -> $from, back as soon as $to is shown: $(timed "$rkey" "$from") ms"
 elif [ "$back" = back ]; then
   tmux send-keys -t lat "$key"
   until tmux capture-pane -p -t lat | grep -q "building level $to"; do sleep 0.002; done
-  rkey='['; [ "$key" = '[' ] && rkey=']'
-  t0=$(date +%s%N)
-  tmux send-keys -t lat "$rkey"
-  shown "$from"
-  t1=$(date +%s%N)
-  echo "level $from -> $to -> $from, back while $to is built: $(( (t1-t0)/1000000 )) ms"
+  echo "level $from -> $to -> $from, back while $to is built: $(timed "$rkey" "$from") ms"
 else
-  t0=$(date +%s%N)
-  tmux send-keys -t lat "$key"
-  shown "$to"
-  t1=$(date +%s%N)
-  echo "level $from -> $to after ${wait}s idle: $(( (t1-t0)/1000000 )) ms"
+  echo "level $from -> $to after ${wait}s idle: $(timed "$key" "$to") ms"
 fi
 tmux capture-pane -p -t lat | sed -n "2p;$p"; sleep 1; tmux capture-pane -p -t lat | tail -3
 tmux kill-session -t lat

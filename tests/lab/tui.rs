@@ -1996,28 +1996,32 @@ fn a_solve_waits_for_neither_a_displacement_nor_the_stresses() {
     solved(1);
     solve(2, 6);
     let fine = solved(2);
-    std::thread::sleep(Duration::from_millis(20));
-    solve(3, 1);
-    loop {
-        match next() {
-            Response::Solved { generation: 3, .. } => break,
-            r @ Response::Displaced { .. } => panic!("the solve waited for the displacement: {r:?}"),
-            _ => {}
+    // 20 ms into the work on level 6, a solve of level 1 is answered before it, and the work's
+    // reply still comes.
+    let answered_first = |generation, work: &str, of_work: &dyn Fn(&Response) -> bool| {
+        std::thread::sleep(Duration::from_millis(20));
+        solve(generation, 1);
+        loop {
+            match next() {
+                Response::Solved { generation: g, .. } if g == generation => break,
+                r if of_work(&r) => panic!("the solve waited for the {work}: {r:?}"),
+                _ => {}
+            }
         }
-    }
-    while !matches!(next(), Response::Displaced { key } if key.level == 6) {}
+        while !of_work(&next()) {}
+    };
+    answered_first(
+        3,
+        "displacement",
+        &|r| matches!(r, Response::Displaced { key } if key.level == 6),
+    );
     // The stresses of level 6, then a solve.
     worker.send(&Command::Stresses(StressRequest { solved: fine.clone() }));
-    std::thread::sleep(Duration::from_millis(20));
-    solve(4, 1);
-    loop {
-        match next() {
-            Response::Solved { generation: 4, .. } => break,
-            r @ Response::Stresses { .. } => panic!("the solve waited for the stresses: {r:?}"),
-            _ => {}
-        }
-    }
-    while !matches!(next(), Response::Stresses { key } if key.level == 6) {}
+    answered_first(
+        4,
+        "stresses",
+        &|r| matches!(r, Response::Stresses { key } if key.level == 6),
+    );
     assert!(fine.stresses.get().is_some_and(|s| s.is_ok()));
 }
 
