@@ -157,14 +157,23 @@ impl Engine {
     }
 
     /// Drop the least recently used discretisations beyond [`CACHE_SIZE`] and [`CACHE_BYTES`]
-    /// (the newest is kept whatever its size).
+    /// (the newest is kept whatever its size), the neighbouring levels of the mesh in use last
+    /// (they are what `]` and `[` ask for; the meshes estimates were built on go first).
     fn evict(&mut self) {
         loop {
             let kept: Vec<(u32, Element)> = self.cache.iter().map(|(l, e, _)| (*l, *e)).collect();
+            let Some(&(level, element)) = kept.last() else {
+                return;
+            };
             if kept.len() <= 1 || (kept.len() <= CACHE_SIZE && self.fits(&kept)) {
                 return;
             }
-            self.cache.remove(0);
+            let neighbour = |&(l, e): &(u32, Element)| e == element && l.abs_diff(level) == 1;
+            let victim = kept[..kept.len() - 1]
+                .iter()
+                .position(|m| !neighbour(m))
+                .unwrap_or(0);
+            self.cache.remove(victim);
         }
     }
 

@@ -1694,6 +1694,29 @@ fn a_level_or_rule_step_starts_newton_from_the_last_pressure() {
     }
 }
 
+/// Issue 13 item 4: meshes built for inf-sup estimates (the explore scene's table asks for
+/// every coarser level) do not push the prefetched neighbours of the mesh in use out of the
+/// cache: before, the fifth mesh evicted the least recently used one, a neighbour, and a step
+/// to it had to build it again.
+#[test]
+fn meshes_built_for_estimates_do_not_evict_the_neighbours() {
+    use riplab::solve::Discretization;
+    let scenario = Scenario::paper();
+    let mut engine = Engine::new(scenario.clone());
+    let mut app = App::new(scenario.clone());
+    app.settings.level = 3;
+    settle(&mut app, &mut engine);
+    let built = |level| Ok((Discretization::of(&scenario, level, Element::Q1).unwrap(), 1.0));
+    engine.adopt(4, Element::Q1, built(4), Use::Background);
+    engine.adopt(2, Element::Q1, built(2), Use::Background);
+    for level in [0, 1] {
+        engine.adopt(level, Element::Q1, built(level), Use::Estimate);
+    }
+    assert!(engine.has(3, Element::Q1), "the mesh in use");
+    assert!(engine.has(4, Element::Q1) && engine.has(2, Element::Q1), "its neighbours");
+    assert_eq!(engine.next_prefetch(), None);
+}
+
 /// Issue 13 item 4: when idle, the engine names the next finer, then the next coarser level
 /// of the mesh in use to build in the background, up to the lab's finest level and within its
 /// memory budget; an adopted build is used without assembling again.
