@@ -1713,7 +1713,10 @@ fn meshes_built_for_estimates_do_not_evict_the_neighbours() {
         engine.adopt(level, Element::Q1, built(level), Use::Estimate);
     }
     assert!(engine.has(3, Element::Q1), "the mesh in use");
-    assert!(engine.has(4, Element::Q1) && engine.has(2, Element::Q1), "its neighbours");
+    assert!(
+        engine.has(4, Element::Q1) && engine.has(2, Element::Q1),
+        "its neighbours"
+    );
     assert_eq!(engine.next_prefetch(), None);
 }
 
