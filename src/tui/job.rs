@@ -3,10 +3,13 @@
 //! unknown) and its stress field (seconds at level 7), so that the worker answers a key
 //! pressed meanwhile (a step back right after a step used to wait for the displacement).
 //!
+//! The work–precision study runs in a lane too (seconds to a minute): a key pressed on the way
+//! through the convergence scene is answered at once.
+//!
 //! Each kind of job has its [`Lane`]: one job at a time, and only the newest of those waiting,
 //! so that a burst of solves (a held `+`) does not start a displacement per solve on two cores.
 
-use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex, PoisonError};
 
 use super::protocol::Response;
@@ -24,6 +27,8 @@ pub struct Lane {
     turn: Arc<Mutex<()>>,
     /// The number of the newest job submitted.
     newest: Arc<AtomicU64>,
+    /// The jobs submitted whose threads have not ended.
+    open: Arc<AtomicUsize>,
 }
 
 impl Lane {
@@ -33,7 +38,13 @@ impl Lane {
             name,
             turn: Arc::default(),
             newest: Arc::default(),
+            open: Arc::default(),
         }
+    }
+
+    /// Whether a job of this lane runs or waits to.
+    pub fn busy(&self) -> bool {
+        self.open.load(Ordering::SeqCst) > 0
     }
 
     /// Run `work` in this lane and send its reply to `sink`; when no thread can be started,
@@ -44,7 +55,10 @@ impl Lane {
         let slot = Arc::new(Mutex::new(Some(work)));
         let (theirs, sink) = (slot.clone(), sink.clone());
         let (turn, newest) = (self.turn.clone(), self.newest.clone());
+        self.open.fetch_add(1, Ordering::SeqCst);
+        let ended = Ended(self.open.clone());
         let started = std::thread::Builder::new().name(self.name.into()).spawn(move || {
+            let _ended = ended;
             let _turn = turn.lock().unwrap_or_else(PoisonError::into_inner);
             if newest.load(Ordering::SeqCst) != ticket {
                 return;
@@ -65,6 +79,16 @@ impl Lane {
     }
 }
 
+/// Counts a job's end when dropped: when its thread ends, or with the thread that did not start
+/// (a panic in the job counts too).
+struct Ended(Arc<AtomicUsize>);
+
+impl Drop for Ended {
+    fn drop(&mut self) {
+        self.0.fetch_sub(1, Ordering::SeqCst);
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -74,7 +98,8 @@ mod tests {
     use std::time::Duration;
 
     /// One job at a time, and of those that waited only the newest runs: with the first job
-    /// running, the second and third are submitted; the second never runs.
+    /// running, the second and third are submitted; the second never runs. The lane is busy
+    /// from the first submission until the last job's thread has ended.
     #[test]
     fn a_lane_runs_one_job_at_a_time_and_skips_the_superseded() {
         let (tx, rx) = mpsc::channel();
@@ -93,6 +118,7 @@ mod tests {
         });
         assert!(first.is_none(), "on a thread of its own");
         started.recv_timeout(Duration::from_secs(60)).unwrap();
+        assert!(lane.busy());
         let ran = Arc::new(AtomicU64::new(0));
         let counted = ran.clone();
         lane.submit(&sink, move || {
@@ -113,5 +139,11 @@ mod tests {
             "the second sent nothing"
         );
         assert_eq!(ran.load(Ordering::SeqCst), 0, "the second never ran");
+        // Its thread ends just after the last reply.
+        let since = std::time::Instant::now();
+        while lane.busy() {
+            assert!(since.elapsed() < wait, "the lane stays busy");
+            std::thread::sleep(Duration::from_millis(1));
+        }
     }
 }

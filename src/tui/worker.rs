@@ -7,7 +7,7 @@ use std::collections::{HashMap, VecDeque};
 use std::ops::ControlFlow;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::mpsc::{self, Receiver, Sender};
-use std::sync::{Arc, OnceLock};
+use std::sync::{Arc, Mutex, OnceLock, PoisonError};
 use std::time::{Duration, Instant};
 
 use crate::contact::penalty::{NewtonOptions, SolveError};
@@ -64,14 +64,80 @@ struct Warm {
     p: Vec<f64>,
 }
 
+/// A work–precision study taken from the engine ([`Engine::studying`]), to run anywhere.
+pub struct Studying {
+    scenario: Scenario,
+    key: StudyKey,
+    /// The estimated time of each stage, ms: the reference, then each level.
+    estimates_ms: Vec<f64>,
+    /// The engine's last study: reused if it is this one, replaced by this one when it ends.
+    kept: Arc<Mutex<Option<Arc<Study>>>>,
+}
+
+impl Studying {
+    /// Each of the key's schemes with each of its methods at levels 0..=max against the Q2
+    /// reference one level finer, at the key's ε (fresh solves, so the timings are
+    /// comparable); each stage (the reference, then each level) is announced to `report` with
+    /// its estimate. A method a scheme cannot run (`exact` on a rule with a kernel) gives rows
+    /// that say why.
+    pub fn run(self, report: &mut dyn FnMut(Progress)) -> Result<Arc<Study>, String> {
+        let kept = || self.kept.lock().unwrap_or_else(PoisonError::into_inner);
+        if let Some(study) = kept().as_ref().filter(|s| s.key == self.key) {
+            return Ok(study.clone());
+        }
+        let key = &self.key;
+        report(Progress::Study {
+            level: None,
+            started: Instant::now(),
+            estimate_ms: self.estimates_ms[0],
+        });
+        let dir = crate::cache::default_dir();
+        let (reference, _) = crate::cache::reference(&self.scenario, key.reference_level(), dir.as_deref())
+            .map_err(|e| e.to_string())?;
+        let mut rows = Vec::new();
+        for (level, &estimate_ms) in (0..=key.max_level).zip(&self.estimates_ms[1..]) {
+            report(Progress::Study {
+                level: Some(level),
+                started: Instant::now(),
+                estimate_ms,
+            });
+            for &method in &key.methods {
+                rows.extend(convergence(
+                    &self.scenario,
+                    &reference,
+                    &key.schemes,
+                    &[level],
+                    Some(method),
+                    key.epsilon,
+                ));
+            }
+        }
+        // The key's order: by scheme, then method, then ascending level.
+        let scheme_index = |r: &StudyRow| {
+            key.schemes
+                .iter()
+                .position(|&(e, rule)| Scheme::new(e, rule).label() == r.scheme)
+        };
+        let method_index = |r: &StudyRow| key.methods.iter().position(|m| m.name() == r.method.method);
+        rows.sort_by_key(|r| (scheme_index(r), method_index(r), r.level));
+        let study = Arc::new(Study {
+            key: self.key.clone(),
+            rows,
+        });
+        *kept() = Some(study.clone());
+        Ok(study)
+    }
+}
+
 /// Owns the discretisation cache (least recently used last out) and the warm start.
 pub struct Engine {
     scenario: Scenario,
     cache: Vec<(u32, Element, Arc<Discretization>)>,
     /// The last contact solve's state: where the next one starts ([`Warm`]).
     warm: Option<Warm>,
-    /// The last study (a study takes seconds; a second app on the same engine reuses it).
-    study: Option<Arc<Study>>,
+    /// The last study (a study takes seconds; a second app on the same engine reuses it),
+    /// shared with the study's thread ([`Studying`]).
+    study: Arc<Mutex<Option<Arc<Study>>>>,
     /// How long builds take here (for the time left).
     eta: Eta,
     /// Levels whose background build failed (too large for this machine): not tried again.
@@ -88,7 +154,7 @@ impl Engine {
             scenario,
             cache: Vec::new(),
             warm: None,
-            study: None,
+            study: Arc::default(),
             eta: Eta::default(),
             unfit: Vec::new(),
             peaks: RefCell::default(),
@@ -354,15 +420,15 @@ impl Engine {
         Response::Stresses { key: req.solved.key }
     }
 
-    /// The work–precision study of `key`: each of its schemes with each of its methods at
-    /// levels 0..=max against the Q2 reference one level finer, at the key's ε (fresh solves,
-    /// so the timings are comparable); each stage
-    /// (the reference, then each level) is announced to `report` with its estimate. A method
-    /// a scheme cannot run (`exact` on a rule with a kernel) gives rows that say why.
-    pub fn study(&mut self, key: &StudyKey, report: &mut dyn FnMut(Progress)) -> Result<Arc<Study>, String> {
-        if let Some(study) = self.study.as_ref().filter(|s| s.key == *key) {
-            return Ok(study.clone());
-        }
+    /// The work–precision study of `key` ([`Studying::run`]), here.
+    pub fn study(&self, key: &StudyKey, report: &mut dyn FnMut(Progress)) -> Result<Arc<Study>, String> {
+        self.studying(key)?.run(report)
+    }
+
+    /// The work–precision study of `key`, ready to run on a thread of its own: the scenario, the
+    /// estimate of each stage (from this engine's timings) and the engine's place for the
+    /// finished study. An error if the engine runs another scenario.
+    pub fn studying(&self, key: &StudyKey) -> Result<Studying, String> {
         if key.scenario != self.scenario.name {
             return Err(format!(
                 "the worker runs {}, not {}",
@@ -371,54 +437,26 @@ impl Engine {
         }
         // The reference: a Q2 build and an active-set solve of about the same cost (nothing
         // when the cache holds it).
-        let unknowns = self.unknowns(key.reference_level(), Element::Q2);
-        report(Progress::Study {
-            level: None,
-            started: Instant::now(),
-            estimate_ms: 2.0 * self.eta.predict_ms(unknowns),
-        });
-        let dir = crate::cache::default_dir();
-        let (reference, _) = crate::cache::reference(&self.scenario, key.reference_level(), dir.as_deref())
-            .map_err(|e| e.to_string())?;
-        let mut rows = Vec::new();
-        for level in 0..=key.max_level {
-            // One build per element and method at this level.
-            let mut elements: Vec<Element> = key.schemes.iter().map(|s| s.0).collect();
-            elements.dedup();
+        let reference = 2.0
+            * self
+                .eta
+                .predict_ms(self.unknowns(key.reference_level(), Element::Q2));
+        let mut elements: Vec<Element> = key.schemes.iter().map(|s| s.0).collect();
+        elements.dedup();
+        // One build per element and method at each level.
+        let levels = (0..=key.max_level).map(|level| {
             let unknowns: usize = elements
                 .iter()
                 .map(|&e| key.methods.len() * self.unknowns(level, e))
                 .sum();
-            report(Progress::Study {
-                level: Some(level),
-                started: Instant::now(),
-                estimate_ms: self.eta.predict_ms(unknowns),
-            });
-            for &method in &key.methods {
-                rows.extend(convergence(
-                    &self.scenario,
-                    &reference,
-                    &key.schemes,
-                    &[level],
-                    Some(method),
-                    key.epsilon,
-                ));
-            }
-        }
-        // The key's order: by scheme, then method, then ascending level.
-        let scheme_index = |r: &StudyRow| {
-            key.schemes
-                .iter()
-                .position(|&(e, rule)| Scheme::new(e, rule).label() == r.scheme)
-        };
-        let method_index = |r: &StudyRow| key.methods.iter().position(|m| m.name() == r.method.method);
-        rows.sort_by_key(|r| (scheme_index(r), method_index(r), r.level));
-        let study = Arc::new(Study {
-            key: key.clone(),
-            rows,
+            self.eta.predict_ms(unknowns)
         });
-        self.study = Some(study.clone());
-        Ok(study)
+        Ok(Studying {
+            scenario: self.scenario.clone(),
+            key: key.clone(),
+            estimates_ms: std::iter::once(reference).chain(levels).collect(),
+            kept: self.study.clone(),
+        })
     }
 
     /// The inf-sup estimate of `key`.
@@ -635,14 +673,15 @@ impl Builds {
 /// a newer request (a step back to a built level) is served at once. Estimates run on a
 /// thread of their own too, one at a time on built meshes, and each as soon as the mesh it
 /// waited for is built (held by the estimate alone when the cache's budget cannot keep it).
-/// When nothing is waiting, the neighbouring levels of the mesh in use are built in the
-/// background, each only while the memory would hold it twice (what it leaves for the next
+/// When nothing is waiting and no study runs, the neighbouring levels of the mesh in use are
+/// built in the background, each only while the memory would hold it twice (what it leaves for the next
 /// request).
 fn run(mut engine: Engine, rx: &Receiver<Request>, latest: &AtomicU64, sink: &Sink) {
     let mut waiting = Waiting::default();
     let mut builds = Builds::default();
     let mut estimating: Vec<Estimating> = Vec::new();
     let (displacing, stressing) = (Lane::new("riplab-displace"), Lane::new("riplab-stresses"));
+    let studies = Lane::new("riplab-study");
     // The solve generation, and the estimate, told that it waits for a build.
     let mut announced = None;
     let mut announced_estimate = None;
@@ -659,13 +698,15 @@ fn run(mut engine: Engine, rx: &Receiver<Request>, latest: &AtomicU64, sink: &Si
         }
         if waiting.is_empty() {
             builds.collect(&mut engine, None, Duration::ZERO);
+            // A study under way has the cores (the convergence scene waits for it).
             if builds.0.is_empty()
+                && !studies.busy()
                 && let Some((level, element)) = engine.next_prefetch()
             {
                 let plan = engine.plan(level, element);
                 builds.start(&engine.scenario, plan, plan.peak);
             }
-            let next = if builds.0.is_empty() && estimating.is_empty() {
+            let next = if builds.0.is_empty() && estimating.is_empty() && !studies.busy() {
                 match rx.recv() {
                     Ok(r) => Some(r),
                     Err(_) => return,
@@ -779,15 +820,32 @@ fn run(mut engine: Engine, rx: &Receiver<Request>, latest: &AtomicU64, sink: &Si
             }
         } else if let Some(req) = waiting.study.take() {
             let stale = latest.load(Ordering::SeqCst) > req.generation;
-            let generation = req.generation;
-            Response::Study {
-                generation,
-                result: (!stale).then(|| {
-                    engine.study(&req.key, &mut |progress| {
-                        sink(Response::StudyProgress { generation, progress });
-                    })
-                }),
-                key: req.key,
+            let (generation, key) = (req.generation, req.key);
+            match engine.studying(&key) {
+                Ok(studying) if !stale => {
+                    let told = sink.clone();
+                    let work = move || Response::Study {
+                        generation,
+                        result: Some(studying.run(&mut |progress| {
+                            told(Response::StudyProgress { generation, progress });
+                        })),
+                        key,
+                    };
+                    match studies.submit(sink, work) {
+                        Some(response) => response,
+                        None => continue,
+                    }
+                }
+                Ok(_) => Response::Study {
+                    generation,
+                    result: None,
+                    key,
+                },
+                Err(error) => Response::Study {
+                    generation,
+                    result: Some(Err(error)),
+                    key,
+                },
             }
         } else if !estimating.is_empty() {
             // The next estimate waits for those under way.
