@@ -24,8 +24,8 @@
 //! one-sided values, so that I(p, 1) is the method's load.
 //!
 //! **Condensation** (the design the issue asks for: θ, γ₀ and the depth change fast). With S
-//! and B the rows giving σ_n and u_n at the n edge points (both supported on the dofs of the
-//! cells along Γ_C, the *layer*) the discrete problem is
+//! and B the rows giving σ_n and u_n at the n edge points (both supported on dofs of the cells
+//! along Γ_C: the *layer* is the dofs they use, [`layer_dofs`]) the discrete problem is
 //!
 //!   K_θ u = Σ_q γ_q⁻¹ P_θ,qᵀ y_q,   y_q = w_q p_q,  p_q = (−P_1,q u − γ_q g_q)⁺,
 //!
@@ -66,8 +66,8 @@ use crate::contact::{ContactParams, ContactPoints, Rule, load, smoothed_pressure
 use crate::discretization::{Discretization, fem_error};
 use crate::error::SolveError;
 use crate::fem::basis::lagrange_1d;
-use crate::fem::condense::{TraceFactor, TraceOrdering};
 use crate::fem::error::gib;
+use crate::fem::factor::{Analysis, Factor};
 use crate::fem::memory::Limits;
 use crate::fem::{Form, assemble};
 use crate::material::Material;
@@ -240,24 +240,48 @@ fn edge_points(disc: &Discretization, material: &Material, points: &ContactPoint
     out
 }
 
-impl Layer {
-    /// Factorise K with the dofs of the boundary cells last and keep the trailing block.
-    fn build(disc: &Discretization) -> Result<Layer, SolveError> {
-        let mesh = &disc.mesh;
-        let rows = mesh.element.order() + 1;
-        let nny = mesh.node_y.len();
-        // Node column by node column, so that a point's rows start late in the layer when it
-        // lies far along Γ_C ([`Layer::couplings`] skips the leading zeros).
-        let mut dofs = Vec::new();
-        for i in 0..mesh.nnx() {
-            for j in nny.saturating_sub(rows)..nny {
-                for comp in 0..2 {
-                    if let Some(d) = disc.dofs.free_index(2 * mesh.node(i, j) + comp) {
-                        dofs.push(d);
-                    }
+/// The layer B: the free dofs the rows of σ_n and u_n use at any rule's points on Γ_C's edges,
+/// node column by node column, so that a point's rows start late in the layer when it lies
+/// far along Γ_C ([`Layer::couplings`] skips the leading zeros). G = R K⁻¹ Rᵀ needs K's Schur
+/// complement on no more than these: u_x of Γ_C's nodes and u_y of the nodes of the elements
+/// on Γ_C (σ_yy = λ u_x,x + (λ + 2μ) u_y,y on the top edge, where u_x,x sees only the edge's
+/// nodes), about three dofs per node column for Q1 and P1 and four for Q2, where every dof of
+/// those elements would be four and six.
+fn layer_dofs(disc: &Discretization) -> Vec<usize> {
+    let mesh = &disc.mesh;
+    let mut used = vec![false; disc.n_dofs()];
+    for ci in 0..mesh.nx() {
+        for (s, _) in Rule::ALL.iter().flat_map(|r| r.points()) {
+            let (sigma, normal) = rows(disc, &disc.material, ci, s);
+            for (d, _) in sigma.into_iter().chain(normal) {
+                used[d] = true;
+            }
+        }
+    }
+    let nny = mesh.node_y.len();
+    let below = nny.saturating_sub(mesh.element.order() + 1);
+    let mut dofs = Vec::new();
+    for i in 0..mesh.nnx() {
+        for j in below..nny {
+            for comp in 0..2 {
+                if let Some(d) = disc.dofs.free_index(2 * mesh.node(i, j) + comp)
+                    && used[d]
+                {
+                    dofs.push(d);
                 }
             }
         }
+    }
+    dofs
+}
+
+impl Layer {
+    /// Factorise K with the layer's dofs last ([`layer_dofs`]; two subdomains on two cores
+    /// from [`crate::fem::factor::SPLIT_UNKNOWNS`] unknowns, as the mesh's own factor) and keep
+    /// the Schur complement's factor.
+    fn build(disc: &Discretization) -> Result<Layer, SolveError> {
+        let mesh = &disc.mesh;
+        let dofs = layer_dofs(disc);
         let n = disc.n_dofs();
         // The dense work: L_BB, the couplings' right-hand sides (at most 3 points per edge, and
         // the vertices), G and the operator's n×n matrices.
@@ -277,9 +301,8 @@ impl Layer {
             &disc.dofs,
             Form::Elasticity(disc.material, disc.integration),
         );
-        let ordering =
-            TraceOrdering::grid(&stiffness, mesh, &disc.dofs, &dofs).map_err(|e| fem_error(e, n))?;
-        let factor = TraceFactor::new(&ordering, &stiffness).map_err(|e| fem_error(e, n))?;
+        let analysis = Analysis::grid(&stiffness, mesh, &disc.dofs, &dofs).map_err(|e| fem_error(e, n))?;
+        let factor = Factor::new(&analysis, stiffness).map_err(|e| fem_error(e, n))?;
         let mut position = vec![usize::MAX; n];
         for (k, &d) in dofs.iter().enumerate() {
             position[d] = k;
@@ -827,6 +850,72 @@ pub fn solve(
 mod tests {
     use super::*;
     use crate::fem::basis::evaluate;
+    use crate::scenario::Scenario;
+
+    /// The layer is u_x of Γ_C's nodes and u_y of the nodes of the elements on Γ_C (two node
+    /// rows of the boundary cells for Q1, three for Q2; for P1 Γ_C's nodes and each top
+    /// triangle's third vertex), the free ones, counted here from the dof map.
+    #[test]
+    fn the_layer_is_the_dofs_the_rows_use() {
+        for element in Element::ALL {
+            let disc = Discretization::of(&Scenario::paper(), 2, element).unwrap();
+            let mesh = &disc.mesh;
+            let nny = mesh.node_y.len();
+            let free = |i, j, comp| disc.dofs.free_index(2 * mesh.node(i, j) + comp).is_some();
+            let rows = match element {
+                Element::Q2 => 3,
+                Element::Q1 | Element::P1 => 2,
+            };
+            // P1's third vertices: below the left end of a rising diagonal's cell, below the
+            // right end of a falling one's.
+            let third: Vec<usize> = (0..mesh.nx())
+                .map(|ci| match mesh.diagonal(ci) {
+                    Diagonal::Rising => ci,
+                    Diagonal::Falling => ci + 1,
+                })
+                .collect();
+            let below = |i: usize, j: usize| element != Element::P1 || j == nny - 1 || third.contains(&i);
+            let expected: usize = (0..mesh.nnx())
+                .map(|i| {
+                    usize::from(free(i, nny - 1, 0))
+                        + (nny - rows..nny)
+                            .filter(|&j| below(i, j) && free(i, j, 1))
+                            .count()
+                })
+                .sum();
+            let layer = layer_dofs(&disc);
+            assert_eq!(layer.len(), expected, "{element:?}");
+            assert!(
+                layer.len() < 2 * rows * mesh.nnx() - 1,
+                "{element:?}: fewer than the cells' dofs"
+            );
+        }
+    }
+
+    /// K's Schur complement on the layer is the same from two subdomains (the split the layer
+    /// uses from 50,000 unknowns) as from one factor, to round-off.
+    #[test]
+    fn the_layers_schur_complement_is_the_same_split_or_whole() {
+        for element in [Element::Q1, Element::Q2] {
+            let disc = Discretization::of(&Scenario::paper(), 3, element).unwrap();
+            let stiffness = assemble(
+                &disc.mesh,
+                &disc.dofs,
+                Form::Elasticity(disc.material, disc.integration),
+            );
+            let dofs = layer_dofs(&disc);
+            let schur = |analysis: Analysis| {
+                let l = Factor::new(&analysis, stiffness.clone()).unwrap().schur_factor();
+                l.as_ref() * l.transpose()
+            };
+            let split = Analysis::split(&stiffness, &disc.mesh, &disc.dofs, &dofs).unwrap();
+            assert!(matches!(split, Analysis::Split(_)), "{element:?}");
+            let whole = Analysis::whole(&stiffness, &disc.mesh, &disc.dofs, &dofs).unwrap();
+            let (a, b) = (schur(split), schur(whole));
+            let scale = b.norm_max();
+            assert!((&a - &b).norm_max() <= 1e-11 * scale, "{element:?}");
+        }
+    }
 
     /// The boundary cell's shape functions at the top edge agree with the field evaluation of
     /// `basis::evaluate` just below it (inside the same element), for a random field.
