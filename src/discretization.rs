@@ -185,6 +185,23 @@ impl Discretization {
         element: Element,
         reserved: u64,
     ) -> Result<Self, SolveError> {
+        Self::fits_beside(scenario, level, element, reserved)?;
+        Self::new(
+            scenario.mesh(level, element),
+            scenario.material,
+            scenario.integration,
+        )
+    }
+
+    /// Whether the memory this process may use less `reserved` bytes holds the estimated peak
+    /// of the mesh of `level` with `element` (its build, or another factorisation of the same
+    /// size); why not otherwise.
+    pub fn fits_beside(
+        scenario: &Scenario,
+        level: u32,
+        element: Element,
+        reserved: u64,
+    ) -> Result<(), SolveError> {
         let sizes = Self::sizes(scenario, level, element);
         sizes
             .check(&Limits::of_process().less(reserved))
@@ -202,12 +219,7 @@ impl Discretization {
                     if reserved > 0 { ", less the work under way" } else { "" }
                 )),
                 e => fem_error(e, sizes.unknowns),
-            })?;
-        Self::new(
-            scenario.mesh(level, element),
-            scenario.material,
-            scenario.integration,
-        )
+            })
     }
 
     /// The sizes that decide the memory of the discretisation of `scenario` at `level` with

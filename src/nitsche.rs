@@ -137,8 +137,8 @@ struct Couplings {
     g: Mat<f64>,
     /// E K⁻¹ Rᵀ, E the u_y of Γ_C's vertices: their displacement under the point loads.
     vertex: Mat<f64>,
-    /// γ₀* ([`stability_threshold`]), computed when first asked.
-    threshold: OnceLock<f64>,
+    /// γ₀* ([`stability_threshold`]) or why it could not be computed, when first asked.
+    threshold: OnceLock<Result<f64, SolveError>>,
 }
 
 /// Everything one (rule, θ, γ₀) needs: H and the maps back to σ_n.
@@ -420,16 +420,17 @@ fn couplings(disc: &Discretization, points: &ContactPoints) -> Result<Arc<Coupli
 pub fn stability_threshold(disc: &Discretization, rule: Rule) -> Result<f64, SolveError> {
     let points = disc.contact_points(rule);
     let cp = couplings(disc, &points)?;
-    if let Some(&star) = cp.threshold.get() {
-        return Ok(star);
-    }
-    let young = disc.material.young;
-    let c: Vec<f64> = cp.points.iter().map(|q| q.weight * q.h / young).collect();
-    let eig = cp
-        .scaled_ss(&c)
-        .self_adjoint_eigenvalues(Side::Lower)
-        .map_err(|e| SolveError::Eigen(format!("{e:?}")))?;
-    Ok(*cp.threshold.get_or_init(|| eig.last().copied().unwrap_or(0.0)))
+    cp.threshold
+        .get_or_init(|| {
+            let young = disc.material.young;
+            let c: Vec<f64> = cp.points.iter().map(|q| q.weight * q.h / young).collect();
+            let eig = cp
+                .scaled_ss(&c)
+                .self_adjoint_eigenvalues(Side::Lower)
+                .map_err(|e| SolveError::Eigen(format!("{e:?}")))?;
+            Ok(eig.last().copied().unwrap_or(0.0))
+        })
+        .clone()
 }
 
 /// The γ₀ a solve with `gamma0` uses for `rule` on `disc`: the given one, or for `auto`
@@ -452,6 +453,41 @@ pub fn gamma0(disc: &Discretization, rule: Rule, gamma0: Gamma0) -> Result<f64, 
         return Ok(chosen);
     };
     Ok(given)
+}
+
+/// Build what a solve with θ and γ₀ on `rule` needs on `disc`, each part kept with it: the
+/// layer's factor, the rule's couplings, γ₀* for `auto`, and the operator. Seconds at level 7
+/// (BENCHMARKS.md, "Nitsche's method in the lab"), so the lab does it on a thread of its own
+/// while the worker keeps answering. What fails is met again by the solve, which reports it
+/// (the layer's and γ₀*'s failures are kept, so that [`prepared`] holds after them too).
+pub fn prepare(disc: &Discretization, rule: Rule, theta: i8, gamma0: Gamma0) {
+    if let Ok(gamma0) = self::gamma0(disc, rule, gamma0) {
+        let params = NitscheParams {
+            theta: f64::from(theta),
+            gamma0,
+        };
+        if check_params(&params).is_ok() {
+            // A refused (θ, γ₀) is the solve's to report.
+            let _ = Operator::of(disc, &disc.contact_points(rule), params);
+        }
+    }
+}
+
+/// Whether a solve on `rule` with `gamma0` finds the long parts of [`prepare`] built (or failed)
+/// on `disc`: the layer's factor, the rule's couplings and, for `auto`, γ₀*. The operator is
+/// left out: dense work on the points that θ and γ₀ change.
+pub fn prepared(disc: &Discretization, rule: Rule, gamma0: Gamma0) -> bool {
+    let cache = cache(disc);
+    match cache.layer.get() {
+        None => false,
+        Some(Err(_)) => true,
+        Some(Ok(_)) => {
+            let couplings = cache.couplings.lock().unwrap_or_else(|e| e.into_inner());
+            couplings
+                .get(&rule)
+                .is_some_and(|cp| gamma0 != Gamma0::Auto || cp.threshold.get().is_some())
+        }
+    }
 }
 
 /// θ and γ₀ checked: θ ∈ [−1, 1], γ₀ within [`GAMMA0_RANGE`].

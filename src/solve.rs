@@ -11,7 +11,7 @@ use std::time::Instant;
 pub use crate::contact::ContactParams;
 use crate::contact::penalty::{self, Iteration, NewtonOptions, Penalty, SolveError};
 use crate::contact::signorini::solve_exact;
-use crate::contact::{Method, alm, load, raw_pressure, smoothed_pressure};
+use crate::contact::{Method, Rule, alm, load, raw_pressure, smoothed_pressure};
 use crate::discretization::ms_since;
 pub use crate::discretization::{Discretization, check_params, check_request};
 pub use crate::material::{KAPPA_RANGE, epsilon_range};
@@ -19,6 +19,28 @@ use crate::nitsche::{self, NitscheParams};
 use crate::scenario::Scenario;
 pub use crate::solution::{Solution, Timing};
 use crate::warning::{self, Warning};
+
+/// Build on `disc` what a solve by `method` with `rule` needs beyond the mesh's own factor, so
+/// that the solve costs only its iteration: the coupling G of the penalty, ALM and exact
+/// constraint ([`Discretization::coupling`]; milliseconds), or Nitsche's layer, couplings and
+/// operator ([`nitsche::prepare`]; seconds at level 7). What fails is the solve's to report.
+pub fn prepare(disc: &Discretization, rule: Rule, method: Method) {
+    match method {
+        Method::Nitsche { theta, gamma0 } => nitsche::prepare(disc, rule, theta, gamma0),
+        _ => {
+            disc.coupling(rule, &disc.contact_points(rule));
+        }
+    }
+}
+
+/// Whether a solve by `method` with `rule` on `disc` would first do long work that
+/// [`prepare`] does: Nitsche's, when not [`nitsche::prepared`].
+pub fn needs_preparing(disc: &Discretization, rule: Rule, method: Method) -> bool {
+    match method {
+        Method::Nitsche { gamma0, .. } => !nitsche::prepared(disc, rule, gamma0),
+        _ => false,
+    }
+}
 
 /// Solve the contact problem on `disc`, from the contact forces of an earlier solution with
 /// the same rule (`initial`, ignored if it does not fit).

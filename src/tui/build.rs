@@ -2,6 +2,8 @@
 //! never waits on a factorisation: a level the user asks for shows its progress and the time
 //! left while the worker keeps answering (a step back to a built level is served at once),
 //! and a neighbouring level is built while the lab is idle, so that `]` and `[` find it ready.
+//! A build also does what the solve's method needs beyond the mesh's factor (Nitsche's layer,
+//! seconds at level 7), alone when the mesh is already built.
 //!
 //! A build hands its result back through a channel; the worker adopts it into its cache
 //! ([`super::worker::Engine::adopt`]) or drops it when the user has moved on. A factorisation
@@ -9,14 +11,16 @@
 //! use is checked before it starts, less what the builds already under way may still take
 //! ([`Discretization::of_beside`]).
 
+use std::sync::Arc;
 use std::sync::mpsc::{self, Receiver, RecvTimeoutError};
 use std::time::{Duration, Instant};
 
-use crate::contact::Rule;
+use crate::contact::{Method, Rule};
+use crate::discretization::ms_since;
 use crate::error::SolveError;
 use crate::mesh::Element;
 use crate::scenario::Scenario;
-use crate::solve::Discretization;
+use crate::solve::{self, Discretization};
 
 /// A build on a thread of its own.
 pub struct Build {
@@ -27,8 +31,18 @@ pub struct Build {
     done: Receiver<Built>,
 }
 
-/// A finished build and its wall time in ms, or why there is none.
-pub type Built = Result<(Discretization, f64), SolveError>;
+/// A finished build, or why there is none.
+pub type Built = Result<Finished, SolveError>;
+
+/// What a build hands back: the mesh, and the wall time of each part it did, ms.
+pub struct Finished {
+    /// The mesh, built by this build or given to it.
+    pub disc: Arc<Discretization>,
+    /// Assembly and factorisation; None when the mesh was given.
+    pub build_ms: Option<f64>,
+    /// The method's preparation ([`solve::prepare`]) when it takes long ([`Plan::prepares`]).
+    pub prepare_ms: Option<f64>,
+}
 
 /// What a build is of and what it is expected to cost.
 #[derive(Clone, Copy, Debug)]
@@ -39,31 +53,67 @@ pub struct Plan {
     pub element: Element,
     /// Its number of unknowns.
     pub unknowns: usize,
-    /// The contact rule of the last solve: its coupling G ([`Discretization::coupling`]) is
-    /// computed with the mesh, so that a step to the mesh costs only the contact solve.
+    /// The contact rule and method of the solve the mesh is for (or of the last solve): what
+    /// the solve needs beyond the mesh's factor is built with it ([`solve::prepare`]: G, or
+    /// Nitsche's layer), so that a step to the mesh costs only the contact solve.
     pub rule: Rule,
+    pub method: Method,
     /// Its estimated peak memory, bytes ([`crate::fem::memory::Sizes::peak_bytes`]).
     pub peak: u64,
     /// Its expected time, ms ([`super::eta`]).
     pub estimate_ms: f64,
 }
 
+impl Plan {
+    /// Whether the method's preparation is long work ([`solve::needs_preparing`] on a mesh
+    /// without it): Nitsche's.
+    pub fn prepares(&self) -> bool {
+        matches!(self.method, Method::Nitsche { .. })
+    }
+}
+
 impl Build {
     /// Start the build `plan` of `scenario` beside other work that may still take `reserved`
-    /// bytes; None if no thread can be started (the caller then builds in its own thread).
-    pub fn start(scenario: &Scenario, plan: Plan, reserved: u64) -> Option<Self> {
+    /// bytes, or, given the mesh `built`, only the method's preparation on it; None if no
+    /// thread can be started (the caller then builds in its own thread).
+    pub fn start(
+        scenario: &Scenario,
+        plan: Plan,
+        reserved: u64,
+        built: Option<Arc<Discretization>>,
+    ) -> Option<Self> {
         let (tx, done) = mpsc::channel();
         let scenario = scenario.clone();
         let Plan {
-            level, element, rule, ..
+            level,
+            element,
+            rule,
+            method,
+            ..
         } = plan;
         std::thread::Builder::new()
             .name("riplab-build".into())
             .spawn(move || {
                 let t = Instant::now();
-                let built = Discretization::of_beside(&scenario, level, element, reserved).map(|d| {
-                    d.coupling(rule, &d.contact_points(rule));
-                    (d, t.elapsed().as_secs_f64() * 1e3)
+                let (disc, build_ms) = match built {
+                    // Nitsche's layer is another factorisation of the mesh's size.
+                    Some(disc) => (
+                        Discretization::fits_beside(&scenario, level, element, reserved).map(|()| disc),
+                        None,
+                    ),
+                    None => (
+                        Discretization::of_beside(&scenario, level, element, reserved).map(Arc::new),
+                        Some(ms_since(t)),
+                    ),
+                };
+                let built = disc.map(|disc| {
+                    let t = Instant::now();
+                    solve::prepare(&disc, rule, method);
+                    Finished {
+                        disc,
+                        build_ms,
+                        prepare_ms: plan.prepares().then(|| ms_since(t)),
+                    }
                 });
                 // Nobody listens any more when the worker has ended: nothing to do then.
                 let _ = tx.send(built);

@@ -8,6 +8,10 @@
 const EXPONENT: f64 = 1.3;
 /// Milliseconds and unknowns of the benchmark's level-6 build, the first calibration.
 const BENCH: (f64, f64) = (1655.0, 262_400.0);
+/// Milliseconds and unknowns of Nitsche's preparation at level 6 (BENCHMARKS.md, "Nitsche's
+/// method in the lab"), the first calibration of its model.
+const PREPARING_BENCH: (f64, f64) = (PREPARING_MS, 262_400.0);
+const PREPARING_MS: f64 = 1200.0;
 /// Below this many milliseconds no estimate is shown.
 pub const SHOWN_FROM_MS: f64 = 500.0;
 
@@ -26,6 +30,14 @@ impl Default for Eta {
 }
 
 impl Eta {
+    /// The model of Nitsche's preparation ([`crate::solve::prepare`]): another factorisation of
+    /// the mesh's size and dense work on Γ_C, calibrated on its own benchmark.
+    pub fn preparing() -> Self {
+        Eta {
+            c: PREPARING_BENCH.0 / PREPARING_BENCH.1.powf(EXPONENT),
+        }
+    }
+
     /// The expected milliseconds of a build of `unknowns` unknowns.
     pub fn predict_ms(&self, unknowns: usize) -> f64 {
         self.c * (unknowns as f64).powf(EXPONENT)

@@ -208,6 +208,9 @@ pub enum Progress {
         started: Instant,
         /// What the build is expected to take, ms.
         estimate_ms: f64,
+        /// The method whose preparation the build includes (or is: Nitsche's layer on a mesh
+        /// already built), when it is long work ([`super::build::Plan::prepares`]).
+        method: Option<&'static str>,
     },
     /// A study's stage: the reference (`level` None) or the schemes at `level`.
     Study {

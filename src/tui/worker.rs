@@ -21,7 +21,8 @@ use crate::study::{StudyRow, convergence};
 
 use super::app::{App, Command, MAX_APP_LEVEL, Msg};
 use super::beta::{self, InfSup};
-use super::build::{Build, Built, Plan};
+use super::build::{Build, Plan};
+pub use super::build::{Built, Finished};
 use super::estimating::Estimating;
 use super::eta::Eta;
 use super::job::{Lane, Sink};
@@ -62,6 +63,8 @@ struct Warm {
     /// at level 7 takes one to three Newton steps instead of 12 to 75, BENCHMARKS.md).
     x: Vec<f64>,
     p: Vec<f64>,
+    /// The method (with its parameters): what a background build prepares ([`Plan::method`]).
+    method: Method,
 }
 
 /// A work–precision study taken from the engine ([`Engine::studying`]), to run anywhere.
@@ -138,8 +141,10 @@ pub struct Engine {
     /// The last study (a study takes seconds; a second app on the same engine reuses it),
     /// shared with the study's thread ([`Studying`]).
     study: Arc<Mutex<Option<Arc<Study>>>>,
-    /// How long builds take here (for the time left).
+    /// How long builds take here (for the time left)…
     eta: Eta,
+    /// …and Nitsche's preparation ([`crate::solve::prepare`]).
+    prepare_eta: Eta,
     /// Levels whose background build failed (too large for this machine): not tried again.
     unfit: Vec<(u32, Element)>,
     /// The estimated peak of each mesh asked about (computed once: it lays out the mesh's
@@ -156,6 +161,7 @@ impl Engine {
             warm: None,
             study: Arc::default(),
             eta: Eta::default(),
+            prepare_eta: Eta::preparing(),
             unfit: Vec::new(),
             peaks: RefCell::default(),
         }
@@ -175,17 +181,34 @@ impl Engine {
             .or_insert_with(|| Discretization::sizes(&self.scenario, level, element).peak_bytes())
     }
 
-    /// What building `level` with `element` is expected to cost.
+    /// What building `level` with `element` for the rule and method of the last solve is
+    /// expected to cost.
     fn plan(&self, level: u32, element: Element) -> Plan {
+        let (rule, method) = self
+            .warm
+            .as_ref()
+            .map_or((self.scenario.rule, self.scenario.method), |w| (w.on.2, w.method));
+        self.plan_for(level, element, rule, method)
+    }
+
+    /// What building `level` with `element` for a solve with `rule` and `method` is expected
+    /// to cost: the mesh unless it is built, and the method's preparation if it is long.
+    fn plan_for(&self, level: u32, element: Element, rule: Rule, method: Method) -> Plan {
         let unknowns = self.unknowns(level, element);
-        Plan {
+        let built = self.has(level, element);
+        let mut plan = Plan {
             level,
             element,
             unknowns,
-            rule: self.warm.as_ref().map_or(self.scenario.rule, |w| w.on.2),
+            rule,
+            method,
             peak: self.peak(level, element),
-            estimate_ms: self.eta.predict_ms(unknowns),
+            estimate_ms: if built { 0.0 } else { self.eta.predict_ms(unknowns) },
+        };
+        if plan.prepares() {
+            plan.estimate_ms += self.prepare_eta.predict_ms(unknowns);
         }
+        plan
     }
 
     /// Whether the discretisations `meshes` (level, element) may be kept together: their
@@ -196,6 +219,22 @@ impl Engine {
             .map(|&(level, element)| self.peak(level, element))
             .fold(0, u64::saturating_add);
         bytes <= CACHE_BYTES
+    }
+
+    /// The mesh of `level` with `element` if it is built (its place in the cache unchanged).
+    fn peek(&self, level: u32, element: Element) -> Option<Arc<Discretization>> {
+        self.cache
+            .iter()
+            .find(|(l, e, _)| (*l, *e) == (level, element))
+            .map(|(_, _, d)| d.clone())
+    }
+
+    /// Whether the mesh of `level` with `element` is built and, for `solve` (a rule and
+    /// method), prepared ([`crate::solve::needs_preparing`]).
+    fn ready(&self, level: u32, element: Element, solve: Option<(Rule, Method)>) -> bool {
+        self.peek(level, element).is_some_and(|disc| {
+            solve.is_none_or(|(rule, method)| !crate::solve::needs_preparing(&disc, rule, method))
+        })
     }
 
     fn cached(&mut self, level: u32, element: Element) -> Option<Arc<Discretization>> {
@@ -248,6 +287,7 @@ impl Engine {
     /// fail before, and [`Engine::fits`] beside the mesh in use.
     pub fn next_prefetch(&self) -> Option<(u32, Element)> {
         let (level, element, _) = self.cache.last()?;
+        let last = self.warm.as_ref().map(|w| (w.on.2, w.method));
         let candidates = [level.checked_add(1), level.checked_sub(1)];
         candidates
             .into_iter()
@@ -255,7 +295,7 @@ impl Engine {
             .map(|l| (l, *element))
             .find(|&(l, e)| {
                 l <= MAX_APP_LEVEL
-                    && !self.has(l, e)
+                    && !self.ready(l, e, last)
                     && !self.unfit.contains(&(l, e))
                     && self.fits(&[(*level, *element), (l, e)])
             })
@@ -273,15 +313,23 @@ impl Engine {
         built: Built,
         use_: Use,
     ) -> Option<Arc<Discretization>> {
-        let (disc, ms) = match built {
+        let Finished {
+            disc,
+            build_ms,
+            prepare_ms,
+        } = match built {
             Ok(built) => built,
             Err(_) => {
                 self.unfit.push((level, element));
                 return None;
             }
         };
-        self.eta.record(disc.n_dofs(), ms);
-        let disc = Arc::new(disc);
+        if let Some(ms) = build_ms {
+            self.eta.record(disc.n_dofs(), ms);
+        }
+        if let Some(ms) = prepare_ms {
+            self.prepare_eta.record(disc.n_dofs(), ms);
+        }
         let in_use = self.cache.last().map(|(_, e, _)| *e);
         if (use_ == Use::Background && in_use != Some(element)) || self.has(level, element) {
             return Some(disc);
@@ -319,6 +367,7 @@ impl Engine {
                     unknowns,
                     started: Instant::now(),
                     estimate_ms: self.eta.predict_ms(unknowns),
+                    method: None,
                 },
             });
         }
@@ -384,6 +433,7 @@ impl Engine {
                     forces: solution.newton.forces.clone(),
                     x: solution.points.points.iter().map(|q| q.x).collect(),
                     p: solution.p.clone(),
+                    method: key.method,
                 });
                 Response::Solved {
                     generation,
@@ -562,19 +612,26 @@ impl Waiting {
         }
     }
 
-    /// The mesh the next request to run needs, and the generation of the solve that needs it
-    /// (None for an inf-sup estimate): the current solve's, or, when nothing else comes
-    /// first, the next current estimate's.
-    fn needs(&self, current: &dyn Fn(u64) -> bool, latest: u64) -> Option<(u32, Element, Option<u64>)> {
+    /// The mesh the next request to run needs: the current solve's (with its generation, rule
+    /// and method), or, when nothing else comes first, the next current estimate's.
+    fn needs(&self, current: &dyn Fn(u64) -> bool, latest: u64) -> Option<Need> {
         if let Some(r) = self.solve.as_ref().filter(|r| current(r.generation)) {
-            return Some((r.key.level, r.key.element, Some(r.generation)));
+            return Some(Need {
+                level: r.key.level,
+                element: r.key.element,
+                solve: Some((r.generation, r.key.rule, r.key.method)),
+            });
         }
         if self.solve.is_some() || self.displace.is_some() || self.stresses.is_some() || self.study.is_some()
         {
             return None;
         }
         let r = self.queue.front().filter(|r| latest <= r.generation)?;
-        Some((r.key.level, r.key.element, None))
+        Some(Need {
+            level: r.key.level,
+            element: r.key.element,
+            solve: None,
+        })
     }
 
     /// Answer the request [`Waiting::needs`] named with why its mesh could not be built.
@@ -595,6 +652,15 @@ impl Waiting {
     }
 }
 
+/// The mesh the next request needs ([`Waiting::needs`]).
+#[derive(Clone, Copy)]
+struct Need {
+    level: u32,
+    element: Element,
+    /// The solve's generation, rule and method; None for an inf-sup estimate.
+    solve: Option<(u64, Rule, Method)>,
+}
+
 /// How often the worker looks for new requests while it waits for a build.
 const POLL: Duration = Duration::from_millis(20);
 
@@ -609,16 +675,23 @@ impl Builds {
         self.0.iter().find(|b| b.is_for(level, element))
     }
 
-    /// Start building `plan` beside the builds under way, their whole estimates reserved
-    /// (part of which they may already hold: the check errs on the safe side) and `extra`
-    /// bytes more; false when no thread could be started.
-    fn start(&mut self, scenario: &Scenario, plan: Plan, extra: u64) -> bool {
+    /// Start building `plan` (only the method's preparation on `built`, the mesh when it is
+    /// built) beside the builds under way, their whole estimates reserved (part of which they
+    /// may already hold: the check errs on the safe side) and `extra` bytes more; false when
+    /// no thread could be started.
+    fn start(
+        &mut self,
+        scenario: &Scenario,
+        plan: Plan,
+        extra: u64,
+        built: Option<Arc<Discretization>>,
+    ) -> bool {
         let reserved = self
             .0
             .iter()
             .map(|b| b.plan.peak)
             .fold(extra, u64::saturating_add);
-        match Build::start(scenario, plan, reserved) {
+        match Build::start(scenario, plan, reserved, built) {
             Some(b) => {
                 self.0.push(b);
                 true
@@ -704,7 +777,7 @@ fn run(mut engine: Engine, rx: &Receiver<Request>, latest: &AtomicU64, sink: &Si
                 && let Some((level, element)) = engine.next_prefetch()
             {
                 let plan = engine.plan(level, element);
-                builds.start(&engine.scenario, plan, plan.peak);
+                builds.start(&engine.scenario, plan, plan.peak, engine.peek(level, element));
             }
             let next = if builds.0.is_empty() && estimating.is_empty() && !studies.busy() {
                 match rx.recv() {
@@ -729,10 +802,20 @@ fn run(mut engine: Engine, rx: &Receiver<Request>, latest: &AtomicU64, sink: &Si
         let current = |g: u64| latest.load(Ordering::SeqCst) == g;
         let needs = waiting
             .needs(&current, latest.load(Ordering::SeqCst))
-            .filter(|&(level, element, _)| !engine.has(level, element));
-        if let Some((level, element, needed_by)) = needs {
+            .filter(|n| !engine.ready(n.level, n.element, n.solve.map(|(_, r, m)| (r, m))));
+        if let Some(Need {
+            level,
+            element,
+            solve,
+        }) = needs
+        {
+            let needed_by = solve.map(|(generation, ..)| generation);
+            let plan = match solve {
+                Some((_, rule, method)) => engine.plan_for(level, element, rule, method),
+                None => engine.plan(level, element),
+            };
             let under_way = builds.of(level, element).is_some()
-                || builds.start(&engine.scenario, engine.plan(level, element), 0);
+                || builds.start(&engine.scenario, plan, 0, engine.peek(level, element));
             // Without a thread of its own, the request below builds its mesh here.
             if under_way {
                 if let Some(b) = builds.of(level, element) {
@@ -741,6 +824,7 @@ fn run(mut engine: Engine, rx: &Receiver<Request>, latest: &AtomicU64, sink: &Si
                         unknowns: b.plan.unknowns,
                         started: b.started,
                         estimate_ms: b.plan.estimate_ms,
+                        method: b.plan.prepares().then(|| b.plan.method.name()),
                     };
                     match (needed_by, waiting.queue.front()) {
                         (Some(generation), _) if announced != Some(generation) => {
@@ -931,6 +1015,59 @@ mod tests {
     use super::*;
     use crate::tui::app::{App, SolveKey};
 
+    /// Issue 13 item 4 for Nitsche's method: after a Nitsche solve, the background build of
+    /// the next level prepares Nitsche's layer with the mesh, and a neighbour built before
+    /// (for another method) is prepared alone; either way the step finds it ready.
+    #[test]
+    fn a_background_build_after_a_nitsche_solve_prepares_its_layer() {
+        use crate::contact::method::Gamma0;
+        let scenario = Scenario::paper();
+        let mut engine = Engine::new(scenario.clone());
+        let solve = |engine: &mut Engine, level, method| {
+            let key = SolveKey {
+                level,
+                method,
+                ..App::defaults(&scenario)
+            };
+            let response = engine.solve(&SolveRequest { generation: 1, key }, &|_| true, &mut |_| {});
+            assert!(matches!(response, Response::Solved { result: Ok(_), .. }));
+            key
+        };
+        let nitsche = Method::Nitsche {
+            theta: 1,
+            gamma0: Gamma0::Auto,
+        };
+        let in_background = |engine: &mut Engine, level| {
+            assert_eq!(engine.next_prefetch(), Some((level, Element::Q1)));
+            let plan = engine.plan(level, Element::Q1);
+            assert!(plan.prepares(), "{plan:?}");
+            let built = engine.peek(level, Element::Q1);
+            let build = Build::start(&engine.scenario, plan, 0, built).expect("a thread");
+            let Ok(Ok(finished)) = build.finished(Duration::from_secs(120)) else {
+                panic!("the build finished");
+            };
+            assert!(finished.prepare_ms.is_some());
+            engine.adopt(level, Element::Q1, Ok(finished), Use::Background);
+        };
+        // The penalty at levels 3 and 2, then Nitsche's method at level 2: level 3 is built,
+        // but not for Nitsche's method.
+        solve(&mut engine, 3, scenario.method);
+        let key = solve(&mut engine, 2, scenario.method);
+        assert!(engine.has(3, Element::Q1));
+        solve(&mut engine, 2, nitsche);
+        assert!(!engine.ready(3, Element::Q1, Some((key.rule, nitsche))));
+        in_background(&mut engine, 3);
+        // Level 1 is not built: built and prepared.
+        in_background(&mut engine, 1);
+        for level in [1, 3] {
+            assert!(
+                engine.ready(level, Element::Q1, Some((key.rule, nitsche))),
+                "{level}"
+            );
+        }
+        assert_eq!(engine.next_prefetch(), None, "nothing left to prepare");
+    }
+
     /// A carried start that does not lead to convergence (here: a pressure that is not a
     /// number, as a solve that did not converge may leave) is solved again from rest: the
     /// answer and the Newton steps of a start from rest.
@@ -956,6 +1093,7 @@ mod tests {
             forces: Vec::new(),
             x: vec![-1.0, 1.0],
             p: vec![f64::NAN, f64::NAN],
+            method: key.method,
         });
         let again = solve(&mut engine);
         assert!(again.solution.newton.converged);

@@ -536,6 +536,7 @@ fn progress_shows_while_the_last_result_stays() {
                 unknowns: 100,
                 started: std::time::Instant::now(),
                 estimate_ms: 1.0,
+                method: None,
             },
         }))
         .redraw
@@ -1582,6 +1583,7 @@ fn long_builds_show_the_time_left() {
             unknowns: 263_000,
             started: std::time::Instant::now(),
             estimate_ms: 2600.0,
+            method: None,
         },
     }));
     assert!(app.wants_tick());
@@ -1589,6 +1591,23 @@ fn long_builds_show_the_time_left() {
     assert!(
         text.contains("⟳ building level 6 (263000 unknowns) · about 3 s left"),
         "{text}"
+    );
+    // Nitsche's preparation (its layer's factor, seconds at level 7) says so, whole on an
+    // 80-column status line.
+    app.update(Msg::Worker(Response::Progress {
+        generation: req.generation,
+        progress: Progress::Assembling {
+            level: 7,
+            unknowns: 1_049_088,
+            started: std::time::Instant::now(),
+            estimate_ms: 6600.0,
+            method: Some("nitsche"),
+        },
+    }));
+    let status = frame(&app, 80, 24).lines().last().unwrap().to_string();
+    assert!(
+        status.contains("⟳ building level 7 for nitsche (1049088 unknowns) · about 7 s left"),
+        "{status}"
     );
 }
 
@@ -1694,19 +1713,27 @@ fn a_level_or_rule_step_starts_newton_from_the_last_pressure() {
     }
 }
 
+/// A finished build of `level` with `element` (1 ms, no preparation), for [`Engine::adopt`].
+fn finished(scenario: &Scenario, level: u32, element: Element) -> riplab::tui::worker::Built {
+    Ok(riplab::tui::worker::Finished {
+        disc: Arc::new(riplab::solve::Discretization::of(scenario, level, element).unwrap()),
+        build_ms: Some(1.0),
+        prepare_ms: None,
+    })
+}
+
 /// Issue 13 item 4: meshes built for inf-sup estimates (the explore scene's table asks for
 /// every coarser level) do not push the prefetched neighbours of the mesh in use out of the
 /// cache: before, the fifth mesh evicted the least recently used one, a neighbour, and a step
 /// to it had to build it again.
 #[test]
 fn meshes_built_for_estimates_do_not_evict_the_neighbours() {
-    use riplab::solve::Discretization;
     let scenario = Scenario::paper();
     let mut engine = Engine::new(scenario.clone());
     let mut app = App::new(scenario.clone());
     app.settings.level = 3;
     settle(&mut app, &mut engine);
-    let built = |level| Ok((Discretization::of(&scenario, level, Element::Q1).unwrap(), 1.0));
+    let built = |level| finished(&scenario, level, Element::Q1);
     engine.adopt(4, Element::Q1, built(4), Use::Background);
     engine.adopt(2, Element::Q1, built(2), Use::Background);
     for level in [0, 1] {
@@ -1725,7 +1752,6 @@ fn meshes_built_for_estimates_do_not_evict_the_neighbours() {
 /// memory budget; an adopted build is used without assembling again.
 #[test]
 fn the_engine_prefetches_the_neighbouring_levels() {
-    use riplab::solve::Discretization;
     use riplab::tui::app::{Progress, SolveRequest};
     let scenario = Scenario::paper();
     let mut engine = Engine::new(scenario.clone());
@@ -1734,14 +1760,14 @@ fn the_engine_prefetches_the_neighbouring_levels() {
     app.settings.level = 2;
     settle(&mut app, &mut engine);
     assert_eq!(engine.next_prefetch(), Some((3, Element::Q1)));
-    let built = |level| Ok((Discretization::of(&scenario, level, Element::Q1).unwrap(), 1.0));
+    let built = |level| finished(&scenario, level, Element::Q1);
     engine.adopt(3, Element::Q1, built(3), Use::Background);
     assert!(engine.has(3, Element::Q1));
     assert_eq!(engine.next_prefetch(), Some((1, Element::Q1)));
     engine.adopt(1, Element::Q1, built(1), Use::Background);
     assert_eq!(engine.next_prefetch(), None, "both neighbours built");
     // A build for an element no longer in use is dropped.
-    let q2 = Ok((Discretization::of(&scenario, 1, Element::Q2).unwrap(), 1.0));
+    let q2 = finished(&scenario, 1, Element::Q2);
     assert!(engine.adopt(1, Element::Q2, q2, Use::Background).is_some());
     assert!(!engine.has(1, Element::Q2));
     // The step to level 3 assembles nothing.
@@ -1766,7 +1792,7 @@ fn the_engine_prefetches_the_neighbouring_levels() {
     );
     // One an estimate waited for is kept within the budget, the mesh in use unchanged; one a
     // solve waited for becomes the mesh in use.
-    let q2 = |level| Ok((Discretization::of(&scenario, level, Element::Q2).unwrap(), 1.0));
+    let q2 = |level| finished(&scenario, level, Element::Q2);
     assert!(engine.adopt(2, Element::Q2, q2(2), Use::Estimate).is_some());
     assert!(engine.has(2, Element::Q2));
     assert_eq!(
@@ -2065,6 +2091,81 @@ fn a_solve_waits_for_no_displacement_stresses_or_study() {
     );
 }
 
+/// Issue 13 item 4 for Nitsche's method: its preparation on a built mesh (another
+/// factorisation with the layer along Γ_C last, 6–7 s at level 7) runs beside the worker and
+/// says so; a solve sent meanwhile is answered at once, and the superseded Nitsche solve is
+/// neither run nor reported. Before, the worker sat in the preparation with no progress shown
+/// (12–14 s at level 7), and a step back waited for it.
+#[test]
+fn nitsches_preparation_runs_beside_the_worker() {
+    use riplab::contact::{Method, method::Gamma0};
+    use riplab::tui::app::{Progress, SolveKey, SolveRequest};
+    let paper = PaperWorker::spawn();
+    let nitsche = |generation| {
+        let key = SolveKey {
+            level: 5,
+            method: Method::Nitsche {
+                theta: 1,
+                gamma0: Gamma0::Auto,
+            },
+            ..App::defaults(&Scenario::paper())
+        };
+        paper
+            .worker
+            .send(&Command::Solve(SolveRequest { generation, key }));
+        key
+    };
+    let solved = |generation| loop {
+        match paper.next() {
+            Response::Solved {
+                generation: g,
+                result,
+            } if g == generation => break result.expect("solved"),
+            Response::Solved { generation: g, .. } | Response::Cancelled { generation: g } => {
+                assert!(g > generation, "reply {g} came before {generation}'s");
+            }
+            _ => {}
+        }
+    };
+    // Level 5 built for the penalty; then Nitsche's method on it.
+    paper.solve(1, 5);
+    solved(1);
+    nitsche(2);
+    loop {
+        match paper.next() {
+            Response::Progress {
+                generation: 2,
+                progress: Progress::Assembling { level, method, .. },
+            } => {
+                assert_eq!((level, method), (5, Some("nitsche")));
+                break;
+            }
+            r @ (Response::Solved { .. } | Response::Cancelled { .. }) => {
+                panic!("no progress before the reply: {r:?}")
+            }
+            _ => {}
+        }
+    }
+    // A solve sent during the preparation is answered first; the Nitsche solve it supersedes
+    // sends nothing (`solved` fails on a reply for generation 2).
+    paper.solve(3, 1);
+    solved(3);
+    // Asked again, the Nitsche solve uses the prepared layer: the answer of a fresh engine.
+    let key = nitsche(4);
+    let prepared = solved(4);
+    let fresh = match Engine::new(Scenario::paper()).solve(
+        &riplab::tui::app::SolveRequest { generation: 1, key },
+        &|_| true,
+        &mut |_| {},
+    ) {
+        Response::Solved { result: Ok(s), .. } => s,
+        other => panic!("{other:?}"),
+    };
+    assert!(prepared.solution.newton.converged);
+    let (a, b) = (prepared.solution.load, fresh.solution.load);
+    assert!((a - b).abs() <= 1e-9 * b.abs(), "{a} against {b}");
+}
+
 /// Issue 13 item 4: an estimate that waits for its mesh says so with the build's time left
 /// (M4 at level 7 builds Q2's level 7, 25–30 s), in the worker's replies and on the inf-sup
 /// scene's status line.
@@ -2120,6 +2221,7 @@ fn an_estimate_waiting_for_its_mesh_shows_the_build() {
         unknowns: 4_195_328,
         started: std::time::Instant::now(),
         estimate_ms: 27_000.0,
+        method: None,
     };
     assert!(
         app.update(Msg::Worker(Response::InfSupProgress { key: m4, progress }))
@@ -2197,6 +2299,7 @@ fn coming_back_to_the_solution_shown_supersedes_the_solve_under_way() {
             unknowns: 1,
             started: std::time::Instant::now(),
             estimate_ms: 1e4,
+            method: None,
         },
     }));
     assert!(app.is_solving() && app.wants_tick());

@@ -85,8 +85,9 @@ fn fit_words(spans: &[Span<'static>], width: usize) -> Vec<Span<'static>> {
     out
 }
 
-/// "building level 7 (1049088 unknowns) · about 3 s left"; with an element (an estimate's
-/// build, beside the estimates' count on an 80-column line) the shorter
+/// "building level 7 (1049088 unknowns) · about 3 s left", or for a method's preparation
+/// "building level 7 for nitsche (1049088 unknowns) · about 9 s left"; with an element (an
+/// estimate's build, beside the estimates' count on an 80-column line) the shorter
 /// "building q2 level 7 · about 25 s left".
 fn building(progress: Progress, element: Option<Element>) -> String {
     let Progress::Assembling {
@@ -94,6 +95,7 @@ fn building(progress: Progress, element: Option<Element>) -> String {
         unknowns,
         started,
         estimate_ms,
+        method,
     } = progress
     else {
         return "building".into();
@@ -101,9 +103,10 @@ fn building(progress: Progress, element: Option<Element>) -> String {
     let left = time_left(estimate_ms, started.elapsed().as_secs_f64() * 1e3)
         .map(|t| format!(" · {t}"))
         .unwrap_or_default();
+    let method = method.map(|m| format!(" for {m}")).unwrap_or_default();
     match element {
         Some(e) => format!("building {} level {level}{left}", e.name()),
-        None => format!("building level {level} ({unknowns} unknowns){left}"),
+        None => format!("building level {level}{method} ({unknowns} unknowns){left}"),
     }
 }
 
