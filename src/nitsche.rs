@@ -473,6 +473,11 @@ pub fn prepare(disc: &Discretization, rule: Rule, theta: i8, gamma0: Gamma0) {
     }
 }
 
+/// Whether [`prepare`] on `disc` would factorise K again (its layer is not built yet).
+pub fn factorises(disc: &Discretization) -> bool {
+    cache(disc).layer.get().is_none()
+}
+
 /// Whether a solve on `rule` with `gamma0` finds the long parts of [`prepare`] built (or failed)
 /// on `disc`: the layer's factor, the rule's couplings and, for `auto`, γ₀*. The operator is
 /// left out: dense work on the points that θ and γ₀ change.

@@ -42,6 +42,12 @@ pub fn needs_preparing(disc: &Discretization, rule: Rule, method: Method) -> boo
     }
 }
 
+/// Whether [`prepare`] for `method` on `disc` factorises K again, needing as much memory as
+/// the mesh's own build: Nitsche's, before its layer is built.
+pub fn preparing_factorises(disc: &Discretization, method: Method) -> bool {
+    matches!(method, Method::Nitsche { .. }) && nitsche::factorises(disc)
+}
+
 /// Solve the contact problem on `disc`, from the contact forces of an earlier solution with
 /// the same rule (`initial`, ignored if it does not fit).
 pub fn solve_contact(

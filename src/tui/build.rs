@@ -40,7 +40,8 @@ pub struct Finished {
     pub disc: Arc<Discretization>,
     /// Assembly and factorisation; None when the mesh was given.
     pub build_ms: Option<f64>,
-    /// The method's preparation ([`solve::prepare`]) when it takes long ([`Plan::prepares`]).
+    /// The method's preparation ([`solve::prepare`]) when it factorised K again
+    /// ([`solve::preparing_factorises`]: what [`Plan::estimate_ms`] counts).
     pub prepare_ms: Option<f64>,
 }
 
@@ -94,26 +95,38 @@ impl Build {
         std::thread::Builder::new()
             .name("riplab-build".into())
             .spawn(move || {
-                let t = Instant::now();
-                let (disc, build_ms) = match built {
-                    // Nitsche's layer is another factorisation of the mesh's size.
-                    Some(disc) => (
-                        Discretization::fits_beside(&scenario, level, element, reserved).map(|()| disc),
-                        None,
-                    ),
-                    None => (
-                        Discretization::of_beside(&scenario, level, element, reserved).map(Arc::new),
-                        Some(ms_since(t)),
-                    ),
+                let (t, fresh) = (Instant::now(), built.is_none());
+                let disc = match built {
+                    Some(disc) => Ok(disc),
+                    None => Discretization::of_beside(&scenario, level, element, reserved).map(Arc::new),
                 };
-                let built = disc.map(|disc| {
+                let build_ms = fresh.then(|| ms_since(t));
+                let built = disc.and_then(|disc| {
+                    // Nitsche's layer is another factorisation of the mesh's size, beside the
+                    // mesh when it was built here. Without the memory for it, a fresh mesh is
+                    // handed back unprepared (a solve then meets the refusal).
+                    let factorises = solve::preparing_factorises(&disc, method);
+                    let beside = reserved + if fresh { plan.peak } else { 0 };
+                    if factorises
+                        && let Err(e) = Discretization::fits_beside(&scenario, level, element, beside)
+                    {
+                        return if fresh {
+                            Ok(Finished {
+                                disc,
+                                build_ms,
+                                prepare_ms: None,
+                            })
+                        } else {
+                            Err(e)
+                        };
+                    }
                     let t = Instant::now();
                     solve::prepare(&disc, rule, method);
-                    Finished {
+                    Ok(Finished {
                         disc,
                         build_ms,
-                        prepare_ms: plan.prepares().then(|| ms_since(t)),
-                    }
+                        prepare_ms: factorises.then(|| ms_since(t)),
+                    })
                 });
                 // Nobody listens any more when the worker has ended: nothing to do then.
                 let _ = tx.send(built);

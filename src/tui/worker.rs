@@ -192,10 +192,12 @@ impl Engine {
     }
 
     /// What building `level` with `element` for a solve with `rule` and `method` is expected
-    /// to cost: the mesh unless it is built, and the method's preparation if it is long.
+    /// to cost: the mesh unless it is built, and the method's preparation when it factorises
+    /// K again ([`crate::solve::preparing_factorises`]; the rest of it is dense work on Γ_C's
+    /// points, not estimated).
     fn plan_for(&self, level: u32, element: Element, rule: Rule, method: Method) -> Plan {
         let unknowns = self.unknowns(level, element);
-        let built = self.has(level, element);
+        let built = self.peek(level, element);
         let mut plan = Plan {
             level,
             element,
@@ -203,9 +205,13 @@ impl Engine {
             rule,
             method,
             peak: self.peak(level, element),
-            estimate_ms: if built { 0.0 } else { self.eta.predict_ms(unknowns) },
+            estimate_ms: if built.is_some() {
+                0.0
+            } else {
+                self.eta.predict_ms(unknowns)
+            },
         };
-        if plan.prepares() {
+        if plan.prepares() && built.is_none_or(|d| crate::solve::preparing_factorises(&d, method)) {
             plan.estimate_ms += self.prepare_eta.predict_ms(unknowns);
         }
         plan
