@@ -8,6 +8,7 @@
 #   `stress`, opens the stress scene at FROM and steps to TO while the stresses are computed;
 #   with `burst`, presses `+` (TO − FROM + 1 times, 30 ms apart) at FROM instead of stepping and
 #   times the last key to the deformed view (its displacement computed).
+#   METHOD=alm|nitsche|exact: the lab's method (pressing `m` until the header names it) first.
 from=$1; to=$2; wait=$3; back=${4:-}
 # Wait until the pane shows level $1 solved.
 shown() {
@@ -25,6 +26,9 @@ timed() {
 tmux kill-session -t lat 2>/dev/null
 tmux new -d -s lat -x 100 -y 30 "NO_COLOR=1 ${RIPLAB:-target/release/riplab}"
 sleep 2
+if [ -n "${METHOD:-}" ]; then
+  until tmux capture-pane -p -t lat | sed -n 2p | grep -q "$METHOD"; do tmux send-keys -t lat m; sleep 0.3; done
+fi
 cur=$(tmux capture-pane -p -t lat | grep -o 'level [0-9]' | head -1 | cut -d' ' -f2)
 while [ "$cur" -lt "$from" ]; do tmux send-keys -t lat ']'; cur=$((cur+1)); 
   until tmux capture-pane -p -t lat | grep -q "level $cur .*" && tmux capture-pane -p -t lat | grep -q 'converged'; do sleep 0.05; done; done
