@@ -56,7 +56,7 @@ use std::sync::{Arc, Mutex, OnceLock};
 use std::time::Instant;
 
 use faer::linalg::solvers::Solve;
-use faer::{Accum, Mat, Side};
+use faer::{Accum, ColRef, Mat, Side};
 
 use crate::contact::method::{AUTO_GAMMA0_FACTOR, GAMMA0_RANGE, Gamma0};
 use crate::contact::penalty::{
@@ -615,30 +615,25 @@ impl Operator {
         let cp = &self.couplings;
         let n = cp.n();
         let theta = self.params.theta;
-        let mul = |m: &Mat<f64>, x: &[f64]| -> Vec<f64> {
-            (0..n).map(|i| (0..n).map(|j| m[(i, j)] * x[j]).sum()).collect()
-        };
+        let (g, col) = (cp.g.as_ref(), ColRef::from_slice);
+        let (ss, bs, bb) = (
+            g.submatrix(0, 0, n, n),
+            g.submatrix(n, 0, n, n),
+            g.submatrix(n, n, n, n),
+        );
         // σ = (V + G_SS ZV) ỹ.
-        let zvy = mul(&self.zv, y);
-        let vy = mul(&self.v, y);
-        let sigma: Vec<f64> = (0..n)
-            .map(|i| vy[i] + (0..n).map(|j| cp.ss(i, j) * zvy[j]).sum::<f64>())
-            .collect();
+        let zvy = &self.zv * col(y);
+        let sigma = &self.v * col(y) + ss * &zvy;
         // K u = Sᵀ a + Bᵀ b with a = Dσ + θỹ, b = −Γỹ.
         let a: Vec<f64> = (0..n)
             .map(|q| theta * (cp.points[q].weight / self.gamma[q] * sigma[q] + y[q]))
             .collect();
         let b: Vec<f64> = (0..n).map(|q| -self.gamma[q] * y[q]).collect();
-        let normal: Vec<f64> = (0..n)
-            .map(|i| (0..n).map(|j| cp.bs(i, j) * a[j] + cp.bb(i, j) * b[j]).sum())
-            .collect();
-        let vertex_uy: Vec<f64> = (0..cp.vertex.nrows())
-            .map(|i| {
-                (0..n)
-                    .map(|j| cp.vertex[(i, j)] * a[j] + cp.vertex[(i, n + j)] * b[j])
-                    .sum()
-            })
-            .collect();
+        let normal = bs * col(&a) + bb * col(&b);
+        let (vertices, e) = (cp.vertex.nrows(), cp.vertex.as_ref());
+        let vertex_uy = e.submatrix(0, 0, vertices, n) * col(&a) + e.submatrix(0, n, vertices, n) * col(&b);
+        let normal: Vec<f64> = normal.iter().copied().collect();
+        let vertex_uy: Vec<f64> = vertex_uy.iter().copied().collect();
         let mut f = vec![0.0; n_dofs];
         for (q, pt) in cp.points.iter().enumerate() {
             for &(d, c) in &pt.sigma {
