@@ -289,8 +289,9 @@ impl Engine {
     }
 
     /// The level to build in the background next: the next finer, then the next coarser
-    /// level of the mesh last used, up to [`MAX_APP_LEVEL`], when it is not built yet, did not
-    /// fail before, and [`Engine::fits`] beside the mesh in use.
+    /// level of the mesh last used, up to [`MAX_APP_LEVEL`], when it is not built yet (or,
+    /// after a Nitsche solve, not prepared for it), did not fail before, and [`Engine::fits`]
+    /// beside the mesh in use.
     pub fn next_prefetch(&self) -> Option<(u32, Element)> {
         let (level, element, _) = self.cache.last()?;
         let last = self.warm.as_ref().map(|w| (w.on.2, w.method));
@@ -747,8 +748,9 @@ impl Builds {
 /// of the solution just sent and the stresses of the solution shown (each on a thread of its
 /// own in its [`Lane`], its reply sent from there), then the newest study (likewise), then
 /// inf-sup estimates in order; studies and estimates older than the newest generation are
-/// skipped. A mesh a solve or an estimate needs that is not built is built on
-/// a thread of its own while the worker keeps answering: the solve is told its progress, and
+/// skipped. A mesh a solve or an estimate needs that is not built (or, for a Nitsche solve,
+/// not prepared: [`crate::solve::needs_preparing`]) is built or prepared on a thread of its
+/// own while the worker keeps answering: the solve is told its progress, and
 /// a newer request (a step back to a built level) is served at once. Estimates run on a
 /// thread of their own too, one at a time on built meshes, and each as soon as the mesh it
 /// waited for is built (held by the estimate alone when the cache's budget cannot keep it).
@@ -761,7 +763,9 @@ fn run(mut engine: Engine, rx: &Receiver<Request>, latest: &AtomicU64, sink: &Si
     let mut estimating: Vec<Estimating> = Vec::new();
     let (displacing, stressing) = (Lane::new("riplab-displace"), Lane::new("riplab-stresses"));
     let studies = Lane::new("riplab-study");
-    // The solve generation, and the estimate, told that it waits for a build.
+    // The solve generation (with the start of the build it waits for: a Nitsche solve may
+    // wait for the mesh's build, then for its preparation), and the estimate, told that it
+    // waits for a build.
     let mut announced = None;
     let mut announced_estimate = None;
     loop {
@@ -833,8 +837,8 @@ fn run(mut engine: Engine, rx: &Receiver<Request>, latest: &AtomicU64, sink: &Si
                         method: b.plan.prepares().then(|| b.plan.method.name()),
                     };
                     match (needed_by, waiting.queue.front()) {
-                        (Some(generation), _) if announced != Some(generation) => {
-                            announced = Some(generation);
+                        (Some(generation), _) if announced != Some((generation, b.started)) => {
+                            announced = Some((generation, b.started));
                             sink(Response::Progress { generation, progress });
                         }
                         (None, Some(req)) if announced_estimate != Some(req.key) => {

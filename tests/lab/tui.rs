@@ -2166,6 +2166,55 @@ fn nitsches_preparation_runs_beside_the_worker() {
     assert!((a - b).abs() <= 1e-9 * b.abs(), "{a} against {b}");
 }
 
+/// A Nitsche solve that finds its level being built in the background for the penalty waits
+/// for that build, then for its own preparation, and is told of each (before, the status line
+/// kept the build's "a moment more" through the whole preparation).
+#[test]
+fn a_nitsche_solve_is_told_of_the_build_then_of_its_preparation() {
+    use riplab::contact::{Method, method::Gamma0};
+    use riplab::tui::app::{Progress, SolveKey, SolveRequest};
+    let paper = PaperWorker::spawn();
+    paper.solve(1, 5);
+    while !matches!(paper.next(), Response::Solved { generation: 1, .. }) {}
+    // Idle, the worker builds level 6 for the penalty (about a second).
+    std::thread::sleep(std::time::Duration::from_millis(200));
+    let key = SolveKey {
+        level: 6,
+        method: Method::Nitsche {
+            theta: 1,
+            gamma0: Gamma0::Auto,
+        },
+        ..App::defaults(&Scenario::paper())
+    };
+    paper
+        .worker
+        .send(&Command::Solve(SolveRequest { generation: 2, key }));
+    let mut told = Vec::new();
+    loop {
+        match paper.next() {
+            Response::Progress {
+                generation: 2,
+                progress: Progress::Assembling { level, method, .. },
+            } => told.push((level, method)),
+            Response::Solved {
+                generation: 2,
+                result,
+            } => {
+                assert!(result.is_ok());
+                break;
+            }
+            _ => {}
+        }
+    }
+    // The preparation is announced last; when the background build had begun (it has, but
+    // for a scheduler that held the worker back 200 ms), the build first.
+    assert_eq!(told.last(), Some(&(6, Some("nitsche"))), "{told:?}");
+    assert!(
+        told.len() == 1 || told == [(6, None), (6, Some("nitsche"))],
+        "{told:?}"
+    );
+}
+
 /// Issue 13 item 4: an estimate that waits for its mesh says so with the build's time left
 /// (M4 at level 7 builds Q2's level 7, 25–30 s), in the worker's replies and on the inf-sup
 /// scene's status line.
