@@ -1916,13 +1916,36 @@ impl PaperWorker {
 
     /// Ask for a solve of the lab's default settings at `level`.
     fn solve(&self, generation: u64, level: u32) {
+        self.solve_by(generation, level, App::defaults(&Scenario::paper()).method);
+    }
+
+    /// Ask for a solve of the lab's default settings at `level` by Nitsche's method (θ = 1,
+    /// γ₀ auto); its key.
+    fn solve_by_nitsche(&self, generation: u64, level: u32) -> riplab::tui::app::SolveKey {
+        use riplab::contact::{Method, method::Gamma0};
+        let nitsche = Method::Nitsche {
+            theta: 1,
+            gamma0: Gamma0::Auto,
+        };
+        self.solve_by(generation, level, nitsche)
+    }
+
+    fn solve_by(
+        &self,
+        generation: u64,
+        level: u32,
+        method: riplab::contact::Method,
+    ) -> riplab::tui::app::SolveKey {
+        let key = riplab::tui::app::SolveKey {
+            level,
+            method,
+            ..App::defaults(&Scenario::paper())
+        };
         self.worker.send(&Command::Solve(riplab::tui::app::SolveRequest {
             generation,
-            key: riplab::tui::app::SolveKey {
-                level,
-                ..App::defaults(&Scenario::paper())
-            },
+            key,
         }));
+        key
     }
 
     /// The next reply (two minutes at most).
@@ -2098,23 +2121,9 @@ fn a_solve_waits_for_no_displacement_stresses_or_study() {
 /// (12–14 s at level 7), and a step back waited for it.
 #[test]
 fn nitsches_preparation_runs_beside_the_worker() {
-    use riplab::contact::{Method, method::Gamma0};
-    use riplab::tui::app::{Progress, SolveKey, SolveRequest};
+    use riplab::tui::app::Progress;
     let paper = PaperWorker::spawn();
-    let nitsche = |generation| {
-        let key = SolveKey {
-            level: 5,
-            method: Method::Nitsche {
-                theta: 1,
-                gamma0: Gamma0::Auto,
-            },
-            ..App::defaults(&Scenario::paper())
-        };
-        paper
-            .worker
-            .send(&Command::Solve(SolveRequest { generation, key }));
-        key
-    };
+    let nitsche = |generation| paper.solve_by_nitsche(generation, 5);
     let solved = |generation| loop {
         match paper.next() {
             Response::Solved {
@@ -2171,24 +2180,13 @@ fn nitsches_preparation_runs_beside_the_worker() {
 /// kept the build's "a moment more" through the whole preparation).
 #[test]
 fn a_nitsche_solve_is_told_of_the_build_then_of_its_preparation() {
-    use riplab::contact::{Method, method::Gamma0};
-    use riplab::tui::app::{Progress, SolveKey, SolveRequest};
+    use riplab::tui::app::Progress;
     let paper = PaperWorker::spawn();
     paper.solve(1, 5);
     while !matches!(paper.next(), Response::Solved { generation: 1, .. }) {}
     // Idle, the worker builds level 6 for the penalty (about a second).
     std::thread::sleep(std::time::Duration::from_millis(200));
-    let key = SolveKey {
-        level: 6,
-        method: Method::Nitsche {
-            theta: 1,
-            gamma0: Gamma0::Auto,
-        },
-        ..App::defaults(&Scenario::paper())
-    };
-    paper
-        .worker
-        .send(&Command::Solve(SolveRequest { generation: 2, key }));
+    paper.solve_by_nitsche(2, 6);
     let mut told = Vec::new();
     loop {
         match paper.next() {
