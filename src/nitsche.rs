@@ -25,7 +25,7 @@
 //!
 //! **Condensation** (the design the issue asks for: θ, γ₀ and the depth change fast). With S
 //! and B the rows giving σ_n and u_n at the n edge points (both supported on dofs of the cells
-//! along Γ_C: the *layer* is the dofs they use, [`layer_dofs`]) the discrete problem is
+//! along Γ_C: the *layer* is the dofs they use, `layer_dofs`) the discrete problem is
 //!
 //!   K_θ u = Σ_q γ_q⁻¹ P_θ,qᵀ y_q,   y_q = w_q p_q,  p_q = (−P_1,q u − γ_q g_q)⁺,
 //!
@@ -457,8 +457,8 @@ pub fn gamma0(disc: &Discretization, rule: Rule, gamma0: Gamma0) -> Result<f64, 
 
 /// Build what a solve with θ and γ₀ on `rule` needs on `disc`, each part kept with it: the
 /// layer's factor, the rule's couplings, γ₀* for `auto`, and the operator. Seconds at level 7
-/// (BENCHMARKS.md, "Nitsche's method in the lab"), so the lab does it on a thread of its own
-/// while the worker keeps answering. What fails is met again by the solve, which reports it
+/// (BENCHMARKS.md, "The study and Nitsche's method beside the lab's worker"), so the lab does
+/// it on a thread of its own while the worker keeps answering. What fails is met again by the solve, which reports it
 /// (the layer's and γ₀*'s failures are kept, so that [`prepared`] holds after them too).
 pub fn prepare(disc: &Discretization, rule: Rule, theta: i8, gamma0: Gamma0) {
     if let Ok(gamma0) = self::gamma0(disc, rule, gamma0) {

@@ -41,7 +41,7 @@ pub struct Finished {
     /// Assembly and factorisation; None when the mesh was given.
     pub build_ms: Option<f64>,
     /// The method's preparation ([`solve::prepare`]) when it factorised K again
-    /// ([`solve::preparing_factorises`]: what [`Plan::estimate_ms`] counts).
+    /// ([`solve::preparing_factorises`]: what the plan's estimate counts).
     pub prepare_ms: Option<f64>,
 }
 
@@ -58,6 +58,7 @@ pub struct Plan {
     /// the solve needs beyond the mesh's factor is built with it ([`solve::prepare`]: G, or
     /// Nitsche's layer), so that a step to the mesh costs only the contact solve.
     pub rule: Rule,
+    /// The method, with its parameters (see `rule`).
     pub method: Method,
     /// Its estimated peak memory, bytes ([`crate::fem::memory::Sizes::peak_bytes`]).
     pub peak: u64,
@@ -106,7 +107,7 @@ impl Build {
                     // mesh when it was built here. Without the memory for it, a fresh mesh is
                     // handed back unprepared (a solve then meets the refusal).
                     let factorises = solve::preparing_factorises(&disc, method);
-                    let beside = reserved + if fresh { plan.peak } else { 0 };
+                    let beside = reserved.saturating_add(if fresh { plan.peak } else { 0 });
                     if factorises
                         && let Err(e) = Discretization::fits_beside(&scenario, level, element, beside)
                     {

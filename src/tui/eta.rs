@@ -9,8 +9,9 @@ const EXPONENT: f64 = 1.3;
 /// Milliseconds and unknowns of the benchmark's level-6 build, the first calibration.
 const BENCH: (f64, f64) = (1655.0, 262_400.0);
 /// Milliseconds and unknowns of Nitsche's preparation at level 6 with cold memory (the lab's
-/// usual state after a pause: BENCHMARKS.md, "Nitsche's method in the lab"; 1.2 s warm), the
-/// first calibration of its model: 12 s at level 7, as measured there.
+/// usual state after a pause; 1.2 s warm: BENCHMARKS.md, "The study and Nitsche's method
+/// beside the lab's worker"), the first calibration of its model: 12 s at level 7, as
+/// measured there.
 const PREPARING_BENCH: (f64, f64) = (1900.0, 262_400.0);
 /// Below this many milliseconds no estimate is shown.
 pub const SHOWN_FROM_MS: f64 = 500.0;

@@ -209,7 +209,7 @@ pub enum Progress {
         /// What the build is expected to take, ms.
         estimate_ms: f64,
         /// The method whose preparation the build includes (or is: Nitsche's layer on a mesh
-        /// already built), when it is long work ([`super::build::Plan::prepares`]).
+        /// already built), when it is long work (Nitsche's).
         method: Option<&'static str>,
     },
     /// A study's stage: the reference (`level` None) or the schemes at `level`.
