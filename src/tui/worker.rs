@@ -1078,6 +1078,52 @@ mod tests {
         assert_eq!(engine.next_prefetch(), None, "nothing left to prepare");
     }
 
+    /// A γ₀ below the stability threshold (θ = 1, γ₀ = 0.1 where auto chooses 10·γ₀* ≈ 16):
+    /// the preparation ends without its operator and leaves the mesh ready (nothing is
+    /// prepared again in a loop), and the solve reports the refusal with the threshold.
+    #[test]
+    fn a_refused_gamma0_is_the_solves_to_report_after_the_preparation() {
+        use crate::contact::method::Gamma0;
+        let scenario = Scenario::paper();
+        let mut engine = Engine::new(scenario.clone());
+        let key = SolveKey {
+            level: 2,
+            method: Method::Nitsche {
+                theta: 1,
+                gamma0: Gamma0::Given(0.1),
+            },
+            ..App::defaults(&scenario)
+        };
+        let penalty = SolveKey {
+            method: scenario.method,
+            ..key
+        };
+        let response = engine.solve(
+            &SolveRequest {
+                generation: 1,
+                key: penalty,
+            },
+            &|_| true,
+            &mut |_| {},
+        );
+        assert!(matches!(response, Response::Solved { result: Ok(_), .. }));
+        let need = Some((key.rule, key.method));
+        assert!(!engine.ready(2, Element::Q1, need));
+        let plan = engine.plan_for(2, Element::Q1, key.rule, key.method);
+        let build = Build::start(&scenario, plan, 0, engine.peek(2, Element::Q1)).expect("a thread");
+        let Ok(Ok(finished)) = build.finished(Duration::from_secs(120)) else {
+            panic!("the preparation finished");
+        };
+        engine.adopt(2, Element::Q1, Ok(finished), Use::Solve);
+        assert!(engine.ready(2, Element::Q1, need), "prepared, refusal and all");
+        match engine.solve(&SolveRequest { generation: 2, key }, &|_| true, &mut |_| {}) {
+            Response::Solved { result: Err(e), .. } => {
+                assert!(e.contains("too small for θ = 1") && e.contains("γ₀* ="), "{e}");
+            }
+            other => panic!("{other:?}"),
+        }
+    }
+
     /// A carried start that does not lead to convergence (here: a pressure that is not a
     /// number, as a solve that did not converge may leave) is solved again from rest: the
     /// answer and the Newton steps of a start from rest.
