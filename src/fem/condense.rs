@@ -14,7 +14,12 @@ use faer::linalg::matmul::matmul;
 use faer::linalg::triangular_solve;
 use faer::perm::PermRef;
 use faer::reborrow::{Reborrow, ReborrowMut};
-use faer::sparse::linalg::cholesky::supernodal::SupernodalLltRef;
+use faer::sparse::linalg::cholesky::simplicial::{EliminationTreeRef, SymbolicSimplicialCholesky};
+use faer::sparse::linalg::cholesky::supernodal::{
+    SupernodalLltRef, SymbolicSupernodalCholesky, factorize_supernodal_numeric_llt,
+    factorize_supernodal_numeric_llt_scratch, factorize_supernodal_symbolic_cholesky,
+    factorize_supernodal_symbolic_cholesky_scratch,
+};
 use faer::sparse::linalg::cholesky::{
     CholeskySymbolicParams, LltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
     factorize_symbolic_cholesky,
@@ -36,9 +41,55 @@ use crate::mesh::Mesh;
 /// memory of their patterns and analyses (BENCHMARKS.md, "Fresh memory").
 #[derive(Clone)]
 pub struct TraceOrdering<I: Index = usize> {
-    symbolic: Arc<SymbolicCholesky<I>>,
+    symbolic: Arc<Symbolic<I>>,
     /// The trace dofs, in the order of C's rows and columns.
     trace: Vec<usize>,
+}
+
+/// faer's symbolic analysis behind a [`TraceOrdering`].
+enum Symbolic<I: Index> {
+    /// faer's whole analysis of a pattern in the dofs' order, with the permutation it was
+    /// given or chose; supernodal or simplicial.
+    Permuted(SymbolicCholesky<I>),
+    /// A supernodal analysis of a pattern already in elimination order, from the elimination
+    /// tree and column counts of its supervariables ([`super::supervariables`]).
+    InOrder(SymbolicSupernodalCholesky<I>),
+}
+
+/// The layout of a factor's values: supernodes, or one column at a time.
+enum Layout<'a, I: Index> {
+    Supernodal(&'a SymbolicSupernodalCholesky<I>),
+    Simplicial(&'a SymbolicSimplicialCholesky<I>),
+}
+
+impl<I: Index> Symbolic<I> {
+    fn layout(&self) -> Layout<'_, I> {
+        match self {
+            Symbolic::Permuted(s) => Self::layout_of(s),
+            Symbolic::InOrder(s) => Layout::Supernodal(s),
+        }
+    }
+
+    fn layout_of(symbolic: &SymbolicCholesky<I>) -> Layout<'_, I> {
+        match symbolic.raw() {
+            SymbolicCholeskyRaw::Supernodal(s) => Layout::Supernodal(s),
+            SymbolicCholeskyRaw::Simplicial(s) => Layout::Simplicial(s),
+        }
+    }
+
+    fn nrows(&self) -> usize {
+        match self {
+            Symbolic::Permuted(s) => s.nrows(),
+            Symbolic::InOrder(s) => s.nrows(),
+        }
+    }
+
+    fn len_val(&self) -> usize {
+        match self {
+            Symbolic::Permuted(s) => s.len_val(),
+            Symbolic::InOrder(s) => s.len_val(),
+        }
+    }
 }
 
 impl TraceOrdering {
@@ -134,21 +185,24 @@ impl TraceOrdering {
         )
         .map_err(FemError::from_faer("the symbolic factorisation"))?;
         Ok(TraceOrdering {
-            symbolic: Arc::new(symbolic),
+            symbolic: Arc::new(Symbolic::Permuted(symbolic)),
             trace: trace.to_vec(),
         })
     }
 }
 
 impl<I: Index> TraceOrdering<I> {
-    /// The symbolic analysis of `lower` (a lower triangle) in its own order, its last
-    /// `n_trace` dofs the trace, supernodal.
+    /// The supernodal analysis of `lower` (a lower triangle) in its own order, its last
+    /// `n_trace` dofs the trace; `supervariables` holds the first column of each run of
+    /// indistinguishable columns ([`super::supervariables`]), from which the elimination tree
+    /// and the column counts are read.
     pub(super) fn in_given_order(
         lower: SymbolicSparseColMatRef<'_, I>,
         n_trace: usize,
+        supervariables: &[usize],
     ) -> Result<Self, FemError> {
-        // faer 0.24 analyses an unpermuted pattern as its upper triangle whatever side it is
-        // told (the permuted path converts): give it the transpose of the lower triangle.
+        // faer analyses the upper triangle: the transpose of the lower one, each column's rows
+        // ascending.
         let n = lower.nrows();
         let mut col_ptr = vec![I::truncate(0); n + 1];
         for &r in lower.row_idx() {
@@ -167,18 +221,25 @@ impl<I: Index> TraceOrdering<I> {
             }
         }
         let upper = SymbolicSparseColMatRef::new_checked(n, n, &col_ptr, None, &row_idx);
-        let symbolic = factorize_symbolic_cholesky(
+        let (etree, counts) = super::supervariables::elimination_tree(upper, supervariables);
+        // SAFETY: `from_inner` asks for the tree faer's `prefactorize_symbolic_cholesky` fills
+        // for `upper`, which `elimination_tree` computes from the supervariables (the test
+        // `the_supervariables_give_faers_tree_and_counts` compares them for every element); by
+        // its construction each parent is a later column of `upper` or −1, so faer's unchecked
+        // indexing stays in bounds.
+        let etree = unsafe { EliminationTreeRef::<I>::from_inner(&etree) };
+        let mut mem = MemBuffer::try_new(factorize_supernodal_symbolic_cholesky_scratch::<I>(n))
+            .map_err(|_| FemError::OutOfMemory("the symbolic factorisation"))?;
+        let symbolic = factorize_supernodal_symbolic_cholesky(
             upper,
-            Side::Upper,
-            SymmetricOrdering::Identity,
-            CholeskySymbolicParams {
-                supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
-                ..Default::default()
-            },
+            etree,
+            &counts,
+            MemStack::new(&mut mem),
+            Default::default(),
         )
         .map_err(FemError::from_faer("the symbolic factorisation"))?;
         Ok(TraceOrdering {
-            symbolic: Arc::new(symbolic),
+            symbolic: Arc::new(Symbolic::InOrder(symbolic)),
             trace: (n - n_trace..n).collect(),
         })
     }
@@ -191,12 +252,12 @@ impl<I: Index> TraceOrdering<I> {
 
     /// Floating point operations of one numeric factorisation ([`factor_flops`]).
     pub fn factor_flops(&self) -> f64 {
-        factor_flops(&self.symbolic)
+        layout_flops(self.symbolic.layout())
     }
 
     /// Whether faer chose its supernodal (blocked) factorisation for this pattern.
     pub fn is_supernodal(&self) -> bool {
-        matches!(self.symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_))
+        matches!(self.symbolic.layout(), Layout::Supernodal(_))
     }
 }
 
@@ -204,16 +265,21 @@ impl<I: Index> TraceOrdering<I> {
 /// columns of L with c_j stored values (c_j divisions and about c_j² multiply-adds of the
 /// updates it sends, the count of George and Liu).
 pub fn factor_flops<I: Index>(symbolic: &SymbolicCholesky<I>) -> f64 {
+    layout_flops(Symbolic::layout_of(symbolic))
+}
+
+/// [`factor_flops`] of a factor's layout.
+fn layout_flops<I: Index>(layout: Layout<'_, I>) -> f64 {
     let square = |c: usize| (c as f64) * (c as f64);
-    match symbolic.raw() {
-        SymbolicCholeskyRaw::Supernodal(sym) => (0..sym.n_supernodes())
+    match layout {
+        Layout::Supernodal(sym) => (0..sym.n_supernodes())
             .map(|s| {
                 let below = sym.supernode(s).pattern().len();
                 let width = sym.supernode_end()[s].zx() - sym.supernode_begin()[s].zx();
                 (1..=width).map(|k| square(k + below)).sum::<f64>()
             })
             .sum(),
-        SymbolicCholeskyRaw::Simplicial(sym) => sym
+        Layout::Simplicial(sym) => sym
             .col_ptr()
             .windows(2)
             .map(|w| square(w[1].zx() - w[0].zx()))
@@ -252,8 +318,13 @@ impl<I: Index> TraceFactor<I> {
         storage: Vec<f64>,
         par: Par,
     ) -> Result<Self, FemError> {
-        let symbolic = &ordering.symbolic;
-        let scratch = symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default());
+        let symbolic = &*ordering.symbolic;
+        let scratch = match symbolic {
+            Symbolic::Permuted(s) => s.factorize_numeric_llt_scratch::<f64>(par, Default::default()),
+            Symbolic::InOrder(s) => {
+                factorize_supernodal_numeric_llt_scratch::<I, f64>(s, par, Default::default())
+            }
+        };
         // The factor's exact size is known now: refuse it, rather than be killed for it, when
         // it does not fit in what the process may still use.
         let need = (8 * symbolic.len_val() + scratch.unaligned_bytes_required()) as u64;
@@ -275,18 +346,34 @@ impl<I: Index> TraceFactor<I> {
         factor.resize(symbolic.len_val(), 0.0);
         let mut mem = MemBuffer::try_new(scratch)
             .map_err(|_| FemError::OutOfMemory("the factorisation's workspace"))?;
-        symbolic
-            .factorize_numeric_llt(
+        let a = SparseColMatRef::new(pattern, values);
+        let stack = MemStack::new(&mut mem);
+        match symbolic {
+            Symbolic::Permuted(s) => s
+                .factorize_numeric_llt(
+                    &mut factor,
+                    a,
+                    Side::Lower,
+                    Default::default(),
+                    par,
+                    stack,
+                    Default::default(),
+                )
+                .map(drop),
+            // In elimination order already: faer reads the lower triangle as it is.
+            Symbolic::InOrder(s) => factorize_supernodal_numeric_llt(
                 &mut factor,
-                SparseColMatRef::new(pattern, values),
-                Side::Lower,
+                a,
                 Default::default(),
+                s,
                 par,
-                MemStack::new(&mut mem),
+                stack,
                 Default::default(),
             )
-            // The numeric factorisation's only failure is a non-positive pivot.
-            .map_err(|_| FemError::NotPositiveDefinite)?;
+            .map(drop),
+        }
+        // The numeric factorisation's only failure is a non-positive pivot.
+        .map_err(|_| FemError::NotPositiveDefinite)?;
         Ok(TraceFactor {
             ordering: ordering.clone(),
             values: factor,
@@ -295,30 +382,43 @@ impl<I: Index> TraceFactor<I> {
 
     /// Solve A X = B in place for the `ncols` columns of the column-major `b`.
     pub fn solve_in_place(&self, b: &mut [f64], ncols: usize) {
-        let symbolic = &*self.ordering.symbolic;
-        let n = symbolic.nrows();
-        let mut mem = MemBuffer::new(symbolic.solve_in_place_scratch::<f64>(ncols, Par::Seq));
-        LltRef::new(symbolic, &self.values).solve_in_place_with_conj(
-            Conj::No,
-            MatMut::from_column_major_slice_mut(b, n, ncols),
-            Par::Seq,
-            MemStack::new(&mut mem),
-        );
+        let n = self.ordering.symbolic.nrows();
+        let b = MatMut::from_column_major_slice_mut(b, n, ncols);
+        match &*self.ordering.symbolic {
+            Symbolic::Permuted(s) => {
+                let mut mem = MemBuffer::new(s.solve_in_place_scratch::<f64>(ncols, Par::Seq));
+                LltRef::new(s, &self.values).solve_in_place_with_conj(
+                    Conj::No,
+                    b,
+                    Par::Seq,
+                    MemStack::new(&mut mem),
+                );
+            }
+            Symbolic::InOrder(s) => {
+                let mut mem = MemBuffer::new(s.solve_in_place_scratch::<f64>(ncols, Par::Seq));
+                SupernodalLltRef::new(s, &self.values).solve_in_place_with_conj(
+                    Conj::No,
+                    b,
+                    Par::Seq,
+                    MemStack::new(&mut mem),
+                );
+            }
+        }
     }
 
     /// The number of blocks of columns of L ([`TraceFactor::block`]).
     fn n_blocks(&self) -> usize {
-        match self.ordering.symbolic.raw() {
-            SymbolicCholeskyRaw::Supernodal(sym) => sym.n_supernodes(),
-            SymbolicCholeskyRaw::Simplicial(sym) => sym.nrows(),
+        match self.ordering.symbolic.layout() {
+            Layout::Supernodal(sym) => sym.n_supernodes(),
+            Layout::Simplicial(sym) => sym.nrows(),
         }
     }
 
     /// The `s`-th block of consecutive columns of L (in elimination order): a supernode, or
     /// one column of the simplicial layout (whose first stored row is the diagonal).
     fn block(&self, s: usize) -> Block<'_, I> {
-        match self.ordering.symbolic.raw() {
-            SymbolicCholeskyRaw::Supernodal(sym) => {
+        match self.ordering.symbolic.layout() {
+            Layout::Supernodal(sym) => {
                 let node = SupernodalLltRef::new(sym, &self.values).supernode(s);
                 Block {
                     start: node.start(),
@@ -326,7 +426,7 @@ impl<I: Index> TraceFactor<I> {
                     below: node.pattern(),
                 }
             }
-            SymbolicCholeskyRaw::Simplicial(sym) => {
+            Layout::Simplicial(sym) => {
                 let (lo, hi) = (sym.col_ptr()[s].zx(), sym.col_ptr()[s + 1].zx());
                 Block {
                     start: s,
@@ -582,7 +682,10 @@ mod tests {
                 ] {
                     layouts[usize::from(ordering.is_supernodal())] = true;
                     let factor = TraceFactor::new(&ordering, &a).unwrap();
-                    let perm = ordering.symbolic.perm().unwrap().arrays().0.to_vec();
+                    let Symbolic::Permuted(symbolic) = &*ordering.symbolic else {
+                        unreachable!("a whole analysis is faer's")
+                    };
+                    let perm = symbolic.perm().unwrap().arrays().0.to_vec();
                     let f: Vec<f64> = (0..2 * a.n).map(|k| ((k * 7919) % 113) as f64 - 56.0).collect();
                     let mut expect = f.clone();
                     factor.solve_in_place(&mut expect, 2);

@@ -11,6 +11,7 @@ pub mod memory;
 pub mod ordering;
 pub mod quadrature;
 pub mod split;
+mod supervariables;
 
 use std::num::NonZeroUsize;
 use std::sync::atomic::{AtomicUsize, Ordering};

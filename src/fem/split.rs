@@ -80,7 +80,8 @@ impl SplitOrdering {
             return Ok(None);
         };
         let n = a.n;
-        // The node column of every free dof, and Γ's index of Γ's dofs.
+        // The node and the node column of every free dof, and Γ's index of Γ's dofs.
+        let mut node_of = vec![0usize; n];
         let mut column = vec![0usize; n];
         let mut gamma = Vec::new();
         for j in 0..mesh.node_y.len() {
@@ -88,6 +89,7 @@ impl SplitOrdering {
                 let node = mesh.node(i, j);
                 for comp in 0..2 {
                     if let Some(d) = dofs.free_index(2 * node + comp) {
+                        node_of[d] = node;
                         column[d] = i;
                         if i == s {
                             gamma.push(d);
@@ -106,9 +108,13 @@ impl SplitOrdering {
             in_gamma[d] = k;
         }
         let n_columns = mesh.nnx();
+        let at = Dofs {
+            node: &node_of,
+            column: &column,
+        };
         let (left, right) = super::join(
-            || Half::new(a, mesh, dofs, trace, (0, s), s, &column, &gamma),
-            || Half::new(a, mesh, dofs, trace, (s + 1, n_columns), s, &column, &gamma),
+            || Half::new(a, mesh, dofs, trace, (0, s), s, at, &gamma),
+            || Half::new(a, mesh, dofs, trace, (s + 1, n_columns), s, at, &gamma),
         );
         let mut overlap = Vec::new();
         for &c in gamma.iter().filter(|&&d| column[d] == s) {
@@ -152,9 +158,16 @@ impl SplitOrdering {
     }
 }
 
+/// Where each free dof of K lies: its node, and the node's column in the grid.
+#[derive(Clone, Copy)]
+struct Dofs<'a> {
+    node: &'a [usize],
+    column: &'a [usize],
+}
+
 impl Half {
-    /// The half of the node columns `columns` beside the middle column `s`; `column` is the
-    /// node column of every dof and `gamma` Γ's dofs.
+    /// The half of the node columns `columns` beside the middle column `s`; `at` tells where
+    /// each dof lies and `gamma` is Γ's dofs.
     #[allow(clippy::too_many_arguments)]
     fn new(
         a: &SymCsc,
@@ -163,23 +176,22 @@ impl Half {
         trace: &[usize],
         columns: (usize, usize),
         s: usize,
-        column: &[usize],
+        at: Dofs<'_>,
         gamma: &[usize],
     ) -> Result<Self, FemError> {
+        let column = at.column;
         // h ∪ Γ_h in elimination order: the half's nested dissection, then the dofs of Γ on
         // the middle column or in the half's columns.
         let interior = nested_dissection_of_columns(mesh, dofs, trace, columns);
         let inside = |d: usize| (columns.0..columns.1).contains(&column[d]) || column[d] == s;
         let half_gamma: Vec<usize> = (0..gamma.len()).filter(|&g| inside(gamma[g])).collect();
-        let mut position = vec![usize::MAX; a.n];
-        for (p, &d) in interior
+        // h ∪ Γ_h's dofs in elimination order, and each one's position in it.
+        let members: Vec<usize> = interior
             .iter()
-            .chain(half_gamma.iter().map(|&g| &gamma[g]))
-            .enumerate()
-        {
-            position[d] = p;
-        }
-        let n_h = interior.len() + half_gamma.len();
+            .copied()
+            .chain(half_gamma.iter().map(|&g| gamma[g]))
+            .collect();
+        let n_h = members.len();
         // Every index below (a dof, an entry of K_h, a position in K's values) is less than
         // K's number of entries: when that fits in u32, so do they all. It does up to 4·10⁹
         // entries, 64 GB of K, which the memory guard refuses long before.
@@ -187,17 +199,24 @@ impl Half {
             return Err(FemError::OutOfMemory("the ordering"));
         }
         let narrow = |i: usize| i as u32;
+        const OUTSIDE: u32 = u32::MAX;
+        let mut position = vec![OUTSIDE; a.n];
+        for (p, &d) in members.iter().enumerate() {
+            position[d] = narrow(p);
+        }
         // K_h's lower triangle in that order (so that faer need not permute it): entry (r, c)
-        // of K goes to column min(p_r, p_c), then each column is sorted by row.
+        // of K goes to column min(p_r, p_c), then each column is sorted by row. Only the
+        // half's own columns of K are read: the other half's entries never couple with it.
         let mut col_ptr = vec![0usize; n_h + 1];
         let position = &position;
-        let entries = |c: usize| {
+        let entries = |pc: usize, c: usize| {
             (a.col_ptr[c]..a.col_ptr[c + 1])
-                .map(move |k| (position[a.row_idx[k]], position[c], k))
-                .filter(|&(pr, pc, _)| pr != usize::MAX && pc != usize::MAX)
+                .map(move |k| (position[a.row_idx[k]], k))
+                .filter(|&(pr, _)| pr != OUTSIDE)
+                .map(move |(pr, k)| (pr as usize, pc, k))
         };
-        for c in 0..a.n {
-            for (pr, pc, _) in entries(c) {
+        for (pc, &c) in members.iter().enumerate() {
+            for (pr, pc, _) in entries(pc, c) {
                 col_ptr[pr.min(pc) + 1] += 1;
             }
         }
@@ -210,8 +229,8 @@ impl Half {
         let mut next = col_ptr.clone();
         let mut row_idx = vec![0u32; col_ptr[n_h]];
         let mut gather = vec![0u32; col_ptr[n_h]];
-        for c in 0..a.n {
-            for (pr, pc, k) in entries(c) {
+        for (pc, &c) in members.iter().enumerate() {
+            for (pr, pc, k) in entries(pc, c) {
                 let j = pr.min(pc);
                 row_idx[next[j]] = narrow(pr.max(pc));
                 gather[next[j]] = narrow(k);
@@ -221,6 +240,9 @@ impl Half {
         let mut one_column = Vec::new();
         for j in 0..n_h {
             let range = col_ptr[j]..col_ptr[j + 1];
+            if row_idx[range.clone()].is_sorted() {
+                continue;
+            }
             one_column.clear();
             one_column.extend(
                 row_idx[range.clone()]
@@ -234,8 +256,13 @@ impl Half {
             }
         }
         let col_ptr: Vec<u32> = col_ptr.into_iter().map(narrow).collect();
+        // One node's dofs next to each other in the order couple with the same dofs: one
+        // supervariable ([`super::supervariables`]).
+        let supervariables: Vec<usize> = (0..n_h)
+            .filter(|&p| p == 0 || at.node[members[p]] != at.node[members[p - 1]])
+            .collect();
         let lower = SymbolicSparseColMatRef::new_checked(n_h, n_h, &col_ptr, None, &row_idx);
-        let ordering = TraceOrdering::in_given_order(lower, half_gamma.len())?;
+        let ordering = TraceOrdering::in_given_order(lower, half_gamma.len(), &supervariables)?;
         Ok(Half {
             n: n_h,
             col_ptr,
