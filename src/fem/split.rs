@@ -80,8 +80,15 @@ impl SplitOrdering {
             return Ok(None);
         };
         let n = a.n;
+        // Every index here and in the halves (a node, a dof, an entry of K_h, a position in
+        // K's values) is less than K's number of entries or the mesh's number of nodes: when
+        // those fit in u32, so do they all. They do up to 4·10⁹, 64 GB of K, which the memory
+        // guard refuses long before.
+        if u32::try_from(a.nnz()).is_err() || u32::try_from(mesh.n_nodes()).is_err() {
+            return Err(FemError::OutOfMemory("the ordering"));
+        }
         // The node and the node column of every free dof, and Γ's index of Γ's dofs.
-        let mut node_of = vec![0usize; n];
+        let mut node_of = vec![0u32; n];
         let mut column = vec![0usize; n];
         let mut gamma = Vec::new();
         for j in 0..mesh.node_y.len() {
@@ -89,7 +96,7 @@ impl SplitOrdering {
                 let node = mesh.node(i, j);
                 for comp in 0..2 {
                     if let Some(d) = dofs.free_index(2 * node + comp) {
-                        node_of[d] = node;
+                        node_of[d] = node as u32;
                         column[d] = i;
                         if i == s {
                             gamma.push(d);
@@ -161,7 +168,7 @@ impl SplitOrdering {
 /// Where each free dof of K lies: its node, and the node's column in the grid.
 #[derive(Clone, Copy)]
 struct Dofs<'a> {
-    node: &'a [usize],
+    node: &'a [u32],
     column: &'a [usize],
 }
 
@@ -192,12 +199,7 @@ impl Half {
             .chain(half_gamma.iter().map(|&g| gamma[g]))
             .collect();
         let n_h = members.len();
-        // Every index below (a dof, an entry of K_h, a position in K's values) is less than
-        // K's number of entries: when that fits in u32, so do they all. It does up to 4·10⁹
-        // entries, 64 GB of K, which the memory guard refuses long before.
-        if u32::try_from(a.nnz()).is_err() {
-            return Err(FemError::OutOfMemory("the ordering"));
-        }
+        // Each index fits in u32 ([`SplitOrdering::new`]).
         let narrow = |i: usize| i as u32;
         const OUTSIDE: u32 = u32::MAX;
         let mut position = vec![OUTSIDE; a.n];

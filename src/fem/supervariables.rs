@@ -35,47 +35,49 @@ pub fn elimination_tree<I: Index>(
     let n = upper.ncols();
     let runs = starts.len();
     let end = |g: usize| starts.get(g + 1).copied().unwrap_or(n);
-    let mut run_of = vec![0usize; n];
+    // Indices of type I (u32 for the halves of K), to halve these arrays' memory.
+    let none = I::truncate(NONE);
+    let mut run_of = vec![I::truncate(0); n];
     for g in 0..runs {
-        run_of[starts[g]..end(g)].fill(g);
+        run_of[starts[g]..end(g)].fill(I::truncate(g));
     }
     // The quotient graph's elimination tree, and the number of dofs in each run's column of L
     // below the run (the sum of the sizes of the runs in its row subtrees); one record per run,
     // so that each step of the walk up the tree reads one cache line.
     #[derive(Clone, Copy)]
-    struct Run {
-        parent: usize,
-        below: usize,
-        visited: usize,
+    struct Run<I> {
+        parent: I,
+        below: I,
+        visited: I,
     }
     let mut tree = vec![
         Run {
-            parent: NONE,
-            below: 0,
-            visited: NONE,
+            parent: none,
+            below: I::truncate(0),
+            visited: none,
         };
         runs
     ];
     for j in 0..runs {
-        let size = end(j) - starts[j];
-        tree[j].visited = j;
+        let (size, this) = (I::truncate(end(j) - starts[j]), I::truncate(j));
+        tree[j].visited = this;
         // The run's first column holds its couplings with the earlier runs, each run's rows
         // next to each other.
-        let mut previous = NONE;
+        let mut previous = none;
         for &r in upper.row_idx_of_col_raw(starts[j]) {
             let mut i = run_of[r.zx()];
-            if i >= j || i == previous {
+            if i >= this || i == previous {
                 continue;
             }
             previous = i;
             // Row j of L is the subtree of the elimination tree from i up to j.
-            while tree[i].visited != j {
-                let run = &mut tree[i];
-                if run.parent == NONE {
-                    run.parent = j;
+            while tree[i.zx()].visited != this {
+                let run = &mut tree[i.zx()];
+                if run.parent == none {
+                    run.parent = this;
                 }
                 run.below += size;
-                run.visited = j;
+                run.visited = this;
                 i = run.parent;
             }
         }
@@ -85,11 +87,11 @@ pub fn elimination_tree<I: Index>(
     for g in 0..runs {
         let (first, last) = (starts[g], end(g) - 1);
         for d in first..=last {
-            counts[d] = I::truncate(last + 1 - d + tree[g].below);
+            counts[d] = I::truncate(last + 1 - d + tree[g].below.zx());
             if d < last {
                 etree[d] = I::Signed::truncate(d + 1);
-            } else if tree[g].parent != NONE {
-                etree[d] = I::Signed::truncate(starts[tree[g].parent]);
+            } else if tree[g].parent != none {
+                etree[d] = I::Signed::truncate(starts[tree[g].parent.zx()]);
             }
         }
     }
@@ -188,6 +190,17 @@ mod tests {
                 );
                 assert_eq!(etree, faer_etree, "{case}");
                 assert_eq!(counts, faer_counts, "{case}");
+                // With u32 indices, as the halves of K have them.
+                let narrow = |v: &[usize]| v.iter().map(|&i| i as u32).collect::<Vec<_>>();
+                let (col_ptr, row_idx) = (narrow(&col_ptr), narrow(&row_idx));
+                let upper = SymbolicSparseColMatRef::new_checked(a.n, a.n, &col_ptr, None, &row_idx);
+                let (etree, counts) = elimination_tree(upper, &starts);
+                assert_eq!(
+                    etree,
+                    faer_etree.iter().map(|&p| p as i32).collect::<Vec<_>>(),
+                    "{case}"
+                );
+                assert_eq!(counts, narrow(&faer_counts), "{case}");
             }
         }
         assert_eq!(run_lengths, [true, true]);
