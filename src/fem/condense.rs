@@ -9,13 +9,13 @@
 
 use std::sync::Arc;
 
-use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::linalg::cholesky::llt;
 use faer::linalg::matmul::matmul;
 use faer::linalg::triangular_solve;
 use faer::perm::PermRef;
 use faer::reborrow::{Reborrow, ReborrowMut};
-use faer::sparse::linalg::cholesky::simplicial::{EliminationTreeRef, SymbolicSimplicialCholesky};
+use faer::sparse::linalg::cholesky::simplicial::{self, EliminationTreeRef, SymbolicSimplicialCholesky};
 use faer::sparse::linalg::cholesky::supernodal::{
     SupernodalLltRef, SymbolicSupernodalCholesky, factorize_supernodal_numeric_llt,
     factorize_supernodal_numeric_llt_scratch, factorize_supernodal_symbolic_cholesky,
@@ -27,7 +27,7 @@ use faer::sparse::linalg::cholesky::{
 };
 use faer::sparse::linalg::{SupernodalThreshold, amd};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
-use faer::traits::Index;
+use faer::traits::{Index, SignedIndex};
 use faer::{Accum, Conj, Mat, MatMut, MatRef, Par, Side};
 
 use super::SymCsc;
@@ -222,15 +222,31 @@ impl<I: Index> TraceOrdering<I> {
             }
         }
         let upper = SymbolicSparseColMatRef::new_checked(n, n, &col_ptr, None, &row_idx);
-        let (etree, counts) = super::supervariables::elimination_tree(upper, supervariables);
+        let mut mem = MemBuffer::try_new(StackReq::any_of(&[
+            simplicial::prefactorize_symbolic_cholesky_scratch::<I>(n, row_idx.len()),
+            factorize_supernodal_symbolic_cholesky_scratch::<I>(n),
+        ]))
+        .map_err(|_| FemError::OutOfMemory("the symbolic factorisation"))?;
+        let (etree, counts) = match super::supervariables::elimination_tree(upper, supervariables) {
+            Some(tree) => tree,
+            None => {
+                // Runs that are not indistinguishable: faer's own walk, column by column.
+                let mut tree = (vec![I::Signed::truncate(0); n], vec![I::truncate(0); n]);
+                simplicial::prefactorize_symbolic_cholesky(
+                    &mut tree.0,
+                    &mut tree.1,
+                    upper,
+                    MemStack::new(&mut mem),
+                );
+                tree
+            }
+        };
         // SAFETY: `from_inner` asks for the tree faer's `prefactorize_symbolic_cholesky` fills
-        // for `upper`, which `elimination_tree` computes from the supervariables (the test
-        // `the_supervariables_give_faers_tree_and_counts` compares them for every element); by
-        // its construction each parent is a later column of `upper` or −1, so faer's unchecked
-        // indexing stays in bounds.
+        // for `upper`. `elimination_tree` gives it only after checking that the runs are
+        // indistinguishable columns of `upper`, whose tree and counts then follow from the
+        // quotient graph's (and `the_supervariables_give_faers_tree_and_counts` compares the
+        // two for every element); otherwise faer's own walk filled it.
         let etree = unsafe { EliminationTreeRef::<I>::from_inner(&etree) };
-        let mut mem = MemBuffer::try_new(factorize_supernodal_symbolic_cholesky_scratch::<I>(n))
-            .map_err(|_| FemError::OutOfMemory("the symbolic factorisation"))?;
         let symbolic = factorize_supernodal_symbolic_cholesky(
             upper,
             etree,
