@@ -5,15 +5,16 @@
 //! same dofs elsewhere (both components of the nodes that share a cell with it,
 //! [`super::SymCsc::pattern`]). Consecutive dofs of one node in an elimination order are
 //! therefore *indistinguishable* (George and Liu, "Computer Solution of Large Sparse Positive
-//! Definite Systems", 1981): the columns of L of such a run
-//! share every row past the run, the first column of the run holds the run itself, and its
-//! elimination tree is a chain. The tree and the column counts of the dof-level factor follow
-//! from those of the quotient graph, in which each run is one vertex weighted by its size.
-//! That graph has about a quarter of the pattern's entries, and the walk that counts the
-//! columns (Liu 1986: each row of L is a subtree of the elimination tree, visited once)
-//! costs the factor's entries of the quotient graph, about a quarter of the dof-level
-//! walk's (`prefactorize_symbolic_cholesky` of faer, the largest part of the symbolic phase:
-//! BENCHMARKS.md, "The symbolic phase on the node graph").
+//! Definite Systems", 1981): the columns of L of such a run share every row past the run, the
+//! first column of the run holds the run itself, and its elimination tree is a chain. The
+//! tree and the column counts of the dof-level factor follow from those of the quotient graph,
+//! in which each run is one vertex weighted by its size. That graph has about a quarter of the
+//! pattern's entries, and the walk that counts the columns (Liu 1986: each row of L is a
+//! subtree of the elimination tree, visited once) costs the quotient graph's factor entries,
+//! about a quarter of the dof-level walk's (faer's `prefactorize_symbolic_cholesky`, before
+//! this the largest part of the symbolic phase: BENCHMARKS.md, "The symbolic phase on the
+//! node graph"). The runs are checked against the pattern first (one pass over it), since
+//! faer takes the tree on trust.
 
 use faer::sparse::SymbolicSparseColMatRef;
 use faer::traits::{Index, SignedIndex};
