@@ -399,26 +399,19 @@ impl<I: Index> TraceFactor<I> {
 
     /// Solve A X = B in place for the `ncols` columns of the column-major `b`.
     pub fn solve_in_place(&self, b: &mut [f64], ncols: usize) {
-        let n = self.ordering.symbolic.nrows();
-        let b = MatMut::from_column_major_slice_mut(b, n, ncols);
-        match &*self.ordering.symbolic {
+        let symbolic = &*self.ordering.symbolic;
+        let b = MatMut::from_column_major_slice_mut(b, symbolic.nrows(), ncols);
+        let mut mem = MemBuffer::new(match symbolic {
+            Symbolic::Permuted(s) => s.solve_in_place_scratch::<f64>(ncols, Par::Seq),
+            Symbolic::InOrder(s) => s.solve_in_place_scratch::<f64>(ncols, Par::Seq),
+        });
+        let stack = MemStack::new(&mut mem);
+        match symbolic {
             Symbolic::Permuted(s) => {
-                let mut mem = MemBuffer::new(s.solve_in_place_scratch::<f64>(ncols, Par::Seq));
-                LltRef::new(s, &self.values).solve_in_place_with_conj(
-                    Conj::No,
-                    b,
-                    Par::Seq,
-                    MemStack::new(&mut mem),
-                );
+                LltRef::new(s, &self.values).solve_in_place_with_conj(Conj::No, b, Par::Seq, stack)
             }
             Symbolic::InOrder(s) => {
-                let mut mem = MemBuffer::new(s.solve_in_place_scratch::<f64>(ncols, Par::Seq));
-                SupernodalLltRef::new(s, &self.values).solve_in_place_with_conj(
-                    Conj::No,
-                    b,
-                    Par::Seq,
-                    MemStack::new(&mut mem),
-                );
+                SupernodalLltRef::new(s, &self.values).solve_in_place_with_conj(Conj::No, b, Par::Seq, stack)
             }
         }
     }
