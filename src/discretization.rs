@@ -125,14 +125,7 @@ impl Discretization {
         let t = Instant::now();
         let stiffness = assemble(&mesh, &dofs, Form::Elasticity(material, integration));
         let assembly_ms = ms_since(t);
-        let contact_dofs: Vec<usize> = mesh
-            .top_nodes()
-            .iter()
-            .map(|&n| {
-                dofs.free_index(2 * n + 1)
-                    .expect("Γ_C is not on the clamped side")
-            })
-            .collect();
+        let contact_dofs = dofs.contact_dofs(&mesh);
         let n = dofs.n_free();
         let t = Instant::now();
         let ordering =

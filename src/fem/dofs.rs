@@ -54,6 +54,19 @@ impl DofMap {
     pub fn n_free(&self) -> usize {
         self.n_free
     }
+    /// The free dof of u_n = u_y at each Γ_C node of `mesh`, ascending x: the trace that every
+    /// factorisation orders last ([`super::condense`]). Γ_C is never on a clamped side, so a
+    /// constrained one is a caller's error, and panics.
+    pub fn contact_dofs(&self, mesh: &Mesh) -> Vec<usize> {
+        mesh.top_nodes()
+            .iter()
+            .map(|&n| {
+                self.free_index(2 * n + 1)
+                    .expect("Γ_C is not on the clamped side")
+            })
+            .collect()
+    }
+
     /// The free index of global dof `g`, if it is free.
     pub fn free_index(&self, g: usize) -> Option<usize> {
         let f = self.free[g];

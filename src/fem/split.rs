@@ -501,11 +501,7 @@ mod tests {
             let mesh = Mesh::uniform(element, (0.0, 2.0, 12), (0.0, 1.0, 6), true);
             let dofs = DofMap::model(&mesh);
             let k = assemble(&mesh, &dofs, Form::H1);
-            let trace: Vec<usize> = mesh
-                .top_nodes()
-                .iter()
-                .map(|&t| dofs.free_index(2 * t + 1).unwrap())
-                .collect();
+            let trace = dofs.contact_dofs(&mesh);
             let ordering = SplitOrdering::new(&k, &mesh, &dofs, &trace).unwrap().unwrap();
             let factor = SplitFactor::new(&ordering, &k).unwrap();
             for (h, f) in ordering.0.halves.iter().zip(&factor.halves) {

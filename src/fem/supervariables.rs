@@ -197,11 +197,7 @@ mod tests {
         let mesh = Mesh::uniform(element, (0.0, 2.0, nx), (0.0, 1.0, ny), symmetric);
         let dofs = DofMap::model(&mesh);
         let a = SymCsc::pattern(&mesh, &dofs);
-        let trace: Vec<usize> = mesh
-            .top_nodes()
-            .iter()
-            .map(|&t| dofs.free_index(2 * t + 1).unwrap())
-            .collect();
+        let trace = dofs.contact_dofs(&mesh);
         let mut order = nested_dissection(&mesh, &dofs, &trace);
         order.extend_from_slice(&trace);
         let mut node_of = vec![0; a.n];
