@@ -15,19 +15,15 @@ use faer::linalg::matmul::matmul;
 use faer::linalg::triangular_solve;
 use faer::perm::PermRef;
 use faer::reborrow::{Reborrow, ReborrowMut};
-use faer::sparse::linalg::cholesky::simplicial::{self, EliminationTreeRef, SymbolicSimplicialCholesky};
-use faer::sparse::linalg::cholesky::supernodal::{
-    SupernodalLltRef, SymbolicSupernodalCholesky, factorize_supernodal_numeric_llt,
-    factorize_supernodal_numeric_llt_scratch, factorize_supernodal_symbolic_cholesky,
-    factorize_supernodal_symbolic_cholesky_scratch,
-};
+use faer::sparse::SymbolicSparseColMatRef;
+use faer::sparse::linalg::cholesky::simplicial::SymbolicSimplicialCholesky;
+use faer::sparse::linalg::cholesky::supernodal::{SupernodalLltRef, SymbolicSupernodalCholesky};
 use faer::sparse::linalg::cholesky::{
     CholeskySymbolicParams, LltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
     factorize_symbolic_cholesky,
 };
 use faer::sparse::linalg::{SupernodalThreshold, amd};
-use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
-use faer::traits::{Index, SignedIndex};
+use faer::traits::Index;
 use faer::{Accum, Conj, Mat, MatMut, MatRef, Par, Side};
 
 use super::SymCsc;
@@ -37,58 +33,27 @@ use super::memory::Limits;
 use super::ordering::nested_dissection;
 use crate::mesh::Mesh;
 
-/// The symbolic analysis of a pattern with the trace dofs ordered last (one per mesh), its
-/// indices of type `I`: usize for K, u32 for the halves of [`super::split`], which halves the
-/// memory of their patterns and analyses (BENCHMARKS.md, "Fresh memory").
+/// The symbolic analysis of a pattern with the trace dofs ordered last (one per mesh).
 #[derive(Clone)]
 pub struct TraceOrdering<I: Index = usize> {
-    symbolic: Arc<Symbolic<I>>,
+    /// faer's analysis of the pattern in the dofs' order, with the permutation it was given
+    /// or chose; supernodal or simplicial.
+    symbolic: Arc<SymbolicCholesky<I>>,
     /// The trace dofs, in the order of C's rows and columns.
     trace: Vec<usize>,
 }
 
-/// faer's symbolic analysis behind a [`TraceOrdering`].
-enum Symbolic<I: Index> {
-    /// faer's whole analysis of a pattern in the dofs' order, with the permutation it was
-    /// given or chose; supernodal or simplicial.
-    Permuted(SymbolicCholesky<I>),
-    /// A supernodal analysis of a pattern already in elimination order, from the elimination
-    /// tree and column counts of its supervariables ([`super::supervariables`]).
-    InOrder(SymbolicSupernodalCholesky<I>),
-}
-
 /// The layout of a factor's values: supernodes, or one column at a time.
-enum Layout<'a, I: Index> {
+pub(super) enum Layout<'a, I: Index> {
     Supernodal(&'a SymbolicSupernodalCholesky<I>),
     Simplicial(&'a SymbolicSimplicialCholesky<I>),
 }
 
-impl<I: Index> Symbolic<I> {
-    fn layout(&self) -> Layout<'_, I> {
-        match self {
-            Symbolic::Permuted(s) => Self::layout_of(s),
-            Symbolic::InOrder(s) => Layout::Supernodal(s),
-        }
-    }
-
-    fn layout_of(symbolic: &SymbolicCholesky<I>) -> Layout<'_, I> {
+impl<'a, I: Index> Layout<'a, I> {
+    fn of(symbolic: &'a SymbolicCholesky<I>) -> Self {
         match symbolic.raw() {
             SymbolicCholeskyRaw::Supernodal(s) => Layout::Supernodal(s),
             SymbolicCholeskyRaw::Simplicial(s) => Layout::Simplicial(s),
-        }
-    }
-
-    fn nrows(&self) -> usize {
-        match self {
-            Symbolic::Permuted(s) => s.nrows(),
-            Symbolic::InOrder(s) => s.nrows(),
-        }
-    }
-
-    fn len_val(&self) -> usize {
-        match self {
-            Symbolic::Permuted(s) => s.len_val(),
-            Symbolic::InOrder(s) => s.len_val(),
         }
     }
 }
@@ -186,81 +151,13 @@ impl TraceOrdering {
         )
         .map_err(FemError::from_faer("the symbolic factorisation"))?;
         Ok(TraceOrdering {
-            symbolic: Arc::new(Symbolic::Permuted(symbolic)),
+            symbolic: Arc::new(symbolic),
             trace: trace.to_vec(),
         })
     }
 }
 
 impl<I: Index> TraceOrdering<I> {
-    /// The supernodal analysis of `lower` (a lower triangle) in its own order, its last
-    /// `n_trace` dofs the trace; `supervariables` holds the first column of each run of
-    /// indistinguishable columns ([`super::supervariables`]), from which the elimination tree
-    /// and the column counts are read.
-    pub(super) fn in_given_order(
-        lower: SymbolicSparseColMatRef<'_, I>,
-        n_trace: usize,
-        supervariables: &[usize],
-    ) -> Result<Self, FemError> {
-        // faer analyses the upper triangle: the transpose of the lower one, each column's rows
-        // ascending.
-        let n = lower.nrows();
-        let mut col_ptr = vec![I::truncate(0); n + 1];
-        for &r in lower.row_idx() {
-            col_ptr[r.zx() + 1] += I::truncate(1);
-        }
-        for j in 0..n {
-            let before = col_ptr[j];
-            col_ptr[j + 1] += before;
-        }
-        let mut next = col_ptr.clone();
-        let mut row_idx = vec![I::truncate(0); lower.row_idx().len()];
-        for c in 0..n {
-            for &r in lower.row_idx_of_col_raw(c) {
-                row_idx[next[r.zx()].zx()] = I::truncate(c);
-                next[r.zx()] += I::truncate(1);
-            }
-        }
-        let upper = SymbolicSparseColMatRef::new_checked(n, n, &col_ptr, None, &row_idx);
-        let mut mem = MemBuffer::try_new(StackReq::any_of(&[
-            simplicial::prefactorize_symbolic_cholesky_scratch::<I>(n, row_idx.len()),
-            factorize_supernodal_symbolic_cholesky_scratch::<I>(n),
-        ]))
-        .map_err(|_| FemError::OutOfMemory("the symbolic factorisation"))?;
-        let (etree, counts) = match super::supervariables::elimination_tree(upper, supervariables) {
-            Some(tree) => tree,
-            None => {
-                // Runs that are not indistinguishable: faer's own walk, column by column.
-                let mut tree = (vec![I::Signed::truncate(0); n], vec![I::truncate(0); n]);
-                simplicial::prefactorize_symbolic_cholesky(
-                    &mut tree.0,
-                    &mut tree.1,
-                    upper,
-                    MemStack::new(&mut mem),
-                );
-                tree
-            }
-        };
-        // SAFETY: `from_inner` asks for the tree faer's `prefactorize_symbolic_cholesky` fills
-        // for `upper`. `elimination_tree` gives it only after checking that the runs are
-        // indistinguishable columns of `upper`, whose tree and counts then follow from the
-        // quotient graph's (and `the_supervariables_give_faers_tree_and_counts` compares the
-        // two for every element); otherwise faer's own walk filled it.
-        let etree = unsafe { EliminationTreeRef::<I>::from_inner(&etree) };
-        let symbolic = factorize_supernodal_symbolic_cholesky(
-            upper,
-            etree,
-            &counts,
-            MemStack::new(&mut mem),
-            Default::default(),
-        )
-        .map_err(FemError::from_faer("the symbolic factorisation"))?;
-        Ok(TraceOrdering {
-            symbolic: Arc::new(Symbolic::InOrder(symbolic)),
-            trace: (n - n_trace..n).collect(),
-        })
-    }
-
     /// The number of stored values of the factor L (explicit zeros of merged supernodes
     /// included): its memory is eight bytes each.
     pub fn factor_len(&self) -> usize {
@@ -269,12 +166,12 @@ impl<I: Index> TraceOrdering<I> {
 
     /// Floating point operations of one numeric factorisation ([`factor_flops`]).
     pub fn factor_flops(&self) -> f64 {
-        layout_flops(self.symbolic.layout())
+        layout_flops(Layout::of(&self.symbolic))
     }
 
     /// Whether faer chose its supernodal (blocked) factorisation for this pattern.
     pub fn is_supernodal(&self) -> bool {
-        matches!(self.symbolic.layout(), Layout::Supernodal(_))
+        matches!(Layout::of(&self.symbolic), Layout::Supernodal(_))
     }
 }
 
@@ -282,11 +179,11 @@ impl<I: Index> TraceOrdering<I> {
 /// columns of L with c_j stored values (c_j divisions and about c_j² multiply-adds of the
 /// updates it sends, the count of George and Liu).
 pub fn factor_flops<I: Index>(symbolic: &SymbolicCholesky<I>) -> f64 {
-    layout_flops(Symbolic::layout_of(symbolic))
+    layout_flops(Layout::of(symbolic))
 }
 
 /// [`factor_flops`] of a factor's layout.
-fn layout_flops<I: Index>(layout: Layout<'_, I>) -> f64 {
+pub(super) fn layout_flops<I: Index>(layout: Layout<'_, I>) -> f64 {
     let square = |c: usize| (c as f64) * (c as f64);
     match layout {
         Layout::Supernodal(sym) => (0..sym.n_supernodes())
@@ -314,111 +211,119 @@ impl TraceFactor {
     /// Factorise `a`, whose pattern is the one `ordering` analysed, on the threads of
     /// [`super::set_threads`].
     pub fn new(ordering: &TraceOrdering, a: &SymCsc) -> Result<Self, FemError> {
-        Self::with_values(
-            ordering,
-            a.symbolic(),
-            &a.values,
-            Vec::new(),
-            super::sparse_parallelism(a.n),
-        )
-    }
-}
-
-impl<I: Index> TraceFactor<I> {
-    /// Factorise the matrix with the pattern of `pattern` (whose own values are not read) and
-    /// the entries `values`, on `par`, the factor in `storage`'s memory (its contents are
-    /// discarded; an empty vector when there is none to reuse).
-    pub(super) fn with_values(
-        ordering: &TraceOrdering<I>,
-        pattern: SymbolicSparseColMatRef<'_, I>,
-        values: &[f64],
-        storage: Vec<f64>,
-        par: Par,
-    ) -> Result<Self, FemError> {
         let symbolic = &*ordering.symbolic;
-        let scratch = match symbolic {
-            Symbolic::Permuted(s) => s.factorize_numeric_llt_scratch::<f64>(par, Default::default()),
-            Symbolic::InOrder(s) => {
-                factorize_supernodal_numeric_llt_scratch::<I, f64>(s, par, Default::default())
-            }
-        };
-        // The factor's exact size is known now: refuse it, rather than be killed for it, when
-        // it does not fit in what the process may still use.
-        let need = (8 * symbolic.len_val() + scratch.unaligned_bytes_required()) as u64;
-        match Limits::of_process().available() {
-            Some(available) if need > available => {
-                return Err(FemError::TooLarge {
-                    unknowns: pattern.nrows(),
-                    need,
-                    available,
-                });
-            }
-            _ => {}
-        }
-        let mut factor = storage;
-        factor.clear();
-        factor
-            .try_reserve_exact(symbolic.len_val())
-            .map_err(|_| FemError::OutOfMemory("the factor"))?;
-        factor.resize(symbolic.len_val(), 0.0);
+        let par = super::sparse_parallelism(a.n);
+        let scratch = symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default());
+        let mut factor = factor_storage(symbolic.len_val(), scratch, a.n, Vec::new())?;
         let mut mem = MemBuffer::try_new(scratch)
             .map_err(|_| FemError::OutOfMemory("the factorisation's workspace"))?;
-        let a = SparseColMatRef::new(pattern, values);
-        let stack = MemStack::new(&mut mem);
-        match symbolic {
-            Symbolic::Permuted(s) => s
-                .factorize_numeric_llt(
-                    &mut factor,
-                    a,
-                    Side::Lower,
-                    Default::default(),
-                    par,
-                    stack,
-                    Default::default(),
-                )
-                .map(drop),
-            // In elimination order already: faer reads the lower triangle as it is.
-            Symbolic::InOrder(s) => factorize_supernodal_numeric_llt(
+        symbolic
+            .factorize_numeric_llt(
                 &mut factor,
-                a,
+                a.view(&a.values),
+                Side::Lower,
                 Default::default(),
-                s,
                 par,
-                stack,
+                MemStack::new(&mut mem),
                 Default::default(),
             )
-            .map(drop),
-        }
-        // The numeric factorisation's only failure is a non-positive pivot.
-        .map_err(|_| FemError::NotPositiveDefinite)?;
+            // The numeric factorisation's only failure is a non-positive pivot.
+            .map_err(|_| FemError::NotPositiveDefinite)?;
         Ok(TraceFactor {
             ordering: ordering.clone(),
             values: factor,
         })
     }
+}
 
+/// The zeroed storage of a factor of `len_val` values, with `scratch` beside it, for a matrix
+/// of `unknowns` rows, in `storage`'s memory (its contents discarded; an empty vector when
+/// there is none to reuse). The factor's exact size is known here: it is refused, rather than
+/// the process killed for it, when it does not fit in what the process may still use.
+pub(super) fn factor_storage(
+    len_val: usize,
+    scratch: StackReq,
+    unknowns: usize,
+    storage: Vec<f64>,
+) -> Result<Vec<f64>, FemError> {
+    let need = (8 * len_val + scratch.unaligned_bytes_required()) as u64;
+    match Limits::of_process().available() {
+        Some(available) if need > available => {
+            return Err(FemError::TooLarge {
+                unknowns,
+                need,
+                available,
+            });
+        }
+        _ => {}
+    }
+    let mut factor = storage;
+    factor.clear();
+    factor
+        .try_reserve_exact(len_val)
+        .map_err(|_| FemError::OutOfMemory("the factor"))?;
+    factor.resize(len_val, 0.0);
+    Ok(factor)
+}
+
+impl<I: Index> TraceFactor<I> {
     /// Solve A X = B in place for the `ncols` columns of the column-major `b`.
     pub fn solve_in_place(&self, b: &mut [f64], ncols: usize) {
         let symbolic = &*self.ordering.symbolic;
         let b = MatMut::from_column_major_slice_mut(b, symbolic.nrows(), ncols);
-        let mut mem = MemBuffer::new(match symbolic {
-            Symbolic::Permuted(s) => s.solve_in_place_scratch::<f64>(ncols, Par::Seq),
-            Symbolic::InOrder(s) => s.solve_in_place_scratch::<f64>(ncols, Par::Seq),
-        });
-        let stack = MemStack::new(&mut mem);
-        match symbolic {
-            Symbolic::Permuted(s) => {
-                LltRef::new(s, &self.values).solve_in_place_with_conj(Conj::No, b, Par::Seq, stack)
-            }
-            Symbolic::InOrder(s) => {
-                SupernodalLltRef::new(s, &self.values).solve_in_place_with_conj(Conj::No, b, Par::Seq, stack)
-            }
+        let mut mem = MemBuffer::new(symbolic.solve_in_place_scratch::<f64>(ncols, Par::Seq));
+        LltRef::new(symbolic, &self.values).solve_in_place_with_conj(
+            Conj::No,
+            b,
+            Par::Seq,
+            MemStack::new(&mut mem),
+        );
+    }
+
+    /// The factor's blocks of columns, in elimination order.
+    fn blocks(&self) -> Blocks<'_, I> {
+        let symbolic = &*self.ordering.symbolic;
+        Blocks::new(
+            Layout::of(symbolic),
+            &self.values,
+            symbolic.nrows() - self.ordering.trace.len(),
+        )
+    }
+
+    /// The trailing block L_cc of L (trace dofs, in the ordering's trace order):
+    /// L_cc L_ccᵀ is the Schur complement of A on the trace dofs.
+    pub fn schur_factor(&self) -> Mat<f64> {
+        self.blocks().trailing_block()
+    }
+
+    /// The trace compliance C = E A⁻¹ Eᵀ = (L_cc L_ccᵀ)⁻¹ = L_cc⁻ᵀ L_cc⁻¹.
+    pub fn compliance(&self) -> Mat<f64> {
+        let l = self.schur_factor();
+        compliance_of(l.as_ref(), super::dense_parallelism(l.nrows()))
+    }
+}
+
+/// The values of a factor L (in elimination order) as blocks of consecutive columns, with
+/// L = [L₁₁ 0; L₂₁ L₂₂] split after its first `n_interior` columns.
+pub(super) struct Blocks<'a, I: Index> {
+    layout: Layout<'a, I>,
+    values: &'a [f64],
+    n_interior: usize,
+}
+
+impl<'a, I: Index> Blocks<'a, I> {
+    /// The blocks of the factor `values` laid out as `layout`.
+    pub(super) fn new(layout: Layout<'a, I>, values: &'a [f64], n_interior: usize) -> Self {
+        Blocks {
+            layout,
+            values,
+            n_interior,
         }
     }
 
-    /// The number of blocks of columns of L ([`TraceFactor::block`]).
+    /// The number of blocks of columns of L ([`Blocks::block`]).
     fn n_blocks(&self) -> usize {
-        match self.ordering.symbolic.layout() {
+        match self.layout {
             Layout::Supernodal(sym) => sym.n_supernodes(),
             Layout::Simplicial(sym) => sym.nrows(),
         }
@@ -426,10 +331,10 @@ impl<I: Index> TraceFactor<I> {
 
     /// The `s`-th block of consecutive columns of L (in elimination order): a supernode, or
     /// one column of the simplicial layout (whose first stored row is the diagonal).
-    fn block(&self, s: usize) -> Block<'_, I> {
-        match self.ordering.symbolic.layout() {
+    fn block(&self, s: usize) -> Block<'a, I> {
+        match self.layout {
             Layout::Supernodal(sym) => {
-                let node = SupernodalLltRef::new(sym, &self.values).supernode(s);
+                let node = SupernodalLltRef::new(sym, self.values).supernode(s);
                 Block {
                     start: node.start(),
                     val: node.val(),
@@ -447,17 +352,12 @@ impl<I: Index> TraceFactor<I> {
         }
     }
 
-    /// The number of dofs eliminated before the trace.
-    fn n_interior(&self) -> usize {
-        self.ordering.symbolic.nrows() - self.ordering.trace.len()
-    }
-
     /// Forward elimination of the interior, in elimination order: with
     /// L = [L₁₁ 0; L₂₁ L₂₂] split after the interior and x = [f₁; f₂],
     /// x ← [L₁₁⁻¹ f₁; f₂ − L₂₁ L₁₁⁻¹ f₁] (the trace's right-hand side of the Schur complement
     /// system, since L₂₁ L₁₁⁻¹ = A₂₁ A₁₁⁻¹ L₁₁).
     pub(super) fn eliminate_interior(&self, mut x: MatMut<'_, f64>) {
-        let n0 = self.n_interior();
+        let n0 = self.n_interior;
         let mut tmp = Mat::<f64>::zeros(0, 0);
         for s in 0..self.n_blocks() {
             let b = self.block(s);
@@ -501,9 +401,9 @@ impl<I: Index> TraceFactor<I> {
 
     /// Back substitution of the interior, in elimination order: with x = [y₁; u₂] (u₂ the
     /// trace's solution), x ← [L₁₁⁻ᵀ (y₁ − L₂₁ᵀ u₂); u₂], which completes A u = f after
-    /// [`TraceFactor::eliminate_interior`].
+    /// [`Blocks::eliminate_interior`].
     pub(super) fn back_substitute_interior(&self, mut x: MatMut<'_, f64>) {
-        let n0 = self.n_interior();
+        let n0 = self.n_interior;
         let mut tmp = Mat::<f64>::zeros(0, 0);
         for s in (0..self.n_blocks()).rev() {
             let b = self.block(s);
@@ -544,32 +444,41 @@ impl<I: Index> TraceFactor<I> {
         }
     }
 
-    /// The trailing block L_cc of L (trace dofs, in the ordering's trace order):
-    /// L_cc L_ccᵀ is the Schur complement of A on the trace dofs.
-    pub fn schur_factor(&self) -> Mat<f64> {
-        let n0 = self.n_interior();
-        let nc = self.ordering.trace.len();
+    /// The trailing block of the values, L₂₂ (the columns from `n_interior` on), its lower
+    /// triangle: the Schur complement's Cholesky factor after a whole factorisation, the Schur
+    /// complement itself after [`super::partial`]'s.
+    pub(super) fn trailing_block(&self) -> Mat<f64> {
+        let nc = self.layout_nrows() - self.n_interior;
         let mut l = Mat::<f64>::zeros(nc, nc);
+        self.for_each_trailing(|i, j, v| l[(i, j)] = v);
+        l
+    }
+
+    /// Each stored entry (i, j, value) of the trailing block (i ≥ j, both counted from
+    /// `n_interior`).
+    pub(super) fn for_each_trailing(&self, mut entry: impl FnMut(usize, usize, f64)) {
+        let n0 = self.n_interior;
         for s in 0..self.n_blocks() {
             let b = self.block(s);
             let width = b.val.ncols();
             for jc in (0..width).filter(|&jc| b.start + jc >= n0) {
                 let j = b.start + jc - n0;
                 for ir in jc..width {
-                    l[(b.start + ir - n0, j)] = b.val[(ir, jc)];
+                    entry(b.start + ir - n0, j, b.val[(ir, jc)]);
                 }
                 for (p, &row) in b.below.iter().enumerate() {
-                    l[(row.zx() - n0, j)] = b.val[(width + p, jc)];
+                    entry(row.zx() - n0, j, b.val[(width + p, jc)]);
                 }
             }
         }
-        l
     }
 
-    /// The trace compliance C = E A⁻¹ Eᵀ = (L_cc L_ccᵀ)⁻¹ = L_cc⁻ᵀ L_cc⁻¹.
-    pub fn compliance(&self) -> Mat<f64> {
-        let l = self.schur_factor();
-        compliance_of(l.as_ref(), super::dense_parallelism(l.nrows()))
+    /// The order of L.
+    fn layout_nrows(&self) -> usize {
+        match self.layout {
+            Layout::Supernodal(sym) => sym.nrows(),
+            Layout::Simplicial(sym) => sym.nrows(),
+        }
     }
 }
 
@@ -694,16 +603,13 @@ mod tests {
                 ] {
                     layouts[usize::from(ordering.is_supernodal())] = true;
                     let factor = TraceFactor::new(&ordering, &a).unwrap();
-                    let Symbolic::Permuted(symbolic) = &*ordering.symbolic else {
-                        unreachable!("a whole analysis is faer's")
-                    };
-                    let perm = symbolic.perm().unwrap().arrays().0.to_vec();
+                    let perm = ordering.symbolic.perm().unwrap().arrays().0.to_vec();
                     let f: Vec<f64> = (0..2 * a.n).map(|k| ((k * 7919) % 113) as f64 - 56.0).collect();
                     let mut expect = f.clone();
                     factor.solve_in_place(&mut expect, 2);
                     // In elimination order: eliminate, solve S u_c = x_c, back-substitute.
                     let mut x = Mat::<f64>::from_fn(a.n, 2, |p, j| f[j * a.n + perm[p]]);
-                    factor.eliminate_interior(x.as_mut());
+                    factor.blocks().eliminate_interior(x.as_mut());
                     let l = factor.schur_factor();
                     let n0 = a.n - trace.len();
                     let mut trailing = x.as_mut().subrows_mut(n0, trace.len());
@@ -713,7 +619,7 @@ mod tests {
                         Par::Seq,
                     );
                     triangular_solve::solve_upper_triangular_in_place(l.transpose(), trailing, Par::Seq);
-                    factor.back_substitute_interior(x.as_mut());
+                    factor.blocks().back_substitute_interior(x.as_mut());
                     let scale = expect.iter().fold(0.0f64, |m, v| m.max(v.abs()));
                     for j in 0..2 {
                         for (p, &d) in perm.iter().enumerate() {

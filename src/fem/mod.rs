@@ -9,6 +9,7 @@ pub mod error;
 pub mod factor;
 pub mod memory;
 pub mod ordering;
+mod partial;
 pub mod quadrature;
 pub mod split;
 mod supervariables;

@@ -7,10 +7,11 @@
 //!   K = [K_LL 0 K_LΓ; 0 K_RR K_RΓ; K_ΓL K_ΓR K_ΓΓ],
 //!   S = K_ΓΓ − K_ΓL K_LL⁻¹ K_LΓ − K_ΓR K_RR⁻¹ K_RΓ   (K's Schur complement on Γ).
 //!
-//! Each half h factorises the principal submatrix K_h = K[h ∪ Γ_h] (Γ_h: J and the trace dofs
-//! on its side of the column, the only dofs of Γ that couple with h; SPD as K is) with Γ_h last,
-//! on a thread of its own: the grid's nested dissection of the half, then Γ_h. Its trailing
-//! block L₂₂ gives S_h = L₂₂ L₂₂ᵀ = K[Γ_h, Γ_h] − K_Γh K_hh⁻¹ K_hΓ, so that
+//! Each half h factorises the interior of the principal submatrix K_h = K[h ∪ Γ_h] (Γ_h: J and
+//! the trace dofs on its side of the column, the only dofs of Γ that couple with h; SPD as K is)
+//! with Γ_h last, on a thread of its own: the grid's nested dissection of the half, then Γ_h.
+//! The factorisation stops before Γ_h ([`super::partial`]), whose block is left as
+//! S_h = K[Γ_h, Γ_h] − K_Γh K_hh⁻¹ K_hΓ, so that
 //!
 //!   S = S_L + S_R − K on (Γ_L ∩ Γ_R)²
 //!
@@ -24,15 +25,15 @@ use std::sync::Arc;
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt;
-use faer::linalg::matmul::triangular::{self, BlockStructure};
 use faer::sparse::SymbolicSparseColMatRef;
-use faer::{Accum, Mat, MatMut, MatRef, Par};
+use faer::{Mat, MatMut, MatRef};
 
 use super::SymCsc;
-use super::condense::{TraceFactor, TraceOrdering, compliance_of};
+use super::condense::compliance_of;
 use super::dofs::DofMap;
 use super::error::FemError;
 use super::ordering::{middle_column, nested_dissection_of_columns};
+use super::partial::{PartialFactor, PartialOrdering};
 use crate::mesh::Mesh;
 
 /// The symbolic analysis of both halves (one per mesh; cheap to clone).
@@ -64,7 +65,7 @@ struct Half {
     /// The position in K's values of each entry of the pattern.
     gather: Vec<u32>,
     /// The analysis of K_h (in its own order, Γ_h last).
-    ordering: TraceOrdering<u32>,
+    ordering: PartialOrdering<u32>,
     /// The dof of K at each elimination position of h.
     interior: Vec<usize>,
     /// The index in Γ of each trailing position (Γ_h, ascending in Γ).
@@ -264,7 +265,7 @@ impl Half {
             .filter(|&p| p == 0 || at.node[members[p]] != at.node[members[p - 1]])
             .collect();
         let lower = SymbolicSparseColMatRef::new_checked(n_h, n_h, &col_ptr, None, &row_idx);
-        let ordering = TraceOrdering::in_given_order(lower, half_gamma.len(), &supervariables)?;
+        let ordering = PartialOrdering::new(lower, half_gamma.len(), &supervariables)?;
         Ok(Half {
             n: n_h,
             col_ptr,
@@ -285,7 +286,7 @@ impl Half {
 /// A numeric factorisation on a [`SplitOrdering`]: both halves' factors and S's.
 pub struct SplitFactor {
     ordering: SplitOrdering,
-    halves: [TraceFactor<u32>; 2],
+    halves: [PartialFactor<u32>; 2],
     /// The Cholesky factor of S (its lower triangle; Γ's order: J, then the trace).
     s: Mat<f64>,
 }
@@ -351,39 +352,20 @@ impl SplitFactor {
             overlap,
             storage: [left_storage, right_storage],
         } = values;
-        let half = |h: &Half, values: Vec<f64>, storage| -> Result<(TraceFactor<u32>, Mat<f64>), FemError> {
-            let factor = TraceFactor::with_values(&h.ordering, h.pattern(), &values, storage, Par::Seq)?;
-            drop(values);
-            // S_h = L₂₂ L₂₂ᵀ, its lower triangle.
-            let l = factor.schur_factor();
-            let mut s_h = Mat::<f64>::zeros(l.nrows(), l.nrows());
-            triangular::matmul(
-                s_h.as_mut(),
-                BlockStructure::TriangularLower,
-                Accum::Replace,
-                l.as_ref(),
-                BlockStructure::TriangularLower,
-                l.transpose(),
-                BlockStructure::TriangularUpper,
-                1.0,
-                Par::Seq,
-            );
-            Ok((factor, s_h))
+        let half = |h: &Half, values: Vec<f64>, storage| {
+            PartialFactor::new(&h.ordering, h.pattern(), &values, storage)
         };
         let (left, right) = super::join(
             || half(&split.halves[0], left, left_storage),
             || half(&split.halves[1], right, right_storage),
         );
-        let (left, right) = (left?, right?);
-        // S = S_L + S_R − K on (Γ_L ∩ Γ_R)², lower triangle (each half's Γ is ascending in Γ).
+        let halves = [left?, right?];
+        // S = S_L + S_R − K on (Γ_L ∩ Γ_R)², lower triangle (each half's Γ is ascending in Γ),
+        // read from the trailing blocks of the halves' factors.
         let ng = split.gamma.len();
         let mut s = Mat::<f64>::zeros(ng, ng);
-        for (h, s_h) in split.halves.iter().zip([&left.1, &right.1]) {
-            for (j, &gj) in h.gamma.iter().enumerate() {
-                for (i, &gi) in h.gamma.iter().enumerate().skip(j) {
-                    s[(gi, gj)] += s_h[(i, j)];
-                }
-            }
+        for (h, f) in split.halves.iter().zip(&halves) {
+            f.for_each_schur_entry(|i, j, v| s[(h.gamma[i], h.gamma[j])] += v);
         }
         for (&(gr, gc, _), k) in split.overlap.iter().zip(overlap) {
             s[(gr.max(gc), gr.min(gc))] -= k;
@@ -405,7 +387,7 @@ impl SplitFactor {
         .map_err(|_| FemError::NotPositiveDefinite)?;
         Ok(SplitFactor {
             ordering: ordering.clone(),
-            halves: [left.0, right.0],
+            halves,
             s,
         })
     }
@@ -417,7 +399,7 @@ impl SplitFactor {
         let ng = split.gamma.len();
         let rhs = MatRef::from_column_major_slice(&*b, split.n, ncols);
         // Each half's [K_hh⁻¹-forward of f_h; −K_Γh K_hh⁻¹ f_h] in its elimination order.
-        let eliminate = |h: &Half, f: &TraceFactor<u32>| {
+        let eliminate = |h: &Half, f: &PartialFactor<u32>| {
             let mut x = Mat::<f64>::zeros(h.n, ncols);
             for j in 0..ncols {
                 for (p, &d) in h.interior.iter().enumerate() {
@@ -446,7 +428,7 @@ impl SplitFactor {
             super::dense_parallelism(ng),
             MemStack::new(&mut []),
         );
-        let back = |h: &Half, f: &TraceFactor<u32>, x: &mut Mat<f64>| {
+        let back = |h: &Half, f: &PartialFactor<u32>, x: &mut Mat<f64>| {
             let n0 = h.interior.len();
             for j in 0..ncols {
                 for (t, &g) in h.gamma.iter().enumerate() {
@@ -493,34 +475,80 @@ mod tests {
     use crate::fem::{Form, assemble};
     use crate::mesh::Element;
 
-    /// Each half's factor, analysed from its nodes' runs of dofs (`super::supervariables`),
-    /// solves with its own K_h, as a whole-factor solve does: the residual is round-off.
-    #[test]
-    fn each_halfs_factor_solves_with_its_submatrix() {
-        for element in Element::ALL {
-            let mesh = Mesh::uniform(element, (0.0, 2.0, 12), (0.0, 1.0, 6), true);
-            let dofs = DofMap::model(&mesh);
-            let k = assemble(&mesh, &dofs, Form::H1);
-            let trace = dofs.contact_dofs(&mesh);
-            let ordering = SplitOrdering::new(&k, &mesh, &dofs, &trace).unwrap().unwrap();
-            let factor = SplitFactor::new(&ordering, &k).unwrap();
-            for (h, f) in ordering.0.halves.iter().zip(&factor.halves) {
-                let x: Vec<f64> = (0..h.n).map(|i| ((i * 7919) % 113) as f64 - 56.0).collect();
-                // b = K_h x from K_h's lower triangle.
-                let mut b = vec![0.0; h.n];
-                for c in 0..h.n {
-                    for t in h.col_ptr[c] as usize..h.col_ptr[c + 1] as usize {
-                        let (r, v) = (h.row_idx[t] as usize, k.values[h.gather[t] as usize]);
-                        b[r] += v * x[c];
-                        if r != c {
-                            b[c] += v * x[r];
-                        }
-                    }
-                }
-                f.solve_in_place(&mut b, 1);
-                let error = b.iter().zip(&x).map(|(u, v)| (u - v).abs()).fold(0.0, f64::max);
-                assert!(error < 1e-9 * 56.0, "{element:?}: {error:e}");
+    use crate::fem::partial::Kernel;
+    use nalgebra::DMatrix;
+
+    /// Each half's K_h, dense, from its pattern (lower triangle, elimination order).
+    fn dense(h: &Half, k: &SymCsc) -> DMatrix<f64> {
+        let mut a = DMatrix::zeros(h.n, h.n);
+        for c in 0..h.n {
+            for t in h.col_ptr[c] as usize..h.col_ptr[c + 1] as usize {
+                let (r, v) = (h.row_idx[t] as usize, k.values[h.gather[t] as usize]);
+                a[(r, c)] = v;
+                a[(c, r)] = v;
             }
         }
+        a
+    }
+
+    /// Each half's partial factor, analysed from its nodes' runs of dofs
+    /// (`super::supervariables`), leaves the Schur complement S_h = K₂₂ − K₂₁ K₁₁⁻¹ K₁₂ of K_h
+    /// on Γ_h, equal to a dense computation's, with faer's gather-scatter kernel and with the
+    /// dense product alike; and it eliminates the interior so that a solve with S_h and the
+    /// back substitution solve with K_h. Supernodes that hold both interior and Γ_h columns
+    /// occur and are covered.
+    #[test]
+    fn each_halfs_partial_factor_leaves_its_schur_complement() {
+        let mut straddling = 0;
+        for element in Element::ALL {
+            for (nx, ny) in [(12, 6), (24, 13)] {
+                let mesh = Mesh::uniform(element, (0.0, 2.0, nx), (0.0, 1.0, ny), true);
+                let dofs = DofMap::model(&mesh);
+                let k = assemble(&mesh, &dofs, Form::H1);
+                let trace = dofs.contact_dofs(&mesh);
+                let ordering = SplitOrdering::new(&k, &mesh, &dofs, &trace).unwrap().unwrap();
+                for h in &ordering.0.halves {
+                    straddling += h.ordering.straddling();
+                    let a = dense(h, &k);
+                    let n0 = h.interior.len();
+                    let ng = h.n - n0;
+                    let k11 = a.view((0, 0), (n0, n0)).into_owned().cholesky().unwrap();
+                    let k12 = a.view((0, n0), (n0, ng)).into_owned();
+                    let expect = a.view((n0, n0), (ng, ng)) - k12.transpose() * k11.solve(&k12);
+                    let scale = expect.amax();
+                    let values: Vec<f64> = h.gather.iter().map(|&t| k.values[t as usize]).collect();
+                    for kernel in [Kernel::detect(), Kernel::Dense] {
+                        let f =
+                            PartialFactor::with_kernel(&h.ordering, h.pattern(), &values, Vec::new(), kernel)
+                                .unwrap();
+                        let mut s_h = DMatrix::zeros(ng, ng);
+                        f.for_each_schur_entry(|i, j, v| s_h[(i, j)] = v);
+                        for j in 0..ng {
+                            for i in j..ng {
+                                assert!(
+                                    (s_h[(i, j)] - expect[(i, j)]).abs() <= 1e-12 * scale,
+                                    "{element:?} {nx}×{ny} {kernel:?}: S_h[{i},{j}]"
+                                );
+                            }
+                        }
+                        // K_h x = b: eliminate, solve with S_h on Γ_h, back-substitute.
+                        let x: Vec<f64> = (0..h.n).map(|i| ((i * 7919) % 113) as f64 - 56.0).collect();
+                        let b = &a * nalgebra::DVector::from_column_slice(&x);
+                        let mut u = Mat::<f64>::from_fn(h.n, 1, |i, _| b[i]);
+                        f.eliminate_interior(u.as_mut());
+                        let s_full = DMatrix::from_fn(ng, ng, |i, j| s_h[(i.max(j), i.min(j))]);
+                        let trailing = nalgebra::DVector::from_fn(ng, |i, _| u[(n0 + i, 0)]);
+                        let solved = s_full.cholesky().unwrap().solve(&trailing);
+                        for (i, v) in solved.iter().enumerate() {
+                            u[(n0 + i, 0)] = *v;
+                        }
+                        f.back_substitute_interior(u.as_mut());
+                        let error = (0..h.n).map(|i| (u[(i, 0)] - x[i]).abs()).fold(0.0, f64::max);
+                        assert!(error < 1e-9 * 56.0, "{element:?} {nx}×{ny} {kernel:?}: {error:e}");
+                    }
+                }
+            }
+        }
+        assert!(straddling > 0, "no supernode holds both interior and Γ_h columns");
     }
 }

@@ -1,0 +1,506 @@
+//! A subdomain's partial Cholesky factorisation (issue 13): its interior eliminated, the Schur
+//! complement on its interface left in place.
+//!
+//! A half h of [`super::split`] orders K_h = [K₁₁ K₁₂; K₂₁ K₂₂] with its interface Γ_h last and
+//! needs L₁₁ L₁₁ᵀ = K₁₁ and L₂₁ = K₂₁ L₁₁⁻ᵀ for its solves, and S_h = K₂₂ − L₂₁ L₂₁ᵀ for the
+//! interface's S. A whole Cholesky factorisation forms S_h on the way and then factorises it
+//! (L₂₂ L₂₂ᵀ = S_h), which the split had to multiply out again: two dense products of |Γ_h|³/6
+//! multiply-adds (about 35 ms each a half at level 7, BENCHMARKS.md) for nothing. This is
+//! faer's left-looking supernodal factorisation (`factorize_supernodal_numeric_llt`) with
+//! every factorisation, and every update it sends, limited to the interior's columns: the
+//! trailing block of the factor's storage ends as S_h's lower triangle.
+
+use std::sync::Arc;
+
+use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
+use faer::linalg::cholesky::llt;
+use faer::linalg::matmul::matmul;
+use faer::linalg::matmul::triangular::{self, BlockStructure};
+use faer::linalg::triangular_solve;
+use faer::reborrow::{Reborrow, ReborrowMut};
+use faer::sparse::linalg::cholesky::simplicial::{self, EliminationTreeRef};
+use faer::sparse::linalg::cholesky::supernodal::{
+    SymbolicSupernodalCholesky, factorize_supernodal_symbolic_cholesky,
+    factorize_supernodal_symbolic_cholesky_scratch,
+};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
+use faer::traits::{Index, SignedIndex};
+use faer::{Accum, MatMut, MatRef, Par};
+
+use super::condense::{Blocks, Layout, factor_storage, layout_flops};
+use super::error::FemError;
+
+/// The supernodal analysis of a pattern already in elimination order, its last dofs the
+/// interface (cheap to clone).
+#[derive(Clone)]
+pub(super) struct PartialOrdering<I: Index> {
+    symbolic: Arc<SymbolicSupernodalCholesky<I>>,
+    /// The number of dofs eliminated before the interface.
+    n_interior: usize,
+}
+
+impl<I: Index> PartialOrdering<I> {
+    /// The analysis of `lower` (a lower triangle) in its own order, its last `n_interface`
+    /// dofs the interface; `supervariables` holds the first column of each run of
+    /// indistinguishable columns ([`super::supervariables`]), from which the elimination tree
+    /// and the column counts are read.
+    pub(super) fn new(
+        lower: SymbolicSparseColMatRef<'_, I>,
+        n_interface: usize,
+        supervariables: &[usize],
+    ) -> Result<Self, FemError> {
+        // faer analyses the upper triangle: the transpose of the lower one, each column's rows
+        // ascending.
+        let n = lower.nrows();
+        let mut col_ptr = vec![I::truncate(0); n + 1];
+        for &r in lower.row_idx() {
+            col_ptr[r.zx() + 1] += I::truncate(1);
+        }
+        for j in 0..n {
+            let before = col_ptr[j];
+            col_ptr[j + 1] += before;
+        }
+        let mut next = col_ptr.clone();
+        let mut row_idx = vec![I::truncate(0); lower.row_idx().len()];
+        for c in 0..n {
+            for &r in lower.row_idx_of_col_raw(c) {
+                row_idx[next[r.zx()].zx()] = I::truncate(c);
+                next[r.zx()] += I::truncate(1);
+            }
+        }
+        let upper = SymbolicSparseColMatRef::new_checked(n, n, &col_ptr, None, &row_idx);
+        let mut mem = MemBuffer::try_new(StackReq::any_of(&[
+            simplicial::prefactorize_symbolic_cholesky_scratch::<I>(n, row_idx.len()),
+            factorize_supernodal_symbolic_cholesky_scratch::<I>(n),
+        ]))
+        .map_err(|_| FemError::OutOfMemory("the symbolic factorisation"))?;
+        let (etree, counts) = match super::supervariables::elimination_tree(upper, supervariables) {
+            Some(tree) => tree,
+            None => {
+                // Runs that are not indistinguishable: faer's own walk, column by column.
+                let mut tree = (vec![I::Signed::truncate(0); n], vec![I::truncate(0); n]);
+                simplicial::prefactorize_symbolic_cholesky(
+                    &mut tree.0,
+                    &mut tree.1,
+                    upper,
+                    MemStack::new(&mut mem),
+                );
+                tree
+            }
+        };
+        // SAFETY: `from_inner` asks for the tree faer's `prefactorize_symbolic_cholesky` fills
+        // for `upper`. `elimination_tree` gives it only after checking that the runs are
+        // indistinguishable columns of `upper`, whose tree and counts then follow from the
+        // quotient graph's (and `the_supervariables_give_faers_tree_and_counts` compares the
+        // two for every element); otherwise faer's own walk filled it.
+        let etree = unsafe { EliminationTreeRef::<I>::from_inner(&etree) };
+        let symbolic = factorize_supernodal_symbolic_cholesky(
+            upper,
+            etree,
+            &counts,
+            MemStack::new(&mut mem),
+            Default::default(),
+        )
+        .map_err(FemError::from_faer("the symbolic factorisation"))?;
+        Ok(PartialOrdering {
+            symbolic: Arc::new(symbolic),
+            n_interior: n - n_interface,
+        })
+    }
+
+    /// The number of stored values of the factor (the interface's block included).
+    pub(super) fn factor_len(&self) -> usize {
+        self.symbolic.len_val()
+    }
+
+    /// The number of supernodes with both interior and interface columns, whose factorisation
+    /// stops inside them.
+    #[cfg(test)]
+    pub(super) fn straddling(&self) -> usize {
+        let (begin, end) = (self.symbolic.supernode_begin(), self.symbolic.supernode_end());
+        (0..self.symbolic.n_supernodes())
+            .filter(|&s| begin[s].zx() < self.n_interior && self.n_interior < end[s].zx())
+            .count()
+    }
+
+    /// Floating point operations of a whole factorisation on this analysis
+    /// ([`super::condense::factor_flops`]): the interface's dense factorisation, which
+    /// [`PartialFactor`] does not do, included.
+    pub(super) fn factor_flops(&self) -> f64 {
+        layout_flops(Layout::Supernodal(&self.symbolic))
+    }
+}
+
+/// The factor of a [`PartialOrdering`]'s interior, with the Schur complement on the interface
+/// in its trailing block.
+pub(super) struct PartialFactor<I: Index> {
+    ordering: PartialOrdering<I>,
+    values: Vec<f64>,
+}
+
+impl<I: Index> PartialFactor<I> {
+    /// Factorise the interior of the matrix with the pattern `pattern` (in elimination order,
+    /// its own values not read) and the entries `values`, on one thread, in `storage`'s
+    /// memory (its contents discarded).
+    pub(super) fn new(
+        ordering: &PartialOrdering<I>,
+        pattern: SymbolicSparseColMatRef<'_, I>,
+        values: &[f64],
+        storage: Vec<f64>,
+    ) -> Result<Self, FemError> {
+        Self::with_kernel(ordering, pattern, values, storage, Kernel::detect())
+    }
+
+    /// As [`PartialFactor::new`], the updates multiplied by `kernel`.
+    pub(super) fn with_kernel(
+        ordering: &PartialOrdering<I>,
+        pattern: SymbolicSparseColMatRef<'_, I>,
+        values: &[f64],
+        storage: Vec<f64>,
+        kernel: Kernel,
+    ) -> Result<Self, FemError> {
+        let symbolic = &*ordering.symbolic;
+        let widest = (0..symbolic.n_supernodes())
+            .map(|s| symbolic.supernode_end()[s].zx() - symbolic.supernode_begin()[s].zx())
+            .max()
+            .unwrap_or(0);
+        let scratch = llt::factor::cholesky_in_place_scratch::<f64>(widest, Par::Seq, Default::default());
+        let mut factor = factor_storage(symbolic.len_val(), scratch, pattern.nrows(), storage)?;
+        let mut mem = MemBuffer::try_new(scratch)
+            .map_err(|_| FemError::OutOfMemory("the factorisation's workspace"))?;
+        factorize_interior(
+            &mut factor,
+            SparseColMatRef::new(pattern, values),
+            symbolic,
+            ordering.n_interior,
+            MemStack::new(&mut mem),
+            kernel,
+        )?;
+        Ok(PartialFactor {
+            ordering: ordering.clone(),
+            values: factor,
+        })
+    }
+
+    fn blocks(&self) -> Blocks<'_, I> {
+        Blocks::new(
+            Layout::Supernodal(&self.ordering.symbolic),
+            &self.values,
+            self.ordering.n_interior,
+        )
+    }
+
+    /// Forward elimination of the interior ([`Blocks::eliminate_interior`]).
+    pub(super) fn eliminate_interior(&self, x: MatMut<'_, f64>) {
+        self.blocks().eliminate_interior(x);
+    }
+
+    /// Back substitution of the interior ([`Blocks::back_substitute_interior`]).
+    pub(super) fn back_substitute_interior(&self, x: MatMut<'_, f64>) {
+        self.blocks().back_substitute_interior(x);
+    }
+
+    /// Each stored entry (i, j, value), i ≥ j, of the Schur complement S = K₂₂ − L₂₁ L₂₁ᵀ on
+    /// the interface (i and j its positions in the interface).
+    pub(super) fn for_each_schur_entry(&self, entry: impl FnMut(usize, usize, f64)) {
+        self.blocks().for_each_trailing(entry);
+    }
+}
+
+/// faer's left-looking supernodal Cholesky factorisation of `a` (lower triangle, in
+/// elimination order) into `values` (zero, `symbolic.len_val()` long), of the columns before
+/// `n_interior` alone: each supernode gathers its entries of `a` and the updates of the
+/// interior columns of the supernodes below it, then factorises its interior columns (a
+/// dense Cholesky factor, then a triangular solve for the rows under them) and applies their
+/// update to its own interface columns. Interface columns are neither factorised nor
+/// propagated, so they end as the Schur complement's lower triangle.
+fn factorize_interior<I: Index>(
+    values: &mut [f64],
+    a: SparseColMatRef<'_, I, f64>,
+    symbolic: &SymbolicSupernodalCholesky<I>,
+    n_interior: usize,
+    stack: &mut MemStack,
+    kernel: Kernel,
+) -> Result<(), FemError> {
+    let n_supernodes = symbolic.n_supernodes();
+    let (begin, end) = (symbolic.supernode_begin(), symbolic.supernode_end());
+    let (col_ptr_row, col_ptr_val) = (symbolic.col_ptr_for_row_idx(), symbolic.col_ptr_for_val());
+    let pattern = |s: usize| &symbolic.row_idx()[col_ptr_row[s].zx()..col_ptr_row[s + 1].zx()];
+    // The interior columns of supernode s: those before n_interior.
+    let interior = |s: usize| end[s].zx().min(n_interior).saturating_sub(begin[s].zx());
+    let descendants = descendants(symbolic, interior);
+    const NONE: usize = usize::MAX;
+    let mut local = vec![NONE; symbolic.nrows()];
+    let (mut row_idx, mut product) = (Vec::<I>::new(), Vec::new());
+    for s in 0..n_supernodes {
+        let (s_start, s_end) = (begin[s].zx(), end[s].zx());
+        let s_pattern = pattern(s);
+        let s_ncols = s_end - s_start;
+        let s_nrows = s_pattern.len() + s_ncols;
+        for (i, &row) in s_pattern.iter().enumerate() {
+            local[row.zx()] = i + s_ncols;
+        }
+        let (head, tail) = values.split_at_mut(col_ptr_val[s].zx());
+        let head = &*head;
+        let mut ls = MatMut::from_column_major_slice_mut(
+            &mut tail[..col_ptr_val[s + 1].zx() - col_ptr_val[s].zx()],
+            s_nrows,
+            s_ncols,
+        );
+        for j in s_start..s_end {
+            for (i, &v) in a.row_idx_of_col(j).zip(a.val_of_col(j)) {
+                if i >= j {
+                    let row = if i >= s_end { local[i] } else { i - s_start };
+                    ls[(row, j - s_start)] += v;
+                }
+            }
+        }
+        for &d in &descendants.0[descendants.1[s]..descendants.1[s + 1]] {
+            let (d_start, d_end) = (begin[d].zx(), end[d].zx());
+            let d_pattern = pattern(d);
+            let d_ncols = d_end - d_start;
+            let ld = MatRef::from_column_major_slice(
+                &head[col_ptr_val[d].zx()..col_ptr_val[d + 1].zx()],
+                d_pattern.len() + d_ncols,
+                d_ncols,
+            );
+            // d's rows in s's columns (mid) and below them, times its interior columns (depth).
+            let first = d_pattern.partition_point(|r| r.zx() < s_start);
+            let mid = d_pattern[first..].partition_point(|r| r.zx() < s_end);
+            let rows = d_pattern.len() - first;
+            let depth = interior(d);
+            let ld_mid_bot = ld.submatrix(d_ncols + first, 0, rows, depth);
+            // Where each of those rows and columns lies in s's block.
+            row_idx.clear();
+            row_idx.extend(
+                d_pattern[first..]
+                    .iter()
+                    .enumerate()
+                    .map(|(i, r)| I::truncate(if i < mid { r.zx() - s_start } else { local[r.zx()] })),
+            );
+            subtract_lower_product(
+                ls.rb_mut(),
+                &row_idx,
+                &row_idx[..mid],
+                ld_mid_bot,
+                ld_mid_bot.subrows(0, mid),
+                kernel,
+                &mut product,
+            );
+        }
+        let m = interior(s);
+        if m > 0 {
+            let (mut top, mut bot) = ls.rb_mut().split_at_row_mut(m);
+            let mut l11 = top.rb_mut().subcols_mut(0, m);
+            llt::factor::cholesky_in_place(
+                l11.rb_mut(),
+                Default::default(),
+                Par::Seq,
+                stack,
+                Default::default(),
+            )
+            .map_err(|_| FemError::NotPositiveDefinite)?;
+            let (mut left, right) = bot.rb_mut().split_at_col_mut(m);
+            triangular_solve::solve_lower_triangular_in_place(
+                l11.rb(),
+                left.rb_mut().transpose_mut(),
+                Par::Seq,
+            );
+            // The supernode's own interface columns take its interior columns' update.
+            let k = s_ncols - m;
+            if k > 0 {
+                let (right_mid, right_bot) = right.split_at_row_mut(k);
+                let (left_mid, left_bot) = left.rb().split_at_row(k);
+                triangular::matmul(
+                    right_mid,
+                    BlockStructure::TriangularLower,
+                    Accum::Add,
+                    left_mid,
+                    BlockStructure::Rectangular,
+                    left_mid.transpose(),
+                    BlockStructure::Rectangular,
+                    -1.0,
+                    Par::Seq,
+                );
+                matmul(
+                    right_bot,
+                    Accum::Add,
+                    left_bot,
+                    left_mid.transpose(),
+                    -1.0,
+                    Par::Seq,
+                );
+            }
+        }
+        for &row in s_pattern {
+            local[row.zx()] = NONE;
+        }
+    }
+    Ok(())
+}
+
+/// For each supernode s, the supernodes d < s with interior columns (`interior(d) > 0`) that
+/// update it (rows of d's pattern in s's columns), ascending: compressed rows.
+fn descendants<I: Index>(
+    symbolic: &SymbolicSupernodalCholesky<I>,
+    interior: impl Fn(usize) -> usize,
+) -> (Vec<usize>, Vec<usize>) {
+    let n_supernodes = symbolic.n_supernodes();
+    let mut supernode_of = vec![0usize; symbolic.nrows()];
+    for s in 0..n_supernodes {
+        supernode_of[symbolic.supernode_begin()[s].zx()..symbolic.supernode_end()[s].zx()].fill(s);
+    }
+    let (supernode_of, col_ptr_row) = (&supernode_of, symbolic.col_ptr_for_row_idx());
+    // Each d's pattern is ascending: the supernodes it updates, each once.
+    let updated = |d: usize| {
+        let rows = &symbolic.row_idx()[col_ptr_row[d].zx()..col_ptr_row[d + 1].zx()];
+        let mut last = usize::MAX;
+        rows.iter().filter_map(move |r| {
+            let s = supernode_of[r.zx()];
+            (s != last).then(|| {
+                last = s;
+                s
+            })
+        })
+    };
+    let mut row_ptr = vec![0usize; n_supernodes + 1];
+    for d in (0..n_supernodes).filter(|&d| interior(d) > 0) {
+        for s in updated(d) {
+            row_ptr[s + 1] += 1;
+        }
+    }
+    for s in 0..n_supernodes {
+        row_ptr[s + 1] += row_ptr[s];
+    }
+    let mut next = row_ptr.clone();
+    let mut col_idx = vec![0usize; row_ptr[n_supernodes]];
+    for d in (0..n_supernodes).filter(|&d| interior(d) > 0) {
+        for s in updated(d) {
+            col_idx[next[s]] = d;
+            next[s] += 1;
+        }
+    }
+    (col_idx, row_ptr)
+}
+
+/// How [`subtract_lower_product`] multiplies: faer's own gather-scatter kernel (the one its
+/// supernodal factorisation calls, from `private-gemm-x86`), or a dense product scattered
+/// afterwards where that kernel does not run.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) enum Kernel {
+    #[cfg(target_arch = "x86_64")]
+    Gather(private_gemm_x86::InstrSet),
+    Dense,
+}
+
+impl Kernel {
+    /// The gather-scatter kernel where the processor runs it (AVX-512, or AVX2 with FMA, as
+    /// faer decides), else the dense product.
+    pub(super) fn detect() -> Self {
+        #[cfg(target_arch = "x86_64")]
+        {
+            use private_gemm_x86::InstrSet;
+            if std::arch::is_x86_feature_detected!("avx512f") {
+                return Kernel::Gather(InstrSet::Avx512);
+            }
+            if std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma") {
+                return Kernel::Gather(InstrSet::Avx256);
+            }
+        }
+        Kernel::Dense
+    }
+}
+
+/// dst[rows[i], cols[j]] −= (lhs rhsᵀ)[i, j] for i ≥ j (the product's lower triangle, rhs
+/// being lhs's first rows), with `buffer` as the dense path's scratch.
+fn subtract_lower_product<I: Index>(
+    mut dst: MatMut<'_, f64>,
+    rows: &[I],
+    cols: &[I],
+    lhs: MatRef<'_, f64>,
+    rhs: MatRef<'_, f64>,
+    kernel: Kernel,
+    buffer: &mut Vec<f64>,
+) {
+    let (nrows, ncols) = (lhs.nrows(), rhs.nrows());
+    #[cfg(target_arch = "x86_64")]
+    if let Kernel::Gather(instr) = kernel
+        && rows.len() == nrows
+        && cols.len() == ncols
+        && rows.iter().all(|r| r.zx() < dst.nrows())
+        && cols.iter().all(|c| c.zx() < dst.ncols())
+    {
+        use private_gemm_x86::{Accum, DType, DstKind, IType};
+        let alpha = -1.0f64;
+        let itype = if size_of::<I>() == 4 {
+            IType::U32
+        } else {
+            IType::U64
+        };
+        // SAFETY: the arguments are those of faer's `spicy_matmul` for the same update in
+        // `factorize_supernodal_numeric_llt`: `lhs` (nrows × depth) and `rhs`ᵀ (depth × ncols)
+        // are read through their own pointers and strides; every index in `rows` and `cols`
+        // (checked just above, one per row of lhs and per column of rhsᵀ) addresses an entry
+        // of `dst`, which is written through its pointer and strides alone; the index type
+        // matches I's width (u32 or u64); one thread.
+        unsafe {
+            private_gemm_x86::gemm(
+                DType::F64,
+                itype,
+                instr,
+                nrows,
+                ncols,
+                lhs.ncols(),
+                dst.as_ptr_mut() as *mut (),
+                dst.row_stride(),
+                dst.col_stride(),
+                rows.as_ptr() as *const (),
+                cols.as_ptr() as *const (),
+                DstKind::Lower,
+                Accum::Add,
+                lhs.as_ptr() as *const (),
+                lhs.row_stride(),
+                lhs.col_stride(),
+                false,
+                std::ptr::null(),
+                0,
+                rhs.as_ptr() as *const (),
+                rhs.col_stride(),
+                rhs.row_stride(),
+                false,
+                (&raw const alpha) as *const (),
+                1,
+            );
+        }
+        return;
+    }
+    let _ = kernel;
+    buffer.clear();
+    buffer.resize(nrows * ncols, 0.0);
+    let mut w = MatMut::from_column_major_slice_mut(buffer, nrows, ncols);
+    let (w_mid, w_bot) = w.rb_mut().split_at_row_mut(ncols);
+    triangular::matmul(
+        w_mid,
+        BlockStructure::TriangularLower,
+        Accum::Replace,
+        rhs,
+        BlockStructure::Rectangular,
+        rhs.transpose(),
+        BlockStructure::Rectangular,
+        1.0,
+        Par::Seq,
+    );
+    matmul(
+        w_bot,
+        Accum::Replace,
+        lhs.subrows(ncols, nrows - ncols),
+        rhs.transpose(),
+        1.0,
+        Par::Seq,
+    );
+    for (j, c) in cols.iter().enumerate() {
+        for (i, r) in rows.iter().enumerate().skip(j) {
+            dst[(r.zx(), c.zx())] -= w[(i, j)];
+        }
+    }
+}
