@@ -40,17 +40,17 @@ pub(super) struct PartialOrdering<I: Index> {
 }
 
 impl<I: Index> PartialOrdering<I> {
-    /// The analysis of `lower` (a lower triangle) in its own order, its last `n_interface`
-    /// dofs the interface; `supervariables` holds the first column of each run of
-    /// indistinguishable columns ([`super::supervariables`]), from which the elimination tree
-    /// and the column counts are read.
+    /// The analysis of `lower` (a lower triangle, its columns' rows in any order) in its own
+    /// order, its last `n_interface` dofs the interface; `supervariables` holds the first
+    /// column of each run of indistinguishable columns ([`super::supervariables`]), from which
+    /// the elimination tree and the column counts are read.
     pub(super) fn new(
         lower: SymbolicSparseColMatRef<'_, I>,
         n_interface: usize,
         supervariables: &[usize],
     ) -> Result<Self, FemError> {
         // faer analyses the upper triangle: the transpose of the lower one, each column's rows
-        // ascending.
+        // ascending as it is built column by column.
         let n = lower.nrows();
         let mut col_ptr = vec![I::truncate(0); n + 1];
         for &r in lower.row_idx() {

@@ -59,7 +59,8 @@ struct Half {
     /// The order of K_h.
     n: usize,
     /// The pattern of K_h's lower triangle in elimination order (h, then Γ_h), compressed
-    /// columns; u32 indices, as every index of K fits ([`Half::new`]).
+    /// columns (each column's rows unsorted); u32 indices, as every index of K fits
+    /// ([`Half::new`]).
     col_ptr: Vec<u32>,
     row_idx: Vec<u32>,
     /// The position in K's values of each entry of the pattern.
@@ -208,8 +209,11 @@ impl Half {
             position[d] = narrow(p);
         }
         // K_h's lower triangle in that order (so that faer need not permute it): entry (r, c)
-        // of K goes to column min(p_r, p_c), then each column is sorted by row. Only the
-        // half's own columns of K are read: the other half's entries never couple with it.
+        // of K goes to column min(p_r, p_c). Only the half's own columns of K are read: the
+        // other half's entries never couple with it. The rows of a column are left unsorted:
+        // the analysis reads the transpose, sorted as it is built, and the factorisation
+        // gathers K_h's entries in any order (sorting them took 3% of a level-6 solve's
+        // instructions, BENCHMARKS.md).
         let mut col_ptr = vec![0usize; n_h + 1];
         let position = &position;
         let entries = |pc: usize, c: usize| {
@@ -226,9 +230,9 @@ impl Half {
         for j in 0..n_h {
             col_ptr[j + 1] += col_ptr[j];
         }
-        // Rows and positions are written straight into their final arrays and each column is
-        // sorted through a buffer of one column: no array of pairs the size of K_h, which at
-        // level 8 was 0.3 GB of fresh memory per half (BENCHMARKS.md, "Fresh memory").
+        // Rows and positions are written straight into their final arrays: no array of pairs
+        // the size of K_h, which at level 8 was 0.3 GB of fresh memory per half (BENCHMARKS.md,
+        // "Fresh memory").
         let mut next = col_ptr.clone();
         let mut row_idx = vec![0u32; col_ptr[n_h]];
         let mut gather = vec![0u32; col_ptr[n_h]];
@@ -240,31 +244,13 @@ impl Half {
                 next[j] += 1;
             }
         }
-        let mut one_column = Vec::new();
-        for j in 0..n_h {
-            let range = col_ptr[j]..col_ptr[j + 1];
-            if row_idx[range.clone()].is_sorted() {
-                continue;
-            }
-            one_column.clear();
-            one_column.extend(
-                row_idx[range.clone()]
-                    .iter()
-                    .copied()
-                    .zip(gather[range.clone()].iter().copied()),
-            );
-            one_column.sort_unstable();
-            for (t, (r, k)) in range.zip(one_column.iter().copied()) {
-                (row_idx[t], gather[t]) = (r, k);
-            }
-        }
         let col_ptr: Vec<u32> = col_ptr.into_iter().map(narrow).collect();
         // One node's dofs next to each other in the order couple with the same dofs: one
         // supervariable ([`super::supervariables`]).
         let supervariables: Vec<usize> = (0..n_h)
             .filter(|&p| p == 0 || at.node[members[p]] != at.node[members[p - 1]])
             .collect();
-        let lower = SymbolicSparseColMatRef::new_checked(n_h, n_h, &col_ptr, None, &row_idx);
+        let lower = SymbolicSparseColMatRef::new_unsorted_checked(n_h, n_h, &col_ptr, None, &row_idx);
         let ordering = PartialOrdering::new(lower, half_gamma.len(), &supervariables)?;
         Ok(Half {
             n: n_h,
@@ -277,9 +263,9 @@ impl Half {
         })
     }
 
-    /// K_h's pattern (lower triangle, elimination order).
+    /// K_h's pattern (lower triangle, elimination order; each column's rows unsorted).
     fn pattern(&self) -> SymbolicSparseColMatRef<'_, u32> {
-        SymbolicSparseColMatRef::new_checked(self.n, self.n, &self.col_ptr, None, &self.row_idx)
+        SymbolicSparseColMatRef::new_unsorted_checked(self.n, self.n, &self.col_ptr, None, &self.row_idx)
     }
 }
 
