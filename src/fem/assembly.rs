@@ -79,11 +79,17 @@ fn integrate_cell(pts: &[QuadPoint], c: &Matrix4<f64>, mass: f64) -> DMatrix<f64
     k
 }
 
-/// Cell matrices keyed by what they depend on: the cell's size and diagonal.
+/// What a cell matrix depends on: the cell's width, height and diagonal.
+type CellKey = (u64, u64, bool);
+
+/// Cell matrices keyed by what they depend on ([`CellKey`]); the last one asked for is found
+/// without hashing (neighbouring cells share it on the grid's uniform stretches).
 struct CellMatrices<'a> {
     mesh: &'a Mesh,
     form: Form,
-    cache: HashMap<(u64, u64, bool), DMatrix<f64>>,
+    index: HashMap<CellKey, usize>,
+    matrices: Vec<DMatrix<f64>>,
+    last: Option<(CellKey, usize)>,
 }
 
 impl<'a> CellMatrices<'a> {
@@ -91,7 +97,9 @@ impl<'a> CellMatrices<'a> {
         CellMatrices {
             mesh,
             form,
-            cache: HashMap::new(),
+            index: HashMap::new(),
+            matrices: Vec::new(),
+            last: None,
         }
     }
 
@@ -99,10 +107,19 @@ impl<'a> CellMatrices<'a> {
         let (x0, x1, y0, y1) = self.mesh.cell_rect(ci, cj);
         let rising = self.mesh.diagonal(ci) == Diagonal::Rising;
         let key = ((x1 - x0).to_bits(), (y1 - y0).to_bits(), rising);
-        let (mesh, form) = (self.mesh, self.form);
-        self.cache
-            .entry(key)
-            .or_insert_with(|| cell_matrix(mesh, ci, cj, &form))
+        let k = match self.last {
+            Some((last, k)) if last == key => k,
+            _ => {
+                let (mesh, form, matrices) = (self.mesh, self.form, &mut self.matrices);
+                let k = *self.index.entry(key).or_insert_with(|| {
+                    matrices.push(cell_matrix(mesh, ci, cj, &form));
+                    matrices.len() - 1
+                });
+                self.last = Some((key, k));
+                k
+            }
+        };
+        &self.matrices[k]
     }
 }
 
@@ -272,25 +289,39 @@ fn scatter(
 ) {
     let offset = col_ptr[columns.0];
     let mut cellmats = CellMatrices::new(mesh, form);
-    let mut free = Vec::with_capacity(18);
+    let p = mesh.element.order();
+    // The cell's free dofs and their rows in the cell matrix: ascending, as the cell's nodes
+    // are (tensor order, row by row) and the free dofs are numbered node by node.
+    let mut free = [(0usize, 0usize); 2 * 9];
     for cj in cell_rows {
         for ci in 0..mesh.nx() {
-            free.clear();
-            free.extend(
-                mesh.cell_nodes(ci, cj)
-                    .iter()
-                    .flat_map(|&n| [dofs.free_index(2 * n), dofs.free_index(2 * n + 1)]),
-            );
+            let mut count = 0;
+            for lj in 0..=p {
+                for li in 0..=p {
+                    let node = mesh.node(ci * p + li, cj * p + lj);
+                    for comp in 0..2 {
+                        if let Some(d) = dofs.free_index(2 * node + comp) {
+                            free[count] = (d, 2 * (lj * (p + 1) + li) + comp);
+                            count += 1;
+                        }
+                    }
+                }
+            }
+            let free = &free[..count];
             let ke = cellmats.get(ci, cj);
-            for (q, c) in free.iter().enumerate() {
-                let Some(c) = c.filter(|&c| (columns.0..columns.1).contains(&c)) else {
+            for (q, &(c, lq)) in free.iter().enumerate() {
+                if !(columns.0..columns.1).contains(&c) {
                     continue;
-                };
+                }
+                // The rows r ≥ c of the cell, ascending, met in one walk down the column.
                 let (lo, hi) = (col_ptr[c], col_ptr[c + 1]);
-                for (p, r) in free.iter().enumerate() {
-                    let Some(r) = r.filter(|&r| r >= c) else { continue };
-                    let k = lo + row_idx[lo..hi].partition_point(|&x| x < r);
-                    values[k - offset] += ke[(p, q)];
+                let rows = &row_idx[lo..hi];
+                let mut k = 0;
+                for &(r, lp) in &free[q..] {
+                    while rows[k] < r {
+                        k += 1;
+                    }
+                    values[lo + k - offset] += ke[(lp, lq)];
                 }
             }
         }
