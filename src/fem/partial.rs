@@ -37,6 +37,16 @@ pub(super) struct PartialOrdering<I: Index> {
     symbolic: Arc<SymbolicSupernodalCholesky<I>>,
     /// The number of dofs eliminated before the interface.
     n_interior: usize,
+    /// Which supernodes update which ([`descendants`]), read once per factorisation.
+    descendants: Arc<Descendants<I>>,
+}
+
+/// For each supernode s, the supernodes below it whose interior columns update it: compressed
+/// rows, `of[start[s]..start[s + 1]]` ascending (faer keeps the same structure, private, in
+/// its supernodal analysis).
+struct Descendants<I: Index> {
+    start: Vec<usize>,
+    of: Vec<I>,
 }
 
 impl<I: Index> PartialOrdering<I> {
@@ -102,9 +112,11 @@ impl<I: Index> PartialOrdering<I> {
             Default::default(),
         )
         .map_err(FemError::from_faer("the symbolic factorisation"))?;
+        let n_interior = n - n_interface;
         Ok(PartialOrdering {
+            descendants: Arc::new(descendants(&symbolic, n_interior)),
             symbolic: Arc::new(symbolic),
-            n_interior: n - n_interface,
+            n_interior,
         })
     }
 
@@ -171,8 +183,7 @@ impl<I: Index> PartialFactor<I> {
         factorize_interior(
             &mut factor,
             SparseColMatRef::new(pattern, values),
-            symbolic,
-            ordering.n_interior,
+            ordering,
             MemStack::new(&mut mem),
             kernel,
         )?;
@@ -208,8 +219,8 @@ impl<I: Index> PartialFactor<I> {
 }
 
 /// faer's left-looking supernodal Cholesky factorisation of `a` (lower triangle, in
-/// elimination order) into `values` (zero, `symbolic.len_val()` long), of the columns before
-/// `n_interior` alone: each supernode gathers its entries of `a` and the updates of the
+/// elimination order) into `values` (zero, as long as `ordering`'s factor), of the columns
+/// before its interface alone: each supernode gathers its entries of `a` and the updates of the
 /// interior columns of the supernodes below it, then factorises its interior columns (a
 /// dense Cholesky factor, then a triangular solve for the rows under them) and applies their
 /// update to its own interface columns. Interface columns are neither factorised nor
@@ -217,20 +228,19 @@ impl<I: Index> PartialFactor<I> {
 fn factorize_interior<I: Index>(
     values: &mut [f64],
     a: SparseColMatRef<'_, I, f64>,
-    symbolic: &SymbolicSupernodalCholesky<I>,
-    n_interior: usize,
+    ordering: &PartialOrdering<I>,
     stack: &mut MemStack,
     kernel: Kernel,
 ) -> Result<(), FemError> {
+    let (symbolic, descendants) = (&*ordering.symbolic, &*ordering.descendants);
     let n_supernodes = symbolic.n_supernodes();
     let (begin, end) = (symbolic.supernode_begin(), symbolic.supernode_end());
     let (col_ptr_row, col_ptr_val) = (symbolic.col_ptr_for_row_idx(), symbolic.col_ptr_for_val());
     let pattern = |s: usize| &symbolic.row_idx()[col_ptr_row[s].zx()..col_ptr_row[s + 1].zx()];
-    // The interior columns of supernode s: those before n_interior.
-    let interior = |s: usize| end[s].zx().min(n_interior).saturating_sub(begin[s].zx());
-    let descendants = descendants(symbolic, interior);
-    const NONE: usize = usize::MAX;
-    let mut local = vec![NONE; symbolic.nrows()];
+    let interior = |s: usize| interior_columns(symbolic, ordering.n_interior, s);
+    // Where each row of the current supernode's pattern lies in its block.
+    let none = I::truncate(usize::MAX);
+    let mut local = vec![none; symbolic.nrows()];
     let (mut row_idx, mut product) = (Vec::<I>::new(), Vec::new());
     for s in 0..n_supernodes {
         let (s_start, s_end) = (begin[s].zx(), end[s].zx());
@@ -238,7 +248,7 @@ fn factorize_interior<I: Index>(
         let s_ncols = s_end - s_start;
         let s_nrows = s_pattern.len() + s_ncols;
         for (i, &row) in s_pattern.iter().enumerate() {
-            local[row.zx()] = i + s_ncols;
+            local[row.zx()] = I::truncate(i + s_ncols);
         }
         let (head, tail) = values.split_at_mut(col_ptr_val[s].zx());
         let head = &*head;
@@ -250,12 +260,15 @@ fn factorize_interior<I: Index>(
         for j in s_start..s_end {
             for (i, &v) in a.row_idx_of_col(j).zip(a.val_of_col(j)) {
                 if i >= j {
-                    let row = if i >= s_end { local[i] } else { i - s_start };
+                    let row = if i >= s_end { local[i].zx() } else { i - s_start };
                     ls[(row, j - s_start)] += v;
                 }
             }
         }
-        for &d in &descendants.0[descendants.1[s]..descendants.1[s + 1]] {
+        for d in descendants.of[descendants.start[s]..descendants.start[s + 1]]
+            .iter()
+            .map(|d| d.zx())
+        {
             let (d_start, d_end) = (begin[d].zx(), end[d].zx());
             let d_pattern = pattern(d);
             let d_ncols = d_end - d_start;
@@ -272,12 +285,13 @@ fn factorize_interior<I: Index>(
             let ld_mid_bot = ld.submatrix(d_ncols + first, 0, rows, depth);
             // Where each of those rows and columns lies in s's block.
             row_idx.clear();
-            row_idx.extend(
-                d_pattern[first..]
-                    .iter()
-                    .enumerate()
-                    .map(|(i, r)| I::truncate(if i < mid { r.zx() - s_start } else { local[r.zx()] })),
-            );
+            row_idx.extend(d_pattern[first..].iter().enumerate().map(|(i, r)| {
+                if i < mid {
+                    I::truncate(r.zx() - s_start)
+                } else {
+                    local[r.zx()]
+                }
+            }));
             subtract_lower_product(
                 ls.rb_mut(),
                 &row_idx,
@@ -333,22 +347,33 @@ fn factorize_interior<I: Index>(
             }
         }
         for &row in s_pattern {
-            local[row.zx()] = NONE;
+            local[row.zx()] = none;
         }
     }
     Ok(())
 }
 
-/// For each supernode s, the supernodes d < s with interior columns (`interior(d) > 0`) that
-/// update it (rows of d's pattern in s's columns), ascending: compressed rows.
-fn descendants<I: Index>(
+/// The interior columns of supernode `s` (those before `n_interior`).
+fn interior_columns<I: Index>(
     symbolic: &SymbolicSupernodalCholesky<I>,
-    interior: impl Fn(usize) -> usize,
-) -> (Vec<usize>, Vec<usize>) {
+    n_interior: usize,
+    s: usize,
+) -> usize {
+    let (begin, end) = (
+        symbolic.supernode_begin()[s].zx(),
+        symbolic.supernode_end()[s].zx(),
+    );
+    end.min(n_interior).saturating_sub(begin)
+}
+
+/// For each supernode s, the supernodes d < s with interior columns that update it (rows of
+/// d's pattern in s's columns), ascending.
+fn descendants<I: Index>(symbolic: &SymbolicSupernodalCholesky<I>, n_interior: usize) -> Descendants<I> {
     let n_supernodes = symbolic.n_supernodes();
-    let mut supernode_of = vec![0usize; symbolic.nrows()];
+    let mut supernode_of = vec![I::truncate(0); symbolic.nrows()];
     for s in 0..n_supernodes {
-        supernode_of[symbolic.supernode_begin()[s].zx()..symbolic.supernode_end()[s].zx()].fill(s);
+        supernode_of[symbolic.supernode_begin()[s].zx()..symbolic.supernode_end()[s].zx()]
+            .fill(I::truncate(s));
     }
     let (supernode_of, col_ptr_row) = (&supernode_of, symbolic.col_ptr_for_row_idx());
     // Each d's pattern is ascending: the supernodes it updates, each once.
@@ -356,31 +381,32 @@ fn descendants<I: Index>(
         let rows = &symbolic.row_idx()[col_ptr_row[d].zx()..col_ptr_row[d + 1].zx()];
         let mut last = usize::MAX;
         rows.iter().filter_map(move |r| {
-            let s = supernode_of[r.zx()];
+            let s = supernode_of[r.zx()].zx();
             (s != last).then(|| {
                 last = s;
                 s
             })
         })
     };
-    let mut row_ptr = vec![0usize; n_supernodes + 1];
-    for d in (0..n_supernodes).filter(|&d| interior(d) > 0) {
+    let updating = || (0..n_supernodes).filter(|&d| interior_columns(symbolic, n_interior, d) > 0);
+    let mut start = vec![0usize; n_supernodes + 1];
+    for d in updating() {
         for s in updated(d) {
-            row_ptr[s + 1] += 1;
+            start[s + 1] += 1;
         }
     }
     for s in 0..n_supernodes {
-        row_ptr[s + 1] += row_ptr[s];
+        start[s + 1] += start[s];
     }
-    let mut next = row_ptr.clone();
-    let mut col_idx = vec![0usize; row_ptr[n_supernodes]];
-    for d in (0..n_supernodes).filter(|&d| interior(d) > 0) {
+    let mut next = start.clone();
+    let mut of = vec![I::truncate(0); start[n_supernodes]];
+    for d in updating() {
         for s in updated(d) {
-            col_idx[next[s]] = d;
+            of[next[s]] = I::truncate(d);
             next[s] += 1;
         }
     }
-    (col_idx, row_ptr)
+    Descendants { start, of }
 }
 
 /// How [`subtract_lower_product`] multiplies: faer's own gather-scatter kernel (the one its
