@@ -183,7 +183,7 @@ pub fn factor_flops<I: Index>(symbolic: &SymbolicCholesky<I>) -> f64 {
 }
 
 /// [`factor_flops`] of a factor's layout.
-pub(super) fn layout_flops<I: Index>(layout: Layout<'_, I>) -> f64 {
+fn layout_flops<I: Index>(layout: Layout<'_, I>) -> f64 {
     let square = |c: usize| (c as f64) * (c as f64);
     match layout {
         Layout::Supernodal(sym) => (0..sym.n_supernodes())

@@ -4,8 +4,9 @@
 //! A half h of [`super::split`] orders K_h = [K₁₁ K₁₂; K₂₁ K₂₂] with its interface Γ_h last and
 //! needs L₁₁ L₁₁ᵀ = K₁₁ and L₂₁ = K₂₁ L₁₁⁻ᵀ for its solves, and S_h = K₂₂ − L₂₁ L₂₁ᵀ for the
 //! interface's S. A whole Cholesky factorisation forms S_h on the way and then factorises it
-//! (L₂₂ L₂₂ᵀ = S_h), which the split had to multiply out again: two dense products of |Γ_h|³/6
-//! multiply-adds (about 35 ms each a half at level 7, BENCHMARKS.md) for nothing. This is
+//! (L₂₂ L₂₂ᵀ = S_h), which the split had to multiply out again: two dense steps of |Γ_h|³/6
+//! multiply-adds each for nothing (the product took 32–40 ms a half at level 7, BENCHMARKS.md,
+//! "Halves that stop before Γ"). This is
 //! faer's left-looking supernodal factorisation (`factorize_supernodal_numeric_llt`) with
 //! every factorisation, and every update it sends, limited to the interior's columns: the
 //! trailing block of the factor's storage ends as S_h's lower triangle.
@@ -27,7 +28,7 @@ use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::traits::{Index, SignedIndex};
 use faer::{Accum, MatMut, MatRef, Par};
 
-use super::condense::{Blocks, Layout, factor_storage, layout_flops};
+use super::condense::{Blocks, Layout, factor_storage};
 use super::error::FemError;
 
 /// The supernodal analysis of a pattern already in elimination order, its last dofs the
@@ -135,11 +136,20 @@ impl<I: Index> PartialOrdering<I> {
             .count()
     }
 
-    /// Floating point operations of a whole factorisation on this analysis
-    /// ([`super::condense::factor_flops`]): the interface's dense factorisation, which
-    /// [`PartialFactor`] does not do, included.
+    /// Floating point operations of one [`PartialFactor`]: George and Liu's Σ c_j² over the
+    /// interior's columns of L alone ([`super::condense::factor_flops`] counts every column),
+    /// since the interface's columns are neither factorised nor send updates.
     pub(super) fn factor_flops(&self) -> f64 {
-        layout_flops(Layout::Supernodal(&self.symbolic))
+        let symbolic = &*self.symbolic;
+        (0..symbolic.n_supernodes())
+            .map(|s| {
+                let below = symbolic.supernode(s).pattern().len();
+                let width = symbolic.supernode_end()[s].zx() - symbolic.supernode_begin()[s].zx();
+                (0..interior_columns(symbolic, self.n_interior, s))
+                    .map(|i| ((width - i + below) as f64).powi(2))
+                    .sum::<f64>()
+            })
+            .sum()
     }
 }
 
@@ -528,5 +538,24 @@ fn subtract_lower_product<I: Index>(
         for (i, r) in rows.iter().enumerate().skip(j) {
             dst[(r.zx(), c.zx())] -= w[(i, j)];
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// On a dense pattern of order 5 with 2 interface dofs, the partial factorisation's flops
+    /// are those of the 3 interior columns (c = 5, 4, 3), not the whole factor's Σ_{c=1}^{5} c².
+    #[test]
+    fn the_flops_count_the_interior_columns() {
+        let n = 5u32;
+        let col_ptr: Vec<u32> = (0..=n).map(|j| (0..j).map(|c| n - c).sum()).collect();
+        let row_idx: Vec<u32> = (0..n).flat_map(|c| c..n).collect();
+        let lower = SymbolicSparseColMatRef::new_checked(5, 5, &col_ptr, None, &row_idx);
+        let ordering = PartialOrdering::new(lower, 2, &[0, 1, 2, 3, 4]).unwrap();
+        assert_eq!(ordering.factor_flops(), 25.0 + 16.0 + 9.0);
+        // One supernode, its diagonal block stored square.
+        assert_eq!(ordering.factor_len(), 25);
     }
 }

@@ -155,7 +155,7 @@ impl SplitOrdering {
     }
 
     /// Floating point operations of one factorisation ([`super::condense::factor_flops`]): both
-    /// halves', and S's dense Cholesky factor (Σ_{c=1}^{|Γ|} c²).
+    /// halves' interiors, and S's dense Cholesky factor (Σ_{c=1}^{|Γ|} c²).
     pub fn factor_flops(&self) -> f64 {
         let dense: f64 = (1..=self.0.gamma.len()).map(|c| (c as f64) * (c as f64)).sum();
         self.0
