@@ -10,7 +10,7 @@
 //! Each half h factorises the interior of the principal submatrix K_h = K[h ∪ Γ_h] (Γ_h: J and
 //! the trace dofs on its side of the column, the only dofs of Γ that couple with h; SPD as K is)
 //! with Γ_h last, on a thread of its own: the grid's nested dissection of the half, then Γ_h.
-//! The factorisation stops before Γ_h ([`super::partial`]), whose block is left as
+//! The factorisation stops before Γ_h (`src/fem/partial.rs`), whose block is left as
 //! S_h = K[Γ_h, Γ_h] − K_Γh K_hh⁻¹ K_hΓ, so that
 //!
 //!   S = S_L + S_R − K on (Γ_L ∩ Γ_R)²
