@@ -35,10 +35,10 @@ use crate::mesh::Mesh;
 
 /// The symbolic analysis of a pattern with the trace dofs ordered last (one per mesh).
 #[derive(Clone)]
-pub struct TraceOrdering<I: Index = usize> {
+pub struct TraceOrdering {
     /// faer's analysis of the pattern in the dofs' order, with the permutation it was given
     /// or chose; supernodal or simplicial.
-    symbolic: Arc<SymbolicCholesky<I>>,
+    symbolic: Arc<SymbolicCholesky<usize>>,
     /// The trace dofs, in the order of C's rows and columns.
     trace: Vec<usize>,
 }
@@ -155,9 +155,7 @@ impl TraceOrdering {
             trace: trace.to_vec(),
         })
     }
-}
 
-impl<I: Index> TraceOrdering<I> {
     /// The number of stored values of the factor L (explicit zeros of merged supernodes
     /// included): its memory is eight bytes each.
     pub fn factor_len(&self) -> usize {
@@ -202,8 +200,8 @@ fn layout_flops<I: Index>(layout: Layout<'_, I>) -> f64 {
 }
 
 /// A numeric factorisation on a [`TraceOrdering`].
-pub struct TraceFactor<I: Index = usize> {
-    ordering: TraceOrdering<I>,
+pub struct TraceFactor {
+    ordering: TraceOrdering,
     values: Vec<f64>,
 }
 
@@ -266,7 +264,7 @@ pub(super) fn factor_storage(
     Ok(factor)
 }
 
-impl<I: Index> TraceFactor<I> {
+impl TraceFactor {
     /// Solve A X = B in place for the `ncols` columns of the column-major `b`.
     pub fn solve_in_place(&self, b: &mut [f64], ncols: usize) {
         let symbolic = &*self.ordering.symbolic;
@@ -281,7 +279,7 @@ impl<I: Index> TraceFactor<I> {
     }
 
     /// The factor's blocks of columns, in elimination order.
-    fn blocks(&self) -> Blocks<'_, I> {
+    fn blocks(&self) -> Blocks<'_, usize> {
         let symbolic = &*self.ordering.symbolic;
         Blocks::new(
             Layout::of(symbolic),
