@@ -168,14 +168,13 @@ impl Mesh {
 
     /// The nodes of cell (ci, cj) in tensor order (local x index fastest).
     pub fn cell_nodes(&self, ci: usize, cj: usize) -> Vec<usize> {
+        self.cell_node_iter(ci, cj).collect()
+    }
+
+    /// [`Mesh::cell_nodes`] without allocating, for the assembly's loop over every cell.
+    pub fn cell_node_iter(&self, ci: usize, cj: usize) -> impl Iterator<Item = usize> + '_ {
         let p = self.element.order();
-        let mut out = Vec::with_capacity((p + 1) * (p + 1));
-        for lj in 0..=p {
-            for li in 0..=p {
-                out.push(self.node(ci * p + li, cj * p + lj));
-            }
-        }
-        out
+        (0..=p).flat_map(move |lj| (0..=p).map(move |li| self.node(ci * p + li, cj * p + lj)))
     }
 
     /// (x0, x1, y0, y1) of cell (ci, cj).

@@ -289,21 +289,18 @@ fn scatter(
 ) {
     let offset = col_ptr[columns.0];
     let mut cellmats = CellMatrices::new(mesh, form);
-    let p = mesh.element.order();
-    // The cell's free dofs and their rows in the cell matrix: ascending, as the cell's nodes
-    // are (tensor order, row by row) and the free dofs are numbered node by node.
+    // The cell's free dofs and their rows in the cell matrix (two dofs for each of at most 9
+    // nodes, Q2's): ascending, as the cell's nodes are (tensor order, row by row) and the free
+    // dofs are numbered node by node.
     let mut free = [(0usize, 0usize); 2 * 9];
     for cj in cell_rows {
         for ci in 0..mesh.nx() {
             let mut count = 0;
-            for lj in 0..=p {
-                for li in 0..=p {
-                    let node = mesh.node(ci * p + li, cj * p + lj);
-                    for comp in 0..2 {
-                        if let Some(d) = dofs.free_index(2 * node + comp) {
-                            free[count] = (d, 2 * (lj * (p + 1) + li) + comp);
-                            count += 1;
-                        }
+            for (local, node) in mesh.cell_node_iter(ci, cj).enumerate() {
+                for comp in 0..2 {
+                    if let Some(d) = dofs.free_index(2 * node + comp) {
+                        free[count] = (d, 2 * local + comp);
+                        count += 1;
                     }
                 }
             }
