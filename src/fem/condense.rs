@@ -31,6 +31,7 @@ use super::dofs::DofMap;
 use super::error::FemError;
 use super::memory::Limits;
 use super::ordering::nested_dissection;
+use super::supernodes::Supernodes;
 use crate::mesh::Mesh;
 
 /// The symbolic analysis of a pattern with the trace dofs ordered last (one per mesh).
@@ -43,10 +44,12 @@ pub struct TraceOrdering {
     trace: Vec<usize>,
 }
 
-/// The layout of a factor's values: supernodes, or one column at a time.
+/// The layout of a factor's values: faer's supernodes or one column at a time, or supernodes
+/// read from the grid ([`super::supernodes`]).
 pub(super) enum Layout<'a, I: Index> {
     Supernodal(&'a SymbolicSupernodalCholesky<I>),
     Simplicial(&'a SymbolicSimplicialCholesky<I>),
+    Grid(&'a Supernodes<I>),
 }
 
 impl<'a, I: Index> Layout<'a, I> {
@@ -164,7 +167,7 @@ impl TraceOrdering {
 
     /// Floating point operations of one numeric factorisation ([`factor_flops`]).
     pub fn factor_flops(&self) -> f64 {
-        layout_flops(Layout::of(&self.symbolic))
+        factor_flops(&self.symbolic)
     }
 
     /// Whether faer chose its supernodal (blocked) factorisation for this pattern.
@@ -177,21 +180,16 @@ impl TraceOrdering {
 /// columns of L with c_j stored values (c_j divisions and about c_j² multiply-adds of the
 /// updates it sends, the count of George and Liu).
 pub fn factor_flops<I: Index>(symbolic: &SymbolicCholesky<I>) -> f64 {
-    layout_flops(Layout::of(symbolic))
-}
-
-/// [`factor_flops`] of a factor's layout.
-fn layout_flops<I: Index>(layout: Layout<'_, I>) -> f64 {
     let square = |c: usize| (c as f64) * (c as f64);
-    match layout {
-        Layout::Supernodal(sym) => (0..sym.n_supernodes())
+    match symbolic.raw() {
+        SymbolicCholeskyRaw::Supernodal(sym) => (0..sym.n_supernodes())
             .map(|s| {
                 let below = sym.supernode(s).pattern().len();
                 let width = sym.supernode_end()[s].zx() - sym.supernode_begin()[s].zx();
                 (1..=width).map(|k| square(k + below)).sum::<f64>()
             })
             .sum(),
-        Layout::Simplicial(sym) => sym
+        SymbolicCholeskyRaw::Simplicial(sym) => sym
             .col_ptr()
             .windows(2)
             .map(|w| square(w[1].zx() - w[0].zx()))
@@ -324,6 +322,7 @@ impl<'a, I: Index> Blocks<'a, I> {
         match self.layout {
             Layout::Supernodal(sym) => sym.n_supernodes(),
             Layout::Simplicial(sym) => sym.nrows(),
+            Layout::Grid(sup) => sup.n_supernodes(),
         }
     }
 
@@ -345,6 +344,18 @@ impl<'a, I: Index> Blocks<'a, I> {
                     start: s,
                     val: MatRef::from_column_major_slice(&self.values[lo..hi], hi - lo, 1),
                     below: &sym.row_idx()[lo + 1..hi],
+                }
+            }
+            Layout::Grid(sup) => {
+                let (columns, below) = (sup.columns(s), sup.pattern(s));
+                Block {
+                    start: columns.start,
+                    val: MatRef::from_column_major_slice(
+                        &self.values[sup.values(s)],
+                        columns.len() + below.len(),
+                        columns.len(),
+                    ),
+                    below,
                 }
             }
         }
@@ -476,6 +487,7 @@ impl<'a, I: Index> Blocks<'a, I> {
         match self.layout {
             Layout::Supernodal(sym) => sym.nrows(),
             Layout::Simplicial(sym) => sym.nrows(),
+            Layout::Grid(sup) => sup.nrows(),
         }
     }
 }

@@ -12,7 +12,7 @@ pub mod ordering;
 mod partial;
 pub mod quadrature;
 pub mod split;
-mod supervariables;
+mod supernodes;
 
 use std::num::NonZeroUsize;
 use std::sync::atomic::{AtomicUsize, Ordering};

@@ -17,10 +17,30 @@ use crate::mesh::Mesh;
 /// 256); faer merges the small supernodes they leave.
 const LEAF_NODES: usize = 8;
 
+/// Parts with at most this many nodes are one block of [`Dissection`] (one supernode of the
+/// halves' factors, [`super::supernodes`]), their separators and leaves merged: fewer, larger
+/// dense blocks for a few more flops. The halves' numeric factorisation at level 6 takes
+/// 4.04·10⁹ instructions at 12 or 16 nodes, against 4.18·10⁹ with every separator and leaf
+/// a block of its own, 4.15·10⁹ at 24 and 4.79·10⁹ at 64 (BENCHMARKS.md, "Supernodes from
+/// the grid").
+const BLOCK_NODES: usize = 16;
+
 /// The free dofs of `mesh` except `trace`, in elimination order: the grid's nested
 /// dissection, with every node's free dofs next to each other.
 pub fn nested_dissection(mesh: &Mesh, dofs: &DofMap, trace: &[usize]) -> Vec<usize> {
-    nested_dissection_of_columns(mesh, dofs, trace, (0, mesh.nnx()))
+    nested_dissection_of_columns(mesh, dofs, trace, (0, mesh.nnx())).order
+}
+
+/// A nested dissection order and the blocks of consecutive dofs it eliminates together.
+pub struct Dissection {
+    /// The free dofs in elimination order.
+    pub order: Vec<usize>,
+    /// Each block of the order (a separator, a part not split further, or a part of at most
+    /// 16 nodes, merged) as its end in `order` and the part of the grid it closes: when
+    /// the block is eliminated, every node of the part is, and the block's columns of the
+    /// Cholesky factor have their rows in it and in the ring of nodes around it
+    /// ([`Part::closure`]). Ascending; blocks without dofs are left out.
+    pub blocks: Vec<(usize, Part)>,
 }
 
 /// The node column that splits the grid into two halves of (nearly) equal width, the first
@@ -31,23 +51,37 @@ pub fn middle_column(mesh: &Mesh) -> Option<usize> {
 }
 
 /// As [`nested_dissection`] for the nodes of the node columns `columns.0 ≤ i < columns.1`
-/// alone: the order of one half of the grid beside a [`middle_column`].
+/// alone (the order of one half of the grid beside a [`middle_column`]), with its blocks.
 pub fn nested_dissection_of_columns(
     mesh: &Mesh,
     dofs: &DofMap,
     trace: &[usize],
     columns: (usize, usize),
-) -> Vec<usize> {
+) -> Dissection {
     let mut is_trace = vec![false; dofs.n_free()];
     for &d in trace {
         is_trace[d] = true;
     }
-    let mut order = Vec::new();
-    let mut emit = |i: usize, j: usize| {
-        let node = mesh.node(i, j);
-        for comp in 0..2 {
-            if let Some(d) = dofs.free_index(2 * node + comp).filter(|&d| !is_trace[d]) {
-                order.push(d);
+    let (mut order, mut blocks) = (Vec::new(), Vec::new());
+    let mut emit = |step: Step| match step {
+        Step::Node(i, j) => {
+            let node = mesh.node(i, j);
+            for comp in 0..2 {
+                if let Some(d) = dofs.free_index(2 * node + comp).filter(|&d| !is_trace[d]) {
+                    order.push(d);
+                }
+            }
+        }
+        Step::Closes(part) => {
+            // A small part is one block: the blocks inside it, the last ones, merge into it.
+            if part.nodes() <= BLOCK_NODES {
+                while blocks.last().is_some_and(|(_, last)| part.holds(last)) {
+                    blocks.pop();
+                }
+            }
+            let start = blocks.last().map_or(0, |&(end, _)| end);
+            if order.len() > start {
+                blocks.push((order.len(), part));
             }
         }
     };
@@ -56,14 +90,48 @@ pub fn nested_dissection_of_columns(
         j: (0, mesh.node_y.len()),
     };
     dissect(part, mesh.element.order(), &mut emit);
-    order
+    Dissection { order, blocks }
 }
 
 /// The nodes (i, j) with i0 ≤ i < i1 and j0 ≤ j < j1.
 #[derive(Clone, Copy, Debug)]
-struct Part {
-    i: (usize, usize),
-    j: (usize, usize),
+pub struct Part {
+    /// Node columns i0..i1.
+    pub i: (usize, usize),
+    /// Node rows j0..j1.
+    pub j: (usize, usize),
+}
+
+impl Part {
+    /// The number of nodes.
+    fn nodes(&self) -> usize {
+        (self.i.1 - self.i.0) * (self.j.1 - self.j.0)
+    }
+
+    /// Whether `other` lies inside this part.
+    fn holds(&self, other: &Part) -> bool {
+        self.i.0 <= other.i.0 && other.i.1 <= self.i.1 && self.j.0 <= other.j.0 && other.j.1 <= self.j.1
+    }
+
+    /// The part and the ring of nodes around it, within a grid of `nnx` × `nny` nodes: the
+    /// nodes (i, j) with i0 − 1 ≤ i ≤ i1 and j0 − 1 ≤ j ≤ j1. The part's sides are vertex
+    /// lines or the grid's boundary, so no cell straddles them: every node that shares a
+    /// cell with a node of the part lies in its closure, and so does every entry of the
+    /// Cholesky factor that eliminating the part creates (George and Liu 1981, the reach of
+    /// a node through eliminated ones).
+    pub fn closure(&self, nnx: usize, nny: usize) -> Part {
+        Part {
+            i: (self.i.0.saturating_sub(1), (self.i.1 + 1).min(nnx)),
+            j: (self.j.0.saturating_sub(1), (self.j.1 + 1).min(nny)),
+        }
+    }
+}
+
+/// What [`dissect`] emits: a node, in elimination order, or the end of a block of nodes
+/// eliminated together, which completes the elimination of the given part.
+enum Step {
+    Node(usize, usize),
+    Closes(Part),
 }
 
 /// A vertex line strictly inside `lo..hi` (both sides keep a node), nearest the middle:
@@ -81,8 +149,9 @@ fn separator(lo: usize, hi: usize, p: usize) -> Option<usize> {
         .min_by_key(|&s| s.abs_diff(mid))
 }
 
-/// Emit the nodes of `part` in nested dissection order: both halves, then the separator.
-fn dissect(part: Part, p: usize, emit: &mut impl FnMut(usize, usize)) {
+/// Emit the nodes of `part` in nested dissection order: both halves, then the separator, each
+/// separator and each part not split further a block.
+fn dissect(part: Part, p: usize, emit: &mut impl FnMut(Step)) {
     let (wide, high) = (part.i.1 - part.i.0, part.j.1 - part.j.0);
     let split = if wide * high <= LEAF_NODES {
         None
@@ -99,9 +168,10 @@ fn dissect(part: Part, p: usize, emit: &mut impl FnMut(usize, usize)) {
         None => {
             for j in part.j.0..part.j.1 {
                 for i in part.i.0..part.i.1 {
-                    emit(i, j);
+                    emit(Step::Node(i, j));
                 }
             }
+            emit(Step::Closes(part));
         }
         // Across i (`across`: the separator is column s) or across j (row s): the two halves
         // first, the separator last.
@@ -118,8 +188,13 @@ fn dissect(part: Part, p: usize, emit: &mut impl FnMut(usize, usize)) {
             dissect(half((s + 1, hi)), p, emit);
             let along = if across { part.j } else { part.i };
             for k in along.0..along.1 {
-                if across { emit(s, k) } else { emit(k, s) }
+                emit(if across {
+                    Step::Node(s, k)
+                } else {
+                    Step::Node(k, s)
+                });
             }
+            emit(Step::Closes(part));
         }
     }
 }

@@ -7,145 +7,83 @@
 //! (L₂₂ L₂₂ᵀ = S_h), which the split had to multiply out again: two dense steps of |Γ_h|³/6
 //! multiply-adds each for nothing (the product took 32–40 ms a half at level 7, BENCHMARKS.md,
 //! "Halves that stop before Γ"). This is
-//! faer's left-looking supernodal factorisation (`factorize_supernodal_numeric_llt`) with
-//! every factorisation, and every update it sends, limited to the interior's columns: the
-//! trailing block of the factor's storage ends as S_h's lower triangle.
+//! faer's left-looking supernodal factorisation (`factorize_supernodal_numeric_llt`) on the
+//! supernodes the grid gives ([`super::supernodes`]), Γ_h the last, which is neither
+//! factorised nor sends updates: the trailing block of the factor's storage ends as S_h's
+//! lower triangle.
 
 use std::sync::Arc;
 
-use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
+use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt;
 use faer::linalg::matmul::matmul;
 use faer::linalg::matmul::triangular::{self, BlockStructure};
 use faer::linalg::triangular_solve;
 use faer::reborrow::{Reborrow, ReborrowMut};
-use faer::sparse::linalg::cholesky::simplicial::{self, EliminationTreeRef};
-use faer::sparse::linalg::cholesky::supernodal::{
-    SymbolicSupernodalCholesky, factorize_supernodal_symbolic_cholesky,
-    factorize_supernodal_symbolic_cholesky_scratch,
-};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
-use faer::traits::{Index, SignedIndex};
+use faer::traits::Index;
 use faer::{Accum, MatMut, MatRef, Par};
 
 use super::condense::{Blocks, Layout, factor_storage};
 use super::error::FemError;
+use super::supernodes::Supernodes;
 
-/// The supernodal analysis of a pattern already in elimination order, its last dofs the
-/// interface (cheap to clone).
+/// The supernodes of a matrix in elimination order whose last dofs are the interface, a
+/// supernode of their own (cheap to clone).
 #[derive(Clone)]
 pub(super) struct PartialOrdering<I: Index> {
-    symbolic: Arc<SymbolicSupernodalCholesky<I>>,
+    supernodes: Arc<Supernodes<I>>,
     /// The number of dofs eliminated before the interface.
     n_interior: usize,
     /// Which supernodes update which ([`descendants`]), read once per factorisation.
     descendants: Arc<Descendants<I>>,
 }
 
-/// For each supernode s, the supernodes below it whose interior columns update it: compressed
-/// rows, `of[start[s]..start[s + 1]]` ascending (faer keeps the same structure, private, in
-/// its supernodal analysis).
+/// For each supernode s, the supernodes below it whose columns update it: compressed rows,
+/// `of[start[s]..start[s + 1]]` ascending (faer keeps the same structure, private, in its
+/// supernodal analysis).
 struct Descendants<I: Index> {
     start: Vec<usize>,
     of: Vec<I>,
 }
 
 impl<I: Index> PartialOrdering<I> {
-    /// The analysis of `lower` (a lower triangle, its columns' rows in any order) in its own
-    /// order, its last `n_interface` dofs the interface; `supervariables` holds the first
-    /// column of each run of indistinguishable columns ([`super::supervariables`]), from which
-    /// the elimination tree and the column counts are read.
-    pub(super) fn new(
-        lower: SymbolicSparseColMatRef<'_, I>,
-        n_interface: usize,
-        supervariables: &[usize],
-    ) -> Result<Self, FemError> {
-        // faer analyses the upper triangle: the transpose of the lower one, each column's rows
-        // ascending as it is built column by column.
-        let n = lower.nrows();
-        let mut col_ptr = vec![I::truncate(0); n + 1];
-        for &r in lower.row_idx() {
-            col_ptr[r.zx() + 1] += I::truncate(1);
-        }
-        for j in 0..n {
-            let before = col_ptr[j];
-            col_ptr[j + 1] += before;
-        }
-        let mut next = col_ptr.clone();
-        let mut row_idx = vec![I::truncate(0); lower.row_idx().len()];
-        for c in 0..n {
-            for &r in lower.row_idx_of_col_raw(c) {
-                row_idx[next[r.zx()].zx()] = I::truncate(c);
-                next[r.zx()] += I::truncate(1);
-            }
-        }
-        let upper = SymbolicSparseColMatRef::new_checked(n, n, &col_ptr, None, &row_idx);
-        let mut mem = MemBuffer::try_new(StackReq::any_of(&[
-            simplicial::prefactorize_symbolic_cholesky_scratch::<I>(n, row_idx.len()),
-            factorize_supernodal_symbolic_cholesky_scratch::<I>(n),
-        ]))
-        .map_err(|_| FemError::OutOfMemory("the symbolic factorisation"))?;
-        let (etree, counts) = match super::supervariables::elimination_tree(upper, supervariables) {
-            Some(tree) => tree,
-            None => {
-                // Runs that are not indistinguishable: faer's own walk, column by column.
-                let mut tree = (vec![I::Signed::truncate(0); n], vec![I::truncate(0); n]);
-                simplicial::prefactorize_symbolic_cholesky(
-                    &mut tree.0,
-                    &mut tree.1,
-                    upper,
-                    MemStack::new(&mut mem),
-                );
-                tree
-            }
-        };
-        // SAFETY: `from_inner` asks for the tree faer's `prefactorize_symbolic_cholesky` fills
-        // for `upper`. `elimination_tree` gives it only after checking that the runs are
-        // indistinguishable columns of `upper`, whose tree and counts then follow from the
-        // quotient graph's (and `the_supervariables_give_faers_tree_and_counts` compares the
-        // two for every element); otherwise faer's own walk filled it.
-        let etree = unsafe { EliminationTreeRef::<I>::from_inner(&etree) };
-        let symbolic = factorize_supernodal_symbolic_cholesky(
-            upper,
-            etree,
-            &counts,
-            MemStack::new(&mut mem),
-            Default::default(),
-        )
-        .map_err(FemError::from_faer("the symbolic factorisation"))?;
-        let n_interior = n - n_interface;
-        Ok(PartialOrdering {
-            descendants: Arc::new(descendants(&symbolic, n_interior)),
-            symbolic: Arc::new(symbolic),
+    /// The ordering of the supernodes `supernodes`, the interface being those from column
+    /// `n_interior` on (a supernode's first column).
+    pub(super) fn new(supernodes: Supernodes<I>, n_interior: usize) -> Self {
+        debug_assert!(
+            (0..supernodes.n_supernodes()).any(|s| supernodes.columns(s).start == n_interior)
+                || n_interior == supernodes.nrows()
+        );
+        PartialOrdering {
+            descendants: Arc::new(descendants(&supernodes, n_interior)),
+            supernodes: Arc::new(supernodes),
             n_interior,
-        })
+        }
+    }
+
+    /// The supernodes.
+    #[cfg(test)]
+    pub(super) fn supernodes(&self) -> &Supernodes<I> {
+        &self.supernodes
     }
 
     /// The number of stored values of the factor (the interface's block included).
     pub(super) fn factor_len(&self) -> usize {
-        self.symbolic.len_val()
-    }
-
-    /// The number of supernodes with both interior and interface columns, whose factorisation
-    /// stops inside them.
-    #[cfg(test)]
-    pub(super) fn straddling(&self) -> usize {
-        let (begin, end) = (self.symbolic.supernode_begin(), self.symbolic.supernode_end());
-        (0..self.symbolic.n_supernodes())
-            .filter(|&s| begin[s].zx() < self.n_interior && self.n_interior < end[s].zx())
-            .count()
+        self.supernodes.len_val()
     }
 
     /// Floating point operations of one [`PartialFactor`]: George and Liu's Σ c_j² over the
     /// interior's columns of L alone ([`super::condense::factor_flops`] counts every column),
     /// since the interface's columns are neither factorised nor send updates.
     pub(super) fn factor_flops(&self) -> f64 {
-        let symbolic = &*self.symbolic;
-        (0..symbolic.n_supernodes())
+        let supernodes = &*self.supernodes;
+        (0..supernodes.n_supernodes())
+            .filter(|&s| supernodes.columns(s).start < self.n_interior)
             .map(|s| {
-                let below = symbolic.supernode(s).pattern().len();
-                let width = symbolic.supernode_end()[s].zx() - symbolic.supernode_begin()[s].zx();
-                (0..interior_columns(symbolic, self.n_interior, s))
+                let below = supernodes.pattern(s).len();
+                let width = supernodes.columns(s).len();
+                (0..width)
                     .map(|i| ((width - i + below) as f64).powi(2))
                     .sum::<f64>()
             })
@@ -181,13 +119,13 @@ impl<I: Index> PartialFactor<I> {
         storage: Vec<f64>,
         kernel: Kernel,
     ) -> Result<Self, FemError> {
-        let symbolic = &*ordering.symbolic;
-        let widest = (0..symbolic.n_supernodes())
-            .map(|s| symbolic.supernode_end()[s].zx() - symbolic.supernode_begin()[s].zx())
+        let supernodes = &*ordering.supernodes;
+        let widest = (0..supernodes.n_supernodes())
+            .map(|s| supernodes.columns(s).len())
             .max()
             .unwrap_or(0);
         let scratch = llt::factor::cholesky_in_place_scratch::<f64>(widest, Par::Seq, Default::default());
-        let mut factor = factor_storage(symbolic.len_val(), scratch, pattern.nrows(), storage)?;
+        let mut factor = factor_storage(supernodes.len_val(), scratch, pattern.nrows(), storage)?;
         let mut mem = MemBuffer::try_new(scratch)
             .map_err(|_| FemError::OutOfMemory("the factorisation's workspace"))?;
         factorize_interior(
@@ -205,7 +143,7 @@ impl<I: Index> PartialFactor<I> {
 
     fn blocks(&self) -> Blocks<'_, I> {
         Blocks::new(
-            Layout::Supernodal(&self.ordering.symbolic),
+            Layout::Grid(&self.ordering.supernodes),
             &self.values,
             self.ordering.n_interior,
         )
@@ -229,12 +167,12 @@ impl<I: Index> PartialFactor<I> {
 }
 
 /// faer's left-looking supernodal Cholesky factorisation of `a` (lower triangle, in
-/// elimination order) into `values` (zero, as long as `ordering`'s factor), of the columns
-/// before its interface alone: each supernode gathers its entries of `a` and the updates of the
-/// interior columns of the supernodes below it, then factorises its interior columns (a
-/// dense Cholesky factor, then a triangular solve for the rows under them) and applies their
-/// update to its own interface columns. Interface columns are neither factorised nor
-/// propagated, so they end as the Schur complement's lower triangle.
+/// elimination order) into `values` (zero, as long as `ordering`'s factor), of the supernodes
+/// before its interface alone: each supernode gathers its entries of `a` and the updates of
+/// the supernodes below it, then, if it is not the interface's, factorises its columns (a
+/// dense Cholesky factor, then a triangular solve for the rows under them). The interface's
+/// supernode is neither factorised nor propagated, so it ends as the Schur complement's lower
+/// triangle.
 fn factorize_interior<I: Index>(
     values: &mut [f64],
     a: SparseColMatRef<'_, I, f64>,
@@ -242,31 +180,24 @@ fn factorize_interior<I: Index>(
     stack: &mut MemStack,
     kernel: Kernel,
 ) -> Result<(), FemError> {
-    let (symbolic, descendants) = (&*ordering.symbolic, &*ordering.descendants);
-    let n_supernodes = symbolic.n_supernodes();
-    let (begin, end) = (symbolic.supernode_begin(), symbolic.supernode_end());
-    let (col_ptr_row, col_ptr_val) = (symbolic.col_ptr_for_row_idx(), symbolic.col_ptr_for_val());
-    let pattern = |s: usize| &symbolic.row_idx()[col_ptr_row[s].zx()..col_ptr_row[s + 1].zx()];
-    let interior = |s: usize| interior_columns(symbolic, ordering.n_interior, s);
+    let (supernodes, descendants) = (&*ordering.supernodes, &*ordering.descendants);
     // Where each row of the current supernode's pattern lies in its block.
     let none = I::truncate(usize::MAX);
-    let mut local = vec![none; symbolic.nrows()];
+    let mut local = vec![none; supernodes.nrows()];
     let (mut row_idx, mut product) = (Vec::<I>::new(), Vec::new());
-    for s in 0..n_supernodes {
-        let (s_start, s_end) = (begin[s].zx(), end[s].zx());
-        let s_pattern = pattern(s);
+    for s in 0..supernodes.n_supernodes() {
+        let columns = supernodes.columns(s);
+        let (s_start, s_end) = (columns.start, columns.end);
+        let s_pattern = supernodes.pattern(s);
         let s_ncols = s_end - s_start;
         let s_nrows = s_pattern.len() + s_ncols;
         for (i, &row) in s_pattern.iter().enumerate() {
             local[row.zx()] = I::truncate(i + s_ncols);
         }
-        let (head, tail) = values.split_at_mut(col_ptr_val[s].zx());
+        let s_values = supernodes.values(s);
+        let (head, tail) = values.split_at_mut(s_values.start);
         let head = &*head;
-        let mut ls = MatMut::from_column_major_slice_mut(
-            &mut tail[..col_ptr_val[s + 1].zx() - col_ptr_val[s].zx()],
-            s_nrows,
-            s_ncols,
-        );
+        let mut ls = MatMut::from_column_major_slice_mut(&mut tail[..s_values.len()], s_nrows, s_ncols);
         for j in s_start..s_end {
             for (i, &v) in a.row_idx_of_col(j).zip(a.val_of_col(j)) {
                 if i >= j {
@@ -279,20 +210,19 @@ fn factorize_interior<I: Index>(
             .iter()
             .map(|d| d.zx())
         {
-            let (d_start, d_end) = (begin[d].zx(), end[d].zx());
-            let d_pattern = pattern(d);
-            let d_ncols = d_end - d_start;
+            let d_start = supernodes.columns(d).start;
+            let d_pattern = supernodes.pattern(d);
+            let d_ncols = supernodes.columns(d).len();
             let ld = MatRef::from_column_major_slice(
-                &head[col_ptr_val[d].zx()..col_ptr_val[d + 1].zx()],
+                &head[supernodes.values(d)],
                 d_pattern.len() + d_ncols,
                 d_ncols,
             );
-            // d's rows in s's columns (mid) and below them, times its interior columns (depth).
+            // d's rows in s's columns (mid) and below them.
             let first = d_pattern.partition_point(|r| r.zx() < s_start);
             let mid = d_pattern[first..].partition_point(|r| r.zx() < s_end);
             let rows = d_pattern.len() - first;
-            let depth = interior(d);
-            let ld_mid_bot = ld.submatrix(d_ncols + first, 0, rows, depth);
+            let ld_mid_bot = ld.submatrix(d_ncols + first, 0, rows, d_ncols);
             // Where each of those rows and columns lies in s's block.
             row_idx.clear();
             row_idx.extend(d_pattern[first..].iter().enumerate().map(|(i, r)| {
@@ -302,6 +232,7 @@ fn factorize_interior<I: Index>(
                     local[r.zx()]
                 }
             }));
+            debug_assert!(!row_idx.contains(&none), "{d_start}: a row outside s's pattern");
             subtract_lower_product(
                 ls.rb_mut(),
                 &row_idx,
@@ -312,49 +243,21 @@ fn factorize_interior<I: Index>(
                 &mut product,
             );
         }
-        let m = interior(s);
-        if m > 0 {
-            let (mut top, mut bot) = ls.rb_mut().split_at_row_mut(m);
-            let mut l11 = top.rb_mut().subcols_mut(0, m);
+        if s_start < ordering.n_interior {
+            let (mut top, mut bot) = ls.rb_mut().split_at_row_mut(s_ncols);
             llt::factor::cholesky_in_place(
-                l11.rb_mut(),
+                top.rb_mut(),
                 Default::default(),
                 Par::Seq,
                 stack,
                 Default::default(),
             )
             .map_err(|_| FemError::NotPositiveDefinite)?;
-            let (mut left, right) = bot.rb_mut().split_at_col_mut(m);
             triangular_solve::solve_lower_triangular_in_place(
-                l11.rb(),
-                left.rb_mut().transpose_mut(),
+                top.rb(),
+                bot.rb_mut().transpose_mut(),
                 Par::Seq,
             );
-            // The supernode's own interface columns take its interior columns' update.
-            let k = s_ncols - m;
-            if k > 0 {
-                let (right_mid, right_bot) = right.split_at_row_mut(k);
-                let (left_mid, left_bot) = left.rb().split_at_row(k);
-                triangular::matmul(
-                    right_mid,
-                    BlockStructure::TriangularLower,
-                    Accum::Add,
-                    left_mid,
-                    BlockStructure::Rectangular,
-                    left_mid.transpose(),
-                    BlockStructure::Rectangular,
-                    -1.0,
-                    Par::Seq,
-                );
-                matmul(
-                    right_bot,
-                    Accum::Add,
-                    left_bot,
-                    left_mid.transpose(),
-                    -1.0,
-                    Par::Seq,
-                );
-            }
         }
         for &row in s_pattern {
             local[row.zx()] = none;
@@ -363,34 +266,19 @@ fn factorize_interior<I: Index>(
     Ok(())
 }
 
-/// The interior columns of supernode `s` (those before `n_interior`).
-fn interior_columns<I: Index>(
-    symbolic: &SymbolicSupernodalCholesky<I>,
-    n_interior: usize,
-    s: usize,
-) -> usize {
-    let (begin, end) = (
-        symbolic.supernode_begin()[s].zx(),
-        symbolic.supernode_end()[s].zx(),
-    );
-    end.min(n_interior).saturating_sub(begin)
-}
-
-/// For each supernode s, the supernodes d < s with interior columns that update it (rows of
-/// d's pattern in s's columns), ascending.
-fn descendants<I: Index>(symbolic: &SymbolicSupernodalCholesky<I>, n_interior: usize) -> Descendants<I> {
-    let n_supernodes = symbolic.n_supernodes();
-    let mut supernode_of = vec![I::truncate(0); symbolic.nrows()];
+/// For each supernode s, the supernodes d < s that update it (rows of d's pattern in s's
+/// columns), ascending; the interface's supernode updates none.
+fn descendants<I: Index>(supernodes: &Supernodes<I>, n_interior: usize) -> Descendants<I> {
+    let n_supernodes = supernodes.n_supernodes();
+    let mut supernode_of = vec![I::truncate(0); supernodes.nrows()];
     for s in 0..n_supernodes {
-        supernode_of[symbolic.supernode_begin()[s].zx()..symbolic.supernode_end()[s].zx()]
-            .fill(I::truncate(s));
+        supernode_of[supernodes.columns(s)].fill(I::truncate(s));
     }
-    let (supernode_of, col_ptr_row) = (&supernode_of, symbolic.col_ptr_for_row_idx());
+    let supernode_of = &supernode_of;
     // Each d's pattern is ascending: the supernodes it updates, each once.
     let updated = |d: usize| {
-        let rows = &symbolic.row_idx()[col_ptr_row[d].zx()..col_ptr_row[d + 1].zx()];
         let mut last = usize::MAX;
-        rows.iter().filter_map(move |r| {
+        supernodes.pattern(d).iter().filter_map(move |r| {
             let s = supernode_of[r.zx()].zx();
             (s != last).then(|| {
                 last = s;
@@ -398,7 +286,7 @@ fn descendants<I: Index>(symbolic: &SymbolicSupernodalCholesky<I>, n_interior: u
             })
         })
     };
-    let updating = || (0..n_supernodes).filter(|&d| interior_columns(symbolic, n_interior, d) > 0);
+    let updating = || (0..n_supernodes).filter(|&d| supernodes.columns(d).start < n_interior);
     let mut start = vec![0usize; n_supernodes + 1];
     for d in updating() {
         for s in updated(d) {
@@ -549,13 +437,15 @@ mod tests {
     /// are those of the 3 interior columns (c = 5, 4, 3), not the whole factor's Σ_{c=1}^{5} c².
     #[test]
     fn the_flops_count_the_interior_columns() {
-        let n = 5u32;
-        let col_ptr: Vec<u32> = (0..=n).map(|j| (0..j).map(|c| n - c).sum()).collect();
-        let row_idx: Vec<u32> = (0..n).flat_map(|c| c..n).collect();
-        let lower = SymbolicSparseColMatRef::new_checked(5, 5, &col_ptr, None, &row_idx);
-        let ordering = PartialOrdering::new(lower, 2, &[0, 1, 2, 3, 4]).unwrap();
+        let supernodes = Supernodes::<u32>::new(vec![0, 3], 5, |s, rows| {
+            if s == 0 {
+                rows.extend([4, 3]);
+            }
+        })
+        .unwrap();
+        let ordering = PartialOrdering::new(supernodes, 3);
         assert_eq!(ordering.factor_flops(), 25.0 + 16.0 + 9.0);
-        // One supernode, its diagonal block stored square.
-        assert_eq!(ordering.factor_len(), 25);
+        // Each supernode's diagonal block stored square: 5 × 3 and 2 × 2.
+        assert_eq!(ordering.factor_len(), 15 + 4);
     }
 }
