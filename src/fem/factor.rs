@@ -1,6 +1,9 @@
-//! The factorisation of a form on the grid with Γ_C's normal dofs last: one factor
-//! ([`super::condense`]) below [`SPLIT_UNKNOWNS`] unknowns, two subdomains from there on
-//! ([`super::split`]), factorised side by side on two threads or one after the other on one.
+//! The factorisation of a form on the grid with Γ_C's normal dofs last: one part, the whole
+//! grid, below [`SPLIT_UNKNOWNS`] unknowns, two subdomains from there on ([`super::split`]),
+//! factorised side by side on two threads or one after the other on one; both on the
+//! supernodes the grid gives, with no symbolic analysis. faer's own analysis and
+//! factorisation of the grid's order ([`super::condense`]) remain as [`Analysis::whole`], the
+//! reference the tests compare with.
 //! The choice depends on the mesh alone, never on the threads, so that every result has the
 //! same bits whatever `--threads` says (tests/numerics/threads.rs). The two factorisations
 //! agree to round-off (within 10⁻¹² relative, tests/numerics/fem.rs).
@@ -27,33 +30,34 @@ pub const SPLIT_UNKNOWNS: usize = 50_000;
 pub enum Analysis {
     /// One factor of the whole grid.
     Whole(TraceOrdering),
-    /// Two halves beside the middle column, and S on the column and the trace.
+    /// Two halves beside the middle column and S on the column and the trace, or the whole
+    /// grid as one part and S on the trace.
     Split(SplitOrdering),
 }
 
 impl Analysis {
     /// The analysis of `a`, the form on `mesh` over `dofs`, with `trace` last: two subdomains
     /// when `a` has [`SPLIT_UNKNOWNS`] free dofs or more (and the grid a middle column), else
-    /// one factor.
+    /// the whole grid as one part ([`SplitOrdering::whole`]).
     pub fn grid(a: &SymCsc, mesh: &Mesh, dofs: &DofMap, trace: &[usize]) -> Result<Self, FemError> {
         if a.n >= SPLIT_UNKNOWNS {
             Self::split(a, mesh, dofs, trace)
         } else {
-            Self::whole(a, mesh, dofs, trace)
+            SplitOrdering::whole(a, mesh, dofs, trace).map(Analysis::Split)
         }
     }
 
-    /// One factor of the whole grid ([`TraceOrdering::grid`]).
+    /// One factor of the whole grid by faer ([`TraceOrdering::grid`]).
     pub fn whole(a: &SymCsc, mesh: &Mesh, dofs: &DofMap, trace: &[usize]) -> Result<Self, FemError> {
         TraceOrdering::grid(a, mesh, dofs, trace).map(Analysis::Whole)
     }
 
-    /// Two subdomains ([`SplitOrdering::new`]), or one factor when the grid has no middle
-    /// column.
+    /// Two subdomains ([`SplitOrdering::new`]), or the whole grid as one part when it has no
+    /// middle column.
     pub fn split(a: &SymCsc, mesh: &Mesh, dofs: &DofMap, trace: &[usize]) -> Result<Self, FemError> {
         match SplitOrdering::new(a, mesh, dofs, trace)? {
             Some(split) => Ok(Analysis::Split(split)),
-            None => Self::whole(a, mesh, dofs, trace),
+            None => SplitOrdering::whole(a, mesh, dofs, trace).map(Analysis::Split),
         }
     }
 
@@ -79,7 +83,7 @@ impl Analysis {
 pub enum Factor {
     /// One factor of the whole grid.
     Whole(TraceFactor),
-    /// Both halves' factors and S's.
+    /// Both halves' factors (or the one part's) and S's.
     Split(SplitFactor),
 }
 

@@ -18,6 +18,8 @@
 //! (the column's dofs, where both halves count K). S is dense, ordered J then T; the trailing
 //! block of its Cholesky factor is the Schur complement factor on the trace that a single
 //! factor's trailing block is ([`super::condense`]), and the compliance C = S_T⁻¹ follows.
+//! Without a middle column, or below [`super::factor::SPLIT_UNKNOWNS`] unknowns, the whole grid
+//! is one part ([`SplitOrdering::whole`]): Γ is the trace alone and S its Schur complement.
 //! A solve eliminates L and R (each half's forward substitution), solves with S on Γ and
 //! back-substitutes each half.
 
@@ -37,7 +39,8 @@ use super::partial::{PartialFactor, PartialOrdering};
 use super::supernodes::of_dissection;
 use crate::mesh::Mesh;
 
-/// The symbolic analysis of both halves (one per mesh; cheap to clone).
+/// The analysis of both halves, or of the whole grid as one part (one per mesh; cheap to
+/// clone).
 #[derive(Clone)]
 pub struct SplitOrdering(Arc<Split>);
 
@@ -48,8 +51,8 @@ struct Split {
     gamma: Vec<usize>,
     /// The number of trace dofs (the last of Γ).
     n_trace: usize,
-    /// The left and the right half.
-    halves: [Half; 2],
+    /// The left and the right half, or the whole grid as one part.
+    halves: Vec<Half>,
     /// K's entries on (Γ_L ∩ Γ_R)², its lower triangle: (row in Γ, column in Γ, position in
     /// K's values).
     overlap: Vec<(usize, usize, usize)>,
@@ -79,9 +82,26 @@ impl SplitOrdering {
     /// column with Γ = (the column's dofs, `trace`) last; None when the grid has no middle
     /// column. The halves are analysed on two threads when [`super::set_threads`] allows.
     pub fn new(a: &SymCsc, mesh: &Mesh, dofs: &DofMap, trace: &[usize]) -> Result<Option<Self>, FemError> {
-        let Some(s) = middle_column(mesh) else {
-            return Ok(None);
-        };
+        match middle_column(mesh) {
+            Some(s) => Self::beside(a, mesh, dofs, trace, Some(s)).map(Some),
+            None => Ok(None),
+        }
+    }
+
+    /// Analyse `a` as one part, the whole grid, with Γ = `trace` last: one partial factor of
+    /// the grid's nested dissection, and S the Schur complement on the trace.
+    pub fn whole(a: &SymCsc, mesh: &Mesh, dofs: &DofMap, trace: &[usize]) -> Result<Self, FemError> {
+        Self::beside(a, mesh, dofs, trace, None)
+    }
+
+    /// The halves beside the node column `middle`, or the whole grid as one part.
+    fn beside(
+        a: &SymCsc,
+        mesh: &Mesh,
+        dofs: &DofMap,
+        trace: &[usize],
+        middle: Option<usize>,
+    ) -> Result<Self, FemError> {
         let n = a.n;
         // Every index here and in the halves (a node, a dof, an entry of K_h, a position in
         // K's values) is less than K's number of entries or the mesh's number of nodes: when
@@ -101,7 +121,7 @@ impl SplitOrdering {
                     if let Some(d) = dofs.free_index(2 * node + comp) {
                         node_of[d] = node as u32;
                         column[d] = i;
-                        if i == s {
+                        if Some(i) == middle {
                             gamma.push(d);
                         }
                     }
@@ -122,26 +142,29 @@ impl SplitOrdering {
             node: &node_of,
             column: &column,
         };
-        let (left, right) = super::join(
-            || Half::new(a, mesh, dofs, trace, (0, s), s, at, &gamma),
-            || Half::new(a, mesh, dofs, trace, (s + 1, n_columns), s, at, &gamma),
-        );
+        let parts = match middle {
+            Some(s) => vec![(0, s), (s + 1, n_columns)],
+            None => vec![(0, n_columns)],
+        };
+        let halves = each(parts, |columns| {
+            Half::new(a, mesh, dofs, trace, columns, middle, at, &gamma)
+        });
         let mut overlap = Vec::new();
-        for &c in gamma.iter().filter(|&&d| column[d] == s) {
+        for &c in gamma.iter().filter(|&&d| Some(column[d]) == middle) {
             for k in a.col_ptr[c]..a.col_ptr[c + 1] {
                 let r = a.row_idx[k];
-                if in_gamma[r] != usize::MAX && column[r] == s {
+                if in_gamma[r] != usize::MAX && Some(column[r]) == middle {
                     overlap.push((in_gamma[r], in_gamma[c], k));
                 }
             }
         }
-        Ok(Some(SplitOrdering(Arc::new(Split {
+        Ok(SplitOrdering(Arc::new(Split {
             n,
             n_trace: trace.len(),
             gamma,
-            halves: [left?, right?],
+            halves: halves.into_iter().collect::<Result<_, _>>()?,
             overlap,
-        }))))
+        })))
     }
 
     /// The stored values of both halves' factors and of S's dense factor (its lower triangle).
@@ -168,6 +191,18 @@ impl SplitOrdering {
     }
 }
 
+/// `f` of each item, side by side on two threads when there are two and
+/// [`super::set_threads`] allows ([`super::join`]), in the items' order.
+fn each<A: Send, T: Send>(items: Vec<A>, f: impl Fn(A) -> T + Sync) -> Vec<T> {
+    match <[A; 2]>::try_from(items) {
+        Ok([a, b]) => {
+            let (a, b) = super::join(|| f(a), || f(b));
+            vec![a, b]
+        }
+        Err(items) => items.into_iter().map(f).collect(),
+    }
+}
+
 /// Where each free dof of K lies: its node, and the node's column in the grid.
 #[derive(Clone, Copy)]
 struct Dofs<'a> {
@@ -176,7 +211,8 @@ struct Dofs<'a> {
 }
 
 impl Half {
-    /// The half of the node columns `columns` beside the middle column `s`; `at` tells where
+    /// The half of the node columns `columns` beside the middle column `s` (or the whole grid,
+    /// with no middle column); `at` tells where
     /// each dof lies and `gamma` is Γ's dofs.
     #[allow(clippy::too_many_arguments)]
     fn new(
@@ -185,7 +221,7 @@ impl Half {
         dofs: &DofMap,
         trace: &[usize],
         columns: (usize, usize),
-        s: usize,
+        s: Option<usize>,
         at: Dofs<'_>,
         gamma: &[usize],
     ) -> Result<Self, FemError> {
@@ -194,7 +230,7 @@ impl Half {
         // the middle column or in the half's columns.
         let dissection = nested_dissection_of_columns(mesh, dofs, trace, columns);
         let interior = &dissection.order;
-        let inside = |d: usize| (columns.0..columns.1).contains(&column[d]) || column[d] == s;
+        let inside = |d: usize| (columns.0..columns.1).contains(&column[d]) || Some(column[d]) == s;
         let half_gamma: Vec<usize> = (0..gamma.len()).filter(|&g| inside(gamma[g])).collect();
         // h ∪ Γ_h's dofs in elimination order, and each one's position in it.
         let members: Vec<usize> = interior
@@ -275,7 +311,7 @@ impl Half {
 /// A numeric factorisation on a [`SplitOrdering`]: both halves' factors and S's.
 pub struct SplitFactor {
     ordering: SplitOrdering,
-    halves: [PartialFactor<u32>; 2],
+    halves: Vec<PartialFactor<u32>>,
     /// The Cholesky factor of S (its lower triangle; Γ's order: J, then the trace).
     s: Mat<f64>,
 }
@@ -285,12 +321,12 @@ pub struct SplitFactor {
 /// factorisation, which then holds only the halves' copies (one entry of K in each, but the
 /// column's in both).
 pub struct SplitValues {
-    halves: [Vec<f64>; 2],
+    halves: Vec<Vec<f64>>,
     overlap: Vec<f64>,
     /// Memory the halves' factors may reuse (K's values and row indices, when K was given up):
     /// on a machine that is slow to hand out fresh pages this is time saved (BENCHMARKS.md,
     /// "Fresh memory").
-    storage: [Vec<f64>; 2],
+    storage: Vec<Vec<f64>>,
 }
 
 impl SplitOrdering {
@@ -299,11 +335,10 @@ impl SplitOrdering {
     pub fn values(&self, a: &SymCsc) -> SplitValues {
         let split = &*self.0;
         let gather = |h: &Half| h.gather.iter().map(|&k| a.values[k as usize]).collect();
-        let (left, right) = super::join(|| gather(&split.halves[0]), || gather(&split.halves[1]));
         SplitValues {
-            halves: [left, right],
+            halves: each(split.halves.iter().collect(), gather),
             overlap: split.overlap.iter().map(|&(_, _, k)| a.values[k]).collect(),
-            storage: [Vec::new(), Vec::new()],
+            storage: Vec::new(),
         }
     }
 
@@ -319,7 +354,7 @@ impl SplitOrdering {
         } = a;
         // Where usize is not eight bytes the row indices are simply freed.
         let row_idx = bytemuck::allocation::try_cast_vec(row_idx).unwrap_or_default();
-        values.storage = [k_values, row_idx];
+        values.storage = vec![k_values, row_idx];
         values
     }
 }
@@ -337,18 +372,17 @@ impl SplitFactor {
     pub fn of_values(ordering: &SplitOrdering, values: SplitValues) -> Result<Self, FemError> {
         let split = &*ordering.0;
         let SplitValues {
-            halves: [left, right],
+            halves,
             overlap,
-            storage: [left_storage, right_storage],
+            storage,
         } = values;
-        let half = |h: &Half, values: Vec<f64>, storage| {
+        let storage = storage.into_iter().chain(std::iter::repeat_with(Vec::new));
+        let work = split.halves.iter().zip(halves).zip(storage).collect();
+        let halves = each(work, |((h, values), storage)| {
             PartialFactor::new(&h.ordering, h.pattern(), &values, storage)
-        };
-        let (left, right) = super::join(
-            || half(&split.halves[0], left, left_storage),
-            || half(&split.halves[1], right, right_storage),
-        );
-        let halves = [left?, right?];
+        })
+        .into_iter()
+        .collect::<Result<Vec<_>, _>>()?;
         // S = S_L + S_R − K on (Γ_L ∩ Γ_R)², lower triangle (each half's Γ is ascending in Γ),
         // read from the trailing blocks of the halves' factors.
         let ng = split.gamma.len();
@@ -398,12 +432,11 @@ impl SplitFactor {
             f.eliminate_interior(x.as_mut());
             x
         };
-        let (mut xl, mut xr) = super::join(
-            || eliminate(&split.halves[0], &self.halves[0]),
-            || eliminate(&split.halves[1], &self.halves[1]),
-        );
+        let mut xs = each(split.halves.iter().zip(&self.halves).collect(), |(h, f)| {
+            eliminate(h, f)
+        });
         let mut u = Mat::<f64>::from_fn(ng, ncols, |g, j| rhs[(split.gamma[g], j)]);
-        for (h, x) in split.halves.iter().zip([&xl, &xr]) {
+        for (h, x) in split.halves.iter().zip(&xs) {
             let n0 = h.interior.len();
             for j in 0..ncols {
                 for (t, &g) in h.gamma.iter().enumerate() {
@@ -426,13 +459,11 @@ impl SplitFactor {
             }
             f.back_substitute_interior(x.as_mut());
         };
-        super::join(
-            || back(&split.halves[0], &self.halves[0], &mut xl),
-            || back(&split.halves[1], &self.halves[1], &mut xr),
-        );
+        let work = split.halves.iter().zip(&self.halves).zip(&mut xs).collect();
+        each(work, |((h, f), x)| back(h, f, x));
         let mut out = MatMut::from_column_major_slice_mut(b, split.n, ncols);
         for j in 0..ncols {
-            for (h, x) in split.halves.iter().zip([&xl, &xr]) {
+            for (h, x) in split.halves.iter().zip(&xs) {
                 for (p, &d) in h.interior.iter().enumerate() {
                     out[(d, j)] = x[(p, j)];
                 }
@@ -441,6 +472,11 @@ impl SplitFactor {
                 out[(d, j)] = u[(g, j)];
             }
         }
+    }
+
+    /// The number of parts factorised: two halves, or the whole grid as one.
+    pub fn parts(&self) -> usize {
+        self.halves.len()
     }
 
     /// The Cholesky factor L_T of the Schur complement of K on the trace (in the trace's
@@ -484,7 +520,8 @@ mod tests {
     /// half's factor: each supernode's rows below it are the union of its columns' rows of L
     /// past it, L's rows found by eliminating K_h's graph one vertex at a time (each vertex's
     /// later neighbours become a clique), for every element, on grids with odd and even node
-    /// counts, with and without the mirror symmetry. Γ_h is the last supernode, alone.
+    /// counts, with and without the mirror symmetry; and so do the whole grid's as one part.
+    /// Γ_h is the last supernode, alone.
     #[test]
     fn the_grids_supernodes_hold_the_factors_pattern() {
         use std::collections::BTreeSet;
@@ -494,8 +531,9 @@ mod tests {
                 let dofs = DofMap::model(&mesh);
                 let k = assemble(&mesh, &dofs, Form::H1);
                 let trace = dofs.contact_dofs(&mesh);
-                let ordering = SplitOrdering::new(&k, &mesh, &dofs, &trace).unwrap().unwrap();
-                for h in &ordering.0.halves {
+                let halves = SplitOrdering::new(&k, &mesh, &dofs, &trace).unwrap().unwrap();
+                let whole = SplitOrdering::whole(&k, &mesh, &dofs, &trace).unwrap();
+                for h in halves.0.halves.iter().chain(&whole.0.halves) {
                     let mut later: Vec<BTreeSet<usize>> = vec![BTreeSet::new(); h.n];
                     for c in 0..h.n {
                         for t in h.col_ptr[c] as usize..h.col_ptr[c + 1] as usize {
@@ -532,8 +570,8 @@ mod tests {
         }
     }
 
-    /// Each half's partial factor leaves the Schur complement S_h = K₂₂ − K₂₁ K₁₁⁻¹ K₁₂ of K_h
-    /// on Γ_h, equal to a dense computation's, with faer's gather-scatter kernel and with the
+    /// Each half's partial factor (and the whole grid's, as one part) leaves the Schur
+    /// complement S_h = K₂₂ − K₂₁ K₁₁⁻¹ K₁₂ of K_h on Γ_h, equal to a dense computation's, with faer's gather-scatter kernel and with the
     /// dense product alike; and it eliminates the interior so that a solve with S_h and the
     /// back substitution solve with K_h.
     #[test]
@@ -544,8 +582,9 @@ mod tests {
                 let dofs = DofMap::model(&mesh);
                 let k = assemble(&mesh, &dofs, Form::H1);
                 let trace = dofs.contact_dofs(&mesh);
-                let ordering = SplitOrdering::new(&k, &mesh, &dofs, &trace).unwrap().unwrap();
-                for h in &ordering.0.halves {
+                let halves = SplitOrdering::new(&k, &mesh, &dofs, &trace).unwrap().unwrap();
+                let whole = SplitOrdering::whole(&k, &mesh, &dofs, &trace).unwrap();
+                for h in halves.0.halves.iter().chain(&whole.0.halves) {
                     let a = dense(h, &k);
                     let n0 = h.interior.len();
                     let ng = h.n - n0;
