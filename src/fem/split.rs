@@ -503,6 +503,18 @@ mod tests {
     use crate::fem::partial::Kernel;
     use nalgebra::DMatrix;
 
+    /// The H¹ form on an nx × ny grid of `element`, with its two halves' and its one part's
+    /// analyses (the model's contact dofs last).
+    fn both_kinds(element: Element, nx: usize, ny: usize, symmetric: bool) -> (SymCsc, [SplitOrdering; 2]) {
+        let mesh = Mesh::uniform(element, (0.0, 2.0, nx), (0.0, 1.0, ny), symmetric);
+        let dofs = DofMap::model(&mesh);
+        let k = assemble(&mesh, &dofs, Form::H1);
+        let trace = dofs.contact_dofs(&mesh);
+        let halves = SplitOrdering::new(&k, &mesh, &dofs, &trace).unwrap().unwrap();
+        let whole = SplitOrdering::whole(&k, &mesh, &dofs, &trace).unwrap();
+        (k, [halves, whole])
+    }
+
     /// Each half's K_h, dense, from its pattern (lower triangle, elimination order).
     fn dense(h: &Half, k: &SymCsc) -> DMatrix<f64> {
         let mut a = DMatrix::zeros(h.n, h.n);
@@ -527,12 +539,7 @@ mod tests {
         use std::collections::BTreeSet;
         for element in Element::ALL {
             for (nx, ny, symmetric) in [(12, 6, true), (9, 7, false), (24, 13, true), (6, 17, false)] {
-                let mesh = Mesh::uniform(element, (0.0, 2.0, nx), (0.0, 1.0, ny), symmetric);
-                let dofs = DofMap::model(&mesh);
-                let k = assemble(&mesh, &dofs, Form::H1);
-                let trace = dofs.contact_dofs(&mesh);
-                let halves = SplitOrdering::new(&k, &mesh, &dofs, &trace).unwrap().unwrap();
-                let whole = SplitOrdering::whole(&k, &mesh, &dofs, &trace).unwrap();
+                let (_, [halves, whole]) = both_kinds(element, nx, ny, symmetric);
                 for h in halves.0.halves.iter().chain(&whole.0.halves) {
                     let mut later: Vec<BTreeSet<usize>> = vec![BTreeSet::new(); h.n];
                     for c in 0..h.n {
@@ -578,12 +585,7 @@ mod tests {
     fn each_halfs_partial_factor_leaves_its_schur_complement() {
         for element in Element::ALL {
             for (nx, ny) in [(12, 6), (24, 13)] {
-                let mesh = Mesh::uniform(element, (0.0, 2.0, nx), (0.0, 1.0, ny), true);
-                let dofs = DofMap::model(&mesh);
-                let k = assemble(&mesh, &dofs, Form::H1);
-                let trace = dofs.contact_dofs(&mesh);
-                let halves = SplitOrdering::new(&k, &mesh, &dofs, &trace).unwrap().unwrap();
-                let whole = SplitOrdering::whole(&k, &mesh, &dofs, &trace).unwrap();
+                let (k, [halves, whole]) = both_kinds(element, nx, ny, true);
                 for h in halves.0.halves.iter().chain(&whole.0.halves) {
                     let a = dense(h, &k);
                     let n0 = h.interior.len();
