@@ -33,7 +33,8 @@ pub struct Discretization {
     pub(crate) dofs: DofMap,
     /// The symbolic analysis of K's pattern (shared by every form on this mesh).
     pub(crate) ordering: Analysis,
-    /// K factorised: one factor, or two subdomains and the dense S (see [`crate::fem::factor`]).
+    /// K factorised: the whole grid as one part, or two subdomains, and the dense S (see
+    /// [`crate::fem::factor`]).
     pub(crate) factor: Factor,
     /// C = E K⁻¹ Eᵀ on the Γ_C normal dofs, ascending x.
     pub(crate) compliance: Mat<f64>,
@@ -91,7 +92,7 @@ impl Discretization {
         &self.ordering
     }
 
-    /// The factorisation of K (one factor, or two subdomains and the dense S).
+    /// The factorisation of K (the whole grid as one part, or two subdomains, and the dense S).
     pub fn factor(&self) -> &Factor {
         &self.factor
     }

@@ -21,7 +21,9 @@ use crate::mesh::Mesh;
 /// (BENCHMARKS.md, "Two subdomains on two cores": on two threads the split is as fast as the
 /// single factor at level 4 Q1, 16,448 unknowns, and 1.5× faster at level 5, 65,664; on one
 /// thread it costs 15–20% more at level 7, the price of the same bits on any thread count:
-/// "Huge pages, and the same bits on any thread count").
+/// "Huge pages, and the same bits on any thread count"). Those comparisons were with faer's
+/// single factor, which the whole grid as one part replaced below this size ("Supernodes from
+/// the grid"; not measured again against two halves).
 pub const SPLIT_UNKNOWNS: usize = 50_000;
 
 /// The symbolic analysis of a form's pattern on the grid, Γ_C's normal dofs last (one per

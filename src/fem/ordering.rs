@@ -14,7 +14,8 @@ use crate::mesh::Mesh;
 
 /// Parts with at most this many nodes are not split further (ordered row by row). Smaller
 /// leaves cost fewer flops (level 6, Q1: 8.27·10⁹ at 8 nodes, 8.43·10⁹ at 32, 1.03·10¹⁰ at
-/// 256); faer merges the small supernodes they leave.
+/// 256); [`BLOCK_NODES`] merges the small blocks they leave (faer's relaxed supernodes, in
+/// its own analysis of this order).
 const LEAF_NODES: usize = 8;
 
 /// Parts with at most this many nodes are one block of [`Dissection`] (one supernode of the

@@ -4,9 +4,10 @@
 //! Each block of [`super::ordering::Dissection`] (a separator, or a small part) is one
 //! supernode: its columns of L are stored as one dense block, the diagonal block and then
 //! the rows below it. When a block is eliminated, so is the whole part P it closes, and the
-//! rows of its columns are the later dofs of P's closure ([`super::ordering::Part::closure`]): the ring of
-//! nodes around P (on the separators of the parts that hold P, or on the interface) and the
-//! interface dofs of P's own nodes (the trace). Eliminating P, which is connected, reaches
+//! rows of its columns are the later dofs of P's closure
+//! ([`super::ordering::Part::closure`]): the ring of nodes around P (on the separators of the
+//! parts that hold P, or on the interface) and the interface dofs of P's own nodes (the
+//! trace). Eliminating P, which is connected, reaches
 //! every one of them and nothing else (George and Liu 1981: the structure of a column of L is
 //! the reach of its node through the nodes eliminated before it), so these are exactly the
 //! rows of the block's columns of L. For a separator every column has them all, as in faer's
@@ -45,11 +46,10 @@ impl<I: Index> Supernodes<I> {
     /// the next starts, the last at `n`), the rows of each given by `rows_of` (which appends
     /// them, each once, in any order; each after the supernode's columns and before `n`).
     pub(super) fn new(
-        begin: Vec<usize>,
+        mut begin: Vec<usize>,
         n: usize,
         mut rows_of: impl FnMut(usize, &mut Vec<I>),
     ) -> Result<Self, FemError> {
-        let mut begin = begin;
         begin.push(n);
         let n_supernodes = begin.len() - 1;
         let mut row_ptr = Vec::with_capacity(n_supernodes + 1);
