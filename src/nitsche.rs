@@ -37,8 +37,10 @@
 //! ỹ = Γ⁻¹y. The semismooth Newton on ỹ then lives on the points like the penalty's
 //! (`super::penalty`): with
 //! v = −Γg − H ỹ = γ(u_n − g) − σ_n and the active set A = {v > 0}, each step solves
-//! (W_A⁻¹Γ_A + H_AA) ỹ_A = −Γ_A g_A by LU (H is non-symmetric unless θ = 1). A depth change
-//! costs only the Newton; θ or γ₀ costs O(n³) dense work; K is never refactorised.
+//! (W_A⁻¹Γ_A + H_AA) ỹ_A = −Γ_A g_A, by Cholesky for θ = 1 and by LU otherwise (H is
+//! non-symmetric unless θ = 1). A depth change costs only the Newton; θ or γ₀ costs O(n³)
+//! dense work (for θ = 1 one triangular solve and half a product fewer, as H = H₀ + WᵀW is
+//! symmetric: [`Correction`]); K is never refactorised.
 //!
 //! **Stability.** On any active set the symmetric part of the Jacobian is bounded below by
 //! K − κ(1/γ)SᵀWS, κ = (1 + θ)²/4 (Young's inequality on the cross term (1 + θ)σ_n v_n; the
@@ -55,8 +57,9 @@ use std::ops::ControlFlow;
 use std::sync::{Arc, Mutex, OnceLock};
 use std::time::Instant;
 
+use faer::linalg::matmul::triangular::{self, BlockStructure};
 use faer::linalg::solvers::Solve;
-use faer::{Accum, ColRef, Mat, Side};
+use faer::{Accum, ColRef, Mat, Par, Side};
 
 use crate::contact::method::{AUTO_GAMMA0_FACTOR, GAMMA0_RANGE, Gamma0};
 use crate::contact::penalty::{
@@ -149,9 +152,41 @@ struct Operator {
     gamma: Vec<f64>,
     /// H = P_1 K_θ⁻¹ P_θᵀ: P_1 u = H ỹ for the scaled forces ỹ = Γ⁻¹y.
     h: Mat<f64>,
-    /// V = S K⁻¹ P_θᵀ and ZV: σ = (V + G_SS ZV) ỹ.
+    /// V = S K⁻¹ P_θᵀ: σ = (V + G_SS ZV) ỹ.
     v: Mat<f64>,
-    zv: Mat<f64>,
+    /// Woodbury's correction ZV, for θ ≠ 0.
+    correction: Option<Correction>,
+}
+
+/// ZV = θ C^½ N⁻¹ C^½ V (module doc) kept as N's Cholesky factor L (N = L Lᵀ) and
+/// W = L⁻¹ C^½ V: ZV ỹ = θ C^½ L⁻ᵀ (W ỹ) costs two n² products, and the operator one
+/// triangular solve with n right-hand sides fewer than forming ZV.
+struct Correction {
+    /// C^½, C = W Γ⁻¹.
+    r: Vec<f64>,
+    l: Mat<f64>,
+    w: Mat<f64>,
+}
+
+impl Correction {
+    /// ZV ỹ.
+    fn zv(&self, theta: f64, y: &[f64]) -> Vec<f64> {
+        let mut t = Mat::<f64>::zeros(y.len(), 1);
+        faer::linalg::matmul::matmul(
+            t.as_mut(),
+            Accum::Replace,
+            self.w.as_ref(),
+            ColRef::from_slice(y).as_mat(),
+            1.0,
+            Par::Seq,
+        );
+        faer::linalg::triangular_solve::solve_upper_triangular_in_place(
+            self.l.transpose(),
+            t.as_mut(),
+            Par::Seq,
+        );
+        (0..y.len()).map(|i| theta * self.r[i] * t[(i, 0)]).collect()
+    }
 }
 
 /// The cell shape functions of the boundary cell over edge `ci` at the point s ∈ [0, 1] of
@@ -531,7 +566,7 @@ pub fn check_params(nitsche: &NitscheParams) -> Result<(), SolveError> {
 }
 
 impl Operator {
-    /// H, V and ZV for θ, γ₀ (module doc): dense work on the points only.
+    /// H, V and Woodbury's correction for θ, γ₀ (module doc): dense work on the points only.
     fn new(rule: Rule, cp: Arc<Couplings>, params: NitscheParams, young: f64) -> Result<Self, SolveError> {
         let n = cp.n();
         let theta = params.theta;
@@ -572,24 +607,53 @@ impl Operator {
         if kappa > 0.0 && kappa != theta && shifted(kappa).llt(Side::Lower).is_err() {
             return Err(refused());
         }
-        let mut zv = Mat::<f64>::zeros(n, n);
+        let mut correction = None;
         if theta != 0.0 {
-            // Z = (I − D G_SS)⁻¹ D = θ C^½ N⁻¹ C^½ with N = I − θ C^½ G_SS C^½ symmetric,
-            // positive definite when the check above passed (θ ≤ κ).
+            // Z = (I − D G_SS)⁻¹ D = θ C^½ N⁻¹ C^½ with N = I − θ C^½ G_SS C^½ = L Lᵀ symmetric,
+            // positive definite when the check above passed (θ ≤ κ). With W = L⁻¹ C^½ V,
+            // U Z V = θ (L⁻¹ C^½ Uᵀ)ᵀ W.
             let r: Vec<f64> = c.iter().map(|v| v.sqrt()).collect();
-            let llt = shifted(theta).llt(Side::Lower).map_err(|_| refused())?;
-            let rhs = Mat::<f64>::from_fn(n, n, |i, j| r[i] * v[(i, j)]);
-            let sol = llt.solve(&rhs);
-            zv = Mat::<f64>::from_fn(n, n, |i, j| theta * r[i] * sol[(i, j)]);
-            let u = Mat::<f64>::from_fn(n, n, |i, j| cp.ss(i, j) - gamma[i] * cp.bs(i, j));
-            faer::linalg::matmul::matmul(
-                h.as_mut(),
-                Accum::Add,
-                u.as_ref(),
-                zv.as_ref(),
-                1.0,
-                crate::fem::dense_parallelism(n),
-            );
+            let l = shifted(theta)
+                .llt(Side::Lower)
+                .map_err(|_| refused())?
+                .L()
+                .to_owned();
+            drop(scaled);
+            let par = crate::fem::dense_parallelism(n);
+            let lower = |mut m: Mat<f64>| {
+                faer::linalg::triangular_solve::solve_lower_triangular_in_place(l.as_ref(), m.as_mut(), par);
+                m
+            };
+            let w = lower(Mat::<f64>::from_fn(n, n, |i, j| r[i] * v[(i, j)]));
+            if theta == 1.0 {
+                // Uᵀ = V (G is symmetric), so U Z V = WᵀW: symmetric, its lower half alone.
+                let mut wtw = Mat::<f64>::zeros(n, n);
+                triangular::matmul(
+                    wtw.as_mut(),
+                    BlockStructure::TriangularLower,
+                    Accum::Replace,
+                    w.transpose(),
+                    BlockStructure::Rectangular,
+                    w.as_ref(),
+                    BlockStructure::Rectangular,
+                    1.0,
+                    par,
+                );
+                for j in 0..n {
+                    h[(j, j)] += wtw[(j, j)];
+                    for i in j + 1..n {
+                        h[(i, j)] += wtw[(i, j)];
+                        h[(j, i)] += wtw[(i, j)];
+                    }
+                }
+            } else {
+                // C^½ Uᵀ, U = P_1 K⁻¹ Sᵀ = G_SS − Γ G_BS.
+                let x = lower(Mat::<f64>::from_fn(n, n, |i, j| {
+                    r[i] * (cp.ss(j, i) - gamma[j] * cp.bs(j, i))
+                }));
+                faer::linalg::matmul::matmul(h.as_mut(), Accum::Add, x.transpose(), w.as_ref(), theta, par);
+            }
+            correction = Some(Correction { r, l, w });
         }
         Ok(Operator {
             rule,
@@ -598,7 +662,7 @@ impl Operator {
             gamma,
             h,
             v,
-            zv,
+            correction,
         })
     }
 
@@ -636,8 +700,11 @@ impl Operator {
             g.submatrix(n, n, n, n),
         );
         // σ = (V + G_SS ZV) ỹ.
-        let zvy = &self.zv * col(y);
-        let sigma = &self.v * col(y) + ss * &zvy;
+        let zvy = self.correction.as_ref().map(|c| c.zv(theta, y));
+        let mut sigma = &self.v * col(y);
+        if let Some(zvy) = &zvy {
+            sigma += ss * col(zvy);
+        }
         // K u = Sᵀ a + Bᵀ b with a = Dσ + θỹ, b = −Γỹ.
         let a: Vec<f64> = (0..n)
             .map(|q| theta * (cp.points[q].weight / self.gamma[q] * sigma[q] + y[q]))
@@ -661,8 +728,10 @@ impl Operator {
     }
 }
 
-/// ỹ_A from (W_A⁻¹Γ_A + H_AA) ỹ_A = d_A, zero off A (None when the system is singular).
-fn active_forces(h: &Mat<f64>, c: &[f64], d: &[f64], a: &[usize]) -> Option<Vec<f64>> {
+/// ỹ_A from (W_A⁻¹Γ_A + H_AA) ỹ_A = d_A, zero off A (None when the system is singular). For
+/// θ = 1 (`symmetric`) H = P_1 K_1⁻¹ P_1ᵀ, and the matrix is positive definite where the method
+/// is stable (module doc): Cholesky, half of LU's work, with LU where Cholesky fails.
+fn active_forces(h: &Mat<f64>, c: &[f64], d: &[f64], a: &[usize], symmetric: bool) -> Option<Vec<f64>> {
     let mut y = vec![0.0; h.nrows()];
     if a.is_empty() {
         return Some(y);
@@ -671,7 +740,10 @@ fn active_forces(h: &Mat<f64>, c: &[f64], d: &[f64], a: &[usize]) -> Option<Vec<
         h[(a[i], a[j])] + if i == j { 1.0 / c[a[i]] } else { 0.0 }
     });
     let rhs = Mat::<f64>::from_fn(a.len(), 1, |i, _| d[a[i]]);
-    let sol = m.partial_piv_lu().solve(&rhs);
+    let sol = symmetric
+        .then(|| m.llt(Side::Lower).ok())
+        .flatten()
+        .map_or_else(|| m.partial_piv_lu().solve(&rhs), |llt| llt.solve(&rhs));
     for (i, &q) in a.iter().enumerate() {
         y[q] = sol[(i, 0)];
     }
@@ -743,7 +815,7 @@ fn newton(
         let target = if stop {
             None
         } else {
-            active_forces(&op.h, c, d, &a)
+            active_forces(&op.h, c, d, &a, op.params.theta == 1.0)
         };
         let Some(target) = target else {
             let diagnosis = (!done).then(|| {
@@ -979,6 +1051,15 @@ mod tests {
 
     /// The boundary cell's shape functions at the top edge agree with the field evaluation of
     /// `basis::evaluate` just below it (inside the same element), for a random field.
+    /// Where Cholesky fails on a symmetric active-set matrix (indefinite: [[0, 2], [2, 0]]),
+    /// LU solves it: (2ỹ₂, 2ỹ₁) = (2, 4).
+    #[test]
+    fn active_forces_fall_back_to_lu_where_cholesky_fails() {
+        let h = Mat::<f64>::from_fn(2, 2, |i, j| if i == j { -1.0 } else { 2.0 });
+        let y = active_forces(&h, &[1.0, 1.0], &[2.0, 4.0], &[0, 1], true).unwrap();
+        assert_eq!(y, [2.0, 1.0]);
+    }
+
     #[test]
     fn top_shape_matches_the_field_evaluation() {
         for element in Element::ALL {
