@@ -63,7 +63,7 @@ use faer::{Accum, ColRef, Mat, Par, Side};
 
 use crate::contact::method::{AUTO_GAMMA0_FACTOR, GAMMA0_RANGE, Gamma0};
 use crate::contact::penalty::{
-    Iterate, Iteration, NewtonOptions, NewtonResult, Progress, dot, round_off, stalled,
+    Iterate, Iteration, NewtonOptions, NewtonResult, Progress, active_block, dot, round_off, stalled,
 };
 use crate::contact::{ContactParams, ContactPoints, Rule, load, smoothed_pressure};
 use crate::discretization::{Discretization, fem_error};
@@ -736,9 +736,7 @@ fn active_forces(h: &Mat<f64>, c: &[f64], d: &[f64], a: &[usize], symmetric: boo
     if a.is_empty() {
         return Some(y);
     }
-    let m = Mat::<f64>::from_fn(a.len(), a.len(), |i, j| {
-        h[(a[i], a[j])] + if i == j { 1.0 / c[a[i]] } else { 0.0 }
-    });
+    let m = active_block(h, a, |q| 1.0 / c[q]);
     let rhs = Mat::<f64>::from_fn(a.len(), 1, |i, _| d[a[i]]);
     let sol = symmetric
         .then(|| m.llt(Side::Lower).ok())

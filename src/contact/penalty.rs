@@ -116,9 +116,7 @@ pub(crate) fn active_forces(pb: &Penalty, a: &[usize]) -> Vec<f64> {
     if a.is_empty() {
         return y;
     }
-    let m = Mat::<f64>::from_fn(a.len(), a.len(), |i, j| {
-        pb.coupling[(a[i], a[j])] + if i == j { pb.epsilon / pb.weight[a[i]] } else { 0.0 }
-    });
+    let m = active_block(pb.coupling, a, |q| pb.epsilon / pb.weight[q]);
     let rhs = Mat::<f64>::from_fn(a.len(), 1, |i, _| pb.free_violation[a[i]]);
     let sol = match m.llt(Side::Lower) {
         Ok(llt) => llt.solve(&rhs),
@@ -129,6 +127,22 @@ pub(crate) fn active_forces(pb: &Penalty, a: &[usize]) -> Vec<f64> {
         y[q] = sol[(i, 0)];
     }
     y
+}
+
+/// M_AA + diag(δ_q, q ∈ A): the rows and columns `a` of `m`, with `diagonal(q)` added where
+/// row and column are the point q; gathered a column at a time (the active-set systems of the
+/// penalty's and Nitsche's Newton).
+pub(crate) fn active_block(m: &Mat<f64>, a: &[usize], diagonal: impl Fn(usize) -> f64) -> Mat<f64> {
+    let mut block = Mat::<f64>::zeros(a.len(), a.len());
+    for (j, &q) in a.iter().enumerate() {
+        let column = m.col_as_slice(q);
+        let out = block.col_as_slice_mut(j);
+        for (o, &p) in out.iter_mut().zip(a) {
+            *o = column[p];
+        }
+        out[j] += diagonal(q);
+    }
+    block
 }
 
 /// Round-off in s = d − Gy at each point, a difference of O(|d|) numbers (`gy` = Gy): below
