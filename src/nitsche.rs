@@ -40,7 +40,7 @@
 //! (W_A⁻¹Γ_A + H_AA) ỹ_A = −Γ_A g_A, by Cholesky for θ = 1 and by LU otherwise (H is
 //! non-symmetric unless θ = 1). A depth change costs only the Newton; θ or γ₀ costs O(n³)
 //! dense work (for θ = 1 one triangular solve and half a product fewer, as H = H₀ + WᵀW is
-//! symmetric: [`Correction`]); K is never refactorised.
+//! symmetric: `Correction`); K is never refactorised.
 //!
 //! **Stability.** On any active set the symmetric part of the Jacobian is bounded below by
 //! K − κ(1/γ)SᵀWS, κ = (1 + θ)²/4 (Young's inequality on the cross term (1 + θ)σ_n v_n; the
@@ -159,8 +159,9 @@ struct Operator {
 }
 
 /// ZV = θ C^½ N⁻¹ C^½ V (module doc) kept as N's Cholesky factor L (N = L Lᵀ) and
-/// W = L⁻¹ C^½ V: ZV ỹ = θ C^½ L⁻ᵀ (W ỹ) costs two n² products, and the operator one
-/// triangular solve with n right-hand sides fewer than forming ZV.
+/// W = L⁻¹ C^½ V: ZV ỹ = θ C^½ L⁻ᵀ (W ỹ) costs a product and a triangular solve with one
+/// right-hand side, and the operator one triangular solve with n right-hand sides fewer than
+/// forming ZV.
 struct Correction {
     /// C^½, C = W Γ⁻¹.
     r: Vec<f64>,
@@ -1047,8 +1048,6 @@ mod tests {
         }
     }
 
-    /// The boundary cell's shape functions at the top edge agree with the field evaluation of
-    /// `basis::evaluate` just below it (inside the same element), for a random field.
     /// Where Cholesky fails on a symmetric active-set matrix (indefinite: [[0, 2], [2, 0]]),
     /// LU solves it: (2ỹ₂, 2ỹ₁) = (2, 4).
     #[test]
@@ -1058,6 +1057,8 @@ mod tests {
         assert_eq!(y, [2.0, 1.0]);
     }
 
+    /// The boundary cell's shape functions at the top edge agree with the field evaluation of
+    /// `basis::evaluate` just below it (inside the same element), for a random field.
     #[test]
     fn top_shape_matches_the_field_evaluation() {
         for element in Element::ALL {
