@@ -31,7 +31,8 @@ pub(crate) fn ms_since(t: Instant) -> f64 {
 pub struct Discretization {
     pub(crate) mesh: Mesh,
     pub(crate) dofs: DofMap,
-    /// The symbolic analysis of K's pattern (shared by every form on this mesh).
+    /// The analysis of K's pattern: the grid's order and its supernodes (shared by every form
+    /// on this mesh).
     pub(crate) ordering: Analysis,
     /// K factorised: the whole grid as one part, or two subdomains, and the dense S (see
     /// [`crate::fem::factor`]).

@@ -70,7 +70,7 @@ use crate::discretization::{Discretization, fem_error};
 use crate::error::SolveError;
 use crate::fem::basis::lagrange_1d;
 use crate::fem::error::gib;
-use crate::fem::factor::{Analysis, Factor, SPLIT_UNKNOWNS};
+use crate::fem::factor::{Analysis, Factor};
 use crate::fem::memory::Limits;
 use crate::fem::{Form, assemble};
 use crate::material::Material;
@@ -282,8 +282,8 @@ fn edge_points(disc: &Discretization, material: &Material, points: &ContactPoint
 /// complement on no more than these: u_x of Γ_C's nodes and u_y of the nodes of the elements
 /// on Γ_C (σ_yy = λ u_x,x + (λ + 2μ) u_y,y on the top edge, where u_x,x sees only the edge's
 /// nodes), about three dofs per node column for Q1 and P1 and four for Q2, where every dof of
-/// those elements would be four and six. Then the elements' other dofs, in the same order.
-fn layer_dofs(disc: &Discretization) -> (Vec<usize>, Vec<usize>) {
+/// those elements would be four and six.
+fn layer_dofs(disc: &Discretization) -> Vec<usize> {
     let mesh = &disc.mesh;
     let mut used = vec![false; disc.n_dofs()];
     for ci in 0..mesh.nx() {
@@ -296,17 +296,21 @@ fn layer_dofs(disc: &Discretization) -> (Vec<usize>, Vec<usize>) {
     }
     let nny = mesh.node_y.len();
     let below = nny.saturating_sub(mesh.element.order() + 1);
-    let (mut dofs, mut others) = (Vec::new(), Vec::new());
+    let mut dofs = Vec::new();
     for i in 0..mesh.nnx() {
         for j in below..nny {
             for comp in 0..2 {
-                if let Some(d) = disc.dofs.free_index(2 * mesh.node(i, j) + comp) {
-                    if used[d] { &mut dofs } else { &mut others }.push(d);
+                if let Some(d) = disc
+                    .dofs
+                    .free_index(2 * mesh.node(i, j) + comp)
+                    .filter(|&d| used[d])
+                {
+                    dofs.push(d);
                 }
             }
         }
     }
-    (dofs, others)
+    dofs
 }
 
 impl Layer {
@@ -315,7 +319,7 @@ impl Layer {
     /// the Schur complement's factor.
     fn build(disc: &Discretization) -> Result<Layer, SolveError> {
         let mesh = &disc.mesh;
-        let (dofs, others) = layer_dofs(disc);
+        let dofs = layer_dofs(disc);
         let n = disc.n_dofs();
         // The dense work: L_BB, the couplings' right-hand sides (at most 3 points per edge, and
         // the vertices), G and the operator's n×n matrices.
@@ -335,31 +339,19 @@ impl Layer {
             &disc.dofs,
             Form::Elasticity(disc.material, disc.integration),
         );
-        // One factor costs fewer flops with the elements' other dofs last too, just before the
-        // layer (Q1 level 4: 1.85·10⁸ against 2.14·10⁸; Q2 level 3: 2.41·10⁸ against 2.86·10⁸;
-        // BENCHMARKS.md); the trailing part of the Schur factor is then the layer's. Two
-        // subdomains do better with the layer alone (level 7: 1.26·10¹¹ against 1.33·10¹¹).
-        let others = if stiffness.n < SPLIT_UNKNOWNS {
-            others
-        } else {
-            Vec::new()
-        };
-        let trace: Vec<usize> = others.iter().chain(&dofs).copied().collect();
-        let analysis = Analysis::grid(&stiffness, mesh, &disc.dofs, &trace).map_err(|e| fem_error(e, n))?;
+        // The layer alone last: the elements' other dofs just before it cost fewer flops with
+        // faer's single factor, but 9–22% more instructions in a fresh solve with the whole
+        // grid as one part, whose dense S they join (BENCHMARKS.md, "Nitsche's operator and the
+        // active-set systems").
+        let analysis = Analysis::grid(&stiffness, mesh, &disc.dofs, &dofs).map_err(|e| fem_error(e, n))?;
         let factor = Factor::new(&analysis, stiffness).map_err(|e| fem_error(e, n))?;
         let mut position = vec![usize::MAX; n];
         for (k, &d) in dofs.iter().enumerate() {
             position[d] = k;
         }
-        let (k, nb) = (others.len(), dofs.len());
-        let l = factor.schur_factor();
         Ok(Layer {
             position,
-            l: if k == 0 {
-                l
-            } else {
-                l.as_ref().submatrix(k, k, nb, nb).to_owned()
-            },
+            l: factor.schur_factor(),
         })
     }
 
@@ -975,8 +967,8 @@ mod tests {
 
     /// The layer is u_x of Γ_C's nodes and u_y of the nodes of the elements on Γ_C (two node
     /// rows of the boundary cells for Q1, three for Q2; for P1 Γ_C's nodes and each top
-    /// triangle's third vertex), the free ones, counted here from the dof map; the others are
-    /// the rest of the boundary cells' free dofs.
+    /// triangle's third vertex), the free ones, counted here from the dof map: distinct free
+    /// dofs of the boundary cells.
     #[test]
     fn the_layer_is_the_dofs_the_rows_use() {
         for element in Element::ALL {
@@ -1005,13 +997,17 @@ mod tests {
                             .count()
                 })
                 .sum();
-            let free_in_cells = (0..mesh.nnx())
+            let in_cells: std::collections::BTreeSet<usize> = (0..mesh.nnx())
                 .flat_map(|i| (nny - rows..nny).flat_map(move |j| [(i, j, 0), (i, j, 1)]))
-                .filter(|&(i, j, comp)| free(i, j, comp))
-                .count();
-            let (layer, others) = layer_dofs(&disc);
+                .filter_map(|(i, j, comp)| disc.dofs.free_index(2 * mesh.node(i, j) + comp))
+                .collect();
+            let layer = layer_dofs(&disc);
             assert_eq!(layer.len(), expected, "{element:?}");
-            assert_eq!(layer.len() + others.len(), free_in_cells, "{element:?}");
+            let distinct: std::collections::BTreeSet<usize> = layer.iter().copied().collect();
+            assert!(
+                distinct.len() == layer.len() && distinct.is_subset(&in_cells),
+                "{element:?}: distinct dofs of the boundary cells"
+            );
             assert!(
                 layer.len() < 2 * rows * mesh.nnx() - 1,
                 "{element:?}: fewer than the cells' dofs"
@@ -1020,9 +1016,8 @@ mod tests {
     }
 
     /// K's Schur complement on the layer is the same from two subdomains (the split the layer
-    /// uses from 50,000 unknowns), from one factor, and from the layer's own factor (one
-    /// factor with the elements' other dofs just before the layer, below 50,000), to
-    /// round-off.
+    /// uses from 50,000 unknowns), from faer's one factor, and from the layer's own factor (the
+    /// whole grid as one part, below 50,000), to round-off.
     #[test]
     fn the_layers_schur_complement_is_the_same_split_or_whole() {
         for element in [Element::Q1, Element::Q2] {
@@ -1032,7 +1027,7 @@ mod tests {
                 &disc.dofs,
                 Form::Elasticity(disc.material, disc.integration),
             );
-            let (dofs, _) = layer_dofs(&disc);
+            let dofs = layer_dofs(&disc);
             let schur = |analysis: Analysis| {
                 let l = Factor::new(&analysis, stiffness.clone()).unwrap().schur_factor();
                 l.as_ref() * l.transpose()

@@ -578,8 +578,8 @@ mod tests {
     }
 
     /// Each half's partial factor (and the whole grid's, as one part) leaves the Schur
-    /// complement S_h = K₂₂ − K₂₁ K₁₁⁻¹ K₁₂ of K_h on Γ_h, equal to a dense computation's, with faer's gather-scatter kernel and with the
-    /// dense product alike; and it eliminates the interior so that a solve with S_h and the
+    /// complement S_h = K₂₂ − K₂₁ K₁₁⁻¹ K₁₂ of K_h on Γ_h, equal to a dense computation's,
+    /// with faer's gather-scatter kernel and with the dense product alike; and it eliminates the interior so that a solve with S_h and the
     /// back substitution solve with K_h.
     #[test]
     fn each_halfs_partial_factor_leaves_its_schur_complement() {
