@@ -10,8 +10,8 @@
 //!   numeric, no compliance.
 //!
 //! Before the timings it prints each ordering's factor size and flop count (no timing
-//! noise), METIS's nested dissection (`METIS_NodeND` on the graph of K without Γ_C, then
-//! Γ_C) among them, with the time METIS took. `RIPLAB_THREADS` (default: the cores available, as `--threads`) sets the threads of
+//! noise); with `--features metis`, METIS's nested dissection (`METIS_NodeND` on the graph of
+//! K without Γ_C, then Γ_C) among them, with the time METIS took. `RIPLAB_THREADS` (default: the cores available, as `--threads`) sets the threads of
 //! every variant alike; the binary's allocator serves all of them.
 
 use std::ops::ControlFlow;
@@ -55,12 +55,16 @@ fn main() {
         let grid = TraceOrdering::grid(&k, &mesh, &dofs, &trace).unwrap();
         let amd = TraceOrdering::new(&k, &trace).unwrap();
         let split = Analysis::split(&k, &mesh, &dofs, &trace).unwrap();
-        let started = std::time::Instant::now();
-        let metis = TraceOrdering::with_order(&k, metis_order(&k, &trace), &trace).unwrap();
-        println!(
-            "level {level}: METIS ordering and analysis {:.0} ms",
-            started.elapsed().as_secs_f64() * 1e3
-        );
+        #[cfg(feature = "metis")]
+        let metis = {
+            let started = std::time::Instant::now();
+            let metis = TraceOrdering::with_order(&k, metis_order(&k, &trace), &trace).unwrap();
+            println!(
+                "level {level}: METIS ordering and analysis {:.0} ms",
+                started.elapsed().as_secs_f64() * 1e3
+            );
+            metis
+        };
         let faer = factorize_symbolic_cholesky(
             k.symbolic(),
             Side::Lower,
@@ -68,7 +72,7 @@ fn main() {
             CholeskySymbolicParams::default(),
         )
         .unwrap();
-        for (name, len, flops) in [
+        let rows = vec![
             (
                 "grid nested dissection, Γ_C last",
                 grid.factor_len(),
@@ -79,14 +83,21 @@ fn main() {
                 split.factor_len(),
                 split.factor_flops(),
             ),
-            (
+            ("AMD, Γ_C last (before)", amd.factor_len(), amd.factor_flops()),
+            ("faer default (AMD)", faer.len_val(), factor_flops(&faer)),
+        ];
+        #[cfg(feature = "metis")]
+        let rows = {
+            let mut rows = rows;
+            let row = (
                 "METIS nested dissection, Γ_C last",
                 metis.factor_len(),
                 metis.factor_flops(),
-            ),
-            ("AMD, Γ_C last (before)", amd.factor_len(), amd.factor_flops()),
-            ("faer default (AMD)", faer.len_val(), factor_flops(&faer)),
-        ] {
+            );
+            rows.insert(2, row);
+            rows
+        };
+        for (name, len, flops) in rows {
             println!("| {level} | {} | {name} | {len} | {flops:.3e} |", k.n);
         }
     }
@@ -95,6 +106,7 @@ fn main() {
 
 /// METIS's fill-reducing order (`METIS_NodeND`, default options) of the free dofs of `k` but
 /// `trace`: the graph of K's pattern without them.
+#[cfg(feature = "metis")]
 fn metis_order(k: &SymCsc, trace: &[usize]) -> Vec<usize> {
     type Idx = metis_sys::idx_t;
     let mut local = vec![usize::MAX; k.n];

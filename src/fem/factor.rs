@@ -5,7 +5,7 @@
 //! factorisation of the grid's order ([`super::condense`]) remain as [`Analysis::whole`], the
 //! reference the tests compare with.
 //! The choice depends on the mesh alone, never on the threads, so that every result has the
-//! same bits whatever `--threads` says (tests/numerics/threads.rs). The two factorisations
+//! same bits whatever `--threads` says (tests/threads/main.rs). The two factorisations
 //! agree to round-off (within 10⁻¹² relative, tests/numerics/fem.rs).
 
 use faer::Mat;

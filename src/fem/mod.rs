@@ -29,7 +29,7 @@ static THREADS: AtomicUsize = AtomicUsize::new(1);
 /// Run the assembly, the factorisation (both subdomains side by side) and the trace
 /// compliance on `threads` threads; everything else (faer's dense eigensolvers among it) stays
 /// on the caller's thread. The work and its order of summation are the same for any count, so
-/// the results are bit-identical (tests/numerics/threads.rs).
+/// the results are bit-identical (tests/threads/main.rs).
 pub fn set_threads(threads: usize) {
     THREADS.store(threads.max(1), Ordering::Relaxed);
     faer::set_global_parallelism(Par::Seq);

@@ -347,6 +347,10 @@ fn subtract_lower_product<I: Index>(
     buffer: &mut Vec<f64>,
 ) {
     let (nrows, ncols) = (lhs.nrows(), rhs.nrows());
+    // The kernel below reads `lhs` and `rhs` through raw pointers with one depth for both:
+    // a mismatch would read past one of them.
+    assert_eq!(lhs.ncols(), rhs.ncols(), "the product's inner dimensions differ");
+    assert!(ncols <= nrows, "rhs is lhs's first rows");
     #[cfg(target_arch = "x86_64")]
     if let Kernel::Gather(instr) = kernel
         && rows.len() == nrows
@@ -432,6 +436,7 @@ fn subtract_lower_product<I: Index>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use faer::Mat;
 
     /// On a dense pattern of order 5 with 2 interface dofs, the partial factorisation's flops
     /// are those of the 3 interior columns (c = 5, 4, 3), not the whole factor's Σ_{c=1}^{5} c².
@@ -447,5 +452,54 @@ mod tests {
         assert_eq!(ordering.factor_flops(), 25.0 + 16.0 + 9.0);
         // Each supernode's diagonal block stored square: 5 × 3 and 2 × 2.
         assert_eq!(ordering.factor_len(), 15 + 4);
+    }
+
+    /// The pinned `private-gemm-x86` (Cargo.toml: `=`) computes what the dense path computes:
+    /// dst[rows[i], rows[j]] −= (lhs lhs[..ncols]ᵀ)[i, j] for i ≥ j, with scattered rows, both
+    /// index widths, every other entry of dst untouched. A new version that changed the
+    /// kernel's meaning or argument order fails here before it reaches a factor.
+    #[test]
+    fn the_gather_kernel_equals_the_dense_product() {
+        fn run<I: Index>(kernel: Kernel) -> Vec<f64> {
+            let (n, depth) = (11, 4);
+            let rows: Vec<I> = [0usize, 2, 3, 6, 7, 10].iter().map(|&r| I::truncate(r)).collect();
+            let ncols = 3;
+            let lhs = Mat::<f64>::from_fn(rows.len(), depth, |i, k| ((i * 5 + k * 3) % 7) as f64 - 2.5);
+            let mut dst = Mat::<f64>::from_fn(n, n, |i, j| (i * n + j) as f64);
+            let mut buffer = Vec::new();
+            subtract_lower_product(
+                dst.as_mut(),
+                &rows,
+                &rows[..ncols],
+                lhs.as_ref(),
+                lhs.as_ref().subrows(0, ncols),
+                kernel,
+                &mut buffer,
+            );
+            (0..n)
+                .flat_map(|j| (0..n).map(move |i| (i, j)))
+                .map(|(i, j)| dst[(i, j)])
+                .collect()
+        }
+        let dense = run::<u32>(Kernel::Dense);
+        // The dense path against the definition, entry by entry.
+        let rows = [0usize, 2, 3, 6, 7, 10];
+        let lhs = |i: usize, k: usize| ((i * 5 + k * 3) % 7) as f64 - 2.5;
+        for j in 0..11 {
+            for i in 0..11 {
+                let mut expect = (i * 11 + j) as f64;
+                if let (Some(a), Some(b)) = (
+                    rows.iter().position(|&r| r == i),
+                    rows[..3].iter().position(|&r| r == j),
+                ) && a >= b
+                {
+                    expect -= (0..4).map(|k| lhs(a, k) * lhs(b, k)).sum::<f64>();
+                }
+                assert_eq!(dense[j * 11 + i], expect, "dense path, dst[{i}, {j}]");
+            }
+        }
+        let kernel = Kernel::detect();
+        assert_eq!(run::<u32>(kernel), dense, "{kernel:?} with u32 indices");
+        assert_eq!(run::<u64>(kernel), dense, "{kernel:?} with u64 indices");
     }
 }

@@ -1,6 +1,7 @@
 //! The numerics, one module per part of the library it checks (fem, contact, the pressures,
 //! inf-sup, locking, the contact methods, Nitsche, stability under stress, the stresses, the
-//! study, threads, the scenarios): one test binary, so that `cargo test` links once.
+//! study, the scenarios): one test binary, so that `cargo test` links few times (the thread
+//! count's test has its own, tests/threads, since it changes a process-wide setting).
 
 #[macro_use]
 #[path = "../common/mod.rs"]
@@ -18,4 +19,3 @@ mod scenarios;
 mod stress;
 mod stresses;
 mod study;
-mod threads;

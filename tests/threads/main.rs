@@ -1,5 +1,9 @@
-//! Results do not depend on the thread count, to the bit (issue 13): the thread count is
-//! process-wide, so one test changes it, and each run reads which factorisation it got.
+//! Results do not depend on the thread count, to the bit: the thread count is process-wide,
+//! so this one test changes it in a test binary of its own (no other test runs beside it with
+//! a count it did not choose), and each run reads which factorisation it got.
+
+#[path = "../common/mod.rs"]
+mod common;
 
 use std::ops::ControlFlow;
 
@@ -46,7 +50,7 @@ fn run(threads: usize, element: Element, level: u32) -> ([(&'static str, Vec<f64
 /// whole grid as one part, whose dense kernels (faer's) sum in the same order on any thread
 /// count; from it on (levels 5 Q1 and P1, level 4 Q2) two subdomains, factorised one after
 /// the other on one thread and side by side on more, with the same arithmetic. The assembly's two threads each
-/// sum their own columns. One test, so that no other changes the thread count while it runs.
+/// sum their own columns. One test, so that nothing else changes the thread count while it runs.
 #[test]
 fn results_do_not_depend_on_the_threads() {
     split_factor_bits_do_not_depend_on_threads();
