@@ -20,7 +20,7 @@ use serde::Serialize;
 use crate::contact::method::MethodFields;
 use crate::contact::penalty::{NewtonOptions, SolveError};
 use crate::contact::{ContactPoints, Method, Rule};
-use crate::fem::basis::{cell_points, evaluate};
+use crate::fem::basis::{CellRule, evaluate, field_at};
 use crate::fem::memory::{Limits, Sizes};
 use crate::fem::quadrature::gauss_legendre;
 use crate::mesh::{Element, MAX_LEVEL, Mesh};
@@ -397,10 +397,15 @@ impl Reference {
             }
         }
         let mut cells = Vec::with_capacity(mesh.n_cells() * ERROR_POINTS * ERROR_POINTS);
+        let (cell_rule, mut quad, mut nodes) = (CellRule::new(element, ERROR_POINTS), Vec::new(), Vec::new());
         for cj in 0..mesh.ny() {
             for ci in 0..mesh.nx() {
-                for q in cell_points(&mesh, ci, cj, ERROR_POINTS) {
-                    let (value, grad) = evaluate(&mesh, u, q.x, q.y);
+                nodes.clear();
+                nodes.extend(mesh.cell_node_iter(ci, cj));
+                cell_rule.points_into(&mesh, ci, cj, &mut quad);
+                for q in &quad {
+                    // The point's own cell: its shape functions are already at hand.
+                    let (value, grad) = field_at(q, &nodes, u);
                     cells.push(Sample {
                         x: q.x,
                         y: q.y,

@@ -123,7 +123,7 @@ impl ContactPoints {
                     edge: e,
                     s,
                     nodes: (e * order..=e * order + order).collect(),
-                    trace: vals,
+                    trace: vals[..=order].to_vec(),
                 });
                 mine.push(points.len() - 1);
             }
