@@ -20,6 +20,7 @@ mod validate;
 
 pub use locate::{Locator, ScenarioError};
 pub use read::{MAX_FILE_BYTES, read_toml};
+pub(crate) use schema::RawGamma0;
 
 /// Reading a scenario: from the embedded default, a file or a text.
 impl Scenario {

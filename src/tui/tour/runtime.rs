@@ -11,18 +11,25 @@ use ratatui::Frame;
 
 use crate::scenario::Scenario;
 
-use super::super::TuiOptions;
-use super::super::app::{Command, Msg};
+use super::super::app::{Command, Msg, Notice};
+use super::super::record::{CastFile, Chapter};
 use super::super::runtime::{Flow, Input, Program, TICK, export, run_program};
 use super::super::theme::Theme;
 use super::super::view::Look;
 use super::super::worker::Worker;
+use super::super::{RunError, TuiOptions};
 use super::{Tour, TourApp, TourMsg, auto_interval, view};
 
 /// Run `tour` in the terminal until the user quits; with `auto` (seconds, 0.5..=3600) each
 /// step advances by itself that long after its numbers are on screen, stopping at the last.
-/// The terminal is restored in every case.
-pub fn run_tour(tour: Tour, opts: &TuiOptions, auto: Option<f64>) -> io::Result<()> {
+/// The terminal is restored in every case. With `record`, the tour is recorded (see
+/// [`super::super::record`]), a marker at each step.
+pub fn run_tour(
+    tour: Tour,
+    opts: &TuiOptions,
+    auto: Option<f64>,
+    record: Option<CastFile>,
+) -> Result<(), RunError> {
     let auto = auto
         .map(auto_interval)
         .transpose()
@@ -32,7 +39,8 @@ pub fn run_tour(tour: Tour, opts: &TuiOptions, auto: Option<f64>) -> io::Result<
         marker: opts.marker.marker(),
     };
     let dir = opts.export_dir()?;
-    run_program(|tx, size| {
+    let title = format!("riplab tour: {}", tour.title);
+    run_program(record.map(|r| (r, title)), |tx, size| {
         let mut player = TourApp::new(tour, auto);
         player.set_size(size.width, size.height);
         let scenario = player.app.scenario.clone();
@@ -151,6 +159,18 @@ impl Program for Session {
 
     fn draw(&self, frame: &mut Frame) {
         view(&self.player, frame, &self.look);
+    }
+
+    fn chapter(&self) -> Chapter {
+        let i = self.player.index();
+        Chapter {
+            step: Some((i, self.player.tour.steps[i].title.clone())),
+            scene: self.player.app.scene,
+        }
+    }
+
+    fn notice(&mut self, notice: Notice) -> Flow {
+        self.apply(TourMsg::Lab(Msg::Notice(notice)))
     }
 }
 

@@ -1,0 +1,173 @@
+//! `T` in the lab: the lab's current state (scenario, scheme, level, ε, method and its
+//! parameters, depth, scene, what it compares, overlays, zoom, the stress quantity) added as a
+//! `[[step]]` to a tour file, with a caption left for the teacher to write. The file is
+//! `--tour-out FILE`, else `riplab-tour.toml` in the export directory; it is created if it does
+//! not exist, and added to only if it already reads as a valid tour, so that `T` never changes
+//! another kind of file. `riplab tour --tour FILE` plays the steps back to the same screens.
+
+use std::io::Write as _;
+use std::path::{Path, PathBuf};
+
+use serde::Serialize;
+
+use crate::contact::method::Gamma0;
+use crate::scheme::Scheme;
+use crate::stress::Quantity;
+
+use super::super::app::{App, Compare, Notice};
+use super::{MAX_TITLE_WIDTH, Tour};
+
+/// The name of the tour file in the export directory when `--tour-out` is not given.
+pub const DEFAULT_TOUR_OUT: &str = "riplab-tour.toml";
+
+/// The caption a new step is given, for the teacher to replace.
+pub const CAPTION_PLACEHOLDER: &str =
+    "(write this step's caption: what to look at, in at most 4 lines of 96 characters)";
+
+/// Where the lab adds tour steps, and the scenario file it was opened on.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct LabSource {
+    /// The tour file (absolute).
+    pub tour_out: PathBuf,
+    /// The lab's scenario file (absolute); None: the paper's problem.
+    pub scenario_file: Option<PathBuf>,
+}
+
+/// What the first lines of a new tour file say.
+const HEADER: &str = "# A tour written by riplab's lab: each `T` added the lab's screen as a [[step]].
+# Write each step's title and caption (at most 4 lines of 96 characters), then play it:
+#   riplab tour --tour THIS_FILE      (riplab tour --check THIS_FILE lists the steps)
+# The keys a step may set are listed in riplab's tours/paper.toml.
+
+title = \"A tour from the lab\"
+";
+
+#[derive(Serialize)]
+struct StepFile {
+    step: [StepOut; 1],
+}
+
+/// A step as the tour file writes it (the keys of [`super::Step`]).
+#[derive(Serialize)]
+struct StepOut {
+    title: String,
+    caption: String,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    scenario: Option<String>,
+    scheme: String,
+    level: u32,
+    epsilon: f64,
+    method: &'static str,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    theta: Option<i64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    gamma0: Option<toml::Value>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    alm_tol: Option<f64>,
+    depth: f64,
+    scene: &'static str,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    compare: Option<&'static str>,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    overlays: Vec<&'static str>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    quantity: Option<&'static str>,
+}
+
+/// The `[[step]]` table of the lab's state, its scenario given as `scenario` (a path relative
+/// to the tour file's directory, or absolute; None: the tour's scenario).
+pub fn step_toml(app: &App, scenario: Option<&str>) -> String {
+    let s = &app.settings;
+    let scheme = Scheme::new(s.element, s.rule).label();
+    let title: String = format!(
+        "{scheme} at level {}, {}: {}",
+        s.level,
+        s.method.name(),
+        app.scene.name()
+    )
+    .chars()
+    .take(MAX_TITLE_WIDTH)
+    .collect();
+    let overlays = [
+        (app.show_gap, "gap"),
+        (app.show_hertz, "hertz"),
+        (app.all_levels, "all-levels"),
+        (app.zoom, "zoom"),
+    ]
+    .into_iter()
+    .filter_map(|(on, name)| on.then_some(name))
+    .collect();
+    let step = StepOut {
+        title,
+        caption: CAPTION_PLACEHOLDER.into(),
+        scenario: scenario.map(str::to_string),
+        scheme,
+        level: s.level,
+        epsilon: s.epsilon,
+        method: s.method.name(),
+        theta: s.method.theta().map(i64::from),
+        gamma0: s.method.gamma0().map(|g| match g {
+            Gamma0::Auto => toml::Value::String("auto".into()),
+            Gamma0::Given(v) => toml::Value::Float(v),
+        }),
+        alm_tol: s.method.alm_tol(),
+        depth: s.depth,
+        scene: app.scene.name(),
+        compare: (app.compare == Compare::Methods).then_some("methods"),
+        overlays,
+        quantity: (app.stress_quantity != Quantity::PrincipalShear).then_some(app.stress_quantity.name()),
+    };
+    toml::to_string(&StepFile { step: [step] }).expect("a step serialises")
+}
+
+/// Add the lab's state as a step to the tour file of `source`: what the status line says.
+pub fn save_step(app: &App, source: &LabSource) -> Notice {
+    match add_step(app, source) {
+        Ok((n, path)) => Notice::info(format!(
+            "added step {n} to {} (write its caption there)",
+            crate::text::sanitize(&path.display().to_string())
+        )),
+        Err(e) => Notice::failure(format!("tour step not saved: {e}")),
+    }
+}
+
+/// Add the step; the step's number and the file.
+fn add_step(app: &App, source: &LabSource) -> Result<(usize, PathBuf), String> {
+    let path = &source.tour_out;
+    let shown = || crate::text::sanitize(&path.display().to_string()).into_owned();
+    let dir = path.parent().unwrap_or(Path::new("."));
+    let scenario = match &source.scenario_file {
+        None => None,
+        Some(file) => {
+            let relative = file.strip_prefix(dir).unwrap_or(file);
+            Some(
+                relative
+                    .to_str()
+                    .ok_or_else(|| format!("the scenario's path {} is not UTF-8", file.display()))?
+                    .to_string(),
+            )
+        }
+    };
+    let step = step_toml(app, scenario.as_deref());
+    let exists = std::fs::symlink_metadata(path).is_ok();
+    let (n, text) = if exists {
+        let tour = Tour::load(path).map_err(|e| {
+            let first = e.to_string();
+            let first = first.lines().next().unwrap_or_default().to_string();
+            format!("{first} (T adds to a valid tour file only; --tour-out names another)")
+        })?;
+        (tour.steps.len() + 1, format!("\n{step}"))
+    } else {
+        (1, format!("{HEADER}\n{step}"))
+    };
+    let mut file = if exists {
+        std::fs::OpenOptions::new().append(true).open(path)
+    } else {
+        std::fs::File::create_new(path)
+    }
+    .map_err(|e| format!("{}: {e}", shown()))?;
+    file.write_all(text.as_bytes())
+        .and_then(|()| file.sync_all())
+        .map_err(|e| format!("{}: {e}", shown()))?;
+    Ok((n, path.clone()))
+}
