@@ -8,8 +8,6 @@
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
 
-use serde::Serialize;
-
 use crate::contact::method::Gamma0;
 use crate::scheme::Scheme;
 use crate::stress::Quantity;
@@ -42,38 +40,6 @@ const HEADER: &str = "# A tour written by riplab's lab: each `T` added the lab's
 title = \"A tour from the lab\"
 ";
 
-#[derive(Serialize)]
-struct StepFile {
-    step: [StepOut; 1],
-}
-
-/// A step as the tour file writes it (the keys of [`super::Step`]).
-#[derive(Serialize)]
-struct StepOut {
-    title: String,
-    caption: String,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    scenario: Option<String>,
-    scheme: String,
-    level: u32,
-    epsilon: f64,
-    method: &'static str,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    theta: Option<i64>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    gamma0: Option<toml::Value>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    alm_tol: Option<f64>,
-    depth: f64,
-    scene: &'static str,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    compare: Option<&'static str>,
-    #[serde(skip_serializing_if = "Vec::is_empty")]
-    overlays: Vec<&'static str>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    quantity: Option<&'static str>,
-}
-
 /// The `[[step]]` table of the lab's state, its scenario given as `scenario` (a path relative
 /// to the tour file's directory, or absolute; None: the tour's scenario).
 pub fn step_toml(app: &App, scenario: Option<&str>) -> String {
@@ -88,36 +54,68 @@ pub fn step_toml(app: &App, scenario: Option<&str>) -> String {
     .chars()
     .take(MAX_TITLE_WIDTH)
     .collect();
-    let overlays = [
+    let mut lines = vec![
+        "[[step]]".to_string(),
+        format!("title = {}", text(&title)),
+        format!("caption = {}", text(CAPTION_PLACEHOLDER)),
+    ];
+    if let Some(path) = scenario {
+        lines.push(format!("scenario = {}", text(path)));
+    }
+    lines.push(format!("scheme = {}", text(&scheme)));
+    lines.push(format!("level = {}", s.level));
+    lines.push(format!("epsilon = {}", float(s.epsilon)));
+    lines.push(format!("method = {}", text(s.method.name())));
+    if let Some(theta) = s.method.theta() {
+        lines.push(format!("theta = {theta}"));
+    }
+    match s.method.gamma0() {
+        Some(Gamma0::Auto) => lines.push("gamma0 = \"auto\"".into()),
+        Some(Gamma0::Given(g)) => lines.push(format!("gamma0 = {}", float(g))),
+        None => {}
+    }
+    if let Some(tol) = s.method.alm_tol() {
+        lines.push(format!("alm_tol = {}", float(tol)));
+    }
+    lines.push(format!("depth = {}", float(s.depth)));
+    lines.push(format!("scene = {}", text(app.scene.name())));
+    if app.compare == Compare::Methods {
+        lines.push("compare = \"methods\"".into());
+    }
+    let overlays: Vec<String> = [
         (app.show_gap, "gap"),
         (app.show_hertz, "hertz"),
         (app.all_levels, "all-levels"),
         (app.zoom, "zoom"),
     ]
     .into_iter()
-    .filter_map(|(on, name)| on.then_some(name))
+    .filter_map(|(on, name)| on.then(|| text(name)))
     .collect();
-    let step = StepOut {
-        title,
-        caption: CAPTION_PLACEHOLDER.into(),
-        scenario: scenario.map(str::to_string),
-        scheme,
-        level: s.level,
-        epsilon: s.epsilon,
-        method: s.method.name(),
-        theta: s.method.theta().map(i64::from),
-        gamma0: s.method.gamma0().map(|g| match g {
-            Gamma0::Auto => toml::Value::String("auto".into()),
-            Gamma0::Given(v) => toml::Value::Float(v),
-        }),
-        alm_tol: s.method.alm_tol(),
-        depth: s.depth,
-        scene: app.scene.name(),
-        compare: (app.compare == Compare::Methods).then_some("methods"),
-        overlays,
-        quantity: (app.stress_quantity != Quantity::PrincipalShear).then_some(app.stress_quantity.name()),
-    };
-    toml::to_string(&StepFile { step: [step] }).expect("a step serialises")
+    if !overlays.is_empty() {
+        lines.push(format!("overlays = [{}]", overlays.join(", ")));
+    }
+    if app.stress_quantity != Quantity::PrincipalShear {
+        lines.push(format!("quantity = {}", text(app.stress_quantity.name())));
+    }
+    lines.join("\n") + "\n"
+}
+
+/// A TOML string (quoted and escaped by the toml crate).
+fn text(value: &str) -> String {
+    toml::Value::String(value.to_string()).to_string()
+}
+
+/// A TOML float as a person writes it: plain from 1e-4 to 1e6, else with an exponent (`1e-6`,
+/// never `0.000001`); both are Rust's shortest forms, which read back to the same number.
+fn float(value: f64) -> String {
+    let plain = format!("{value}");
+    if (1e-4..1e6).contains(&value.abs()) && plain.contains('.') {
+        plain
+    } else if (1e-4..1e6).contains(&value.abs()) {
+        format!("{plain}.0")
+    } else {
+        format!("{value:e}")
+    }
 }
 
 /// Add the lab's state as a step to the tour file of `source`: what the status line says.
@@ -170,4 +168,34 @@ fn add_step(app: &App, source: &LabSource) -> Result<(usize, PathBuf), String> {
         .and_then(|()| file.sync_all())
         .map_err(|e| format!("{}: {e}", shown()))?;
     Ok((n, path.clone()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Floats are written as a person writes them and read back to the same number.
+    #[test]
+    fn floats_read_back_exactly() {
+        for (value, written) in [
+            (1e-6, "1e-6"),
+            (1e-10, "1e-10"),
+            (0.7, "0.7"),
+            (1.0, "1.0"),
+            (0.0, "0e0"),
+            (2.5e7, "2.5e7"),
+            (0.1 + 0.2, "0.30000000000000004"),
+        ] {
+            assert_eq!(float(value), written);
+            let back: toml::Table = toml::from_str(&format!("x = {written}")).unwrap();
+            assert_eq!(back["x"].as_float(), Some(value), "{written}");
+        }
+    }
+
+    /// Text from the lab (a scenario's name in a path) is quoted and escaped.
+    #[test]
+    fn strings_are_escaped() {
+        let back: toml::Table = toml::from_str(&format!("x = {}", text("a \"b\"\n\\c"))).unwrap();
+        assert_eq!(back["x"].as_str(), Some("a \"b\"\n\\c"));
+    }
 }
