@@ -238,6 +238,96 @@ fn a_recorded_tour_is_a_valid_asciicast_ending_on_the_last_frame() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// The "Done when" in the lab itself: `]]2` then `T` writes a step that `tour --check`
+/// accepts at level 2 with M2, the status line says where, and the lab's recording marks the
+/// change of scene.
+#[test]
+fn the_lab_records_and_writes_a_tour_step_on_t() {
+    let dir = std::env::temp_dir().join(format!("riplab-record-lab-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let cast = dir.join("lab.cast");
+    let tour = dir.join("lesson.toml");
+    let (controller, user) = pty();
+    let child = std::process::Command::new(env!("CARGO_BIN_EXE_riplab"))
+        .arg("--record")
+        .arg(&cast)
+        .arg("--tour-out")
+        .arg(&tour)
+        .env("TERM", "xterm-256color")
+        .env("XDG_CACHE_HOME", crate::common::test_cache())
+        .stdin(Stdio::from(user.try_clone().unwrap()))
+        .stdout(Stdio::from(user.try_clone().unwrap()))
+        .stderr(Stdio::from(user))
+        .spawn()
+        .unwrap();
+    let mut child = Reap(child);
+    let live = Arc::new(Mutex::new(parser()));
+    let reader = {
+        let live = live.clone();
+        let mut from = std::fs::File::from(controller.try_clone().unwrap());
+        std::thread::spawn(move || {
+            let mut buf = [0u8; 65536];
+            while let Ok(n) = from.read(&mut buf) {
+                if n == 0 {
+                    break;
+                }
+                live.lock().unwrap().process(&buf[..n]);
+            }
+        })
+    };
+    let mut keys = std::fs::File::from(controller);
+    let deadline = Instant::now() + Duration::from_secs(120);
+    let wait_for = |what: &[&str]| loop {
+        let text = live.lock().unwrap().screen().contents();
+        if what.iter().all(|w| text.contains(w)) {
+            return;
+        }
+        assert!(Instant::now() < deadline, "waiting for {what:?}:\n{text}");
+        std::thread::sleep(Duration::from_millis(20));
+    };
+    wait_for(&["✓ converged"]);
+    keys.write_all(b"]]2").unwrap();
+    wait_for(&["M2 q1+gauss2", "level 2", "✓ converged"]);
+    keys.write_all(b"T").unwrap();
+    wait_for(&["added step 1 to", "lesson.toml"]);
+    keys.write_all(b"\t").unwrap();
+    wait_for(&["β_h/√h against h"]);
+    keys.write_all(b"q").unwrap();
+    let status = loop {
+        if let Some(status) = child.0.try_wait().unwrap() {
+            break status;
+        }
+        assert!(Instant::now() < deadline, "riplab did not quit");
+        std::thread::sleep(Duration::from_millis(20));
+    };
+    assert!(status.success(), "{status}");
+    drop(child);
+    let _ = reader.join();
+    // The step: M2 at level 2, and `tour --check` accepts the file.
+    let (code, out, err) = crate::common::riplab(&["tour", "--check", tour.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    let row: Vec<&str> = out.lines().last().unwrap().split_whitespace().collect();
+    assert_eq!(row[..5], ["1", "explore", "2", "M2", "penalty"], "{out}");
+    // The recording: the lab's scenes as markers.
+    let text = std::fs::read_to_string(&cast).unwrap();
+    let markers: Vec<String> = text
+        .lines()
+        .skip(1)
+        .map(|l| serde_json::from_str::<serde_json::Value>(l).unwrap())
+        .filter(|e| e[1] == "m")
+        .map(|e| e[2].as_str().unwrap().to_string())
+        .collect();
+    assert_eq!(markers, ["scene: explore", "scene: infsup"]);
+    assert!(
+        text.lines()
+            .next()
+            .unwrap()
+            .contains("\"title\":\"riplab lab: hertz-paper\"")
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 /// A writer that fails as a full disk does.
 struct Full;
 

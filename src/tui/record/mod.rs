@@ -264,3 +264,30 @@ impl Chapter {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A marker at the start, at each new step (its title, even when the scene changes with
+    /// it), and at each change of scene within a step or in the lab; none otherwise.
+    #[test]
+    fn markers_name_steps_and_scenes() {
+        let at = |step: Option<usize>, scene| Chapter {
+            step: step.map(|i| (i, format!("Step {i}"))),
+            scene,
+        };
+        let tour = at(Some(0), Scene::Explore);
+        assert_eq!(tour.marker(None).as_deref(), Some("Step 0"));
+        assert_eq!(tour.marker(Some(&tour)), None);
+        let next = at(Some(1), Scene::InfSup);
+        assert_eq!(next.marker(Some(&tour)).as_deref(), Some("Step 1"));
+        let tabbed = at(Some(1), Scene::Mesh);
+        assert_eq!(tabbed.marker(Some(&next)).as_deref(), Some("scene: mesh"));
+        let lab = at(None, Scene::Explore);
+        assert_eq!(lab.marker(None).as_deref(), Some("scene: explore"));
+        assert_eq!(lab.marker(Some(&lab)), None);
+        let stress = at(None, Scene::Stress);
+        assert_eq!(stress.marker(Some(&lab)).as_deref(), Some("scene: stress"));
+    }
+}
