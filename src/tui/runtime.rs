@@ -40,6 +40,8 @@ pub(super) enum Input {
     Worker(u64, Response),
     /// Reading the terminal failed: the loop ends with this error.
     Broken(io::Error),
+    /// The recording failed (the loop shows why on the status line).
+    RecordingFailed,
 }
 
 /// What an update asks of the loop.
@@ -62,7 +64,8 @@ impl std::ops::BitOrAssign for Flow {
 pub(super) trait Program {
     /// The first update, before the first frame.
     fn start(&mut self) -> Flow;
-    /// One input from the terminal or a worker (never [`Input::Broken`]).
+    /// One input from the terminal or a worker (never [`Input::Broken`] nor
+    /// [`Input::RecordingFailed`]).
     fn input(&mut self, input: Input) -> Flow;
     /// The wait of [`Program::wait`] is over with no input.
     fn tick(&mut self) -> Flow;
@@ -136,9 +139,16 @@ pub(super) fn run_program<P: Program>(
     start: impl FnOnce(mpsc::Sender<Input>, Size) -> io::Result<P>,
 ) -> Result<(), RunError> {
     let size = crossterm::terminal::size()?;
-    let mut recorder = recording.map(|(file, title)| Recorder::start(file, size.0, size.1, &title));
+    let (tx, rx) = mpsc::channel::<Input>();
+    let mut recorder = recording.map(|(file, title)| {
+        let tx = tx.clone();
+        let wake = move || {
+            let _ = tx.send(Input::RecordingFailed);
+        };
+        Recorder::start(file, (size.0, size.1), &title, wake)
+    });
     let mut terminal = take_terminal(recorder.as_ref().map(Recorder::tap))?;
-    let result = event_loop(&mut terminal, recorder.as_mut(), start);
+    let result = event_loop(&mut terminal, recorder.as_mut(), (tx, rx), start);
     // Restored through the terminal's writer, so that a recording ends as the terminal does.
     let restored = give_back(&mut terminal);
     if restored.is_err() {
@@ -175,9 +185,9 @@ fn give_back(terminal: &mut Term) -> io::Result<()> {
 fn event_loop<P: Program>(
     terminal: &mut Term,
     mut recorder: Option<&mut Recorder>,
+    (tx, rx): (mpsc::Sender<Input>, mpsc::Receiver<Input>),
     start: impl FnOnce(mpsc::Sender<Input>, Size) -> io::Result<P>,
 ) -> io::Result<()> {
-    let (tx, rx) = mpsc::channel::<Input>();
     forward_terminal(tx.clone())?;
     let mut program = start(tx, terminal.size()?)?;
     let mut flow = program.start();
@@ -218,9 +228,12 @@ fn event_loop<P: Program>(
             flow |= program.tick();
         }
         for input in first.into_iter().chain(std::iter::from_fn(|| rx.try_recv().ok())) {
-            if let Input::Broken(e) = input {
-                return Err(e);
-            }
+            let input = match input {
+                Input::Broken(e) => return Err(e),
+                // Shown by the check above the next draw.
+                Input::RecordingFailed => continue,
+                input => input,
+            };
             if let (Input::Terminal(Event::Resize(w, h)), Some(recorder)) = (&input, recorder.as_deref()) {
                 recorder.record(CastEvent::Resize(*w, *h));
             }
@@ -279,7 +292,7 @@ impl Program for Lab {
         let msg = match input {
             Input::Terminal(Event::Key(key)) => Msg::Key(key),
             Input::Terminal(Event::Resize(..)) => Msg::Resize,
-            Input::Terminal(_) | Input::Broken(_) => return Flow::default(),
+            Input::Terminal(_) | Input::Broken(_) | Input::RecordingFailed => return Flow::default(),
             Input::Worker(_, r) => Msg::Worker(r),
         };
         self.apply(msg)

@@ -343,16 +343,13 @@ impl Write for Full {
 /// A recording that cannot be written says so, once, and at the end.
 #[test]
 fn a_failed_recording_is_reported() {
-    let mut recorder = Recorder::with_writer(Full, "full.cast".into(), &Header::new(80, 24, "t"));
+    let (tx, rx) = std::sync::mpsc::channel();
+    let wake = move || tx.send(()).unwrap();
+    let mut recorder = Recorder::with_writer(Full, "full.cast".into(), &Header::new(80, 24, "t"), wake);
     recorder.record(Event::Output(b"x".to_vec()));
-    let deadline = Instant::now() + Duration::from_secs(10);
-    let failure = loop {
-        if let Some(f) = recorder.new_failure() {
-            break f;
-        }
-        assert!(Instant::now() < deadline, "no failure reported");
-        std::thread::sleep(Duration::from_millis(5));
-    };
+    // The loop is woken as soon as the write fails.
+    rx.recv_timeout(Duration::from_secs(10)).expect("woken");
+    let failure = recorder.new_failure().expect("the failure");
     assert!(
         failure.contains("full.cast") && failure.contains("No space left"),
         "{failure}"
@@ -377,7 +374,9 @@ fn a_recorder_writes_its_events_in_order() {
         }
     }
     let out = Shared::default();
-    let recorder = Recorder::with_writer(out.clone(), "mem".into(), &Header::new(80, 24, "t"));
+    let recorder = Recorder::with_writer(out.clone(), "mem".into(), &Header::new(80, 24, "t"), || {
+        panic!("no failure")
+    });
     let tap = recorder.tap();
     recorder.record(Event::Marker("a".into()));
     tap.record(Event::Output("é".as_bytes().to_vec()));

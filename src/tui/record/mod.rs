@@ -85,18 +85,26 @@ pub struct Recorder {
 }
 
 impl Recorder {
-    /// Start recording into `file` a `width`×`height` terminal: the header is written first.
-    pub fn start(file: CastFile, width: u16, height: u16, title: &str) -> Recorder {
+    /// Start recording into `file` a terminal of `size` (columns, rows): the header is written
+    /// first. `wake` is called once if a write fails (so that the failure is shown at once).
+    pub fn start(
+        file: CastFile,
+        size: (u16, u16),
+        title: &str,
+        wake: impl FnOnce() + Send + 'static,
+    ) -> Recorder {
         let name = crate::text::sanitize(&file.path.display().to_string()).into_owned();
-        Recorder::with_writer(
-            BufWriter::new(file.file),
-            name,
-            &Header::new(width, height, title),
-        )
+        let header = Header::new(size.0, size.1, title);
+        Recorder::with_writer(BufWriter::new(file.file), name, &header, wake)
     }
 
-    /// Start recording into `out` (named `name` in messages).
-    pub fn with_writer<W: Write + Send + 'static>(out: W, name: String, header: &Header) -> Recorder {
+    /// Start recording into `out` (named `name` in messages); `wake` as for [`Recorder::start`].
+    pub fn with_writer<W: Write + Send + 'static>(
+        out: W,
+        name: String,
+        header: &Header,
+        wake: impl FnOnce() + Send + 'static,
+    ) -> Recorder {
         let (tx, rx) = mpsc::channel();
         let failure = Arc::new(Mutex::new(None));
         let shared = failure.clone();
@@ -106,6 +114,7 @@ impl Recorder {
             .spawn(move || {
                 if let Err(e) = write_events(out, &header, &rx) {
                     *shared.lock().unwrap_or_else(|p| p.into_inner()) = Some(e.to_string());
+                    wake();
                 }
             });
         let (thread, failure) = match thread {

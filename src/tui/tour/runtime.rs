@@ -121,7 +121,9 @@ impl Program for Session {
             }
             Input::Worker(epoch, r) if epoch == self.epoch => Msg::Worker(r),
             // Other terminal events, replies of a replaced worker.
-            Input::Terminal(_) | Input::Worker(..) | Input::Broken(_) => return Flow::default(),
+            Input::Terminal(_) | Input::Worker(..) | Input::Broken(_) | Input::RecordingFailed => {
+                return Flow::default();
+            }
         };
         self.apply(TourMsg::Lab(msg))
     }
