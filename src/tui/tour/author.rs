@@ -89,7 +89,8 @@ pub fn step_toml(app: &App, scenario: Option<&str>) -> String {
         (app.zoom, "zoom"),
     ]
     .into_iter()
-    .filter_map(|(on, name)| on.then(|| text(name)))
+    .filter(|&(on, _)| on)
+    .map(|(_, name)| text(name))
     .collect();
     if !overlays.is_empty() {
         lines.push(format!("overlays = [{}]", overlays.join(", ")));
