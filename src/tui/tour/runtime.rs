@@ -53,6 +53,7 @@ pub fn run_tour(
             shown: Instant::now(),
             dir,
             look,
+            recording_failed: None,
         })
     })
 }
@@ -70,6 +71,9 @@ struct Session {
     /// Where exports go (absolute).
     dir: PathBuf,
     look: Look,
+    /// The recording's failure: shown again on each step the tour advances to by itself, until
+    /// a key is pressed (a step's lab starts without the notice of the step before).
+    recording_failed: Option<Notice>,
 }
 
 impl Session {
@@ -82,6 +86,9 @@ impl Session {
         };
         if effect.step_changed {
             self.shown = Instant::now();
+            if let Some(failure) = &self.recording_failed {
+                self.player.app.notice = Some(failure.clone());
+            }
             if self.player.app.scenario != self.scenario {
                 self.scenario = self.player.app.scenario.clone();
                 self.epoch += 1;
@@ -108,6 +115,10 @@ impl Program for Session {
     }
 
     fn input(&mut self, input: Input) -> Flow {
+        if let Input::Terminal(Event::Key(_)) = input {
+            // Seen: the failure is not shown again.
+            self.recording_failed = None;
+        }
         let msg = match input {
             Input::Terminal(Event::Key(key)) => Msg::Key(key),
             Input::Terminal(Event::Resize(width, height)) => {
@@ -172,6 +183,7 @@ impl Program for Session {
     }
 
     fn notice(&mut self, notice: Notice) -> Flow {
+        self.recording_failed = notice.failure.then(|| notice.clone());
         self.apply(TourMsg::Lab(Msg::Notice(notice)))
     }
 }
