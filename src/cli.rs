@@ -20,6 +20,10 @@ use crate::study::{Plan, ReferenceLevelError, all_ok};
 use crate::tui::{MarkerChoice, TuiOptions, render_to_string};
 use crate::vtu;
 
+mod tour;
+
+pub use tour::TourArgs;
+
 /// The exit codes, as every `--help` shows them (a macro, so that other notes can extend it).
 macro_rules! exit_codes {
     () => {
@@ -53,6 +57,14 @@ pub struct Cli {
     /// by side from 2 threads; every result has the same bits for any thread count.
     #[arg(long, global = true, value_parser = clap::value_parser!(u16).range(1..=256))]
     pub threads: Option<u16>,
+    /// Record the lab as an asciicast v2 file (asciinema's format; a new file, never
+    /// replacing one), with a marker at each change of scene.
+    #[arg(long, value_name = "FILE.cast")]
+    pub record: Option<PathBuf>,
+    /// The tour file to which the lab's `T` adds the screen as a step (created if missing,
+    /// added to only if it is a valid tour) [default: riplab-tour.toml in the export directory]
+    #[arg(long, value_name = "FILE")]
+    pub tour_out: Option<PathBuf>,
     /// The command; None opens the terminal lab.
     #[command(subcommand)]
     pub command: Option<Command>,
@@ -95,19 +107,6 @@ too slow for the lab; `riplab solve` goes to level 8).
 ",
     exit_codes!()
 );
-
-/// The arguments of `riplab tour`.
-#[derive(Args, Debug)]
-pub struct TourArgs {
-    /// Scenario for the steps that name none; the paper's problem when omitted.
-    pub scenario: Option<PathBuf>,
-    /// A tour file (TOML; see tours/paper.toml); the embedded paper tour when omitted.
-    #[arg(long)]
-    pub tour: Option<PathBuf>,
-    /// Advance by itself every SECONDS (for a projector); stops at the last step.
-    #[arg(long, value_name = "SECONDS")]
-    pub auto: Option<f64>,
-}
 
 /// The arguments of `riplab render`.
 #[derive(Args, Debug)]
@@ -404,12 +403,13 @@ pub fn run(cli: Cli) -> ExitCode {
         Some(Command::Infsup(args)) => infsup(&args),
         Some(Command::Study(args)) => study(&args),
         Some(Command::Render(args)) => render(&args),
-        Some(Command::Tour(args)) => tour(
+        Some(Command::Tour(args)) => tour::tour(
             &args,
             TuiOptions {
                 marker: cli.marker,
                 no_color: cli.no_color,
                 export_dir: cli.export_dir.clone(),
+                tour_out: None,
             },
         ),
         Some(Command::Completions { shell }) => {
@@ -427,10 +427,12 @@ pub fn run(cli: Cli) -> ExitCode {
         }
         None => lab(
             cli.scenario,
+            cli.record,
             TuiOptions {
                 marker: cli.marker,
                 no_color: cli.no_color,
                 export_dir: cli.export_dir.clone(),
+                tour_out: cli.tour_out,
             },
         ),
     };
@@ -777,14 +779,14 @@ fn needs_terminal(what: &str) -> Result<(), CliError> {
 }
 
 /// The terminal lab.
-fn lab(scenario: Option<PathBuf>, opts: TuiOptions) -> Result<ExitCode, CliError> {
+fn lab(file: Option<PathBuf>, record: Option<PathBuf>, opts: TuiOptions) -> Result<ExitCode, CliError> {
     let scenario = Select {
-        scenario,
+        scenario: file.clone(),
         ..Select::default()
     }
     .resolve()?;
-    needs_terminal("the lab")?;
-    crate::tui::run(scenario, &opts).map_err(|e| CliError::Failed(format!("terminal: {e}")))?;
+    let record = tour::with_terminal("the lab", record.as_deref())?;
+    crate::tui::run(scenario, file.as_deref(), &opts, record).map_err(|e| CliError::Failed(e.to_string()))?;
     Ok(ExitCode::SUCCESS)
 }
 
@@ -812,25 +814,5 @@ fn render(args: &RenderArgs) -> Result<ExitCode, CliError> {
     )
     .map_err(CliError::Usage)?;
     print(&frame)?;
-    Ok(ExitCode::SUCCESS)
-}
-
-fn tour(args: &TourArgs, opts: TuiOptions) -> Result<ExitCode, CliError> {
-    use crate::tui::tour::{Tour, auto_interval, run_tour};
-    let scenario = Select {
-        scenario: args.scenario.clone(),
-        ..Select::default()
-    }
-    .resolve()?;
-    let tour = match &args.tour {
-        Some(path) => Tour::load(path)?,
-        None => Tour::paper(),
-    };
-    if let Some(seconds) = args.auto {
-        auto_interval(seconds).map_err(|m| usage("--auto", m))?;
-    }
-    let tour = tour.with_scenario(scenario).map_err(CliError::Usage)?;
-    needs_terminal("the tour")?;
-    run_tour(tour, &opts, args.auto).map_err(|e| CliError::Failed(format!("terminal: {e}")))?;
     Ok(ExitCode::SUCCESS)
 }

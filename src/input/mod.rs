@@ -20,6 +20,9 @@ mod validate;
 
 pub use locate::{Locator, ScenarioError};
 pub use read::{MAX_FILE_BYTES, read_toml};
+/// γ₀ as written, read by tour steps too.
+#[cfg(feature = "tui")]
+pub(crate) use schema::RawGamma0;
 
 /// Reading a scenario: from the embedded default, a file or a text.
 impl Scenario {

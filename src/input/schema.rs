@@ -5,6 +5,7 @@ use serde::Deserialize;
 use toml::Spanned;
 
 use crate::contact::Rule;
+use crate::contact::method::{Gamma0, MethodError};
 use crate::fem::Integration;
 use crate::material::Plane;
 use crate::mesh::Element;
@@ -116,10 +117,20 @@ pub(super) struct RawContact {
 
 /// Nitsche's γ₀ as written: a number, or text (`"auto"`, checked by
 /// [`crate::contact::method::Gamma0::parse`]). Any other TOML value is refused naming what is
-/// allowed (serde's untagged enums would name this type instead).
-pub(super) enum RawGamma0 {
+/// allowed (serde's untagged enums would name this type instead). Tour steps read it too.
+pub(crate) enum RawGamma0 {
     Number(f64),
     Text(String),
+}
+
+impl RawGamma0 {
+    /// The γ₀ written (its range is [`crate::contact::Method::check`]'s).
+    pub(crate) fn parse(&self) -> Result<Gamma0, MethodError> {
+        match self {
+            RawGamma0::Number(v) => Ok(Gamma0::Given(*v)),
+            RawGamma0::Text(t) => Gamma0::parse(t),
+        }
+    }
 }
 
 impl<'de> Deserialize<'de> for RawGamma0 {

@@ -7,10 +7,9 @@ use std::path::Path;
 use toml::Spanned;
 
 use super::locate::{Locator, ScenarioError};
-use super::schema::{Model, RawContact, RawGamma0, RawObstacle, RawScenario, Shape};
+use super::schema::{Model, RawContact, RawObstacle, RawScenario, Shape};
 use crate::check::{self, CheckError};
 use crate::contact::gap::Bump;
-use crate::contact::method::Gamma0;
 use crate::contact::{Method, Obstacle};
 use crate::fem::Integration;
 use crate::material::Material;
@@ -163,10 +162,7 @@ impl Locator<'_> {
         let gamma0 = raw
             .gamma0
             .as_ref()
-            .map(|g| match g.get_ref() {
-                RawGamma0::Number(v) => Ok(Gamma0::Given(*v)),
-                RawGamma0::Text(t) => Gamma0::parse(t),
-            })
+            .map(|g| g.get_ref().parse())
             .transpose()
             .map_err(fail)?;
         let (theta, alm_tol) = (get(&raw.theta), get(&raw.alm_tol));

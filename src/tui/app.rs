@@ -112,6 +112,8 @@ pub enum Msg {
     Exported(Result<String, String>),
     /// Time passed while something long runs (the time left changes).
     Tick,
+    /// A message for the status line (a tour step saved, a recording that failed).
+    Notice(Notice),
 }
 
 /// Work for the runtime.
@@ -128,8 +130,9 @@ pub enum Command {
     /// Compute the displacement of the solution shown (kept with it), when the worker passed
     /// it over for a newer solve that the app then left behind.
     Displace(DisplaceRequest),
-    /// Write the displayed solution to a new file, as [`App::export_kind`] says (the kind
-    /// travels in the app so that the variant stays a plain `Export`).
+    /// Write the displayed solution to a new file, or the lab's state as a tour step, as
+    /// [`App::export_kind`] says (the kind travels in the app so that the variant stays a
+    /// plain `Export`).
     Export,
     /// Ctrl-Z: give the terminal back and stop until resumed.
     Suspend,
@@ -379,6 +382,10 @@ impl App {
                 true
             }
             Msg::Tick => self.wants_tick(),
+            Msg::Notice(notice) => {
+                self.notice = Some(notice);
+                true
+            }
         };
         commands.extend(self.requests());
         Effect { redraw, commands }
@@ -488,6 +495,11 @@ impl App {
             LabAction::Zoom => self.toggle_zoom(),
             LabAction::AllLevels => self.all_levels = !self.all_levels,
             LabAction::NextQuantity => self.stress_quantity = self.stress_quantity.next(),
+            LabAction::Export(ExportKind::TourStep) => {
+                // The lab's state, solved or not: written by the runtime (a tour file).
+                self.export_kind = ExportKind::TourStep;
+                commands.push(Command::Export);
+            }
             LabAction::Export(kind) => {
                 if self.current().is_some() {
                     self.export_kind = kind;

@@ -15,6 +15,8 @@ pub enum ExportKind {
     Svg,
     /// `v`: the body and Γ_C as VTU files.
     Vtu,
+    /// `T`: the lab's state as a step of a tour file (`--tour-out`).
+    TourStep,
 }
 
 /// What a key does in the lab.
@@ -197,6 +199,11 @@ pub const LAB: &[Row<LabAction>] = &[
             (Char('S'), L::Export(ExportKind::Svg)),
             (Char('v'), L::Export(ExportKind::Vtu)),
         ],
+    },
+    Row {
+        keys: "T",
+        what: &["add this screen as a step to a tour file"],
+        bindings: &[(Char('T'), L::Export(ExportKind::TourStep))],
     },
     Row {
         keys: "c",

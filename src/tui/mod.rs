@@ -16,6 +16,7 @@ pub mod export;
 mod job;
 pub mod keys;
 pub mod protocol;
+pub mod record;
 mod runtime;
 pub mod shown;
 pub mod theme;
@@ -33,9 +34,12 @@ use ratatui::{Frame, Terminal};
 use crate::contact::Rule;
 use crate::mesh::Element;
 use crate::scenario::Scenario;
+use crate::text;
 
 use app::{App, MAX_APP_LEVEL, Scene};
+use record::CastFile;
 use theme::Theme;
+use tour::author::{DEFAULT_TOUR_OUT, LabSource};
 use view::Look;
 use worker::{Engine, settle};
 
@@ -73,6 +77,9 @@ pub struct TuiOptions {
     pub no_color: bool,
     /// Where `s` and `S` write; the current directory when None.
     pub export_dir: Option<PathBuf>,
+    /// Where the lab's `T` adds tour steps; `riplab-tour.toml` in the export directory when
+    /// None.
+    pub tour_out: Option<PathBuf>,
 }
 
 impl TuiOptions {
@@ -82,13 +89,39 @@ impl TuiOptions {
     }
 }
 
-/// Run the interactive lab on `scenario` until the user quits.
-pub fn run(scenario: Scenario, opts: &TuiOptions) -> std::io::Result<()> {
+/// Run the interactive lab on `scenario` (read from `scenario_file`, if given) until the user
+/// quits, recording into `record` if given (see [`record`]).
+pub fn run(
+    scenario: Scenario,
+    scenario_file: Option<&Path>,
+    opts: &TuiOptions,
+    record: Option<CastFile>,
+) -> Result<(), RunError> {
     let look = Look {
         theme: Theme::new(opts.no_color),
         marker: opts.marker.marker(),
     };
-    runtime::run(scenario, look, opts.export_dir()?)
+    let dir = opts.export_dir()?;
+    let source = LabSource {
+        tour_out: match &opts.tour_out {
+            Some(file) => std::path::absolute(file)?,
+            None => dir.join(DEFAULT_TOUR_OUT),
+        },
+        scenario_file: scenario_file.map(std::path::absolute).transpose()?,
+    };
+    let title = format!("riplab lab: {}", text::sanitize(&scenario.name));
+    runtime::run(scenario, look, dir, source, record.map(|r| (r, title)))
+}
+
+/// Why the lab or the tour ended with an error.
+#[derive(Debug, thiserror::Error)]
+pub enum RunError {
+    /// The terminal could not be set up, read or written.
+    #[error("terminal: {0}")]
+    Terminal(#[from] std::io::Error),
+    /// The recording could not be written (the lab or tour itself ran).
+    #[error("{0}")]
+    Recording(String),
 }
 
 /// One frame of `scene` as plain text, solved synchronously with the given overrides of the

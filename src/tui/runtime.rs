@@ -10,15 +10,27 @@ use std::time::Duration;
 
 use crossterm::event::Event;
 use crossterm::terminal::{BeginSynchronizedUpdate, EndSynchronizedUpdate};
+use ratatui::backend::CrosstermBackend;
 use ratatui::layout::Size;
-use ratatui::{DefaultTerminal, Frame};
+use ratatui::{Frame, Terminal};
 
 use crate::scenario::Scenario;
 
-use super::app::{App, Command, ExportKind, Msg, Response};
+use super::RunError;
+use super::app::{App, Command, ExportKind, Msg, Notice, Response};
 use super::export::{export_csv, export_svg, export_vtu};
+use super::record::cast::Event as CastEvent;
+use super::record::{CastFile, Chapter, Recorder, Screen, Tap};
+use super::tour::author::{LabSource, save_step};
 use super::view::{Look, view};
 use super::worker::Worker;
+
+/// The terminal of the lab and the tour: crossterm on standard output, through the writer
+/// that records it when asked ([`Screen`]).
+pub(super) type Term = Terminal<CrosstermBackend<Screen>>;
+
+/// A recording to make: the file, created, and the title its header gives.
+pub(super) type Recording = Option<(CastFile, String)>;
 
 /// Everything the loop waits for.
 pub(super) enum Input {
@@ -28,6 +40,8 @@ pub(super) enum Input {
     Worker(u64, Response),
     /// Reading the terminal failed: the loop ends with this error.
     Broken(io::Error),
+    /// The recording failed (the loop shows why on the status line).
+    RecordingFailed,
 }
 
 /// What an update asks of the loop.
@@ -50,7 +64,8 @@ impl std::ops::BitOrAssign for Flow {
 pub(super) trait Program {
     /// The first update, before the first frame.
     fn start(&mut self) -> Flow;
-    /// One input from the terminal or a worker (never [`Input::Broken`]).
+    /// One input from the terminal or a worker (never [`Input::Broken`] nor
+    /// [`Input::RecordingFailed`]).
     fn input(&mut self, input: Input) -> Flow;
     /// The wait of [`Program::wait`] is over with no input.
     fn tick(&mut self) -> Flow;
@@ -62,6 +77,10 @@ pub(super) trait Program {
     fn wait(&self) -> Option<Duration>;
     fn should_quit(&self) -> bool;
     fn draw(&self, frame: &mut Frame);
+    /// Where a recording is: the tour's step and the scene shown.
+    fn chapter(&self) -> Chapter;
+    /// Show `notice` on the status line (a recording that failed).
+    fn notice(&mut self, notice: Notice) -> Flow;
 }
 
 /// Forward the terminal's events to `tx` from a thread of their own; a failed read is sent
@@ -86,16 +105,23 @@ fn forward_terminal(tx: mpsc::Sender<Input>) -> io::Result<()> {
 /// How often the screen is redrawn while a long job shows its time left.
 pub(super) const TICK: Duration = Duration::from_millis(250);
 
-/// Run the lab on `scenario` until the user quits, exporting into `dir` (absolute); the
-/// terminal is restored in every case.
-pub fn run(scenario: Scenario, look: Look, dir: PathBuf) -> io::Result<()> {
-    run_program(|tx, _| {
+/// Run the lab on `scenario` until the user quits, exporting into `dir` (absolute) and adding
+/// tour steps as `source` says, recording if asked; the terminal is restored in every case.
+pub fn run(
+    scenario: Scenario,
+    look: Look,
+    dir: PathBuf,
+    source: LabSource,
+    recording: Recording,
+) -> Result<(), RunError> {
+    run_program(recording, |tx, _| {
         let worker = Worker::spawn(scenario.clone(), move |r| tx.send(Input::Worker(0, r)).is_ok());
         Ok(Lab {
             app: App::new(scenario),
             worker,
             look,
             dir,
+            source,
         })
     })
 }
@@ -104,25 +130,79 @@ pub fn run(scenario: Scenario, look: Look, dir: PathBuf) -> io::Result<()> {
 /// restored on every path, a panic included, by ratatui's hook), an input thread and the
 /// program's workers feeding one channel, and a redraw only when an update says the screen
 /// changed, inside synchronized-output brackets. `start` makes the program from the
-/// channel's sender (for its workers) and the terminal's size.
+/// channel's sender (for its workers) and the terminal's size. With a recording, everything
+/// the terminal is sent goes to it as well (the terminal's restoring included), with the
+/// resizes and a marker at each new chapter ([`Chapter::marker`]); a recording that failed is
+/// an error at the end.
 pub(super) fn run_program<P: Program>(
+    recording: Recording,
     start: impl FnOnce(mpsc::Sender<Input>, Size) -> io::Result<P>,
-) -> io::Result<()> {
-    let mut terminal = ratatui::try_init()?;
-    let result = event_loop(&mut terminal, start);
-    ratatui::restore();
-    result
+) -> Result<(), RunError> {
+    let size = crossterm::terminal::size()?;
+    let (tx, rx) = mpsc::channel::<Input>();
+    let mut recorder = recording.map(|(file, title)| {
+        let tx = tx.clone();
+        let wake = move || {
+            let _ = tx.send(Input::RecordingFailed);
+        };
+        Recorder::start(file, (size.0, size.1), &title, wake)
+    });
+    let mut terminal = take_terminal(recorder.as_ref().map(Recorder::tap))?;
+    let result = event_loop(&mut terminal, recorder.as_mut(), (tx, rx), start);
+    // Restored through the terminal's writer, so that a recording ends as the terminal does.
+    let restored = give_back(&mut terminal);
+    if restored.is_err() {
+        ratatui::restore();
+    }
+    let recorded = match recorder {
+        Some(recorder) => recorder.finish().map_err(RunError::Recording),
+        None => Ok(()),
+    };
+    result.map_err(RunError::Terminal).and(recorded)
+}
+
+/// Raw mode and the alternate screen on a terminal writing through [`Screen`]; a panic
+/// restores the terminal first (as `ratatui::init` does).
+fn take_terminal(tap: Option<Tap>) -> io::Result<Term> {
+    let hook = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        ratatui::restore();
+        hook(info);
+    }));
+    crossterm::terminal::enable_raw_mode()?;
+    let mut screen = Screen::new(tap);
+    crossterm::execute!(screen, crossterm::terminal::EnterAlternateScreen)?;
+    Terminal::new(CrosstermBackend::new(screen))
+}
+
+/// The cursor shown, raw mode off, the alternate screen left.
+fn give_back(terminal: &mut Term) -> io::Result<()> {
+    terminal.show_cursor()?;
+    crossterm::terminal::disable_raw_mode()?;
+    crossterm::execute!(terminal.backend_mut(), crossterm::terminal::LeaveAlternateScreen)
 }
 
 fn event_loop<P: Program>(
-    terminal: &mut DefaultTerminal,
+    terminal: &mut Term,
+    mut recorder: Option<&mut Recorder>,
+    (tx, rx): (mpsc::Sender<Input>, mpsc::Receiver<Input>),
     start: impl FnOnce(mpsc::Sender<Input>, Size) -> io::Result<P>,
 ) -> io::Result<()> {
-    let (tx, rx) = mpsc::channel::<Input>();
     forward_terminal(tx.clone())?;
     let mut program = start(tx, terminal.size()?)?;
     let mut flow = program.start();
+    let mut chapter: Option<Chapter> = None;
     while !program.should_quit() {
+        if let Some(recorder) = recorder.as_deref_mut() {
+            if let Some(failure) = recorder.new_failure() {
+                flow |= program.notice(Notice::failure(failure));
+            }
+            let now = program.chapter();
+            if let Some(marker) = now.marker(chapter.as_ref()) {
+                recorder.record(CastEvent::Marker(marker));
+            }
+            chapter = Some(now);
+        }
         if flow.suspend {
             suspend(terminal)?;
             flow.redraw = true;
@@ -148,8 +228,14 @@ fn event_loop<P: Program>(
             flow |= program.tick();
         }
         for input in first.into_iter().chain(std::iter::from_fn(|| rx.try_recv().ok())) {
-            if let Input::Broken(e) = input {
-                return Err(e);
+            let input = match input {
+                Input::Broken(e) => return Err(e),
+                // Shown by the check above the next draw.
+                Input::RecordingFailed => continue,
+                input => input,
+            };
+            if let (Input::Terminal(Event::Resize(w, h)), Some(recorder)) = (&input, recorder.as_deref()) {
+                recorder.record(CastEvent::Resize(*w, *h));
             }
             flow |= program.input(input);
             if program.should_quit() {
@@ -167,6 +253,8 @@ struct Lab {
     worker: Worker,
     look: Look,
     dir: PathBuf,
+    /// Where `T` adds a tour step, and the lab's scenario file.
+    source: LabSource,
 }
 
 impl Lab {
@@ -179,6 +267,10 @@ impl Lab {
         };
         for command in effect.commands {
             match command {
+                Command::Export if self.app.export_kind == ExportKind::TourStep => {
+                    let reply = save_step(&self.app, &self.source);
+                    flow |= self.apply(Msg::Notice(reply));
+                }
                 Command::Export => {
                     let reply = export(&self.app, &self.dir);
                     flow |= self.apply(reply);
@@ -200,7 +292,7 @@ impl Program for Lab {
         let msg = match input {
             Input::Terminal(Event::Key(key)) => Msg::Key(key),
             Input::Terminal(Event::Resize(..)) => Msg::Resize,
-            Input::Terminal(_) | Input::Broken(_) => return Flow::default(),
+            Input::Terminal(_) | Input::Broken(_) | Input::RecordingFailed => return Flow::default(),
             Input::Worker(_, r) => Msg::Worker(r),
         };
         self.apply(msg)
@@ -221,12 +313,25 @@ impl Program for Lab {
     fn draw(&self, frame: &mut Frame) {
         view(&self.app, frame, &self.look);
     }
+
+    fn chapter(&self) -> Chapter {
+        Chapter {
+            step: None,
+            scene: self.app.scene,
+        }
+    }
+
+    fn notice(&mut self, notice: Notice) -> Flow {
+        self.apply(Msg::Notice(notice))
+    }
 }
 
 /// Ctrl-Z: restore the terminal, stop the process as the shell's Ctrl-Z would (SIGTSTP,
 /// sent by `kill`, std having no call for it), and take the terminal again once resumed.
-pub(super) fn suspend(terminal: &mut DefaultTerminal) -> io::Result<()> {
-    ratatui::restore();
+pub(super) fn suspend(terminal: &mut Term) -> io::Result<()> {
+    if give_back(terminal).is_err() {
+        ratatui::restore();
+    }
     let stopped = std::process::Command::new("kill")
         .args(["-TSTP", &std::process::id().to_string()])
         .status();
@@ -243,22 +348,23 @@ pub(super) fn suspend(terminal: &mut DefaultTerminal) -> io::Result<()> {
     stopped.map(|_| ())
 }
 
-/// Carry out [`Command::Export`] into `dir`: the reply for the app.
+/// Carry out [`Command::Export`] into `dir`: the reply for the app (a tour step is the lab's
+/// business: see [`save_step`]).
 pub(super) fn export(app: &App, dir: &Path) -> Msg {
-    let result = match app.current() {
-        Some(solved) => match app.export_kind {
-            ExportKind::Csv => export_csv(&app.scenario, solved, dir),
-            ExportKind::Svg => export_svg(&app.scenario, solved, dir),
-            ExportKind::Vtu => export_vtu(&app.scenario, solved, dir),
+    let result = match (app.current(), app.export_kind) {
+        (_, ExportKind::TourStep) => {
+            Err("T adds a tour step in the lab (riplab --tour-out FILE), not inside a tour".into())
         }
-        .map(|p| p.display().to_string()),
-        None => Err("no solution to export".into()),
+        (Some(solved), ExportKind::Csv) => export_csv(&app.scenario, solved, dir),
+        (Some(solved), ExportKind::Svg) => export_svg(&app.scenario, solved, dir),
+        (Some(solved), ExportKind::Vtu) => export_vtu(&app.scenario, solved, dir),
+        (None, _) => Err("no solution to export".into()),
     };
-    Msg::Exported(result)
+    Msg::Exported(result.map(|p| p.display().to_string()))
 }
 
 /// What `render` draws, as one frame inside synchronized-output brackets.
-pub(super) fn draw_with(terminal: &mut DefaultTerminal, render: impl FnOnce(&mut Frame)) -> io::Result<()> {
+pub(super) fn draw_with(terminal: &mut Term, render: impl FnOnce(&mut Frame)) -> io::Result<()> {
     crossterm::execute!(terminal.backend_mut(), BeginSynchronizedUpdate)?;
     let drawn = terminal.draw(render).map(|_| ());
     crossterm::execute!(terminal.backend_mut(), EndSynchronizedUpdate)?;

@@ -6,7 +6,8 @@
 //! - mesh levels are capped at [`LEVEL_CAP`] (`--level`, the upper end of `--levels`) and a
 //!   `--reference-level` at one above the cap;
 //! - the lab (`riplab` or `riplab SCENARIO`) is run as `riplab render [SCENARIO] --size 80x24`;
-//! - an output file (`--plot FILE`, `--vtu FILE`) goes to a fresh temporary directory, and a redirection
+//! - an output file or directory (`--plot FILE`, `--vtu FILE`, `--handout DIR`) goes to a fresh
+//!   temporary directory, and a redirection
 //!   `> FILE` is dropped (the test reads standard output instead).
 //!
 //! A command whose comment says `exit N` must exit N; every other command must exit 0.
@@ -110,7 +111,7 @@ fn substitute(args: &[String], tmp: &Path) -> Vec<String> {
                 let hi = cap(hi, 0).max(lo.clone());
                 out.push(format!("{lo}..{hi}"));
             }
-            "--plot" | "--vtu" => {
+            "--plot" | "--vtu" | "--handout" => {
                 out.push(a.clone());
                 let file = it.next().expect("a file");
                 out.push(
@@ -205,6 +206,19 @@ fn check_output(args: &[String], stdout: &str, tmp: &Path) -> Result<(), String>
                 return Err(format!("{} lines, not {rows}", stdout.lines().count()));
             }
             expect("riplab")
+        }
+        "tour" if args.iter().any(|a| a == "--check") => expect("a valid tour"),
+        "tour" if args.iter().any(|a| a == "--handout") => {
+            expect("index.md")?;
+            let dir = args
+                .windows(2)
+                .find(|w| w[0] == "--handout")
+                .map(|w| w[1].clone());
+            let index = Path::new(&dir.unwrap_or_default()).join("index.md");
+            index
+                .is_file()
+                .then_some(())
+                .ok_or(format!("no {}", index.display()))
         }
         "completions" => expect("riplab"),
         "man" => expect(".TH riplab"),

@@ -5,6 +5,8 @@
 #[path = "../common/mod.rs"]
 mod common;
 
+mod authoring;
+mod record;
 mod tour;
 mod tui;
 mod tui_stress;

@@ -6,6 +6,9 @@
 //! [`TourApp`] holds the state and its pure update (keys, worker replies, the auto-advance
 //! tick); [`view`] draws it; [`run_tour`] runs it in the terminal.
 
+pub mod author;
+pub mod handout;
+pub mod listing;
 mod player;
 mod runtime;
 mod view;
@@ -19,10 +22,11 @@ use toml::Spanned;
 use crate::check;
 use crate::contact::{Method, Rule};
 use crate::input::Locator as Source;
-use crate::input::{ScenarioError, read_toml};
+use crate::input::{RawGamma0, ScenarioError, read_toml};
 use crate::mesh::Element;
 use crate::scenario::Scenario;
 use crate::scheme::Scheme;
+use crate::stress::Quantity;
 use crate::text::{sanitize, sanitize_lines};
 
 use super::app::{App, Compare, MAX_APP_LEVEL, Scene};
@@ -42,7 +46,7 @@ pub const MAX_CAPTION_WIDTH: usize = 96;
 /// The most characters in a step's title.
 pub const MAX_TITLE_WIDTH: usize = 60;
 /// The overlays a step may switch on.
-pub const OVERLAYS: [&str; 3] = ["gap", "hertz", "all-levels"];
+pub const OVERLAYS: [&str; 4] = ["gap", "hertz", "all-levels", "zoom"];
 
 /// A validated tour.
 #[derive(Clone, Debug, PartialEq)]
@@ -88,6 +92,10 @@ pub struct Step {
     pub hertz: bool,
     /// Estimate inf-sup at every level up to the step's (overlay `all-levels`).
     pub all_levels: bool,
+    /// Zoom to the contact zone (overlay `zoom`, `z` in the lab).
+    pub zoom: bool,
+    /// What the stress scene shows (`c` in the lab); None: τ₁.
+    pub quantity: Option<Quantity>,
 }
 
 #[derive(Deserialize)]
@@ -109,10 +117,14 @@ struct RawStep {
     level: Option<Spanned<i64>>,
     epsilon: Option<Spanned<f64>>,
     method: Option<Spanned<String>>,
+    theta: Option<Spanned<f64>>,
+    gamma0: Option<Spanned<RawGamma0>>,
+    alm_tol: Option<Spanned<f64>>,
     depth: Option<Spanned<f64>>,
     scene: Option<Spanned<String>>,
     compare: Option<Spanned<String>>,
     overlays: Option<Spanned<Vec<Spanned<String>>>>,
+    quantity: Option<Spanned<String>>,
 }
 
 impl Tour {
@@ -213,6 +225,8 @@ impl Tour {
         app.show_gap = step.gap;
         app.show_hertz = step.hertz;
         app.all_levels = step.all_levels;
+        app.zoom = step.zoom;
+        app.stress_quantity = step.quantity.unwrap_or(app.stress_quantity);
         app
     }
 }
@@ -309,13 +323,7 @@ fn step(src: &Source, n: usize, raw: &RawStep, dir: Option<&Path>) -> Result<Ste
     if let Some(d) = &raw.depth {
         src.check(&key("depth"), d, |v| check::nonnegative(*v))?;
     }
-    let method = match &raw.method {
-        Some(name) => Some(
-            Method::parse(name.get_ref(), None, None, None)
-                .map_err(|e| src.error(Some(name.span()), Some(key("method")), e.to_string()))?,
-        ),
-        None => None,
-    };
+    let method = method(src, n, raw)?;
     let scene = match &raw.scene {
         Some(name) => Some(Scene::from_name(name.get_ref()).ok_or_else(|| {
             let names: Vec<&str> = Scene::ALL.iter().map(|s| s.name()).collect();
@@ -345,7 +353,27 @@ fn step(src: &Source, n: usize, raw: &RawStep, dir: Option<&Path>) -> Result<Ste
         },
         None => Compare::Schemes,
     };
-    let mut on = [false; 3];
+    let quantity = match &raw.quantity {
+        Some(name) => Some(
+            Quantity::ALL
+                .into_iter()
+                .find(|q| q.name() == name.get_ref())
+                .ok_or_else(|| {
+                    let names: Vec<&str> = Quantity::ALL.iter().map(|q| q.name()).collect();
+                    src.error(
+                        Some(name.span()),
+                        Some(key("quantity")),
+                        format!(
+                            "`{}` is not a stress quantity; allowed: {}",
+                            name.get_ref(),
+                            names.join(", ")
+                        ),
+                    )
+                })?,
+        ),
+        None => None,
+    };
+    let mut on = [false; OVERLAYS.len()];
     for overlay in raw.overlays.iter().flat_map(|o| o.get_ref()) {
         let i = OVERLAYS
             .iter()
@@ -379,6 +407,55 @@ fn step(src: &Source, n: usize, raw: &RawStep, dir: Option<&Path>) -> Result<Ste
         gap: on[0],
         hertz: on[1],
         all_levels: on[2],
+        zoom: on[3],
+        quantity,
+    })
+}
+
+/// The method of step `n` with its parameters (`theta`, `gamma0`, `alm_tol`, which need
+/// `method`), checked as a scenario's are.
+fn method(src: &Source, n: usize, raw: &RawStep) -> Result<Option<Method>, ScenarioError> {
+    let key = |k: &str| format!("step[{n}].{k}");
+    let gamma0 = match &raw.gamma0 {
+        Some(g) => Some(
+            g.get_ref()
+                .parse()
+                .map_err(|e| src.error(Some(g.span()), Some(key("gamma0")), e.to_string()))?,
+        ),
+        None => None,
+    };
+    let (theta, alm_tol) = (raw.theta.as_ref(), raw.alm_tol.as_ref());
+    let Some(name) = &raw.method else {
+        let given = [
+            ("theta", theta.map(|t| t.span())),
+            ("gamma0", raw.gamma0.as_ref().map(|g| g.span())),
+            ("alm_tol", alm_tol.map(|t| t.span())),
+        ];
+        if let Some((k, span)) = given.into_iter().find(|(_, s)| s.is_some()) {
+            return Err(src.error(
+                span,
+                Some(key(k)),
+                "needs the step's method (nitsche takes theta and gamma0, alm takes alm_tol)".into(),
+            ));
+        }
+        return Ok(None);
+    };
+    Method::parse(
+        name.get_ref(),
+        theta.map(|t| *t.get_ref()),
+        gamma0,
+        alm_tol.map(|t| *t.get_ref()),
+    )
+    .map(Some)
+    .map_err(|e| {
+        let span = match e.key() {
+            "theta" => theta.map(|t| t.span()),
+            "gamma0" => raw.gamma0.as_ref().map(|g| g.span()),
+            "alm_tol" => alm_tol.map(|t| t.span()),
+            _ => None,
+        }
+        .unwrap_or(name.span());
+        src.error(Some(span), Some(key(e.key())), e.to_string())
     })
 }
 

@@ -11,18 +11,25 @@ use ratatui::Frame;
 
 use crate::scenario::Scenario;
 
-use super::super::TuiOptions;
-use super::super::app::{Command, Msg};
+use super::super::app::{Command, Msg, Notice};
+use super::super::record::{CastFile, Chapter};
 use super::super::runtime::{Flow, Input, Program, TICK, export, run_program};
 use super::super::theme::Theme;
 use super::super::view::Look;
 use super::super::worker::Worker;
+use super::super::{RunError, TuiOptions};
 use super::{Tour, TourApp, TourMsg, auto_interval, view};
 
 /// Run `tour` in the terminal until the user quits; with `auto` (seconds, 0.5..=3600) each
 /// step advances by itself that long after its numbers are on screen, stopping at the last.
-/// The terminal is restored in every case.
-pub fn run_tour(tour: Tour, opts: &TuiOptions, auto: Option<f64>) -> io::Result<()> {
+/// The terminal is restored in every case. With `record`, the tour is recorded (see
+/// [`super::super::record`]), a marker at each step.
+pub fn run_tour(
+    tour: Tour,
+    opts: &TuiOptions,
+    auto: Option<f64>,
+    record: Option<CastFile>,
+) -> Result<(), RunError> {
     let auto = auto
         .map(auto_interval)
         .transpose()
@@ -32,7 +39,8 @@ pub fn run_tour(tour: Tour, opts: &TuiOptions, auto: Option<f64>) -> io::Result<
         marker: opts.marker.marker(),
     };
     let dir = opts.export_dir()?;
-    run_program(|tx, size| {
+    let title = format!("riplab tour: {}", tour.title);
+    run_program(record.map(|r| (r, title)), |tx, size| {
         let mut player = TourApp::new(tour, auto);
         player.set_size(size.width, size.height);
         let scenario = player.app.scenario.clone();
@@ -45,6 +53,7 @@ pub fn run_tour(tour: Tour, opts: &TuiOptions, auto: Option<f64>) -> io::Result<
             shown: Instant::now(),
             dir,
             look,
+            recording_failed: None,
         })
     })
 }
@@ -62,6 +71,9 @@ struct Session {
     /// Where exports go (absolute).
     dir: PathBuf,
     look: Look,
+    /// The recording's failure: shown again on each step the tour advances to by itself, until
+    /// a key is pressed (a step's lab starts without the notice of the step before).
+    recording_failed: Option<Notice>,
 }
 
 impl Session {
@@ -74,6 +86,9 @@ impl Session {
         };
         if effect.step_changed {
             self.shown = Instant::now();
+            if let Some(failure) = &self.recording_failed {
+                self.player.app.notice = Some(failure.clone());
+            }
             if self.player.app.scenario != self.scenario {
                 self.scenario = self.player.app.scenario.clone();
                 self.epoch += 1;
@@ -100,6 +115,10 @@ impl Program for Session {
     }
 
     fn input(&mut self, input: Input) -> Flow {
+        if let Input::Terminal(Event::Key(_)) = input {
+            // Seen: the failure is not shown again.
+            self.recording_failed = None;
+        }
         let msg = match input {
             Input::Terminal(Event::Key(key)) => Msg::Key(key),
             Input::Terminal(Event::Resize(width, height)) => {
@@ -113,7 +132,9 @@ impl Program for Session {
             }
             Input::Worker(epoch, r) if epoch == self.epoch => Msg::Worker(r),
             // Other terminal events, replies of a replaced worker.
-            Input::Terminal(_) | Input::Worker(..) | Input::Broken(_) => return Flow::default(),
+            Input::Terminal(_) | Input::Worker(..) | Input::Broken(_) | Input::RecordingFailed => {
+                return Flow::default();
+            }
         };
         self.apply(TourMsg::Lab(msg))
     }
@@ -151,6 +172,19 @@ impl Program for Session {
 
     fn draw(&self, frame: &mut Frame) {
         view(&self.player, frame, &self.look);
+    }
+
+    fn chapter(&self) -> Chapter {
+        let i = self.player.index();
+        Chapter {
+            step: Some((i, self.player.tour.steps[i].title.clone())),
+            scene: self.player.app.scene,
+        }
+    }
+
+    fn notice(&mut self, notice: Notice) -> Flow {
+        self.recording_failed = notice.failure.then(|| notice.clone());
+        self.apply(TourMsg::Lab(Msg::Notice(notice)))
     }
 }
 

@@ -7,6 +7,7 @@ use ratatui::symbols::Marker;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::Paragraph;
 
+use super::super::app::App;
 use super::super::keys;
 use super::super::theme::Theme;
 use super::super::view::fmt::{title_fit, wrap_words};
@@ -181,6 +182,19 @@ fn too_small(frame: &mut Frame, area: Rect, tour: &TourApp, theme: Theme) {
 /// Step `index` of `tour` on a `width`×`height` test terminal as plain text, its lab solved
 /// synchronously (timings left out so that the text is deterministic).
 pub fn render_step(tour: &Tour, index: usize, width: u16, height: u16) -> Result<String, String> {
+    let mut engine = Engine::new(tour.scenario_of(index).clone());
+    step_frame(tour, index, width, height, &mut engine).map(|(text, _)| text)
+}
+
+/// [`render_step`] computed with `engine` (on the step's scenario, so that steps share its
+/// work): the text and the step's lab as drawn.
+pub(crate) fn step_frame(
+    tour: &Tour,
+    index: usize,
+    width: u16,
+    height: u16,
+    engine: &mut Engine,
+) -> Result<(String, App), String> {
     if index >= tour.steps.len() {
         return Err(format!(
             "step {} does not exist; the tour has {} steps",
@@ -193,14 +207,11 @@ pub fn render_step(tour: &Tour, index: usize, width: u16, height: u16) -> Result
     player.show_timing = false;
     player.app.show_timing = false;
     let commands = player.go_to(index);
-    carry_out(
-        &mut player.app,
-        &mut Engine::new(tour.scenario_of(index).clone()),
-        commands,
-    );
+    carry_out(&mut player.app, engine, commands);
     let look = Look {
         theme: Theme { color: true },
         marker: Marker::Braille,
     };
-    Ok(render_frame(width, height, |frame| view(&player, frame, &look)))
+    let text = render_frame(width, height, |frame| view(&player, frame, &look));
+    Ok((text, player.app))
 }

@@ -107,7 +107,10 @@ pub fn view_in(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
     }
     status::render(app, frame, bottom, look.theme);
     if app.show_help {
-        help::render(frame, body, look.theme);
+        // Over everything above the status line (the header too), so that every key and the
+        // note on units fit 80×24 (keys.rs checks the count).
+        let [above, _] = Layout::vertical([Constraint::Fill(1), Constraint::Length(1)]).areas(area);
+        help::render(frame, above, look.theme);
     }
 }
 

@@ -1,0 +1,40 @@
+//! `riplab tour --check FILE`: a validated tour's steps as a table, one line each: the scene,
+//! the level, the scheme and the method each step shows (a setting the step leaves out is its
+//! scenario's, as [`Tour::app`] makes it), and the title.
+
+use std::fmt::Write as _;
+
+use crate::scheme::Scheme;
+
+use super::Tour;
+
+/// The tour's title, file and steps, as `riplab tour --check` prints them.
+pub fn listing(tour: &Tour) -> String {
+    let mut out = format!(
+        "{}: a valid tour of {} step{}\ntitle: {}\n\n",
+        tour.source,
+        tour.steps.len(),
+        if tour.steps.len() == 1 { "" } else { "s" },
+        tour.title
+    );
+    let _ = writeln!(
+        out,
+        "{:>4}  {:<11}  {:>5}  {:<14}  {:<8}  title",
+        "step", "scene", "level", "scheme", "method"
+    );
+    for (i, step) in tour.steps.iter().enumerate() {
+        let app = tour.app(i);
+        let s = &app.settings;
+        let _ = writeln!(
+            out,
+            "{:>4}  {:<11}  {:>5}  {:<14}  {:<8}  {}",
+            i + 1,
+            app.scene.name(),
+            s.level,
+            Scheme::new(s.element, s.rule).label(),
+            s.method.name(),
+            step.title
+        );
+    }
+    out
+}

@@ -1,0 +1,397 @@
+//! Issue 36: `riplab tour --auto --record FILE.cast` run in a pseudo-terminal gives a valid
+//! asciicast v2 file: the header first, events in non-decreasing time, a marker per step (its
+//! title), and output that, replayed through a terminal emulator (vt100), ends on the last
+//! step's frame as `render_step` draws it. Also the recorder alone, on a writer that fails.
+
+use std::io::{Read, Write};
+use std::os::fd::OwnedFd;
+use std::path::PathBuf;
+use std::process::{Child, Stdio};
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+
+use riplab::tui::record::Recorder;
+use riplab::tui::record::cast::{Event, Header};
+use riplab::tui::tour::{Tour, render_step};
+
+const SIZE: (u16, u16) = (100, 30);
+
+/// Three cheap steps (level 0); the last shows the mesh scene, which has no inf-sup panel to
+/// fill after its solve.
+const TOUR: &str = "title = \"Recorded\"
+
+[[step]]
+title = \"One: M1\"
+caption = \"The first step.\"
+scheme = \"M1\"
+level = 0
+
+[[step]]
+title = \"Two: M3\"
+caption = \"The second step.\"
+scheme = \"M3\"
+level = 0
+
+[[step]]
+title = \"Three: the mesh\"
+caption = \"The last step.\"
+scene = \"mesh\"
+scheme = \"M1\"
+level = 0
+";
+
+/// A pseudo-terminal of `SIZE`: (controller, the terminal's side).
+fn pty() -> (OwnedFd, OwnedFd) {
+    use rustix::pty::{OpenptFlags, grantpt, openpt, ptsname, unlockpt};
+    let controller = openpt(OpenptFlags::RDWR | OpenptFlags::NOCTTY | OpenptFlags::CLOEXEC).unwrap();
+    grantpt(&controller).unwrap();
+    unlockpt(&controller).unwrap();
+    let name = ptsname(&controller, Vec::new()).unwrap();
+    let user = std::fs::OpenOptions::new()
+        .read(true)
+        .write(true)
+        .open(name.to_str().unwrap())
+        .unwrap();
+    rustix::termios::tcsetwinsize(
+        &user,
+        rustix::termios::Winsize {
+            ws_row: SIZE.1,
+            ws_col: SIZE.0,
+            ws_xpixel: 0,
+            ws_ypixel: 0,
+        },
+    )
+    .unwrap();
+    (controller, user.into())
+}
+
+/// A terminal emulator of `SIZE`.
+fn parser() -> vt100::Parser {
+    let n = |v: u16| std::num::NonZeroU16::new(v).unwrap();
+    vt100::Parser::new(n(SIZE.1), n(SIZE.0), 0)
+}
+
+/// The screen as vt100 shows it, one trimmed line per row.
+fn rows(screen: &vt100::Screen) -> Vec<String> {
+    screen.rows(0, SIZE.0).map(|r| r.trim_end().to_string()).collect()
+}
+
+/// A line as compared: the status line and the caption's title line without what the live
+/// tour shows and `render_step` leaves out (the solve's time, the auto-advance's state), with
+/// runs of blanks made one (their keys are right-aligned); every other line exactly.
+fn comparable(line: &str) -> String {
+    if !line.contains("Newton step") && !line.contains(" tour 3/3 ") {
+        return line.to_string();
+    }
+    let line = line.replace(" auto: done ", " ");
+    let mut parts = line.split(" · ");
+    let mut kept = vec![parts.next().unwrap_or_default().to_string()];
+    for part in parts {
+        let time = part.split_once(" ms").is_some_and(|(number, _)| {
+            !number.is_empty() && number.chars().all(|c| c.is_ascii_digit() || ".e+-".contains(c))
+        });
+        match part.split_once(" ms") {
+            // The time alone, or the time then the keys: the keys kept.
+            Some((_, rest)) if time => kept.last_mut().unwrap().push_str(rest),
+            _ => kept.push(part.to_string()),
+        }
+    }
+    kept.join(" · ").split_whitespace().collect::<Vec<_>>().join(" ")
+}
+
+/// Kill the child if the test fails before it ends.
+struct Reap(Child);
+
+impl Drop for Reap {
+    fn drop(&mut self) {
+        if self.0.try_wait().ok().flatten().is_none() {
+            let _ = self.0.kill();
+            let _ = self.0.wait();
+        }
+    }
+}
+
+#[test]
+fn a_recorded_tour_is_a_valid_asciicast_ending_on_the_last_frame() {
+    let dir = std::env::temp_dir().join(format!("riplab-record-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let tour_file = dir.join("t.toml");
+    std::fs::write(&tour_file, TOUR).unwrap();
+    let cast: PathBuf = dir.join("t.cast");
+    let (controller, user) = pty();
+    let child = std::process::Command::new(env!("CARGO_BIN_EXE_riplab"))
+        .args(["tour", "--tour"])
+        .arg(&tour_file)
+        .args(["--auto", "0.5", "--record"])
+        .arg(&cast)
+        .env("TERM", "xterm-256color")
+        .env("XDG_CACHE_HOME", crate::common::test_cache())
+        .stdin(Stdio::from(user.try_clone().unwrap()))
+        .stdout(Stdio::from(user.try_clone().unwrap()))
+        .stderr(Stdio::from(user))
+        .spawn()
+        .unwrap();
+    let mut child = Reap(child);
+    // What the terminal shows, read on a thread (the child blocks if nobody reads).
+    let live = Arc::new(Mutex::new((parser(), Instant::now())));
+    let reader = {
+        let live = live.clone();
+        let mut from = std::fs::File::from(controller.try_clone().unwrap());
+        std::thread::spawn(move || {
+            let mut buf = [0u8; 65536];
+            while let Ok(n) = from.read(&mut buf) {
+                if n == 0 {
+                    break;
+                }
+                let mut live = live.lock().unwrap();
+                live.0.process(&buf[..n]);
+                live.1 = Instant::now();
+            }
+        })
+    };
+    // Wait for the last step solved and the screen quiet for a while, then quit.
+    let deadline = Instant::now() + Duration::from_secs(120);
+    loop {
+        assert!(Instant::now() < deadline, "the tour did not reach its last step");
+        if let Some(status) = child.0.try_wait().unwrap() {
+            panic!(
+                "riplab ended early: {status}\n{}",
+                rows(live.lock().unwrap().0.screen()).join("\n")
+            );
+        }
+        {
+            let live = live.lock().unwrap();
+            let text = live.0.screen().contents();
+            if text.contains("tour 3/3")
+                && text.contains("✓ converged")
+                && live.1.elapsed() > Duration::from_millis(700)
+            {
+                break;
+            }
+        }
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    std::fs::File::from(controller).write_all(b"q").unwrap();
+    let status = loop {
+        if let Some(status) = child.0.try_wait().unwrap() {
+            break status;
+        }
+        assert!(Instant::now() < deadline, "riplab did not quit");
+        std::thread::sleep(Duration::from_millis(20));
+    };
+    assert!(status.success(), "{status}");
+    drop(child);
+    let _ = reader.join();
+
+    // The file: a header line, then events.
+    let text = std::fs::read_to_string(&cast).unwrap();
+    let mut lines = text.lines();
+    let header: serde_json::Value = serde_json::from_str(lines.next().unwrap()).unwrap();
+    assert_eq!(header["version"], 2);
+    assert_eq!(header["width"], SIZE.0);
+    assert_eq!(header["height"], SIZE.1);
+    assert!(header["timestamp"].as_u64().unwrap() > 1_600_000_000);
+    assert_eq!(header["title"], "riplab tour: Recorded");
+    let events: Vec<(f64, String, String)> = lines
+        .map(|l| {
+            let v: serde_json::Value = serde_json::from_str(l).unwrap_or_else(|e| panic!("{e}: {l}"));
+            let e = v.as_array().unwrap();
+            assert_eq!(e.len(), 3, "{l}");
+            (
+                e[0].as_f64().unwrap(),
+                e[1].as_str().unwrap().to_string(),
+                e[2].as_str().unwrap().to_string(),
+            )
+        })
+        .collect();
+    assert!(events.windows(2).all(|w| w[0].0 <= w[1].0), "time goes back");
+    assert!(events.iter().all(|e| ["o", "m", "r"].contains(&e.1.as_str())));
+    let markers: Vec<&str> = events
+        .iter()
+        .filter(|e| e.1 == "m")
+        .map(|e| e.2.as_str())
+        .collect();
+    assert_eq!(markers, ["One: M1", "Two: M3", "Three: the mesh"]);
+    // The steps' markers come about the auto interval (0.5 s) apart, or more while a solve
+    // runs (each is stamped when the loop draws, the interval counted from the step's change).
+    let times: Vec<f64> = events.iter().filter(|e| e.1 == "m").map(|e| e.0).collect();
+    assert!(times.windows(2).all(|w| w[1] - w[0] >= 0.45), "{times:?}");
+
+    // Replayed: the last screen shown before the alternate screen is left is the last step's.
+    let mut replay = parser();
+    let mut last = None;
+    for (_, code, data) in &events {
+        if code == "o" {
+            replay.process(data.as_bytes());
+            if replay.screen().alternate_screen() {
+                last = Some(rows(replay.screen()));
+            }
+        }
+    }
+    assert!(
+        !replay.screen().alternate_screen(),
+        "the recording ends with the terminal restored"
+    );
+    let last = last.expect("frames on the alternate screen");
+    let tour = Tour::load(&tour_file).unwrap();
+    let expected = render_step(&tour, 2, SIZE.0, SIZE.1).unwrap();
+    let expected: Vec<String> = expected.lines().map(comparable).collect();
+    let last: Vec<String> = last.iter().map(|l| comparable(l)).collect();
+    assert_eq!(last, expected, "replayed:\n{}", last.join("\n"));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The issue's "Done when" in the lab itself: `]]2` then `T` writes a step that `tour --check`
+/// accepts at level 2 with M2, the status line says where, and the lab's recording marks the
+/// change of scene.
+#[test]
+fn the_lab_records_and_writes_a_tour_step_on_t() {
+    let dir = std::env::temp_dir().join(format!("riplab-record-lab-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let cast = dir.join("lab.cast");
+    let tour = dir.join("lesson.toml");
+    let (controller, user) = pty();
+    let child = std::process::Command::new(env!("CARGO_BIN_EXE_riplab"))
+        .arg("--record")
+        .arg(&cast)
+        .arg("--tour-out")
+        .arg(&tour)
+        .env("TERM", "xterm-256color")
+        .env("XDG_CACHE_HOME", crate::common::test_cache())
+        .stdin(Stdio::from(user.try_clone().unwrap()))
+        .stdout(Stdio::from(user.try_clone().unwrap()))
+        .stderr(Stdio::from(user))
+        .spawn()
+        .unwrap();
+    let mut child = Reap(child);
+    let live = Arc::new(Mutex::new(parser()));
+    let reader = {
+        let live = live.clone();
+        let mut from = std::fs::File::from(controller.try_clone().unwrap());
+        std::thread::spawn(move || {
+            let mut buf = [0u8; 65536];
+            while let Ok(n) = from.read(&mut buf) {
+                if n == 0 {
+                    break;
+                }
+                live.lock().unwrap().process(&buf[..n]);
+            }
+        })
+    };
+    let mut keys = std::fs::File::from(controller);
+    let deadline = Instant::now() + Duration::from_secs(120);
+    let wait_for = |what: &[&str]| loop {
+        let text = live.lock().unwrap().screen().contents();
+        if what.iter().all(|w| text.contains(w)) {
+            return;
+        }
+        assert!(Instant::now() < deadline, "waiting for {what:?}:\n{text}");
+        std::thread::sleep(Duration::from_millis(20));
+    };
+    wait_for(&["✓ converged"]);
+    keys.write_all(b"]]2").unwrap();
+    wait_for(&["M2 q1+gauss2", "level 2", "✓ converged"]);
+    keys.write_all(b"T").unwrap();
+    wait_for(&["added step 1 to", "lesson.toml"]);
+    keys.write_all(b"\t").unwrap();
+    wait_for(&["β_h/√h against h"]);
+    keys.write_all(b"q").unwrap();
+    let status = loop {
+        if let Some(status) = child.0.try_wait().unwrap() {
+            break status;
+        }
+        assert!(Instant::now() < deadline, "riplab did not quit");
+        std::thread::sleep(Duration::from_millis(20));
+    };
+    assert!(status.success(), "{status}");
+    drop(child);
+    let _ = reader.join();
+    // The step: M2 at level 2, and `tour --check` accepts the file.
+    let (code, out, err) = crate::common::riplab(&["tour", "--check", tour.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    let row: Vec<&str> = out.lines().last().unwrap().split_whitespace().collect();
+    assert_eq!(row[..5], ["1", "explore", "2", "M2", "penalty"], "{out}");
+    // The recording: the lab's scenes as markers.
+    let text = std::fs::read_to_string(&cast).unwrap();
+    let markers: Vec<String> = text
+        .lines()
+        .skip(1)
+        .map(|l| serde_json::from_str::<serde_json::Value>(l).unwrap())
+        .filter(|e| e[1] == "m")
+        .map(|e| e[2].as_str().unwrap().to_string())
+        .collect();
+    assert_eq!(markers, ["scene: explore", "scene: infsup"]);
+    assert!(
+        text.lines()
+            .next()
+            .unwrap()
+            .contains("\"title\":\"riplab lab: hertz-paper\"")
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// A writer that fails as a full disk does.
+struct Full;
+
+impl Write for Full {
+    fn write(&mut self, _: &[u8]) -> std::io::Result<usize> {
+        Err(std::io::Error::from_raw_os_error(28))
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
+}
+
+/// A recording that cannot be written says so, once, and at the end.
+#[test]
+fn a_failed_recording_is_reported() {
+    let (tx, rx) = std::sync::mpsc::channel();
+    let wake = move || tx.send(()).unwrap();
+    let mut recorder = Recorder::with_writer(Full, "full.cast".into(), &Header::new(80, 24, "t"), wake);
+    recorder.record(Event::Output(b"x".to_vec()));
+    // The loop is woken as soon as the write fails.
+    rx.recv_timeout(Duration::from_secs(10)).expect("woken");
+    let failure = recorder.new_failure().expect("the failure");
+    assert!(
+        failure.contains("full.cast") && failure.contains("No space left"),
+        "{failure}"
+    );
+    assert_eq!(recorder.new_failure(), None, "reported once on the status line");
+    let end = recorder.finish().unwrap_err();
+    assert!(end.contains("No space left"), "{end}");
+}
+
+/// The recorder's file holds every event in order, the header first.
+#[test]
+fn a_recorder_writes_its_events_in_order() {
+    #[derive(Clone, Default)]
+    struct Shared(Arc<Mutex<Vec<u8>>>);
+    impl Write for Shared {
+        fn write(&mut self, b: &[u8]) -> std::io::Result<usize> {
+            self.0.lock().unwrap().extend_from_slice(b);
+            Ok(b.len())
+        }
+        fn flush(&mut self) -> std::io::Result<()> {
+            Ok(())
+        }
+    }
+    let out = Shared::default();
+    let recorder = Recorder::with_writer(out.clone(), "mem".into(), &Header::new(80, 24, "t"), || {
+        panic!("no failure")
+    });
+    let tap = recorder.tap();
+    recorder.record(Event::Marker("a".into()));
+    tap.record(Event::Output("é".as_bytes().to_vec()));
+    recorder.record(Event::Resize(90, 25));
+    recorder.finish().unwrap();
+    let text = String::from_utf8(out.0.lock().unwrap().clone()).unwrap();
+    let lines: Vec<serde_json::Value> = text.lines().map(|l| serde_json::from_str(l).unwrap()).collect();
+    assert_eq!(lines[0]["version"], 2);
+    let kinds: Vec<(&str, &str)> = lines[1..]
+        .iter()
+        .map(|e| (e[1].as_str().unwrap(), e[2].as_str().unwrap()))
+        .collect();
+    assert_eq!(kinds, [("m", "a"), ("o", "é"), ("r", "90x25")]);
+}
