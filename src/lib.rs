@@ -52,5 +52,6 @@ pub mod study;
 pub mod text;
 #[cfg(feature = "tui")]
 pub mod tui;
+pub mod verify;
 pub mod vtu;
 pub mod warning;

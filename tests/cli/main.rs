@@ -11,4 +11,5 @@ mod hostile;
 mod modules;
 mod plot;
 mod readme;
+mod verify;
 mod vtu;

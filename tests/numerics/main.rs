@@ -19,3 +19,4 @@ mod stress;
 mod stresses;
 mod study;
 mod threads;
+mod verify;
