@@ -37,3 +37,70 @@ fn verify_refuses_bad_values() {
     assert_eq!(code, 2);
     assert!(err.contains("--level") && err.contains("2 to 5"), "{err}");
 }
+
+/// Simpson's rule for ∫₀^{π/2} f (2000 intervals).
+fn quarter(f: impl Fn(f64) -> f64) -> f64 {
+    let n = 2000;
+    let h = std::f64::consts::FRAC_PI_2 / n as f64;
+    let sum: f64 = (0..=n)
+        .map(|i| {
+            let w = if i == 0 || i == n {
+                1.0
+            } else if i % 2 == 1 {
+                4.0
+            } else {
+                2.0
+            };
+            w * f(i as f64 * h)
+        })
+        .sum();
+    sum * h / 3.0
+}
+
+/// `solve`'s JSON carries the exact circle beside Hertz (issue 32, item 2): its a carries the
+/// computed load and its p₀ is the half-plane's (checked here by Simpson's rule on the
+/// integrals, P = E*a² ∫ sin²φ/√(R² − a² sin²φ) dφ and p₀ = (E*a/πR) K(a/R)), and p̄ is
+/// closer to it than to Hertz's parabola.
+#[test]
+fn solve_reports_the_exact_circle_beside_hertz() {
+    let (code, out, err) = riplab(&[
+        "solve",
+        "scenarios/hertz-block.toml",
+        "--level",
+        "3",
+        "--epsilon",
+        "0",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let json: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let hertz = &json["hertz"];
+    let circle = &hertz["circle"];
+    let (a, p0) = (circle["a"].as_f64().unwrap(), circle["p0"].as_f64().unwrap());
+    let (r, e_star) = (10.0, 1000.0 / (1.0 - 0.3 * 0.3));
+    let full_load = 2.0 * json["load"].as_f64().unwrap();
+    let load = e_star * a * a * quarter(|p| p.sin().powi(2) / (r * r - a * a * p.sin().powi(2)).sqrt());
+    assert!(
+        (load - full_load).abs() < 1e-9 * full_load,
+        "{load} vs {full_load}"
+    );
+    let k = quarter(|p| 1.0 / (1.0 - (a / r).powi(2) * p.sin().powi(2)).sqrt());
+    let expect = e_star * a * k / (std::f64::consts::PI * r);
+    assert!((p0 - expect).abs() < 1e-9 * expect, "{p0} vs {expect}");
+    let (to_circle, to_hertz) = (
+        circle["relative_error"].as_f64().unwrap(),
+        hertz["relative_error"].as_f64().unwrap(),
+    );
+    // Measured at level 3: 7.5e-3 and 8.3e-3.
+    assert!(
+        to_circle < to_hertz && to_circle < 8e-3,
+        "{to_circle} vs {to_hertz}"
+    );
+    // The table says it too, and names the parabola.
+    let (_, table, _) = riplab(&["solve", "scenarios/hertz-block.toml", "--level", "2"]);
+    assert!(
+        table.contains("Hertz's parabola") && table.contains("exact circle (half-plane"),
+        "{table}"
+    );
+}
