@@ -104,3 +104,26 @@ fn solve_reports_the_exact_circle_beside_hertz() {
         "{table}"
     );
 }
+
+/// The done-when of issue 32, item 3: at level 4, `--epsilon 1e-14` carries a round-off warning
+/// in the JSON and on stderr, `--epsilon 1e-11` none.
+#[test]
+fn solve_warns_of_round_off_below_its_onset() {
+    let warnings = |epsilon: &str| {
+        let (code, out, err) = riplab(&["solve", "--level", "4", "--epsilon", epsilon, "--format", "json"]);
+        assert_eq!(code, 0, "{err}");
+        let json: serde_json::Value = serde_json::from_str(&out).unwrap();
+        let list: Vec<String> = json["warnings"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|w| w.as_str().unwrap().to_string())
+            .collect();
+        (list, err)
+    };
+    let (tiny, err) = warnings("1e-14");
+    assert!(tiny.iter().any(|w| w.contains("round-off")), "{tiny:?}");
+    assert!(err.contains("warning:") && err.contains("round-off"), "{err}");
+    let (fine, err) = warnings("1e-11");
+    assert!(fine.is_empty() && !err.contains("round-off"), "{fine:?} {err}");
+}

@@ -13,6 +13,7 @@ mod locking;
 mod methods;
 mod nitsche;
 mod pressures;
+mod round_off;
 mod scenario_props;
 mod scenarios;
 mod stress;
