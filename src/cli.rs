@@ -282,7 +282,9 @@ pub struct StudyArgs {
     /// The contact method and its parameters.
     #[command(flatten)]
     pub method: MethodArgs,
-    /// Penalty parameter of the studied solves (the scenario's when omitted).
+    /// Penalty parameter of the studied solves [default for the penalty: κ = εE/h = 1e-6 at
+    /// the finest level, or the scenario's ε when smaller; for the other methods the
+    /// scenario's].
     #[arg(long)]
     pub epsilon: Option<f64>,
     /// Instead of refining: sweep these ε (comma-separated) at `--level`.
@@ -676,10 +678,6 @@ fn study(args: &StudyArgs) -> Result<ExitCode, CliError> {
         .collect::<Result<Vec<_>, _>>()
         .map_err(|m| usage("--schemes", m))?;
     let method = args.method.resolve(&scenario)?;
-    let epsilon = args.epsilon.unwrap_or(scenario.epsilon);
-    if args.sweep_epsilon.is_empty() {
-        method_at(method, epsilon, "--epsilon")?;
-    }
     let levels = match args.level {
         Some(l) => {
             check::level(l).map_err(|m| usage("--level", m))?;
@@ -687,6 +685,24 @@ fn study(args: &StudyArgs) -> Result<ExitCode, CliError> {
         }
         None => parse_levels(&args.levels).map_err(|m| usage("--levels", m))?,
     };
+    // A penalty refinement study's default ε keeps the penalty's error below the mesh's.
+    let penalty = matches!(method, None | Some(Method::Penalty)) && args.sweep_epsilon.is_empty();
+    let epsilon = match args.epsilon {
+        Some(e) => e,
+        None if penalty => crate::penalty_error::default_epsilon(&scenario, levels[levels.len() - 1]),
+        None => scenario.epsilon,
+    };
+    if args.epsilon.is_none() && epsilon != scenario.epsilon {
+        note(&format!(
+            "note: ε = {epsilon:.3e} (κ = εE/h = {:e} at level {}), not the scenario's {:e}, so that the penalty's error stays well below the mesh's (--epsilon sets it)",
+            crate::penalty_error::STUDY_KAPPA,
+            levels[levels.len() - 1],
+            scenario.epsilon
+        ));
+    }
+    if args.sweep_epsilon.is_empty() {
+        method_at(method, epsilon, "--epsilon")?;
+    }
     // ε's range depends on h: check it at the coarsest and the finest level studied.
     for &level in [levels[0], levels[levels.len() - 1]].iter() {
         let range = scenario.epsilon_range(level);
@@ -776,6 +792,11 @@ fn study(args: &StudyArgs) -> Result<ExitCode, CliError> {
         },
         args.format,
     ))?;
+    if args.sweep_epsilon.is_empty() {
+        for row in crate::penalty_error::dominated_rows(&study.rows, scenario.material.young) {
+            note(&format!("note: {row}"));
+        }
+    }
     let rows = study.rows;
     if all_ok(&rows) {
         Ok(ExitCode::SUCCESS)

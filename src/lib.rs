@@ -41,6 +41,7 @@ pub mod input;
 pub mod material;
 pub mod mesh;
 pub mod nitsche;
+pub mod penalty_error;
 pub mod plot;
 pub mod report;
 pub mod scenario;

@@ -127,3 +127,49 @@ fn solve_warns_of_round_off_below_its_onset() {
     let (fine, err) = warnings("1e-11");
     assert!(fine.is_empty() && !err.contains("round-off"), "{fine:?} {err}");
 }
+
+/// Issue 32, item 4: a penalty study's default ε is κ = 1e-6 at its finest level (said on
+/// stderr), and rows whose load error the penalty's own could account for are noted.
+#[test]
+fn the_study_measures_the_mesh_not_the_penalty() {
+    let (code, out, err) = riplab(&[
+        "study",
+        "--levels",
+        "0..1",
+        "--schemes",
+        "M3",
+        "--no-cache",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let json: serde_json::Value = serde_json::from_str(&out).unwrap();
+    // κ = εE/h = 1e-6 at level 1 (h = 0.5, E = 1000): ε = 5e-10.
+    let epsilon = json["rows"][0]["epsilon"].as_f64().unwrap();
+    assert!((epsilon - 5e-10).abs() < 1e-22, "{epsilon}");
+    assert!(
+        err.contains("note: ε = 5.000e-10 (κ = εE/h = 1e-6 at level 1)"),
+        "{err}"
+    );
+    assert!(!err.contains("it measures ε"), "{err}");
+    // At ε = 1e-2 (κ = 10 and 20) the penalty's load error, up to 3 and 6, swamps the rows'.
+    let (code, _, err) = riplab(&[
+        "study",
+        "--levels",
+        "0..1",
+        "--schemes",
+        "M3",
+        "--no-cache",
+        "--epsilon",
+        "1e-2",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        err.contains("M3 level 0: the load's error")
+            && err.contains("M3 level 1: the load's error")
+            && err.contains("it measures ε, not the mesh"),
+        "{err}"
+    );
+    // An explicit ε is the user's: no note on the choice.
+    assert!(!err.contains("so that the penalty's error stays"), "{err}");
+}
