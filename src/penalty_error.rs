@@ -33,7 +33,7 @@ pub fn load_error_bound(row: &StudyRow, young: f64) -> Option<f64> {
 }
 
 /// The notes on the rows of a study whose load error is within ten times the penalty's bound
-/// (the penalty's share may exceed a tenth of it): what they measure is ε, not the mesh.
+/// (the penalty's share may exceed a tenth of it, and the row's rates may be ε's).
 pub fn dominated_rows(rows: &[StudyRow], young: f64) -> Vec<String> {
     rows.iter()
         .filter(|r| r.status == Status::Ok)
@@ -42,7 +42,7 @@ pub fn dominated_rows(rows: &[StudyRow], young: f64) -> Vec<String> {
             let error = r.errors?.load;
             (error <= 10.0 * bound).then(|| {
                 format!(
-                    "{} level {}: the load's error {error:.1e} is within ten times the penalty's own (at most {bound:.1e} at ε = {:e}): it measures ε, not the mesh; a smaller --epsilon or --method exact measures the mesh",
+                    "{} level {}: the load's error {error:.1e} is within ten times the penalty's bound ({bound:.1e} at ε = {:e}): ε may account for a tenth of it or more, and its rate may be ε's; --method exact measures the mesh alone",
                     r.scheme, r.level, r.epsilon
                 )
             })
