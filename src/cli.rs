@@ -82,6 +82,10 @@ pub enum Command {
     /// Errors and rates of every scheme against an exact-constraint reference, with run times.
     #[command(after_help = EXIT_CODES)]
     Study(StudyArgs),
+    /// Grade a pack of verification cases against closed-form and published answers (exit 1
+    /// when a check is NOOK).
+    #[command(after_help = EXIT_CODES)]
+    Verify(VerifyArgs),
     /// Print one frame of the terminal lab as plain text (for logs, CI and documents).
     #[command(after_help = RENDER_NOTES)]
     Render(RenderArgs),
@@ -277,7 +281,9 @@ pub struct StudyArgs {
     /// The contact method and its parameters.
     #[command(flatten)]
     pub method: MethodArgs,
-    /// Penalty parameter of the studied solves (the scenario's when omitted).
+    /// Penalty parameter of the studied solves [default for the penalty: κ = εE/h = 1e-6 at
+    /// the finest level, or the scenario's ε when smaller; for the other methods the
+    /// scenario's].
     #[arg(long)]
     pub epsilon: Option<f64>,
     /// Instead of refining: sweep these ε (comma-separated) at `--level`.
@@ -302,6 +308,27 @@ pub struct StudyArgs {
     /// (by default it is kept in $XDG_CACHE_HOME/riplab, ~/.cache/riplab).
     #[arg(long)]
     pub no_cache: bool,
+    /// Output format (docs/design.md §7).
+    #[arg(long, short, value_enum, default_value_t = Format::Table)]
+    pub format: Format,
+}
+
+/// The arguments of `riplab verify`.
+#[derive(Args, Debug)]
+pub struct VerifyArgs {
+    /// Run only this case (`--list` names them).
+    #[arg(long, value_name = "NAME")]
+    pub case: Option<String>,
+    /// List the cases, their default levels and their references' sources.
+    #[arg(long, conflicts_with_all = ["case", "level", "print_stored"])]
+    pub list: bool,
+    /// Run every case at this level (2 to 5) instead of its default; the "did it change" tier
+    /// then has no stored value to compare with.
+    #[arg(long, short, allow_negative_numbers = true)]
+    pub level: Option<i64>,
+    /// Print src/verify/stored.toml anew from this run's values (at the default levels).
+    #[arg(long, conflicts_with_all = ["case", "level", "format"])]
+    pub print_stored: bool,
     /// Output format (docs/design.md §7).
     #[arg(long, short, value_enum, default_value_t = Format::Table)]
     pub format: Format,
@@ -403,6 +430,7 @@ pub fn run(cli: Cli) -> ExitCode {
         Some(Command::Infsup(args)) => infsup(&args),
         Some(Command::Study(args)) => study(&args),
         Some(Command::Render(args)) => render(&args),
+        Some(Command::Verify(args)) => verify(&args),
         Some(Command::Tour(args)) => tour::tour(
             &args,
             TuiOptions {
@@ -652,10 +680,6 @@ fn study(args: &StudyArgs) -> Result<ExitCode, CliError> {
         .collect::<Result<Vec<_>, _>>()
         .map_err(|m| usage("--schemes", m))?;
     let method = args.method.resolve(&scenario)?;
-    let epsilon = args.epsilon.unwrap_or(scenario.epsilon);
-    if args.sweep_epsilon.is_empty() {
-        method_at(method, epsilon, "--epsilon")?;
-    }
     let levels = match args.level {
         Some(l) => {
             check::level(l).map_err(|m| usage("--level", m))?;
@@ -663,6 +687,24 @@ fn study(args: &StudyArgs) -> Result<ExitCode, CliError> {
         }
         None => parse_levels(&args.levels).map_err(|m| usage("--levels", m))?,
     };
+    // A penalty refinement study's default ε keeps the penalty's error below the mesh's.
+    let penalty = matches!(method, None | Some(Method::Penalty)) && args.sweep_epsilon.is_empty();
+    let epsilon = match args.epsilon {
+        Some(e) => e,
+        None if penalty => crate::penalty_error::default_epsilon(&scenario, levels[levels.len() - 1]),
+        None => scenario.epsilon,
+    };
+    if args.epsilon.is_none() && epsilon != scenario.epsilon {
+        note(&format!(
+            "note: ε = {epsilon:.3e} (κ = εE/h = {:e} at level {}), not the scenario's {:e}, so that the penalty's error stays well below the mesh's (--epsilon sets it)",
+            crate::penalty_error::STUDY_KAPPA,
+            levels[levels.len() - 1],
+            scenario.epsilon
+        ));
+    }
+    if args.sweep_epsilon.is_empty() {
+        method_at(method, epsilon, "--epsilon")?;
+    }
     // ε's range depends on h: check it at the coarsest and the finest level studied.
     for &level in [levels[0], levels[levels.len() - 1]].iter() {
         let range = scenario.epsilon_range(level);
@@ -752,6 +794,11 @@ fn study(args: &StudyArgs) -> Result<ExitCode, CliError> {
         },
         args.format,
     ))?;
+    if args.sweep_epsilon.is_empty() {
+        for row in crate::penalty_error::dominated_rows(&study.rows, scenario.material.young) {
+            note(&format!("note: {row}"));
+        }
+    }
     let rows = study.rows;
     if all_ok(&rows) {
         Ok(ExitCode::SUCCESS)
@@ -763,6 +810,51 @@ fn study(args: &StudyArgs) -> Result<ExitCode, CliError> {
         Err(CliError::Failed(format!(
             "{n} of {} rows have no certified result (their status and reason are in the output)",
             rows.len()
+        )))
+    }
+}
+
+/// Run `riplab verify`: exit 0 when every check is OK, 1 otherwise.
+fn verify(args: &VerifyArgs) -> Result<ExitCode, CliError> {
+    let all = crate::verify::cases();
+    if args.list {
+        print(&output(&crate::verify::report::CaseList::new(&all), args.format))?;
+        return Ok(ExitCode::SUCCESS);
+    }
+    let level = match args.level {
+        Some(l) => {
+            crate::check::integer(
+                l,
+                i64::from(crate::verify::MIN_VERIFY_LEVEL),
+                i64::from(crate::verify::MAX_VERIFY_LEVEL),
+            )
+            .map_err(|m| usage("--level", m))?;
+            Some(l as u32)
+        }
+        None => None,
+    };
+    let chosen = crate::verify::select(&all, args.case.as_deref()).map_err(|e| usage("--case", e))?;
+    let checks = chosen
+        .into_iter()
+        .flat_map(|c| crate::verify::run(c, level))
+        .collect();
+    let verification = crate::verify::Verification::new(checks);
+    if args.print_stored {
+        print(&crate::verify::stored::file(&verification.checks))?;
+    } else {
+        print(&output(&verification, args.format))?;
+    }
+    if verification.passed {
+        Ok(ExitCode::SUCCESS)
+    } else {
+        let nook = verification
+            .checks
+            .iter()
+            .filter(|c| c.verdict != crate::verify::Verdict::Ok)
+            .count();
+        Err(CliError::Failed(format!(
+            "{nook} of {} checks are NOOK (the output says which and why)",
+            verification.checks.len()
         )))
     }
 }

@@ -41,6 +41,7 @@ pub mod input;
 pub mod material;
 pub mod mesh;
 pub mod nitsche;
+pub mod penalty_error;
 pub mod plot;
 pub mod report;
 pub mod scenario;
@@ -52,5 +53,6 @@ pub mod study;
 pub mod text;
 #[cfg(feature = "tui")]
 pub mod tui;
+pub mod verify;
 pub mod vtu;
 pub mod warning;

@@ -6,6 +6,7 @@ use std::fmt::Write as _;
 
 use serde::Serialize;
 
+use crate::contact::circle::CircleContact;
 use crate::contact::hertz::Hertz;
 use crate::contact::method::MethodFields;
 use crate::error::SolveError;
@@ -234,6 +235,40 @@ pub struct HertzReport {
     pub p0: f64,
     /// ‖p̄ − p_Hertz‖₀ / ‖p_Hertz‖₀ on Γ_C.
     pub relative_error: f64,
+    /// The exact circular indenter for the same load (the circle, not Hertz's parabola;
+    /// [`CircleContact`]); null for a load that would bury the cylinder beyond a = 0.9 R.
+    pub circle: Option<CircleReport>,
+}
+
+/// The `hertz.circle` object: the exact rigid circular cylinder on a half-plane for the
+/// computed load ([`CircleContact`]).
+#[derive(Serialize)]
+pub struct CircleReport {
+    /// The contact half-width a.
+    pub a: f64,
+    /// The peak pressure p₀.
+    pub p0: f64,
+    /// ‖p̄ − p_circle‖₀ / ‖p_circle‖₀ on Γ_C.
+    pub relative_error: f64,
+}
+
+impl HertzReport {
+    /// Hertz's and the exact circle's solutions for the full body's load `full_load` on
+    /// `scenario`, and p̄'s distances from them; None for an obstacle other than a cylinder.
+    pub fn new(scenario: &Scenario, sol: &Solution, full_load: f64) -> Option<Self> {
+        let obstacle = &sol.params.obstacle;
+        let h = Hertz::for_load(obstacle, &scenario.material, full_load)?;
+        Some(HertzReport {
+            a: h.a,
+            p0: h.p0,
+            relative_error: h.relative_error(&sol.points, &sol.pbar),
+            circle: CircleContact::for_load(obstacle, &scenario.material, full_load).map(|c| CircleReport {
+                a: c.a,
+                p0: c.p0,
+                relative_error: c.relative_error(&sol.points, &sol.pbar),
+            }),
+        })
+    }
 }
 
 impl SolveReport {
@@ -279,11 +314,7 @@ impl SolveReport {
                 } else {
                     sol.load
                 };
-                Hertz::for_load(&sol.params.obstacle, &scenario.material, full).map(|h| HertzReport {
-                    a: h.a,
-                    p0: h.p0,
-                    relative_error: h.relative_error(&sol.points, &sol.pbar),
-                })
+                HertzReport::new(scenario, sol, full)
             },
             timing_ms: sol.timing,
             warnings: sol.warnings.clone(),
@@ -350,9 +381,16 @@ impl Report for SolveReport {
         if let Some(h) = &self.hertz {
             let _ = writeln!(
                 s,
-                "Hertz (plane, for this load): a = {:.5}, p₀ = {:.5}; ‖p̄ − p_Hertz‖₀/‖p_Hertz‖₀ = {:.3e} (meaningful when the body is much larger than a)",
+                "Hertz (plane, for this load): a = {:.5}, p₀ = {:.5}; ‖p̄ − p_Hertz‖₀/‖p_Hertz‖₀ = {:.3e} (Hertz's parabola x²/2R: off the circle by O(a²/R²); meaningful when the body is much larger than a)",
                 h.a, h.p0, h.relative_error
             );
+            if let Some(c) = &h.circle {
+                let _ = writeln!(
+                    s,
+                    "exact circle (half-plane, for this load): a = {:.5}, p₀ = {:.5}; ‖p̄ − p_circle‖₀/‖p_circle‖₀ = {:.3e}",
+                    c.a, c.p0, c.relative_error
+                );
+            }
         }
         let t = &self.timing_ms;
         let _ = writeln!(

@@ -137,6 +137,15 @@ pub fn solve_contact(
     }
     let mut warnings: Vec<Warning> = disc.stiffness_warning().into_iter().collect();
     warnings.extend(warning::of_contact(&params.obstacle, &points, &p, disc.mesh.h()));
+    if params.method == Method::Penalty {
+        warnings.extend(warning::of_round_off(
+            params.obstacle.depth(),
+            params.epsilon,
+            &p,
+            disc.mesh.h(),
+            disc.material.young,
+        ));
+    }
     let newton_ms = ms_since(t);
     let timing = Timing {
         newton: newton_ms,

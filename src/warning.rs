@@ -15,6 +15,15 @@ use crate::text::num;
 /// plane strain (Q1 is 1.005× too stiff at 0.49 and 1.04× at 0.499, STABILITY.md).
 pub const LOCKING_POISSON: f64 = 0.495;
 
+/// The largest relative round-off of the penalty's pressure accepted without a warning.
+pub const ROUND_OFF_LIMIT: f64 = 1e-6;
+
+/// The measured amplification of the round-off of u_n − g into p = (u_n − g)⁺/ε, against the
+/// estimate u·d/(ε max p) (u the unit round-off, d the depth): 1–3 for Q1 at levels 2–4 on the
+/// paper's problem and hertz-block, 9–11 for Q2 at level 6 (STABILITY.md, "Round-off of the
+/// pressure").
+pub const ROUND_OFF_AMPLIFICATION: f64 = 10.0;
+
 /// The fewest elements of Γ_C in contact for a pressure profile worth reading.
 pub const MIN_CONTACT_ELEMENTS: usize = 3;
 
@@ -39,6 +48,16 @@ pub enum Warning {
         to: f64,
         /// The mesh's h (its largest cell side).
         h: f64,
+    },
+    /// The penalty's pressure, formed as penetration/ε, may carry round-off above
+    /// [`ROUND_OFF_LIMIT`] of its size ([`of_round_off`]).
+    RoundOff {
+        /// The estimated relative round-off of p.
+        estimate: f64,
+        /// The penalty parameter ε.
+        epsilon: f64,
+        /// κ = εE/h.
+        kappa: f64,
     },
     /// Contact on fewer than [`MIN_CONTACT_ELEMENTS`] elements of Γ_C.
     NarrowContact {
@@ -81,6 +100,17 @@ impl fmt::Display for Warning {
                 num(to - from),
                 num(*h)
             ),
+            Warning::RoundOff {
+                estimate,
+                epsilon,
+                kappa,
+            } => write!(
+                f,
+                "round-off: p may be off by {estimate:.0e} of its size (above {}), as it is formed as penetration/ε at ε = {} (κ = εE/h = {}); the displacement and the load are less affected. Use a larger ε, or ε = 0 for the exact constraint",
+                num(ROUND_OFF_LIMIT),
+                num(*epsilon),
+                num(*kappa)
+            ),
             Warning::NarrowContact { elements, h } => write!(
                 f,
                 "the contact zone spans only {elements} element{} of Γ_C (h = {}): the pressure is resolved by too few points to be trusted; choose a finer level",
@@ -110,6 +140,24 @@ pub fn of_material(material: &Material, element: Element, integration: Integrati
             integration,
         },
     )
+}
+
+/// The warning that the penalty's pressure `p` at `epsilon`, pressed to the depth `depth`, may
+/// carry round-off above [`ROUND_OFF_LIMIT`] of its largest value: u_n − g, a difference of
+/// numbers of the size of d, carries round-off of about u·d (u = 2.2e-16), which 1/ε
+/// amplifies, estimated as [`ROUND_OFF_AMPLIFICATION`] · u·d/(ε max p). `h` and `young` give
+/// κ = εE/h for the message. None without contact.
+pub fn of_round_off(depth: f64, epsilon: f64, p: &[f64], h: f64, young: f64) -> Option<Warning> {
+    let top = p.iter().copied().fold(0.0, f64::max);
+    if top <= 0.0 || epsilon <= 0.0 {
+        return None;
+    }
+    let estimate = ROUND_OFF_AMPLIFICATION * f64::EPSILON * depth.abs() / (epsilon * top);
+    (estimate > ROUND_OFF_LIMIT).then_some(Warning::RoundOff {
+        estimate,
+        epsilon,
+        kappa: epsilon * young / h,
+    })
 }
 
 /// The warnings about a contact solution: `p` the raw pressure at `points`, `h` the

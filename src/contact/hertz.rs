@@ -6,7 +6,7 @@ use serde::Serialize;
 
 use super::{ContactPoints, Obstacle};
 use crate::fem::quadrature::gauss_legendre;
-use crate::material::{Material, Plane};
+use crate::material::Material;
 
 /// The Hertz contact half-width, peak pressure and centre for a given load.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -27,10 +27,7 @@ impl Hertz {
         if full_load.is_nan() || full_load <= 0.0 {
             return None;
         }
-        let e_star = match material.plane {
-            Plane::Strain => material.young / (1.0 - material.poisson * material.poisson),
-            Plane::Stress => material.young,
-        };
+        let e_star = super::half_plane::e_star(material);
         let a = (4.0 * full_load * radius / (std::f64::consts::PI * e_star)).sqrt();
         Some(Hertz {
             a,
@@ -52,25 +49,32 @@ impl Hertz {
     /// ‖p̄ − p_Hertz‖₀ / ‖p_Hertz‖₀ over Γ_C for nodal values `pbar` at `cp`'s vertices
     /// (8 Gauss points per edge: the square-root edge of p_Hertz is integrated closely).
     pub fn relative_error(&self, cp: &ContactPoints, pbar: &[f64]) -> f64 {
-        let gauss = gauss_legendre(8);
-        let (mut err, mut norm) = (0.0, 0.0);
-        for e in 0..cp.n_edges() {
-            let (x0, x1) = (cp.vertex_x[e], cp.vertex_x[e + 1]);
-            for &(xi, w) in &gauss {
-                let x = x0 + (x1 - x0) * (xi + 1.0) / 2.0;
-                let (ph, pe) = (self.pressure(x), cp.interpolate_vertices(pbar, x));
-                err += w * (x1 - x0) / 2.0 * (pe - ph).powi(2);
-                norm += w * (x1 - x0) / 2.0 * ph * ph;
-            }
-        }
-        (err / norm).sqrt()
+        relative_l2_error(cp, pbar, |x| self.pressure(x))
     }
+}
+
+/// ‖p̄ − p‖₀ / ‖p‖₀ over Γ_C for nodal values `pbar` at `cp`'s vertices and a reference
+/// pressure `p` (8 Gauss points per edge: a square-root edge of p is integrated closely).
+pub fn relative_l2_error(cp: &ContactPoints, pbar: &[f64], p: impl Fn(f64) -> f64) -> f64 {
+    let gauss = gauss_legendre(8);
+    let (mut err, mut norm) = (0.0, 0.0);
+    for e in 0..cp.n_edges() {
+        let (x0, x1) = (cp.vertex_x[e], cp.vertex_x[e + 1]);
+        for &(xi, w) in &gauss {
+            let x = x0 + (x1 - x0) * (xi + 1.0) / 2.0;
+            let (ph, pe) = (p(x), cp.interpolate_vertices(pbar, x));
+            err += w * (x1 - x0) / 2.0 * (pe - ph).powi(2);
+            norm += w * (x1 - x0) / 2.0 * ph * ph;
+        }
+    }
+    (err / norm).sqrt()
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::contact::Rule;
+    use crate::material::Plane;
 
     #[test]
     fn formulas_by_hand() {

@@ -115,7 +115,7 @@ impl Method {
     /// What the method needs, in a line: its stability condition and its parameter.
     pub fn needs(self) -> &'static str {
         match self {
-            Method::Penalty => "needs ε > 0 (error O(√ε)); p̄ smooths p",
+            Method::Penalty => "needs ε > 0 (load error O(ε)); p̄ smooths p",
             Method::Exact => "needs inf-sup (a rule without kernel); no ε",
             Method::Alm { .. } => "needs ε > 0 (no ε error); p unique with inf-sup",
             Method::Nitsche { .. } => "needs γ₀ > γ₀* (θ = 1); no multiplier, no inf-sup",

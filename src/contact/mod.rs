@@ -3,12 +3,15 @@
 //! pressures (docs/design.md §2–§4, §10).
 
 pub mod alm;
+pub mod circle;
 pub mod gap;
+pub mod half_plane;
 pub mod hertz;
 pub mod method;
 pub mod params;
 pub mod penalty;
 pub mod pressure;
+pub mod rounded_punch;
 pub mod rule;
 pub mod signorini;
 

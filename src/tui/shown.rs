@@ -1,8 +1,10 @@
 //! What the views show of a solution, computed once when it arrives ([`Shown::new`], by the
 //! worker) so that the views only draw: the pressures along Γ_C mirrored to the full width
-//! for a half model, the load of the whole body, the Hertz solution for that load and the
+//! for a half model, the load of the whole body, the Hertz solution and the exact circle's for
+//! that load, and the
 //! contact zone the views zoom to.
 
+use crate::contact::circle::CircleContact;
 use crate::contact::hertz::Hertz;
 use crate::plot::raw_pressure_edges;
 use crate::scenario::Scenario;
@@ -23,6 +25,8 @@ pub struct Shown {
     pub full_load: f64,
     /// Hertz's solution for that load, where the obstacle has one (a cylinder).
     pub hertz: Option<Hertz>,
+    /// The exact circular indenter for that load (the circle, not Hertz's parabola).
+    pub circle: Option<CircleContact>,
     /// The x range to zoom to ([`zoom_range`] over [`Shown::x_range`]); None without contact.
     pub zone: Option<[f64; 2]>,
 }
@@ -61,6 +65,7 @@ impl Shown {
                 .fold(0.0f64, |m, &v| m.max(v)),
             full_load,
             hertz: Hertz::for_load(&solution.params.obstacle, &scenario.material, full_load),
+            circle: CircleContact::for_load(&solution.params.obstacle, &scenario.material, full_load),
             zone: zoom_range(solution, half, (x_range[0], x_range[1])),
         }
     }

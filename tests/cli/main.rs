@@ -12,4 +12,5 @@ mod modules;
 mod plot;
 mod readme;
 mod tour_files;
+mod verify;
 mod vtu;

@@ -124,7 +124,16 @@ fn substitute(args: &[String], tmp: &Path) -> Vec<String> {
         }
     }
     // The lab is drawn by `render`.
-    let subcommands = ["solve", "infsup", "study", "render", "tour", "completions", "man"];
+    let subcommands = [
+        "solve",
+        "infsup",
+        "study",
+        "verify",
+        "render",
+        "tour",
+        "completions",
+        "man",
+    ];
     if out
         .first()
         .is_none_or(|first| !subcommands.contains(&first.as_str()))
@@ -192,6 +201,7 @@ fn check_output(args: &[String], stdout: &str, tmp: &Path) -> Result<(), String>
         }
         "infsup" => expect("β̄_h/√h"),
         "study" => expect("reference"),
+        "verify" => expect("checks OK"),
         "render" => {
             let size = args
                 .windows(2)

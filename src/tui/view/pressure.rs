@@ -1,7 +1,7 @@
 //! The main chart (drawn from the solution's [`super::super::shown::Shown`]): raw pressure p (the function of Q_h through the rule's points, so steps
 //! for gauss1, a dotted line) against the smoothed p̄ (a solid line through the vertices)
 //! along Γ_C, mirrored to the full width for a half model, with optional overlays of the gap
-//! and the Hertz profile. p is drawn last so that its oscillation stays visible on fine
+//! and of the Hertz profile (its parabola, `+`) with the exact circular indenter's (`o`). p is drawn last so that its oscillation stays visible on fine
 //! meshes. Units are the paper's: x in units of length, p in the units of E.
 
 use ratatui::Frame;
@@ -33,11 +33,18 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
     let xb = zoomed.unwrap_or(full);
     let hertz = shown.hertz.filter(|_| app.show_hertz);
     let data_max = shown.peak;
-    let peak = data_max.max(hertz.map_or(0.0, |h| h.p0));
+    let circle = shown.circle.filter(|_| app.show_hertz);
+    let peak = data_max
+        .max(hertz.map_or(0.0, |h| h.p0))
+        .max(circle.map_or(0.0, |c| c.p0));
     let ymax = nice_ceil(peak * 1.05);
 
     let hertz_pts: Vec<(f64, f64)> = hertz
-        .map(|h| sample(xb, |x| Some(h.pressure(x))))
+        .map(|h| sample(xb, 0.0, |x| Some(h.pressure(x))))
+        .unwrap_or_default();
+    let circle_pts: Vec<(f64, f64)> = circle
+        // Between Hertz's samples, so that neither hides the other where they agree.
+        .map(|c| sample(xb, 0.5, |x| Some(c.pressure(x))))
         .unwrap_or_default();
     let depth = sol.params.obstacle.depth();
     let gap_scale = if depth > 0.0 {
@@ -47,7 +54,7 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
     };
     let gap_pts: Vec<(f64, f64)> = if app.show_gap {
         let obstacle = &sol.params.obstacle;
-        sample(xb, |x| {
+        sample(xb, 0.0, |x| {
             let g = obstacle.gap(x);
             g.is_finite().then_some(-g * gap_scale)
         })
@@ -72,6 +79,15 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
             stroke: Stroke::None,
             glyph: Some('+'),
             data: &hertz_pts,
+        });
+    }
+    if circle.is_some() {
+        series.push(Series {
+            name: "circle".into(),
+            color: theme.hertz_color(),
+            stroke: Stroke::None,
+            glyph: Some('o'),
+            data: &circle_pts,
         });
     }
     series.push(Series {
@@ -122,11 +138,15 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
     plot.render(frame, area);
 }
 
-/// `f` at evenly spaced x over `[lo, hi]`, where it is defined.
-fn sample([lo, hi]: [f64; 2], f: impl Fn(f64) -> Option<f64>) -> Vec<(f64, f64)> {
+/// `f` at evenly spaced x over `[lo, hi]`, where it is defined, shifted by `phase` of a step
+/// (the last sample dropped where it would leave the range).
+fn sample([lo, hi]: [f64; 2], phase: f64, f: impl Fn(f64) -> Option<f64>) -> Vec<(f64, f64)> {
     (0..OVERLAY_SAMPLES)
         .filter_map(|i| {
-            let x = lo + (hi - lo) * i as f64 / (OVERLAY_SAMPLES - 1) as f64;
+            let x = lo + (hi - lo) * (i as f64 + phase) / (OVERLAY_SAMPLES - 1) as f64;
+            if x > hi {
+                return None;
+            }
             f(x).map(|y| (x, y))
         })
         .collect()

@@ -1,0 +1,343 @@
+//! `riplab verify`: a pack of verification cases, each graded against a closed-form or
+//! published answer (docs/design.md §7). Two tiers, as finite element regression suites have
+//! them: "is it right" — the error against the reference within a tolerance that the
+//! discretisation at the case's level allows — and "did it change" — the value against the one
+//! stored in `src/verify/stored.toml` at the default levels, within a tolerance tight enough to
+//! catch any change of the numerics (`riplab verify --print-stored` writes that file anew).
+//!
+//! Each case names its reference's source. The cases live one family per module:
+//! [`half_space`] (Hertz, the exact circle, the rounded punch), [`patch`] (the contact patch
+//! test), [`infsup`] (β_h's orders), [`manufactured`] (H¹ rates), [`constraint`] (ALM = exact,
+//! the penalty's O(ε)).
+
+pub mod constraint;
+pub mod half_space;
+pub mod infsup;
+pub mod manufactured;
+pub mod patch;
+pub mod report;
+pub mod stored;
+
+use serde::Serialize;
+
+use crate::error::SolveError;
+
+/// The finest level `riplab verify --level` accepts (the manufactured solution's grid at
+/// level L has 2^(L+1) cells across, the infsup case's finest mesh the scenario's level L).
+pub const MAX_VERIFY_LEVEL: u32 = 5;
+/// The coarsest level `riplab verify --level` accepts (the infsup case needs two levels below).
+pub const MIN_VERIFY_LEVEL: u32 = 2;
+
+/// How a check's error is measured.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Measure {
+    /// |computed − reference|.
+    Absolute,
+    /// |computed − reference| / |reference|.
+    Relative,
+}
+
+/// One quantity a case measured, with its reference and tolerance.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Measured {
+    /// What was measured (a key of `src/verify/stored.toml` within its case).
+    pub quantity: String,
+    /// The computed value.
+    pub computed: f64,
+    /// The reference value.
+    pub reference: f64,
+    /// How the error is measured.
+    pub measure: Measure,
+    /// The largest error that passes.
+    pub tolerance: f64,
+}
+
+impl Measured {
+    /// A quantity whose error is |computed − reference| / |reference|.
+    pub fn relative(quantity: impl Into<String>, computed: f64, reference: f64, tolerance: f64) -> Self {
+        Measured {
+            quantity: quantity.into(),
+            computed,
+            reference,
+            measure: Measure::Relative,
+            tolerance,
+        }
+    }
+
+    /// A quantity whose error is |computed − reference|.
+    pub fn absolute(quantity: impl Into<String>, computed: f64, reference: f64, tolerance: f64) -> Self {
+        Measured {
+            quantity: quantity.into(),
+            computed,
+            reference,
+            measure: Measure::Absolute,
+            tolerance,
+        }
+    }
+
+    /// The error, as [`Measure`] says; NaN for a value that is not finite.
+    pub fn error(&self) -> f64 {
+        let diff = (self.computed - self.reference).abs();
+        match self.measure {
+            Measure::Absolute => diff,
+            Measure::Relative => diff / self.reference.abs(),
+        }
+    }
+}
+
+/// A verification case: what it checks, where its reference comes from, and how it runs.
+pub struct Case {
+    /// Its name, for `--case`.
+    pub name: &'static str,
+    /// What it checks, in a line.
+    pub description: &'static str,
+    /// Where the reference comes from.
+    pub source: &'static str,
+    /// The level it runs at by default (the stored values' level).
+    pub default_level: u32,
+    /// The case itself at a level.
+    pub run: fn(u32) -> Result<Vec<Measured>, SolveError>,
+}
+
+/// Every case, in the order `riplab verify` runs them.
+pub fn cases() -> Vec<Case> {
+    let mut all = Vec::from(half_space::cases());
+    all.extend([patch::CASE, infsup::CASE, manufactured::CASE]);
+    all.extend(constraint::cases());
+    all
+}
+
+/// `sol`, or the error that says it did not converge.
+pub fn converged(sol: &crate::solve::Solution) -> Result<(), SolveError> {
+    if sol.newton.converged {
+        return Ok(());
+    }
+    Err(SolveError::NotConverged {
+        what: "the case's solve",
+        iterations: sol.newton.iterations,
+        residual: sol.newton.residual,
+        diagnosis: sol.newton.diagnosis.clone().unwrap_or_default(),
+    })
+}
+
+/// A `--case` that names no case.
+#[derive(Debug, thiserror::Error)]
+#[error("`{name}`; allowed: {allowed}")]
+pub struct UnknownCase {
+    /// The name asked for (sanitised).
+    pub name: String,
+    /// The cases' names, comma-separated.
+    pub allowed: String,
+}
+
+/// The case of `all` named `name`, or every case when None.
+pub fn select<'a>(all: &'a [Case], name: Option<&str>) -> Result<Vec<&'a Case>, UnknownCase> {
+    let Some(name) = name else {
+        return Ok(all.iter().collect());
+    };
+    match all.iter().find(|c| c.name == name) {
+        Some(case) => Ok(vec![case]),
+        None => Err(UnknownCase {
+            name: crate::text::sanitize(name).into_owned(),
+            allowed: all.iter().map(|c| c.name).collect::<Vec<_>>().join(", "),
+        }),
+    }
+}
+
+/// The two tiers' verdict on one quantity.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub enum Verdict {
+    /// Within the tolerance.
+    #[serde(rename = "OK")]
+    Ok,
+    /// Outside it, or no value.
+    #[serde(rename = "NOOK")]
+    Nook,
+}
+
+impl Verdict {
+    fn of(pass: bool) -> Self {
+        if pass { Verdict::Ok } else { Verdict::Nook }
+    }
+
+    /// `OK` or `NOOK`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Verdict::Ok => "OK",
+            Verdict::Nook => "NOOK",
+        }
+    }
+}
+
+/// One row of `riplab verify`: a quantity of a case, graded in both tiers.
+#[derive(Clone, Debug, Serialize)]
+pub struct Check {
+    /// The case's name.
+    pub case: &'static str,
+    /// The quantity; for a case that failed to run, `run`.
+    pub quantity: String,
+    /// The level the case ran at.
+    pub level: u32,
+    /// The computed value (null where the case failed or the value is not finite).
+    pub computed: Option<f64>,
+    /// The reference value.
+    pub reference: Option<f64>,
+    /// How the error is measured.
+    pub measure: Measure,
+    /// The error against the reference (null without a computed value).
+    pub error: Option<f64>,
+    /// The largest error that passes ("is it right").
+    pub tolerance: Option<f64>,
+    /// "Is it right": the error within the tolerance.
+    pub right: Verdict,
+    /// The stored value at the default level (null at other levels or for a new quantity).
+    pub stored: Option<f64>,
+    /// |computed − stored|.
+    pub change: Option<f64>,
+    /// The largest change that passes ("did it change").
+    pub change_tolerance: Option<f64>,
+    /// "Did it change": null where nothing is stored.
+    pub unchanged: Option<Verdict>,
+    /// Both tiers: `OK` when the value is right and, where stored, unchanged.
+    pub verdict: Verdict,
+    /// Why the case has no value, when it failed to run.
+    pub reason: Option<String>,
+    /// Where the reference comes from.
+    pub source: &'static str,
+}
+
+/// The relative change from a stored value that counts as a change of the numerics (with an
+/// absolute floor of [`CHANGE_FLOOR`] for values at round-off).
+pub const CHANGE_RELATIVE: f64 = 1e-6;
+/// The absolute change that counts as none: the pack's quantities that can be at round-off
+/// (the patch test's and the ALM's relative differences, about 1e-12) are dimensionless, and
+/// round-off may move them by their own size on another machine.
+pub const CHANGE_FLOOR: f64 = 1e-10;
+
+/// Run `case` at `level` (its default when None) and grade each quantity against its
+/// reference and, at the default level, its stored value.
+pub fn run(case: &Case, level: Option<u32>) -> Vec<Check> {
+    let level = level.unwrap_or(case.default_level);
+    let stored = (level == case.default_level).then(|| stored::values(case.name));
+    match (case.run)(level) {
+        Ok(measured) => measured
+            .into_iter()
+            .map(|m| {
+                let finite = m.computed.is_finite();
+                let error = m.error();
+                let right = Verdict::of(finite && error <= m.tolerance);
+                let stored_value = stored.as_ref().and_then(|s| s.get(&m.quantity).copied());
+                let change_tolerance = stored_value.map(|s| (CHANGE_RELATIVE * s.abs()).max(CHANGE_FLOOR));
+                let change = stored_value.filter(|_| finite).map(|s| (m.computed - s).abs());
+                let unchanged = stored_value
+                    .map(|_| Verdict::of(matches!((change, change_tolerance), (Some(c), Some(t)) if c <= t)));
+                Check {
+                    case: case.name,
+                    level,
+                    computed: finite.then_some(m.computed),
+                    reference: Some(m.reference),
+                    measure: m.measure,
+                    error: error.is_finite().then_some(error),
+                    tolerance: Some(m.tolerance),
+                    right,
+                    stored: stored_value,
+                    change,
+                    change_tolerance,
+                    verdict: Verdict::of(right == Verdict::Ok && unchanged != Some(Verdict::Nook)),
+                    unchanged,
+                    reason: None,
+                    source: case.source,
+                    quantity: m.quantity,
+                }
+            })
+            .collect(),
+        Err(e) => vec![Check {
+            case: case.name,
+            quantity: "run".into(),
+            level,
+            computed: None,
+            reference: None,
+            measure: Measure::Absolute,
+            error: None,
+            tolerance: None,
+            right: Verdict::Nook,
+            stored: None,
+            change: None,
+            change_tolerance: None,
+            unchanged: None,
+            verdict: Verdict::Nook,
+            reason: Some(e.to_string()),
+            source: case.source,
+        }],
+    }
+}
+
+/// The checks of a run of the pack, and whether all passed.
+#[derive(Debug, Serialize)]
+pub struct Verification {
+    /// Whether every check is `OK`.
+    pub passed: bool,
+    /// A row per quantity of every case run.
+    pub checks: Vec<Check>,
+}
+
+impl Verification {
+    /// `checks` with their overall verdict.
+    pub fn new(checks: Vec<Check>) -> Self {
+        Verification {
+            passed: checks.iter().all(|c| c.verdict == Verdict::Ok),
+            checks,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn wrong(_: u32) -> Result<Vec<Measured>, SolveError> {
+        Ok(vec![
+            Measured::relative("off", 1.1, 1.0, 0.05),
+            Measured::absolute("not finite", f64::NAN, 0.0, 1.0),
+            Measured::absolute("‖p̄ − p‖₀/‖p‖₀", 7.6e-3, 0.0, 1e-2),
+        ])
+    }
+
+    fn failing(_: u32) -> Result<Vec<Measured>, SolveError> {
+        Err(SolveError::Eigen("no".into()))
+    }
+
+    /// A value off its reference, one that is not finite, one that changed from its stored
+    /// value (the circle's stored L² error is 7.52e-3), and a case that fails are all NOOK.
+    #[test]
+    fn a_wrong_changed_or_failed_value_is_nook() {
+        let case = Case {
+            name: "circle",
+            description: "",
+            source: "test",
+            default_level: 3,
+            run: wrong,
+        };
+        let checks = run(&case, None);
+        assert_eq!(
+            (checks[0].right, checks[0].verdict),
+            (Verdict::Nook, Verdict::Nook)
+        );
+        assert!((checks[0].error.unwrap() - 0.1).abs() < 1e-12);
+        assert_eq!((checks[1].computed, checks[1].right), (None, Verdict::Nook));
+        assert_eq!(checks[2].right, Verdict::Ok);
+        assert_eq!(
+            (checks[2].unchanged, checks[2].verdict),
+            (Some(Verdict::Nook), Verdict::Nook)
+        );
+        // At another level nothing is stored: only the first tier grades.
+        let other = run(&case, Some(4));
+        assert_eq!((other[2].unchanged, other[2].verdict), (None, Verdict::Ok));
+        assert!(!Verification::new(checks).passed);
+        let failed = run(&Case { run: failing, ..case }, None);
+        assert_eq!(failed.len(), 1);
+        assert_eq!(failed[0].verdict, Verdict::Nook);
+        assert!(failed[0].reason.as_deref().unwrap().contains("eigenvalue"));
+    }
+}

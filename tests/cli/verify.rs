@@ -1,0 +1,175 @@
+//! `riplab verify` as a user runs it (issue 32): its exit codes, `--case`, `--list`, and its
+//! refusals of bad values.
+
+use crate::common::riplab;
+
+#[test]
+fn verify_runs_a_case_and_lists_the_pack() {
+    let (code, out, err) = riplab(&["verify", "--case", "patch"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        out.contains("M4: max |p − p_exact|/p_exact") && out.contains("source: "),
+        "{out}"
+    );
+    assert!(out.contains("8 of 8 checks OK"), "{out}");
+    let (code, out, _) = riplab(&["verify", "--list", "--format", "csv"]);
+    assert_eq!(code, 0);
+    // A header and at least eight cases, each with its source.
+    let rows: Vec<&str> = out.lines().skip(1).collect();
+    assert!(rows.len() >= 8, "{out}");
+    assert!(rows.iter().all(|r| r.split(',').count() >= 4), "{out}");
+    let (code, out, _) = riplab(&["verify", "--case", "circle", "--format", "json"]);
+    assert_eq!(code, 0);
+    let json: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(json["passed"], true);
+    assert_eq!(json["checks"][2]["right"], "OK");
+}
+
+#[test]
+fn verify_refuses_bad_values() {
+    let (code, _, err) = riplab(&["verify", "--case", "nope\u{1b}[2J"]);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("allowed: hertz, circle") && !err.contains('\u{1b}'),
+        "{err}"
+    );
+    let (code, _, err) = riplab(&["verify", "--level", "9"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("--level") && err.contains("2 to 5"), "{err}");
+}
+
+/// Simpson's rule for ∫₀^{π/2} f (2000 intervals).
+fn quarter(f: impl Fn(f64) -> f64) -> f64 {
+    let n = 2000;
+    let h = std::f64::consts::FRAC_PI_2 / n as f64;
+    let sum: f64 = (0..=n)
+        .map(|i| {
+            let w = if i == 0 || i == n {
+                1.0
+            } else if i % 2 == 1 {
+                4.0
+            } else {
+                2.0
+            };
+            w * f(i as f64 * h)
+        })
+        .sum();
+    sum * h / 3.0
+}
+
+/// `solve`'s JSON carries the exact circle beside Hertz (issue 32, item 2): its a carries the
+/// computed load and its p₀ is the half-plane's (checked here by Simpson's rule on the
+/// integrals, P = E*a² ∫ sin²φ/√(R² − a² sin²φ) dφ and p₀ = (E*a/πR) K(a/R)), and p̄ is
+/// closer to it than to Hertz's parabola.
+#[test]
+fn solve_reports_the_exact_circle_beside_hertz() {
+    let (code, out, err) = riplab(&[
+        "solve",
+        "scenarios/hertz-block.toml",
+        "--level",
+        "3",
+        "--epsilon",
+        "0",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let json: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let hertz = &json["hertz"];
+    let circle = &hertz["circle"];
+    let (a, p0) = (circle["a"].as_f64().unwrap(), circle["p0"].as_f64().unwrap());
+    let (r, e_star) = (10.0, 1000.0 / (1.0 - 0.3 * 0.3));
+    let full_load = 2.0 * json["load"].as_f64().unwrap();
+    let load = e_star * a * a * quarter(|p| p.sin().powi(2) / (r * r - a * a * p.sin().powi(2)).sqrt());
+    assert!(
+        (load - full_load).abs() < 1e-9 * full_load,
+        "{load} vs {full_load}"
+    );
+    let k = quarter(|p| 1.0 / (1.0 - (a / r).powi(2) * p.sin().powi(2)).sqrt());
+    let expect = e_star * a * k / (std::f64::consts::PI * r);
+    assert!((p0 - expect).abs() < 1e-9 * expect, "{p0} vs {expect}");
+    let (to_circle, to_hertz) = (
+        circle["relative_error"].as_f64().unwrap(),
+        hertz["relative_error"].as_f64().unwrap(),
+    );
+    // Measured at level 3: 7.5e-3 and 8.3e-3.
+    assert!(
+        to_circle < to_hertz && to_circle < 8e-3,
+        "{to_circle} vs {to_hertz}"
+    );
+    // The table says it too, and names the parabola.
+    let (_, table, _) = riplab(&["solve", "scenarios/hertz-block.toml", "--level", "2"]);
+    assert!(
+        table.contains("Hertz's parabola") && table.contains("exact circle (half-plane"),
+        "{table}"
+    );
+}
+
+/// The done-when of issue 32, item 3: at level 4, `--epsilon 1e-14` carries a round-off warning
+/// in the JSON and on stderr, `--epsilon 1e-11` none.
+#[test]
+fn solve_warns_of_round_off_below_its_onset() {
+    let warnings = |epsilon: &str| {
+        let (code, out, err) = riplab(&["solve", "--level", "4", "--epsilon", epsilon, "--format", "json"]);
+        assert_eq!(code, 0, "{err}");
+        let json: serde_json::Value = serde_json::from_str(&out).unwrap();
+        let list: Vec<String> = json["warnings"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|w| w.as_str().unwrap().to_string())
+            .collect();
+        (list, err)
+    };
+    let (tiny, err) = warnings("1e-14");
+    assert!(tiny.iter().any(|w| w.contains("round-off")), "{tiny:?}");
+    assert!(err.contains("warning:") && err.contains("round-off"), "{err}");
+    let (fine, err) = warnings("1e-11");
+    assert!(fine.is_empty() && !err.contains("round-off"), "{fine:?} {err}");
+}
+
+/// Issue 32, item 4: a penalty study's default ε is κ = 1e-6 at its finest level (said on
+/// stderr), and rows whose load error the penalty's own could account for are noted.
+#[test]
+fn the_study_measures_the_mesh_not_the_penalty() {
+    let (code, out, err) = riplab(&[
+        "study",
+        "--levels",
+        "0..1",
+        "--schemes",
+        "M3",
+        "--no-cache",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let json: serde_json::Value = serde_json::from_str(&out).unwrap();
+    // κ = εE/h = 1e-6 at level 1 (h = 0.5, E = 1000): ε = 5e-10.
+    let epsilon = json["rows"][0]["epsilon"].as_f64().unwrap();
+    assert!((epsilon - 5e-10).abs() < 1e-22, "{epsilon}");
+    assert!(
+        err.contains("note: ε = 5.000e-10 (κ = εE/h = 1e-6 at level 1)"),
+        "{err}"
+    );
+    assert!(!err.contains("ε may account for"), "{err}");
+    // At ε = 1e-2 (κ = 10 and 20) the penalty's load error, up to 3 and 6, swamps the rows'.
+    let (code, _, err) = riplab(&[
+        "study",
+        "--levels",
+        "0..1",
+        "--schemes",
+        "M3",
+        "--no-cache",
+        "--epsilon",
+        "1e-2",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        err.contains("M3 level 0: the load's error")
+            && err.contains("M3 level 1: the load's error")
+            && err.contains("ε may account for a tenth of it or more"),
+        "{err}"
+    );
+    // An explicit ε is the user's: no note on the choice.
+    assert!(!err.contains("so that the penalty's error stays"), "{err}");
+}
