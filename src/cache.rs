@@ -48,9 +48,12 @@ pub fn reference(
     level: u32,
     dir: Option<&Path>,
 ) -> Result<(Reference, Provenance), SolveError> {
+    crate::study::check_contact(scenario)?;
     let grid = ReferenceMesh::uniform(scenario, level);
     let (fields, provenance) = fields(scenario, &grid, dir)?;
-    Ok((Reference::from_fields(scenario, &grid, &fields), provenance))
+    let reference = Reference::from_fields(scenario, &grid, &fields);
+    reference.check_meaningful()?;
+    Ok((reference, provenance))
 }
 
 /// The reference's fields on `grid`: from `dir` when an entry is there and sound, otherwise

@@ -20,6 +20,8 @@ use crate::study::{Plan, ReferenceLevelError, all_ok};
 use crate::tui::{MarkerChoice, TuiOptions, render_to_string};
 use crate::vtu;
 
+mod checks;
+
 /// The exit codes, as every `--help` shows them (a macro, so that other notes can extend it).
 macro_rules! exit_codes {
     () => {
@@ -800,6 +802,7 @@ fn render(args: &RenderArgs) -> Result<ExitCode, CliError> {
             .and_then(|()| check::epsilon_in(e, scenario.epsilon_range(scenario.level)))
             .map_err(|m| usage("--epsilon", m))?;
     }
+    checks::render_request(&scenario, &args.scene, args.epsilon)?;
     let frame = render_to_string(
         &scenario,
         &args.scene,
@@ -811,8 +814,11 @@ fn render(args: &RenderArgs) -> Result<ExitCode, CliError> {
         args.epsilon,
     )
     .map_err(CliError::Usage)?;
-    print(&frame)?;
-    Ok(ExitCode::SUCCESS)
+    print(&frame.text)?;
+    match frame.failure {
+        Some(why) => Err(CliError::Failed(format!("the frame shows a failure: {why}"))),
+        None => Ok(ExitCode::SUCCESS),
+    }
 }
 
 fn tour(args: &TourArgs, opts: TuiOptions) -> Result<ExitCode, CliError> {

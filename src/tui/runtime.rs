@@ -101,16 +101,19 @@ pub fn run(scenario: Scenario, look: Look, dir: PathBuf) -> io::Result<()> {
 }
 
 /// The one event loop of the lab and the tour: the terminal (raw mode, alternate screen,
-/// restored on every path, a panic included, by ratatui's hook), an input thread and the
+/// restored on every path, a panic included, by ratatui's hook, an abort by
+/// [`super::abort_guard`]), an input thread and the
 /// program's workers feeding one channel, and a redraw only when an update says the screen
 /// changed, inside synchronized-output brackets. `start` makes the program from the
 /// channel's sender (for its workers) and the terminal's size.
 pub(super) fn run_program<P: Program>(
     start: impl FnOnce(mpsc::Sender<Input>, Size) -> io::Result<P>,
 ) -> io::Result<()> {
+    let abort = super::abort_guard::Guard::install();
     let mut terminal = ratatui::try_init()?;
     let result = event_loop(&mut terminal, start);
     ratatui::restore();
+    drop(abort);
     result
 }
 

@@ -8,6 +8,7 @@ mod common;
 mod bad_input;
 mod help;
 mod hostile;
+mod hostile_again;
 mod modules;
 mod plot;
 mod readme;
