@@ -21,6 +21,8 @@ use crate::tui::{MarkerChoice, TuiOptions, render_to_string};
 use crate::vtu;
 
 mod checks;
+mod outputs;
+mod values;
 
 /// The exit codes, as every `--help` shows them (a macro, so that other notes can extend it).
 macro_rules! exit_codes {
@@ -36,7 +38,7 @@ const EXIT_CODES: &str = exit_codes!();
 
 /// riplab's command line: the terminal lab on a scenario, or a command.
 #[derive(Parser, Debug)]
-#[command(name = "riplab", version, about = "A terminal laboratory for reduced-integration penalty contact (Kikuchi 1981)", after_help = EXIT_CODES, args_conflicts_with_subcommands = true)]
+#[command(name = "riplab", version, about = "A terminal laboratory for reduced-integration penalty contact (Kikuchi 1981)", after_help = EXIT_CODES)]
 pub struct Cli {
     /// Scenario file (TOML) to open in the terminal lab; the paper's problem when omitted.
     pub scenario: Option<PathBuf>,
@@ -128,7 +130,7 @@ pub struct RenderArgs {
     #[arg(long, default_value = "120x40")]
     pub size: String,
     /// Penalty parameter ε > 0 (the scenario's when omitted).
-    #[arg(long)]
+    #[arg(long, value_parser = values::number)]
     pub epsilon: Option<f64>,
 }
 
@@ -225,14 +227,14 @@ pub struct SolveArgs {
     #[command(flatten)]
     pub method: MethodArgs,
     /// Penalty parameter ε > 0 (0: the exact constraint); several, comma-separated, sweep on one mesh.
-    #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true, value_parser = values::number)]
     pub epsilon: Vec<f64>,
     /// Scaled penalty: ε = κ·h/E (h the level's cell size, E Young's modulus), so that a value
     /// means the same at every level and for every material; several, comma-separated, sweep.
-    #[arg(long, value_delimiter = ',', conflicts_with = "epsilon")]
+    #[arg(long, value_delimiter = ',', conflicts_with = "epsilon", allow_hyphen_values = true, value_parser = values::number)]
     pub kappa: Vec<f64>,
     /// Indentation depth; several, comma-separated, sweep on one mesh.
-    #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true, value_parser = values::number)]
     pub depth: Vec<f64>,
     /// Output format (docs/design.md §7).
     #[arg(long, short, value_enum, default_value_t = Format::Table)]
@@ -281,13 +283,14 @@ pub struct StudyArgs {
     #[command(flatten)]
     pub method: MethodArgs,
     /// Penalty parameter of the studied solves (the scenario's when omitted).
-    #[arg(long)]
+    #[arg(long, value_parser = values::number)]
     pub epsilon: Option<f64>,
     /// Instead of refining: sweep these ε (comma-separated) at `--level`.
     #[arg(
         long,
         value_delimiter = ',',
-        allow_negative_numbers = true,
+        allow_hyphen_values = true,
+        value_parser = values::number,
         requires = "level"
     )]
     pub sweep_epsilon: Vec<f64>,
@@ -401,6 +404,13 @@ pub fn run(cli: Cli) -> ExitCode {
         .threads
         .map_or_else(|| crate::fem::available_threads().min(256), usize::from);
     crate::fem::set_threads(threads);
+    if let (Some(path), Some(_)) = (&cli.scenario, &cli.command) {
+        note(&format!(
+            "error: {} before the command is the lab's scenario; a command takes its scenario after its name (e.g. `riplab solve FILE`)",
+            shown(path)
+        ));
+        return ExitCode::from(2);
+    }
     let result = match cli.command {
         Some(Command::Solve(args)) => solve(&args),
         Some(Command::Infsup(args)) => infsup(&args),
@@ -458,7 +468,14 @@ fn print(out: &str) -> Result<(), CliError> {
 /// A line on standard error (progress, warnings, the final error). A closed or full stderr
 /// cannot be told about itself, and is no reason to stop: the line is dropped.
 fn note(line: &str) {
+    let line = crate::text::sanitize_lines(line);
     let _ = writeln!(std::io::stderr().lock(), "{line}");
+}
+
+/// A path as a message shows it: sanitised (a name may hold escapes, bidi controls or a
+/// line break, from the command line or the environment).
+fn shown(path: &std::path::Path) -> String {
+    crate::text::sanitize(&path.display().to_string()).into_owned()
 }
 
 fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
@@ -505,6 +522,24 @@ fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
         args.depth.clone()
     };
     let many = epsilons.len() > 1 || depths.len() > 1;
+    if let Some(m) = method.filter(|m| !m.uses_epsilon() && epsilons.len() > 1) {
+        return Err(usage(
+            flag,
+            format!(
+                "{} does not use ε: every row of a sweep over ε would be the same solve; sweep --depth instead",
+                m.name()
+            ),
+        ));
+    }
+    let mut targets = Vec::new();
+    if let Some(path) = &args.plot {
+        targets.push(("--plot", path.clone()));
+    }
+    if let Some(path) = &args.vtu {
+        targets.push(("--vtu", path.clone()));
+        targets.push(("--vtu's Γ_C file", vtu::contact_path(path)));
+    }
+    outputs::distinct(&targets)?;
     if let Some(path) = &args.plot {
         if many {
             return Err(usage("--plot", "plots one solve; a sweep has several"));
@@ -580,7 +615,7 @@ fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
                 .map_err(|e| CliError::Failed(format!("the stress field: {e}")))?;
             let [body, contact] = vtu::write(path, &disc, &sol, &field, args.force)
                 .map_err(|e| CliError::Failed(format!("--vtu {e}")))?;
-            note(&format!("wrote {} and {}", body.display(), contact.display()));
+            note(&format!("wrote {} and {}", shown(&body), shown(&contact)));
         }
     }
     let sweep = Sweep { rows };
@@ -618,7 +653,7 @@ fn plot_error(path: &std::path::Path, e: &std::io::Error) -> CliError {
         std::io::ErrorKind::AlreadyExists => "exists; not overwritten (--force replaces it)".to_string(),
         _ => e.to_string(),
     };
-    usage("--plot", format!("{}: {what}", path.display()))
+    usage("--plot", format!("{}: {what}", shown(path)))
 }
 
 fn infsup(args: &InfsupArgs) -> Result<ExitCode, CliError> {
@@ -653,6 +688,15 @@ fn study(args: &StudyArgs) -> Result<ExitCode, CliError> {
         .map_err(|m| usage("--schemes", m))?;
     let method = args.method.resolve(&scenario)?;
     let epsilon = args.epsilon.unwrap_or(scenario.epsilon);
+    if let Some(m) = method.filter(|m| !m.uses_epsilon() && !args.sweep_epsilon.is_empty()) {
+        return Err(usage(
+            "--sweep-epsilon",
+            format!(
+                "{} does not use ε: its rows would not change and no rate against ε exists",
+                m.name()
+            ),
+        ));
+    }
     if args.sweep_epsilon.is_empty() {
         method_at(method, epsilon, "--epsilon")?;
     }
@@ -703,7 +747,7 @@ fn study(args: &StudyArgs) -> Result<ExitCode, CliError> {
         match provenance {
             crate::cache::Provenance::Cached(path) => note(&format!(
                 "{what} read from {} (computed in {:.1} s; --no-cache recomputes it)",
-                path.display(),
+                shown(&path),
                 fields.ms / 1e3
             )),
             other => {
