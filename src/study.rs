@@ -29,7 +29,9 @@ use crate::scheme::Scheme;
 use crate::solve::{ContactParams, Discretization, Solution, solve_contact};
 
 mod meaning;
+mod source;
 pub use meaning::check_contact;
+pub use source::ReferenceSource;
 
 /// Gauss points per direction for the error integrals (exact for the Q2 reference's products).
 const ERROR_POINTS: usize = 4;
@@ -275,6 +277,8 @@ pub struct Reference {
     pub load: f64,
     /// The time its solve took, ms (as solved, also when read from the cache).
     pub ms: f64,
+    /// Solved by this run or read from the cache.
+    pub source: ReferenceSource,
     /// Its estimated error (None until compared with a coarser reference).
     pub estimate: Option<Estimate>,
     /// What the study asked of it (None before any row was computed).
@@ -309,6 +313,8 @@ pub struct ReferenceFields {
     pub n_dofs: usize,
     /// The time the solve took, ms.
     pub ms: f64,
+    /// Solved now or read from the cache (not stored in the cache's entries).
+    pub source: ReferenceSource,
 }
 
 /// The reference's element and rule: Q2 + Simpson (M4) with the exact constraint.
@@ -348,6 +354,7 @@ impl ReferenceFields {
             load: sol.load,
             n_dofs: disc.n_dofs(),
             ms: t.elapsed().as_secs_f64() * 1e3,
+            source: ReferenceSource::Computed,
         })
     }
 }
@@ -428,6 +435,7 @@ impl Reference {
             n_dofs: fields.n_dofs,
             load: fields.load,
             ms: fields.ms,
+            source: fields.source,
             estimate: None,
             target: None,
             stopped: None,

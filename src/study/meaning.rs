@@ -92,6 +92,7 @@ mod tests {
             load: scale,
             n_dofs: n_u,
             ms: 1.0,
+            source: Default::default(),
         };
         Reference::from_fields(&s, &grid, &fields)
     }

@@ -9,6 +9,7 @@ mod bad_input;
 mod help;
 mod hostile;
 mod hostile_again;
+mod hostile_cache;
 mod modules;
 mod plot;
 mod readme;
