@@ -22,7 +22,7 @@ use crate::vtu;
 
 mod checks;
 mod outputs;
-mod values;
+pub mod values;
 
 /// The exit codes, as every `--help` shows them (a macro, so that other notes can extend it).
 macro_rules! exit_codes {
