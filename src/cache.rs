@@ -7,7 +7,7 @@
 //! The key is the text of everything the reference depends on, with riplab's version and the
 //! build's numerics identity (build.rs: a hash of the sources, Cargo.lock, the compiler and
 //! the target), so that another build never reads an entry it did not write. The file I/O is
-//! [`file`]'s: written to a fresh, unpredictable temporary name created exclusively (never
+//! [`mod@file`]'s: written to a fresh, unpredictable temporary name created exclusively (never
 //! through a link) and renamed into place, so concurrent runs never see half a file; read
 //! through one handle opened without following links and without blocking, a regular file of
 //! exactly the size its key implies, whose key text equals the one asked for (no hash

@@ -58,15 +58,16 @@ impl Sizes {
 
     /// What the inf-sup estimate of docs/design.md §5 (src/infsup.rs) needs beside its
     /// discretisation, bytes: the H¹ Gram matrix A of (7) assembled and factorised on the
-    /// stiffness's ordering (1.5 sparse terms: the measured peaks of `riplab infsup` exceed
-    /// the solve's by 1.36–1.41 of them beyond the dense work at Q2 levels 5–6, STABILITY.md),
+    /// stiffness's ordering (0.85 of a sparse term: the measured peaks of `riplab infsup`
+    /// exceed the solve's by 0.72–0.74 of one beyond the dense work at Q2 levels 5–6,
+    /// STABILITY.md),
     /// the trace compliance C (three m×m while it is formed), and for one rule B and B·C (q×m
     /// each) with at most six q×q matrices at once (B A⁻¹ Bᵀ, a mass matrix, its
     /// eigenvectors, Z, Zᵀ S Z and the eigensolver's work).
     pub fn infsup_extra_bytes(&self) -> u64 {
         let (m, q) = (self.trace as f64, self.points as f64);
         let dense = 8.0 * (3.0 * m * m + 2.0 * m * q + 6.0 * q * q);
-        (1.5 * self.sparse_bytes() + dense) as u64
+        (0.85 * self.sparse_bytes() + dense) as u64
     }
 
     /// Refuse before allocating when the estimate exceeds what `limits` leave.

@@ -22,7 +22,8 @@ pub struct ScenarioError {
     pub message: String,
     /// The offending source line for display (an excerpt of a long one: [`EXCERPT_CHARS`]),
     /// with the 1-based column of the caret in it.
-    pub source_line: Option<(String, usize)>,
+    /// (Boxed: the error travels in every `Result` of the command line.)
+    pub source_line: Option<Box<(String, usize)>>,
 }
 
 impl std::error::Error for ScenarioError {}
@@ -40,7 +41,7 @@ impl fmt::Display for ScenarioError {
             write!(f, "`{}`: ", sanitize(key))?;
         }
         write!(f, "{}", sanitize_lines(&self.message))?;
-        if let (Some((line, _)), Some((text, col))) = (self.location, &self.source_line) {
+        if let (Some((line, _)), Some((text, col))) = (self.location, self.source_line.as_deref()) {
             write!(f, "\n {line:>4} | {}\n      | {:>col$}", sanitize(text), "^")?;
         }
         Ok(())
@@ -98,7 +99,7 @@ impl Locator<'_> {
                 let line_start = before.rfind('\n').map_or(0, |i| i + 1);
                 let column = self.text[line_start..start].chars().count() + 1;
                 let text = self.text[line_start..].lines().next().unwrap_or("");
-                (Some((line, column)), Some(excerpt(text, column)))
+                (Some((line, column)), Some(Box::new(excerpt(text, column))))
             }
             None => (None, None),
         };

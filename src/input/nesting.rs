@@ -21,7 +21,7 @@ enum In {
 }
 
 impl Locator<'_> {
-    /// Refuse a dotted key of more than [`MAX_KEY_PARTS`] parts, at its first character.
+    /// Refuse a dotted key of more than 32 parts (`MAX_KEY_PARTS`), at its first character.
     pub fn check_nesting(&self) -> Result<(), ScenarioError> {
         let bytes = self.text.as_bytes();
         let (mut state, mut i) = (In::Plain, 0);
