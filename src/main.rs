@@ -13,8 +13,10 @@ fn main() -> std::process::ExitCode {
     match riplab::cli::Cli::try_parse() {
         Ok(cli) => riplab::cli::run(cli),
         Err(e) if e.use_stderr() => {
+            use std::io::Write as _;
             let text = riplab::text::sanitize_lines(&e.render().to_string());
-            eprint!("{text}");
+            // A closed stderr cannot be told about itself: the exit code stands.
+            let _ = write!(std::io::stderr().lock(), "{text}");
             std::process::ExitCode::from(e.exit_code().clamp(0, 255) as u8)
         }
         Err(e) => e.exit(),
