@@ -20,7 +20,10 @@ use crate::study::{Plan, ReferenceLevelError, all_ok};
 use crate::tui::{MarkerChoice, TuiOptions, render_to_string};
 use crate::vtu;
 
+mod checks;
+mod outputs;
 mod tour;
+pub mod values;
 mod verify;
 
 pub use tour::TourArgs;
@@ -39,7 +42,7 @@ const EXIT_CODES: &str = exit_codes!();
 
 /// riplab's command line: the terminal lab on a scenario, or a command.
 #[derive(Parser, Debug)]
-#[command(name = "riplab", version, about = "A terminal laboratory for reduced-integration penalty contact (Kikuchi 1981)", after_help = EXIT_CODES, args_conflicts_with_subcommands = true)]
+#[command(name = "riplab", version, about = "A terminal laboratory for reduced-integration penalty contact (Kikuchi 1981)", after_help = EXIT_CODES)]
 pub struct Cli {
     /// Scenario file (TOML) to open in the terminal lab; the paper's problem when omitted.
     pub scenario: Option<PathBuf>,
@@ -130,7 +133,7 @@ pub struct RenderArgs {
     #[arg(long, default_value = "120x40")]
     pub size: String,
     /// Penalty parameter ε > 0 (the scenario's when omitted).
-    #[arg(long)]
+    #[arg(long, value_parser = values::number)]
     pub epsilon: Option<f64>,
 }
 
@@ -227,14 +230,14 @@ pub struct SolveArgs {
     #[command(flatten)]
     pub method: MethodArgs,
     /// Penalty parameter ε > 0 (0: the exact constraint); several, comma-separated, sweep on one mesh.
-    #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true, value_parser = values::number)]
     pub epsilon: Vec<f64>,
     /// Scaled penalty: ε = κ·h/E (h the level's cell size, E Young's modulus), so that a value
     /// means the same at every level and for every material; several, comma-separated, sweep.
-    #[arg(long, value_delimiter = ',', conflicts_with = "epsilon")]
+    #[arg(long, value_delimiter = ',', conflicts_with = "epsilon", allow_hyphen_values = true, value_parser = values::number)]
     pub kappa: Vec<f64>,
     /// Indentation depth; several, comma-separated, sweep on one mesh.
-    #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true, value_parser = values::number)]
     pub depth: Vec<f64>,
     /// Output format (docs/design.md §7).
     #[arg(long, short, value_enum, default_value_t = Format::Table)]
@@ -285,13 +288,14 @@ pub struct StudyArgs {
     /// Penalty parameter of the studied solves [default for the penalty: κ = εE/h = 1e-6 at
     /// the finest level, or the scenario's ε when smaller; for the other methods the
     /// scenario's].
-    #[arg(long)]
+    #[arg(long, value_parser = values::number)]
     pub epsilon: Option<f64>,
     /// Instead of refining: sweep these ε (comma-separated) at `--level`.
     #[arg(
         long,
         value_delimiter = ',',
-        allow_negative_numbers = true,
+        allow_hyphen_values = true,
+        value_parser = values::number,
         requires = "level"
     )]
     pub sweep_epsilon: Vec<f64>,
@@ -405,6 +409,13 @@ pub fn run(cli: Cli) -> ExitCode {
         .threads
         .map_or_else(|| crate::fem::available_threads().min(256), usize::from);
     crate::fem::set_threads(threads);
+    if let (Some(path), Some(_)) = (&cli.scenario, &cli.command) {
+        note(&format!(
+            "error: {} before the command is the lab's scenario; a command takes its scenario after its name (e.g. `riplab solve FILE`)",
+            shown(path)
+        ));
+        return ExitCode::from(2);
+    }
     let result = match cli.command {
         Some(Command::Solve(args)) => solve(&args),
         Some(Command::Infsup(args)) => infsup(&args),
@@ -466,7 +477,14 @@ fn print(out: &str) -> Result<(), CliError> {
 /// A line on standard error (progress, warnings, the final error). A closed or full stderr
 /// cannot be told about itself, and is no reason to stop: the line is dropped.
 fn note(line: &str) {
+    let line = crate::text::sanitize_lines(line);
     let _ = writeln!(std::io::stderr().lock(), "{line}");
+}
+
+/// A path as a message shows it: sanitised (a name may hold escapes, bidi controls or a
+/// line break, from the command line or the environment).
+fn shown(path: &std::path::Path) -> String {
+    crate::text::sanitize(&path.display().to_string()).into_owned()
 }
 
 fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
@@ -513,6 +531,24 @@ fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
         args.depth.clone()
     };
     let many = epsilons.len() > 1 || depths.len() > 1;
+    if let Some(m) = method.filter(|m| !m.uses_epsilon() && epsilons.len() > 1) {
+        return Err(usage(
+            flag,
+            format!(
+                "{} does not use ε: every row of a sweep over ε would be the same solve; sweep --depth instead",
+                m.name()
+            ),
+        ));
+    }
+    let mut targets = Vec::new();
+    if let Some(path) = &args.plot {
+        targets.push(("--plot", path.clone()));
+    }
+    if let Some(path) = &args.vtu {
+        targets.push(("--vtu", path.clone()));
+        targets.push(("--vtu's Γ_C file", vtu::contact_path(path)));
+    }
+    outputs::distinct(&targets)?;
     if let Some(path) = &args.plot {
         if many {
             return Err(usage("--plot", "plots one solve; a sweep has several"));
@@ -588,7 +624,7 @@ fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
                 .map_err(|e| CliError::Failed(format!("the stress field: {e}")))?;
             let [body, contact] = vtu::write(path, &disc, &sol, &field, args.force)
                 .map_err(|e| CliError::Failed(format!("--vtu {e}")))?;
-            note(&format!("wrote {} and {}", body.display(), contact.display()));
+            note(&format!("wrote {} and {}", shown(&body), shown(&contact)));
         }
     }
     let sweep = Sweep { rows };
@@ -626,7 +662,7 @@ fn plot_error(path: &std::path::Path, e: &std::io::Error) -> CliError {
         std::io::ErrorKind::AlreadyExists => "exists; not overwritten (--force replaces it)".to_string(),
         _ => e.to_string(),
     };
-    usage("--plot", format!("{}: {what}", path.display()))
+    usage("--plot", format!("{}: {what}", shown(path)))
 }
 
 fn infsup(args: &InfsupArgs) -> Result<ExitCode, CliError> {
@@ -660,6 +696,15 @@ fn study(args: &StudyArgs) -> Result<ExitCode, CliError> {
         .collect::<Result<Vec<_>, _>>()
         .map_err(|m| usage("--schemes", m))?;
     let method = args.method.resolve(&scenario)?;
+    if let Some(m) = method.filter(|m| !m.uses_epsilon() && !args.sweep_epsilon.is_empty()) {
+        return Err(usage(
+            "--sweep-epsilon",
+            format!(
+                "{} does not use ε: its rows would not change and no rate against ε exists",
+                m.name()
+            ),
+        ));
+    }
     let levels = match args.level {
         Some(l) => {
             check::level(l).map_err(|m| usage("--level", m))?;
@@ -725,7 +770,7 @@ fn study(args: &StudyArgs) -> Result<ExitCode, CliError> {
         match provenance {
             crate::cache::Provenance::Cached(path) => note(&format!(
                 "{what} read from {} (computed in {:.1} s; --no-cache recomputes it)",
-                path.display(),
+                shown(&path),
                 fields.ms / 1e3
             )),
             other => {
@@ -829,6 +874,7 @@ fn render(args: &RenderArgs) -> Result<ExitCode, CliError> {
             .and_then(|()| check::epsilon_in(e, scenario.epsilon_range(scenario.level)))
             .map_err(|m| usage("--epsilon", m))?;
     }
+    checks::render_request(&scenario, &args.scene, args.epsilon)?;
     let frame = render_to_string(
         &scenario,
         &args.scene,
@@ -840,6 +886,9 @@ fn render(args: &RenderArgs) -> Result<ExitCode, CliError> {
         args.epsilon,
     )
     .map_err(CliError::Usage)?;
-    print(&frame)?;
-    Ok(ExitCode::SUCCESS)
+    print(&frame.text)?;
+    match frame.failure {
+        Some(why) => Err(CliError::Failed(format!("the frame shows a failure: {why}"))),
+        None => Ok(ExitCode::SUCCESS),
+    }
 }

@@ -17,8 +17,11 @@ use faer::{Mat, Side};
 use serde::Serialize;
 
 use crate::contact::{ContactPoints, Rule, smoothed_pressure};
+use crate::discretization::fem_error;
 use crate::error::SolveError;
+use crate::fem::error::{FemError, gib};
 use crate::fem::factor::Factor;
+use crate::fem::memory::{Limits, Sizes};
 use crate::fem::quadrature::gauss_legendre;
 use crate::fem::{Form, assemble};
 use crate::mesh::Element;
@@ -51,14 +54,69 @@ pub struct TraceCompliance {
 
 impl TraceCompliance {
     /// Assemble A on the mesh and condense it onto Γ_C on the stiffness's ordering.
+    /// Refused before anything is allocated when the estimate's work does not fit beside
+    /// `disc` ([`fits_beside`]); a factorisation that runs out of memory says so, like the
+    /// solve's.
     pub fn new(disc: &Discretization) -> Result<Self, SolveError> {
+        fits_beside(disc)?;
         let a = assemble(&disc.mesh, &disc.dofs, Form::H1);
-        let factor = Factor::new(&disc.ordering, a)
-            .map_err(|e| SolveError::Factorization(format!("the H¹ Gram matrix: {e}")))?;
+        let factor = Factor::new(&disc.ordering, a).map_err(|e| match e {
+            FemError::NotPositiveDefinite => SolveError::Factorization(format!("the H¹ Gram matrix: {e}")),
+            e => fem_error(e, disc.n_dofs()),
+        })?;
         Ok(TraceCompliance {
             c: factor.compliance(),
         })
     }
+}
+
+/// The sizes of the inf-sup work on `disc` ([`Sizes::infsup_extra_bytes`]).
+fn sizes(disc: &Discretization) -> Sizes {
+    Sizes {
+        element: disc.mesh.element,
+        unknowns: disc.n_dofs(),
+        trace: disc.contact_dofs.len(),
+        points: Rule::ALL
+            .iter()
+            .map(|&rule| disc.contact_points(rule).len())
+            .max()
+            .unwrap_or(0),
+    }
+}
+
+/// The refusal of an estimate whose `need` bytes do not fit.
+fn too_large(at: &str, sizes: &Sizes, need: u64, limits: &Limits) -> Result<(), SolveError> {
+    sizes.check_need(need, limits).map_err(|e| match e {
+        FemError::TooLarge { need, available, .. } => SolveError::TooLarge(format!(
+            "the inf-sup estimate {at} with {} ({} unknowns, {} on Γ_C) needs about {} (the mesh, a second factorisation for the H¹ Gram matrix and the dense matrices on Γ_C); this process has {} available (free memory, ulimit -v and the control group's limit): choose a coarser level",
+            sizes.element.name(),
+            sizes.unknowns,
+            sizes.trace,
+            gib(need),
+            gib(available)
+        )),
+        e => fem_error(e, sizes.unknowns),
+    })
+}
+
+/// Whether the estimate's work beside `disc`, already built, fits what this process may still
+/// use ([`Limits::of_process`] counts what `disc` holds).
+pub fn fits_beside(disc: &Discretization) -> Result<(), SolveError> {
+    let sizes = sizes(disc);
+    too_large(
+        "on this mesh",
+        &sizes,
+        sizes.infsup_extra_bytes(),
+        &Limits::of_process(),
+    )
+}
+
+/// Whether the whole estimate at `level` with `element` (its discretisation and its own work)
+/// fits what this process may use, decided from the mesh's lines before anything is built.
+pub fn fits(scenario: &Scenario, level: u32, element: Element) -> Result<(), SolveError> {
+    let sizes = Discretization::sizes(scenario, level, element);
+    let need = sizes.peak_bytes() + sizes.infsup_extra_bytes();
+    too_large(&format!("at level {level}"), &sizes, need, &Limits::of_process())
 }
 
 /// The exact L²(Γ_C) Gram matrix of Q_h: on each edge, the Lagrange functions through the
@@ -262,6 +320,7 @@ pub fn table(
         .filter(|e| pairs.iter().any(|p| p.0 == *e))
     {
         for &level in levels {
+            fits(scenario, level, element)?;
             let t = Instant::now();
             let disc = Discretization::of(scenario, level, element)?;
             let compliance = TraceCompliance::new(&disc)?;
@@ -286,4 +345,22 @@ pub fn table(
         }
     }
     Ok(rows)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The inf-sup work beside the mesh covers what it was measured to take (STABILITY.md:
+    /// `riplab infsup` less `riplab solve`, peak resident memory, Q2 at levels 5 and 6:
+    /// 568 − 307 MB and 2444 − 1328 MB) without refusing far more than it needs.
+    #[test]
+    fn the_estimate_covers_the_measured_inf_sup_peaks() {
+        let s = Scenario::paper();
+        for (level, measured_kb) in [(5, 568_468 - 306_528), (6, 2_443_564 - 1_327_896)] {
+            let extra = Discretization::sizes(&s, level, Element::Q2).infsup_extra_bytes() as f64;
+            let ratio = extra / (measured_kb as f64 * 1024.0);
+            assert!((1.0..1.3).contains(&ratio), "level {level}: {ratio}");
+        }
+    }
 }

@@ -627,7 +627,7 @@ impl StudyReport<'_> {
             "element": reference.element.name(), "rule": reference.rule.name(), "epsilon": 0.0,
             "level": reference.level, "refinements": reference.grid.refinements,
             "h_min": reference.grid.h_min(), "n_dofs": reference.n_dofs,
-            "load": reference.load, "ms": reference.ms,
+            "load": reference.load, "ms": reference.ms, "source": reference.source,
             "estimate": reference.estimate, "target": reference.target,
             "target_met": reference.target.map(|_| reference.stopped.is_none()), "stopped": reference.stopped,
         })
@@ -649,8 +649,8 @@ impl Serialize for StudyReport<'_> {
 /// The study's CSV columns. A line is a `row` (a [`crate::study::StudyRow`]'s JSON), a `fit` (a
 /// [`crate::study::Fit`]'s: its rates in the `rate_*` columns) or, last, the `reference` (its
 /// smallest cell side as `h`, its estimated error in `err_*`, why its refinement stopped in
-/// `reason`).
-pub const STUDY_COLUMNS: [(&str, Cell); 29] = [
+/// `reason`, and in `source` whether it was `computed` or read from the `cache`).
+pub const STUDY_COLUMNS: [(&str, Cell); 30] = [
     ("kind", Cell::Field("/kind")),
     ("scheme", Cell::Field("/scheme")),
     ("element", Cell::Field("/element")),
@@ -680,6 +680,7 @@ pub const STUDY_COLUMNS: [(&str, Cell); 29] = [
     ("rate_u", Cell::Field("/rates/u")),
     ("rate_load", Cell::Field("/rates/load")),
     ("reason", Cell::First(&["/reason", "/stopped"])),
+    ("source", Cell::Field("/source")),
 ];
 
 /// `value`, an object, with `kind` first.

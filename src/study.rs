@@ -28,6 +28,11 @@ use crate::scenario::Scenario;
 use crate::scheme::Scheme;
 use crate::solve::{ContactParams, Discretization, Solution, solve_contact};
 
+mod meaning;
+mod source;
+pub use meaning::check_contact;
+pub use source::ReferenceSource;
+
 /// Gauss points per direction for the error integrals (exact for the Q2 reference's products).
 const ERROR_POINTS: usize = 4;
 
@@ -272,6 +277,8 @@ pub struct Reference {
     pub load: f64,
     /// The time its solve took, ms (as solved, also when read from the cache).
     pub ms: f64,
+    /// Solved by this run or read from the cache.
+    pub source: ReferenceSource,
     /// Its estimated error (None until compared with a coarser reference).
     pub estimate: Option<Estimate>,
     /// What the study asked of it (None before any row was computed).
@@ -306,6 +313,8 @@ pub struct ReferenceFields {
     pub n_dofs: usize,
     /// The time the solve took, ms.
     pub ms: f64,
+    /// Solved now or read from the cache (not stored in the cache's entries).
+    pub source: ReferenceSource,
 }
 
 /// The reference's element and rule: Q2 + Simpson (M4) with the exact constraint.
@@ -345,6 +354,7 @@ impl ReferenceFields {
             load: sol.load,
             n_dofs: disc.n_dofs(),
             ms: t.elapsed().as_secs_f64() * 1e3,
+            source: ReferenceSource::Computed,
         })
     }
 }
@@ -430,6 +440,7 @@ impl Reference {
             n_dofs: fields.n_dofs,
             load: fields.load,
             ms: fields.ms,
+            source: fields.source,
             estimate: None,
             target: None,
             stopped: None,
@@ -488,6 +499,7 @@ pub fn uniform_reference(
     let grid = ReferenceMesh::uniform(scenario, level);
     let fields = fetch(&grid)?;
     let mut reference = Reference::from_fields(scenario, &grid, &fields);
+    reference.check_meaningful()?;
     if let Some(coarser) = level.checked_sub(1) {
         let coarse = ReferenceMesh::uniform(scenario, coarser);
         reference.estimate = Some(reference.estimate_against(scenario, &coarse, &fetch(&coarse)?));
@@ -539,6 +551,10 @@ pub fn refine_reference(
             }
         };
         let mut next = Reference::from_fields(scenario, &grid, &finer);
+        if let Err(e) = next.check_meaningful() {
+            let why = format!("refinement {}: {e}", grid.refinements);
+            return stop(reference, fields, why);
+        }
         let mut estimate = next.estimate_against(scenario, &reference.grid, &fields);
         if let Some(previous) = &reference.estimate {
             estimate.u = previous.u;
@@ -787,6 +803,7 @@ impl StudyRow {
                 row.reason = Some(e.to_string());
             }
         }
+        row.certify();
         (row, kept)
     }
 }
@@ -808,12 +825,17 @@ fn rates(prev: &StudyRow, row: &StudyRow, by_epsilon: bool) -> Option<Errors> {
         (row.h / prev.h).ln()
     };
     let r = |a: f64, b: f64| (b / a).ln() / scale;
-    Some(Errors {
+    let rates = Errors {
         p: r(a.p, b.p),
         pbar: r(a.pbar, b.pbar),
         u: r(a.u, b.u),
         load: r(a.load, b.load),
-    })
+    };
+    // An error of 0 (or a scale of 0) has no rate: never a non-finite one.
+    [rates.p, rates.pbar, rates.u, rates.load]
+        .iter()
+        .all(|v| v.is_finite())
+        .then_some(rates)
 }
 
 /// The elements of `schemes`, each once, in order of first appearance.
@@ -1101,6 +1123,7 @@ pub fn study(
     (reference_level, max_refinements): (u32, u32),
     fetch: &mut Fetch,
 ) -> Result<Study, SolveError> {
+    check_contact(scenario)?;
     let (mut reference, mut fields) = uniform_reference(scenario, reference_level, fetch)?;
     let (mut groups, by_epsilon) = match plan {
         Plan::Levels { levels, epsilon } => (
@@ -1126,6 +1149,7 @@ pub fn study(
         for (row, kept) in groups.iter_mut().flatten() {
             if let Some(kept) = kept {
                 row.errors = Some(kept.errors(&reference));
+                row.certify();
             }
         }
         target = Target::of(&rows(&groups));

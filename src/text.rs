@@ -4,18 +4,28 @@
 use std::borrow::Cow;
 
 /// `text` with every control character (C0, DEL, C1: escape sequences, bells, carriage
-/// returns, line feeds) replaced by `�`, so that text read from a file cannot move the
-/// cursor, retitle the window or clear the screen when it is printed.
+/// returns, line feeds) and every bidirectional control replaced by `�`, so that text read
+/// from a file, the command line or the environment cannot move the cursor, retitle the
+/// window, clear the screen, start a line of its own or reorder what follows it when it is
+/// printed.
 pub fn sanitize(text: &str) -> Cow<'_, str> {
-    if text.chars().any(char::is_control) {
+    if text.chars().any(unsafe_char) {
         Cow::Owned(
             text.chars()
-                .map(|c| if c.is_control() { '\u{fffd}' } else { c })
+                .map(|c| if unsafe_char(c) { '\u{fffd}' } else { c })
                 .collect(),
         )
     } else {
         Cow::Borrowed(text)
     }
+}
+
+/// A control character, or a bidirectional control of Unicode's Bidi_Control property: the
+/// embeddings and overrides U+202A–U+202E, the isolates U+2066–U+2069, the marks U+200E,
+/// U+200F and the Arabic letter mark U+061C.
+fn unsafe_char(c: char) -> bool {
+    c.is_control()
+        || matches!(c, '\u{202a}'..='\u{202e}' | '\u{2066}'..='\u{2069}' | '\u{200e}' | '\u{200f}' | '\u{061c}')
 }
 
 /// [`sanitize`] for several lines: each line sanitised, the line breaks kept.
@@ -52,6 +62,17 @@ mod tests {
         assert!(!clean.chars().any(char::is_control));
         assert!(matches!(sanitize("plain ε = 1e-6"), Cow::Borrowed(_)));
         assert_eq!(sanitize_lines("x\u{1b}\r\ny"), "x\u{fffd}\ny");
+    }
+
+    #[test]
+    fn bidi_controls_are_replaced() {
+        for c in [
+            '\u{202a}', '\u{202e}', '\u{2066}', '\u{2069}', '\u{200e}', '\u{200f}', '\u{061c}',
+        ] {
+            assert_eq!(sanitize(&format!("a{c}b")), "a\u{fffd}b", "{:x}", c as u32);
+        }
+        // Letters of right-to-left scripts stay: only the controls go.
+        assert_eq!(sanitize("שלום مرحبا"), "שלום مرحبا");
     }
 
     #[test]

@@ -1,9 +1,11 @@
-//! Fuzz the command line's own parsers (level ranges, schemes): any text gives a valid value or
-//! an error that says what is allowed — never a panic.
+//! Fuzz the command line's own parsers (level ranges, schemes, the numbers of ε, κ and the
+//! depth): any text gives a valid value or an error that says what is allowed — never a panic,
+//! never a non-zero number read as 0.
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
 use riplab::cli::parse_levels;
+use riplab::cli::values::number;
 use riplab::scheme::Scheme;
 
 fuzz_target!(|data: &[u8]| {
@@ -17,5 +19,13 @@ fuzz_target!(|data: &[u8]| {
     }
     if let Err(m) = Scheme::parse(text) {
         assert!(m.contains("allowed"));
+    }
+    match number(text) {
+        Ok(v) if v == 0.0 => {
+            let mantissa = text.trim().split(['e', 'E']).next().unwrap_or("");
+            assert!(!mantissa.bytes().any(|b| (b'1'..=b'9').contains(&b)), "{text:?} read as 0");
+        }
+        Ok(_) => {}
+        Err(m) => assert!(m.contains("not a number") || m.contains("underflows to 0")),
     }
 });

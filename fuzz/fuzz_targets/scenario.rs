@@ -3,7 +3,8 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use riplab::scenario::{Scenario, check};
+use riplab::check;
+use riplab::scenario::Scenario;
 
 fuzz_target!(|data: &[u8]| {
     let Ok(text) = std::str::from_utf8(data) else { return };
@@ -21,6 +22,7 @@ fuzz_target!(|data: &[u8]| {
             let (elo, ehi) = s.epsilon_range(s.level);
             assert!(s.epsilon == 0.0 || (s.epsilon >= elo && s.epsilon <= ehi));
             assert!(!s.name.chars().any(char::is_control));
+            assert!(!s.name.chars().any(|c| matches!(c, '\u{202a}'..='\u{202e}' | '\u{2066}'..='\u{2069}')));
             // The unknown count used by the memory check must not overflow or panic either.
             let _ = s.n_dofs(s.level, s.element);
         }

@@ -45,16 +45,39 @@ impl Sizes {
     /// block), a rule's coupling G (q², with C Tᵀ, m·q, while it is formed) and the contact
     /// Newton's active-set system (up to q²).
     pub fn peak_bytes(&self) -> u64 {
-        let n = self.unknowns.max(2) as f64;
         let (m, q) = (self.trace as f64, self.points as f64);
-        let sparse = sparse_bytes_per_nlogn(self.element) * n * n.log2();
         let dense = 8.0 * (3.0 * m * m).max(m * m + m * q + 2.0 * q * q);
-        (sparse + dense) as u64 + BASE
+        (self.sparse_bytes() + dense) as u64 + BASE
+    }
+
+    /// The sparse work of one factorisation of a matrix of K's pattern (n log n).
+    fn sparse_bytes(&self) -> f64 {
+        let n = self.unknowns.max(2) as f64;
+        sparse_bytes_per_nlogn(self.element) * n * n.log2()
+    }
+
+    /// What the inf-sup estimate of docs/design.md §5 (src/infsup.rs) needs beside its
+    /// discretisation, bytes: the H¹ Gram matrix A of (7) assembled and factorised on the
+    /// stiffness's ordering (0.85 of a sparse term: the measured peaks of `riplab infsup`
+    /// exceed the solve's by 0.72–0.74 of one beyond the dense work at Q2 levels 5–6,
+    /// STABILITY.md),
+    /// the trace compliance C (three m×m while it is formed), and for one rule B and B·C (q×m
+    /// each) with at most six q×q matrices at once (B A⁻¹ Bᵀ, a mass matrix, its
+    /// eigenvectors, Z, Zᵀ S Z and the eigensolver's work).
+    pub fn infsup_extra_bytes(&self) -> u64 {
+        let (m, q) = (self.trace as f64, self.points as f64);
+        let dense = 8.0 * (3.0 * m * m + 2.0 * m * q + 6.0 * q * q);
+        (0.85 * self.sparse_bytes() + dense) as u64
     }
 
     /// Refuse before allocating when the estimate exceeds what `limits` leave.
     pub fn check(&self, limits: &Limits) -> Result<(), FemError> {
-        let need = self.peak_bytes();
+        self.check_need(self.peak_bytes(), limits)
+    }
+
+    /// Refuse before allocating when `need` bytes (an estimate of work on these sizes)
+    /// exceed what `limits` leave.
+    pub fn check_need(&self, need: u64, limits: &Limits) -> Result<(), FemError> {
         match limits.available() {
             Some(available) if need > available => Err(FemError::TooLarge {
                 unknowns: self.unknowns,

@@ -20,8 +20,10 @@ pub struct ScenarioError {
     pub key: Option<String>,
     /// What is wrong, and what is allowed.
     pub message: String,
-    /// The offending source line, for display.
-    pub source_line: Option<String>,
+    /// The offending source line for display (an excerpt of a long one: [`EXCERPT_CHARS`]),
+    /// with the 1-based column of the caret in it.
+    /// (Boxed: the error travels in every `Result` of the command line.)
+    pub source_line: Option<Box<(String, usize)>>,
 }
 
 impl std::error::Error for ScenarioError {}
@@ -39,10 +41,38 @@ impl fmt::Display for ScenarioError {
             write!(f, "`{}`: ", sanitize(key))?;
         }
         write!(f, "{}", sanitize_lines(&self.message))?;
-        if let (Some((line, col)), Some(text)) = (self.location, &self.source_line) {
+        if let (Some((line, _)), Some((text, col))) = (self.location, self.source_line.as_deref()) {
             write!(f, "\n {line:>4} | {}\n      | {:>col$}", sanitize(text), "^")?;
         }
         Ok(())
+    }
+}
+
+/// The most characters of a line (or a key) an error echoes.
+pub const EXCERPT_CHARS: usize = 120;
+
+/// `text` cut to at most `max` characters, `…` marking the cut.
+fn bounded(text: &str, max: usize) -> String {
+    match text.char_indices().nth(max) {
+        Some((at, _)) => format!("{}…", &text[..at]),
+        None => text.to_string(),
+    }
+}
+
+/// The part of a line an error shows, and the caret's 1-based column in it: the whole line
+/// when it is short, else at most [`EXCERPT_CHARS`] characters from a little before the
+/// 1-based `column`, `…` marking the cuts.
+fn excerpt(line: &str, column: usize) -> (String, usize) {
+    if line.chars().count() <= EXCERPT_CHARS {
+        return (line.to_string(), column);
+    }
+    let from = column.saturating_sub(EXCERPT_CHARS / 4 + 1);
+    let tail: String = line.chars().skip(from).take(EXCERPT_CHARS + 1).collect();
+    let cut = bounded(&tail, EXCERPT_CHARS);
+    if from > 0 {
+        (format!("…{cut}"), column - from + 1)
+    } else {
+        (cut, column)
     }
 }
 
@@ -68,8 +98,8 @@ impl Locator<'_> {
                 let line = before.matches('\n').count() + 1;
                 let line_start = before.rfind('\n').map_or(0, |i| i + 1);
                 let column = self.text[line_start..start].chars().count() + 1;
-                let text = self.text[line_start..].lines().next().unwrap_or("").to_string();
-                (Some((line, column)), Some(text))
+                let text = self.text[line_start..].lines().next().unwrap_or("");
+                (Some((line, column)), Some(Box::new(excerpt(text, column))))
             }
             None => (None, None),
         };
@@ -91,7 +121,7 @@ impl Locator<'_> {
         ScenarioError {
             file: self.file.to_string(),
             location,
-            key,
+            key: key.map(|k| bounded(&k, EXCERPT_CHARS)),
             message,
             source_line,
         }

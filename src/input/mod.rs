@@ -4,6 +4,7 @@
 //! - [`read`]: bounded reading of a scenario or tour file;
 //! - `schema`: the TOML schema serde reads;
 //! - [`locate`]: the error locator (file, line, column, key, the offending line);
+//! - `nesting`: keys nested too deep, refused with their line before the TOML reader;
 //! - `validate`: the schema checked and turned into the model.
 //!
 //! Every value is checked against its allowed range ([`crate::check`]); an error names the
@@ -14,6 +15,7 @@ use std::path::Path;
 use crate::scenario::{DEFAULT_SCENARIO, DEFAULT_SOURCE, Scenario};
 
 pub mod locate;
+mod nesting;
 pub mod read;
 mod schema;
 mod validate;

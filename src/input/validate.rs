@@ -19,6 +19,7 @@ use crate::text::{num, sanitize, sanitize_lines};
 /// Parse and validate scenario text; `file` names it in errors.
 pub(super) fn scenario(text: &str, file: &str) -> Result<Scenario, ScenarioError> {
     let loc = Locator { file, text };
+    loc.check_nesting()?;
     let raw: RawScenario =
         toml::from_str(text).map_err(|e| loc.error(e.span(), None, e.message().trim().to_string()))?;
 

@@ -7,6 +7,7 @@
 //! [`view::view`] draws the state; a [`worker::Worker`] thread owns the discretisation cache
 //! and runs solves and estimates, the newest request cancelling older ones.
 
+mod abort_guard;
 pub mod app;
 pub mod beta;
 mod build;
@@ -136,7 +137,7 @@ pub fn render_to_string(
     element: Option<Element>,
     rule: Option<Rule>,
     epsilon: Option<f64>,
-) -> Result<String, String> {
+) -> Result<Rendered, String> {
     let names: Vec<&str> = Scene::ALL.iter().map(|s| s.name()).collect();
     let scene = Scene::from_name(scene)
         .ok_or_else(|| format!("unknown scene `{scene}`; scenes: {}", names.join(", ")))?;
@@ -168,7 +169,33 @@ pub fn render_to_string(
         theme: Theme { color: true },
         marker: Marker::Braille,
     };
-    Ok(render_app(&app, &look, width, height))
+    Ok(Rendered {
+        text: render_app(&app, &look, width, height),
+        failure: shown_failure(&app),
+    })
+}
+
+/// A frame of [`render_to_string`] and the failure it shows, if any (`riplab render` exits
+/// non-zero on one, as `solve` does).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Rendered {
+    /// The frame as plain text.
+    pub text: String,
+    /// What failed in the frame's scene: the solve, the study or an inf-sup estimate.
+    pub failure: Option<String>,
+}
+
+/// The failure the frame of `app` shows for its scene: the solve's, the study's (the
+/// convergence scene) or an inf-sup estimate's (the infsup scene).
+fn shown_failure(app: &App) -> Option<String> {
+    if let Some(e) = &app.error {
+        return Some(e.clone());
+    }
+    match app.scene {
+        Scene::Convergence => app.studies.get(&app.study_key())?.as_ref().err().cloned(),
+        Scene::InfSup => app.infsup.values().find_map(|r| r.as_ref().err().cloned()),
+        _ => None,
+    }
 }
 
 /// The largest frame `riplab render` draws: a sane bound checked before anything is

@@ -127,7 +127,8 @@ pub fn run(
 }
 
 /// The one event loop of the lab and the tour: the terminal (raw mode, alternate screen,
-/// restored on every path, a panic included, by ratatui's hook), an input thread and the
+/// restored on every path, a panic included, by ratatui's hook, an abort by
+/// [`super::abort_guard`]), an input thread and the
 /// program's workers feeding one channel, and a redraw only when an update says the screen
 /// changed, inside synchronized-output brackets. `start` makes the program from the
 /// channel's sender (for its workers) and the terminal's size. With a recording, everything
@@ -138,6 +139,7 @@ pub(super) fn run_program<P: Program>(
     recording: Recording,
     start: impl FnOnce(mpsc::Sender<Input>, Size) -> io::Result<P>,
 ) -> Result<(), RunError> {
+    let abort = super::abort_guard::Guard::install();
     let size = crossterm::terminal::size()?;
     let (tx, rx) = mpsc::channel::<Input>();
     let mut recorder = recording.map(|(file, title)| {
@@ -154,6 +156,7 @@ pub(super) fn run_program<P: Program>(
     if restored.is_err() {
         ratatui::restore();
     }
+    drop(abort);
     let recorded = match recorder {
         Some(recorder) => recorder.finish().map_err(RunError::Recording),
         None => Ok(()),

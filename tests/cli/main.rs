@@ -8,6 +8,8 @@ mod common;
 mod bad_input;
 mod help;
 mod hostile;
+mod hostile_again;
+mod hostile_cache;
 mod modules;
 mod plot;
 mod readme;

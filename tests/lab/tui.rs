@@ -41,7 +41,9 @@ fn frame(app: &App, w: u16, h: u16) -> String {
 
 #[test]
 fn explore_80x24() {
-    let text = render_to_string(&Scenario::paper(), "explore", 80, 24, Some(1), None, None, None).unwrap();
+    let text = render_to_string(&Scenario::paper(), "explore", 80, 24, Some(1), None, None, None)
+        .unwrap()
+        .text;
     snap!("tui__explore_80x24", text);
 }
 
@@ -65,7 +67,8 @@ fn explore_m3_120x40() {
         Some(Rule::Trapezoid),
         None,
     )
-    .unwrap();
+    .unwrap()
+    .text;
     snap!("tui__explore_m3_120x40", text);
 }
 
@@ -91,7 +94,9 @@ fn infsup_120x40() {
 
 #[test]
 fn mesh_80x24() {
-    let text = render_to_string(&Scenario::paper(), "mesh", 80, 24, Some(0), None, None, None).unwrap();
+    let text = render_to_string(&Scenario::paper(), "mesh", 80, 24, Some(0), None, None, None)
+        .unwrap()
+        .text;
     snap!("tui__mesh_80x24", text);
 }
 
@@ -168,7 +173,9 @@ fn status_shows_the_solvers_load() {
     let mut s = Scenario::paper();
     s.level = 1;
     let (_, sol) = riplab::solve::solve_scenario(&s).unwrap();
-    let text = render_to_string(&Scenario::paper(), "explore", 80, 24, Some(1), None, None, None).unwrap();
+    let text = render_to_string(&Scenario::paper(), "explore", 80, 24, Some(1), None, None, None)
+        .unwrap()
+        .text;
     let load = format!("P={}", sig5(sol.load));
     assert!(text.contains(&load), "{load} not in\n{text}");
     assert!(text.contains(&format!("{} Newton steps", sol.newton.iterations)));
@@ -1115,7 +1122,9 @@ fn tick_labels_sit_at_their_values() {
 #[test]
 fn pressure_chart_labels_are_linear_in_their_values() {
     for (w, h) in [(80, 24), (100, 30)] {
-        let text = render_to_string(&Scenario::paper(), "explore", w, h, Some(0), None, None, None).unwrap();
+        let text = render_to_string(&Scenario::paper(), "explore", w, h, Some(0), None, None, None)
+            .unwrap()
+            .text;
         let lines: Vec<Vec<String>> = text
             .lines()
             .map(|l| l.chars().map(String::from).collect())
@@ -1434,7 +1443,9 @@ fn zoom_narrows_to_the_contact_zone() {
     app.update(ch('z'));
     assert_eq!(x_labels(&frame(&app, 100, 30)), before);
     // The mesh scene says when it thins its lines.
-    let text = render_to_string(&Scenario::paper(), "mesh", 80, 24, Some(4), None, None, None).unwrap();
+    let text = render_to_string(&Scenario::paper(), "mesh", 80, 24, Some(4), None, None, None)
+        .unwrap()
+        .text;
     assert!(text.contains(" grid lines"), "{text}");
 }
 
@@ -1500,7 +1511,9 @@ fn smaller_things() {
     for part in ["needs a bigger", "40×12", "80×24", "q quits"] {
         assert!(text.contains(part), "{part}:\n{text}");
     }
-    let text = render_to_string(&Scenario::paper(), "explore", 80, 24, Some(0), None, None, None).unwrap();
+    let text = render_to_string(&Scenario::paper(), "explore", 80, 24, Some(0), None, None, None)
+        .unwrap()
+        .text;
     assert!(text.contains("p (units of E) against x (length)"), "{text}");
     assert!(text.contains("load P="), "{text}");
     let text = render_to_string(
@@ -1513,7 +1526,8 @@ fn smaller_things() {
         Some(Rule::Gauss2),
         None,
     )
-    .unwrap();
+    .unwrap()
+    .text;
     assert!(text.contains("kernel"), "M2's β_h is a kernel:\n{text}");
     let text = frame(&convergence_app(), 120, 40);
     assert!(text.contains("the scenario's ε"), "{text}");

@@ -146,6 +146,7 @@ impl Tour {
     /// paths are relative to (None: the tour may not name scenario files).
     pub fn parse(text: &str, file: &str, dir: Option<&Path>) -> Result<Tour, ScenarioError> {
         let src = Source { file, text };
+        src.check_nesting()?;
         let raw: RawTour =
             toml::from_str(text).map_err(|e| src.error(e.span(), None, e.message().trim().to_string()))?;
         src.check("title", &raw.title, |t| one_line(t, 200))?;
@@ -172,10 +173,23 @@ impl Tour {
     }
 
     /// The tour with `scenario` for the steps that do not name their own; every step's depth
-    /// is checked against its scenario.
+    /// is checked against its scenario, and its ε against the range of its level (as the lab
+    /// checks it when the step is played).
     pub fn with_scenario(mut self, scenario: Scenario) -> Result<Tour, String> {
         self.scenario = scenario;
         for (i, step) in self.steps.iter().enumerate() {
+            if let Some(epsilon) = step.epsilon.filter(|e| *e > 0.0) {
+                let scenario = self.scenario_of(i);
+                let level = step.level.unwrap_or(scenario.level).min(MAX_APP_LEVEL);
+                check::epsilon_in(epsilon, scenario.epsilon_range(level)).map_err(|m| {
+                    format!(
+                        "{}: step {} (`{}`): ε at level {level}: {m}",
+                        sanitize(&self.source),
+                        i + 1,
+                        step.title
+                    )
+                })?;
+            }
             if let Some(depth) = step.depth {
                 let max = App::new(self.scenario_of(i).clone()).max_depth();
                 if depth > max + 1e-12 {
@@ -332,7 +346,7 @@ fn step(src: &Source, n: usize, raw: &RawStep, dir: Option<&Path>) -> Result<Ste
                 Some(key("scene")),
                 format!(
                     "`{}` is not a scene; allowed: {}",
-                    name.get_ref(),
+                    sanitize(name.get_ref()),
                     names.join(", ")
                 ),
             )
@@ -347,7 +361,10 @@ fn step(src: &Source, n: usize, raw: &RawStep, dir: Option<&Path>) -> Result<Ste
                 return Err(src.error(
                     Some(name.span()),
                     Some(key("compare")),
-                    format!("`{other}` is not a comparison; allowed: schemes, methods"),
+                    format!(
+                        "`{}` is not a comparison; allowed: schemes, methods",
+                        sanitize(other)
+                    ),
                 ));
             }
         },
@@ -384,7 +401,7 @@ fn step(src: &Source, n: usize, raw: &RawStep, dir: Option<&Path>) -> Result<Ste
                     Some(key("overlays")),
                     format!(
                         "`{}` is not an overlay; allowed: {}",
-                        overlay.get_ref(),
+                        sanitize(overlay.get_ref()),
                         OVERLAYS.join(", ")
                     ),
                 )

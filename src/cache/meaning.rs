@@ -1,0 +1,108 @@
+//! What a cache entry must mean before it is believed (issue 37): a checksum only says the
+//! bytes are the ones written. An entry's fields are checked against what the reference is,
+//! independently of the solver that made them: its sizes are the mesh's, every number is
+//! finite, its load P is I(p, 1) of its own pressure (`contact::pressure::load`), and its
+//! displacement is in equilibrium with that load: the vertical reaction of the clamped bottom,
+//! Σ (K u)_y with K applied cell by cell ([`crate::fem::apply`]), equals P (the body carries
+//! no other load). An entry that fails any check is recomputed and replaced.
+
+use crate::contact::ContactPoints;
+use crate::contact::pressure::load;
+use crate::fem::{Form, apply};
+use crate::scenario::Scenario;
+use crate::study::{REFERENCE_SCHEME, ReferenceFields, ReferenceMesh};
+use crate::text::num;
+
+/// The relative agreement asked of the load and I(p, 1) (the same sum, up to its order).
+const LOAD_TOLERANCE: f64 = 1e-9;
+
+/// The relative agreement asked of the bottom's reaction and the load (the exact method's
+/// Newton stops at a residual far below this; tests/numerics/contact.rs finds 1e-9).
+const REACTION_TOLERANCE: f64 = 1e-6;
+
+/// Why `fields` cannot be the reference of `scenario` on `grid`, if it cannot.
+pub fn check(scenario: &Scenario, grid: &ReferenceMesh, fields: &ReferenceFields) -> Result<(), String> {
+    let (n_u, n_p) = grid.lengths();
+    let n_dofs = grid.n_dofs(scenario);
+    if (fields.u.len(), fields.p.len(), fields.n_dofs) != (n_u, n_p, n_dofs) {
+        return Err(format!(
+            "its sizes ({} displacements, {} pressures, {} dofs) are not the mesh's ({n_u}, {n_p}, {n_dofs})",
+            fields.u.len(),
+            fields.p.len(),
+            fields.n_dofs
+        ));
+    }
+    let finite = [fields.load, fields.ms]
+        .iter()
+        .chain(&fields.u)
+        .chain(&fields.p)
+        .all(|v| v.is_finite());
+    if !finite || fields.ms < 0.0 {
+        return Err("it holds a number that is not finite (or a negative time)".into());
+    }
+    let mesh = grid.mesh(scenario);
+    let points = ContactPoints::new(
+        REFERENCE_SCHEME.1,
+        &mesh.node_x[..mesh.nnx()],
+        REFERENCE_SCHEME.0.order(),
+    );
+    let integral = load(&points, &fields.p);
+    let scale = points
+        .points
+        .iter()
+        .zip(&fields.p)
+        .map(|(q, p)| (q.weight * p).abs())
+        .sum::<f64>()
+        .max(f64::MIN_POSITIVE);
+    if (fields.load - integral).abs() > LOAD_TOLERANCE * scale {
+        return Err(format!(
+            "its load {} is not I(p, 1) = {} of its pressure",
+            num(fields.load),
+            num(integral)
+        ));
+    }
+    let ku = apply(
+        &mesh,
+        Form::Elasticity(scenario.material, scenario.integration),
+        &fields.u,
+    );
+    let reaction: f64 = (0..mesh.nnx()).map(|i| ku[2 * mesh.node(i, 0) + 1]).sum();
+    if !reaction.is_finite() || (reaction - fields.load).abs() > REACTION_TOLERANCE * scale {
+        return Err(format!(
+            "its displacement's reaction {} is not its load {}",
+            num(reaction),
+            num(fields.load)
+        ));
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A solved reference passes; its pressure ×1.5, a load of 1e308, n_dofs = 2⁶⁴ − 1, a NaN
+    /// time, or its displacement ×1.5 with its pressure (a consistent load) each fail.
+    #[test]
+    fn only_a_reference_that_means_what_it_says_is_believed() {
+        let s = Scenario::paper();
+        let grid = ReferenceMesh::uniform(&s, 1);
+        let good = ReferenceFields::solve_on(&s, &grid).unwrap();
+        assert_eq!(check(&s, &grid, &good), Ok(()));
+        let bad = |f: &dyn Fn(&mut ReferenceFields)| {
+            let mut fields = good.clone();
+            f(&mut fields);
+            check(&s, &grid, &fields).unwrap_err()
+        };
+        assert!(bad(&|f| f.p.iter_mut().for_each(|p| *p *= 1.5)).contains("I(p, 1)"));
+        assert!(bad(&|f| f.load = 1e308).contains("I(p, 1)"));
+        assert!(bad(&|f| f.n_dofs = usize::MAX).contains("sizes"));
+        assert!(bad(&|f| f.ms = f64::NAN).contains("not finite"));
+        assert!(bad(&|f| f.p[3] = 1e200).contains("I(p, 1)"));
+        let scaled = bad(&|f| {
+            f.p.iter_mut().for_each(|p| *p *= 1.5);
+            f.load *= 1.5;
+        });
+        assert!(scaled.contains("reaction"), "{scaled}");
+    }
+}

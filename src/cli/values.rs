@@ -1,0 +1,41 @@
+//! Numbers of the command line read as the user meant them (issue 37): a decimal that is not
+//! zero but underflows to 0 in double precision (`1e-400`) would silently select the exact
+//! constraint (ε = 0); it is refused, saying why, where a plain `0` is accepted.
+
+use crate::text::sanitize;
+
+/// `text` as a finite-or-not f64 (the ranges are checked later, per option), refused when it
+/// names a non-zero number that underflows to 0.
+pub fn number(text: &str) -> Result<f64, String> {
+    let trimmed = text.trim();
+    let value: f64 = trimmed
+        .parse()
+        .map_err(|_| format!("`{}` is not a number", sanitize(trimmed)))?;
+    let mantissa = trimmed.split(['e', 'E']).next().unwrap_or("");
+    if value == 0.0 && mantissa.bytes().any(|b| (b'1'..=b'9').contains(&b)) {
+        return Err(format!(
+            "`{}` is not 0 but underflows to 0 in double precision (the smallest is about 5e-324); write 0 for the exact constraint",
+            sanitize(trimmed)
+        ));
+    }
+    Ok(value)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_that_underflow_to_zero_are_refused() {
+        assert_eq!(number("1e-6"), Ok(1e-6));
+        assert_eq!(number("0"), Ok(0.0));
+        assert_eq!(number("0.000e5"), Ok(0.0));
+        assert_eq!(number("-0"), Ok(-0.0));
+        assert_eq!(number(" 2.5 "), Ok(2.5));
+        for tiny in ["1e-400", "-3.5E-999", "0.001e-330"] {
+            let e = number(tiny).unwrap_err();
+            assert!(e.contains("underflows to 0"), "{tiny}: {e}");
+        }
+        assert!(number("x\u{1b}[2J").unwrap_err().contains('\u{fffd}'));
+    }
+}
