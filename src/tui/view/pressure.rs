@@ -39,12 +39,14 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
         .max(circle.map_or(0.0, |c| c.p0));
     let ymax = nice_ceil(peak * 1.05);
 
+    // Inside the contact zone only: outside it both are 0, on p̄'s own line, and their marks
+    // along the whole axis hid it.
     let hertz_pts: Vec<(f64, f64)> = hertz
-        .map(|h| sample(xb, 0.0, |x| Some(h.pressure(x))))
+        .map(|h| sample(xb, 0.0, |x| Some(h.pressure(x)).filter(|&p| p > 0.0)))
         .unwrap_or_default();
     let circle_pts: Vec<(f64, f64)> = circle
         // Between Hertz's samples, so that neither hides the other where they agree.
-        .map(|c| sample(xb, 0.5, |x| Some(c.pressure(x))))
+        .map(|c| sample(xb, 0.5, |x| Some(c.pressure(x)).filter(|&p| p > 0.0)))
         .unwrap_or_default();
     let depth = sol.params.obstacle.depth();
     let gap_scale = if depth > 0.0 {
