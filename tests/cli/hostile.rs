@@ -3,22 +3,11 @@
 //! converged), never a panic, an unbounded read or a hang.
 
 use std::io::Read as _;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-use crate::common::{paper_text, riplab};
-
-/// A scratch file under the test target's temporary directory.
-fn scratch(name: &str, text: &str) -> PathBuf {
-    let path = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
-    std::fs::write(&path, text).unwrap();
-    path
-}
-
-fn no_panic(stderr: &str) {
-    assert!(!stderr.contains("panicked"), "panicked: {stderr}");
-}
+use crate::common::{no_panic, paper_text, riplab, scratch_file as scratch};
 
 /// Run riplab with a time limit: (exit code, stdout, stderr); a hang fails the test.
 fn riplab_within(args: &[&str], limit: Duration) -> (i32, String, String) {

@@ -3,20 +3,9 @@
 //! before the subcommand, terminal text from the command line and the environment, and the
 //! smaller holes. Each case fails on the code before the change.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-use crate::common::{paper_text, riplab};
-
-/// A scratch file under the test target's temporary directory.
-fn scratch(name: &str, text: &str) -> PathBuf {
-    let path = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
-    std::fs::write(&path, text).unwrap();
-    path
-}
-
-fn no_panic(stderr: &str) {
-    assert!(!stderr.contains("panicked"), "panicked: {stderr}");
-}
+use crate::common::{no_panic, paper_text, riplab, scratch_file as scratch};
 
 // 1. A reference without contact: relative errors divide by its zero norms.
 

@@ -101,3 +101,15 @@ pub fn settled(level: u32, scene: riplab::tui::app::Scene) -> riplab::tui::app::
     settle(&mut app, &mut Engine::new(Scenario::paper()));
     app
 }
+
+/// A scratch file holding `text` under the test target's temporary directory.
+pub fn scratch_file(name: &str, text: &str) -> std::path::PathBuf {
+    let path = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+/// Whatever a command failed with, it did not panic.
+pub fn no_panic(stderr: &str) {
+    assert!(!stderr.contains("panicked"), "panicked: {stderr}");
+}
