@@ -2564,3 +2564,72 @@ fn the_settings_line_drops_fields_rather_than_cutting_a_number() {
         }
     }
 }
+
+/// Issue 31, hidden series: a series equal to an earlier one (as M1's β̄_h/√h equals M3's
+/// β_h/√h, by (18)) is said to coincide in the legend, and its glyph stands beside the
+/// other's at every point instead of under it; a series elsewhere keeps its cells.
+#[test]
+fn coinciding_series_are_named_and_both_drawn() {
+    let same = [(-1.0, 0.0), (-0.5, 0.02), (0.0, 0.05)];
+    let apart = [(-1.0, -1.0), (-0.5, -0.9), (0.0, -0.8)];
+    for (width, height) in [(80, 14), (120, 30), (40, 10)] {
+        let mut terminal = ratatui::Terminal::new(TestBackend::new(width, height)).unwrap();
+        terminal
+            .draw(|f| {
+                let series = |name: &str, glyph: char, data| PlotSeries {
+                    name: name.into(),
+                    color: Color::Green,
+                    stroke: Stroke::None,
+                    glyph: Some(glyph),
+                    data,
+                };
+                Plot {
+                    title: " test ".into(),
+                    x: PlotAxis {
+                        title: "h".into(),
+                        bounds: [-1.2, 0.2],
+                        scale: Scale::Log10,
+                    },
+                    y: PlotAxis {
+                        title: "β".into(),
+                        bounds: [-1.5, 0.5],
+                        scale: Scale::Log10,
+                    },
+                    series: vec![
+                        series("M3", '3', &same[..]),
+                        series("M4", '4', &apart[..]),
+                        series("M1 p̄", '*', &same[..]),
+                    ],
+                    marker: Marker::Braille,
+                    theme: Theme { color: false },
+                }
+                .render(f, f.area())
+                .expect("room for the graph");
+            })
+            .unwrap();
+        let buf = terminal.backend().buffer().clone();
+        let text: Vec<String> = (0..height).map(|y| row_text(&buf, y).concat()).collect();
+        let legend = text[1..3].concat();
+        assert!(legend.contains("M1 p̄ (= 3)"), "{width}×{height}: {legend}");
+        assert!(!legend.contains("M4 (="), "{width}×{height}: {legend}");
+        let at = |g: &str| -> Vec<(u16, u16)> {
+            let mut out = Vec::new();
+            for y in 2..height {
+                for x in 0..width {
+                    if buf[(x, y)].symbol() == g {
+                        out.push((x, y));
+                    }
+                }
+            }
+            out
+        };
+        let (threes, stars, fours) = (at("3"), at("*"), at("4"));
+        assert_eq!(threes.len(), 3, "{width}×{height}:\n{}", text.join("\n"));
+        assert_eq!(stars.len(), 3, "{width}×{height}:\n{}", text.join("\n"));
+        assert_eq!(fours.len(), 3, "{width}×{height}:\n{}", text.join("\n"));
+        for (t, s) in threes.iter().zip(&stars) {
+            assert_eq!(t.1, s.1, "same row");
+            assert_eq!(t.0.abs_diff(s.0), 1, "side by side: {t:?} {s:?}");
+        }
+    }
+}

@@ -6,6 +6,8 @@
 //! the symbol it is drawn with: a solid or dotted line and an optional glyph at every point,
 //! so that the series stay apart in monochrome.
 
+use std::collections::HashMap;
+
 use ratatui::Frame;
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
@@ -339,9 +341,17 @@ impl Plot<'_> {
                 continue;
             }
             let style = Style::new().fg(self.theme.ink(s.color));
+            // A series equal to an earlier one says so: its glyphs stand beside that one's.
+            let same = match self.coincides_with(s) {
+                Some(earlier) => match earlier.glyph {
+                    Some(g) => format!(" (= {g})"),
+                    None => format!(" (= {})", earlier.name),
+                },
+                None => String::new(),
+            };
             entries.push(vec![
                 Span::styled(format!(" {}", sample(s.stroke, s.glyph, self.marker)), style),
-                Span::raw(format!(" {} ", s.name)),
+                Span::raw(format!(" {}{same} ", s.name)),
             ]);
         }
         let mut lines: Vec<Vec<Span<'static>>> = vec![Vec::new()];
@@ -356,6 +366,26 @@ impl Plot<'_> {
             lines.last_mut().expect("one line at least").extend(entry);
         }
         lines.into_iter().map(Line::from).collect()
+    }
+
+    /// The earlier series with a glyph whose points `s` repeats (the same x and, to a
+    /// millionth of the y axis's span, the same y at every point), if any.
+    fn coincides_with(&self, s: &Series) -> Option<&Series<'_>> {
+        let span = |b: [f64; 2]| (b[1] - b[0]).abs();
+        let (tx, ty) = (1e-9 * span(self.x.bounds), 1e-6 * span(self.y.bounds));
+        let same = |a: &Series, b: &Series| {
+            !a.data.is_empty()
+                && a.data.len() == b.data.len()
+                && a.data
+                    .iter()
+                    .zip(b.data)
+                    .all(|(p, q)| (p.0 - q.0).abs() <= tx && (p.1 - q.1).abs() <= ty)
+        };
+        s.glyph?;
+        self.series
+            .iter()
+            .take_while(|e| !std::ptr::eq(*e, s))
+            .find(|e| e.glyph.is_some() && same(e, s))
     }
 
     /// The series on a canvas over `graph`, lines first, then the glyphs over them.
@@ -395,7 +425,10 @@ impl Plot<'_> {
         frame.render_widget(canvas, graph);
         let per = dots_per_cell(self.marker);
         let buf: &mut Buffer = frame.buffer_mut();
-        for s in &self.series {
+        // Which series' glyph holds a cell: a glyph that lands on another series' moves to the
+        // next free cell of its row (right, else left), so that no series hides another.
+        let mut taken: HashMap<(u16, u16), usize> = HashMap::new();
+        for (i, s) in self.series.iter().enumerate() {
             let Some(g) = s.glyph else { continue };
             let style = Style::new().fg(theme.ink(s.color)).add_modifier(Modifier::BOLD);
             for &(x, y) in s.data {
@@ -405,6 +438,17 @@ impl Plot<'_> {
                 ) else {
                     continue;
                 };
+                let free = |c: u16| taken.get(&(c, cy)).is_none_or(|&o| o == i);
+                let cx = [
+                    Some(cx),
+                    cx.checked_add(1).filter(|&c| c < graph.width),
+                    cx.checked_sub(1),
+                ]
+                .into_iter()
+                .flatten()
+                .find(|&c| free(c))
+                .unwrap_or(cx);
+                taken.insert((cx, cy), i);
                 buf[(graph.x + cx, graph.bottom() - 1 - cy)]
                     .set_char(g)
                     .set_style(style);
