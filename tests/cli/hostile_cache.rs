@@ -5,7 +5,9 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-fn study(cache: &Path, format: &str) -> (i32, String, String) {
+/// `riplab study --levels 0 --schemes M1` on the uniform reference with its cache under
+/// `cache`: exit code, stdout and stderr.
+pub(crate) fn study(cache: &Path, format: &str) -> (i32, String, String) {
     let out = Command::new(env!("CARGO_BIN_EXE_riplab"))
         .args([
             "study",

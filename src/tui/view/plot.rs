@@ -342,13 +342,10 @@ impl Plot<'_> {
             }
             let style = Style::new().fg(self.theme.ink(s.color));
             // A series equal to an earlier one says so: its glyphs stand beside that one's.
-            let same = match self.coincides_with(s) {
-                Some(earlier) => match earlier.glyph {
-                    Some(g) => format!(" (= {g})"),
-                    None => format!(" (= {})", earlier.name),
-                },
-                None => String::new(),
-            };
+            let same = self
+                .coincides_with(s)
+                .and_then(|earlier| earlier.glyph)
+                .map_or_else(String::new, |g| format!(" (= {g})"));
             entries.push(vec![
                 Span::styled(format!(" {}", sample(s.stroke, s.glyph, self.marker)), style),
                 Span::raw(format!(" {}{same} ", s.name)),
