@@ -1,5 +1,6 @@
 //! Every command the README and docs/*.md show runs (issue 16): each `riplab …` line of a shell
-//! code block (```sh), and each `cargo run --release -- …` or `riplab …` code span after "Command:", is run
+//! code block (```sh), and each `cargo run --release -- …` or `riplab …` code span after "Command:"
+//! or "Output of" (whose output docs_tables.rs compares at the documented levels), is run
 //! against the built binary and must exit as documented and print what it promises.
 //!
 //! Documented substitutions, so that the whole suite stays fast on two cores:
@@ -42,7 +43,10 @@ fn commands_in(path: &Path) -> Vec<Documented> {
         let (command, comment) = if in_block {
             let (command, comment) = line.split_once(" #").unwrap_or((line, ""));
             (command.trim().to_string(), comment.to_string())
-        } else if let Some(rest) = line.trim_start().strip_prefix("Command: `") {
+        } else if let Some(rest) = ["Command: `", "Output of `"]
+            .iter()
+            .find_map(|lead| line.trim_start().strip_prefix(lead))
+        {
             let command = rest.split('`').next().unwrap_or("");
             (command.to_string(), rest.to_string())
         } else {
