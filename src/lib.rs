@@ -40,7 +40,6 @@ pub mod infsup;
 pub mod input;
 pub mod material;
 pub mod mesh;
-pub mod nitsche;
 pub mod penalty_error;
 pub mod plot;
 pub mod report;
