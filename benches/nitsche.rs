@@ -1,4 +1,4 @@
-//! Nitsche's method on the paper's problem (`riplab::contact::nitsche`), per level, for M3's
+//! Nitsche's method on the paper's problem (`riplab::nitsche`), per level, for M3's
 //! pair (q1 + trapezoid) and M4's (q2 + simpson): `cargo bench --bench nitsche`.
 //!
 //! fresh: the first Nitsche solve on a new discretisation (the layer's factorisation, the
@@ -9,8 +9,8 @@
 
 use divan::Bencher;
 use riplab::contact::Rule;
-use riplab::contact::nitsche::{NitscheParams, solve_once};
 use riplab::mesh::Element;
+use riplab::nitsche::{NitscheParams, solve_once};
 use riplab::scenario::Scenario;
 use riplab::solve::{ContactParams, Discretization};
 

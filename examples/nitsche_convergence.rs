@@ -9,9 +9,9 @@
 use std::ops::ControlFlow;
 
 use riplab::contact::Rule;
-use riplab::contact::nitsche::{self, NitscheParams};
 use riplab::contact::penalty::NewtonOptions;
 use riplab::mesh::Element;
+use riplab::nitsche::{self, NitscheParams};
 use riplab::scenario::Scenario;
 use riplab::solve::{ContactParams, Discretization, solve_contact};
 use riplab::study::{Errors, Reference, errors};

@@ -12,7 +12,7 @@ use crate::contact::{Method, Rule};
 use crate::error::SolveError;
 use crate::input::ScenarioError;
 use crate::mesh::Element;
-use crate::report::{Format, InfSupTable, SolveReport, StudyReport, Sweep, SweepFailure, SweepRow, output};
+use crate::output::{Format, InfSupTable, SolveReport, StudyReport, Sweep, SweepFailure, SweepRow, output};
 use crate::scenario::{MAX_LEVEL, Scenario};
 use crate::scheme::Scheme;
 use crate::solve::{ContactParams, Discretization, check_request, sweep};

@@ -54,7 +54,7 @@ pub struct Discretization {
     /// G = T C Tᵀ for each rule met so far.
     couplings: Mutex<HashMap<Rule, Arc<Mat<f64>>>>,
     /// What a method builds on its first solve on this mesh and keeps with it (Nitsche's layer
-    /// factor and couplings, [`crate::contact::nitsche`]).
+    /// factor and couplings, [`crate::nitsche`]).
     pub(crate) kept: Kept,
 }
 

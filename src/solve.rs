@@ -3,19 +3,19 @@
 //! contact solve (rule, method, ε, obstacle) reuses it and costs only dense work on Γ_C. This
 //! module chooses the method's solver ([`crate::contact::Method`]): the penalty, the exact
 //! constraint and the augmented Lagrangian on the trace compliance, Nitsche's method on its
-//! own operator ([`crate::contact::nitsche`]).
+//! own operator ([`crate::nitsche`]).
 
 use std::ops::ControlFlow;
 use std::time::Instant;
 
 pub use crate::contact::ContactParams;
-use crate::contact::nitsche::{self, NitscheParams};
 use crate::contact::penalty::{self, Iteration, NewtonOptions, Penalty, SolveError};
 use crate::contact::signorini::solve_exact;
 use crate::contact::{Method, Rule, alm, load, raw_pressure, smoothed_pressure};
 use crate::discretization::ms_since;
 pub use crate::discretization::{Discretization, check_params, check_request};
 pub use crate::material::{KAPPA_RANGE, epsilon_range};
+use crate::nitsche::{self, NitscheParams};
 use crate::scenario::Scenario;
 pub use crate::solution::{Solution, Timing};
 use crate::warning::{self, Warning};

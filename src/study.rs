@@ -25,19 +25,18 @@ mod grid;
 mod meaning;
 mod rates;
 mod reference;
+mod refine;
 mod row;
 mod source;
 use errors::Kept;
 pub use errors::{Errors, errors};
-pub use grid::{MAX_REFINEMENTS, ReferenceLevelError, ReferenceMesh, reference_level};
+pub use grid::{MAX_REFINEMENTS, REFERENCE_SCHEME, ReferenceLevelError, ReferenceMesh, reference_level};
 pub use meaning::check_contact;
 use rates::with_rates;
 pub use rates::{Fit, fits, least_squares_slope};
 use reference::solve_fresh;
-pub use reference::{
-    Estimate, Fetch, REFERENCE_SCHEME, Reference, ReferenceFields, TARGET_SHARE, Target, refine_reference,
-    uniform_reference,
-};
+pub use reference::{Estimate, Reference, ReferenceFields, TARGET_SHARE, Target};
+pub use refine::{Fetch, refine_reference, uniform_reference};
 pub use row::{Status, StudyRow, all_ok};
 pub use source::ReferenceSource;
 

@@ -8,7 +8,6 @@ pub mod gap;
 pub mod half_plane;
 pub mod hertz;
 pub mod method;
-pub mod nitsche;
 pub mod params;
 pub mod penalty;
 pub mod pressure;

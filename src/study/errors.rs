@@ -3,23 +3,13 @@
 
 use serde::Serialize;
 
-use super::reference::Reference;
+use super::grid::{REFERENCE_SCHEME, ReferenceMesh};
+use super::reference::{Estimate, Reference, ReferenceFields};
 use crate::contact::ContactPoints;
 use crate::fem::basis::evaluate;
 use crate::mesh::Mesh;
+use crate::scenario::Scenario;
 use crate::solve::{Discretization, Solution};
-
-/// Gauss points per direction for the error integrals (exact for the Q2 reference's products).
-pub(super) const ERROR_POINTS: usize = 4;
-
-/// A displacement and its gradient at a weighted point.
-pub(super) struct Sample {
-    pub(super) x: f64,
-    pub(super) y: f64,
-    pub(super) weight: f64,
-    pub(super) value: [f64; 2],
-    pub(super) grad: [f64; 4],
-}
 
 /// Relative errors of one solution against the reference.
 #[derive(Clone, Copy, Debug, Serialize, PartialEq)]
@@ -115,4 +105,39 @@ impl Kept {
 /// The errors of `sol` on `disc` (a mesh nested in the reference's).
 pub fn errors(reference: &Reference, disc: &Discretization, sol: &Solution) -> Errors {
     Kept::of(disc, sol).errors(reference)
+}
+
+impl Reference {
+    /// This reference's difference from a coarser one (`fields` on `grid`, nested in this
+    /// one's): its [`Estimate`].
+    pub fn estimate_against(
+        &self,
+        scenario: &Scenario,
+        grid: &ReferenceMesh,
+        fields: &ReferenceFields,
+    ) -> Estimate {
+        let (element, rule) = REFERENCE_SCHEME;
+        let mesh = grid.mesh(scenario);
+        let points = ContactPoints::new(rule, &mesh.node_x[..mesh.nnx()], element.order());
+        let e = differences(
+            self,
+            &Field {
+                mesh: &mesh,
+                u: &fields.u,
+                points: &points,
+                p: &fields.p,
+                pbar: None,
+                load: fields.load,
+            },
+        );
+        Estimate {
+            p: e.p,
+            u: e.u,
+            load: e.load,
+            against: match grid.refinements {
+                0 => format!("level {}", grid.level),
+                k => format!("refinement {k}"),
+            },
+        }
+    }
 }

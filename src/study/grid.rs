@@ -1,8 +1,8 @@
 //! The reference's grid (docs/design.md §6): the uniform level finer than every studied one, and
 //! its refinement at the contact edges, where p has a square-root profile.
 
-use super::reference::REFERENCE_SCHEME;
 use crate::contact::ContactPoints;
+use crate::contact::Rule;
 use crate::mesh::{Element, MAX_LEVEL, Mesh};
 use crate::scenario::Scenario;
 
@@ -166,6 +166,9 @@ fn bisect_marked(lines: &[f64], split: &[bool]) -> Vec<f64> {
     out.push(lines[lines.len() - 1]);
     out
 }
+
+/// The reference's element and rule: Q2 + Simpson (M4) with the exact constraint.
+pub const REFERENCE_SCHEME: (Element, Rule) = (Element::Q2, Rule::Simpson);
 
 #[cfg(test)]
 mod tests {

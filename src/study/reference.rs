@@ -7,9 +7,8 @@ use std::time::Instant;
 
 use serde::Serialize;
 
-use super::errors::{ERROR_POINTS, Field, Sample, differences};
-use super::grid::ReferenceMesh;
-use super::row::{Status, StudyRow};
+use super::grid::{REFERENCE_SCHEME, ReferenceMesh};
+use super::source::ReferenceSource;
 use crate::contact::penalty::{NewtonOptions, SolveError};
 use crate::contact::{ContactPoints, Method, Rule};
 use crate::fem::basis::{CellRule, field_at};
@@ -18,7 +17,6 @@ use crate::fem::quadrature::gauss_legendre;
 use crate::mesh::Element;
 use crate::scenario::Scenario;
 use crate::solve::{ContactParams, Discretization, Solution, solve_contact};
-use crate::study::source::ReferenceSource;
 
 /// The reference's estimated error: its relative difference from the next coarser reference
 /// (the previous refinement, or the uniform level − 1), p in L²(Γ_C), u in H¹ (7), the load.
@@ -51,24 +49,6 @@ pub struct Target {
 pub const TARGET_SHARE: f64 = 0.1;
 
 impl Target {
-    /// A tenth of the smallest p (or p̄) and u errors of the rows with a result (None when no
-    /// row has one).
-    pub fn of(rows: &[StudyRow]) -> Option<Self> {
-        let ok = || {
-            rows.iter()
-                .filter(|r| r.status == Status::Ok)
-                .filter_map(|r| r.errors)
-        };
-        let smallest =
-            |v: &mut dyn Iterator<Item = f64>| v.filter(|e| *e > 0.0).fold(f64::INFINITY, f64::min);
-        let p = smallest(&mut ok().flat_map(|e| [e.p, e.pbar]));
-        let u = smallest(&mut ok().map(|e| e.u));
-        (p.is_finite() && u.is_finite()).then_some(Target {
-            p: TARGET_SHARE * p,
-            u: TARGET_SHARE * u,
-        })
-    }
-
     /// Whether `estimate` meets it.
     pub fn met_by(&self, estimate: &Estimate) -> bool {
         estimate.p <= self.p && estimate.u <= self.u
@@ -131,9 +111,6 @@ pub struct ReferenceFields {
     pub source: ReferenceSource,
 }
 
-/// The reference's element and rule: Q2 + Simpson (M4) with the exact constraint.
-pub const REFERENCE_SCHEME: (Element, Rule) = (Element::Q2, Rule::Simpson);
-
 impl ReferenceFields {
     /// Solve Q2 + Simpson with the exact constraint at `level` (expensive: only when asked).
     pub fn solve(scenario: &Scenario, level: u32) -> Result<Self, SolveError> {
@@ -174,7 +151,7 @@ impl ReferenceFields {
 }
 
 /// Refuse `grid` when its memory estimate exceeds what this process may use.
-fn fits_memory(scenario: &Scenario, grid: &ReferenceMesh) -> Result<(), SolveError> {
+pub(super) fn fits_memory(scenario: &Scenario, grid: &ReferenceMesh) -> Result<(), SolveError> {
     let (nnx, _) = grid.node_counts();
     let sizes = Sizes {
         element: REFERENCE_SCHEME.0,
@@ -264,117 +241,16 @@ impl Reference {
             u_norm,
         }
     }
-
-    /// This reference's difference from a coarser one (`fields` on `grid`, nested in this
-    /// one's): its [`Estimate`].
-    pub fn estimate_against(
-        &self,
-        scenario: &Scenario,
-        grid: &ReferenceMesh,
-        fields: &ReferenceFields,
-    ) -> Estimate {
-        let (element, rule) = REFERENCE_SCHEME;
-        let mesh = grid.mesh(scenario);
-        let points = ContactPoints::new(rule, &mesh.node_x[..mesh.nnx()], element.order());
-        let e = differences(
-            self,
-            &Field {
-                mesh: &mesh,
-                u: &fields.u,
-                points: &points,
-                p: &fields.p,
-                pbar: None,
-                load: fields.load,
-            },
-        );
-        Estimate {
-            p: e.p,
-            u: e.u,
-            load: e.load,
-            against: match grid.refinements {
-                0 => format!("level {}", grid.level),
-                k => format!("refinement {k}"),
-            },
-        }
-    }
 }
 
-/// Where a study's reference comes from: the fields on a grid, solved or read from a cache
-/// ([`crate::cache::fields`]), with whatever the caller reports on the way.
-pub type Fetch<'a> = dyn FnMut(&ReferenceMesh) -> Result<ReferenceFields, SolveError> + 'a;
+/// Gauss points per direction for the error integrals (exact for the Q2 reference's products).
+pub(super) const ERROR_POINTS: usize = 4;
 
-/// The uniform reference at `level` with its estimated error against level − 1 (none at
-/// level 0), and its fields.
-pub fn uniform_reference(
-    scenario: &Scenario,
-    level: u32,
-    fetch: &mut Fetch,
-) -> Result<(Reference, ReferenceFields), SolveError> {
-    let grid = ReferenceMesh::uniform(scenario, level);
-    let fields = fetch(&grid)?;
-    let mut reference = Reference::from_fields(scenario, &grid, &fields);
-    reference.check_meaningful()?;
-    if let Some(coarser) = level.checked_sub(1) {
-        let coarse = ReferenceMesh::uniform(scenario, coarser);
-        reference.estimate = Some(reference.estimate_against(scenario, &coarse, &fetch(&coarse)?));
-    }
-    Ok((reference, fields))
-}
-
-/// Refine `reference` (whose fields are `fields`) at its contact edges until its estimated
-/// error meets `target`, to at most `max_refinements` refinements in all. The memory guard or
-/// the cap stops it without failing: [`Reference::stopped`] says why. A refinement that does
-/// not fit the memory, or whose solve fails, leaves the last good reference in place.
-pub fn refine_reference(
-    scenario: &Scenario,
-    (mut reference, mut fields): (Reference, ReferenceFields),
-    target: Option<Target>,
-    max_refinements: u32,
-    fetch: &mut Fetch,
-) -> (Reference, ReferenceFields) {
-    reference.target = target;
-    reference.stopped = None;
-    let Some(target) = target else {
-        return (reference, fields);
-    };
-    loop {
-        if reference.estimate.as_ref().is_some_and(|e| target.met_by(e)) {
-            return (reference, fields);
-        }
-        let stop = |mut r: Reference, f: ReferenceFields, why: String| {
-            r.stopped = Some(why);
-            (r, f)
-        };
-        if reference.estimate.as_ref().is_some_and(|e| e.p <= target.p) {
-            let why = "u's estimated error is the uniform level's, which edge refinements do not lower: a finer --reference-level meets it".to_string();
-            return stop(reference, fields, why);
-        }
-        if reference.grid.refinements >= max_refinements {
-            let why = format!("the cap of {max_refinements} edge refinements (--reference-refinements)");
-            return stop(reference, fields, why);
-        }
-        let Some(grid) = reference.grid.refined(&fields.p) else {
-            let why = "the reference's pressure has no contact edge to refine".to_string();
-            return stop(reference, fields, why);
-        };
-        let finer = match fits_memory(scenario, &grid).and_then(|()| fetch(&grid)) {
-            Ok(f) => f,
-            Err(e) => {
-                let why = format!("refinement {} failed: {e}", grid.refinements);
-                return stop(reference, fields, why);
-            }
-        };
-        let mut next = Reference::from_fields(scenario, &grid, &finer);
-        if let Err(e) = next.check_meaningful() {
-            let why = format!("refinement {}: {e}", grid.refinements);
-            return stop(reference, fields, why);
-        }
-        let mut estimate = next.estimate_against(scenario, &reference.grid, &fields);
-        if let Some(previous) = &reference.estimate {
-            estimate.u = previous.u;
-        }
-        next.estimate = Some(estimate);
-        next.target = Some(target);
-        (reference, fields) = (next, finer);
-    }
+/// A displacement and its gradient at a weighted point.
+pub(super) struct Sample {
+    pub(super) x: f64,
+    pub(super) y: f64,
+    pub(super) weight: f64,
+    pub(super) value: [f64; 2],
+    pub(super) grad: [f64; 4],
 }

@@ -4,7 +4,7 @@
 use serde::Serialize;
 
 use super::errors::{Errors, Kept};
-use super::reference::Reference;
+use super::reference::{Reference, TARGET_SHARE, Target};
 use crate::contact::method::MethodFields;
 use crate::contact::penalty::SolveError;
 use crate::contact::{Method, Rule};
@@ -163,4 +163,24 @@ impl StudyRow {
 /// True when every row has a certified result (the study's exit code: 0, else 1).
 pub fn all_ok(rows: &[StudyRow]) -> bool {
     rows.iter().all(|r| r.status == Status::Ok)
+}
+
+impl Target {
+    /// A tenth of the smallest p (or p̄) and u errors of the rows with a result (None when no
+    /// row has one).
+    pub fn of(rows: &[StudyRow]) -> Option<Self> {
+        let ok = || {
+            rows.iter()
+                .filter(|r| r.status == Status::Ok)
+                .filter_map(|r| r.errors)
+        };
+        let smallest =
+            |v: &mut dyn Iterator<Item = f64>| v.filter(|e| *e > 0.0).fold(f64::INFINITY, f64::min);
+        let p = smallest(&mut ok().flat_map(|e| [e.p, e.pbar]));
+        let u = smallest(&mut ok().map(|e| e.u));
+        (p.is_finite() && u.is_finite()).then_some(Target {
+            p: TARGET_SHARE * p,
+            u: TARGET_SHARE * u,
+        })
+    }
 }

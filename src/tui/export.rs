@@ -8,8 +8,8 @@
 use std::io::ErrorKind;
 use std::path::{Path, PathBuf};
 
+use crate::output::{Report, SolveReport};
 use crate::plot::{chart_title, pressure_svg_string, write_file};
-use crate::report::{Report, SolveReport};
 use crate::scenario::Scenario;
 
 use super::protocol::Solved;

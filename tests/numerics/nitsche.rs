@@ -1,4 +1,4 @@
-//! Nitsche's method for unilateral contact (`riplab::contact::nitsche`) checked by things
+//! Nitsche's method for unilateral contact (`riplab::nitsche`) checked by things
 //! independent of its condensation: a contact patch test whose pressure is computed by hand,
 //! the pressure recomputed from the displacement field, global equilibrium, the symmetric
 //! method's stability threshold, and convergence against the study's reference beside the
@@ -8,7 +8,6 @@ use std::ops::ControlFlow;
 use std::sync::OnceLock;
 
 use crate::common::{bottom_reaction, rel};
-use riplab::contact::nitsche::{self, NitscheParams};
 use riplab::contact::penalty::NewtonOptions;
 use riplab::contact::{Obstacle, Rule};
 use riplab::error::SolveError;
@@ -16,6 +15,7 @@ use riplab::fem::basis::evaluate;
 use riplab::fem::{DofMap, Integration};
 use riplab::material::{Material, Plane};
 use riplab::mesh::{Element, Mesh};
+use riplab::nitsche::{self, NitscheParams};
 use riplab::scenario::Scenario;
 use riplab::solve::{ContactParams, Discretization, Solution, solve_contact};
 use riplab::study::{Errors, Reference, errors};

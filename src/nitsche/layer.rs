@@ -1,11 +1,8 @@
 //! The layer of Nitsche's condensation (module doc of [`super`]): the dofs the rows of σ_n and u_n
 //! use at the edge points of Γ_C, and K factorised with them last, its trailing block L_BB.
 
-use std::sync::OnceLock;
+use faer::Mat;
 
-use faer::{Accum, Mat};
-
-use super::couplings::Couplings;
 use crate::contact::{ContactPoints, Rule};
 use crate::discretization::{Discretization, fem_error};
 use crate::error::SolveError;
@@ -18,15 +15,12 @@ use crate::material::Material;
 use crate::mesh::{Diagonal, Element, Mesh};
 use crate::stress::Stress;
 
-/// Columns per triangular solve in [`Layer::couplings`].
-pub(super) const SOLVE_BLOCK: usize = 64;
-
 /// K factorised with the layer's dofs last: L_BB, the trailing block, with L_BB L_BBᵀ the
 /// Schur complement of K on the layer.
 pub(super) struct Layer {
     /// For each free dof, its position in the layer (usize::MAX when outside it).
-    position: Vec<usize>,
-    l: Mat<f64>,
+    pub(super) position: Vec<usize>,
+    pub(super) l: Mat<f64>,
 }
 
 /// A linear functional of the displacement: Σ c·u over (free dof, c).
@@ -214,54 +208,6 @@ impl Layer {
             position,
             l: factor.schur_factor(),
         })
-    }
-
-    /// G = R K⁻¹ Rᵀ for the σ_n rows then the u_n rows of `points`, and E K⁻¹ Rᵀ for the
-    /// u_y dofs `vertices` of Γ_C's vertices.
-    pub(super) fn couplings(&self, points: Vec<EdgePoint>, vertices: &[usize]) -> Couplings {
-        let n = points.len();
-        let nb = self.l.nrows();
-        let mut x = Mat::<f64>::zeros(nb, 2 * n + vertices.len());
-        for (q, pt) in points.iter().enumerate() {
-            for &(d, c) in &pt.sigma {
-                x[(self.position[d], q)] += c;
-            }
-            for &(d, c) in &pt.normal {
-                x[(self.position[d], n + q)] += c;
-            }
-        }
-        for (k, &d) in vertices.iter().enumerate() {
-            x[(self.position[d], 2 * n + k)] = 1.0;
-        }
-        let par = crate::fem::dense_parallelism(nb);
-        // L⁻¹ keeps a column's leading zeros: solve each block of columns with the trailing
-        // part of L below its first non-zero row (about a third of the full solve's work).
-        let m = x.ncols();
-        let first: Vec<usize> = (0..m)
-            .map(|j| (0..nb).find(|&i| x[(i, j)] != 0.0).unwrap_or(nb))
-            .collect();
-        let mut j0 = 0;
-        while j0 < m {
-            let width = SOLVE_BLOCK.min(m - j0);
-            let k = first[j0..j0 + width].iter().copied().min().unwrap_or(nb);
-            faer::linalg::triangular_solve::solve_lower_triangular_in_place(
-                self.l.as_ref().submatrix(k, k, nb - k, nb - k),
-                x.as_mut().submatrix_mut(k, j0, nb - k, width),
-                par,
-            );
-            j0 += width;
-        }
-        let (rows, ends) = x.as_ref().split_at_col(2 * n);
-        let mut g = Mat::<f64>::zeros(2 * n, 2 * n);
-        faer::linalg::matmul::matmul(g.as_mut(), Accum::Replace, rows.transpose(), rows, 1.0, par);
-        let mut vertex = Mat::<f64>::zeros(vertices.len(), 2 * n);
-        faer::linalg::matmul::matmul(vertex.as_mut(), Accum::Replace, ends.transpose(), rows, 1.0, par);
-        Couplings {
-            points,
-            g,
-            vertex,
-            threshold: OnceLock::new(),
-        }
     }
 }
 
