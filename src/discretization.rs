@@ -10,8 +10,8 @@ use std::time::Instant;
 use faer::Mat;
 
 use crate::check;
-use crate::contact::penalty::SolveError;
 use crate::contact::{ContactParams, ContactPoints, Method, Rule};
+use crate::error::SolveError;
 use crate::fem::error::gib;
 use crate::fem::factor::{Analysis, Factor};
 use crate::fem::memory::{Limits, Sizes};
@@ -428,7 +428,7 @@ mod tests {
         }
     }
 
-    /// Issue 10 item 5: an allocation failure is reported as out of memory (exit 2 through
+    /// An allocation failure is reported as out of memory (exit 2 through
     /// `TooLarge`), and only a non-positive pivot asks about rigid motion.
     #[test]
     fn out_of_memory_is_not_called_a_rigid_motion() {

@@ -17,6 +17,7 @@ use faer::{Mat, Side};
 use serde::Serialize;
 
 use crate::contact::{ContactPoints, Rule, smoothed_pressure};
+use crate::discretization::Discretization;
 use crate::discretization::fem_error;
 use crate::error::SolveError;
 use crate::fem::error::{FemError, gib};
@@ -27,7 +28,6 @@ use crate::fem::{Form, assemble};
 use crate::mesh::Element;
 use crate::scenario::Scenario;
 use crate::scheme::Scheme;
-use crate::solve::Discretization;
 
 /// The estimate for one element × rule pair on one mesh.
 #[derive(Clone, Debug, PartialEq)]

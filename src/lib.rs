@@ -24,7 +24,7 @@
 //! Without default features (`cargo build --no-default-features`) the library builds without
 //! the terminal lab (`tui`) and the command line (`cli`).
 
-// Every public item is documented (issue 11); CI's clippy makes a missing doc an error.
+// Every public item is documented; CI's clippy makes a missing doc an error.
 #![warn(missing_docs)]
 
 pub mod cache;

@@ -16,7 +16,7 @@ use plotters::prelude::*;
 use crate::contact::{ContactPoints, Method, Rule};
 use crate::mesh::Element;
 use crate::scheme::Scheme;
-use crate::solve::Solution;
+use crate::solution::Solution;
 
 /// The size of the SVG chart in pixels.
 pub const SIZE: (u32, u32) = (960, 540);

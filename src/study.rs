@@ -14,11 +14,15 @@
 
 use std::ops::ControlFlow;
 
-use crate::contact::penalty::{NewtonOptions, SolveError};
+use crate::contact::penalty::NewtonOptions;
+
+use crate::contact::ContactParams;
 use crate::contact::{Method, Rule};
+use crate::discretization::Discretization;
+use crate::error::SolveError;
 use crate::mesh::Element;
 use crate::scenario::Scenario;
-use crate::solve::{ContactParams, Discretization, solve_contact};
+use crate::solve::solve_contact;
 
 mod errors;
 mod grid;

@@ -1,4 +1,4 @@
-//! What a cache entry must mean before it is believed (issue 37): a checksum only says the
+//! What a cache entry must mean before it is believed: a checksum only says the
 //! bytes are the ones written. An entry's fields are checked against what the reference is,
 //! independently of the solver that made them: its sizes are the mesh's, every number is
 //! finite, its load P is I(p, 1) of its own pressure (`contact::pressure::load`), and its

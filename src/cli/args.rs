@@ -10,10 +10,10 @@ use crate::check;
 use crate::contact::method::{Gamma0, MethodError};
 use crate::contact::{Method, Rule};
 use crate::mesh::Element;
+use crate::mesh::MAX_LEVEL;
 use crate::output::Format;
-use crate::scenario::{MAX_LEVEL, Scenario};
+use crate::scenario::Scenario;
 use crate::scheme::Scheme;
-// MISSING: ['arg', 'command']
 
 /// Which problem and discretisation: a scenario and overrides of its values.
 #[derive(Args, Debug, Clone, Default)]

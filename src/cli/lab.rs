@@ -9,14 +9,11 @@ use super::args::{MethodArgs, Select};
 use super::{CliError, checks, print, tour, usage, values};
 use crate::check;
 use crate::tui::{TuiOptions, render_to_string};
-// MISSING: ['arg', 'checks', 'command', 'tour']
 
 /// The notes under `riplab render --help`.
 pub(super) const RENDER_NOTES: &str = concat!(
-    "Levels: render draws what the lab shows, levels 0 to 7 (",
-    crate::tui::app::level_8_cost!(),
-    " a change,
-too slow for the lab; `riplab solve` goes to level 8).
+    "Levels: render draws what the lab shows, levels 0 to 7 (a change at level 8 takes
+seconds and gigabytes, BENCHMARKS.md: too slow for the lab; `riplab solve` goes to level 8).
 
 ",
     exit_codes!()

@@ -4,11 +4,12 @@ use std::process::ExitCode;
 
 use super::args::{SolveArgs, method_at};
 use super::{CliError, note, outputs, print, shown, usage};
+use crate::contact::ContactParams;
 use crate::contact::Method;
+use crate::discretization::{Discretization, check_request};
 use crate::output::{SolveReport, Sweep, SweepFailure, SweepRow, output};
-use crate::solve::{ContactParams, Discretization, check_request, sweep};
+use crate::solve::sweep;
 use crate::{check, vtu};
-// MISSING: ['outputs']
 
 pub(super) fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
     let scenario = args.select.resolve()?;

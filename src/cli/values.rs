@@ -1,4 +1,4 @@
-//! Numbers of the command line read as the user meant them (issue 37): a decimal that is not
+//! Numbers of the command line read as the user meant them: a decimal that is not
 //! zero but underflows to 0 in double precision (`1e-400`) would silently select the exact
 //! constraint (ε = 0); it is refused, saying why, where a plain `0` is accepted.
 

@@ -431,8 +431,8 @@ mod tests {
         assert_eq!(layouts, [true, true], "both layouts are checked");
     }
 
-    /// The grid's nested dissection beats minimum degree with Γ_C last (issue 13: 1.5× the
-    /// flops of an unconstrained order at level 7), for every element, and the flop count
+    /// The grid's nested dissection beats minimum degree with Γ_C last, for every
+    /// element, and the flop count
     /// is Σ c_j² over L's columns (a dense n×n factor: Σ_{c=1}^{n} c²).
     #[test]
     fn nested_dissection_needs_fewer_flops() {

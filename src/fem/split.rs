@@ -1,4 +1,4 @@
-//! K factorised as two subdomains, one per core (issue 13).
+//! K factorised as two subdomains, one per core.
 //!
 //! The grid's middle node column ([`super::ordering::middle_column`]) splits the free dofs into
 //! L (left of it), R (right of it) and Γ: the column's own dofs J and the trace T (Γ_C's normal

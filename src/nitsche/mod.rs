@@ -23,7 +23,7 @@
 //! σ_n(u_h) jumps across cells. The reported p at a shared point is the weighted mean of its two
 //! one-sided values, so that I(p, 1) is the method's load.
 //!
-//! **Condensation** (the design the issue asks for: θ, γ₀ and the depth change fast). With S
+//! **Condensation** (so that θ, γ₀ and the depth change fast). With S
 //! and B the rows giving σ_n and u_n at the n edge points (both supported on dofs of the cells
 //! along Γ_C: the *layer* is the dofs they use, `layer_dofs`) the discrete problem is
 //!
@@ -39,7 +39,7 @@
 //! v = −Γg − H ỹ = γ(u_n − g) − σ_n and the active set A = {v > 0}, each step solves
 //! (W_A⁻¹Γ_A + H_AA) ỹ_A = −Γ_A g_A, by Cholesky for θ = 1 and by LU otherwise (H is
 //! non-symmetric unless θ = 1). A depth change costs only the Newton; θ or γ₀ costs O(n³)
-//! dense work (for θ = 1 one triangular solve and half a product fewer, as H = H₀ + WᵀW is
+//! dense work (for θ = 1 one triangular solve and half a product fewer, as H = H₀ + MᵀM is
 //! symmetric: `Correction`); K is never refactorised.
 //!
 //! **Stability.** On any active set the symmetric part of the Jacobian is bounded below by

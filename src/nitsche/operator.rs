@@ -12,7 +12,6 @@ use crate::contact::{ContactPoints, Rule};
 use crate::discretization::Discretization;
 use crate::error::SolveError;
 use crate::text::num;
-// MISSING: ['triangular']
 
 /// Everything one (rule, θ, γ₀) needs: H and the maps back to σ_n.
 pub(super) struct Operator {
@@ -29,14 +28,16 @@ pub(super) struct Operator {
 }
 
 /// ZV = θ C^½ N⁻¹ C^½ V (module doc) kept as N's Cholesky factor L (N = L Lᵀ) and
-/// W = L⁻¹ C^½ V: ZV ỹ = θ C^½ L⁻ᵀ (W ỹ) costs a product and a triangular solve with one
+/// M = L⁻¹ C^½ V: ZV ỹ = θ C^½ L⁻ᵀ (M ỹ) costs a product and a triangular solve with one
 /// right-hand side, and the operator one triangular solve with n right-hand sides fewer than
 /// forming ZV.
 pub(super) struct Correction {
-    /// C^½, C = W Γ⁻¹.
-    r: Vec<f64>,
-    l: Mat<f64>,
-    w: Mat<f64>,
+    /// C^½, C = W Γ⁻¹ (W the weights).
+    c_half: Vec<f64>,
+    /// L, N's Cholesky factor.
+    n_factor: Mat<f64>,
+    /// M = L⁻¹ C^½ V.
+    m: Mat<f64>,
 }
 
 impl Correction {
@@ -46,17 +47,17 @@ impl Correction {
         faer::linalg::matmul::matmul(
             t.as_mut(),
             Accum::Replace,
-            self.w.as_ref(),
+            self.m.as_ref(),
             ColRef::from_slice(y).as_mat(),
             1.0,
             Par::Seq,
         );
         faer::linalg::triangular_solve::solve_upper_triangular_in_place(
-            self.l.transpose(),
+            self.n_factor.transpose(),
             t.as_mut(),
             Par::Seq,
         );
-        (0..y.len()).map(|i| theta * self.r[i] * t[(i, 0)]).collect()
+        (0..y.len()).map(|i| theta * self.c_half[i] * t[(i, 0)]).collect()
     }
 }
 
@@ -121,7 +122,7 @@ impl Operator {
             };
             let w = lower(Mat::<f64>::from_fn(n, n, |i, j| r[i] * v[(i, j)]));
             if theta == 1.0 {
-                // Uᵀ = V (G is symmetric), so U Z V = WᵀW: symmetric, its lower half alone.
+                // Uᵀ = V (G is symmetric), so U Z V = MᵀM (M is `w` here): symmetric, its lower half alone.
                 let mut wtw = Mat::<f64>::zeros(n, n);
                 triangular::matmul(
                     wtw.as_mut(),
@@ -148,7 +149,11 @@ impl Operator {
                 }));
                 faer::linalg::matmul::matmul(h.as_mut(), Accum::Add, x.transpose(), w.as_ref(), theta, par);
             }
-            correction = Some(Correction { r, l, w });
+            correction = Some(Correction {
+                c_half: r,
+                n_factor: l,
+                m: w,
+            });
         }
         Ok(Operator {
             rule,

@@ -8,9 +8,10 @@ use super::Report;
 use crate::contact::circle::CircleContact;
 use crate::contact::hertz::Hertz;
 use crate::contact::method::MethodFields;
+use crate::discretization::Discretization;
 use crate::scenario::Scenario;
 use crate::scheme::Scheme;
-use crate::solve::{Discretization, Solution, Timing};
+use crate::solution::{Solution, Timing};
 use crate::study::Status;
 use crate::warning::Warning;
 

@@ -8,10 +8,11 @@ use super::Report;
 use super::csv::{Cell, csv_table};
 use super::solve::SolveReport;
 use super::study::short_reason;
+use crate::contact::ContactParams;
 use crate::contact::method::MethodFields;
+use crate::discretization::Discretization;
 use crate::error::SolveError;
 use crate::scenario::Scenario;
-use crate::solve::{ContactParams, Discretization};
 use crate::study::Status;
 
 /// A row of a sweep that has no result: which parameters, and why (`status`, `reason`).

@@ -6,6 +6,7 @@ use serde::Serialize;
 use super::errors::Errors;
 use super::row::{Status, StudyRow};
 use crate::contact::method::MethodFields;
+use crate::mesh::Element;
 
 /// Observed rates between two rows with results (None unless both are [`Status::Ok`]).
 fn rates(prev: &StudyRow, row: &StudyRow, by_epsilon: bool) -> Option<Errors> {
@@ -66,7 +67,7 @@ pub struct Fit {
     /// The scheme's label: M1–M4 or `element+rule`.
     pub scheme: String,
     /// The element: `q1`, `q2` or `p1`.
-    pub element: &'static str,
+    pub element: Element,
     /// The contact rule.
     pub rule: &'static str,
     /// The contact method and its parameters (`method`, `theta`, `gamma0`, `alm_tol`).

@@ -9,14 +9,18 @@ use serde::Serialize;
 
 use super::grid::{REFERENCE_SCHEME, ReferenceMesh};
 use super::source::ReferenceSource;
-use crate::contact::penalty::{NewtonOptions, SolveError};
+use crate::contact::ContactParams;
+use crate::contact::penalty::NewtonOptions;
 use crate::contact::{ContactPoints, Method, Rule};
+use crate::discretization::Discretization;
+use crate::error::SolveError;
 use crate::fem::basis::{CellRule, field_at};
 use crate::fem::memory::{Limits, Sizes};
 use crate::fem::quadrature::gauss_legendre;
 use crate::mesh::Element;
 use crate::scenario::Scenario;
-use crate::solve::{ContactParams, Discretization, Solution, solve_contact};
+use crate::solution::Solution;
+use crate::solve::solve_contact;
 
 /// The reference's estimated error: its relative difference from the next coarser reference
 /// (the previous refinement, or the uniform level − 1), p in L²(Γ_C), u in H¹ (7), the load.

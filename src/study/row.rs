@@ -6,12 +6,13 @@ use serde::Serialize;
 use super::errors::{Errors, Kept};
 use super::reference::{Reference, TARGET_SHARE, Target};
 use crate::contact::method::MethodFields;
-use crate::contact::penalty::SolveError;
 use crate::contact::{Method, Rule};
+use crate::discretization::Discretization;
+use crate::error::SolveError;
 use crate::mesh::Element;
 use crate::scenario::Scenario;
 use crate::scheme::Scheme;
-use crate::solve::{Discretization, Solution};
+use crate::solution::Solution;
 
 /// Whether a row of a study or a sweep has a result, and if not, why.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -70,7 +71,7 @@ pub struct StudyRow {
     /// The scheme's label: M1–M4 or `element+rule`.
     pub scheme: String,
     /// The element: `q1`, `q2` or `p1`.
-    pub element: &'static str,
+    pub element: Element,
     /// The contact rule.
     pub rule: &'static str,
     /// The mesh level.
@@ -117,7 +118,7 @@ impl StudyRow {
         let mut kept = None;
         let mut row = StudyRow {
             scheme: Scheme::new(element, rule).label(),
-            element: element.name(),
+            element,
             rule: rule.name(),
             level,
             h: scenario.h(level),

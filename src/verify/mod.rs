@@ -109,7 +109,7 @@ pub fn cases() -> Vec<Case> {
 }
 
 /// `sol`, or the error that says it did not converge.
-pub fn converged(sol: &crate::solve::Solution) -> Result<(), SolveError> {
+pub fn converged(sol: &crate::solution::Solution) -> Result<(), SolveError> {
     if sol.newton.converged {
         return Ok(());
     }

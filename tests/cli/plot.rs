@@ -7,7 +7,8 @@ use riplab::mesh::Element;
 use riplab::plot::{chart_title, pressure_svg, pressure_svg_string, write_file};
 use riplab::scenario::Scenario;
 use riplab::scheme::Scheme;
-use riplab::solve::{Solution, solve_scenario};
+use riplab::solution::Solution;
+use riplab::solve::solve_scenario;
 
 /// The paper's problem solved with the preset `scheme` at `level`.
 fn solve(scheme: &str, level: u32) -> (Scenario, Element, Solution) {

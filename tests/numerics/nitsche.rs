@@ -8,8 +8,10 @@ use std::ops::ControlFlow;
 use std::sync::OnceLock;
 
 use crate::common::{bottom_reaction, rel};
+use riplab::contact::ContactParams;
 use riplab::contact::penalty::NewtonOptions;
 use riplab::contact::{Obstacle, Rule};
+use riplab::discretization::Discretization;
 use riplab::error::SolveError;
 use riplab::fem::basis::evaluate;
 use riplab::fem::{DofMap, Integration};
@@ -17,7 +19,8 @@ use riplab::material::{Material, Plane};
 use riplab::mesh::{Element, Mesh};
 use riplab::nitsche::{self, NitscheParams};
 use riplab::scenario::Scenario;
-use riplab::solve::{ContactParams, Discretization, Solution, solve_contact};
+use riplab::solution::Solution;
+use riplab::solve::solve_contact;
 use riplab::study::{Errors, Reference, errors};
 
 const THETAS: [f64; 3] = [1.0, 0.0, -1.0];

@@ -135,7 +135,7 @@ fn the_reference_is_cached_between_runs() {
 fn made_row(level: u32, h: f64, errors: Option<Errors>, status: Status) -> StudyRow {
     StudyRow {
         scheme: "M1".into(),
-        element: "q1",
+        element: riplab::mesh::Element::Q1,
         rule: "gauss1",
         level,
         h,

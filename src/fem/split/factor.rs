@@ -10,7 +10,6 @@ use crate::fem::SymCsc;
 use crate::fem::condense::compliance_of;
 use crate::fem::error::FemError;
 use crate::fem::partial::PartialFactor;
-// MISSING: ['dense_parallelism']
 
 /// A numeric factorisation on a [`SplitOrdering`]: both halves' factors and S's.
 pub struct SplitFactor {

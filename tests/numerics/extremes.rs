@@ -1,14 +1,18 @@
-//! Stability at the extremes (issue 6): geometry that stresses the contact logic, sizes the
+//! Stability at the extremes: geometry that strains the contact logic, sizes the
 //! machine cannot hold, and determinism.
 
 use std::ops::ControlFlow;
 
 use crate::common::paper_with;
-use riplab::contact::penalty::{NewtonOptions, SolveError};
+use riplab::contact::ContactParams;
+use riplab::contact::penalty::NewtonOptions;
 use riplab::contact::{Obstacle, Rule};
+use riplab::discretization::Discretization;
+use riplab::error::SolveError;
 use riplab::fem::DofMap;
 use riplab::mesh::Element;
-use riplab::solve::{ContactParams, Discretization, Solution, solve_contact, solve_scenario};
+use riplab::solution::Solution;
+use riplab::solve::{solve_contact, solve_scenario};
 
 fn solve_with(disc: &Discretization, rule: Rule, obstacle: Obstacle) -> Solution {
     let params = ContactParams::by_epsilon(rule, 1e-6, obstacle);
