@@ -116,7 +116,7 @@ pub enum CliError {
     /// A command-line value out of range or inconsistent (exit 2).
     #[error("{0}")]
     Usage(String),
-    /// The numerics failed (exit code per [`SolveError::exit_code`]).
+    /// The numerics failed (exit 2 when [`SolveError::is_input`], else 1).
     #[error("{0}")]
     Solve(#[from] SolveError),
     /// The command ran but some of what it was asked for has no result (rows of a study or a
@@ -130,11 +130,12 @@ pub enum CliError {
 
 impl CliError {
     /// The process's exit code (docs/design.md §8): 2 for bad input, 1 for a failure; a solve
-    /// error's own ([`SolveError::exit_code`]).
+    /// error's by whether the input was at fault ([`SolveError::is_input`]).
     pub fn exit_code(&self) -> u8 {
         match self {
             CliError::Scenario(_) | CliError::Usage(_) => 2,
-            CliError::Solve(e) => e.exit_code(),
+            CliError::Solve(e) if e.is_input() => 2,
+            CliError::Solve(_) => 1,
             CliError::Failed(_) | CliError::Output(_) => 1,
         }
     }

@@ -303,7 +303,10 @@ impl Discretization {
 /// The solver's error for a failure of the finite element layer on `n` unknowns.
 pub(crate) fn fem_error(e: FemError, n: usize) -> SolveError {
     match e {
-        FemError::NotPositiveDefinite => SolveError::Factorization("a zero or negative pivot".into()),
+        FemError::NotPositiveDefinite { pivot } => SolveError::Factorization {
+            matrix: "stiffness",
+            pivot,
+        },
         FemError::OutOfMemory(what) => SolveError::TooLarge(format!(
             "out of memory in {what} with {n} unknowns: choose a coarser level"
         )),
@@ -449,7 +452,14 @@ mod tests {
             big.to_string(),
             "7 unknowns need about 3.0 GiB and 1.0 GiB is available: choose a coarser level"
         );
-        let pivot = fem_error(FemError::NotPositiveDefinite, 7);
-        assert!(matches!(pivot, SolveError::Factorization(_)) && pivot.to_string().contains("rigid motion"));
+        let pivot = fem_error(FemError::NotPositiveDefinite { pivot: 3 }, 7);
+        assert_eq!(
+            pivot,
+            SolveError::Factorization {
+                matrix: "stiffness",
+                pivot: 3
+            }
+        );
+        assert!(pivot.to_string().contains("rigid motion"));
     }
 }

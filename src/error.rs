@@ -1,6 +1,9 @@
 //! The typed errors of the numerics: every way a discretisation or a contact solve can fail,
 //! each variant carrying what its message needs, and whether the fault is the input's (a
-//! request that has no answer: exit 2) or the solver's (exit 1).
+//! request that has no answer) or the solver's ([`SolveError::is_input`]; the command line
+//! turns that into its exit code).
+
+use faer::linalg::evd::EvdError;
 
 use crate::text::num;
 
@@ -10,10 +13,17 @@ pub enum SolveError {
     /// The caller cancelled the solve (from its progress callback).
     #[error("the solve was cancelled")]
     Cancelled,
-    /// The stiffness's Cholesky factorisation failed: with the checks on the input this means
-    /// a body not held against rigid motion (or a stiffness lost to round-off).
-    #[error("the stiffness is not positive definite ({0}); is the body held against rigid motion?")]
-    Factorization(String),
+    /// A Cholesky factorisation met a zero or negative pivot: with the checks on the input
+    /// this means a body not held against rigid motion (or a matrix lost to round-off).
+    #[error(
+        "the {matrix} is not positive definite (a zero or negative pivot, faer's index {pivot}); is the body held against rigid motion?"
+    )]
+    Factorization {
+        /// The matrix factorised, e.g. "stiffness".
+        matrix: &'static str,
+        /// faer's index of the pivot ([`crate::fem::FemError::NotPositiveDefinite`]).
+        pivot: usize,
+    },
     /// ε = 0 asks for more multipliers than there are normal displacements.
     #[error(
         "ε = 0 imposes the constraint exactly at the {points} points of {rule}, more than the {normals} normal displacements on Γ_C: the multipliers are not unique; use a rule without kernel (trapezoid, or simpson with q2)"
@@ -50,9 +60,9 @@ pub enum SolveError {
         /// Why, as far as the solver knows.
         diagnosis: String,
     },
-    /// A dense eigenvalue solve failed (faer's message).
-    #[error("the eigenvalue solve of the inf-sup estimate failed: {0}")]
-    Eigen(String),
+    /// A dense eigenvalue solve failed (faer's error).
+    #[error("the eigenvalue solve of the inf-sup estimate failed: {0:?}")]
+    Eigen(EvdError),
 }
 
 impl SolveError {
@@ -63,10 +73,5 @@ impl SolveError {
             self,
             SolveError::Kernel { .. } | SolveError::TooLarge(_) | SolveError::Input { .. }
         )
-    }
-
-    /// The process exit code of the README: 2 for bad input, 1 for a solver failure.
-    pub fn exit_code(&self) -> u8 {
-        if self.is_input() { 2 } else { 1 }
     }
 }

@@ -61,7 +61,10 @@ impl TraceCompliance {
         fits_beside(disc)?;
         let a = assemble(&disc.mesh, &disc.dofs, Form::H1);
         let factor = Factor::new(&disc.ordering, a).map_err(|e| match e {
-            FemError::NotPositiveDefinite => SolveError::Factorization(format!("the H¹ Gram matrix: {e}")),
+            FemError::NotPositiveDefinite { pivot } => SolveError::Factorization {
+                matrix: "H¹ Gram matrix",
+                pivot,
+            },
             e => fem_error(e, disc.n_dofs()),
         })?;
         Ok(TraceCompliance {
@@ -184,9 +187,7 @@ pub fn schur(cp: &ContactPoints, compliance: &Mat<f64>) -> Mat<f64> {
 /// λ_min(S, N) over the vectors with Nq ≠ 0 (N symmetric positive semi-definite): with
 /// N = U D Uᵀ and Z = U_+ D_+^(−1/2) over its positive eigenvalues, λ_min(Zᵀ S Z).
 pub fn min_generalized_eigenvalue(s: &Mat<f64>, n: &Mat<f64>) -> Result<f64, SolveError> {
-    let evd = n
-        .self_adjoint_eigen(Side::Lower)
-        .map_err(|e| SolveError::Eigen(format!("{e:?}")))?;
+    let evd = n.self_adjoint_eigen(Side::Lower).map_err(SolveError::Eigen)?;
     let d = evd.S().column_vector();
     let top = (0..d.nrows()).map(|i| d[i]).fold(0.0, f64::max);
     let keep: Vec<usize> = (0..d.nrows()).filter(|&i| d[i] > 1e-12 * top).collect();
@@ -195,7 +196,7 @@ pub fn min_generalized_eigenvalue(s: &Mat<f64>, n: &Mat<f64>) -> Result<f64, Sol
     let reduced = z.transpose() * s * &z;
     let lam = reduced
         .self_adjoint_eigenvalues(Side::Lower)
-        .map_err(|e| SolveError::Eigen(format!("{e:?}")))?;
+        .map_err(SolveError::Eigen)?;
     Ok(lam.first().copied().unwrap_or(0.0).max(0.0))
 }
 

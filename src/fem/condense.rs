@@ -224,7 +224,7 @@ impl TraceFactor {
                 Default::default(),
             )
             // The numeric factorisation's only failure is a non-positive pivot.
-            .map_err(|_| FemError::NotPositiveDefinite)?;
+            .map_err(FemError::from)?;
         Ok(TraceFactor {
             ordering: ordering.clone(),
             values: factor,
@@ -308,6 +308,27 @@ mod tests {
     use crate::fem::{DofMap, Form, Integration, assemble};
     use crate::material::{Material, Plane};
     use crate::mesh::{Element, Mesh};
+
+    /// A body held nowhere has rigid motions: its stiffness's factorisation fails with the
+    /// pivot faer met as a number, not a message. (Here faer names n, the end of the last
+    /// block, where round-off left the rigid motions' pivots: hence ≤ n.)
+    #[test]
+    fn a_free_body_reports_its_pivot() {
+        let mesh = Mesh::uniform(Element::Q1, (0.0, 2.0, 4), (0.0, 1.0, 3), true);
+        let dofs = DofMap::new(mesh.n_nodes(), |_, _| false);
+        let material = Material {
+            young: 3.0,
+            poisson: 0.3,
+            plane: Plane::Strain,
+        };
+        let a = assemble(&mesh, &dofs, Form::Elasticity(material, Integration::Full));
+        let ordering = TraceOrdering::new(&a, &[]).unwrap();
+        match TraceFactor::new(&ordering, &a) {
+            Err(FemError::NotPositiveDefinite { pivot }) => assert!(pivot <= a.n, "{pivot} of {}", a.n),
+            Err(e) => panic!("another failure: {e}"),
+            Ok(_) => panic!("a free body factorised"),
+        }
+    }
 
     /// C from the trailing block equals the trace rows of A⁻¹ computed by plain solves.
     #[test]

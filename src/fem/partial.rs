@@ -251,7 +251,7 @@ fn factorize_interior<I: Index>(
                 stack,
                 Default::default(),
             )
-            .map_err(|_| FemError::NotPositiveDefinite)?;
+            .map_err(FemError::from)?;
             triangular_solve::solve_lower_triangular_in_place(
                 top.rb(),
                 bot.rb_mut().transpose_mut(),

@@ -24,7 +24,7 @@ pub fn stability_threshold(disc: &Discretization, rule: Rule) -> Result<f64, Sol
             let eig = cp
                 .scaled_ss(&c)
                 .self_adjoint_eigenvalues(Side::Lower)
-                .map_err(|e| SolveError::Eigen(format!("{e:?}")))?;
+                .map_err(SolveError::Eigen)?;
             Ok(eig.last().copied().unwrap_or(0.0))
         })
         .clone()

@@ -305,7 +305,7 @@ mod tests {
     }
 
     fn failing(_: u32) -> Result<Vec<Measured>, SolveError> {
-        Err(SolveError::Eigen("no".into()))
+        Err(SolveError::Eigen(faer::linalg::evd::EvdError::NoConvergence))
     }
 
     /// A value off its reference, one that is not finite, one that changed from its stored

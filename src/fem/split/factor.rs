@@ -80,7 +80,7 @@ impl SplitFactor {
             MemStack::new(&mut mem),
             Default::default(),
         )
-        .map_err(|_| FemError::NotPositiveDefinite)?;
+        .map_err(FemError::from)?;
         Ok(SplitFactor {
             ordering: ordering.clone(),
             halves,
