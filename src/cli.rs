@@ -229,3 +229,14 @@ fn note(line: &str) {
 fn shown(path: &std::path::Path) -> String {
     crate::text::sanitize(&path.display().to_string()).into_owned()
 }
+
+/// The error of a lab or tour started without a terminal.
+fn needs_terminal(what: &str) -> Result<(), CliError> {
+    use std::io::IsTerminal;
+    if std::io::stdout().is_terminal() && std::io::stdin().is_terminal() {
+        return Ok(());
+    }
+    Err(CliError::Usage(format!(
+        "{what} needs a terminal (stdin and stdout are not both one); for a frame as text use `riplab render` (e.g. `riplab render --scene explore --size 100x30`)"
+    )))
+}

@@ -40,17 +40,6 @@ pub struct RenderArgs {
     pub epsilon: Option<f64>,
 }
 
-/// The error of a lab or tour started without a terminal.
-pub(super) fn needs_terminal(what: &str) -> Result<(), CliError> {
-    use std::io::IsTerminal;
-    if std::io::stdout().is_terminal() && std::io::stdin().is_terminal() {
-        return Ok(());
-    }
-    Err(CliError::Usage(format!(
-        "{what} needs a terminal (stdin and stdout are not both one); for a frame as text use `riplab render` (e.g. `riplab render --scene explore --size 100x30`)"
-    )))
-}
-
 /// The terminal lab.
 pub(super) fn lab(
     file: Option<PathBuf>,

@@ -13,8 +13,7 @@ use crate::tui::tour::handout::{HandoutError, write_handout};
 use crate::tui::tour::listing::listing;
 use crate::tui::tour::{Tour, auto_interval, run_tour};
 
-use super::lab::needs_terminal;
-use super::{CliError, Select, note, print, usage};
+use super::{CliError, Select, needs_terminal, note, print, usage};
 
 /// The arguments of `riplab tour`.
 #[derive(Args, Debug)]
