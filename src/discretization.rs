@@ -11,8 +11,7 @@ use faer::Mat;
 
 use crate::check;
 use crate::contact::{ContactParams, ContactPoints, Method, Rule};
-use crate::error::SolveError;
-use crate::fem::error::gib;
+use crate::error::{SolveError, Workload};
 use crate::fem::factor::{Analysis, Factor};
 use crate::fem::memory::{Limits, Sizes};
 use crate::fem::{DofMap, FemError, Form, Integration, assemble};
@@ -205,14 +204,17 @@ impl Discretization {
                     unknowns,
                     need,
                     available,
-                } => SolveError::TooLarge(format!(
-                    "level {level} with {} has {unknowns} unknowns ({} on Γ_C) and needs about {}; this process has {} available (free memory, ulimit -v and the control group's limit{}): choose a coarser level",
-                    element.name(),
-                    sizes.trace,
-                    gib(need),
-                    gib(available),
-                    if reserved > 0 { ", less the work under way" } else { "" }
-                )),
+                } => SolveError::TooLarge {
+                    workload: Workload::Level {
+                        level,
+                        element,
+                        trace: sizes.trace,
+                        reserved: reserved > 0,
+                    },
+                    unknowns,
+                    need,
+                    available,
+                },
                 e => fem_error(e, sizes.unknowns),
             })
     }
@@ -307,18 +309,17 @@ pub(crate) fn fem_error(e: FemError, n: usize) -> SolveError {
             matrix: "stiffness",
             pivot,
         },
-        FemError::OutOfMemory(what) => SolveError::TooLarge(format!(
-            "out of memory in {what} with {n} unknowns: choose a coarser level"
-        )),
+        FemError::OutOfMemory(step) => SolveError::OutOfMemory { step, unknowns: n },
         FemError::TooLarge {
             unknowns,
             need,
             available,
-        } => SolveError::TooLarge(format!(
-            "{unknowns} unknowns need about {} and {} is available: choose a coarser level",
-            gib(need),
-            gib(available)
-        )),
+        } => SolveError::TooLarge {
+            workload: Workload::Unknowns,
+            unknowns,
+            need,
+            available,
+        },
     }
 }
 
@@ -431,13 +432,20 @@ mod tests {
         }
     }
 
-    /// An allocation failure is reported as out of memory (exit 2 through
-    /// `TooLarge`), and only a non-positive pivot asks about rigid motion.
+    /// An allocation failure is reported as out of memory (exit 2: an input error), and only a non-positive pivot asks about rigid motion.
     #[test]
     fn out_of_memory_is_not_called_a_rigid_motion() {
         let oom = fem_error(FemError::OutOfMemory("the factor"), 1000);
-        assert!(
-            matches!(&oom, SolveError::TooLarge(m) if m.contains("out of memory in the factor with 1000 unknowns"))
+        assert_eq!(
+            oom,
+            SolveError::OutOfMemory {
+                step: "the factor",
+                unknowns: 1000
+            }
+        );
+        assert_eq!(
+            oom.to_string(),
+            "out of memory in the factor with 1000 unknowns: choose a coarser level"
         );
         assert!(!oom.to_string().contains("rigid"));
         let big = fem_error(

@@ -5,6 +5,8 @@
 
 use faer::linalg::evd::EvdError;
 
+use crate::fem::error::gib;
+use crate::mesh::Element;
 use crate::text::num;
 
 /// Why a discretisation or a contact solve produced no result.
@@ -36,9 +38,26 @@ pub enum SolveError {
         /// How many normal displacements Γ_C has (one per Γ_C node).
         normals: usize,
     },
-    /// The problem does not fit the memory this process may use.
-    #[error("{0}")]
-    TooLarge(String),
+    /// The problem does not fit the memory this process may use: refused before allocating.
+    #[error("{}", too_large(workload, *unknowns, *need, *available))]
+    TooLarge {
+        /// What was refused.
+        workload: Workload,
+        /// Its unknowns (free dofs; for Nitsche's method the layer's).
+        unknowns: usize,
+        /// Its estimated peak, bytes.
+        need: u64,
+        /// What the process may still allocate, bytes.
+        available: u64,
+    },
+    /// An allocation failed although the estimate allowed it.
+    #[error("out of memory in {step} with {unknowns} unknowns: choose a coarser level")]
+    OutOfMemory {
+        /// The step that ran out, e.g. "the factor".
+        step: &'static str,
+        /// The unknowns of the problem.
+        unknowns: usize,
+    },
     /// A parameter of the solve is outside the range where its answer means something (or
     /// where double precision can represent it).
     #[error("{what}: {message}")]
@@ -71,7 +90,93 @@ impl SolveError {
     pub fn is_input(&self) -> bool {
         matches!(
             self,
-            SolveError::Kernel { .. } | SolveError::TooLarge(_) | SolveError::Input { .. }
+            SolveError::Kernel { .. }
+                | SolveError::TooLarge { .. }
+                | SolveError::OutOfMemory { .. }
+                | SolveError::Input { .. }
         )
+    }
+}
+
+/// What a refusal for memory ([`SolveError::TooLarge`]) was about.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Workload {
+    /// The discretisation of `level` with `element` ([`crate::discretization::Discretization`]);
+    /// `reserved`: less the memory of work under way.
+    Level {
+        /// The mesh level.
+        level: u32,
+        /// The element.
+        element: Element,
+        /// The unknowns on Γ_C.
+        trace: usize,
+        /// Whether work under way was counted.
+        reserved: bool,
+    },
+    /// The inf-sup estimate at `level` (None: on a mesh already built).
+    InfSup {
+        /// The level, when asked before building.
+        level: Option<u32>,
+        /// The element.
+        element: Element,
+        /// The unknowns on Γ_C.
+        trace: usize,
+    },
+    /// Nitsche's dense work on the layer's unknowns along Γ_C.
+    Nitsche,
+    /// The study's reference (q2 + simpson) at `level` after `refinements` edge refinements.
+    Reference {
+        /// Its uniform level.
+        level: u32,
+        /// Its edge refinements.
+        refinements: u32,
+    },
+    /// A problem of the finite element layer.
+    Unknowns,
+}
+
+/// [`SolveError::TooLarge`]'s message.
+fn too_large(workload: &Workload, unknowns: usize, need: u64, available: u64) -> String {
+    let (need, available) = (gib(need), gib(available));
+    let limits = "free memory, ulimit -v and the control group's limit";
+    match workload {
+        Workload::Level {
+            level,
+            element,
+            trace,
+            reserved,
+        } => format!(
+            "level {level} with {} has {unknowns} unknowns ({trace} on Γ_C) and needs about {need}; this process has {available} available ({limits}{}): choose a coarser level",
+            element.name(),
+            if *reserved {
+                ", less the work under way"
+            } else {
+                ""
+            }
+        ),
+        Workload::InfSup {
+            level,
+            element,
+            trace,
+        } => format!(
+            "the inf-sup estimate {} with {} ({unknowns} unknowns, {trace} on Γ_C) needs about {need} (the mesh, a second factorisation for the H¹ Gram matrix and the dense matrices on Γ_C); this process has {available} available ({limits}): choose a coarser level",
+            level.map_or_else(|| "on this mesh".to_string(), |l| format!("at level {l}")),
+            element.name()
+        ),
+        Workload::Nitsche => format!(
+            "Nitsche's method at this level needs about {need} for its dense work on the {unknowns} unknowns along Γ_C, and this process has {available} available: choose a coarser level"
+        ),
+        Workload::Reference { level, refinements } => format!(
+            "the reference (q2 + simpson) at level {level}{}: {unknowns} unknowns need about {need} and {available} is available; choose a coarser --reference-level",
+            match refinements {
+                0 => String::new(),
+                k => format!(" + {k} edge refinements"),
+            }
+        ),
+        Workload::Unknowns => {
+            format!(
+                "{unknowns} unknowns need about {need} and {available} is available: choose a coarser level"
+            )
+        }
     }
 }

@@ -19,8 +19,8 @@ use serde::Serialize;
 use crate::contact::{ContactPoints, Rule, smoothed_pressure};
 use crate::discretization::Discretization;
 use crate::discretization::fem_error;
-use crate::error::SolveError;
-use crate::fem::error::{FemError, gib};
+use crate::error::{SolveError, Workload};
+use crate::fem::error::FemError;
 use crate::fem::factor::Factor;
 use crate::fem::memory::{Limits, Sizes};
 use crate::fem::quadrature::gauss_legendre;
@@ -88,16 +88,18 @@ fn sizes(disc: &Discretization) -> Sizes {
 }
 
 /// The refusal of an estimate whose `need` bytes do not fit.
-fn too_large(at: &str, sizes: &Sizes, need: u64, limits: &Limits) -> Result<(), SolveError> {
+fn too_large(level: Option<u32>, sizes: &Sizes, need: u64, limits: &Limits) -> Result<(), SolveError> {
     sizes.check_need(need, limits).map_err(|e| match e {
-        FemError::TooLarge { need, available, .. } => SolveError::TooLarge(format!(
-            "the inf-sup estimate {at} with {} ({} unknowns, {} on Γ_C) needs about {} (the mesh, a second factorisation for the H¹ Gram matrix and the dense matrices on Γ_C); this process has {} available (free memory, ulimit -v and the control group's limit): choose a coarser level",
-            sizes.element.name(),
-            sizes.unknowns,
-            sizes.trace,
-            gib(need),
-            gib(available)
-        )),
+        FemError::TooLarge { need, available, .. } => SolveError::TooLarge {
+            workload: Workload::InfSup {
+                level,
+                element: sizes.element,
+                trace: sizes.trace,
+            },
+            unknowns: sizes.unknowns,
+            need,
+            available,
+        },
         e => fem_error(e, sizes.unknowns),
     })
 }
@@ -106,12 +108,7 @@ fn too_large(at: &str, sizes: &Sizes, need: u64, limits: &Limits) -> Result<(), 
 /// use ([`Limits::of_process`] counts what `disc` holds).
 pub fn fits_beside(disc: &Discretization) -> Result<(), SolveError> {
     let sizes = sizes(disc);
-    too_large(
-        "on this mesh",
-        &sizes,
-        sizes.infsup_extra_bytes(),
-        &Limits::of_process(),
-    )
+    too_large(None, &sizes, sizes.infsup_extra_bytes(), &Limits::of_process())
 }
 
 /// Whether the whole estimate at `level` with `element` (its discretisation and its own work)
@@ -119,7 +116,7 @@ pub fn fits_beside(disc: &Discretization) -> Result<(), SolveError> {
 pub fn fits(scenario: &Scenario, level: u32, element: Element) -> Result<(), SolveError> {
     let sizes = Discretization::sizes(scenario, level, element);
     let need = sizes.peak_bytes() + sizes.infsup_extra_bytes();
-    too_large(&format!("at level {level}"), &sizes, need, &Limits::of_process())
+    too_large(Some(level), &sizes, need, &Limits::of_process())
 }
 
 /// The exact L²(Γ_C) Gram matrix of Q_h: on each edge, the Lagrange functions through the

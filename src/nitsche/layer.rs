@@ -5,9 +5,8 @@ use faer::Mat;
 
 use crate::contact::{ContactPoints, Rule};
 use crate::discretization::{Discretization, fem_error};
-use crate::error::SolveError;
+use crate::error::{SolveError, Workload};
 use crate::fem::basis::lagrange_1d;
-use crate::fem::error::gib;
 use crate::fem::factor::{Analysis, Factor};
 use crate::fem::memory::Limits;
 use crate::fem::{Form, assemble};
@@ -183,11 +182,12 @@ impl Layer {
         if let Some(available) = Limits::of_process().available()
             && need > available
         {
-            return Err(SolveError::TooLarge(format!(
-                "Nitsche's method at this level needs about {} for its dense work on the {nb} unknowns along Γ_C, and this process has {} available: choose a coarser level",
-                gib(need),
-                gib(available)
-            )));
+            return Err(SolveError::TooLarge {
+                workload: Workload::Nitsche,
+                unknowns: nb as usize,
+                need,
+                available,
+            });
         }
         let stiffness = assemble(
             mesh,

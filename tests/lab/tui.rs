@@ -1838,7 +1838,10 @@ fn the_engine_prefetches_the_neighbouring_levels() {
     settle(&mut app, &mut engine);
     assert!(app.current().is_some());
     assert_eq!(engine.next_prefetch(), Some((MAX_APP_LEVEL - 1, Element::Q2)));
-    let too_large = riplab::error::SolveError::TooLarge("test".into());
+    let too_large = riplab::error::SolveError::OutOfMemory {
+        step: "test",
+        unknowns: 1,
+    };
     engine.adopt(MAX_APP_LEVEL - 1, Element::Q2, Err(too_large), Use::Background);
     assert_eq!(engine.next_prefetch(), None, "not retried");
 }
