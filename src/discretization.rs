@@ -339,9 +339,9 @@ pub fn check_params(
         what: "the method",
         message: e.to_string(),
     })?;
-    check::epsilon_in(params.epsilon, range).map_err(|e| SolveError::Input {
+    check::epsilon_in(params.epsilon, range).map_err(|source| SolveError::Range {
         what: "the penalty parameter ε",
-        message: e.to_string(),
+        source,
     })?;
     if params.method.uses_epsilon() && params.epsilon == 0.0 {
         return Err(SolveError::Input {
@@ -352,9 +352,9 @@ pub fn check_params(
             ),
         });
     }
-    check::depth(params.obstacle.depth(), height).map_err(|e| SolveError::Input {
+    check::depth(params.obstacle.depth(), height).map_err(|source| SolveError::Range {
         what: "the indentation depth",
-        message: e.to_string(),
+        source,
     })?;
     if params.method == Method::Exact && n_points > normals {
         return Err(SolveError::Kernel {

@@ -5,6 +5,7 @@
 
 use faer::linalg::evd::EvdError;
 
+use crate::check::CheckError;
 use crate::fem::error::gib;
 use crate::mesh::Element;
 use crate::text::num;
@@ -67,6 +68,14 @@ pub enum SolveError {
         /// What is wrong with it, and what is allowed.
         message: String,
     },
+    /// A value of the solve outside its range ([`crate::check`]).
+    #[error("{what}: {source}")]
+    Range {
+        /// The value, e.g. "the indentation depth".
+        what: &'static str,
+        /// Why, and what is allowed.
+        source: CheckError,
+    },
     /// The solver stopped without a result it can certify.
     #[error("{what} did not converge after {iterations} iterations (relative residual {}): {diagnosis}", num(*residual))]
     NotConverged {
@@ -94,6 +103,7 @@ impl SolveError {
                 | SolveError::TooLarge { .. }
                 | SolveError::OutOfMemory { .. }
                 | SolveError::Input { .. }
+                | SolveError::Range { .. }
         )
     }
 }

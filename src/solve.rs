@@ -235,7 +235,13 @@ mod tests {
         // The middle instance's depth is beyond the body: refused, the sweep goes on.
         let params = [at(1e-6, 0.8), at(1e-6, 1e9), at(1e-7, 0.6)];
         let results = sweep(&disc, &params);
-        assert!(matches!(results[1], Err(SolveError::Input { .. })));
+        assert!(matches!(
+            results[1],
+            Err(SolveError::Range {
+                what: "the indentation depth",
+                ..
+            })
+        ));
         for k in [0, 2] {
             let swept = results[k].as_ref().unwrap();
             let fresh = solve_contact(&disc, &params[k], None, &NewtonOptions::default(), &mut |_| {

@@ -202,9 +202,9 @@ pub fn solve(
     let t = Instant::now();
     check_params(&nitsche)?;
     let points = disc.contact_points(params.rule);
-    crate::check::depth(params.obstacle.depth(), disc.height()).map_err(|e| SolveError::Input {
+    crate::check::depth(params.obstacle.depth(), disc.height()).map_err(|source| SolveError::Range {
         what: "the indentation depth",
-        message: e.to_string(),
+        source,
     })?;
     let op = Operator::of(disc, &points, nitsche)?;
     let prepared_ms = t.elapsed().as_secs_f64() * 1e3;

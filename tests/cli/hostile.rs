@@ -107,7 +107,7 @@ fn the_library_refuses_unrepresentable_parameters() {
             std::ops::ControlFlow::Continue(())
         });
         match r {
-            Err(e @ SolveError::Input { .. }) => assert!(e.is_input(), "{e}"),
+            Err(e @ SolveError::Range { .. }) => assert!(e.is_input(), "{e}"),
             other => panic!("ε = {epsilon}, depth = {depth}: {other:?}"),
         }
     }
