@@ -35,7 +35,7 @@ mod infsup;
 mod lab;
 mod solve;
 mod study;
-pub use args::{InfsupArgs, MethodArgs, Select, SolveArgs, StudyArgs, parse_levels};
+pub use args::{InfsupArgs, LevelsError, MethodArgs, Select, SolveArgs, StudyArgs, parse_levels};
 use infsup::infsup;
 pub use lab::RenderArgs;
 use lab::{RENDER_NOTES, lab, render};

@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use clap::Args;
 
 use super::{CliError, usage, values};
-use crate::check;
+use crate::check::{self, CheckError};
 use crate::contact::method::{Gamma0, MethodError};
 use crate::contact::{Method, Rule};
 use crate::mesh::Element;
@@ -196,12 +196,28 @@ pub struct StudyArgs {
     pub format: Format,
 }
 
+/// A `--levels` that is not a level or a range of levels.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum LevelsError {
+    /// Not `a..b`, `a..=b` or `a`, or a range that runs down.
+    #[error("`{text}`; allowed: a level 0..={MAX_LEVEL} or a range like 0..6 (inclusive)")]
+    Malformed {
+        /// The text as given.
+        text: String,
+    },
+    /// A level out of range.
+    #[error("{0}")]
+    Level(#[from] CheckError),
+}
+
 /// Parse an inclusive level range `a..b`, `a..=b` or `a`.
-pub fn parse_levels(text: &str) -> Result<Vec<u32>, String> {
-    let bad = || format!("`{text}`; allowed: a level 0..={MAX_LEVEL} or a range like 0..6 (inclusive)");
-    let num = |t: &str| -> Result<u32, String> {
+pub fn parse_levels(text: &str) -> Result<Vec<u32>, LevelsError> {
+    let bad = || LevelsError::Malformed {
+        text: text.to_string(),
+    };
+    let num = |t: &str| -> Result<u32, LevelsError> {
         let v: i64 = t.trim().parse().map_err(|_| bad())?;
-        check::level(v).map_err(|e| e.to_string())?;
+        check::level(v)?;
         Ok(v as u32)
     };
     let (a, b) = match text.split_once("..") {
