@@ -8,11 +8,12 @@
 //! change of depth (the operator reused: Newton alone). θ = 1, γ₀ = 10 γ₀*-ish values.
 
 use divan::Bencher;
+use riplab::contact::ContactParams;
 use riplab::contact::Rule;
+use riplab::discretization::Discretization;
 use riplab::mesh::Element;
 use riplab::nitsche::{NitscheParams, solve_once};
 use riplab::scenario::Scenario;
-use riplab::solve::{ContactParams, Discretization};
 
 /// As the binary: huge pages for the large blocks (`riplab::huge_pages`).
 #[global_allocator]

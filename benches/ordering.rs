@@ -22,13 +22,15 @@ use faer::sparse::linalg::cholesky::{
     CholeskySymbolicParams, SymmetricOrdering, factorize_symbolic_cholesky,
 };
 use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
+use riplab::contact::ContactParams;
 use riplab::contact::penalty::NewtonOptions;
+use riplab::discretization::Discretization;
 use riplab::fem::condense::{TraceFactor, TraceOrdering, factor_flops};
 use riplab::fem::factor::Analysis;
 use riplab::fem::{DofMap, Form, SymCsc, assemble};
 use riplab::mesh::Element;
 use riplab::scenario::Scenario;
-use riplab::solve::{ContactParams, Discretization, solve_contact};
+use riplab::solve::solve_contact;
 
 /// As the binary: huge pages for the large blocks (`riplab::huge_pages`).
 #[global_allocator]

@@ -10,14 +10,16 @@
 use std::ops::ControlFlow;
 
 use divan::Bencher;
+use riplab::contact::ContactParams;
 use riplab::contact::Rule;
 use riplab::contact::penalty::NewtonOptions;
+use riplab::discretization::Discretization;
 use riplab::fem::factor::{Analysis, Factor};
 use riplab::fem::{DofMap, Form, SymCsc, assemble};
 use riplab::infsup::{TraceCompliance, estimate};
 use riplab::mesh::Element;
 use riplab::scenario::Scenario;
-use riplab::solve::{ContactParams, Discretization, solve_contact};
+use riplab::solve::solve_contact;
 
 const LEVELS: &[u32] = &[3, 4, 5, 6];
 

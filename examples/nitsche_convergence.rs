@@ -8,12 +8,14 @@
 
 use std::ops::ControlFlow;
 
+use riplab::contact::ContactParams;
 use riplab::contact::Rule;
 use riplab::contact::penalty::NewtonOptions;
+use riplab::discretization::Discretization;
 use riplab::mesh::Element;
 use riplab::nitsche::{self, NitscheParams};
 use riplab::scenario::Scenario;
-use riplab::solve::{ContactParams, Discretization, solve_contact};
+use riplab::solve::solve_contact;
 use riplab::study::{Errors, Reference, errors};
 
 const PAIRS: [(Element, Rule); 3] = [

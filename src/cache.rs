@@ -1,4 +1,4 @@
-//! The study's reference, kept between runs (issue 13): the exact-constraint Q2 solution of a
+//! The study's reference, kept between runs: the exact-constraint Q2 solution of a
 //! scenario at a level costs seconds to minutes (12 s at level 6, 67 s at level 7), and it
 //! depends only on the body, the material, the obstacle and the level. It is stored in the
 //! user's cache directory (`$XDG_CACHE_HOME/riplab`, `~/.cache/riplab`; the platform's

@@ -10,9 +10,8 @@ use std::time::Instant;
 use faer::Mat;
 
 use crate::check;
-use crate::contact::penalty::SolveError;
 use crate::contact::{ContactParams, ContactPoints, Method, Rule};
-use crate::fem::error::gib;
+use crate::error::{SolveError, Workload};
 use crate::fem::factor::{Analysis, Factor};
 use crate::fem::memory::{Limits, Sizes};
 use crate::fem::{DofMap, FemError, Form, Integration, assemble};
@@ -205,14 +204,17 @@ impl Discretization {
                     unknowns,
                     need,
                     available,
-                } => SolveError::TooLarge(format!(
-                    "level {level} with {} has {unknowns} unknowns ({} on Γ_C) and needs about {}; this process has {} available (free memory, ulimit -v and the control group's limit{}): choose a coarser level",
-                    element.name(),
-                    sizes.trace,
-                    gib(need),
-                    gib(available),
-                    if reserved > 0 { ", less the work under way" } else { "" }
-                )),
+                } => SolveError::TooLarge {
+                    workload: Workload::Level {
+                        level,
+                        element,
+                        trace: sizes.trace,
+                        reserved: reserved > 0,
+                    },
+                    unknowns,
+                    need,
+                    available,
+                },
                 e => fem_error(e, sizes.unknowns),
             })
     }
@@ -303,19 +305,21 @@ impl Discretization {
 /// The solver's error for a failure of the finite element layer on `n` unknowns.
 pub(crate) fn fem_error(e: FemError, n: usize) -> SolveError {
     match e {
-        FemError::NotPositiveDefinite => SolveError::Factorization("a zero or negative pivot".into()),
-        FemError::OutOfMemory(what) => SolveError::TooLarge(format!(
-            "out of memory in {what} with {n} unknowns: choose a coarser level"
-        )),
+        FemError::NotPositiveDefinite { pivot } => SolveError::Factorization {
+            matrix: "stiffness",
+            pivot,
+        },
+        FemError::OutOfMemory(step) => SolveError::OutOfMemory { step, unknowns: n },
         FemError::TooLarge {
             unknowns,
             need,
             available,
-        } => SolveError::TooLarge(format!(
-            "{unknowns} unknowns need about {} and {} is available: choose a coarser level",
-            gib(need),
-            gib(available)
-        )),
+        } => SolveError::TooLarge {
+            workload: Workload::Unknowns,
+            unknowns,
+            need,
+            available,
+        },
     }
 }
 
@@ -335,9 +339,9 @@ pub fn check_params(
         what: "the method",
         message: e.to_string(),
     })?;
-    check::epsilon_in(params.epsilon, range).map_err(|e| SolveError::Input {
+    check::epsilon_in(params.epsilon, range).map_err(|source| SolveError::Range {
         what: "the penalty parameter ε",
-        message: e.to_string(),
+        source,
     })?;
     if params.method.uses_epsilon() && params.epsilon == 0.0 {
         return Err(SolveError::Input {
@@ -348,9 +352,9 @@ pub fn check_params(
             ),
         });
     }
-    check::depth(params.obstacle.depth(), height).map_err(|e| SolveError::Input {
+    check::depth(params.obstacle.depth(), height).map_err(|source| SolveError::Range {
         what: "the indentation depth",
-        message: e.to_string(),
+        source,
     })?;
     if params.method == Method::Exact && n_points > normals {
         return Err(SolveError::Kernel {
@@ -428,13 +432,20 @@ mod tests {
         }
     }
 
-    /// Issue 10 item 5: an allocation failure is reported as out of memory (exit 2 through
-    /// `TooLarge`), and only a non-positive pivot asks about rigid motion.
+    /// An allocation failure is reported as out of memory (exit 2: an input error), and only a non-positive pivot asks about rigid motion.
     #[test]
     fn out_of_memory_is_not_called_a_rigid_motion() {
         let oom = fem_error(FemError::OutOfMemory("the factor"), 1000);
-        assert!(
-            matches!(&oom, SolveError::TooLarge(m) if m.contains("out of memory in the factor with 1000 unknowns"))
+        assert_eq!(
+            oom,
+            SolveError::OutOfMemory {
+                step: "the factor",
+                unknowns: 1000
+            }
+        );
+        assert_eq!(
+            oom.to_string(),
+            "out of memory in the factor with 1000 unknowns: choose a coarser level"
         );
         assert!(!oom.to_string().contains("rigid"));
         let big = fem_error(
@@ -449,7 +460,14 @@ mod tests {
             big.to_string(),
             "7 unknowns need about 3.0 GiB and 1.0 GiB is available: choose a coarser level"
         );
-        let pivot = fem_error(FemError::NotPositiveDefinite, 7);
-        assert!(matches!(pivot, SolveError::Factorization(_)) && pivot.to_string().contains("rigid motion"));
+        let pivot = fem_error(FemError::NotPositiveDefinite { pivot: 3 }, 7);
+        assert_eq!(
+            pivot,
+            SolveError::Factorization {
+                matrix: "stiffness",
+                pivot: 3
+            }
+        );
+        assert!(pivot.to_string().contains("rigid motion"));
     }
 }

@@ -17,9 +17,10 @@ use faer::{Mat, Side};
 use serde::Serialize;
 
 use crate::contact::{ContactPoints, Rule, smoothed_pressure};
+use crate::discretization::Discretization;
 use crate::discretization::fem_error;
-use crate::error::SolveError;
-use crate::fem::error::{FemError, gib};
+use crate::error::{SolveError, Workload};
+use crate::fem::error::FemError;
 use crate::fem::factor::Factor;
 use crate::fem::memory::{Limits, Sizes};
 use crate::fem::quadrature::gauss_legendre;
@@ -27,7 +28,6 @@ use crate::fem::{Form, assemble};
 use crate::mesh::Element;
 use crate::scenario::Scenario;
 use crate::scheme::Scheme;
-use crate::solve::Discretization;
 
 /// The estimate for one element × rule pair on one mesh.
 #[derive(Clone, Debug, PartialEq)]
@@ -61,7 +61,10 @@ impl TraceCompliance {
         fits_beside(disc)?;
         let a = assemble(&disc.mesh, &disc.dofs, Form::H1);
         let factor = Factor::new(&disc.ordering, a).map_err(|e| match e {
-            FemError::NotPositiveDefinite => SolveError::Factorization(format!("the H¹ Gram matrix: {e}")),
+            FemError::NotPositiveDefinite { pivot } => SolveError::Factorization {
+                matrix: "H¹ Gram matrix",
+                pivot,
+            },
             e => fem_error(e, disc.n_dofs()),
         })?;
         Ok(TraceCompliance {
@@ -85,16 +88,18 @@ fn sizes(disc: &Discretization) -> Sizes {
 }
 
 /// The refusal of an estimate whose `need` bytes do not fit.
-fn too_large(at: &str, sizes: &Sizes, need: u64, limits: &Limits) -> Result<(), SolveError> {
+fn too_large(level: Option<u32>, sizes: &Sizes, need: u64, limits: &Limits) -> Result<(), SolveError> {
     sizes.check_need(need, limits).map_err(|e| match e {
-        FemError::TooLarge { need, available, .. } => SolveError::TooLarge(format!(
-            "the inf-sup estimate {at} with {} ({} unknowns, {} on Γ_C) needs about {} (the mesh, a second factorisation for the H¹ Gram matrix and the dense matrices on Γ_C); this process has {} available (free memory, ulimit -v and the control group's limit): choose a coarser level",
-            sizes.element.name(),
-            sizes.unknowns,
-            sizes.trace,
-            gib(need),
-            gib(available)
-        )),
+        FemError::TooLarge { need, available, .. } => SolveError::TooLarge {
+            workload: Workload::InfSup {
+                level,
+                element: sizes.element,
+                trace: sizes.trace,
+            },
+            unknowns: sizes.unknowns,
+            need,
+            available,
+        },
         e => fem_error(e, sizes.unknowns),
     })
 }
@@ -103,12 +108,7 @@ fn too_large(at: &str, sizes: &Sizes, need: u64, limits: &Limits) -> Result<(), 
 /// use ([`Limits::of_process`] counts what `disc` holds).
 pub fn fits_beside(disc: &Discretization) -> Result<(), SolveError> {
     let sizes = sizes(disc);
-    too_large(
-        "on this mesh",
-        &sizes,
-        sizes.infsup_extra_bytes(),
-        &Limits::of_process(),
-    )
+    too_large(None, &sizes, sizes.infsup_extra_bytes(), &Limits::of_process())
 }
 
 /// Whether the whole estimate at `level` with `element` (its discretisation and its own work)
@@ -116,7 +116,7 @@ pub fn fits_beside(disc: &Discretization) -> Result<(), SolveError> {
 pub fn fits(scenario: &Scenario, level: u32, element: Element) -> Result<(), SolveError> {
     let sizes = Discretization::sizes(scenario, level, element);
     let need = sizes.peak_bytes() + sizes.infsup_extra_bytes();
-    too_large(&format!("at level {level}"), &sizes, need, &Limits::of_process())
+    too_large(Some(level), &sizes, need, &Limits::of_process())
 }
 
 /// The exact L²(Γ_C) Gram matrix of Q_h: on each edge, the Lagrange functions through the
@@ -184,9 +184,7 @@ pub fn schur(cp: &ContactPoints, compliance: &Mat<f64>) -> Mat<f64> {
 /// λ_min(S, N) over the vectors with Nq ≠ 0 (N symmetric positive semi-definite): with
 /// N = U D Uᵀ and Z = U_+ D_+^(−1/2) over its positive eigenvalues, λ_min(Zᵀ S Z).
 pub fn min_generalized_eigenvalue(s: &Mat<f64>, n: &Mat<f64>) -> Result<f64, SolveError> {
-    let evd = n
-        .self_adjoint_eigen(Side::Lower)
-        .map_err(|e| SolveError::Eigen(format!("{e:?}")))?;
+    let evd = n.self_adjoint_eigen(Side::Lower).map_err(SolveError::Eigen)?;
     let d = evd.S().column_vector();
     let top = (0..d.nrows()).map(|i| d[i]).fold(0.0, f64::max);
     let keep: Vec<usize> = (0..d.nrows()).filter(|&i| d[i] > 1e-12 * top).collect();
@@ -195,7 +193,7 @@ pub fn min_generalized_eigenvalue(s: &Mat<f64>, n: &Mat<f64>) -> Result<f64, Sol
     let reduced = z.transpose() * s * &z;
     let lam = reduced
         .self_adjoint_eigenvalues(Side::Lower)
-        .map_err(|e| SolveError::Eigen(format!("{e:?}")))?;
+        .map_err(SolveError::Eigen)?;
     Ok(lam.first().copied().unwrap_or(0.0).max(0.0))
 }
 

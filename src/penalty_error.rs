@@ -1,4 +1,4 @@
-//! The penalty's share of a refinement study's errors (issue 32): the study measures the
+//! The penalty's share of a refinement study's errors: the study measures the
 //! discretisation only where the penalty's own error is well below each row's. A penalty at
 //! κ = εE/h is off in the load by at most 0.3 κ (STABILITY.md, "ε over twelve decades": κ from
 //! 1e-2 to 1e-7, levels 0–6, M1 and M3), and its pressure's round-off is estimated by

@@ -11,12 +11,13 @@ use std::io::{self, Write as _};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
 
+use plotters::drawing::DrawingAreaErrorKind;
 use plotters::prelude::*;
 
 use crate::contact::{ContactPoints, Method, Rule};
 use crate::mesh::Element;
 use crate::scheme::Scheme;
-use crate::solve::Solution;
+use crate::solution::Solution;
 
 /// The size of the SVG chart in pixels.
 pub const SIZE: (u32, u32) = (960, 540);
@@ -131,9 +132,31 @@ fn label(v: f64) -> String {
     if s == "-0" { "0".into() } else { s.to_string() }
 }
 
+/// Why a chart was not drawn or not written.
+#[derive(Debug, thiserror::Error)]
+pub enum PlotError {
+    /// plotters failed to draw.
+    #[error("drawing the chart: {0}")]
+    Draw(#[from] DrawingAreaErrorKind<io::Error>),
+    /// The file exists and was not to be overwritten.
+    #[error("{}: exists; not overwritten", path.display())]
+    Exists {
+        /// The file.
+        path: PathBuf,
+    },
+    /// The file could not be written.
+    #[error("{}: {source}", path.display())]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// Why.
+        source: io::Error,
+    },
+}
+
 /// The pressure chart of `sol` as SVG text, titled `title`, mirrored to the full width when
 /// `half_model`.
-pub fn pressure_svg_string(title: &str, sol: &Solution, half_model: bool) -> Result<String, String> {
+pub fn pressure_svg_string(title: &str, sol: &Solution, half_model: bool) -> Result<String, PlotError> {
     let points = &sol.points;
     let raw_edges = raw_pressure_edges(points, &sol.p);
     let raw: Vec<Vec<(f64, f64)>> = if points.rule == Rule::Gauss1 {
@@ -189,16 +212,14 @@ pub fn pressure_svg_string(title: &str, sol: &Solution, half_model: bool) -> Res
 
     let mut svg = String::new();
     {
-        let fail = |e: &dyn std::fmt::Display| format!("drawing the chart: {e}");
         let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
-        root.fill(&WHITE).map_err(|e| fail(&e))?;
+        root.fill(&WHITE)?;
         let mut chart = ChartBuilder::on(&root)
             .caption(title, ("sans-serif", 24))
             .margin(18)
             .x_label_area_size(56)
             .y_label_area_size(84)
-            .build_cartesian_2d(xlo..xhi, 0.0..ymax)
-            .map_err(|e| fail(&e))?;
+            .build_cartesian_2d(xlo..xhi, 0.0..ymax)?;
         chart
             .configure_mesh()
             .x_desc(if half_model {
@@ -213,16 +234,13 @@ pub fn pressure_svg_string(title: &str, sol: &Solution, half_model: bool) -> Res
             .label_style(("sans-serif", 15))
             .light_line_style(RGBColor(246, 246, 246))
             .bold_line_style(RGBColor(210, 210, 210))
-            .draw()
-            .map_err(|e| fail(&e))?;
+            .draw()?;
 
         let raw_style = RAW.stroke_width(2);
         let dotted = !marks.is_empty();
         let raw_label = format!("raw p ({}, at the rule's points)", points.rule.name());
         for (i, line) in raw.iter().enumerate() {
-            let series = chart
-                .draw_series(LineSeries::new(line.iter().copied(), raw_style))
-                .map_err(|e| fail(&e))?;
+            let series = chart.draw_series(LineSeries::new(line.iter().copied(), raw_style))?;
             if i == 0 {
                 series.label(raw_label.as_str()).legend(move |(x, y)| {
                     EmptyElement::at((x, y))
@@ -231,13 +249,10 @@ pub fn pressure_svg_string(title: &str, sol: &Solution, half_model: bool) -> Res
                 });
             }
         }
-        chart
-            .draw_series(marks.iter().map(|&c| Circle::new(c, 3, RAW.filled())))
-            .map_err(|e| fail(&e))?;
+        chart.draw_series(marks.iter().map(|&c| Circle::new(c, 3, RAW.filled())))?;
         let smooth_style = SMOOTH.stroke_width(3);
         chart
-            .draw_series(LineSeries::new(pbar.iter().copied(), smooth_style))
-            .map_err(|e| fail(&e))?
+            .draw_series(LineSeries::new(pbar.iter().copied(), smooth_style))?
             .label("smoothed p̄ (16)–(17), at the vertices")
             .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], smooth_style));
         chart
@@ -247,9 +262,8 @@ pub fn pressure_svg_string(title: &str, sol: &Solution, half_model: bool) -> Res
             .label_font(("sans-serif", 16))
             .background_style(WHITE.mix(0.9))
             .border_style(RGBColor(160, 160, 160))
-            .draw()
-            .map_err(|e| fail(&e))?;
-        root.present().map_err(|e| fail(&e))?;
+            .draw()?;
+        root.present()?;
     }
     Ok(svg)
 }
@@ -263,11 +277,16 @@ pub fn pressure_svg(
     sol: &Solution,
     half_model: bool,
     overwrite: bool,
-) -> Result<(), String> {
+) -> Result<(), PlotError> {
     let svg = pressure_svg_string(title, sol, half_model)?;
-    write_file(path, svg.as_bytes(), overwrite).map_err(|e| match e.kind() {
-        io::ErrorKind::AlreadyExists => format!("{}: exists; not overwritten", path.display()),
-        _ => format!("{}: {e}", path.display()),
+    write_file(path, svg.as_bytes(), overwrite).map_err(|source| match source.kind() {
+        io::ErrorKind::AlreadyExists => PlotError::Exists {
+            path: path.to_path_buf(),
+        },
+        _ => PlotError::Io {
+            path: path.to_path_buf(),
+            source,
+        },
     })
 }
 

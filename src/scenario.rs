@@ -12,8 +12,6 @@ pub const DEFAULT_SCENARIO: &str = include_str!("../scenarios/hertz-paper.toml")
 /// The name under which the embedded default is reported.
 pub const DEFAULT_SOURCE: &str = "<embedded hertz-paper.toml>";
 
-pub use crate::mesh::MAX_LEVEL;
-
 /// A validated problem.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Scenario {
@@ -42,7 +40,7 @@ pub struct Scenario {
     pub y_lines: Vec<f64>,
     /// Integration of the stiffness: full, or selective (reduced for the volumetric part).
     pub integration: Integration,
-    /// The mesh level, 0 ..= [`MAX_LEVEL`].
+    /// The mesh level, 0 ..= [`MAX_LEVEL`](crate::mesh::MAX_LEVEL).
     pub level: u32,
     /// The contact rule on Γ_C.
     pub rule: Rule,

@@ -65,8 +65,10 @@ impl Scheme {
     }
 
     /// A scheme as written: M1–M4 or `element+rule`, any case.
-    pub fn parse(text: &str) -> Result<Scheme, String> {
-        let bad = || format!("`{text}`; allowed: M1, M2, M3, M4 or element+rule, e.g. q2+gauss1");
+    pub fn parse(text: &str) -> Result<Scheme, SchemeError> {
+        let bad = || SchemeError {
+            text: text.to_string(),
+        };
         let t = text.trim();
         if let Some(m) = t.strip_prefix(['M', 'm']) {
             return m.parse().ok().and_then(Scheme::paper).ok_or_else(bad);
@@ -82,9 +84,17 @@ impl Scheme {
     }
 }
 
+/// A scheme's name that is neither M1–M4 nor `element+rule`.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("`{text}`; allowed: M1, M2, M3, M4 or element+rule, e.g. q2+gauss1")]
+pub struct SchemeError {
+    /// The text as written.
+    pub text: String,
+}
+
 impl FromStr for Scheme {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
+    type Err = SchemeError;
+    fn from_str(s: &str) -> Result<Self, SchemeError> {
         Scheme::parse(s)
     }
 }
@@ -112,8 +122,13 @@ mod tests {
             Scheme::parse(" Q2 + Gauss1 ").map(Scheme::label),
             Ok("q2+gauss1".into())
         );
+        assert!(
+            SchemeError { text: "M5".into() }
+                .to_string()
+                .contains("allowed: M1")
+        );
         for bad in ["M0", "M5", "M", "q3+gauss1", "q1+gauss3", "q1", ""] {
-            assert!(Scheme::parse(bad).unwrap_err().contains("allowed: M1"), "{bad}");
+            assert_eq!(Scheme::parse(bad), Err(SchemeError { text: bad.into() }), "{bad}");
         }
     }
 }

@@ -1,4 +1,4 @@
-//! The cache's file I/O, as a careful program does it (issue 37):
+//! The cache's file I/O, as a careful program does it:
 //!
 //! - an entry is written to a temporary file in the cache directory whose name holds the
 //!   process id and a random number (unpredictable: a name cannot be planted in advance),

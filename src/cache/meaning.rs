@@ -1,4 +1,4 @@
-//! What a cache entry must mean before it is believed (issue 37): a checksum only says the
+//! What a cache entry must mean before it is believed: a checksum only says the
 //! bytes are the ones written. An entry's fields are checked against what the reference is,
 //! independently of the solver that made them: its sizes are the mesh's, every number is
 //! finite, its load P is I(p, 1) of its own pressure (`contact::pressure::load`), and its
@@ -20,17 +20,47 @@ const LOAD_TOLERANCE: f64 = 1e-9;
 /// Newton stops at a residual far below this; tests/numerics/contact.rs finds 1e-9).
 const REACTION_TOLERANCE: f64 = 1e-6;
 
+/// Why a cached reference is not believed.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum Meaningless {
+    /// Its sizes are not the mesh's.
+    #[error("its sizes {found:?} (displacements, pressures, dofs) are not the mesh's {expected:?}")]
+    Sizes {
+        /// (displacements, pressures, dofs) it holds.
+        found: (usize, usize, usize),
+        /// (displacements, pressures, dofs) of the mesh.
+        expected: (usize, usize, usize),
+    },
+    /// A number that is not finite, or a negative time.
+    #[error("it holds a number that is not finite (or a negative time)")]
+    NotFinite,
+    /// Its load is not I(p, 1) of its pressure.
+    #[error("its load {} is not I(p, 1) = {} of its pressure", num(*load), num(*integral))]
+    Load {
+        /// The load it holds.
+        load: f64,
+        /// I(p, 1) of its pressure.
+        integral: f64,
+    },
+    /// Its displacement's reaction at the bottom is not its load.
+    #[error("its displacement's reaction {} is not its load {}", num(*reaction), num(*load))]
+    Reaction {
+        /// The bottom's reaction of its displacement.
+        reaction: f64,
+        /// The load it holds.
+        load: f64,
+    },
+}
+
 /// Why `fields` cannot be the reference of `scenario` on `grid`, if it cannot.
-pub fn check(scenario: &Scenario, grid: &ReferenceMesh, fields: &ReferenceFields) -> Result<(), String> {
+pub fn check(scenario: &Scenario, grid: &ReferenceMesh, fields: &ReferenceFields) -> Result<(), Meaningless> {
     let (n_u, n_p) = grid.lengths();
     let n_dofs = grid.n_dofs(scenario);
     if (fields.u.len(), fields.p.len(), fields.n_dofs) != (n_u, n_p, n_dofs) {
-        return Err(format!(
-            "its sizes ({} displacements, {} pressures, {} dofs) are not the mesh's ({n_u}, {n_p}, {n_dofs})",
-            fields.u.len(),
-            fields.p.len(),
-            fields.n_dofs
-        ));
+        return Err(Meaningless::Sizes {
+            found: (fields.u.len(), fields.p.len(), fields.n_dofs),
+            expected: (n_u, n_p, n_dofs),
+        });
     }
     let finite = [fields.load, fields.ms]
         .iter()
@@ -38,7 +68,7 @@ pub fn check(scenario: &Scenario, grid: &ReferenceMesh, fields: &ReferenceFields
         .chain(&fields.p)
         .all(|v| v.is_finite());
     if !finite || fields.ms < 0.0 {
-        return Err("it holds a number that is not finite (or a negative time)".into());
+        return Err(Meaningless::NotFinite);
     }
     let mesh = grid.mesh(scenario);
     let points = ContactPoints::new(
@@ -55,11 +85,10 @@ pub fn check(scenario: &Scenario, grid: &ReferenceMesh, fields: &ReferenceFields
         .sum::<f64>()
         .max(f64::MIN_POSITIVE);
     if (fields.load - integral).abs() > LOAD_TOLERANCE * scale {
-        return Err(format!(
-            "its load {} is not I(p, 1) = {} of its pressure",
-            num(fields.load),
-            num(integral)
-        ));
+        return Err(Meaningless::Load {
+            load: fields.load,
+            integral,
+        });
     }
     let ku = apply(
         &mesh,
@@ -68,11 +97,10 @@ pub fn check(scenario: &Scenario, grid: &ReferenceMesh, fields: &ReferenceFields
     );
     let reaction: f64 = (0..mesh.nnx()).map(|i| ku[2 * mesh.node(i, 0) + 1]).sum();
     if !reaction.is_finite() || (reaction - fields.load).abs() > REACTION_TOLERANCE * scale {
-        return Err(format!(
-            "its displacement's reaction {} is not its load {}",
-            num(reaction),
-            num(fields.load)
-        ));
+        return Err(Meaningless::Reaction {
+            reaction,
+            load: fields.load,
+        });
     }
     Ok(())
 }
@@ -94,15 +122,19 @@ mod tests {
             f(&mut fields);
             check(&s, &grid, &fields).unwrap_err()
         };
-        assert!(bad(&|f| f.p.iter_mut().for_each(|p| *p *= 1.5)).contains("I(p, 1)"));
-        assert!(bad(&|f| f.load = 1e308).contains("I(p, 1)"));
-        assert!(bad(&|f| f.n_dofs = usize::MAX).contains("sizes"));
-        assert!(bad(&|f| f.ms = f64::NAN).contains("not finite"));
-        assert!(bad(&|f| f.p[3] = 1e200).contains("I(p, 1)"));
+        let load = |e: Meaningless| matches!(e, Meaningless::Load { .. });
+        assert!(load(bad(&|f| f.p.iter_mut().for_each(|p| *p *= 1.5))));
+        assert!(load(bad(&|f| f.load = 1e308)));
+        assert!(matches!(
+            bad(&|f| f.n_dofs = usize::MAX),
+            Meaningless::Sizes { .. }
+        ));
+        assert_eq!(bad(&|f| f.ms = f64::NAN), Meaningless::NotFinite);
+        assert!(load(bad(&|f| f.p[3] = 1e200)));
         let scaled = bad(&|f| {
             f.p.iter_mut().for_each(|p| *p *= 1.5);
             f.load *= 1.5;
         });
-        assert!(scaled.contains("reaction"), "{scaled}");
+        assert!(matches!(scaled, Meaningless::Reaction { .. }), "{scaled}");
     }
 }

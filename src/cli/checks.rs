@@ -1,11 +1,12 @@
-//! The refusals `riplab render` shares with `solve`, `infsup` and `study` (issue 37): a frame
+//! The refusals `riplab render` shares with `solve`, `infsup` and `study`: a frame
 //! whose scene has no answer is refused before anything is built, exit 2, as those commands
 //! refuse the same request; a failure found while drawing is reported after the frame.
 
 use super::CliError;
+use crate::contact::ContactParams;
 use crate::discretization::Discretization;
+use crate::discretization::check_request;
 use crate::scenario::Scenario;
-use crate::solve::{ContactParams, check_request};
 use crate::tui::app::{App, MAX_APP_LEVEL};
 
 /// The request of a `render` frame of `scene` checked as the command that computes it would

@@ -1,5 +1,5 @@
 //! Every file one command writes, checked against the others before anything is computed or
-//! written (issue 37): `--plot x.vtu --vtu x.vtu` would have the VTU replace the SVG, and
+//! written: `--plot x.vtu --vtu x.vtu` would have the VTU replace the SVG, and
 //! `--plot x.contact.vtu --vtu x.vtu` the Γ_C file replace the plot. Two targets are the same
 //! when their absolute paths, with the directory resolved on the filesystem (links, `..`),
 //! are equal, or when both exist and are one file (hard links).

@@ -5,7 +5,7 @@ use std::process::ExitCode;
 
 use clap::Args;
 
-use crate::report::{Format, output};
+use crate::output::{Format, output};
 
 use super::{CliError, print, usage};
 

@@ -35,7 +35,8 @@
 use std::collections::HashSet;
 use std::ops::ControlFlow;
 
-use super::penalty::{self, Iteration, NewtonOptions, NewtonResult, Penalty, SolveError, active_forces, dot};
+use super::penalty::{self, Iteration, NewtonOptions, NewtonResult, Penalty, active_forces, dot};
+use crate::error::SolveError;
 
 /// The largest number of outer (multiplier) updates.
 pub const MAX_OUTER: usize = 500;

@@ -87,7 +87,7 @@ pub struct NewtonResult {
     pub diagnosis: Option<String>,
 }
 
-pub use crate::error::SolveError;
+use crate::error::SolveError;
 
 /// Relative size of the round-off in s = d − Gy (a few units in the last place).
 const ROUNDOFF: f64 = 16.0 * f64::EPSILON;

@@ -11,9 +11,8 @@
 
 use std::ops::ControlFlow;
 
-use super::penalty::{
-    Iteration, NewtonOptions, NewtonResult, Penalty, Progress, SolveError, active_forces, apply, dot,
-};
+use super::penalty::{Iteration, NewtonOptions, NewtonResult, Penalty, Progress, active_forces, apply, dot};
+use crate::error::SolveError;
 
 /// Solve the exact-constraint problem (`pb.epsilon` is ignored), from the multipliers
 /// `initial` when given.

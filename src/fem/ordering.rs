@@ -20,10 +20,8 @@ const LEAF_NODES: usize = 8;
 
 /// Parts with at most this many nodes are one block of [`Dissection`] (one supernode of the
 /// halves' factors, [`super::supernodes`]), their separators and leaves merged: fewer, larger
-/// dense blocks for a few more flops. The halves' numeric factorisation at level 6 takes
-/// 4.04·10⁹ instructions at 12 or 16 nodes, against 4.18·10⁹ with every separator and leaf
-/// a block of its own, 4.15·10⁹ at 24 and 4.79·10⁹ at 64 (BENCHMARKS.md, "Supernodes from
-/// the grid").
+/// dense blocks for a few more flops; the size was chosen by the instruction counts in
+/// BENCHMARKS.md, "Supernodes from the grid".
 const BLOCK_NODES: usize = 16;
 
 /// The free dofs of `mesh` except `trace`, in elimination order: the grid's nested

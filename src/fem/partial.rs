@@ -1,12 +1,11 @@
-//! A subdomain's partial Cholesky factorisation (issue 13): its interior eliminated, the Schur
+//! A subdomain's partial Cholesky factorisation: its interior eliminated, the Schur
 //! complement on its interface left in place.
 //!
 //! A half h of [`super::split`] orders K_h = [K₁₁ K₁₂; K₂₁ K₂₂] with its interface Γ_h last and
 //! needs L₁₁ L₁₁ᵀ = K₁₁ and L₂₁ = K₂₁ L₁₁⁻ᵀ for its solves, and S_h = K₂₂ − L₂₁ L₂₁ᵀ for the
 //! interface's S. A whole Cholesky factorisation forms S_h on the way and then factorises it
 //! (L₂₂ L₂₂ᵀ = S_h), which the split had to multiply out again: two dense steps of |Γ_h|³/6
-//! multiply-adds each for nothing (the product took 32–40 ms a half at level 7, BENCHMARKS.md,
-//! "Halves that stop before Γ"). This is
+//! multiply-adds each for nothing (measured in BENCHMARKS.md, "Halves that stop before Γ"). This is
 //! faer's left-looking supernodal factorisation (`factorize_supernodal_numeric_llt`) on the
 //! supernodes the grid gives ([`super::supernodes`]), Γ_h the last, which is neither
 //! factorised nor sends updates: the trailing block of the factor's storage ends as S_h's
@@ -252,7 +251,7 @@ fn factorize_interior<I: Index>(
                 stack,
                 Default::default(),
             )
-            .map_err(|_| FemError::NotPositiveDefinite)?;
+            .map_err(FemError::from)?;
             triangular_solve::solve_lower_triangular_in_place(
                 top.rb(),
                 bot.rb_mut().transpose_mut(),

@@ -1,5 +1,5 @@
 //! The supernodes of a half's Cholesky factor read from the grid's nested dissection, with no
-//! symbolic analysis of the matrix (issue 13, item 3).
+//! symbolic analysis of the matrix.
 //!
 //! Each block of [`super::ordering::Dissection`] (a separator, or a small part) is one
 //! supernode: its columns of L are stored as one dense block, the diagonal block and then
@@ -15,9 +15,8 @@
 //! faer's relaxed supernodes merged small ones. The interface Γ_h is the last supernode, with
 //! no rows below it.
 //!
-//! With faer's analysis of the same pattern (an elimination tree, column counts, then
-//! supernodes) gone, the symbolic stage of a warm level-7 solve takes 83–105 ms instead of
-//! 156–201 ms (BENCHMARKS.md, "Supernodes from the grid").
+//! This replaces faer's analysis of the same pattern (an elimination tree, column counts, then
+//! supernodes); the time it saves is in BENCHMARKS.md, "Supernodes from the grid".
 
 use std::ops::Range;
 

@@ -1,4 +1,4 @@
-//! A pre-scan of a TOML text for nesting deeper than any scenario or tour has (issue 37):
+//! A pre-scan of a TOML text for nesting deeper than any scenario or tour has:
 //! the TOML reader stops arrays and inline tables nested too deep with a located error, but a
 //! dotted key of 150,000 parts (`a.b.c… = 1`, `[a.b.c…]`) reaches serde's recursion limit,
 //! whose message has no line and no key. A key of more than [`MAX_KEY_PARTS`] parts is refused

@@ -1,4 +1,4 @@
-//! What makes a study's numbers mean something (issue 37): its errors are relative to the
+//! What makes a study's numbers mean something: its errors are relative to the
 //! reference's norms (‖p_ref‖₀ on Γ_C, ‖u_ref‖₁ of (7), P_ref), so a reference whose norms are
 //! zero (no contact: the obstacle does not reach the body) or not finite gives no study at
 //! all, and a row is `ok` only when every number it reports is finite.

@@ -1,4 +1,4 @@
-//! Where a study's reference came from (issue 37): the JSON's and CSV's `reference.source`,
+//! Where a study's reference came from: the JSON's and CSV's `reference.source`,
 //! so that a reader of the output (not only of stderr) knows whether its numbers were solved
 //! by this run or read from the cache ([`crate::cache`]).
 

@@ -8,7 +8,8 @@ use crossterm::event::{KeyEvent, KeyEventKind, KeyModifiers};
 
 use crate::contact::{Method, Rule};
 use crate::mesh::Element;
-use crate::scenario::{MAX_LEVEL, Scenario};
+use crate::mesh::MAX_LEVEL;
+use crate::scenario::Scenario;
 use crate::scheme::Scheme;
 use crate::stress::Quantity;
 
@@ -34,7 +35,6 @@ macro_rules! level_8_cost {
         "level 8 takes 18–28 s and 5.4 GiB"
     };
 }
-pub(crate) use level_8_cost;
 /// Why the lab stops at [`MAX_APP_LEVEL`], for messages.
 pub const LEVEL_LIMIT_WHY: &str = concat!(level_8_cost!(), " a change; `riplab solve --level 8` computes it");
 /// The range of ε reachable with `+`/`-`.

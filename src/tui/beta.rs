@@ -2,7 +2,7 @@
 //! that the app does not depend on how the library organises the computation.
 
 use crate::contact::Rule;
-use crate::solve::Discretization;
+use crate::discretization::Discretization;
 
 pub use crate::infsup::InfSup;
 

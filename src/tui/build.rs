@@ -16,11 +16,12 @@ use std::sync::mpsc::{self, Receiver, RecvTimeoutError};
 use std::time::{Duration, Instant};
 
 use crate::contact::{Method, Rule};
+use crate::discretization::Discretization;
 use crate::discretization::ms_since;
 use crate::error::SolveError;
 use crate::mesh::Element;
 use crate::scenario::Scenario;
-use crate::solve::{self, Discretization};
+use crate::solve;
 
 /// A build on a thread of its own.
 pub struct Build {

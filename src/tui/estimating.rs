@@ -8,7 +8,7 @@ use std::time::Duration;
 
 use super::beta::{InfSup, estimate};
 use super::protocol::{InfSupKey, Response};
-use crate::solve::Discretization;
+use crate::discretization::Discretization;
 
 /// An estimate under way on a thread of its own.
 pub struct Estimating {

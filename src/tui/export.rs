@@ -8,8 +8,8 @@
 use std::io::ErrorKind;
 use std::path::{Path, PathBuf};
 
+use crate::output::{Report, SolveReport};
 use crate::plot::{chart_title, pressure_svg_string, write_file};
-use crate::report::{Report, SolveReport};
 use crate::scenario::Scenario;
 
 use super::protocol::Solved;
@@ -33,7 +33,8 @@ pub fn export_svg(scenario: &Scenario, solved: &Solved, dir: &Path) -> Result<Pa
         solved.key.level,
         &solved.solution,
     );
-    let svg = pressure_svg_string(&title, &solved.solution, scenario.half_model)?;
+    let svg =
+        pressure_svg_string(&title, &solved.solution, scenario.half_model).map_err(|e| e.to_string())?;
     save_fresh(dir, &stem(scenario, solved), "svg", svg.as_bytes())
 }
 

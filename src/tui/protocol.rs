@@ -8,10 +8,11 @@ use std::time::Instant;
 
 use crate::contact::method::Gamma0;
 use crate::contact::{Method, Rule};
+use crate::discretization::Discretization;
 use crate::mesh::Element;
 use crate::scenario::Scenario;
 use crate::scheme::Scheme;
-use crate::solve::{Discretization, Solution};
+use crate::solution::Solution;
 use crate::stress::StressField;
 use crate::study::StudyRow;
 

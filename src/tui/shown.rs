@@ -8,7 +8,7 @@ use crate::contact::circle::CircleContact;
 use crate::contact::hertz::Hertz;
 use crate::plot::raw_pressure_edges;
 use crate::scenario::Scenario;
-use crate::solve::Solution;
+use crate::solution::Solution;
 
 /// A solution as the views show it.
 #[derive(Clone, Debug)]

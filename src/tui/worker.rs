@@ -10,11 +10,15 @@ use std::sync::mpsc::{self, Receiver, Sender};
 use std::sync::{Arc, Mutex, OnceLock, PoisonError};
 use std::time::{Duration, Instant};
 
-use crate::contact::penalty::{NewtonOptions, SolveError};
+use crate::contact::penalty::NewtonOptions;
+
+use crate::contact::ContactParams;
 use crate::contact::{Method, Rule, carried_forces};
+use crate::discretization::Discretization;
+use crate::error::SolveError;
 use crate::mesh::Element;
 use crate::scenario::Scenario;
-use crate::solve::{ContactParams, Discretization, solve_contact};
+use crate::solve::solve_contact;
 
 use crate::scheme::Scheme;
 use crate::study::{StudyRow, convergence};

@@ -8,10 +8,12 @@ use super::{Case, Measured, converged};
 use crate::contact::method::DEFAULT_ALM_TOL;
 use crate::contact::penalty::NewtonOptions;
 use crate::contact::{ContactParams, Method};
+use crate::discretization::Discretization;
 use crate::error::SolveError;
 use crate::scenario::Scenario;
 use crate::scheme::Scheme;
-use crate::solve::{Discretization, Solution, solve_contact};
+use crate::solution::Solution;
+use crate::solve::solve_contact;
 
 /// The cases of this family.
 pub fn cases() -> [Case; 2] {

@@ -7,9 +7,11 @@ use super::{Case, Measured, converged};
 use crate::contact::circle::CircleContact;
 use crate::contact::hertz::Hertz;
 use crate::contact::rounded_punch::RoundedPunch;
+use crate::discretization::Discretization;
 use crate::error::SolveError;
 use crate::scenario::Scenario;
-use crate::solve::{Discretization, Solution, solve_scenario};
+use crate::solution::Solution;
+use crate::solve::solve_scenario;
 
 /// scenarios/hertz-block.toml, embedded.
 const HERTZ_BLOCK: &str = include_str!("../../scenarios/hertz-block.toml");

@@ -69,7 +69,7 @@ fn h1_relative_error(element: Element, n: usize) -> Result<f64, SolveError> {
     };
     let dofs = DofMap::new(mesh.n_nodes(), |node, _| on_boundary(node));
     let k = assemble(&mesh, &dofs, Form::Elasticity(MATERIAL, Integration::Full));
-    let failed = |e: crate::fem::FemError| SolveError::Factorization(e.to_string());
+    let failed = |e| crate::discretization::fem_error(e, dofs.n_free());
     let factor = TraceFactor::new(&TraceOrdering::new(&k, &[]).map_err(failed)?, &k).map_err(failed)?;
     let mut uf = dofs.restrict(&body_load(&mesh, f, 5));
     factor.solve_in_place(&mut uf, 1);

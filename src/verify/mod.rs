@@ -109,7 +109,7 @@ pub fn cases() -> Vec<Case> {
 }
 
 /// `sol`, or the error that says it did not converge.
-pub fn converged(sol: &crate::solve::Solution) -> Result<(), SolveError> {
+pub fn converged(sol: &crate::solution::Solution) -> Result<(), SolveError> {
     if sol.newton.converged {
         return Ok(());
     }
@@ -305,7 +305,7 @@ mod tests {
     }
 
     fn failing(_: u32) -> Result<Vec<Measured>, SolveError> {
-        Err(SolveError::Eigen("no".into()))
+        Err(SolveError::Eigen(faer::linalg::evd::EvdError::NoConvergence))
     }
 
     /// A value off its reference, one that is not finite, one that changed from its stored

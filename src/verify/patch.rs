@@ -10,10 +10,11 @@ use std::ops::ControlFlow;
 use super::{Case, Measured, converged};
 use crate::contact::penalty::NewtonOptions;
 use crate::contact::{ContactParams, Obstacle};
+use crate::discretization::Discretization;
 use crate::error::SolveError;
 use crate::scenario::Scenario;
 use crate::scheme::Scheme;
-use crate::solve::{Discretization, solve_contact};
+use crate::solve::solve_contact;
 
 /// The case.
 pub const CASE: Case = Case {

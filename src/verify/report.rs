@@ -1,4 +1,4 @@
-//! `riplab verify`'s output in the CLI's formats ([`crate::report::Report`]): a table with
+//! `riplab verify`'s output in the CLI's formats ([`crate::output::Report`]): a table with
 //! each case's source under its rows, CSV (a row per check, read from the JSON), and JSON.
 
 use std::fmt::Write as _;
@@ -6,7 +6,7 @@ use std::fmt::Write as _;
 use serde::Serialize;
 
 use super::{Case, Verdict, Verification};
-use crate::report::{Cell, Report, csv_table};
+use crate::output::{Cell, Report, csv_table};
 
 /// The CSV columns of `riplab verify`.
 const COLUMNS: [(&str, Cell); 16] = [

@@ -7,7 +7,8 @@ use riplab::mesh::Element;
 use riplab::plot::{chart_title, pressure_svg, pressure_svg_string, write_file};
 use riplab::scenario::Scenario;
 use riplab::scheme::Scheme;
-use riplab::solve::{Solution, solve_scenario};
+use riplab::solution::Solution;
+use riplab::solve::solve_scenario;
 
 /// The paper's problem solved with the preset `scheme` at `level`.
 fn solve(scheme: &str, level: u32) -> (Scenario, Element, Solution) {
@@ -97,7 +98,8 @@ fn an_existing_file_is_not_overwritten_unless_asked() {
     let (s, element, sol) = solve("M3", 0);
     let title = chart_title(&s.name, element, 0, &sol);
     let err = pressure_svg(&path, &title, &sol, true, false).unwrap_err();
-    assert!(err.contains("exists"), "{err}");
+    assert!(matches!(err, riplab::plot::PlotError::Exists { .. }), "{err}");
+    assert!(err.to_string().contains("exists"), "{err}");
     assert_eq!(std::fs::read_to_string(&path).unwrap(), "mine");
     pressure_svg(&path, &title, &sol, true, true).unwrap();
     assert!(std::fs::read_to_string(&path).unwrap().starts_with("<svg"));

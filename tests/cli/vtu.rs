@@ -5,9 +5,11 @@
 use std::path::{Path, PathBuf};
 
 use crate::common::riplab;
+use riplab::discretization::Discretization;
 use riplab::mesh::Element;
 use riplab::scenario::Scenario;
-use riplab::solve::{Discretization, Solution, solve_scenario};
+use riplab::solution::Solution;
+use riplab::solve::solve_scenario;
 use riplab::vtu::{VtuError, check_target, check_targets, contact_path, write};
 use vtkio::model::{Attribute, CellType, DataSet, Piece, UnstructuredGridPiece, Vtk};
 

@@ -72,8 +72,8 @@ pub fn riplab(args: &[&str]) -> (i32, String, String) {
 /// Σ over the clamped bottom of (K u)_y: the vertical reaction of the support.
 pub fn bottom_reaction(
     scenario: &Scenario,
-    disc: &riplab::solve::Discretization,
-    sol: &riplab::solve::Solution,
+    disc: &riplab::discretization::Discretization,
+    sol: &riplab::solution::Solution,
 ) -> f64 {
     use riplab::fem::{Form, apply};
     let ku = apply(

@@ -611,7 +611,7 @@ fn no_contact_renders() {
 fn row(scheme: &str, level: u32, n_dofs: usize, ms: f64, p: f64, pbar: f64, u: f64) -> StudyRow {
     StudyRow {
         scheme: scheme.into(),
-        element: "q1",
+        element: riplab::mesh::Element::Q1,
         rule: "gauss1",
         level,
         h: 1.0 / f64::from(1 << level),
@@ -1730,7 +1730,7 @@ fn a_level_or_rule_step_starts_newton_from_the_last_pressure() {
 /// A finished build of `level` with `element` (1 ms, no preparation), for [`Engine::adopt`].
 fn finished(scenario: &Scenario, level: u32, element: Element) -> riplab::tui::worker::Built {
     Ok(riplab::tui::worker::Finished {
-        disc: Arc::new(riplab::solve::Discretization::of(scenario, level, element).unwrap()),
+        disc: Arc::new(riplab::discretization::Discretization::of(scenario, level, element).unwrap()),
         build_ms: Some(1.0),
         prepare_ms: None,
     })
@@ -1838,7 +1838,10 @@ fn the_engine_prefetches_the_neighbouring_levels() {
     settle(&mut app, &mut engine);
     assert!(app.current().is_some());
     assert_eq!(engine.next_prefetch(), Some((MAX_APP_LEVEL - 1, Element::Q2)));
-    let too_large = riplab::error::SolveError::TooLarge("test".into());
+    let too_large = riplab::error::SolveError::OutOfMemory {
+        step: "test",
+        unknowns: 1,
+    };
     engine.adopt(MAX_APP_LEVEL - 1, Element::Q2, Err(too_large), Use::Background);
     assert_eq!(engine.next_prefetch(), None, "not retried");
 }
@@ -1848,7 +1851,7 @@ fn the_engine_prefetches_the_neighbouring_levels() {
 /// Q1's level 8), whose estimate alone exceeds the budget.
 #[test]
 fn the_cache_budget_holds_level_7_of_q1_not_of_q2() {
-    use riplab::solve::Discretization;
+    use riplab::discretization::Discretization;
     use riplab::tui::worker::CACHE_BYTES;
     let scenario = Scenario::paper();
     let engine = Engine::new(scenario.clone());

@@ -4,13 +4,16 @@
 use std::ops::ControlFlow;
 
 use crate::common::{Lcg, bottom_reaction, paper_with, rel};
+use riplab::contact::ContactParams;
 use riplab::contact::penalty::NewtonOptions;
 use riplab::contact::pressure::{rule_product, smoothed_pressure, trapezoid_product};
 use riplab::contact::{ContactPoints, Obstacle, Rule};
+use riplab::discretization::Discretization;
 use riplab::fem::Integration;
 use riplab::material::{Material, Plane};
 use riplab::mesh::{Element, Mesh};
-use riplab::solve::{ContactParams, Discretization, Solution, solve_contact, solve_scenario};
+use riplab::solution::Solution;
+use riplab::solve::{solve_contact, solve_scenario};
 
 fn solve(disc: &Discretization, rule: Rule, epsilon: f64, obstacle: Obstacle) -> Solution {
     let params = ContactParams::by_epsilon(rule, epsilon, obstacle);

@@ -4,12 +4,12 @@
 use crate::common::{paper_with, rel};
 use nalgebra::{DMatrix, SymmetricEigen};
 use riplab::contact::{ContactPoints, Rule};
+use riplab::discretization::Discretization;
 use riplab::fem::{Form, Integration, assemble};
 use riplab::infsup::{InfSupRow, inf_sup, table};
 use riplab::material::{Material, Plane};
 use riplab::mesh::{Element, Mesh};
 use riplab::scheme::Scheme;
-use riplab::solve::Discretization;
 
 /// λ_min(S, N) for N symmetric positive definite, by nalgebra's Cholesky and symmetric eigen.
 fn dense_min_eig(s: &DMatrix<f64>, n: &DMatrix<f64>) -> f64 {

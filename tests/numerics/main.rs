@@ -8,6 +8,7 @@
 mod common;
 
 mod contact;
+mod extremes;
 mod fem;
 mod infsup;
 mod locking;
@@ -17,7 +18,6 @@ mod pressures;
 mod round_off;
 mod scenario_props;
 mod scenarios;
-mod stress;
 mod stresses;
 mod study;
 mod verify;

@@ -5,13 +5,16 @@
 use std::ops::ControlFlow;
 
 use crate::common::paper_with;
+use riplab::contact::ContactParams;
 use riplab::contact::method::Gamma0;
 use riplab::contact::penalty::NewtonOptions;
 use riplab::contact::{Method, Obstacle, Rule};
+use riplab::discretization::Discretization;
 use riplab::fem::Integration;
 use riplab::material::{Material, Plane};
 use riplab::mesh::{Element, Mesh};
-use riplab::solve::{ContactParams, Discretization, Solution, solve_contact};
+use riplab::solution::Solution;
+use riplab::solve::solve_contact;
 
 fn solve(disc: &Discretization, rule: Rule, method: Method, epsilon: f64, obstacle: &Obstacle) -> Solution {
     let params = ContactParams {

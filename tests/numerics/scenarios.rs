@@ -144,9 +144,9 @@ fn two_bumps_make_two_zones() {
 /// 17 × 9 nodes, 2·17·8 = 272 dofs above the clamped base less 8 u_x on the symmetry line.
 #[test]
 fn scenario_counts_are_the_meshes() {
+    use riplab::discretization::Discretization;
     use riplab::fem::DofMap;
     use riplab::mesh::Element;
-    use riplab::solve::Discretization;
     assert_eq!(Scenario::paper().n_dofs(1, Element::Q1), 264);
     for path in scenario_files() {
         let s = Scenario::load(&path).unwrap();

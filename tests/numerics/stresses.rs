@@ -1,17 +1,17 @@
-//! The stresses of `riplab::stress` (issue 15), each checked against something independent of
+//! The stresses of `riplab::stress`, each checked against something independent of
 //! the code that computes them: a uniform strain by hand, Johnson's Hertz line contact, the
 //! contact pressure p̄ on Γ_C, and the load carried across every horizontal line.
-//!
-//! (`tests/numerics/stress.rs` is something else: the stability stress test of issue 6.)
 
 use riplab::contact::hertz::Hertz;
+use riplab::discretization::Discretization;
 use riplab::fem::Integration;
 use riplab::fem::quadrature::gauss_legendre;
 use riplab::material::{Material, Plane};
 use riplab::mesh::{Element, Mesh};
 use riplab::scenario::Scenario;
 use riplab::scheme::Scheme;
-use riplab::solve::{Discretization, Solution, solve_scenario};
+use riplab::solution::Solution;
+use riplab::solve::solve_scenario;
 use riplab::stress::{Quantity, Stress, StressField};
 
 use crate::common::paper_with;

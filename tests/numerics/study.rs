@@ -135,7 +135,7 @@ fn the_reference_is_cached_between_runs() {
 fn made_row(level: u32, h: f64, errors: Option<Errors>, status: Status) -> StudyRow {
     StudyRow {
         scheme: "M1".into(),
-        element: "q1",
+        element: riplab::mesh::Element::Q1,
         rule: "gauss1",
         level,
         h,
@@ -462,7 +462,7 @@ fn a_refined_study_measures_its_rows_against_the_final_reference() {
 /// The study's CSV (`riplab study --format csv`) is its JSON, line by line: a row per row, a
 /// fit per fit, the reference last; each error, rate and estimate is the JSON's number.
 fn study_csv_is_its_json(s: &riplab::study::Study) {
-    use riplab::report::{Report, STUDY_COLUMNS, StudyReport};
+    use riplab::output::{Report, STUDY_COLUMNS, StudyReport};
     let report = StudyReport {
         scenario: "paper",
         study: s,

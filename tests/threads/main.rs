@@ -8,13 +8,15 @@ mod common;
 use std::ops::ControlFlow;
 
 use crate::common::paper_with;
+use riplab::contact::ContactParams;
 use riplab::contact::penalty::NewtonOptions;
+use riplab::discretization::Discretization;
 use riplab::fem::factor::Factor;
 use riplab::fem::split::{SplitFactor, SplitOrdering};
 use riplab::fem::{DofMap, Form, Integration, assemble};
 use riplab::material::{Material, Plane};
 use riplab::mesh::{Element, Mesh};
-use riplab::solve::{ContactParams, Discretization, solve_contact};
+use riplab::solve::solve_contact;
 
 /// What a solve reports, by quantity: the trace compliance C, p, p̄, u and the load; and
 /// whether K was factorised as two subdomains (rather than the whole grid as one part).

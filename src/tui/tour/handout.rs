@@ -137,7 +137,7 @@ fn chart(mut app: App, engine: &mut Engine) -> Result<String, String> {
         solved.key.level,
         &solved.solution,
     );
-    pressure_svg_string(&title, &solved.solution, app.scenario.half_model)
+    pressure_svg_string(&title, &solved.solution, app.scenario.half_model).map_err(|e| e.to_string())
 }
 
 /// The index's first lines.

@@ -319,7 +319,7 @@ fn step(src: &Source, n: usize, raw: &RawStep, dir: Option<&Path>) -> Result<Ste
             ));
         }
         let s = Scheme::parse(scheme.get_ref())
-            .map_err(|m| src.error(Some(scheme.span()), Some(key("scheme")), m))?;
+            .map_err(|m| src.error(Some(scheme.span()), Some(key("scheme")), m.to_string()))?;
         (element, rule) = (Some(s.element), Some(s.rule));
     }
     let level = match &raw.level {

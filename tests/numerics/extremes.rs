@@ -1,14 +1,18 @@
-//! Stability at the extremes (issue 6): geometry that stresses the contact logic, sizes the
+//! Stability at the extremes: geometry that strains the contact logic, sizes the
 //! machine cannot hold, and determinism.
 
 use std::ops::ControlFlow;
 
 use crate::common::paper_with;
-use riplab::contact::penalty::{NewtonOptions, SolveError};
+use riplab::contact::ContactParams;
+use riplab::contact::penalty::NewtonOptions;
 use riplab::contact::{Obstacle, Rule};
+use riplab::discretization::Discretization;
+use riplab::error::{SolveError, Workload};
 use riplab::fem::DofMap;
 use riplab::mesh::Element;
-use riplab::solve::{ContactParams, Discretization, Solution, solve_contact, solve_scenario};
+use riplab::solution::Solution;
+use riplab::solve::{solve_contact, solve_scenario};
 
 fn solve_with(disc: &Discretization, rule: Rule, obstacle: Obstacle) -> Solution {
     let params = ContactParams::by_epsilon(rule, 1e-6, obstacle);
@@ -44,7 +48,12 @@ fn unknowns_are_counted_without_building_the_mesh() {
 fn a_size_beyond_the_machine_is_refused_before_allocating() {
     let s = paper_with(&[("nx =", "nx = 4096"), ("ny =", "ny = 4096")]);
     match Discretization::of(&s, 8, Element::Q2) {
-        Err(SolveError::TooLarge(msg)) => assert!(msg.contains("GiB available"), "{msg}"),
+        Err(SolveError::TooLarge {
+            workload: Workload::Level { level: 8, .. },
+            need,
+            available,
+            ..
+        }) => assert!(need > available, "{need} ≤ {available}"),
         Err(e) => panic!("wrong error: {e}"),
         Ok(_) => panic!("a 10¹³-unknown problem was accepted"),
     }

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Stress study for STABILITY.md (issue 6): run after `cargo build --release`.
 
-Usage: python3 benches/stress.py > /tmp/stability-tables.md
+Usage: python3 benches/extremes.py > /tmp/stability-tables.md
 Each section prints a Markdown table and the commands behind it.
 """
 import json

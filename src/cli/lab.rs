@@ -1,0 +1,88 @@
+//! `riplab lab` and `riplab render`: the terminal lab, and one frame of it drawn as text.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::Args;
+
+use super::args::{MethodArgs, Select};
+use super::{CliError, checks, print, tour, usage, values};
+use crate::check;
+use crate::tui::{TuiOptions, render_to_string};
+
+/// The notes under `riplab render --help`.
+pub(super) const RENDER_NOTES: &str = concat!(
+    "Levels: render draws what the lab shows, levels 0 to 7 (a change at level 8 takes
+seconds and gigabytes, BENCHMARKS.md: too slow for the lab; `riplab solve` goes to level 8).
+
+",
+    exit_codes!()
+);
+
+/// The arguments of `riplab render`.
+#[derive(Args, Debug)]
+#[command(mut_arg("level", |a| a.help("Mesh level 0 to 7, the lab's levels (h halves with each level)")))]
+pub struct RenderArgs {
+    /// The scenario, level, element and rule.
+    #[command(flatten)]
+    pub select: Select,
+    /// The contact method and its parameters.
+    #[command(flatten)]
+    pub method: MethodArgs,
+    /// Scene: explore, infsup, mesh, convergence (the study takes seconds) or stress.
+    #[arg(long, default_value = "explore", value_parser = ["explore", "infsup", "mesh", "convergence", "stress"])]
+    pub scene: String,
+    /// Frame size, COLUMNSxROWS (or COLUMNS×ROWS), from 80x24 to 1000x500.
+    #[arg(long, default_value = "120x40")]
+    pub size: String,
+    /// Penalty parameter ε > 0 (the scenario's when omitted).
+    #[arg(long, value_parser = values::number)]
+    pub epsilon: Option<f64>,
+}
+
+/// The terminal lab.
+pub(super) fn lab(
+    file: Option<PathBuf>,
+    record: Option<PathBuf>,
+    opts: TuiOptions,
+) -> Result<ExitCode, CliError> {
+    let scenario = Select {
+        scenario: file.clone(),
+        ..Select::default()
+    }
+    .resolve()?;
+    let record = tour::with_terminal("the lab", record.as_deref())?;
+    crate::tui::run(scenario, file.as_deref(), &opts, record).map_err(|e| CliError::Failed(e.to_string()))?;
+    Ok(ExitCode::SUCCESS)
+}
+
+pub(super) fn render(args: &RenderArgs) -> Result<ExitCode, CliError> {
+    // The size first: nothing is loaded or allocated for a frame that cannot be drawn.
+    let (width, height) = crate::tui::parse_size(&args.size).map_err(|m| usage("--size", m))?;
+    let mut scenario = args.select.resolve()?;
+    if let Some(method) = args.method.resolve(&scenario)? {
+        scenario.method = method;
+    }
+    if let Some(e) = args.epsilon {
+        check::positive(e)
+            .and_then(|()| check::epsilon_in(e, scenario.epsilon_range(scenario.level)))
+            .map_err(|m| usage("--epsilon", m))?;
+    }
+    checks::render_request(&scenario, &args.scene, args.epsilon)?;
+    let frame = render_to_string(
+        &scenario,
+        &args.scene,
+        width,
+        height,
+        Some(scenario.level),
+        Some(scenario.element),
+        Some(scenario.rule),
+        args.epsilon,
+    )
+    .map_err(CliError::Usage)?;
+    print(&frame.text)?;
+    match frame.failure {
+        Some(why) => Err(CliError::Failed(format!("the frame shows a failure: {why}"))),
+        None => Ok(ExitCode::SUCCESS),
+    }
+}

@@ -1,0 +1,167 @@
+//! `riplab study`: every scheme against a refined reference, with its rates and fits (docs/design.md §6).
+
+use std::process::ExitCode;
+
+use super::args::{Select, StudyArgs, method_at, parse_levels};
+use super::{CliError, note, print, shown, usage};
+use crate::check;
+use crate::contact::Method;
+use crate::output::{Format, StudyReport, output};
+use crate::scheme::Scheme;
+use crate::study::{Plan, ReferenceLevelError, all_ok};
+
+pub(super) fn study(args: &StudyArgs) -> Result<ExitCode, CliError> {
+    let scenario = Select {
+        scenario: args.scenario.clone(),
+        ..Select::default()
+    }
+    .resolve()?;
+    let schemes = args
+        .schemes
+        .iter()
+        .map(|s| Scheme::parse(s).map(|s| (s.element, s.rule)))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(|m| usage("--schemes", m))?;
+    let method = args.method.resolve(&scenario)?;
+    if let Some(m) = method.filter(|m| !m.uses_epsilon() && !args.sweep_epsilon.is_empty()) {
+        return Err(usage(
+            "--sweep-epsilon",
+            format!(
+                "{} does not use ε: its rows would not change and no rate against ε exists",
+                m.name()
+            ),
+        ));
+    }
+    let levels = match args.level {
+        Some(l) => {
+            check::level(l).map_err(|m| usage("--level", m))?;
+            vec![l as u32]
+        }
+        None => parse_levels(&args.levels).map_err(|m| usage("--levels", m))?,
+    };
+    // A penalty refinement study's default ε keeps the penalty's error below the mesh's.
+    let penalty = matches!(method, None | Some(Method::Penalty)) && args.sweep_epsilon.is_empty();
+    let epsilon = match args.epsilon {
+        Some(e) => e,
+        None if penalty => crate::penalty_error::default_epsilon(&scenario, levels[levels.len() - 1]),
+        None => scenario.epsilon,
+    };
+    if args.epsilon.is_none() && epsilon != scenario.epsilon {
+        note(&format!(
+            "note: ε = {epsilon:.3e} (κ = εE/h = {:e} at level {}), not the scenario's {:e}, so that the penalty's error stays well below the mesh's (--epsilon sets it)",
+            crate::penalty_error::STUDY_KAPPA,
+            levels[levels.len() - 1],
+            scenario.epsilon
+        ));
+    }
+    if args.sweep_epsilon.is_empty() {
+        method_at(method, epsilon, "--epsilon")?;
+    }
+    // ε's range depends on h: check it at the coarsest and the finest level studied.
+    for &level in [levels[0], levels[levels.len() - 1]].iter() {
+        let range = scenario.epsilon_range(level);
+        check::epsilon_in(epsilon, range)
+            .map_err(|m| usage("--epsilon", format!("at level {level}: {m}")))?;
+        for &e in &args.sweep_epsilon {
+            check::epsilon_in(e, range).map_err(|m| usage("--sweep-epsilon", m))?;
+        }
+    }
+    let requested = match args.reference_level {
+        Some(l) => {
+            check::level(l).map_err(|m| usage("--reference-level", m))?;
+            Some(l as u32)
+        }
+        None => None,
+    };
+    let reference_level = crate::study::reference_level(&levels, requested).map_err(|e| match e {
+        ReferenceLevelError::NotFiner { .. } => usage("--reference-level", e),
+        ReferenceLevelError::NoFinerLevel { .. } => usage("--levels", e),
+    })?;
+    check::integer(
+        args.reference_refinements,
+        0,
+        i64::from(crate::study::MAX_REFINEMENTS),
+    )
+    .map_err(|m| usage("--reference-refinements", m))?;
+    note(&format!(
+        "the reference: q2 + simpson, ε = 0 (exact constraint), level {reference_level} and, for its estimated error, level {} …",
+        reference_level - 1
+    ));
+    let dir = (!args.no_cache).then(crate::cache::default_dir).flatten();
+    let mut fetch = |grid: &crate::study::ReferenceMesh| {
+        let (fields, provenance) = crate::cache::fields(&scenario, grid, dir.as_deref())?;
+        let what = match grid.refinements {
+            0 => format!("reference level {}", grid.level),
+            k => format!("reference level {} refinement {k}", grid.level),
+        };
+        match provenance {
+            crate::cache::Provenance::Cached(path) => note(&format!(
+                "{what} read from {} (computed in {:.1} s; --no-cache recomputes it)",
+                shown(&path),
+                fields.ms / 1e3
+            )),
+            other => {
+                note(&format!(
+                    "{what} done in {:.1} s ({} dofs)",
+                    fields.ms / 1e3,
+                    fields.n_dofs
+                ));
+                if let crate::cache::Provenance::Computed(Some(why)) = other {
+                    note(&format!("warning: the reference is {why}"));
+                }
+            }
+        }
+        Ok(fields)
+    };
+    let plan = if args.sweep_epsilon.is_empty() {
+        Plan::Levels {
+            levels: &levels,
+            epsilon,
+        }
+    } else {
+        Plan::Sweep {
+            level: levels[0],
+            epsilons: &args.sweep_epsilon,
+        }
+    };
+    let study = crate::study::study(
+        &scenario,
+        &schemes,
+        method,
+        plan,
+        (reference_level, args.reference_refinements as u32),
+        &mut fetch,
+    )?;
+    // The table says it in its own lines; JSON and CSV carry it in a field.
+    if let (Some(why), false) = (&study.reference.stopped, args.format == Format::Table) {
+        note(&format!(
+            "warning: the reference's estimated error is above a tenth of the smallest row error; its refinement stopped at {}: {why}",
+            study.reference.grid.refinements
+        ));
+    }
+    print(&output(
+        &StudyReport {
+            scenario: &scenario.name,
+            study: &study,
+        },
+        args.format,
+    ))?;
+    if args.sweep_epsilon.is_empty() {
+        for row in crate::penalty_error::dominated_rows(&study.rows, scenario.material.young) {
+            note(&format!("note: {row}"));
+        }
+    }
+    let rows = study.rows;
+    if all_ok(&rows) {
+        Ok(ExitCode::SUCCESS)
+    } else {
+        let n = rows
+            .iter()
+            .filter(|r| r.status != crate::study::Status::Ok)
+            .count();
+        Err(CliError::Failed(format!(
+            "{n} of {} rows have no certified result (their status and reason are in the output)",
+            rows.len()
+        )))
+    }
+}

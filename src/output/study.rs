@@ -1,0 +1,302 @@
+//! `riplab study`'s report: the reference, every row's errors and rates, and the fits (docs/design.md §6).
+
+use std::fmt::Write as _;
+
+use serde::Serialize;
+
+use super::Report;
+use super::csv::{Cell, csv_table};
+use crate::study::{Errors, Reference, Status, Study};
+
+/// `riplab study`: the reference, the rows and each scheme's least-squares fit; JSON
+/// `{ "scenario", "reference", "rows", "fits" }` (docs/design.md §7).
+pub struct StudyReport<'a> {
+    /// The scenario's name.
+    pub scenario: &'a str,
+    /// The study: reference, rows and fits.
+    pub study: &'a Study,
+}
+
+impl StudyReport<'_> {
+    /// The JSON of the reference (the study's `reference` object).
+    fn reference_json(&self) -> serde_json::Value {
+        let reference = &self.study.reference;
+        serde_json::json!({
+            "element": reference.element.name(), "rule": reference.rule.name(), "epsilon": 0.0,
+            "level": reference.level, "refinements": reference.grid.refinements,
+            "h_min": reference.grid.h_min(), "n_dofs": reference.n_dofs,
+            "load": reference.load, "ms": reference.ms, "source": reference.source,
+            "estimate": reference.estimate, "target": reference.target,
+            "target_met": reference.target.map(|_| reference.stopped.is_none()), "stopped": reference.stopped,
+        })
+    }
+}
+
+impl Serialize for StudyReport<'_> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        serde_json::json!({
+            "scenario": self.scenario,
+            "reference": self.reference_json(),
+            "rows": self.study.rows,
+            "fits": self.study.fits,
+        })
+        .serialize(s)
+    }
+}
+
+/// The study's CSV columns. A line is a `row` (a [`crate::study::StudyRow`]'s JSON), a `fit` (a
+/// [`crate::study::Fit`]'s: its rates in the `rate_*` columns) or, last, the `reference` (its
+/// smallest cell side as `h`, its estimated error in `err_*`, why its refinement stopped in
+/// `reason`, and in `source` whether it was `computed` or read from the `cache`).
+pub const STUDY_COLUMNS: [(&str, Cell); 30] = [
+    ("kind", Cell::Field("/kind")),
+    ("scheme", Cell::Field("/scheme")),
+    ("element", Cell::Field("/element")),
+    ("rule", Cell::Field("/rule")),
+    ("level", Cell::Field("/level")),
+    ("refinements", Cell::Field("/refinements")),
+    ("h", Cell::First(&["/h", "/h_min"])),
+    ("epsilon", Cell::Field("/epsilon")),
+    ("method", Cell::Field("/method")),
+    ("theta", Cell::Field("/theta")),
+    ("gamma0", Cell::Field("/gamma0")),
+    ("gamma0_auto", Cell::Field("/gamma0_auto")),
+    ("alm_tol", Cell::Field("/alm_tol")),
+    ("n_dofs", Cell::Field("/n_dofs")),
+    ("status", Cell::Field("/status")),
+    ("newton_iterations", Cell::Field("/newton_iterations")),
+    ("outer_iterations", Cell::Field("/outer_iterations")),
+    ("converged", Cell::Field("/converged")),
+    ("solve_ms", Cell::First(&["/solve_ms", "/ms"])),
+    ("load", Cell::Field("/load")),
+    ("err_p", Cell::First(&["/errors/p", "/estimate/p"])),
+    ("err_pbar", Cell::Field("/errors/pbar")),
+    ("err_u", Cell::First(&["/errors/u", "/estimate/u"])),
+    ("err_load", Cell::First(&["/errors/load", "/estimate/load"])),
+    ("rate_p", Cell::Field("/rates/p")),
+    ("rate_pbar", Cell::Field("/rates/pbar")),
+    ("rate_u", Cell::Field("/rates/u")),
+    ("rate_load", Cell::Field("/rates/load")),
+    ("reason", Cell::First(&["/reason", "/stopped"])),
+    ("source", Cell::Field("/source")),
+];
+
+/// `value`, an object, with `kind` first.
+pub(super) fn kind(kind: &str, value: serde_json::Value) -> serde_json::Value {
+    let mut record = serde_json::Map::new();
+    record.insert("kind".into(), kind.into());
+    if let serde_json::Value::Object(fields) = value {
+        record.extend(fields);
+    }
+    serde_json::Value::Object(record)
+}
+
+impl Report for StudyReport<'_> {
+    fn csv(&self) -> String {
+        fn value(v: &impl Serialize) -> serde_json::Value {
+            serde_json::to_value(v).expect("a record is plain data")
+        }
+        let mut records: Vec<serde_json::Value> = Vec::new();
+        records.extend(self.study.rows.iter().map(|r| kind("row", value(r))));
+        records.extend(self.study.fits.iter().map(|f| kind("fit", value(f))));
+        let mut reference = kind("reference", self.reference_json());
+        // The reference is the exact method, solved (or read) and certified.
+        for (key, v) in [
+            ("scheme", "reference".into()),
+            ("method", "exact".into()),
+            ("status", "ok".into()),
+            ("converged", true.into()),
+        ] {
+            reference[key] = v;
+        }
+        records.push(reference);
+        csv_table(&records, &STUDY_COLUMNS)
+    }
+
+    fn table(&self) -> String {
+        let (scenario, study) = (self.scenario, self.study);
+        let (reference, rows) = (&study.reference, &study.rows);
+        let mut s = String::new();
+        let rate = |r: &Option<Errors>, f: fn(&Errors) -> f64| {
+            r.as_ref().map_or(String::new(), |e| format!("{:.2}", f(e)))
+        };
+        let _ = writeln!(
+            s,
+            "{scenario}: reference {}+{}, ε = 0 (exact constraint), level {}{}, {} dofs, load {:.6}",
+            reference.element.name(),
+            reference.rule.name(),
+            reference.level,
+            match reference.grid.refinements {
+                0 => String::new(),
+                1 => " + 1 edge refinement".into(),
+                k => format!(" + {k} edge refinements"),
+            },
+            reference.n_dofs,
+            reference.load
+        );
+        let _ = writeln!(s, "{}", reference_estimate(reference));
+        if let Some(why) = &reference.stopped {
+            let _ = writeln!(
+                s,
+                "warning: the reference's refinement stopped short of the target: {why}"
+            );
+        }
+        let mut methods: Vec<String> = rows.iter().map(|r| r.method.setting().label()).collect();
+        methods.dedup();
+        if !methods.is_empty() {
+            let _ = writeln!(s, "method: {}", methods.join(", "));
+        }
+        let _ = writeln!(
+            s,
+            "relative errors: p, p̄ in L²(Γ_C); u in H¹ (7); load P; rate = observed order between successive rows; fit = least-squares order over the scheme's rows"
+        );
+        let _ = writeln!(
+            s,
+            "{:<14} {:>5} {:>9} {:>8} {:>8} {:>7} {:>9} {:>10} {:>5} {:>10} {:>5} {:>10} {:>5} {:>10} {:>5}",
+            "scheme",
+            "level",
+            "h",
+            "ε",
+            "dofs",
+            "Newton",
+            "solve ms",
+            "p",
+            "rate",
+            "p̄",
+            "rate",
+            "u",
+            "rate",
+            "load",
+            "rate"
+        );
+        for (i, r) in rows.iter().enumerate() {
+            if i > 0 && rows[i - 1].scheme != r.scheme {
+                s.push('\n');
+            }
+            let head = format!(
+                "{:<14} {:>5} {:>9.6} {} {:>8}",
+                r.scheme,
+                r.level,
+                r.h,
+                r.method.epsilon_text(r.epsilon, 8),
+                r.n_dofs
+            );
+            let last = rows
+                .get(i + 1)
+                .is_none_or(|n| n.scheme != r.scheme || n.method.setting() != r.method.setting());
+            let fit = study
+                .fits
+                .iter()
+                .find(|f| last && f.scheme == r.scheme && f.method == r.method.setting());
+            let (Some(e), Some(iterations), Some(ms)) = (&r.errors, r.newton_iterations, r.solve_ms) else {
+                // No result: the reason in place of the numbers.
+                let reason = r.reason.as_deref().unwrap_or("");
+                let _ = writeln!(s, "{head}  {}: {}", r.status.word(), short_reason(reason));
+                if let Some(f) = fit {
+                    let _ = writeln!(s, "{}", fit_line(f, &rate));
+                }
+                continue;
+            };
+            let flag = if r.status == Status::Ok {
+                String::new()
+            } else {
+                format!("  {}", r.status.word().to_uppercase())
+            };
+            let _ = writeln!(
+                s,
+                "{head} {:>7} {:>9.1} {:>10.3e} {:>5} {:>10.3e} {:>5} {:>10.3e} {:>5} {:>10.3e} {:>5}{flag}",
+                iterations,
+                ms,
+                e.p,
+                rate(&r.rates, |e| e.p),
+                e.pbar,
+                rate(&r.rates, |e| e.pbar),
+                e.u,
+                rate(&r.rates, |e| e.u),
+                e.load,
+                rate(&r.rates, |e| e.load)
+            );
+            if let Some(f) = fit {
+                let _ = writeln!(s, "{}", fit_line(f, &rate));
+            }
+        }
+        let reasons: Vec<String> = rows
+            .iter()
+            .filter(|r| r.status != Status::Ok)
+            .filter_map(|r| {
+                r.reason.as_ref().map(|why| {
+                    let setting = if r.method.uses_epsilon() {
+                        format!("ε = {:e}", r.epsilon)
+                    } else {
+                        r.method.label()
+                    };
+                    format!("{} level {} {setting}: {why}", r.scheme, r.level)
+                })
+            })
+            .collect();
+        if !reasons.is_empty() {
+            let _ = writeln!(s, "\nrows without a certified result:");
+            for why in reasons {
+                let _ = writeln!(s, "  {why}");
+            }
+        }
+        s
+    }
+}
+
+/// The table's lines on the reference's estimated error and what the study asked of it.
+pub(super) fn reference_estimate(reference: &Reference) -> String {
+    let Some(e) = &reference.estimate else {
+        return "reference's estimated error: none (no coarser reference)".into();
+    };
+    let u_note = if reference.grid.refinements > 0 {
+        " (the uniform level's)"
+    } else {
+        ""
+    };
+    let mut line = format!(
+        "reference's estimated error (difference from {}): p {:.3e}, u {:.3e}{u_note}, load {:.3e}",
+        e.against, e.p, e.u, e.load
+    );
+    if let Some(t) = &reference.target {
+        let _ = write!(
+            line,
+            "\nreference's target (a tenth of the smallest row errors): p ≤ {:.3e}, u ≤ {:.3e}: {}",
+            t.p,
+            t.u,
+            if reference.stopped.is_none() {
+                "met"
+            } else {
+                "not met"
+            }
+        );
+    }
+    line
+}
+
+/// Formats one rate of a row's (or a fit's) rates, empty when there are none.
+pub(super) type RateText = dyn Fn(&Option<Errors>, fn(&Errors) -> f64) -> String;
+
+/// The table's `fit` line of a scheme: its least-squares rates in the rate columns.
+pub(super) fn fit_line(f: &crate::study::Fit, rate: &RateText) -> String {
+    format!(
+        "{:<66} {:>10} {:>5} {:>10} {:>5} {:>10} {:>5} {:>10} {:>5}",
+        format!("  fit: least squares over {} rows", f.rows),
+        "",
+        rate(&f.rates, |e| e.p),
+        "",
+        rate(&f.rates, |e| e.pbar),
+        "",
+        rate(&f.rates, |e| e.u),
+        "",
+        rate(&f.rates, |e| e.load)
+    )
+}
+
+/// The first clause of a reason, for a table cell (the whole reason follows the table).
+pub(super) fn short_reason(reason: &str) -> &str {
+    if reason.contains("multipliers are not unique") {
+        return "multipliers not unique";
+    }
+    reason.split([':', ';']).next().unwrap_or(reason).trim()
+}

@@ -1,0 +1,268 @@
+//! The reference solution of a study (docs/design.md §6): the exact-constraint problem with Q2
+//! and Simpson multipliers on the reference grid, its memory guard, its estimated error (the
+//! difference from the next coarser reference) and the target the rows ask of it.
+
+use std::ops::ControlFlow;
+use std::time::Instant;
+
+use serde::Serialize;
+
+use super::grid::{REFERENCE_SCHEME, ReferenceMesh};
+use super::source::ReferenceSource;
+use crate::contact::ContactParams;
+use crate::contact::penalty::NewtonOptions;
+use crate::contact::{ContactPoints, Method, Rule};
+use crate::discretization::Discretization;
+use crate::discretization::fem_error;
+use crate::error::{SolveError, Workload};
+use crate::fem::FemError;
+use crate::fem::basis::{CellRule, field_at};
+use crate::fem::memory::{Limits, Sizes};
+use crate::fem::quadrature::gauss_legendre;
+use crate::mesh::Element;
+use crate::scenario::Scenario;
+use crate::solution::Solution;
+use crate::solve::solve_contact;
+
+/// The reference's estimated error: its relative difference from the next coarser reference
+/// (the previous refinement, or the uniform level − 1), p in L²(Γ_C), u in H¹ (7), the load.
+/// After edge refinements u keeps the uniform level's estimate: a refinement leaves the
+/// body's error away from the contact edges as it was, so the difference of two refinements
+/// would miss it (docs/design.md §6).
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct Estimate {
+    /// Relative difference of p in L²(Γ_C).
+    pub p: f64,
+    /// Relative difference of u in H¹ (7) (after edge refinements the uniform level's).
+    pub u: f64,
+    /// Relative difference of the load P.
+    pub load: f64,
+    /// What p and the load were compared with: `level L` (uniform) or `refinement k`.
+    pub against: String,
+}
+
+/// What the study asks of its reference: an estimated error at most a tenth of the smallest
+/// error any row reports, for p (raw or smoothed) and for u.
+#[derive(Clone, Copy, Debug, Serialize, PartialEq)]
+pub struct Target {
+    /// The largest estimated error of p allowed (relative, L²(Γ_C)).
+    pub p: f64,
+    /// The largest estimated error of u allowed (relative, H¹ (7)).
+    pub u: f64,
+}
+
+/// The share of the smallest row error the reference's estimated error may reach.
+pub const TARGET_SHARE: f64 = 0.1;
+
+impl Target {
+    /// Whether `estimate` meets it.
+    pub fn met_by(&self, estimate: &Estimate) -> bool {
+        estimate.p <= self.p && estimate.u <= self.u
+    }
+}
+
+/// The reference solution, with its values where errors are integrated.
+pub struct Reference {
+    /// Its uniform level.
+    pub level: u32,
+    /// Its element: Q2 ([`REFERENCE_SCHEME`]).
+    pub element: Element,
+    /// Its rule: Simpson ([`REFERENCE_SCHEME`]).
+    pub rule: Rule,
+    /// Its grid (the uniform level, and its edge refinements).
+    pub grid: ReferenceMesh,
+    /// Its number of free dofs.
+    pub n_dofs: usize,
+    /// Its load P of the modelled body.
+    pub load: f64,
+    /// The time its solve took, ms (as solved, also when read from the cache).
+    pub ms: f64,
+    /// Solved by this run or read from the cache.
+    pub source: ReferenceSource,
+    /// Its estimated error (None until compared with a coarser reference).
+    pub estimate: Option<Estimate>,
+    /// What the study asked of it (None before any row was computed).
+    pub target: Option<Target>,
+    /// Why the refinement stopped before the target was met (the cap), if it did.
+    pub stopped: Option<String>,
+    /// (x, weight, p_ref) at Gauss points of every reference edge of Γ_C.
+    pub(super) edge_points: Vec<(f64, f64, f64)>,
+    /// u_ref at Gauss points of every reference cell.
+    pub(super) cell_points: Vec<Sample>,
+    pub(super) p_norm: f64,
+    pub(super) u_norm: f64,
+}
+
+pub(super) fn solve_fresh(disc: &Discretization, params: &ContactParams) -> Result<Solution, SolveError> {
+    solve_contact(disc, params, None, &NewtonOptions::default(), &mut |_| {
+        ControlFlow::Continue(())
+    })
+}
+
+/// What the reference is made of: the displacement on every dof of the Q2 mesh and the
+/// exact-constraint pressure at Simpson's points (what [`crate::cache`] stores).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ReferenceFields {
+    /// The displacement on every dof of the Q2 mesh, node-major (u_x at `2n`, u_y at `2n + 1`).
+    pub u: Vec<f64>,
+    /// The exact-constraint pressure at Simpson's points on Γ_C, ascending x.
+    pub p: Vec<f64>,
+    /// The load P of the modelled body.
+    pub load: f64,
+    /// The number of free dofs.
+    pub n_dofs: usize,
+    /// The time the solve took, ms.
+    pub ms: f64,
+    /// Solved now or read from the cache (not stored in the cache's entries).
+    pub source: ReferenceSource,
+}
+
+impl ReferenceFields {
+    /// Solve Q2 + Simpson with the exact constraint at `level` (expensive: only when asked).
+    pub fn solve(scenario: &Scenario, level: u32) -> Result<Self, SolveError> {
+        Self::solve_on(scenario, &ReferenceMesh::uniform(scenario, level))
+    }
+
+    /// Solve Q2 + Simpson with the exact constraint on `grid`, refused before anything is
+    /// allocated when it does not fit the memory ([`crate::fem::memory`]).
+    pub fn solve_on(scenario: &Scenario, grid: &ReferenceMesh) -> Result<Self, SolveError> {
+        let t = Instant::now();
+        let rule = REFERENCE_SCHEME.1;
+        fits_memory(scenario, grid)?;
+        let disc = Discretization::new(grid.mesh(scenario), scenario.material, scenario.integration)?;
+        let params = ContactParams {
+            rule,
+            method: Method::Exact,
+            epsilon: 0.0,
+            obstacle: scenario.obstacle.clone(),
+        };
+        let sol = solve_fresh(&disc, &params)?;
+        if !sol.newton.converged {
+            return Err(SolveError::NotConverged {
+                what: "the reference solution (q2 + simpson, ε = 0)",
+                iterations: sol.newton.iterations,
+                residual: sol.newton.residual,
+                diagnosis: sol.newton.diagnosis.clone().unwrap_or_default(),
+            });
+        }
+        Ok(ReferenceFields {
+            u: sol.displacement(&disc),
+            p: sol.p,
+            load: sol.load,
+            n_dofs: disc.n_dofs(),
+            ms: t.elapsed().as_secs_f64() * 1e3,
+            source: ReferenceSource::Computed,
+        })
+    }
+}
+
+/// Refuse `grid` when its memory estimate exceeds what this process may use.
+pub(super) fn fits_memory(scenario: &Scenario, grid: &ReferenceMesh) -> Result<(), SolveError> {
+    let (nnx, _) = grid.node_counts();
+    let sizes = Sizes {
+        element: REFERENCE_SCHEME.0,
+        unknowns: grid.n_dofs(scenario),
+        trace: nnx,
+        points: grid.lengths().1,
+    };
+    sizes.check(&Limits::of_process()).map_err(|e| match e {
+        FemError::TooLarge {
+            unknowns,
+            need,
+            available,
+        } => SolveError::TooLarge {
+            workload: Workload::Reference {
+                level: grid.level,
+                refinements: grid.refinements,
+            },
+            unknowns,
+            need,
+            available,
+        },
+        e => fem_error(e, sizes.unknowns),
+    })
+}
+
+impl Reference {
+    /// Q2 + Simpson with the exact constraint at `level` (expensive: compute only when asked;
+    /// [`crate::cache::reference`] keeps it between runs).
+    pub fn compute(scenario: &Scenario, level: u32) -> Result<Self, SolveError> {
+        let grid = ReferenceMesh::uniform(scenario, level);
+        let fields = ReferenceFields::solve_on(scenario, &grid)?;
+        Ok(Reference::from_fields(scenario, &grid, &fields))
+    }
+
+    /// The reference from its fields on `grid` (solved now or read from the cache): its
+    /// values at the points where errors are integrated.
+    pub fn from_fields(scenario: &Scenario, grid: &ReferenceMesh, fields: &ReferenceFields) -> Self {
+        let (element, rule) = REFERENCE_SCHEME;
+        let mesh = grid.mesh(scenario);
+        let points = ContactPoints::new(rule, &mesh.node_x[..mesh.nnx()], element.order());
+        let (u, p) = (&fields.u, &fields.p);
+        let gauss = gauss_legendre(ERROR_POINTS);
+        let vx = &points.vertex_x;
+        let mut edge_points = Vec::with_capacity(gauss.len() * vx.len());
+        for e in 0..vx.len() - 1 {
+            let h = vx[e + 1] - vx[e];
+            for &(xi, w) in &gauss {
+                let x = vx[e] + h * (xi + 1.0) / 2.0;
+                edge_points.push((x, w * h / 2.0, points.interpolate(p, x)));
+            }
+        }
+        let mut cells = Vec::with_capacity(mesh.n_cells() * ERROR_POINTS * ERROR_POINTS);
+        let (cell_rule, mut quad, mut nodes) = (CellRule::new(element, ERROR_POINTS), Vec::new(), Vec::new());
+        for cj in 0..mesh.ny() {
+            for ci in 0..mesh.nx() {
+                nodes.clear();
+                nodes.extend(mesh.cell_node_iter(ci, cj));
+                cell_rule.points_into(&mesh, ci, cj, &mut quad);
+                for q in &quad {
+                    // The point's own cell: its shape functions are already at hand.
+                    let (value, grad) = field_at(q, &nodes, u);
+                    cells.push(Sample {
+                        x: q.x,
+                        y: q.y,
+                        weight: q.weight,
+                        value,
+                        grad,
+                    });
+                }
+            }
+        }
+        let p_norm = edge_points.iter().map(|(_, w, p)| w * p * p).sum::<f64>().sqrt();
+        let u_norm = cells
+            .iter()
+            .map(|c| c.weight * c.value.iter().chain(&c.grad).map(|a| a * a).sum::<f64>())
+            .sum::<f64>()
+            .sqrt();
+        Reference {
+            level: grid.level,
+            element,
+            rule,
+            grid: grid.clone(),
+            n_dofs: fields.n_dofs,
+            load: fields.load,
+            ms: fields.ms,
+            source: fields.source,
+            estimate: None,
+            target: None,
+            stopped: None,
+            edge_points,
+            cell_points: cells,
+            p_norm,
+            u_norm,
+        }
+    }
+}
+
+/// Gauss points per direction for the error integrals (exact for the Q2 reference's products).
+pub(super) const ERROR_POINTS: usize = 4;
+
+/// A displacement and its gradient at a weighted point.
+pub(super) struct Sample {
+    pub(super) x: f64,
+    pub(super) y: f64,
+    pub(super) weight: f64,
+    pub(super) value: [f64; 2],
+    pub(super) grad: [f64; 4],
+}
