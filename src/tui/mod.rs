@@ -4,13 +4,16 @@
 //!
 //! The shape is the Elm architecture: [`app::App`] holds the state and its pure
 //! [`app::App::update`] turns keys and worker replies into state changes and requests;
-//! [`view::view`] draws the state; a [`worker::Worker`] thread owns the discretisation cache
-//! and runs solves and estimates, the newest request cancelling older ones.
+//! [`view::view`] draws the state; a [`worker::Worker`] thread drives an [`engine::Engine`],
+//! which owns the discretisation cache and runs solves and estimates, the newest request
+//! cancelling older ones; [`settle`] drives the same engine synchronously. The app and the
+//! worker speak through [`protocol`] alone.
 
 mod abort_guard;
 pub mod app;
 pub mod beta;
 mod build;
+pub mod engine;
 mod estimating;
 pub mod eta;
 pub mod export;
@@ -19,6 +22,7 @@ pub mod keys;
 pub mod protocol;
 pub mod record;
 mod runtime;
+pub mod settle;
 pub mod shown;
 pub mod theme;
 pub mod tour;
@@ -38,11 +42,12 @@ use crate::scenario::Scenario;
 use crate::text;
 
 use app::{App, MAX_APP_LEVEL, Scene};
+use engine::Engine;
 use record::CastFile;
+use settle::settle;
 use theme::Theme;
 use tour::author::{DEFAULT_TOUR_OUT, LabSource};
 use view::Look;
-use worker::{Engine, settle};
 
 /// The glyphs of charts and canvases.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

@@ -8,11 +8,12 @@ use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 
 use riplab::scenario::Scenario;
 use riplab::tui::app::{App, Command, ExportKind, Msg, Scene};
+use riplab::tui::engine::Engine;
 use riplab::tui::render_app;
+use riplab::tui::settle::{carry_out, settle};
 use riplab::tui::tour::author::{CAPTION_PLACEHOLDER, LabSource, save_step};
 use riplab::tui::tour::handout::{HandoutError, write_handout};
 use riplab::tui::tour::{Tour, render_step};
-use riplab::tui::worker::{Engine, carry_out, settle};
 
 const LOOK: riplab::tui::view::Look = riplab::tui::view::Look {
     theme: riplab::tui::theme::Theme { color: true },

@@ -9,8 +9,9 @@ use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 
 use riplab::scenario::Scenario;
 use riplab::tui::app::{Command, Compare, Msg, Scene};
+use riplab::tui::engine::Engine;
+use riplab::tui::settle::{carry_out, settle};
 use riplab::tui::tour::{Tour, TourApp, TourMsg, auto_interval, render_step};
-use riplab::tui::worker::{Engine, carry_out, settle};
 
 fn key(code: KeyCode) -> TourMsg {
     TourMsg::Lab(Msg::Key(KeyEvent::new(code, KeyModifiers::NONE)))

@@ -15,9 +15,10 @@ use riplab::study::{Errors, Status, StudyRow};
 use riplab::tui::app::{
     App, Command, Compare, MAX_APP_LEVEL, MAX_STUDY_LEVEL, Msg, Response, Scene, Study, StudyRequest,
 };
+use riplab::tui::engine::{Engine, Use};
+use riplab::tui::settle::settle;
 use riplab::tui::theme::Theme;
 use riplab::tui::view::Look;
-use riplab::tui::worker::{Engine, Use, settle};
 use riplab::tui::{render_app, render_to_string};
 
 const LOOK: Look = Look {
@@ -1728,8 +1729,8 @@ fn a_level_or_rule_step_starts_newton_from_the_last_pressure() {
 }
 
 /// A finished build of `level` with `element` (1 ms, no preparation), for [`Engine::adopt`].
-fn finished(scenario: &Scenario, level: u32, element: Element) -> riplab::tui::worker::Built {
-    Ok(riplab::tui::worker::Finished {
+fn finished(scenario: &Scenario, level: u32, element: Element) -> riplab::tui::engine::Built {
+    Ok(riplab::tui::engine::Finished {
         disc: Arc::new(riplab::solve::Discretization::of(scenario, level, element).unwrap()),
         build_ms: Some(1.0),
         prepare_ms: None,
@@ -1849,7 +1850,7 @@ fn the_engine_prefetches_the_neighbouring_levels() {
 #[test]
 fn the_cache_budget_holds_level_7_of_q1_not_of_q2() {
     use riplab::solve::Discretization;
-    use riplab::tui::worker::CACHE_BYTES;
+    use riplab::tui::engine::CACHE_BYTES;
     let scenario = Scenario::paper();
     let engine = Engine::new(scenario.clone());
     let gib = |l, e| Discretization::sizes(&scenario, l, e).peak_bytes() as f64 / f64::from(1 << 30);
@@ -2405,7 +2406,7 @@ fn coming_back_to_a_solution_without_its_displacement_asks_for_it() {
     assert!(Arc::ptr_eq(&again.solved, &shown));
     let mut commands = back.clone();
     commands.retain(|c| matches!(c, Command::Displace(_)));
-    riplab::tui::worker::carry_out(&mut app, &mut engine, commands);
+    riplab::tui::settle::carry_out(&mut app, &mut engine, commands);
     assert!(shown.displacement.get().is_some());
     assert!(!frame(&app, 100, 30).contains("computing the displacement"));
 }
@@ -2495,7 +2496,7 @@ fn the_method_key_cycles_and_the_method_line_shows() {
     let mut seen = Vec::new();
     for _ in 0..4 {
         let commands = app.update(ch('m')).commands;
-        riplab::tui::worker::carry_out(&mut app, &mut engine, commands);
+        riplab::tui::settle::carry_out(&mut app, &mut engine, commands);
         seen.push(app.settings.method.name());
         let text = frame(&app, 80, 24);
         match app.settings.method.name() {
