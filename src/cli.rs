@@ -17,7 +17,7 @@ use crate::scenario::{MAX_LEVEL, Scenario};
 use crate::scheme::Scheme;
 use crate::solve::{ContactParams, Discretization, check_request, sweep};
 use crate::study::{Plan, ReferenceLevelError, all_ok};
-use crate::tui::{MarkerChoice, TuiOptions, render_to_string};
+use crate::tui::{MarkerChoice, RenderExtras, TuiOptions, render_with};
 use crate::vtu;
 
 mod checks;
@@ -135,6 +135,11 @@ pub struct RenderArgs {
     /// Penalty parameter ε > 0 (the scenario's when omitted).
     #[arg(long, value_parser = values::number)]
     pub epsilon: Option<f64>,
+    /// Keys applied to the lab before the frame is printed, e.g. "]]]x.." (each character a
+    /// key; <tab> <backtab> <esc> <enter> <space> <left> <right> <up> <down> <pageup>
+    /// <pagedown> <lt> name the others; at most 200)
+    #[arg(long, default_value = "")]
+    pub keys: String,
 }
 
 /// Which problem and discretisation: a scenario and overrides of its values.
@@ -420,7 +425,7 @@ pub fn run(cli: Cli) -> ExitCode {
         Some(Command::Solve(args)) => solve(&args),
         Some(Command::Infsup(args)) => infsup(&args),
         Some(Command::Study(args)) => study(&args),
-        Some(Command::Render(args)) => render(&args),
+        Some(Command::Render(args)) => render(&args, cli.marker),
         Some(Command::Verify(args)) => verify::verify(&args),
         Some(Command::Tour(args)) => tour::tour(
             &args,
@@ -862,9 +867,10 @@ fn lab(file: Option<PathBuf>, record: Option<PathBuf>, opts: TuiOptions) -> Resu
     Ok(ExitCode::SUCCESS)
 }
 
-fn render(args: &RenderArgs) -> Result<ExitCode, CliError> {
+fn render(args: &RenderArgs, marker: MarkerChoice) -> Result<ExitCode, CliError> {
     // The size first: nothing is loaded or allocated for a frame that cannot be drawn.
     let (width, height) = crate::tui::parse_size(&args.size).map_err(|m| usage("--size", m))?;
+    let keys = crate::tui::render_keys::parse_keys(&args.keys).map_err(|e| CliError::Usage(e.to_string()))?;
     let mut scenario = args.select.resolve()?;
     if let Some(method) = args.method.resolve(&scenario)? {
         scenario.method = method;
@@ -875,7 +881,7 @@ fn render(args: &RenderArgs) -> Result<ExitCode, CliError> {
             .map_err(|m| usage("--epsilon", m))?;
     }
     checks::render_request(&scenario, &args.scene, args.epsilon)?;
-    let frame = render_to_string(
+    let frame = render_with(
         &scenario,
         &args.scene,
         width,
@@ -884,6 +890,7 @@ fn render(args: &RenderArgs) -> Result<ExitCode, CliError> {
         Some(scenario.element),
         Some(scenario.rule),
         args.epsilon,
+        &RenderExtras { keys, marker },
     )
     .map_err(CliError::Usage)?;
     print(&frame.text)?;

@@ -1,7 +1,7 @@
 //! What a key does to the lab ([`App::key`]): the action it names ([`super::super::keys`]),
 //! applied to the settings, the scene or an overlay, with a notice where it changes nothing.
 
-use crossterm::event::{KeyEvent, KeyEventKind, KeyModifiers};
+use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 
 use crate::contact::Rule;
 use crate::mesh::Element;
@@ -29,18 +29,47 @@ impl App {
             return true;
         }
         self.notice = None;
-        if self.show_help {
-            // Any key closes the help and does nothing else.
-            self.show_help = false;
+        if self.show_help || self.overlays.show_log {
+            // ↑ ↓ (and the page keys) scroll; any other key closes and does nothing else.
+            self.scroll_overlay(key.code);
             return true;
         }
         let Some(action) = action else {
-            return false;
+            self.notice = Some(Notice::info(format!(
+                "{} does nothing here (? lists the keys)",
+                key_name(key.code)
+            )));
+            return true;
         };
+        if self.overlays.too_small && action != LabAction::Quit {
+            self.notice = Some(Notice::info(format!(
+                "{} ignored: the terminal is too small for the lab (q quits)",
+                key_name(key.code)
+            )));
+            return true;
+        }
         let before = self.settings;
         match action {
             LabAction::Quit => self.quit = true,
-            LabAction::Help => self.show_help = true,
+            LabAction::Help => {
+                self.show_help = true;
+                self.overlays.help_scroll = 0;
+            }
+            LabAction::Log => {
+                self.overlays.show_log = true;
+                self.overlays.log_scroll = 0;
+            }
+            LabAction::Cursor => self.toggle_cursor(),
+            LabAction::CursorLeft => self.move_cursor(-1),
+            LabAction::CursorRight => self.move_cursor(1),
+            LabAction::Projector => {
+                self.overlays.projector = !self.overlays.projector;
+                self.notice = Some(Notice::info(if self.overlays.projector {
+                    "projector view: the scene's chart on the whole screen"
+                } else {
+                    "projector view off"
+                }));
+            }
             LabAction::Coarser => {
                 if self.settings.level == 0 {
                     self.notice = Some(Notice::info("level 0 is the coarsest mesh"));
@@ -105,10 +134,14 @@ impl App {
             LabAction::Deeper => self.shift_depth(DEPTH_STEP),
             LabAction::NextScene => self.scene = self.scene.shifted(1),
             LabAction::PreviousScene => self.scene = self.scene.shifted(Scene::ALL.len() - 1),
-            LabAction::Gap => self.show_gap = !self.show_gap,
+            LabAction::Gap => {
+                self.show_gap = !self.show_gap;
+                self.say_overlay("the gap −g", self.show_gap);
+            }
             LabAction::Hertz => {
                 if self.scenario.obstacle.hertz_radius().is_some() || self.show_hertz {
                     self.show_hertz = !self.show_hertz;
+                    self.say_overlay("Hertz and the exact circle", self.show_hertz);
                 } else {
                     self.notice = Some(Notice::info(
                         "no Hertz solution for this obstacle: it needs a cylinder (a radius)",
@@ -116,8 +149,16 @@ impl App {
                 }
             }
             LabAction::Zoom => self.toggle_zoom(),
-            LabAction::AllLevels => self.all_levels = !self.all_levels,
-            LabAction::NextQuantity => self.stress_quantity = self.stress_quantity.next(),
+            LabAction::AllLevels => self.all_levels_key(),
+            LabAction::NextQuantity => {
+                self.stress_quantity = self.stress_quantity.next();
+                let name = self.stress_quantity.name();
+                self.notice = Some(Notice::info(if self.scene == Scene::Stress {
+                    format!("the stress map shows {name}")
+                } else {
+                    format!("the stress scene will show {name} (Tab to it)")
+                }));
+            }
             LabAction::Export(ExportKind::TourStep) => {
                 // The lab's state, solved or not: written by the runtime (a tour file).
                 self.export_kind = ExportKind::TourStep;
@@ -185,5 +226,93 @@ impl App {
         } else {
             self.notice = Some(Notice::info(format!("depth stays within 0 to {max}")));
         }
+    }
+
+    /// `a`: in explore, the inf-sup estimate at every level up to this one, or at this one
+    /// only; in every scene, say what that computes (or why nothing is left to compute).
+    fn all_levels_key(&mut self) {
+        if self.scene != Scene::InfSup {
+            self.all_levels = !self.all_levels;
+        }
+        if !matches!(self.scene, Scene::Explore | Scene::InfSup) {
+            let state = if self.all_levels { "on" } else { "off" };
+            self.notice = Some(Notice::info(format!(
+                "inf-sup at every level up to this one: {state} (explore's inf-sup panel)"
+            )));
+            return;
+        }
+        let levels = self.infsup_levels();
+        let (lo, hi) = (*levels.start(), *levels.end());
+        let mut keys = self.infsup_needed();
+        keys.sort_by_key(|k| (k.level, k.element.name(), k.rule.name()));
+        keys.dedup();
+        let total = keys.len();
+        let done = keys.iter().filter(|k| self.infsup.contains_key(k)).count();
+        let what = if lo == hi {
+            format!("inf-sup at level {lo} only")
+        } else {
+            format!("inf-sup at levels {lo} to {hi}")
+        };
+        let tail = match total - done {
+            0 => "all computed; nothing left to compute".to_string(),
+            n => format!("{n} of {total} estimates to compute"),
+        };
+        let scene_note = if self.scene == Scene::InfSup {
+            " (this scene always shows 0 to 4 or more; ] adds a level)"
+        } else {
+            ""
+        };
+        self.notice = Some(Notice::info(format!("{what}: {tail}{scene_note}")));
+    }
+
+    /// ↑ ↓ PageUp PageDown scroll the open help or log; any other key closes it.
+    fn scroll_overlay(&mut self, code: KeyCode) {
+        let step: i32 = match code {
+            KeyCode::Up => -1,
+            KeyCode::Down => 1,
+            KeyCode::PageUp => -10,
+            KeyCode::PageDown => 10,
+            _ => {
+                self.show_help = false;
+                self.overlays.show_log = false;
+                return;
+            }
+        };
+        // The log scrolls up from its newest line, the help down from its first.
+        let (scroll, step) = if self.show_help {
+            (&mut self.overlays.help_scroll, step)
+        } else {
+            (&mut self.overlays.log_scroll, -step)
+        };
+        *scroll = u16::try_from((i32::from(*scroll) + step).max(0)).unwrap_or(u16::MAX);
+    }
+
+    /// Say that an overlay of the pressure chart is now on or off, and where it is drawn when
+    /// the scene on screen has no pressure chart.
+    fn say_overlay(&mut self, what: &str, on: bool) {
+        let state = if on { "on" } else { "off" };
+        let place = if matches!(self.scene, Scene::Explore) {
+            ""
+        } else {
+            " (drawn on explore's pressure chart)"
+        };
+        self.notice = Some(Notice::info(format!("{what} {state}{place}")));
+    }
+}
+
+/// A key as the help writes it, for notices.
+fn key_name(code: KeyCode) -> String {
+    match code {
+        KeyCode::Char(' ') => "Space".into(),
+        KeyCode::Char(c) => crate::text::sanitize(&c.to_string()).into_owned(),
+        KeyCode::Tab => "Tab".into(),
+        KeyCode::BackTab => "Shift-Tab".into(),
+        KeyCode::Enter => "Enter".into(),
+        KeyCode::Esc => "Esc".into(),
+        KeyCode::Left => "←".into(),
+        KeyCode::Right => "→".into(),
+        KeyCode::Up => "↑".into(),
+        KeyCode::Down => "↓".into(),
+        other => format!("{other:?}"),
     }
 }

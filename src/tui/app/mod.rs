@@ -13,11 +13,14 @@ use super::beta::InfSup;
 pub use super::keys::ExportKind;
 
 mod dispatch;
+mod overlays;
 mod replies;
+
 pub use super::protocol::{
     Command, Compare, DisplaceRequest, InfSupKey, InfSupRequest, MAX_APP_LEVEL, Msg, Notice, Progress,
     Response, SolveKey, SolveRequest, Solved, StressRequest, Study, StudyKey, StudyRequest,
 };
+pub use overlays::{LOG_LEN, Overlays};
 
 /// What a change at level 8 costs (Q1, BENCHMARKS.md, "Fresh memory"), as a literal for
 /// `concat!`: the one place the lab's messages and `riplab render --help` read it from.
@@ -90,6 +93,8 @@ impl Scene {
 
 /// The finest level the convergence scene studies (the reference is one level finer).
 pub const MAX_STUDY_LEVEL: u32 = 4;
+/// The levels the inf-sup scene computes on first show (0 to this, progressively).
+pub const FIRST_LEVELS: u32 = 4;
 
 /// What an update asks of the runtime.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -157,6 +162,8 @@ pub struct App {
     pub study_progress: Option<Progress>,
     /// The solution whose stresses are being computed.
     stress_pending: Option<SolveKey>,
+    /// The overlays, the cursor, the projector view and the message log ([`Overlays`]).
+    pub overlays: Overlays,
 }
 
 impl App {
@@ -192,6 +199,7 @@ impl App {
             study_pending: None,
             study_progress: None,
             stress_pending: None,
+            overlays: Overlays::default(),
         }
     }
 
@@ -264,7 +272,8 @@ impl App {
         };
         StudyKey {
             scenario: self.scenario.name.clone(),
-            max_level: s.level.min(MAX_STUDY_LEVEL),
+            // Levels 0 to 4 from the first look, so that the slopes show.
+            max_level: MAX_STUDY_LEVEL,
             compare: self.compare,
             schemes,
             methods,
@@ -293,6 +302,19 @@ impl App {
 
     /// Handle one input; returns whether to redraw and the work still needed.
     pub fn update(&mut self, msg: Msg) -> Effect {
+        let before = (self.notice.clone(), self.error.clone());
+        let solved_before = self.solved.clone();
+        let cursor_x = self.cursor_point().map(|(x, _)| x);
+        let effect = self.update_inner(msg);
+        let same = self.shows(solved_before.as_ref());
+        if !same {
+            self.follow_cursor(cursor_x);
+        }
+        self.log_new_messages(before, same);
+        effect
+    }
+
+    fn update_inner(&mut self, msg: Msg) -> Effect {
         let mut commands = Vec::new();
         let redraw = match msg {
             Msg::Key(key) => self.key(key, &mut commands),
@@ -320,13 +342,21 @@ impl App {
         self.scenario.obstacle.max_depth().min(self.scenario.height / 2.0)
     }
 
+    /// The levels whose inf-sup estimates the scene shows: in the inf-sup scene levels 0 to
+    /// [`FIRST_LEVELS`] (or to the lab's level when finer), so that a trend and its slope show
+    /// from the first look; in explore the lab's level, or with `a` every level up to it.
+    pub fn infsup_levels(&self) -> std::ops::RangeInclusive<u32> {
+        let level = self.settings.level;
+        match self.scene {
+            Scene::InfSup => 0..=level.max(FIRST_LEVELS),
+            _ if self.all_levels => 0..=level,
+            _ => level..=level,
+        }
+    }
+
     /// The inf-sup estimates the visible scene shows.
-    fn infsup_needed(&self) -> Vec<InfSupKey> {
-        let levels = if self.all_levels {
-            0..=self.settings.level
-        } else {
-            self.settings.level..=self.settings.level
-        };
+    pub(super) fn infsup_needed(&self) -> Vec<InfSupKey> {
+        let levels = self.infsup_levels();
         let mut keys = Vec::new();
         for level in levels {
             match self.scene {
