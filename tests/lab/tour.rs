@@ -172,7 +172,10 @@ fn the_tour_compares_the_methods() {
             } else {
                 format!("{v:.*e}", digits - 1)
             };
-            assert!(caption.contains(&quoted), "{quoted} in\n{caption}");
+            assert!(
+                caption.contains(&quoted),
+                "{quoted} in\n{caption}\n{penalty:?} {exact:?}"
+            );
         }
     }
 }

@@ -38,6 +38,25 @@ fn frame(app: &App, w: u16, h: u16) -> String {
     render_app(app, &LOOK, w, h)
 }
 
+/// The status area of a frame (issue 31: wrapped, never cut): its rows from the one with the
+/// key hints down, joined with single spaces.
+fn status_of(text: &str) -> String {
+    let lines: Vec<&str> = text.lines().collect();
+    let first = lines
+        .iter()
+        .rposition(|l| l.contains("q quit"))
+        .expect("the key hints");
+    let mut head = lines[first]
+        .trim_end()
+        .strip_suffix("? help  q quit")
+        .expect("hints last");
+    for scene_keys in ["a levels", "w compare", "c quantity", "f back"] {
+        head = head.trim_end().strip_suffix(scene_keys).unwrap_or(head);
+    }
+    let rows = std::iter::once(head).chain(lines[first + 1..].iter().copied());
+    rows.flat_map(str::split_whitespace).collect::<Vec<_>>().join(" ")
+}
+
 // ---- snapshots -------------------------------------------------------------------------
 
 #[test]
@@ -159,7 +178,7 @@ fn a_long_error_is_shown_whole() {
     assert_eq!(text.lines().count(), 24);
     // The status line does not go on saying the last solve converged: it says these settings
     // have no result and whose result the charts keep.
-    let status = text.lines().last().unwrap();
+    let status = status_of(&text);
     assert!(!status.contains("converged"), "{status}");
     assert!(
         status.contains("✗ no result for these settings · shown: the last solve (level 0"),
@@ -352,7 +371,11 @@ fn scenes_request_only_what_they_show() {
     let mut app = App::new(Scenario::paper());
     app.scene = Scene::InfSup;
     let cmds = app.update(Msg::Resize).commands;
-    assert_eq!(cmds.len(), 4, "M1–M4 at the current level, no solve: {cmds:?}");
+    assert_eq!(
+        cmds.len(),
+        4 * 5,
+        "M1–M4 at levels 0 to 4 (issue 31), no solve: {cmds:?}"
+    );
     assert!(cmds.iter().all(|c| matches!(c, Command::InfSup(_))));
 
     let mut app = App::new(Scenario::paper());
@@ -575,17 +598,34 @@ fn every_element_and_rule_renders_every_scene() {
 
 #[test]
 fn a_asks_for_every_level_up_to_the_current_one() {
+    let levels = |commands: &[Command]| -> Vec<u32> {
+        let mut out: Vec<u32> = commands
+            .iter()
+            .filter_map(|c| match c {
+                Command::InfSup(r) => Some(r.key.level),
+                _ => None,
+            })
+            .collect();
+        out.sort();
+        out
+    };
     let mut app = App::new(Scenario::paper());
-    app.scene = Scene::InfSup;
     app.settings.level = 2;
-    assert_eq!(app.update(Msg::Resize).commands.len(), 4, "M1–M4 at level 2");
+    assert_eq!(
+        levels(&app.update(Msg::Resize).commands),
+        [2],
+        "explore: the current level"
+    );
     let more = app.update(ch('a')).commands;
     assert!(app.all_levels);
-    assert_eq!(more.len(), 8, "M1–M4 at levels 0 and 1: {more:?}");
-    assert!(
-        more.iter()
-            .all(|c| matches!(c, Command::InfSup(r) if r.key.level < 2))
-    );
+    assert_eq!(levels(&more), [0, 1], "and with a, the levels below it");
+    // Issue 31: the inf-sup scene asks for M1–M4 at levels 0 to 4, or to the lab's level when
+    // finer, from the first look (less the three of M1 already asked for).
+    app.scene = Scene::InfSup;
+    app.settings.level = 5;
+    let all = levels(&app.update(Msg::Resize).commands);
+    assert_eq!(all.len(), 4 * 6 - 3, "{all:?}");
+    assert_eq!((all[0], all[all.len() - 1]), (0, 5));
 }
 
 #[test]
@@ -643,7 +683,8 @@ fn convergence_app() -> App {
     app.scene = Scene::Convergence;
     app.settings.level = 2;
     let key = app.study_key();
-    assert_eq!(key.max_level, 2);
+    // Issue 31: levels 0 to 4 from the first look (this made-up study holds 0 to 2).
+    assert_eq!(key.max_level, 4);
     let rows = vec![
         row("M1", 0, 90, 2.0, 0.42, 0.12, 0.05),
         row("M1", 1, 306, 6.5, 0.31, 0.045, 0.025),
@@ -700,14 +741,15 @@ fn convergence_asks_for_one_study_and_caches_it() {
     assert_eq!(asked.len(), 1);
     let req = asked[0].clone();
     assert_eq!(req.key.scenario, app.scenario.name);
-    assert_eq!(req.key.max_level, 0);
-    assert_eq!(req.key.reference_level(), 1);
+    // Issue 31: levels 0 to 4 from the first look.
+    assert_eq!(req.key.max_level, 4);
+    assert_eq!(req.key.reference_level(), 5);
     let text = frame(&app, 80, 24);
-    assert!(text.contains("computing the reference (q2, level 1)…"), "{text}");
+    assert!(text.contains("computing the reference (q2, level 5)…"), "{text}");
     // Away and back while it runs: not asked again.
     app.update(key(KeyCode::Tab));
     assert!(studies(&app.update(key(KeyCode::BackTab)).commands).is_empty());
-    // The study finishes (on the real engine: level 0 against the q2 reference at level 1).
+    // The study finishes (on the real engine: levels 0 to 4 against the q2 reference at level 5).
     let engine = Engine::new(Scenario::paper());
     let reply = Response::Study {
         generation: req.generation,
@@ -718,7 +760,9 @@ fn convergence_asks_for_one_study_and_caches_it() {
     let Some(Ok(study)) = app.studies.get(&req.key) else {
         panic!("the study is cached: {:?}", app.studies);
     };
-    let schemes: Vec<&str> = study.rows.iter().map(|r| r.scheme.as_str()).collect();
+    let mut schemes: Vec<&str> = study.rows.iter().map(|r| r.scheme.as_str()).collect();
+    assert_eq!(study.rows.len(), 4 * 5, "M1–M4 at levels 0 to 4");
+    schemes.dedup();
     assert_eq!(schemes, ["M1", "M2", "M3", "M4"]);
     assert!(
         study
@@ -739,9 +783,11 @@ fn newer_studies_supersede_older_ones() {
     let mut app = App::new(Scenario::paper());
     app.scene = Scene::Convergence;
     let old = studies(&app.update(Msg::Resize).commands).remove(0);
-    let new = studies(&app.update(key(KeyCode::Right)).commands).remove(0);
+    // A level step keeps the study (levels 0 to 4 whatever the level); `w` asks for another.
+    assert!(studies(&app.update(key(KeyCode::Right)).commands).is_empty());
+    let new = studies(&app.update(ch('w')).commands).remove(0);
     assert!(new.generation > old.generation);
-    assert_eq!((old.key.max_level, new.key.max_level), (0, 1));
+    assert_ne!(old.key, new.key);
     // The old study's reply is dropped: a newer one was asked for.
     let reply = Response::Study {
         generation: old.generation,
@@ -791,8 +837,8 @@ fn w_makes_a_study_of_the_methods() {
     assert_eq!(names, ["penalty", "alm", "nitsche", "exact"]);
     assert_eq!(req.key.schemes, [(app.settings.element, app.settings.rule)]);
     let text = frame(&app, 120, 40);
-    assert!(text.contains("then the methods on M1 at levels 0 to 0"), "{text}");
-    // The study runs on the real engine: level 0 against the q2 reference at level 1.
+    assert!(text.contains("then the methods on M1 at levels 0 to 4"), "{text}");
+    // The study runs on the real engine: levels 0 to 4 against the q2 reference at level 5.
     let engine = Engine::new(Scenario::paper());
     let reply = Response::Study {
         generation: req.generation,
@@ -803,7 +849,9 @@ fn w_makes_a_study_of_the_methods() {
     let Some(Ok(study)) = app.studies.get(&req.key) else {
         panic!("the study is cached: {:?}", app.studies);
     };
-    assert_eq!(methods_of(study), ["penalty", "alm", "nitsche", "exact"]);
+    let mut methods = methods_of(study);
+    methods.dedup();
+    assert_eq!(methods, ["penalty", "alm", "nitsche", "exact"]);
     assert!(
         study
             .rows
@@ -834,8 +882,12 @@ fn w_makes_a_study_of_the_methods() {
         load("exact")
     );
     // Only the ALM updates a multiplier.
-    let updates: Vec<bool> = study.rows.iter().map(|r| r.outer_iterations.is_some()).collect();
-    assert_eq!(updates, [false, true, false, false]);
+    assert!(
+        study
+            .rows
+            .iter()
+            .all(|r| r.outer_iterations.is_some() == (r.method.method == "alm"))
+    );
     // One series per method, each with its glyph in the legend; no raw-p curve here.
     let text = render_app(&app, &MONO, 120, 40);
     for entry in ["⠒P⠒ penalty p̄", "⠒A⠒ alm p̄", "⠒N⠒ nitsche p̄", "⠒E⠒ exact p̄"] {
@@ -1243,8 +1295,8 @@ fn sizes_outside_the_rule_are_refused() {
     }
 }
 
-/// Item 5: at 80 columns the status line keeps its message whole (unit included) and drops
-/// the key hints; a message too long is cut at a word with "…".
+/// Item 5: at 80 columns the status line keeps its message whole (unit included); issue 31:
+/// the key hints keep their place and a message too long wraps to further rows, not cut.
 #[test]
 fn status_message_wins_over_the_key_hints() {
     let mut app = settled(1, Scene::Explore);
@@ -1253,16 +1305,23 @@ fn status_message_wins_over_the_key_hints() {
     solved.total_ms = 3048.0;
     app.solved = Some(Arc::new(solved));
     let text = frame(&app, 80, 24);
-    let last = text.lines().last().unwrap();
-    assert!(last.contains("· 3050 ms") || last.contains("· 3048 ms"), "{last}");
-    assert!(last.contains("load P=646.13 (full 1292.3)"), "{last}");
+    let status = status_of(&text);
+    assert!(
+        status.contains("· 3050 ms") || status.contains("· 3048 ms"),
+        "{status}"
+    );
+    assert!(status.contains("load P=646.13 (full 1292.3)"), "{status}");
     let wide = frame(&app, 120, 40);
     assert!(wide.lines().last().unwrap().ends_with("? help  q quit"), "{wide}");
     let long = "a long notice with many words that cannot fit in eighty columns of a terminal window at all, none of them";
     app.notice = Some(riplab::tui::app::Notice::info(long));
-    let last = frame(&app, 80, 24).lines().last().unwrap().to_string();
-    let kept = last.trim_start().strip_suffix('…').expect("marked as cut");
-    assert!(long.starts_with(&format!("{kept} ")), "cut at a word: {last}");
+    let text = frame(&app, 80, 24);
+    assert_eq!(status_of(&text), long, "whole:\n{text}");
+    let rows: Vec<&str> = text.lines().collect();
+    assert!(
+        rows[rows.len() - 2].ends_with("? help  q quit"),
+        "the hints in place:\n{text}"
+    );
 }
 
 /// Item 6: a failed export shows in the status line with the absolute path; files are named
@@ -1619,7 +1678,7 @@ fn long_builds_show_the_time_left() {
             method: Some("nitsche"),
         },
     }));
-    let status = frame(&app, 80, 24).lines().last().unwrap().to_string();
+    let status = status_of(&frame(&app, 80, 24));
     assert!(
         status.contains("⟳ building level 7 for nitsche (1049088 unknowns) · about 7 s left"),
         "{status}"
@@ -1650,7 +1709,7 @@ fn the_status_line_shows_warnings() {
     app.show_timing = false;
     settle(&mut app, &mut Engine::new(locking));
     let text = frame(&app, 160, 40);
-    let status = text.lines().last().unwrap();
+    let status = status_of(&text);
     assert!(status.contains("⚠") && status.contains("locks"), "{status}");
     // The paper's problem has none.
     let text = frame(&settled(1, Scene::Explore), 160, 40);
@@ -2291,7 +2350,7 @@ fn an_estimate_waiting_for_its_mesh_shows_the_build() {
     );
     assert!(app.wants_tick());
     // Whole on an 80-column status line.
-    let status = frame(&app, 80, 24).lines().last().unwrap().to_string();
+    let status = status_of(&frame(&app, 80, 24));
     assert!(
         status.contains("estimate(s) · building q2 level 7 · about 27 s left"),
         "{status}"
@@ -2464,9 +2523,12 @@ fn every_key_of_the_table_is_handled_and_no_other() {
             assert!(app.update(ctrl).redraw, "Ctrl {code:?} ({action:?}) does nothing");
         }
     }
-    let mut app = App::new(Scenario::paper());
-    assert!(!app.update(key(KeyCode::Char('x'))).redraw);
-    assert!(!app.update(key(KeyCode::F(5))).redraw);
+    // Issue 31: a key with no action says so.
+    for code in [KeyCode::Char('j'), KeyCode::F(5)] {
+        let mut app = App::new(Scenario::paper());
+        assert!(app.update(key(code)).redraw);
+        assert!(app.notice.unwrap().text.contains("does nothing here"));
+    }
 }
 
 /// Issue 14: `m` cycles the method (penalty → exact → alm → nitsche → penalty); each change

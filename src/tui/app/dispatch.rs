@@ -6,6 +6,7 @@ use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 use crate::contact::Rule;
 use crate::mesh::Element;
 use crate::scheme::Scheme;
+use crate::stress::Quantity;
 
 use super::super::keys::{ExportKind, LabAction, lab_action};
 use super::{
@@ -152,7 +153,11 @@ impl App {
             LabAction::AllLevels => self.all_levels_key(),
             LabAction::NextQuantity => {
                 self.stress_quantity = self.stress_quantity.next();
-                let name = self.stress_quantity.name();
+                let name = match self.stress_quantity {
+                    Quantity::PrincipalShear => "τ₁, the principal shear stress",
+                    Quantity::VonMises => "von Mises σ_vM",
+                    Quantity::SigmaYy => "σ_yy",
+                };
                 self.notice = Some(Notice::info(if self.scene == Scene::Stress {
                     format!("the stress map shows {name}")
                 } else {
@@ -231,9 +236,7 @@ impl App {
     /// `a`: in explore, the inf-sup estimate at every level up to this one, or at this one
     /// only; in every scene, say what that computes (or why nothing is left to compute).
     fn all_levels_key(&mut self) {
-        if self.scene != Scene::InfSup {
-            self.all_levels = !self.all_levels;
-        }
+        self.all_levels = !self.all_levels;
         if !matches!(self.scene, Scene::Explore | Scene::InfSup) {
             let state = if self.all_levels { "on" } else { "off" };
             self.notice = Some(Notice::info(format!(
@@ -258,9 +261,10 @@ impl App {
             n => format!("{n} of {total} estimates to compute"),
         };
         let scene_note = if self.scene == Scene::InfSup {
-            " (this scene always shows 0 to 4 or more; ] adds a level)"
+            let state = if self.all_levels { "on" } else { "off" };
+            format!(" (this scene shows 0 to 4 or more; explore's every level: {state})")
         } else {
-            ""
+            String::new()
         };
         self.notice = Some(Notice::info(format!("{what}: {tail}{scene_note}")));
     }

@@ -80,9 +80,19 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
     }
 }
 
+/// The finest level of the study's rows (the key's, when every level gave rows).
+fn finest(study: &Study) -> u32 {
+    study
+        .rows
+        .iter()
+        .map(|r| r.level)
+        .max()
+        .unwrap_or(study.key.max_level)
+}
+
 /// The levels the table has room for: all, or the finest that fit (at least one).
 fn shown_levels(study: &Study, height: u16) -> Vec<u32> {
-    let max = study.key.max_level;
+    let max = finest(study);
     let per_level = study.rows.iter().filter(|r| r.level == max).count().max(1);
     let room = height.saturating_sub(MIN_CHART_HEIGHT + 3) as usize / per_level;
     let n = (room.max(1) as u32).min(max + 1);
@@ -277,7 +287,7 @@ fn table(frame: &mut Frame, area: Rect, theme: Theme, study: &Study, levels: &[u
             Span::raw(numbers),
         ]));
     }
-    let max = study.key.max_level;
+    let max = finest(study);
     let shown = match levels {
         [first, ..] if *first == max && max > 0 => format!(" · rows: level {max} (chart: 0 to {max})"),
         [first, ..] if *first > 0 => format!(" · rows: levels {first} to {max} (chart: 0 to {max})"),

@@ -32,12 +32,20 @@ pub fn rows(app: &App, width: u16, theme: Theme) -> u16 {
 
 /// The status area's lines at `width` columns.
 fn status_lines(app: &App, width: u16, theme: Theme) -> Vec<Line<'static>> {
-    wrap_with_hints(&state(app, theme), &hints(app, theme), width)
+    let message = state(app, theme);
+    let lines = wrap_with_hints(&message, &hints(app, theme, true), width);
+    if lines.len() == 1 {
+        return lines;
+    }
+    // The scene's own keys only where they cost no row: `? help  q quit` keeps its place.
+    wrap_with_hints(&message, &hints(app, theme, false), width)
 }
 
-/// The key hints: the scene's own keys, then `? help  q quit`.
-fn hints(app: &App, theme: Theme) -> Vec<Span<'static>> {
-    let own: &[(&str, &str)] = if app.overlays.projector {
+/// The key hints: the scene's own keys (with `scene_keys`), then `? help  q quit`.
+fn hints(app: &App, theme: Theme, scene_keys: bool) -> Vec<Span<'static>> {
+    let own: &[(&str, &str)] = if !scene_keys {
+        &[]
+    } else if app.overlays.projector {
         &[("f", "back")]
     } else {
         match app.scene {
