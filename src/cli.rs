@@ -22,6 +22,7 @@ use crate::vtu;
 
 mod checks;
 mod outputs;
+mod render_args;
 mod tour;
 pub mod values;
 mod verify;
@@ -52,8 +53,8 @@ pub struct Cli {
     /// Monochrome display (also when the NO_COLOR environment variable is set).
     #[arg(long, global = true)]
     pub no_color: bool,
-    /// Where the lab's and the tour's `s` (CSV) and `S` (SVG) exports go; the current
-    /// directory when omitted. Files are never overwritten.
+    /// Where the lab's and the tour's `s` (CSV), `S` (SVG) and `v` (VTU) exports go; the
+    /// current directory when omitted. Files are never overwritten.
     #[arg(long, global = true, value_name = "DIR")]
     pub export_dir: Option<PathBuf>,
     /// Threads for the assembly, the factorisation and the dense work on Γ_C [default: the
@@ -132,7 +133,8 @@ pub struct RenderArgs {
     /// Frame size, COLUMNSxROWS (or COLUMNS×ROWS), from 80x24 to 1000x500.
     #[arg(long, default_value = "120x40")]
     pub size: String,
-    /// Penalty parameter ε > 0 (the scenario's when omitted).
+    /// Penalty parameter ε > 0 (the scenario's when omitted); 0 with no --method named is the
+    /// exact constraint
     #[arg(long, value_parser = values::number)]
     pub epsilon: Option<f64>,
     /// Keys applied to the lab before the frame is printed, e.g. "]]]x.." (each character a
@@ -870,17 +872,20 @@ fn lab(file: Option<PathBuf>, record: Option<PathBuf>, opts: TuiOptions) -> Resu
 fn render(args: &RenderArgs, marker: MarkerChoice) -> Result<ExitCode, CliError> {
     // The size first: nothing is loaded or allocated for a frame that cannot be drawn.
     let (width, height) = crate::tui::parse_size(&args.size).map_err(|m| usage("--size", m))?;
-    let keys = crate::tui::render_keys::parse_keys(&args.keys).map_err(|e| CliError::Usage(e.to_string()))?;
+    let input = render_args::render_input(args)?;
     let mut scenario = args.select.resolve()?;
-    if let Some(method) = args.method.resolve(&scenario)? {
+    if let Some(method) = input
+        .method
+        .map_or_else(|| args.method.resolve(&scenario), |m| Ok(Some(m)))?
+    {
         scenario.method = method;
     }
-    if let Some(e) = args.epsilon {
+    if let Some(e) = input.epsilon {
         check::positive(e)
             .and_then(|()| check::epsilon_in(e, scenario.epsilon_range(scenario.level)))
             .map_err(|m| usage("--epsilon", m))?;
     }
-    checks::render_request(&scenario, &args.scene, args.epsilon)?;
+    checks::render_request(&scenario, &args.scene, input.epsilon)?;
     let frame = render_with(
         &scenario,
         &args.scene,
@@ -889,8 +894,11 @@ fn render(args: &RenderArgs, marker: MarkerChoice) -> Result<ExitCode, CliError>
         Some(scenario.level),
         Some(scenario.element),
         Some(scenario.rule),
-        args.epsilon,
-        &RenderExtras { keys, marker },
+        input.epsilon,
+        &RenderExtras {
+            keys: input.keys,
+            marker,
+        },
     )
     .map_err(CliError::Usage)?;
     print(&frame.text)?;

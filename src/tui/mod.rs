@@ -23,6 +23,8 @@ pub mod protocol;
 pub mod record;
 pub mod render_keys;
 mod runtime;
+#[cfg(test)]
+mod runtime_export_tests;
 pub mod settle;
 pub mod shown;
 pub mod theme;

@@ -17,7 +17,7 @@ use ratatui::{Frame, Terminal};
 use crate::scenario::Scenario;
 
 use super::RunError;
-use super::app::{App, Command, ExportKind, Msg, Notice, Response};
+use super::app::{App, Command, ExportKind, Msg, Notice, Response, Scene};
 use super::export::{export_csv, export_svg, export_vtu};
 use super::record::cast::Event as CastEvent;
 use super::record::{CastFile, Chapter, Recorder, Screen, Tap};
@@ -369,12 +369,25 @@ pub(super) fn export(app: &App, dir: &Path) -> Msg {
         (_, ExportKind::TourStep) => {
             Err("T adds a tour step in the lab (riplab --tour-out FILE), not inside a tour".into())
         }
-        (Some(solved), ExportKind::Csv) => export_csv(&app.scenario, solved, dir),
-        (Some(solved), ExportKind::Svg) => export_svg(&app.scenario, solved, dir),
-        (Some(solved), ExportKind::Vtu) => export_vtu(&app.scenario, solved, dir),
+        (Some(solved), ExportKind::Csv) => {
+            export_csv(&app.scenario, solved, dir).map(|p| p.display().to_string())
+        }
+        (Some(solved), ExportKind::Svg) => export_svg(&app.scenario, solved, dir).map(|p| {
+            // The SVG is the pressure chart, whatever the scene: said where another is shown.
+            let chart = if app.scene == Scene::Explore {
+                ""
+            } else {
+                " (explore's pressure chart)"
+            };
+            format!("{}{chart}", p.display())
+        }),
+        (Some(solved), ExportKind::Vtu) => export_vtu(&app.scenario, solved, dir).map(|p| {
+            let contact = crate::vtu::contact_path(&p);
+            format!("{} and {}", p.display(), contact.display())
+        }),
         (None, _) => Err("no solution to export".into()),
     };
-    Msg::Exported(result.map(|p| p.display().to_string()))
+    Msg::Exported(result)
 }
 
 /// What `render` draws, as one frame inside synchronized-output brackets.

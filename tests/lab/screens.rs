@@ -262,3 +262,34 @@ fn render_applies_keys_and_the_marker() {
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("<ctrl-c>") && err.contains("<tab>"), "{err}");
 }
+
+/// The smaller items: `render` says the lab's range 0 to 7 for any level above it, takes
+/// `--epsilon 0` as the exact constraint (as `--method`'s help says), `--export-dir`'s help
+/// names `v`, the tour file's header gives the lab's levels, and hertz-block's comment names
+/// the stress scene's key.
+#[test]
+fn render_ranges_exact_and_helps_agree() {
+    use riplab::tui::app::MAX_APP_LEVEL;
+    for level in ["8", "9", "70"] {
+        let (code, _, err) = crate::common::riplab(&["render", "--level", level]);
+        assert_eq!(code, 2, "{err}");
+        assert!(
+            err.contains(&format!("allowed: 0 to {MAX_APP_LEVEL}")),
+            "{level}: {err}"
+        );
+    }
+    let (code, out, err) =
+        crate::common::riplab(&["render", "--epsilon", "0", "--size", "80x24", "--level", "0"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("exact"), "{out}");
+    let (_, help, _) = crate::common::riplab(&["--help"]);
+    assert!(help.contains("`v` (VTU)"), "{help}");
+    let root = env!("CARGO_MANIFEST_DIR");
+    let tour = std::fs::read_to_string(format!("{root}/tours/paper.toml")).unwrap();
+    assert!(
+        tour.contains(&format!("level    = 0..={MAX_APP_LEVEL} ")),
+        "the tour's header"
+    );
+    let block = std::fs::read_to_string(format!("{root}/scenarios/hertz-block.toml")).unwrap();
+    assert!(block.contains("`c` cycles") && !block.contains("stress scene (`s`)"));
+}

@@ -25,7 +25,7 @@ use super::protocol::{
 };
 use super::shown::Shown;
 
-mod studying;
+pub mod studying;
 #[cfg(test)]
 mod tests;
 

@@ -47,14 +47,18 @@ impl Studying {
                 estimate_ms,
             });
             for &method in &key.methods {
-                rows.extend(convergence(
-                    &self.scenario,
-                    &reference,
-                    &key.schemes,
-                    &[level],
-                    Some(method),
-                    key.epsilon,
-                ));
+                let solve = || {
+                    convergence(
+                        &self.scenario,
+                        &reference,
+                        &key.schemes,
+                        &[level],
+                        Some(method),
+                        key.epsilon,
+                    )
+                };
+                let runs: Vec<Vec<StudyRow>> = (0..TIMED_RUNS).map(|_| solve()).collect();
+                rows.extend(median_times(runs));
             }
         }
         // The key's order: by scheme, then method, then ascending level.
@@ -71,5 +75,68 @@ impl Studying {
         });
         *kept() = Some(study.clone());
         Ok(study)
+    }
+}
+
+/// How many times each row of a study is solved: its time is the median (the chart says
+/// so), so that one slow or fast measurement does not reorder the methods.
+pub const TIMED_RUNS: usize = 3;
+
+/// The rows of the first run, each with the median of the runs' solve times (the runs solve
+/// the same problems: their rows correspond one to one).
+fn median_times(mut runs: Vec<Vec<StudyRow>>) -> Vec<StudyRow> {
+    let mut rows = runs.remove(0);
+    for (i, row) in rows.iter_mut().enumerate() {
+        let mut times: Vec<f64> = row.solve_ms.into_iter().collect();
+        times.extend(runs.iter().filter_map(|run| run.get(i).and_then(|r| r.solve_ms)));
+        times.sort_by(f64::total_cmp);
+        row.solve_ms = times
+            .get(times.len() / 2)
+            .copied()
+            .filter(|_| row.solve_ms.is_some());
+    }
+    rows
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::contact::Method;
+    use crate::study::Status;
+
+    fn row(level: u32, solve_ms: Option<f64>) -> StudyRow {
+        StudyRow {
+            scheme: "M1".into(),
+            element: "q1",
+            rule: "gauss1",
+            level,
+            h: 1.0,
+            epsilon: 1e-6,
+            method: Method::Penalty.into(),
+            n_dofs: 68,
+            status: Status::Ok,
+            reason: None,
+            newton_iterations: Some(1),
+            outer_iterations: None,
+            converged: true,
+            solve_ms,
+            load: Some(1.0),
+            errors: None,
+            rates: None,
+        }
+    }
+
+    /// Each row's time is the median of its runs' (not the first run's); a row without a
+    /// time (not solved) stays without one.
+    #[test]
+    fn a_rows_time_is_the_median_of_its_runs() {
+        let runs = vec![
+            vec![row(0, Some(6.75)), row(1, None)],
+            vec![row(0, Some(0.62)), row(1, Some(3.0))],
+            vec![row(0, Some(1.45)), row(1, Some(4.0))],
+        ];
+        let rows = median_times(runs);
+        assert_eq!(rows[0].solve_ms, Some(1.45));
+        assert_eq!(rows[1].solve_ms, None);
     }
 }

@@ -14,6 +14,7 @@ use ratatui::widgets::{Block, Paragraph, Wrap};
 use crate::study::{Errors, Status, StudyRow};
 
 use super::super::app::{App, Compare, Study};
+use super::super::engine::studying::TIMED_RUNS;
 use super::super::theme::Theme;
 use super::Look;
 use super::fmt::sig;
@@ -211,7 +212,7 @@ fn chart(frame: &mut Frame, area: Rect, look: &Look, app: &App, study: &Study) {
             study_epsilon(app)
         ),
         x: Axis {
-            title: "solve ms".into(),
+            title: format!("solve ms (median of {TIMED_RUNS})"),
             bounds: xb,
             scale: Scale::Log10,
         },
