@@ -137,9 +137,9 @@ pub struct RenderArgs {
     /// exact constraint
     #[arg(long, value_parser = values::number)]
     pub epsilon: Option<f64>,
-    /// Keys applied to the lab before the frame is printed, e.g. "]]]x.." (each character a
-    /// key; <tab> <backtab> <esc> <enter> <space> <left> <right> <up> <down> <pageup>
-    /// <pagedown> <lt> name the others; at most 200)
+    /// Keys applied to the lab before the frame is printed, e.g. `]]]x..` (each character a
+    /// key; `<tab>` `<backtab>` `<esc>` `<enter>` `<space>` `<left>` `<right>` `<up>` `<down>`
+    /// `<pageup>` `<pagedown>` `<lt>` name the others; at most 200)
     #[arg(long, default_value = "")]
     pub keys: String,
 }

@@ -6,7 +6,7 @@
 //! [`app::App::update`] turns keys and worker replies into state changes and requests;
 //! [`view::view`] draws the state; a [`worker::Worker`] thread drives an [`engine::Engine`],
 //! which owns the discretisation cache and runs solves and estimates, the newest request
-//! cancelling older ones; [`settle`] drives the same engine synchronously. The app and the
+//! cancelling older ones; [`settle()`] drives the same engine synchronously. The app and the
 //! worker speak through [`protocol`] alone.
 
 mod abort_guard;

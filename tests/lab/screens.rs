@@ -54,7 +54,7 @@ fn graph_rows<'a>(frame: &'a str, title: &str) -> Vec<String> {
         else {
             continue;
         };
-        if axis + 1 < chars.len() && !chars[axis + 1..].iter().any(|&c| c == '└') {
+        if axis + 1 < chars.len() && !chars[axis + 1..].contains(&'└') {
             out.push(chars[axis + 1..chars.len() - 1].iter().collect());
         }
     }

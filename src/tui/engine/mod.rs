@@ -2,7 +2,7 @@
 //! discretisation cache (least recently used last out, within a memory budget) and the warm
 //! start of the next contact solve (docs/design.md §3), and runs solves, stresses, inf-sup
 //! estimates and work–precision studies ([`Studying`]). The worker thread
-//! ([`super::worker`]) and the synchronous driver ([`super::settle`]) drive it.
+//! ([`super::worker`]) and the synchronous driver ([`super::settle()`]) drive it.
 
 use std::cell::RefCell;
 use std::collections::HashMap;

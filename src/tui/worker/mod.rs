@@ -1,5 +1,5 @@
 //! The worker thread: a [`Worker`] sends the app's requests over a channel to a thread that
-//! drives an [`Engine`] (its scheduler is [`schedule`]); every reply goes to a sink.
+//! drives an [`Engine`] (its scheduler is the `schedule` module); every reply goes to a sink.
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
