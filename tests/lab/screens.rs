@@ -293,3 +293,27 @@ fn render_ranges_exact_and_helps_agree() {
     let block = std::fs::read_to_string(format!("{root}/scenarios/hertz-block.toml")).unwrap();
     assert!(block.contains("`c` cycles") && !block.contains("stress scene (`s`)"));
 }
+
+/// Item 4 on the stress map: `x` draws the cursor's line across the map and its readout in
+/// place of the peak's caption.
+#[test]
+fn the_cursor_crosses_the_stress_map() {
+    let mut app = settled(1, Scene::Stress);
+    let mut engine = Engine::new(Scenario::paper());
+    let before = render_app(&app, &LOOK, 100, 30);
+    press(&mut app, &mut engine, "x");
+    let after = render_app(&app, &LOOK, 100, 30);
+    assert!(
+        after.contains("cursor x ") && !before.contains("cursor x "),
+        "{after}"
+    );
+    // A whole column of the map's rows holds the line.
+    let rows: Vec<Vec<char>> = after
+        .lines()
+        .skip(3)
+        .take(10)
+        .map(|l| l.chars().collect())
+        .collect();
+    let column = (1..rows[0].len() - 1).find(|&c| rows.iter().all(|r| r.get(c) == Some(&'│')));
+    assert!(column.is_some(), "{after}");
+}

@@ -1,4 +1,4 @@
-//! The cursor on the pressure chart (`x`, moved with `,` and `.`): a vertical line at a contact
+//! The cursor on the pressure chart and the stress map (`x`, moved with `,` and `.`): a vertical line at a contact
 //! point of Γ_C (a vertex, where p̄ is defined) and a readout of x, p (both one-sided values
 //! where the raw pressure steps there), p̄, the gap g and, when overlaid, Hertz's pressure.
 

@@ -17,8 +17,8 @@ use crate::stress::{Peak, Quantity, StressField};
 use super::super::app::App;
 use super::super::protocol::Solved;
 use super::super::theme::Theme;
-use super::Look;
 use super::fmt::sig;
+use super::{Look, cursor};
 
 /// The shading of the levels, lowest first, and their colours.
 const GLYPHS: [&str; 5] = ["·", "░", "▒", "▓", "█"];
@@ -60,7 +60,23 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
         Paragraph::new(colour_bar(map.range, bar_area.height, look.theme)),
         bar_area,
     );
-    frame.render_widget(Paragraph::new(caption_line(&peak, &map, look.theme)), caption);
+    // The cursor (`x`): a vertical line at its contact point, its readout for the caption.
+    match (app.cursor_point(), cursor::readout(app)) {
+        (Some((x, _)), Some(text)) => {
+            let (a, b) = map.x;
+            let col = ((x - a) / (b - a) * f64::from(map_area.width)).floor();
+            if (0.0..f64::from(map_area.width)).contains(&col) {
+                let buf = frame.buffer_mut();
+                for row in map_area.y..map_area.bottom() {
+                    buf[(map_area.x + col as u16, row)]
+                        .set_symbol("│")
+                        .set_style(look.theme.key().add_modifier(Modifier::BOLD));
+                }
+            }
+            frame.render_widget(Paragraph::new(format!(" {text}")), caption);
+        }
+        _ => frame.render_widget(Paragraph::new(caption_line(&peak, &map, look.theme)), caption),
+    }
 }
 
 /// The quantity sampled at the centre of every character cell of the map.
