@@ -317,3 +317,13 @@ fn the_cursor_crosses_the_stress_map() {
     let column = (1..rows[0].len() - 1).find(|&c| rows.iter().all(|r| r.get(c) == Some(&'│')));
     assert!(column.is_some(), "{after}");
 }
+
+/// The smaller items: the gap overlay's legend says what its curve is (the gap, scaled).
+#[test]
+fn the_gap_overlay_says_what_it_draws() {
+    let mut app = settled(1, Scene::Explore);
+    let mut engine = Engine::new(Scenario::paper());
+    press(&mut app, &mut engine, "g");
+    let frame = render_app(&app, &LOOK, 100, 30);
+    assert!(frame.contains("· gap −g, scaled ×"), "{frame}");
+}

@@ -75,7 +75,7 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
     let mut series = Vec::new();
     if app.show_gap {
         series.push(Series {
-            name: format!("−g ×{}", sig(gap_scale, 2)),
+            name: format!("gap −g, scaled ×{}", sig(gap_scale, 2)),
             color: theme.faint_color(),
             stroke: Stroke::None,
             glyph: Some('·'),

@@ -240,7 +240,7 @@ fn monochrome_series_have_distinct_symbols_in_the_legend() {
     app.show_hertz = true;
     app.show_gap = true;
     let text = render_app(&app, &MONO, 100, 30);
-    for entry in ["⠒⠒⠒ p̄ smoothed", "⠒ ⠒ p gauss1", "+ Hertz", "· −g"] {
+    for entry in ["⠒⠒⠒ p̄ smoothed", "⠒ ⠒ p gauss1", "+ Hertz", "· gap −g"] {
         assert!(text.contains(entry), "legend entry `{entry}` in\n{text}");
     }
     let text = render_app(&infsup_app(), &MONO, 80, 24);
