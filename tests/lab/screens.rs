@@ -327,3 +327,24 @@ fn the_gap_overlay_says_what_it_draws() {
     let frame = render_app(&app, &LOOK, 100, 30);
     assert!(frame.contains("· gap −g, scaled ×"), "{frame}");
 }
+
+/// The smaller items: the stress colour bar's end is the marked maximum (it read 110.5 beside
+/// a marked max τ₁ of 113.2).
+#[test]
+fn the_colour_bar_ends_at_the_marked_maximum() {
+    let app = settled(1, Scene::Stress);
+    let frame = render_app(&app, &LOOK, 100, 30);
+    let caption = frame
+        .lines()
+        .find(|l| l.contains("max τ₁ = "))
+        .expect("the caption");
+    let max = caption
+        .split("max τ₁ = ")
+        .nth(1)
+        .unwrap()
+        .split_whitespace()
+        .next()
+        .unwrap();
+    let bar_top = frame.lines().nth(3).unwrap().trim_end_matches('│').trim_end();
+    assert!(bar_top.ends_with(max), "bar `{bar_top}`, max {max}\n{frame}");
+}

@@ -53,8 +53,13 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
     let [body, caption] = Layout::vertical([Constraint::Fill(1), Constraint::Length(1)]).areas(inner);
     let [map_area, bar_area] =
         Layout::horizontal([Constraint::Fill(1), Constraint::Length(BAR_WIDTH)]).areas(body);
-    let map = HeatMap::sample(app, solved, &field, q, map_area);
+    let mut map = HeatMap::sample(app, solved, &field, q, map_area);
     let peak = field.peak(&solved.disc.mesh, q);
+    // The bar's ends hold the marked peak (a quadrature point's value, beyond the cells'
+    // centres the map samples) when it lies in the window.
+    if peak.value.is_finite() && (map.x.0..=map.x.1).contains(&peak.x) && peak.depth <= map.z_max {
+        map.range = (map.range.0.min(peak.value), map.range.1.max(peak.value));
+    }
     frame.render_widget(Paragraph::new(map.lines(&peak, look.theme)), map_area);
     frame.render_widget(
         Paragraph::new(colour_bar(map.range, bar_area.height, look.theme)),
