@@ -92,7 +92,7 @@ pub enum Command {
     #[command(after_help = EXIT_CODES)]
     Verify(verify::VerifyArgs),
     /// Print one frame of the terminal lab as plain text (for logs, CI and documents).
-    #[command(after_help = RENDER_NOTES)]
+    #[command(after_help = crate::tui::keys::with_lab_keys(RENDER_NOTES))]
     Render(RenderArgs),
     /// Walk through the paper's argument step by step (Space/→ next, ← back, q quit).
     #[command(after_help = EXIT_CODES)]

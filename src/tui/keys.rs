@@ -68,7 +68,7 @@ pub enum LabAction {
     Reset,
     /// Ctrl-Z: give the terminal back until resumed.
     Suspend,
-    /// Show or hide the cursor on the pressure chart.
+    /// Show or hide the cursor on the pressure chart and the stress map.
     Cursor,
     /// The cursor one contact point left.
     CursorLeft,
@@ -217,7 +217,7 @@ pub const LAB: &[Row<LabAction>] = &[
     },
     Row {
         keys: "x  ,  .",
-        what: &["cursor on the pressure chart; move it"],
+        what: &["cursor (pressure, stress map); , . move it"],
         bindings: &[
             (Char('x'), L::Cursor),
             (Char(','), L::CursorLeft),
@@ -360,6 +360,19 @@ pub fn readme_table() -> String {
         let keys: Vec<String> = row.keys.split_whitespace().map(|k| format!("`{k}`")).collect();
         out.push_str(&format!("| {} | {} |\n", keys.join(" "), row.what.join(" ")));
     }
+    out
+}
+
+/// `notes` after the lab's keys, one row each as the help writes them: `riplab render
+/// --help`'s text after the options (what `--keys` can press), read from [`LAB`] like the
+/// help overlay and the README's table.
+pub fn with_lab_keys(notes: &str) -> String {
+    let mut out = String::from("Keys (for --keys; the lab's):\n");
+    for row in LAB {
+        out.push_str(&format!("  {:<16}{}\n", row.keys, row.what.join(" ")));
+    }
+    out.push('\n');
+    out.push_str(notes);
     out
 }
 

@@ -348,3 +348,16 @@ fn the_colour_bar_ends_at_the_marked_maximum() {
     let bar_top = frame.lines().nth(3).unwrap().trim_end_matches('│').trim_end();
     assert!(bar_top.ends_with(max), "bar `{bar_top}`, max {max}\n{frame}");
 }
+
+/// Done when, item 4: `render --help` lists every key of the lab's table (the help overlay
+/// and the README's table are read from the same table, `riplab::tui::keys::LAB`).
+#[test]
+fn render_help_lists_the_labs_keys() {
+    let (code, help, err) = crate::common::riplab(&["render", "--help"]);
+    assert_eq!(code, 0, "{err}");
+    for row in riplab::tui::keys::LAB {
+        let line = format!("  {:<16}{}", row.keys, row.what.join(" "));
+        assert!(help.contains(&line), "`{line}` in\n{help}");
+    }
+    assert!(help.contains("Exit codes:"), "the notes follow");
+}
