@@ -1,7 +1,8 @@
 //! What the lab shows over or instead of its scenes: the help's and the log's scroll, the
 //! message log itself (every notice, failure and solver warning since the lab started), the
-//! cursor on the pressure chart and the stress map (`x`, moved with `,` and `.`), the projector view (`f`) and
-//! whether the terminal is too small for the lab (keys other than `q` and `?` ignored then).
+//! cursor on the pressure chart and the stress map (`x`, moved with `,` and `.`), the
+//! projector view (`f`) and whether the terminal is too small for the lab (keys other than
+//! `q` ignored then, each saying so).
 
 use std::collections::VecDeque;
 use std::sync::Arc;
