@@ -258,6 +258,14 @@ pub enum Response {
         /// The stage ([`Progress::Study`]).
         progress: Progress,
     },
+    /// The levels of the study asked for with `generation` finished so far, as a study of
+    /// those levels (its points are drawn while the rest is computed).
+    StudyPartial {
+        /// The request's generation.
+        generation: u64,
+        /// The rows so far.
+        study: Arc<Study>,
+    },
     /// The solve of `generation` was superseded and stopped.
     Cancelled {
         /// The request's generation.

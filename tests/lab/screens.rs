@@ -361,3 +361,60 @@ fn render_help_lists_the_labs_keys() {
     }
     assert!(help.contains("Exit codes:"), "the notes follow");
 }
+
+/// Item 2, progressively: the convergence study hands over each finished level's rows, and
+/// the scene draws them (every scheme's mark at each level so far) while the status line says
+/// what is being computed; the whole study replaces them.
+#[test]
+fn the_convergence_points_appear_as_their_levels_finish() {
+    use riplab::tui::app::{Command, Response, Study};
+    let mut app = App::new(Scenario::paper());
+    app.show_timing = false;
+    app.scene = Scene::Convergence;
+    let commands = app.update(Msg::Resize).commands;
+    let req = commands
+        .iter()
+        .find_map(|c| match c {
+            Command::Study(r) => Some(r.clone()),
+            _ => None,
+        })
+        .expect("a study");
+    let mut partials: Vec<std::sync::Arc<Study>> = Vec::new();
+    let whole = Engine::new(Scenario::paper())
+        .studying(&req.key)
+        .unwrap()
+        .run_shown(&mut |_| {}, &mut |s| partials.push(s))
+        .unwrap();
+    let finest = |s: &Study| s.rows.iter().map(|r| r.level).max();
+    let levels: Vec<Option<u32>> = partials.iter().map(|s| finest(s)).collect();
+    assert_eq!(levels, [Some(0), Some(1), Some(2), Some(3)]);
+    // Each partial's rows are the whole study's at those levels (same errors).
+    let errors = |s: &Study, level: u32| -> Vec<Option<f64>> {
+        s.rows
+            .iter()
+            .filter(|r| r.level == level)
+            .map(|r| r.errors.map(|e| e.pbar))
+            .collect()
+    };
+    assert_eq!(errors(&partials[1], 1), errors(&whole, 1));
+    let partial = Response::StudyPartial {
+        generation: req.generation,
+        study: partials[1].clone(),
+    };
+    assert!(app.update(Msg::Worker(partial)).redraw);
+    let frame = render_app(&app, &LOOK, 100, 30);
+    let graph = graph_rows(&frame, "work–precision");
+    for glyph in ['1', '2', '3', '4'] {
+        assert_eq!(count(&graph, glyph), 2, "{glyph}: levels 0 and 1\n{frame}");
+    }
+    assert!(frame.contains("⟳ computing"), "{frame}");
+    let done = Response::Study {
+        generation: req.generation,
+        key: req.key.clone(),
+        result: Some(Ok(whole)),
+    };
+    app.update(Msg::Worker(done));
+    assert!(app.study_partial.is_none());
+    let graph = graph_rows(&render_app(&app, &LOOK, 100, 30), "work–precision");
+    assert!(count(&graph, '1') >= 5);
+}

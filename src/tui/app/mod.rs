@@ -160,6 +160,8 @@ pub struct App {
     study_pending: Option<(u64, StudyKey)>,
     /// The stage of the study in flight.
     pub study_progress: Option<Progress>,
+    /// The levels of the study in flight finished so far (drawn until it ends).
+    pub study_partial: Option<Arc<Study>>,
     /// The solution whose stresses are being computed.
     stress_pending: Option<SolveKey>,
     /// The overlays, the cursor, the projector view and the message log ([`Overlays`]).
@@ -198,6 +200,7 @@ impl App {
             studies: HashMap::new(),
             study_pending: None,
             study_progress: None,
+            study_partial: None,
             stress_pending: None,
             overlays: Overlays::default(),
         }

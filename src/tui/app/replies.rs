@@ -41,6 +41,13 @@ impl App {
                 }
                 return self.scene == Scene::Stress && self.current().is_some_and(|s| s.key == key);
             }
+            Response::StudyPartial { generation, study } => {
+                if self.study_pending.as_ref().map(|(g, _)| *g) != Some(generation) {
+                    return false;
+                }
+                self.study_partial = Some(study);
+                return self.scene == Scene::Convergence;
+            }
             Response::StudyProgress { generation, progress } => {
                 if self.study_pending.as_ref().map(|(g, _)| *g) != Some(generation) {
                     return false;
@@ -85,6 +92,7 @@ impl App {
                 }
                 self.study_pending = None;
                 self.study_progress = None;
+                self.study_partial = None;
                 if let Some(result) = result {
                     self.studies.insert(key, result);
                 }

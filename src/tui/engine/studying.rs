@@ -26,6 +26,16 @@ impl Studying {
     /// its estimate. A method a scheme cannot run (`exact` on a rule with a kernel) gives rows
     /// that say why.
     pub fn run(self, report: &mut dyn FnMut(Progress)) -> Result<Arc<Study>, String> {
+        self.run_shown(report, &mut |_| {})
+    }
+
+    /// [`Studying::run`], each finished level's rows (with those before it) also handed to
+    /// `partial` as a study of the levels so far, so that the points appear as computed.
+    pub fn run_shown(
+        self,
+        report: &mut dyn FnMut(Progress),
+        partial: &mut dyn FnMut(Arc<Study>),
+    ) -> Result<Arc<Study>, String> {
         let kept = || self.kept.lock().unwrap_or_else(PoisonError::into_inner);
         if let Some(study) = kept().as_ref().filter(|s| s.key == self.key) {
             return Ok(study.clone());
@@ -60,8 +70,20 @@ impl Studying {
                 let runs: Vec<Vec<StudyRow>> = (0..TIMED_RUNS).map(|_| solve()).collect();
                 rows.extend(median_times(runs));
             }
+            if level < key.max_level {
+                partial(Arc::new(self.ordered(rows.clone())));
+            }
         }
-        // The key's order: by scheme, then method, then ascending level.
+        let study = Arc::new(self.ordered(rows));
+        *kept() = Some(study.clone());
+        Ok(study)
+    }
+}
+
+impl Studying {
+    /// A study of `rows` in the key's order: by scheme, then method, then ascending level.
+    fn ordered(&self, mut rows: Vec<StudyRow>) -> Study {
+        let key = &self.key;
         let scheme_index = |r: &StudyRow| {
             key.schemes
                 .iter()
@@ -69,12 +91,10 @@ impl Studying {
         };
         let method_index = |r: &StudyRow| key.methods.iter().position(|m| m.name() == r.method.method);
         rows.sort_by_key(|r| (scheme_index(r), method_index(r), r.level));
-        let study = Arc::new(Study {
-            key: self.key.clone(),
+        Study {
+            key: key.clone(),
             rows,
-        });
-        *kept() = Some(study.clone());
-        Ok(study)
+        }
     }
 }
 

@@ -46,8 +46,13 @@ const MIN_CHART_HEIGHT: u16 = 12;
 
 pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
     let key = app.study_key();
-    match app.studies.get(&key) {
-        Some(Ok(study)) => {
+    // While the study runs, the levels it has finished (the status line says which comes).
+    let partial = app
+        .study_partial
+        .as_ref()
+        .filter(|s| s.key == key && app.study_pending() == Some(&key));
+    match (app.studies.get(&key), partial) {
+        (Some(Ok(study)), _) | (None, Some(study)) => {
             let levels = shown_levels(study, area.height);
             let rows = study.rows.iter().filter(|r| levels.contains(&r.level)).count() as u16;
             let [top, bottom] =
@@ -55,7 +60,7 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
             chart(frame, top, look, app, study);
             table(frame, bottom, look.theme, study, &levels);
         }
-        other => {
+        (other, _) => {
             let text = match other {
                 Some(Err(e)) => format!("the study failed: {e}"),
                 _ if app.study_pending() == Some(&key) => format!(

@@ -354,12 +354,17 @@ pub(super) fn run(mut engine: Engine, rx: &Receiver<Request>, latest: &AtomicU64
             let (generation, key) = (req.generation, req.key);
             match engine.studying(&key) {
                 Ok(studying) if !stale => {
-                    let told = sink.clone();
+                    let (told, shown) = (sink.clone(), sink.clone());
                     let work = move || Response::Study {
                         generation,
-                        result: Some(studying.run(&mut |progress| {
-                            told(Response::StudyProgress { generation, progress });
-                        })),
+                        result: Some(studying.run_shown(
+                            &mut |progress| {
+                                told(Response::StudyProgress { generation, progress });
+                            },
+                            &mut |study| {
+                                shown(Response::StudyPartial { generation, study });
+                            },
+                        )),
                         key,
                     };
                     match studies.submit(sink, work) {
