@@ -12,6 +12,7 @@ use crate::tui::{MarkerChoice, TuiOptions};
 
 mod checks;
 mod outputs;
+mod render_args;
 mod tour;
 pub mod values;
 mod verify;
@@ -54,8 +55,8 @@ pub struct Cli {
     /// Monochrome display (also when the NO_COLOR environment variable is set).
     #[arg(long, global = true)]
     pub no_color: bool,
-    /// Where the lab's and the tour's `s` (CSV) and `S` (SVG) exports go; the current
-    /// directory when omitted. Files are never overwritten.
+    /// Where the lab's and the tour's `s` (CSV), `S` (SVG) and `v` (VTU) exports go; the
+    /// current directory when omitted. Files are never overwritten.
     #[arg(long, global = true, value_name = "DIR")]
     pub export_dir: Option<PathBuf>,
     /// Threads for the assembly, the factorisation and the dense work on Γ_C [default: the
@@ -93,7 +94,7 @@ pub enum Command {
     #[command(after_help = EXIT_CODES)]
     Verify(verify::VerifyArgs),
     /// Print one frame of the terminal lab as plain text (for logs, CI and documents).
-    #[command(after_help = RENDER_NOTES)]
+    #[command(after_help = crate::tui::keys::with_lab_keys(RENDER_NOTES))]
     Render(RenderArgs),
     /// Walk through the paper's argument step by step (Space/→ next, ← back, q quit).
     #[command(after_help = EXIT_CODES)]
@@ -163,7 +164,7 @@ pub fn run(cli: Cli) -> ExitCode {
         Some(Command::Solve(args)) => solve(&args),
         Some(Command::Infsup(args)) => infsup(&args),
         Some(Command::Study(args)) => study(&args),
-        Some(Command::Render(args)) => render(&args),
+        Some(Command::Render(args)) => render(&args, cli.marker),
         Some(Command::Verify(args)) => verify::verify(&args),
         Some(Command::Tour(args)) => tour::tour(
             &args,

@@ -6,9 +6,9 @@ use std::process::ExitCode;
 use clap::Args;
 
 use super::args::{MethodArgs, Select};
-use super::{CliError, checks, print, tour, usage, values};
+use super::{CliError, checks, print, render_args, tour, usage, values};
 use crate::check;
-use crate::tui::{TuiOptions, render_to_string};
+use crate::tui::{MarkerChoice, RenderExtras, TuiOptions, render_with};
 
 /// The notes under `riplab render --help`.
 pub(super) const RENDER_NOTES: &str = concat!(
@@ -35,9 +35,15 @@ pub struct RenderArgs {
     /// Frame size, COLUMNSxROWS (or COLUMNS×ROWS), from 80x24 to 1000x500.
     #[arg(long, default_value = "120x40")]
     pub size: String,
-    /// Penalty parameter ε > 0 (the scenario's when omitted).
+    /// Penalty parameter ε > 0 (the scenario's when omitted); 0 with no --method named is the
+    /// exact constraint
     #[arg(long, value_parser = values::number)]
     pub epsilon: Option<f64>,
+    /// Keys applied to the lab before the frame is printed, e.g. `]]]x..` (each character a
+    /// key; `<tab>` `<backtab>` `<esc>` `<enter>` `<space>` `<left>` `<right>` `<up>` `<down>`
+    /// `<pageup>` `<pagedown>` `<lt>` name the others; at most 200)
+    #[arg(long, default_value = "")]
+    pub keys: String,
 }
 
 /// The terminal lab.
@@ -56,20 +62,24 @@ pub(super) fn lab(
     Ok(ExitCode::SUCCESS)
 }
 
-pub(super) fn render(args: &RenderArgs) -> Result<ExitCode, CliError> {
+pub(super) fn render(args: &RenderArgs, marker: MarkerChoice) -> Result<ExitCode, CliError> {
     // The size first: nothing is loaded or allocated for a frame that cannot be drawn.
     let (width, height) = crate::tui::parse_size(&args.size).map_err(|m| usage("--size", m))?;
+    let input = render_args::render_input(args)?;
     let mut scenario = args.select.resolve()?;
-    if let Some(method) = args.method.resolve(&scenario)? {
+    if let Some(method) = input
+        .method
+        .map_or_else(|| args.method.resolve(&scenario), |m| Ok(Some(m)))?
+    {
         scenario.method = method;
     }
-    if let Some(e) = args.epsilon {
+    if let Some(e) = input.epsilon {
         check::positive(e)
             .and_then(|()| check::epsilon_in(e, scenario.epsilon_range(scenario.level)))
             .map_err(|m| usage("--epsilon", m))?;
     }
-    checks::render_request(&scenario, &args.scene, args.epsilon)?;
-    let frame = render_to_string(
+    checks::render_request(&scenario, &args.scene, input.epsilon)?;
+    let frame = render_with(
         &scenario,
         &args.scene,
         width,
@@ -77,7 +87,11 @@ pub(super) fn render(args: &RenderArgs) -> Result<ExitCode, CliError> {
         Some(scenario.level),
         Some(scenario.element),
         Some(scenario.rule),
-        args.epsilon,
+        input.epsilon,
+        &RenderExtras {
+            keys: input.keys,
+            marker,
+        },
     )
     .map_err(CliError::Usage)?;
     print(&frame.text)?;

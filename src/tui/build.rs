@@ -6,7 +6,7 @@
 //! seconds at level 7), alone when the mesh is already built.
 //!
 //! A build hands its result back through a channel; the worker adopts it into its cache
-//! ([`super::worker::Engine::adopt`]) or drops it when the user has moved on. A factorisation
+//! ([`super::engine::Engine::adopt`]) or drops it when the user has moved on. A factorisation
 //! cannot be interrupted, so "cancelling" a build means dropping its result; the memory it may
 //! use is checked before it starts, less what the builds already under way may still take
 //! ([`Discretization::of_beside`]).

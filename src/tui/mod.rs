@@ -4,13 +4,16 @@
 //!
 //! The shape is the Elm architecture: [`app::App`] holds the state and its pure
 //! [`app::App::update`] turns keys and worker replies into state changes and requests;
-//! [`view::view`] draws the state; a [`worker::Worker`] thread owns the discretisation cache
-//! and runs solves and estimates, the newest request cancelling older ones.
+//! [`view::view`] draws the state; a [`worker::Worker`] thread drives an [`engine::Engine`],
+//! which owns the discretisation cache and runs solves and estimates, the newest request
+//! cancelling older ones; [`settle()`] drives the same engine synchronously. The app and the
+//! worker speak through [`protocol`] alone.
 
 mod abort_guard;
 pub mod app;
 pub mod beta;
 mod build;
+pub mod engine;
 mod estimating;
 pub mod eta;
 pub mod export;
@@ -18,7 +21,11 @@ mod job;
 pub mod keys;
 pub mod protocol;
 pub mod record;
+pub mod render_keys;
 mod runtime;
+#[cfg(test)]
+mod runtime_export_tests;
+pub mod settle;
 pub mod shown;
 pub mod theme;
 pub mod tour;
@@ -38,11 +45,12 @@ use crate::scenario::Scenario;
 use crate::text;
 
 use app::{App, MAX_APP_LEVEL, Scene};
+use engine::Engine;
 use record::CastFile;
+use settle::settle;
 use theme::Theme;
 use tour::author::{DEFAULT_TOUR_OUT, LabSource};
 use view::Look;
-use worker::{Engine, settle};
 
 /// The glyphs of charts and canvases.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -138,6 +146,36 @@ pub fn render_to_string(
     rule: Option<Rule>,
     epsilon: Option<f64>,
 ) -> Result<Rendered, String> {
+    let plain = RenderExtras::default();
+    render_with(
+        scenario, scene, width, height, level, element, rule, epsilon, &plain,
+    )
+}
+
+/// What `riplab render` adds to [`render_to_string`]: keys applied before the frame is
+/// printed ([`render_keys`]) and the charts' marker.
+#[derive(Clone, Debug, Default)]
+pub struct RenderExtras {
+    /// The keys, in order, applied to the settled lab (each settled in turn).
+    pub keys: Vec<crossterm::event::KeyEvent>,
+    /// The glyphs of charts and canvases.
+    pub marker: MarkerChoice,
+}
+
+/// [`render_to_string`] with `extras`: the keys applied one by one to the settled lab (what
+/// each asks for computed before the next), then the frame drawn with the marker.
+#[allow(clippy::too_many_arguments)]
+pub fn render_with(
+    scenario: &Scenario,
+    scene: &str,
+    width: u16,
+    height: u16,
+    level: Option<u32>,
+    element: Option<Element>,
+    rule: Option<Rule>,
+    epsilon: Option<f64>,
+    extras: &RenderExtras,
+) -> Result<Rendered, String> {
     let names: Vec<&str> = Scene::ALL.iter().map(|s| s.name()).collect();
     let scene = Scene::from_name(scene)
         .ok_or_else(|| format!("unknown scene `{scene}`; scenes: {}", names.join(", ")))?;
@@ -164,10 +202,15 @@ pub fn render_to_string(
         crate::check::positive(epsilon).map_err(|e| format!("ε: {e}"))?;
         app.settings.epsilon = epsilon;
     }
-    settle(&mut app, &mut Engine::new(scenario.clone()));
+    let mut engine = Engine::new(scenario.clone());
+    settle(&mut app, &mut engine);
+    for &key in &extras.keys {
+        let commands = app.update(app::Msg::Key(key)).commands;
+        settle::carry_out(&mut app, &mut engine, commands);
+    }
     let look = Look {
         theme: Theme { color: true },
-        marker: Marker::Braille,
+        marker: extras.marker.marker(),
     };
     Ok(Rendered {
         text: render_app(&app, &look, width, height),

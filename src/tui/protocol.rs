@@ -6,10 +6,13 @@
 use std::sync::{Arc, OnceLock};
 use std::time::Instant;
 
+use crossterm::event::KeyEvent;
+
 use crate::contact::method::Gamma0;
 use crate::contact::{Method, Rule};
 use crate::discretization::Discretization;
 use crate::mesh::Element;
+use crate::mesh::MAX_LEVEL;
 use crate::scenario::Scenario;
 use crate::scheme::Scheme;
 use crate::solution::Solution;
@@ -257,6 +260,14 @@ pub enum Response {
         /// The stage ([`Progress::Study`]).
         progress: Progress,
     },
+    /// The levels of the study asked for with `generation` finished so far, as a study of
+    /// those levels (its points are drawn while the rest is computed).
+    StudyPartial {
+        /// The request's generation.
+        generation: u64,
+        /// The rows so far.
+        study: Arc<Study>,
+    },
     /// The solve of `generation` was superseded and stopped.
     Cancelled {
         /// The request's generation.
@@ -351,5 +362,81 @@ impl std::fmt::Debug for Solved {
             .field("key", &self.key)
             .field("load", &self.solution.load)
             .finish_non_exhaustive()
+    }
+}
+
+/// The finest level the interactive lab (and `riplab render`) offers. A change at level 7
+/// costs about 3–6 s and 1.3 GB with Q1 or P1, and 25–30 s and 5.8 GiB with Q2, whose level 7
+/// has the unknowns of Q1's level 8 (BENCHMARKS.md, "Level 7 in the lab"): the lab builds it
+/// on a thread of its own with the time left shown, and the memory guard refuses it, saying
+/// why, where memory does not allow it. Level 8 is too slow to explore by key; `riplab solve`
+/// goes there.
+pub const MAX_APP_LEVEL: u32 = if MAX_LEVEL < 7 { MAX_LEVEL } else { 7 };
+
+/// An input to the app's update (`App::update` in [`super::app`]).
+#[derive(Clone, Debug)]
+pub enum Msg {
+    /// A key pressed.
+    Key(KeyEvent),
+    /// The terminal was resized (redraw).
+    Resize,
+    /// A message from the worker.
+    Worker(Response),
+    /// The result of [`Command::Export`]: the file written, or what went wrong.
+    Exported(Result<String, String>),
+    /// Time passed while something long runs (the time left changes).
+    Tick,
+    /// A message for the status line (a tour step saved, a recording that failed).
+    Notice(Notice),
+}
+
+/// Work for the runtime.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Command {
+    /// Solve the contact problem of the settings.
+    Solve(SolveRequest),
+    /// Estimate β_h and β̄_h (docs/design.md §5) for a level, element and rule.
+    InfSup(InfSupRequest),
+    /// Run the convergence scene's work–precision study.
+    Study(StudyRequest),
+    /// Compute the stresses of a solution the stress scene shows (kept with it).
+    Stresses(StressRequest),
+    /// Compute the displacement of the solution shown (kept with it), when the worker passed
+    /// it over for a newer solve that the app then left behind.
+    Displace(DisplaceRequest),
+    /// Write the displayed solution to a new file, or the lab's state as a tour step, as
+    /// the app's `export_kind` says (the kind travels in the app so that the variant stays a
+    /// plain `Export`).
+    Export,
+    /// Ctrl-Z: give the terminal back and stop until resumed.
+    Suspend,
+    /// Every solve, estimate and study older than this generation is no longer wanted (the
+    /// settings came back to the solution shown while a solve of others was under way).
+    Supersede(u64),
+}
+
+/// A one-off message for the status line.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Notice {
+    /// The message.
+    pub text: String,
+    /// Something failed (drawn as bad news).
+    pub failure: bool,
+}
+
+impl Notice {
+    /// A message that is not bad news.
+    pub fn info(text: impl Into<String>) -> Self {
+        Notice {
+            text: text.into(),
+            failure: false,
+        }
+    }
+    /// A message that something failed.
+    pub fn failure(text: impl Into<String>) -> Self {
+        Notice {
+            text: text.into(),
+            failure: true,
+        }
     }
 }

@@ -17,12 +17,12 @@ use ratatui::{Frame, Terminal};
 use crate::scenario::Scenario;
 
 use super::RunError;
-use super::app::{App, Command, ExportKind, Msg, Notice, Response};
+use super::app::{App, Command, ExportKind, Msg, Notice, Response, Scene};
 use super::export::{export_csv, export_svg, export_vtu};
 use super::record::cast::Event as CastEvent;
 use super::record::{CastFile, Chapter, Recorder, Screen, Tap};
 use super::tour::author::{LabSource, save_step};
-use super::view::{Look, view};
+use super::view::{Look, MIN_SIZE, view};
 use super::worker::Worker;
 
 /// The terminal of the lab and the tour: crossterm on standard output, through the writer
@@ -250,6 +250,11 @@ fn event_loop<P: Program>(
     Ok(())
 }
 
+/// Whether a terminal of `(columns, rows)` is below the lab's [`MIN_SIZE`].
+fn too_small((w, h): (u16, u16)) -> bool {
+    w < MIN_SIZE.0 || h < MIN_SIZE.1
+}
+
 /// The lab in the loop: the app, its worker, how it draws and where exports go.
 struct Lab {
     app: App,
@@ -288,13 +293,19 @@ impl Lab {
 
 impl Program for Lab {
     fn start(&mut self) -> Flow {
+        if let Ok(size) = crossterm::terminal::size() {
+            self.app.overlays.too_small = too_small(size);
+        }
         self.apply(Msg::Resize)
     }
 
     fn input(&mut self, input: Input) -> Flow {
         let msg = match input {
             Input::Terminal(Event::Key(key)) => Msg::Key(key),
-            Input::Terminal(Event::Resize(..)) => Msg::Resize,
+            Input::Terminal(Event::Resize(w, h)) => {
+                self.app.overlays.too_small = too_small((w, h));
+                Msg::Resize
+            }
             Input::Terminal(_) | Input::Broken(_) | Input::RecordingFailed => return Flow::default(),
             Input::Worker(_, r) => Msg::Worker(r),
         };
@@ -358,12 +369,25 @@ pub(super) fn export(app: &App, dir: &Path) -> Msg {
         (_, ExportKind::TourStep) => {
             Err("T adds a tour step in the lab (riplab --tour-out FILE), not inside a tour".into())
         }
-        (Some(solved), ExportKind::Csv) => export_csv(&app.scenario, solved, dir),
-        (Some(solved), ExportKind::Svg) => export_svg(&app.scenario, solved, dir),
-        (Some(solved), ExportKind::Vtu) => export_vtu(&app.scenario, solved, dir),
+        (Some(solved), ExportKind::Csv) => {
+            export_csv(&app.scenario, solved, dir).map(|p| p.display().to_string())
+        }
+        (Some(solved), ExportKind::Svg) => export_svg(&app.scenario, solved, dir).map(|p| {
+            // The SVG is the pressure chart, whatever the scene: said where another is shown.
+            let chart = if app.scene == Scene::Explore {
+                ""
+            } else {
+                " (explore's pressure chart)"
+            };
+            format!("{}{chart}", p.display())
+        }),
+        (Some(solved), ExportKind::Vtu) => export_vtu(&app.scenario, solved, dir).map(|p| {
+            let contact = crate::vtu::contact_path(&p);
+            format!("{} and {}", p.display(), contact.display())
+        }),
         (None, _) => Err("no solution to export".into()),
     };
-    Msg::Exported(result.map(|p| p.display().to_string()))
+    Msg::Exported(result)
 }
 
 /// What `render` draws, as one frame inside synchronized-output brackets.

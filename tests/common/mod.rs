@@ -93,7 +93,8 @@ pub fn test_cache() -> std::path::PathBuf {
 
 /// The paper's lab at `level`, solved synchronously, with `scene` shown, timings hidden.
 pub fn settled(level: u32, scene: riplab::tui::app::Scene) -> riplab::tui::app::App {
-    use riplab::tui::worker::{Engine, settle};
+    use riplab::tui::engine::Engine;
+    use riplab::tui::settle::settle;
     let mut app = riplab::tui::app::App::new(Scenario::paper());
     app.show_timing = false;
     app.settings.level = level;

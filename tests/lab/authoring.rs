@@ -8,11 +8,12 @@ use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 
 use riplab::scenario::Scenario;
 use riplab::tui::app::{App, Command, ExportKind, Msg, Scene};
+use riplab::tui::engine::Engine;
 use riplab::tui::render_app;
+use riplab::tui::settle::{carry_out, settle};
 use riplab::tui::tour::author::{CAPTION_PLACEHOLDER, LabSource, save_step};
 use riplab::tui::tour::handout::{HandoutError, write_handout};
 use riplab::tui::tour::{Tour, render_step};
-use riplab::tui::worker::{Engine, carry_out, settle};
 
 const LOOK: riplab::tui::view::Look = riplab::tui::view::Look {
     theme: riplab::tui::theme::Theme { color: true },
@@ -50,7 +51,13 @@ fn lab_frame(app: &mut App, commands: Vec<Command>) -> String {
         .collect();
     let mut engine = Engine::new(app.scenario.clone());
     carry_out(app, &mut engine, commands);
+    // The estimates computed so far are the lab's history, which a step does not carry (the
+    // inf-sup scene computes levels 0 to 4, issue 31): only those this screen asks for.
+    app.infsup.clear();
     settle(app, &mut engine);
+    // What the last key said (issue 31: every key says what it did) is the lab's, not the
+    // step's.
+    app.notice = None;
     render_app(app, &LOOK, 100, 28)
 }
 

@@ -7,6 +7,7 @@ mod common;
 
 mod authoring;
 mod record;
+mod screens;
 mod tour;
 mod tui;
 mod tui_stress;

@@ -9,8 +9,9 @@ use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 
 use riplab::scenario::Scenario;
 use riplab::tui::app::{Command, Compare, Msg, Scene};
+use riplab::tui::engine::Engine;
+use riplab::tui::settle::{carry_out, settle};
 use riplab::tui::tour::{Tour, TourApp, TourMsg, auto_interval, render_step};
-use riplab::tui::worker::{Engine, carry_out, settle};
 
 fn key(code: KeyCode) -> TourMsg {
     TourMsg::Lab(Msg::Key(KeyEvent::new(code, KeyModifiers::NONE)))
@@ -171,7 +172,10 @@ fn the_tour_compares_the_methods() {
             } else {
                 format!("{v:.*e}", digits - 1)
             };
-            assert!(caption.contains(&quoted), "{quoted} in\n{caption}");
+            assert!(
+                caption.contains(&quoted),
+                "{quoted} in\n{caption}\n{penalty:?} {exact:?}"
+            );
         }
     }
 }
@@ -229,6 +233,9 @@ fn keys_advance_go_back_and_stay_in_bounds() {
     let back = player.update(key(KeyCode::Left));
     assert!(!back.step_changed, "no step before the first");
     assert_eq!(player.index(), 0);
+    // Issue 31: and says so.
+    let said = |p: &TourApp| p.app.notice.as_ref().map(|n| n.text.clone()).unwrap_or_default();
+    assert!(said(&player).contains("is the first"), "{}", said(&player));
     let next = player.update(ch(' '));
     assert!(next.step_changed);
     assert_eq!(player.index(), 1);
@@ -245,6 +252,11 @@ fn keys_advance_go_back_and_stay_in_bounds() {
     assert!(player.at_end());
     assert!(!player.update(ch(' ')).step_changed, "no step after the last");
     assert_eq!(player.index(), n - 1);
+    assert!(
+        said(&player).contains("is the last: q ends the tour"),
+        "{}",
+        said(&player)
+    );
     player.update(key(KeyCode::Home));
     assert_eq!(player.index(), 0);
     assert!(!player.should_quit());

@@ -13,11 +13,12 @@ use crate::common::settled;
 use riplab::scenario::Scenario;
 use riplab::stress::Quantity;
 use riplab::tui::app::{Command, ExportKind, Msg, Scene};
+use riplab::tui::engine::Engine;
 use riplab::tui::export::export_vtu;
 use riplab::tui::render_app;
+use riplab::tui::settle::carry_out;
 use riplab::tui::theme::Theme;
 use riplab::tui::view::{Look, view};
-use riplab::tui::worker::{Engine, carry_out};
 
 fn look(color: bool) -> Look {
     Look {

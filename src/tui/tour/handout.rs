@@ -16,7 +16,8 @@ use crate::scheme::Scheme;
 use crate::text::num;
 
 use super::super::app::{App, Msg, Scene};
-use super::super::worker::{Engine, carry_out};
+use super::super::engine::Engine;
+use super::super::settle::carry_out;
 use super::Tour;
 use super::view::step_frame;
 

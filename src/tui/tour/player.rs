@@ -10,7 +10,7 @@ use crossterm::event::{KeyCode, KeyEventKind, KeyModifiers};
 
 use crate::scenario::Scenario;
 
-use super::super::app::{App, Command, InfSupKey, Msg};
+use super::super::app::{App, Command, InfSupKey, Msg, Notice};
 use super::super::beta::InfSup;
 use super::super::keys::{TourAction, tour_action};
 use super::super::protocol::Solved;
@@ -214,8 +214,21 @@ impl TourApp {
                 commands: self.enter(i),
                 step_changed: true,
             },
-            // At either end: nothing moves, but a help overlay closed above needs a redraw.
-            _ => TourEffect {
+            // At either end: nothing moves, and the status line says why (a help overlay
+            // closed above needs a redraw too).
+            Some(_) => {
+                let (n, last) = (self.index + 1, self.tour.steps.len());
+                self.app.notice = Some(Notice::info(if n == last {
+                    format!("step {n} of {last} is the last: q ends the tour, Home goes back to the first")
+                } else {
+                    format!("step {n} of {last} is the first: Space goes on")
+                }));
+                TourEffect {
+                    redraw: true,
+                    ..TourEffect::default()
+                }
+            }
+            None => TourEffect {
                 redraw: true,
                 ..TourEffect::default()
             },

@@ -8,13 +8,14 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::Paragraph;
 
 use super::super::app::App;
+use super::super::engine::Engine;
 use super::super::keys;
+use super::super::settle::carry_out;
 use super::super::theme::Theme;
 use super::super::view::fmt::{title_fit, wrap_words};
 use super::super::view::help::key_popup;
 use super::super::view::{Look, view_in};
 use super::super::view::{MIN_AREA as LAB_MIN, centred_message};
-use super::super::worker::{Engine, carry_out};
 use super::super::{check_size, render_frame};
 use super::{Tour, TourApp};
 

@@ -14,6 +14,7 @@ use ratatui::widgets::{Block, Paragraph, Wrap};
 use crate::study::{Errors, Status, StudyRow};
 
 use super::super::app::{App, Compare, Study};
+use super::super::engine::studying::TIMED_RUNS;
 use super::super::theme::Theme;
 use super::Look;
 use super::fmt::sig;
@@ -45,8 +46,13 @@ const MIN_CHART_HEIGHT: u16 = 12;
 
 pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
     let key = app.study_key();
-    match app.studies.get(&key) {
-        Some(Ok(study)) => {
+    // While the study runs, the levels it has finished (the status line says which comes).
+    let partial = app
+        .study_partial
+        .as_ref()
+        .filter(|s| s.key == key && app.study_pending() == Some(&key));
+    match (app.studies.get(&key), partial) {
+        (Some(Ok(study)), _) | (None, Some(study)) => {
             let levels = shown_levels(study, area.height);
             let rows = study.rows.iter().filter(|r| levels.contains(&r.level)).count() as u16;
             let [top, bottom] =
@@ -54,7 +60,7 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
             chart(frame, top, look, app, study);
             table(frame, bottom, look.theme, study, &levels);
         }
-        other => {
+        (other, _) => {
             let text = match other {
                 Some(Err(e)) => format!("the study failed: {e}"),
                 _ if app.study_pending() == Some(&key) => format!(
@@ -80,9 +86,19 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
     }
 }
 
+/// The finest level of the study's rows (the key's, when every level gave rows).
+fn finest(study: &Study) -> u32 {
+    study
+        .rows
+        .iter()
+        .map(|r| r.level)
+        .max()
+        .unwrap_or(study.key.max_level)
+}
+
 /// The levels the table has room for: all, or the finest that fit (at least one).
 fn shown_levels(study: &Study, height: u16) -> Vec<u32> {
-    let max = study.key.max_level;
+    let max = finest(study);
     let per_level = study.rows.iter().filter(|r| r.level == max).count().max(1);
     let room = height.saturating_sub(MIN_CHART_HEIGHT + 3) as usize / per_level;
     let n = (room.max(1) as u32).min(max + 1);
@@ -201,7 +217,7 @@ fn chart(frame: &mut Frame, area: Rect, look: &Look, app: &App, study: &Study) {
             study_epsilon(app)
         ),
         x: Axis {
-            title: "solve ms".into(),
+            title: format!("solve ms (median of {TIMED_RUNS})"),
             bounds: xb,
             scale: Scale::Log10,
         },
@@ -277,7 +293,7 @@ fn table(frame: &mut Frame, area: Rect, theme: Theme, study: &Study, levels: &[u
             Span::raw(numbers),
         ]));
     }
-    let max = study.key.max_level;
+    let max = finest(study);
     let shown = match levels {
         [first, ..] if *first == max && max > 0 => format!(" · rows: level {max} (chart: 0 to {max})"),
         [first, ..] if *first > 0 => format!(" · rows: levels {first} to {max} (chart: 0 to {max})"),

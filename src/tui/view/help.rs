@@ -9,9 +9,28 @@ use super::super::keys;
 use super::super::theme::Theme;
 
 /// The lab's help overlay ([`keys::lab_help`]: its keys, the Ctrl keys, a note on units),
-/// centred over `area`.
-pub fn render(frame: &mut Frame, area: Rect, theme: Theme) {
-    key_popup(frame, area, theme, " keys ", &keys::lab_help(), (62, 16));
+/// centred over `area`, from line `scroll` on (kept within the list); the title says when
+/// lines are above or below.
+pub fn render(frame: &mut Frame, area: Rect, theme: Theme, scroll: u16) {
+    let all = keys::lab_help();
+    let rows = usize::from(area.height.saturating_sub(2)).max(1);
+    let first = usize::from(scroll).min(all.len().saturating_sub(rows));
+    let shown = &all[first..(first + rows).min(all.len())];
+    let title = match (first > 0, first + shown.len() < all.len()) {
+        (false, false) => " keys ".to_string(),
+        (above, below) => format!(
+            " keys {}–{} of {} ({}) ",
+            first + 1,
+            first + shown.len(),
+            all.len(),
+            match (above, below) {
+                (true, true) => "↑ ↓ scroll",
+                (true, false) => "↑ scrolls",
+                _ => "↓ scrolls",
+            }
+        ),
+    };
+    key_popup(frame, area, theme, &title, shown, (62, 16));
 }
 
 /// A bordered list of `keys` (key, what it does) centred over `area`, `size` = (popup width,

@@ -17,7 +17,7 @@ use super::super::beta::InfSup;
 use super::super::theme::Theme;
 use super::Look;
 use super::fmt::{sig, table_row};
-use super::infsup_panel::{estimates, hidden_rows, trend, visible};
+use super::infsup_panel::{estimates, hidden_rows, slope, trend, visible};
 use super::plot::{self, Axis, Plot, Scale, Stroke};
 
 /// One curve: a scheme and which pressure (raw β or smoothed β̄).
@@ -195,21 +195,23 @@ fn table(app: &App, frame: &mut Frame, area: Rect, theme: Theme, all: &[Series],
         };
         lines.push(Line::styled(row, style));
     }
-    let mut marks = vec![Span::raw(format!("{:>11}", "trend"))];
+    let mut marks = vec![Span::raw(format!("{:>11}", "trend slope"))];
     for s in all {
         let (text, style) = match trend(app, s.element, s.rule, s.pick) {
             Some(true) => ("✓", theme.good()),
             Some(false) => ("✗", theme.bad()),
             None => ("?", Style::new()),
         };
-        marks.push(Span::raw(" ".repeat(8)));
+        let slope = slope(app, s.element, s.rule, s.pick).map_or(String::new(), |v| format!(" {v:+.2}"));
+        marks.push(Span::raw(" ".repeat(8 - slope.chars().count())));
         marks.push(Span::styled(text, style));
+        marks.push(Span::raw(slope));
     }
     lines.push(Line::from(marks));
     lines.push(Line::styled(
         match first_error {
             Some(e) => format!("error: {e}"),
-            None => "✓ β/√h bounded (stable)  ✗ decaying or a kernel  · a: all levels".into(),
+            None => "✓ bounded ✗ decaying or kernel · slope of log β/√h per log h, finest two".into(),
         },
         theme.faint(),
     ));

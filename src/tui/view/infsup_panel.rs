@@ -144,6 +144,18 @@ pub fn trend(app: &App, element: Element, rule: Rule, pick: fn(&InfSup) -> f64) 
     }
 }
 
+/// The observed slope of log(β/√h) against log h between the two finest levels estimated
+/// (0 where β/√h is bounded, positive where it decays as h → 0); None with fewer than two
+/// levels or a zero estimate.
+pub fn slope(app: &App, element: Element, rule: Rule, pick: fn(&InfSup) -> f64) -> Option<f64> {
+    match estimates(app, element, rule).as_slice() {
+        [.., (_, a), (_, b)] if pick(a) > 0.0 && pick(b) > 0.0 && a.h != b.h => {
+            Some((pick(b) / pick(a)).ln() / (b.h / a.h).ln())
+        }
+        _ => None,
+    }
+}
+
 fn mark(stable: Option<bool>, theme: Theme) -> Span<'static> {
     match stable {
         Some(true) => Span::styled("✓", theme.good()),

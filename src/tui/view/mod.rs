@@ -2,12 +2,14 @@
 //! and the status line, and the help overlay on top. One module per scene part.
 
 mod convergence;
+mod cursor;
 mod deformed;
 pub mod fmt;
 mod header;
 pub mod help;
 mod infsup_chart;
 mod infsup_panel;
+mod log;
 mod method;
 pub mod plot;
 mod pressure;
@@ -43,7 +45,12 @@ pub const MIN_AREA: (u16, u16) = (80, 20);
 pub fn view(app: &App, frame: &mut Frame, look: &Look) {
     let area = frame.area();
     if area.width < MIN_SIZE.0 || area.height < MIN_SIZE.1 {
-        too_small(frame, area, look.theme);
+        let said = app
+            .notice
+            .as_ref()
+            .map(|n| format!("\n{}", n.text))
+            .unwrap_or_default();
+        too_small(frame, area, look.theme, &said);
         return;
     }
     view_in(app, frame, area, look);
@@ -74,7 +81,7 @@ fn wrapped_rows(text: &str, width: u16) -> u16 {
 /// caption below).
 pub fn view_in(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
     if area.width < MIN_AREA.0 || area.height < MIN_AREA.1 {
-        too_small(frame, area, look.theme);
+        too_small(frame, area, look.theme, "");
         return;
     }
     let message = app.error.as_ref().map(|error| format!(" ✗ {error}"));
@@ -82,11 +89,21 @@ pub fn view_in(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
     let banner_height = message
         .as_deref()
         .map_or(0, |text| wrapped_rows(text, area.width).clamp(2, MAX_BANNER_ROWS));
+    let status_rows = status::rows(app, area.width, look.theme);
+    if app.overlays.projector {
+        // The scene's main chart on the whole screen, the status (and its keys) below.
+        let [body, bottom] =
+            Layout::vertical([Constraint::Fill(1), Constraint::Length(status_rows)]).areas(area);
+        projector(app, frame, body, look);
+        status::render(app, frame, bottom, look.theme);
+        overlays(app, frame, body, look);
+        return;
+    }
     let [top, body, banner, bottom] = Layout::vertical([
         Constraint::Length(2),
         Constraint::Fill(1),
         Constraint::Length(banner_height),
-        Constraint::Length(1),
+        Constraint::Length(status_rows),
     ])
     .areas(area);
     header::render(app, frame, top, look.theme);
@@ -106,11 +123,29 @@ pub fn view_in(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
         );
     }
     status::render(app, frame, bottom, look.theme);
+    let [above, _] = Layout::vertical([Constraint::Fill(1), Constraint::Length(status_rows)]).areas(area);
+    overlays(app, frame, above, look);
+}
+
+/// The help or the message log over `area` (everything above the status area, the header
+/// too), scrolled where the user scrolled it.
+fn overlays(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
     if app.show_help {
-        // Over everything above the status line (the header too), so that every key and the
-        // note on units fit 80×24 (keys.rs checks the count).
-        let [above, _] = Layout::vertical([Constraint::Fill(1), Constraint::Length(1)]).areas(area);
-        help::render(frame, above, look.theme);
+        help::render(frame, area, look.theme, app.overlays.help_scroll);
+    } else if app.overlays.show_log {
+        log::render(app, frame, area, look.theme);
+    }
+}
+
+/// The projector view (`f`): the scene's main chart alone, with its legend (and in explore
+/// the cursor's readout).
+fn projector(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
+    match app.scene {
+        Scene::Explore => pressure::render(app, frame, area, look),
+        Scene::InfSup => infsup_chart::render(app, frame, area, look),
+        Scene::Mesh => deformed::render(app, frame, area, look, deformed::Extent::Full),
+        Scene::Convergence => convergence::render(app, frame, area, look),
+        Scene::Stress => stress_map::render(app, frame, area, look),
     }
 }
 
@@ -139,9 +174,10 @@ fn explore(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
 }
 
 /// The message shown instead of the app in a terminal below [`MIN_SIZE`], wrapped to fit.
-fn too_small(frame: &mut Frame, area: Rect, theme: Theme) {
+/// `said` (a notice: what the last key did) under it.
+fn too_small(frame: &mut Frame, area: Rect, theme: Theme, said: &str) {
     let text = format!(
-        "riplab needs a bigger terminal\nthis one is {}×{}; the lab needs at least {}×{}\nenlarge the window or make the font smaller\n(q quits)",
+        "riplab needs a bigger terminal\nthis one is {}×{}; the lab needs at least {}×{}\nenlarge the window or make the font smaller\n(q quits; other keys are ignored){said}",
         area.width, area.height, MIN_SIZE.0, MIN_SIZE.1
     );
     centred_message(frame, area, &text, theme);

@@ -5,19 +5,27 @@
 //! meshes. Units are the paper's: x in units of length, p in the units of E.
 
 use ratatui::Frame;
-use ratatui::layout::Rect;
+use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::widgets::{Block, Paragraph};
 
 use super::super::app::App;
-use super::Look;
 use super::fmt::{nice_ceil, sig};
 use super::plot::{Axis, Plot, Scale, Series, Stroke};
+use super::{Look, cursor};
 
 /// Samples of the overlays across the width.
 const OVERLAY_SAMPLES: usize = 41;
 
 pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
     let theme = look.theme;
+    // The cursor's readout takes the chart's last row.
+    let (area, readout_row) = match cursor::readout(app) {
+        Some(_) if area.height > 8 => {
+            let [chart, row] = Layout::vertical([Constraint::Fill(1), Constraint::Length(1)]).areas(area);
+            (chart, Some(row))
+        }
+        _ => (area, None),
+    };
     let Some(solved) = &app.solved else {
         frame.render_widget(
             Paragraph::new("solving…").block(Block::bordered().title(" pressure on Γ_C ")),
@@ -67,7 +75,7 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
     let mut series = Vec::new();
     if app.show_gap {
         series.push(Series {
-            name: format!("−g ×{}", sig(gap_scale, 2)),
+            name: format!("gap −g, scaled ×{}", sig(gap_scale, 2)),
             color: theme.faint_color(),
             stroke: Stroke::None,
             glyph: Some('·'),
@@ -137,7 +145,13 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
         marker: look.marker,
         theme,
     };
-    plot.render(frame, area);
+    let placed = plot.render(frame, area);
+    if let (Some(placed), Some((x, _))) = (placed, app.cursor_point()) {
+        cursor::draw_line(frame, placed, xb, x, look.marker, theme);
+    }
+    if let Some(row) = readout_row {
+        cursor::render_readout(app, frame, row, theme);
+    }
 }
 
 /// `f` at evenly spaced x over `[lo, hi]`, where it is defined, shifted by `phase` of a step

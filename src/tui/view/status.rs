@@ -1,6 +1,7 @@
-//! The status line: the state of the solve (or of the estimates, or the study), or a notice,
-//! and the main keys. The message wins: the key hints go first when room is short, and a
-//! message longer than the line is cut at a word boundary with "…", never mid-word.
+//! The status area: the state of the solve (or of the estimates, or the study), or a notice,
+//! and the key hints. The hints keep their place at the right of the first row; the message
+//! wraps at words to further rows (at most [`MAX_ROWS`]) rather than being cut, and every message is
+//! kept whole in the log (`l`).
 
 use ratatui::Frame;
 use ratatui::layout::Rect;
@@ -15,74 +16,111 @@ use super::convergence::study_epsilon;
 use super::fmt::sig;
 use crate::mesh::Element;
 
+/// The most rows the status area takes (a longer message ends "… l: log", whole in the log).
+pub const MAX_ROWS: u16 = 5;
+
+/// Draw the status area: the message, wrapped at words to as many rows as it needs (at most
+/// [`MAX_ROWS`]), with the key hints always at the right of its first row.
 pub fn render(app: &App, frame: &mut Frame, area: Rect, theme: Theme) {
-    frame.render_widget(
-        Paragraph::new(status_line(&state(app, theme), area.width, theme)),
-        area,
-    );
+    frame.render_widget(Paragraph::new(status_lines(app, area.width, theme)), area);
 }
 
-/// `message` followed by the key hints right-aligned when both fit in `width`, else the
-/// message alone, cut to fit at a word boundary.
-pub fn status_line(message: &[Span<'static>], width: u16, theme: Theme) -> Line<'static> {
+/// The rows the status area of `app` needs at `width` columns.
+pub fn rows(app: &App, width: u16, theme: Theme) -> u16 {
+    status_lines(app, width, theme).len() as u16
+}
+
+/// The status area's lines at `width` columns.
+fn status_lines(app: &App, width: u16, theme: Theme) -> Vec<Line<'static>> {
+    let message = state(app, theme);
+    let lines = wrap_with_hints(&message, &hints(app, theme, true), width);
+    if lines.len() == 1 {
+        return lines;
+    }
+    // The scene's own keys only where they cost no row: `? help  q quit` keeps its place.
+    wrap_with_hints(&message, &hints(app, theme, false), width)
+}
+
+/// The key hints: the scene's own keys (with `scene_keys`), then `? help  q quit`.
+fn hints(app: &App, theme: Theme, scene_keys: bool) -> Vec<Span<'static>> {
+    let own: &[(&str, &str)] = if !scene_keys {
+        &[]
+    } else if app.overlays.projector {
+        &[("f", "back")]
+    } else {
+        match app.scene {
+            // Explore's keys are the help's (its status line is the longest).
+            Scene::Explore => &[],
+            Scene::InfSup => &[("a", "levels")],
+            Scene::Convergence => &[("w", "compare")],
+            Scene::Stress => &[("c", "quantity")],
+            Scene::Mesh => &[],
+        }
+    };
+    let mut spans = Vec::new();
+    for (key, what) in own.iter().chain(&[("?", "help"), ("q", "quit")]) {
+        spans.push(Span::styled(*key, theme.key()));
+        spans.push(Span::raw(format!(" {what}  ")));
+    }
+    if let Some(last) = spans.last_mut() {
+        *last = Span::raw(last.content.trim_end().to_string() + " ");
+    }
+    spans
+}
+
+/// `message` wrapped at words into rows of `width` columns, the first row leaving room for
+/// `hints` right-aligned; at most [`MAX_ROWS`] rows, the last ending "… l: log" when the
+/// message is longer still.
+pub fn wrap_with_hints(message: &[Span<'static>], hints: &[Span<'static>], width: u16) -> Vec<Line<'static>> {
     let width = usize::from(width);
-    let hints = vec![
-        Span::styled("?", theme.key()),
-        Span::raw(" help  "),
-        Span::styled("q", theme.key()),
-        Span::raw(" quit "),
-    ];
     let hints_width: usize = hints.iter().map(Span::width).sum();
-    let used: usize = message.iter().map(Span::width).sum();
-    if used + 2 + hints_width <= width {
-        let mut spans = message.to_vec();
-        spans.push(Span::raw(" ".repeat(width - used - hints_width)));
-        spans.extend(hints);
-        return Line::from(spans);
+    // The words with their styles (a span's leading space kept as the line's indent).
+    let mut words: Vec<Span<'static>> = Vec::new();
+    for span in message {
+        for word in span.content.split(' ').filter(|w| !w.is_empty()) {
+            words.push(Span::styled(word.to_string(), span.style));
+        }
     }
-    Line::from(fit_words(message, width))
-}
-
-/// The spans cut to `width` columns at the last space that fits, with "…".
-fn fit_words(spans: &[Span<'static>], width: usize) -> Vec<Span<'static>> {
-    let total: usize = spans.iter().map(Span::width).sum();
-    if total <= width {
-        return spans.to_vec();
-    }
-    let room = width.saturating_sub(1);
-    let mut out = Vec::new();
+    let room = |row: usize| {
+        if row == 0 {
+            width.saturating_sub(hints_width + 2)
+        } else {
+            width.saturating_sub(1)
+        }
+    };
+    let mut rows: Vec<Vec<Span<'static>>> = vec![Vec::new()];
     let mut used = 0usize;
-    for span in spans {
-        let text = span.content.to_string();
-        let w = span.width();
-        if used + w <= room {
-            out.push(span.clone());
-            used += w;
-            continue;
+    for word in words {
+        let w = word.width();
+        if used > 0 && used + 1 + w > room(rows.len() - 1) {
+            rows.push(Vec::new());
+            used = 0;
         }
-        // Cut inside this span at its last space within the room.
-        let mut kept = String::new();
-        let mut cut = String::new();
-        for ch in text.chars() {
-            if used + kept.chars().count() + 1 > room {
-                break;
-            }
-            kept.push(ch);
-            if ch == ' ' {
-                cut = kept.clone();
-            }
-        }
-        if !cut.trim().is_empty() {
-            out.push(Span::styled(cut.trim_end().to_string(), span.style));
-        }
-        break;
+        let row = rows.last_mut().expect("a row");
+        row.push(Span::raw(" "));
+        row.push(word);
+        used += 1 + w;
     }
-    // Drop a trailing fragment of spaces, then mark the cut.
-    while out.last().is_some_and(|s| s.content.trim().is_empty()) {
-        out.pop();
+    if rows.len() > usize::from(MAX_ROWS) {
+        rows.truncate(usize::from(MAX_ROWS));
+        let last = rows.last_mut().expect("a row");
+        let tail = " … l: log";
+        while !last.is_empty() && last.iter().map(Span::width).sum::<usize>() + tail.chars().count() > width {
+            last.pop();
+        }
+        last.push(Span::raw(tail));
     }
-    out.push(Span::raw("…"));
-    out
+    rows.into_iter()
+        .enumerate()
+        .map(|(i, mut spans)| {
+            if i == 0 {
+                let used: usize = spans.iter().map(Span::width).sum();
+                spans.push(Span::raw(" ".repeat(width.saturating_sub(used + hints_width))));
+                spans.extend(hints.iter().cloned());
+            }
+            Line::from(spans)
+        })
+        .collect()
 }
 
 /// "building level 7 (1049088 unknowns) · about 3 s left", or for a method's preparation

@@ -17,8 +17,8 @@ use crate::stress::{Peak, Quantity, StressField};
 use super::super::app::App;
 use super::super::protocol::Solved;
 use super::super::theme::Theme;
-use super::Look;
 use super::fmt::sig;
+use super::{Look, cursor};
 
 /// The shading of the levels, lowest first, and their colours.
 const GLYPHS: [&str; 5] = ["·", "░", "▒", "▓", "█"];
@@ -53,14 +53,35 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
     let [body, caption] = Layout::vertical([Constraint::Fill(1), Constraint::Length(1)]).areas(inner);
     let [map_area, bar_area] =
         Layout::horizontal([Constraint::Fill(1), Constraint::Length(BAR_WIDTH)]).areas(body);
-    let map = HeatMap::sample(app, solved, &field, q, map_area);
+    let mut map = HeatMap::sample(app, solved, &field, q, map_area);
     let peak = field.peak(&solved.disc.mesh, q);
+    // The bar's ends hold the marked peak (a quadrature point's value, beyond the cells'
+    // centres the map samples) when it lies in the window.
+    if peak.value.is_finite() && (map.x.0..=map.x.1).contains(&peak.x) && peak.depth <= map.z_max {
+        map.range = (map.range.0.min(peak.value), map.range.1.max(peak.value));
+    }
     frame.render_widget(Paragraph::new(map.lines(&peak, look.theme)), map_area);
     frame.render_widget(
         Paragraph::new(colour_bar(map.range, bar_area.height, look.theme)),
         bar_area,
     );
-    frame.render_widget(Paragraph::new(caption_line(&peak, &map, look.theme)), caption);
+    // The cursor (`x`): a vertical line at its contact point, its readout for the caption.
+    match (app.cursor_point(), cursor::readout(app)) {
+        (Some((x, _)), Some(text)) => {
+            let (a, b) = map.x;
+            let col = ((x - a) / (b - a) * f64::from(map_area.width)).floor();
+            if (0.0..f64::from(map_area.width)).contains(&col) {
+                let buf = frame.buffer_mut();
+                for row in map_area.y..map_area.bottom() {
+                    buf[(map_area.x + col as u16, row)]
+                        .set_symbol("│")
+                        .set_style(look.theme.key().add_modifier(Modifier::BOLD));
+                }
+            }
+            frame.render_widget(Paragraph::new(format!(" {text}")), caption);
+        }
+        _ => frame.render_widget(Paragraph::new(caption_line(&peak, &map, look.theme)), caption),
+    }
 }
 
 /// The quantity sampled at the centre of every character cell of the map.

@@ -4,39 +4,28 @@
 use std::collections::{HashMap, HashSet};
 use std::sync::Arc;
 
-use crossterm::event::{KeyEvent, KeyEventKind, KeyModifiers};
-
-use crate::contact::{Method, Rule};
-use crate::mesh::Element;
-use crate::mesh::MAX_LEVEL;
+use crate::contact::Method;
 use crate::scenario::Scenario;
 use crate::scheme::Scheme;
 use crate::stress::Quantity;
 
 use super::beta::InfSup;
 pub use super::keys::ExportKind;
-use super::keys::{LabAction, lab_action};
-pub use super::protocol::{
-    Compare, DisplaceRequest, InfSupKey, InfSupRequest, Progress, Response, SolveKey, SolveRequest, Solved,
-    StressRequest, Study, StudyKey, StudyRequest,
-};
 
-/// The finest level the interactive lab (and `riplab render`) offers. A change at level 7
-/// costs about 3–6 s and 1.3 GB with Q1 or P1, and 25–30 s and 5.8 GiB with Q2, whose level 7
-/// has the unknowns of Q1's level 8 (BENCHMARKS.md, "Level 7 in the lab"): the lab builds it
-/// on a thread of its own with the time left shown, and the memory guard refuses it, saying
-/// why, where memory does not allow it. Level 8 is too slow to explore by key; `riplab solve`
-/// goes there.
-pub const MAX_APP_LEVEL: u32 = if MAX_LEVEL < 7 { MAX_LEVEL } else { 7 };
-/// What a change at level 8 costs (Q1, BENCHMARKS.md, "Fresh memory"), as a literal for
-/// `concat!`: the one place the lab's messages and `riplab render --help` read it from.
-macro_rules! level_8_cost {
-    () => {
-        "level 8 takes 18–28 s and 5.4 GiB"
-    };
-}
-/// Why the lab stops at [`MAX_APP_LEVEL`], for messages.
-pub const LEVEL_LIMIT_WHY: &str = concat!(level_8_cost!(), " a change; `riplab solve --level 8` computes it");
+mod dispatch;
+mod overlays;
+mod replies;
+
+pub use super::protocol::{
+    Command, Compare, DisplaceRequest, InfSupKey, InfSupRequest, MAX_APP_LEVEL, Msg, Notice, Progress,
+    Response, SolveKey, SolveRequest, Solved, StressRequest, Study, StudyKey, StudyRequest,
+};
+pub use overlays::{LOG_LEN, Overlays};
+
+/// Why the lab stops at [`MAX_APP_LEVEL`], for messages (the figures are BENCHMARKS.md's,
+/// "Fresh memory", not the code's).
+pub const LEVEL_LIMIT_WHY: &str =
+    "a change at level 8 takes seconds and gigabytes (BENCHMARKS.md); `riplab solve --level 8` computes it";
 /// The range of ε reachable with `+`/`-`.
 pub const EPSILON_RANGE: (f64, f64) = (1e-14, 1e2);
 /// The ε that `penalty` and `alm` use in a scenario whose own is 0 (`exact`): the paper's.
@@ -98,48 +87,8 @@ impl Scene {
 
 /// The finest level the convergence scene studies (the reference is one level finer).
 pub const MAX_STUDY_LEVEL: u32 = 4;
-
-/// An input to [`App::update`].
-#[derive(Clone, Debug)]
-pub enum Msg {
-    /// A key pressed.
-    Key(KeyEvent),
-    /// The terminal was resized (redraw).
-    Resize,
-    /// A message from the worker.
-    Worker(Response),
-    /// The result of [`Command::Export`]: the file written, or what went wrong.
-    Exported(Result<String, String>),
-    /// Time passed while something long runs (the time left changes).
-    Tick,
-    /// A message for the status line (a tour step saved, a recording that failed).
-    Notice(Notice),
-}
-
-/// Work for the runtime.
-#[derive(Clone, Debug, PartialEq)]
-pub enum Command {
-    /// Solve the contact problem of the settings.
-    Solve(SolveRequest),
-    /// Estimate β_h and β̄_h (docs/design.md §5) for a level, element and rule.
-    InfSup(InfSupRequest),
-    /// Run the convergence scene's work–precision study.
-    Study(StudyRequest),
-    /// Compute the stresses of a solution the stress scene shows (kept with it).
-    Stresses(StressRequest),
-    /// Compute the displacement of the solution shown (kept with it), when the worker passed
-    /// it over for a newer solve that the app then left behind.
-    Displace(DisplaceRequest),
-    /// Write the displayed solution to a new file, or the lab's state as a tour step, as
-    /// [`App::export_kind`] says (the kind travels in the app so that the variant stays a
-    /// plain `Export`).
-    Export,
-    /// Ctrl-Z: give the terminal back and stop until resumed.
-    Suspend,
-    /// Every solve, estimate and study older than this generation is no longer wanted (the
-    /// settings came back to the solution shown while a solve of others was under way).
-    Supersede(u64),
-}
+/// The levels the inf-sup scene computes on first show (0 to this, progressively).
+pub const FIRST_LEVELS: u32 = 4;
 
 /// What an update asks of the runtime.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -148,32 +97,6 @@ pub struct Effect {
     pub redraw: bool,
     /// The work to start, in order.
     pub commands: Vec<Command>,
-}
-
-/// A one-off message for the status line.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Notice {
-    /// The message.
-    pub text: String,
-    /// Something failed (drawn as bad news).
-    pub failure: bool,
-}
-
-impl Notice {
-    /// A message that is not bad news.
-    pub fn info(text: impl Into<String>) -> Self {
-        Notice {
-            text: text.into(),
-            failure: false,
-        }
-    }
-    /// A message that something failed.
-    pub fn failure(text: impl Into<String>) -> Self {
-        Notice {
-            text: text.into(),
-            failure: true,
-        }
-    }
 }
 
 /// The state of the lab.
@@ -231,8 +154,12 @@ pub struct App {
     study_pending: Option<(u64, StudyKey)>,
     /// The stage of the study in flight.
     pub study_progress: Option<Progress>,
+    /// The levels of the study in flight finished so far (drawn until it ends).
+    pub study_partial: Option<Arc<Study>>,
     /// The solution whose stresses are being computed.
     stress_pending: Option<SolveKey>,
+    /// The overlays, the cursor, the projector view and the message log ([`Overlays`]).
+    pub overlays: Overlays,
 }
 
 impl App {
@@ -267,7 +194,9 @@ impl App {
             studies: HashMap::new(),
             study_pending: None,
             study_progress: None,
+            study_partial: None,
             stress_pending: None,
+            overlays: Overlays::default(),
         }
     }
 
@@ -340,7 +269,8 @@ impl App {
         };
         StudyKey {
             scenario: self.scenario.name.clone(),
-            max_level: s.level.min(MAX_STUDY_LEVEL),
+            // Levels 0 to 4 from the first look, so that the slopes show.
+            max_level: MAX_STUDY_LEVEL,
             compare: self.compare,
             schemes,
             methods,
@@ -369,6 +299,19 @@ impl App {
 
     /// Handle one input; returns whether to redraw and the work still needed.
     pub fn update(&mut self, msg: Msg) -> Effect {
+        let before = (self.notice.clone(), self.error.clone());
+        let solved_before = self.solved.clone();
+        let cursor_x = self.cursor_point().map(|(x, _)| x);
+        let effect = self.update_inner(msg);
+        let same = self.shows(solved_before.as_ref());
+        if !same {
+            self.follow_cursor(cursor_x);
+        }
+        self.log_new_messages(before, same);
+        effect
+    }
+
+    fn update_inner(&mut self, msg: Msg) -> Effect {
         let mut commands = Vec::new();
         let redraw = match msg {
             Msg::Key(key) => self.key(key, &mut commands),
@@ -391,279 +334,26 @@ impl App {
         Effect { redraw, commands }
     }
 
-    fn key(&mut self, key: KeyEvent, commands: &mut Vec<Command>) -> bool {
-        if !matches!(key.kind, KeyEventKind::Press | KeyEventKind::Repeat) {
-            return false;
-        }
-        let control = key.modifiers.contains(KeyModifiers::CONTROL);
-        let action = lab_action(key.code, control);
-        if control {
-            match action {
-                Some(LabAction::Quit) => self.quit = true,
-                Some(LabAction::Suspend) => commands.push(Command::Suspend),
-                _ => return false,
-            }
-            return true;
-        }
-        self.notice = None;
-        if self.show_help {
-            // Any key closes the help and does nothing else.
-            self.show_help = false;
-            return true;
-        }
-        let Some(action) = action else {
-            return false;
-        };
-        let before = self.settings;
-        match action {
-            LabAction::Quit => self.quit = true,
-            LabAction::Help => self.show_help = true,
-            LabAction::Coarser => {
-                if self.settings.level == 0 {
-                    self.notice = Some(Notice::info("level 0 is the coarsest mesh"));
-                }
-                self.settings.level = self.settings.level.saturating_sub(1);
-            }
-            LabAction::Finer => {
-                if self.settings.level >= MAX_APP_LEVEL {
-                    self.notice = Some(Notice::info(format!(
-                        concat!(
-                            "level {} is the lab's finest: ",
-                            level_8_cost!(),
-                            " (riplab solve)"
-                        ),
-                        MAX_APP_LEVEL
-                    )));
-                }
-                self.settings.level = (self.settings.level + 1).min(MAX_APP_LEVEL);
-            }
-            LabAction::Reset => {
-                self.settings = App::defaults(&self.scenario);
-                self.show_gap = false;
-                self.show_hertz = false;
-                self.all_levels = false;
-                self.zoom = false;
-                self.notice = Some(Notice::info("reset to the scenario's settings"));
-            }
-            LabAction::NextRule => {
-                let i = Rule::ALL
-                    .iter()
-                    .position(|&r| r == self.settings.rule)
-                    .unwrap_or(0);
-                self.settings.rule = Rule::ALL[(i + 1) % Rule::ALL.len()];
-            }
-            LabAction::NextElement => {
-                let all = Element::ALL;
-                let i = all.iter().position(|&e| e == self.settings.element).unwrap_or(0);
-                self.settings.element = all[(i + 1) % all.len()];
-            }
-            LabAction::Scheme(m) => {
-                if let Some(s) = Scheme::paper(m) {
-                    self.settings.element = s.element;
-                    self.settings.rule = s.rule;
-                }
-            }
-            LabAction::NextMethod => self.settings.method = self.settings.method.next(),
-            LabAction::Compare => {
-                self.compare = match self.compare {
-                    Compare::Schemes => Compare::Methods,
-                    Compare::Methods => Compare::Schemes,
-                };
-                if self.scene != Scene::Convergence {
-                    self.notice = Some(Notice::info(match self.compare {
-                        Compare::Schemes => "the convergence scene compares M1–M4 (Tab to it)",
-                        Compare::Methods => "the convergence scene compares the methods (Tab to it)",
-                    }));
-                }
-            }
-            LabAction::EpsilonUp => self.shift_epsilon(1),
-            LabAction::EpsilonDown => self.shift_epsilon(-1),
-            LabAction::Shallower => self.shift_depth(-DEPTH_STEP),
-            LabAction::Deeper => self.shift_depth(DEPTH_STEP),
-            LabAction::NextScene => self.scene = self.scene.shifted(1),
-            LabAction::PreviousScene => self.scene = self.scene.shifted(Scene::ALL.len() - 1),
-            LabAction::Gap => self.show_gap = !self.show_gap,
-            LabAction::Hertz => {
-                if self.scenario.obstacle.hertz_radius().is_some() || self.show_hertz {
-                    self.show_hertz = !self.show_hertz;
-                } else {
-                    self.notice = Some(Notice::info(
-                        "no Hertz solution for this obstacle: it needs a cylinder (a radius)",
-                    ));
-                }
-            }
-            LabAction::Zoom => self.toggle_zoom(),
-            LabAction::AllLevels => self.all_levels = !self.all_levels,
-            LabAction::NextQuantity => self.stress_quantity = self.stress_quantity.next(),
-            LabAction::Export(ExportKind::TourStep) => {
-                // The lab's state, solved or not: written by the runtime (a tour file).
-                self.export_kind = ExportKind::TourStep;
-                commands.push(Command::Export);
-            }
-            LabAction::Export(kind) => {
-                if self.current().is_some() {
-                    self.export_kind = kind;
-                    commands.push(Command::Export);
-                } else {
-                    self.notice = Some(Notice::info("nothing to export yet: the solve is not finished"));
-                }
-            }
-            // Only with Ctrl (above).
-            LabAction::Suspend => return false,
-        }
-        if self.settings != before {
-            self.generation += 1;
-            self.error = None;
-        }
-        true
-    }
-
-    /// `z`: zoom to the contact zone and back (only where there is one to zoom to).
-    fn toggle_zoom(&mut self) {
-        if self.zoom {
-            self.zoom = false;
-            return;
-        }
-        if !matches!(self.scene, Scene::Explore | Scene::Mesh | Scene::Stress) {
-            self.notice = Some(Notice::info(
-                "z zooms the pressure chart, the contact zone and the stress map: explore, mesh and stress scenes",
-            ));
-            return;
-        }
-        let in_contact = self
-            .current()
-            .is_some_and(|s| s.solution.pbar.iter().any(|&p| p > 0.0));
-        if in_contact {
-            self.zoom = true;
-        } else {
-            self.notice = Some(Notice::info("nothing to zoom to: no contact (p̄ = 0)"));
-        }
-    }
-
-    /// ε times 10^`decades`, kept to the decimal digits of the scenario's ε.
-    fn shift_epsilon(&mut self, decades: i32) {
-        let next = shift_decades(self.settings.epsilon, decades);
-        if (EPSILON_RANGE.0..=EPSILON_RANGE.1).contains(&next) {
-            self.settings.epsilon = next;
-        } else {
-            self.notice = Some(Notice::info(format!(
-                "ε stays within {:e} to {:e}",
-                EPSILON_RANGE.0, EPSILON_RANGE.1
-            )));
-        }
-    }
-
-    /// The depth plus `delta`, within 0..=min(R, height)/2, rounded to 1e-9.
-    fn shift_depth(&mut self, delta: f64) {
-        let max = self.max_depth();
-        let next = ((self.settings.depth + delta) * 1e9).round() / 1e9;
-        if (0.0..=max + 1e-12).contains(&next) {
-            self.settings.depth = next;
-        } else {
-            self.notice = Some(Notice::info(format!("depth stays within 0 to {max}")));
-        }
-    }
-
     /// The deepest indentation offered: the obstacle's own limit, at most half the height.
     pub fn max_depth(&self) -> f64 {
         self.scenario.obstacle.max_depth().min(self.scenario.height / 2.0)
     }
 
-    fn worker(&mut self, response: Response) -> bool {
-        match response {
-            Response::Progress { generation, progress } => {
-                if self.pending_solve != Some(generation) {
-                    return false;
-                }
-                self.progress = Some(progress);
-            }
-            Response::Solved { generation, result } => {
-                if self.pending_solve != Some(generation) {
-                    return false;
-                }
-                self.pending_solve = None;
-                self.progress = None;
-                match result {
-                    // The user came back to the settings on screen meanwhile: keep them.
-                    Ok(solved) if solved.key != self.settings && self.current().is_some() => {}
-                    Ok(solved) => {
-                        self.solved = Some(solved);
-                        self.error = None;
-                    }
-                    Err(e) => {
-                        self.failed = Some(self.settings);
-                        self.error = Some(e);
-                    }
-                }
-            }
-            Response::Displaced { key } => {
-                return self.scene.needs_solution() && self.current().is_some_and(|s| s.key == key);
-            }
-            Response::Stresses { key } => {
-                if self.stress_pending == Some(key) {
-                    self.stress_pending = None;
-                }
-                return self.scene == Scene::Stress && self.current().is_some_and(|s| s.key == key);
-            }
-            Response::StudyProgress { generation, progress } => {
-                if self.study_pending.as_ref().map(|(g, _)| *g) != Some(generation) {
-                    return false;
-                }
-                self.study_progress = Some(progress);
-                return self.scene == Scene::Convergence;
-            }
-            Response::Cancelled { generation } => {
-                if self.pending_solve != Some(generation) {
-                    return false;
-                }
-                self.pending_solve = None;
-                self.progress = None;
-            }
-            Response::InfSupProgress { key, progress } => {
-                if !self.infsup_pending.contains(&key) {
-                    return false;
-                }
-                self.infsup_progress = Some((key, progress));
-                return self.scene == Scene::InfSup;
-            }
-            Response::InfSup { key, result } => {
-                self.infsup_pending.remove(&key);
-                if self.infsup_progress.is_some_and(|(k, _)| k == key) {
-                    self.infsup_progress = None;
-                }
-                match result {
-                    Some(result) => {
-                        self.infsup.insert(key, result);
-                    }
-                    None => return false,
-                }
-            }
-            Response::Study {
-                generation,
-                key,
-                result,
-            } => {
-                if self.study_pending.as_ref() != Some(&(generation, key.clone())) {
-                    // Superseded by a newer study request: dropped.
-                    return false;
-                }
-                self.study_pending = None;
-                self.study_progress = None;
-                if let Some(result) = result {
-                    self.studies.insert(key, result);
-                }
-            }
+    /// The levels whose inf-sup estimates the scene shows: in the inf-sup scene levels 0 to
+    /// [`FIRST_LEVELS`] (or to the lab's level when finer), so that a trend and its slope show
+    /// from the first look; in explore the lab's level, or with `a` every level up to it.
+    pub fn infsup_levels(&self) -> std::ops::RangeInclusive<u32> {
+        let level = self.settings.level;
+        match self.scene {
+            Scene::InfSup => 0..=level.max(FIRST_LEVELS),
+            _ if self.all_levels => 0..=level,
+            _ => level..=level,
         }
-        true
     }
 
     /// The inf-sup estimates the visible scene shows.
-    fn infsup_needed(&self) -> Vec<InfSupKey> {
-        let levels = if self.all_levels {
-            0..=self.settings.level
-        } else {
-            self.settings.level..=self.settings.level
-        };
+    pub(super) fn infsup_needed(&self) -> Vec<InfSupKey> {
+        let levels = self.infsup_levels();
         let mut keys = Vec::new();
         for level in levels {
             match self.scene {

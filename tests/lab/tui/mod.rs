@@ -1,0 +1,74 @@
+//! The terminal lab: rendered frames (insta snapshots of the plain text, in `snapshots/`) and
+//! the key handling of `App::update`, without a terminal.
+
+mod convergence;
+mod details;
+mod exactness;
+mod frames;
+mod look;
+mod worker;
+
+use convergence::convergence_app;
+use details::PaperWorker;
+use exactness::{MONO, buffer, row_text};
+use frames::infsup_app;
+
+use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
+use ratatui::backend::TestBackend;
+use ratatui::buffer::Buffer;
+use ratatui::style::Color;
+use ratatui::symbols::Marker;
+
+use riplab::contact::Rule;
+use riplab::contact::hertz::Hertz;
+use riplab::mesh::Element;
+use riplab::scenario::Scenario;
+use std::sync::Arc;
+
+use crate::common::settled;
+use riplab::study::{Errors, Status, StudyRow};
+use riplab::tui::app::{
+    App, Command, Compare, MAX_APP_LEVEL, MAX_STUDY_LEVEL, Msg, Response, Scene, Study, StudyRequest,
+};
+use riplab::tui::engine::{Engine, Use};
+use riplab::tui::settle::settle;
+use riplab::tui::theme::Theme;
+use riplab::tui::view::Look;
+use riplab::tui::view::plot::{Axis as PlotAxis, Plot, Scale, Series as PlotSeries, Stroke};
+use riplab::tui::{render_app, render_to_string};
+
+const LOOK: Look = Look {
+    theme: Theme { color: true },
+    marker: Marker::Braille,
+};
+
+fn key(code: KeyCode) -> Msg {
+    Msg::Key(KeyEvent::new(code, KeyModifiers::NONE))
+}
+
+fn ch(c: char) -> Msg {
+    key(KeyCode::Char(c))
+}
+
+fn frame(app: &App, w: u16, h: u16) -> String {
+    render_app(app, &LOOK, w, h)
+}
+
+/// The status area of a frame (issue 31: wrapped, never cut): its rows from the one with the
+/// key hints down, joined with single spaces.
+fn status_of(text: &str) -> String {
+    let lines: Vec<&str> = text.lines().collect();
+    let first = lines
+        .iter()
+        .rposition(|l| l.contains("q quit"))
+        .expect("the key hints");
+    let mut head = lines[first]
+        .trim_end()
+        .strip_suffix("? help  q quit")
+        .expect("hints last");
+    for scene_keys in ["a levels", "w compare", "c quantity", "f back"] {
+        head = head.trim_end().strip_suffix(scene_keys).unwrap_or(head);
+    }
+    let rows = std::iter::once(head).chain(lines[first + 1..].iter().copied());
+    rows.flat_map(str::split_whitespace).collect::<Vec<_>>().join(" ")
+}

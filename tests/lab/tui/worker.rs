@@ -1,0 +1,582 @@
+//! The worker's scheduling, the keys table and the method line.
+
+use super::*;
+
+/// Issue 13 (every level step instant): the displacement of a solution (a quarter of a second
+/// at level 7), its stresses (seconds) and a work–precision study (seconds to a minute) run
+/// beside the worker, which answers a solve meanwhile: a step back right after a step was
+/// served only after the displacement (240–320 ms at level 7, BENCHMARKS.md), a key pressed in
+/// the stress scene waited for the stresses, and a step after a Tab through the convergence
+/// scene waited for its study (4 s at level 6).
+#[test]
+fn a_solve_waits_for_no_displacement_stresses_or_study() {
+    use riplab::tui::app::StressRequest;
+    use std::time::Duration;
+    let paper = PaperWorker::spawn();
+    let (worker, solve, next) = (&paper.worker, |g, l| paper.solve(g, l), || paper.next());
+    let solved = |generation| loop {
+        if let Response::Solved {
+            generation: g,
+            result,
+        } = next()
+            && g == generation
+        {
+            break result.expect("solved");
+        }
+    };
+    // Level 1 built, then level 6, whose displacement (~75 ms) the worker starts as soon as it
+    // replies; a solve sent while it runs.
+    solve(1, 1);
+    solved(1);
+    solve(2, 6);
+    let fine = solved(2);
+    // 20 ms into the work on level 6, a solve of level 1 is answered before it, and the work's
+    // reply still comes.
+    let answered_first = |generation, work: &str, of_work: &dyn Fn(&Response) -> bool| {
+        std::thread::sleep(Duration::from_millis(20));
+        solve(generation, 1);
+        loop {
+            match next() {
+                Response::Solved { generation: g, .. } if g == generation => break,
+                r if of_work(&r) => panic!("the solve waited for the {work}: {r:?}"),
+                _ => {}
+            }
+        }
+        while !of_work(&next()) {}
+    };
+    answered_first(
+        3,
+        "displacement",
+        &|r| matches!(r, Response::Displaced { key } if key.level == 6),
+    );
+    // The stresses of level 6, then a solve.
+    worker.send(&Command::Stresses(StressRequest { solved: fine.clone() }));
+    answered_first(
+        4,
+        "stresses",
+        &|r| matches!(r, Response::Stresses { key } if key.level == 6),
+    );
+    assert!(fine.stresses.get().is_some_and(|s| s.is_ok()));
+    // The study of levels 0..=4 (M1–M4 against Q2's level 5), then a solve.
+    let mut app = App::new(Scenario::paper());
+    app.settings.level = 4;
+    let study = app.study_key();
+    worker.send(&Command::Study(StudyRequest {
+        generation: 5,
+        key: study.clone(),
+    }));
+    answered_first(
+        6,
+        "study",
+        &|r| matches!(r, Response::Study { key, .. } if *key == study),
+    );
+}
+
+/// Issue 13 item 4 for Nitsche's method: its preparation on a built mesh (another
+/// factorisation with the layer along Γ_C last, 6–7 s at level 7) runs beside the worker and
+/// says so; a solve sent meanwhile is answered at once, and the superseded Nitsche solve is
+/// neither run nor reported. Before, the worker sat in the preparation with no progress shown
+/// (12–14 s at level 7), and a step back waited for it.
+#[test]
+fn nitsches_preparation_runs_beside_the_worker() {
+    use riplab::tui::app::Progress;
+    let paper = PaperWorker::spawn();
+    let nitsche = |generation| paper.solve_by_nitsche(generation, 5);
+    let solved = |generation| loop {
+        match paper.next() {
+            Response::Solved {
+                generation: g,
+                result,
+            } if g == generation => break result.expect("solved"),
+            Response::Solved { generation: g, .. } | Response::Cancelled { generation: g } => {
+                assert!(g > generation, "reply {g} came before {generation}'s");
+            }
+            _ => {}
+        }
+    };
+    // Level 5 built for the penalty; then Nitsche's method on it.
+    paper.solve(1, 5);
+    solved(1);
+    nitsche(2);
+    loop {
+        match paper.next() {
+            Response::Progress {
+                generation: 2,
+                progress: Progress::Assembling { level, method, .. },
+            } => {
+                assert_eq!((level, method), (5, Some("nitsche")));
+                break;
+            }
+            r @ (Response::Solved { .. } | Response::Cancelled { .. }) => {
+                panic!("no progress before the reply: {r:?}")
+            }
+            _ => {}
+        }
+    }
+    // A solve sent during the preparation is answered first; the Nitsche solve it supersedes
+    // sends nothing (`solved` fails on a reply for generation 2).
+    paper.solve(3, 1);
+    solved(3);
+    // Asked again, the Nitsche solve uses the prepared layer: the answer of a fresh engine.
+    let key = nitsche(4);
+    let prepared = solved(4);
+    let fresh = match Engine::new(Scenario::paper()).solve(
+        &riplab::tui::app::SolveRequest { generation: 1, key },
+        &|_| true,
+        &mut |_| {},
+    ) {
+        Response::Solved { result: Ok(s), .. } => s,
+        other => panic!("{other:?}"),
+    };
+    assert!(prepared.solution.newton.converged);
+    let (a, b) = (prepared.solution.load, fresh.solution.load);
+    assert!((a - b).abs() <= 1e-9 * b.abs(), "{a} against {b}");
+}
+
+/// A Nitsche solve that finds its level being built in the background for the penalty waits
+/// for that build, then for its own preparation, and is told of each (before, the status line
+/// kept the build's "a moment more" through the whole preparation).
+#[test]
+fn a_nitsche_solve_is_told_of_the_build_then_of_its_preparation() {
+    use riplab::tui::app::Progress;
+    let paper = PaperWorker::spawn();
+    paper.solve(1, 5);
+    while !matches!(paper.next(), Response::Solved { generation: 1, .. }) {}
+    // Idle, the worker builds level 6 for the penalty (about a second).
+    std::thread::sleep(std::time::Duration::from_millis(200));
+    paper.solve_by_nitsche(2, 6);
+    let mut told = Vec::new();
+    loop {
+        match paper.next() {
+            Response::Progress {
+                generation: 2,
+                progress: Progress::Assembling { level, method, .. },
+            } => told.push((level, method)),
+            Response::Solved {
+                generation: 2,
+                result,
+            } => {
+                assert!(result.is_ok());
+                break;
+            }
+            _ => {}
+        }
+    }
+    // The preparation is announced last; when the background build had begun (it has, but
+    // for a scheduler that held the worker back 200 ms), the build first.
+    assert_eq!(told.last(), Some(&(6, Some("nitsche"))), "{told:?}");
+    assert!(
+        told.len() == 1 || told == [(6, None), (6, Some("nitsche"))],
+        "{told:?}"
+    );
+}
+
+/// Issue 13 item 4: an estimate that waits for its mesh says so with the build's time left
+/// (M4 at level 7 builds Q2's level 7, 25–30 s), in the worker's replies and on the inf-sup
+/// scene's status line.
+#[test]
+fn an_estimate_waiting_for_its_mesh_shows_the_build() {
+    use riplab::tui::app::{InfSupKey, InfSupRequest, Progress};
+    use riplab::tui::worker::Worker;
+    use std::time::Duration;
+    let (tx, rx) = std::sync::mpsc::channel();
+    let worker = Worker::spawn(Scenario::paper(), move |r| tx.send(r).is_ok());
+    let asked = InfSupKey {
+        level: 3,
+        element: Element::Q2,
+        rule: Rule::Simpson,
+    };
+    worker.send(&Command::InfSup(InfSupRequest {
+        generation: 0,
+        key: asked,
+    }));
+    let first = rx
+        .recv_timeout(Duration::from_secs(120))
+        .expect("the worker answers");
+    assert!(
+        matches!(
+            first,
+            Response::InfSupProgress {
+                key: k,
+                progress: Progress::Assembling { level: 3, .. },
+            } if k == asked
+        ),
+        "{first:?}"
+    );
+    let then = rx
+        .recv_timeout(Duration::from_secs(120))
+        .expect("the worker answers");
+    assert!(
+        matches!(then, Response::InfSup { key: k, result: Some(Ok(_)) } if k == asked),
+        "{then:?}"
+    );
+    // The scene's status line.
+    let mut app = App::new(Scenario::paper());
+    app.settings.level = MAX_APP_LEVEL;
+    app.update(key(KeyCode::Tab));
+    assert_eq!(app.scene, Scene::InfSup);
+    let m4 = InfSupKey {
+        level: MAX_APP_LEVEL,
+        element: Element::Q2,
+        rule: Rule::Simpson,
+    };
+    assert!(app.is_estimating(&m4), "M4 asked for");
+    let progress = Progress::Assembling {
+        level: MAX_APP_LEVEL,
+        unknowns: 4_195_328,
+        started: std::time::Instant::now(),
+        estimate_ms: 27_000.0,
+        method: None,
+    };
+    assert!(
+        app.update(Msg::Worker(Response::InfSupProgress { key: m4, progress }))
+            .redraw
+    );
+    assert!(app.wants_tick());
+    // Whole on an 80-column status line.
+    let status = status_of(&frame(&app, 80, 24));
+    assert!(
+        status.contains("estimate(s) · building q2 level 7 · about 27 s left"),
+        "{status}"
+    );
+    app.update(Msg::Worker(Response::InfSup {
+        key: m4,
+        result: Some(Err("test".into())),
+    }));
+    assert!(app.infsup_building().is_none() && !app.wants_tick());
+}
+
+/// Issue 13 item 4: a level whose build the memory guard refuses answers the solve that
+/// asked for it with the guard's reason, through the build thread.
+#[test]
+fn a_refused_build_answers_its_solve_with_why() {
+    use riplab::tui::app::{SolveKey, SolveRequest};
+    use riplab::tui::worker::Worker;
+    use std::time::Duration;
+    // 256 × 128 level-0 cells: level 7 has about 10⁹ unknowns.
+    let mut huge = Scenario::paper();
+    let lines = |a: f64, b: f64, n: usize| (0..=n).map(|i| a + (b - a) * i as f64 / n as f64).collect();
+    let ((x0, x1), (y0, y1)) = (
+        (huge.x_lines[0], *huge.x_lines.last().unwrap()),
+        (huge.y_lines[0], *huge.y_lines.last().unwrap()),
+    );
+    (huge.x_lines, huge.y_lines) = (lines(x0, x1, 256), lines(y0, y1, 128));
+    let (tx, rx) = std::sync::mpsc::channel();
+    let worker = Worker::spawn(huge.clone(), move |r| tx.send(r).is_ok());
+    worker.send(&Command::Solve(SolveRequest {
+        generation: 1,
+        key: SolveKey {
+            level: MAX_APP_LEVEL,
+            ..App::defaults(&huge)
+        },
+    }));
+    loop {
+        let r = rx
+            .recv_timeout(Duration::from_secs(60))
+            .expect("the worker answers");
+        if let Response::Solved { generation, result } = r {
+            assert_eq!(generation, 1);
+            let Err(e) = result else {
+                panic!("level {MAX_APP_LEVEL} of the huge grid was not refused")
+            };
+            assert!(e.contains("needs about") && e.contains("coarser level"), "{e}");
+            break;
+        }
+    }
+}
+
+/// Issue 13 item 4: coming back to the solution shown while a solve of other settings is
+/// under way (a level being built) shows that solution as settled, not "building", and
+/// tells the worker the solve is superseded.
+#[test]
+fn coming_back_to_the_solution_shown_supersedes_the_solve_under_way() {
+    use riplab::tui::app::Progress;
+    let mut app = settled(1, Scene::Explore);
+    assert!(!app.is_solving());
+    let step = app.update(key(KeyCode::Right)).commands;
+    let Some(Command::Solve(req)) = step.iter().find(|c| matches!(c, Command::Solve(_))) else {
+        panic!("{step:?}")
+    };
+    app.update(Msg::Worker(Response::Progress {
+        generation: req.generation,
+        progress: Progress::Assembling {
+            level: 2,
+            unknowns: 1,
+            started: std::time::Instant::now(),
+            estimate_ms: 1e4,
+            method: None,
+        },
+    }));
+    assert!(app.is_solving() && app.wants_tick());
+    let back = app.update(key(KeyCode::Left)).commands;
+    assert!(app.current().is_some());
+    assert!(!app.is_solving() && !app.wants_tick(), "still building on screen");
+    assert!(
+        back.iter()
+            .any(|c| matches!(c, Command::Supersede(g) if *g > req.generation)),
+        "{back:?}"
+    );
+    assert!(!frame(&app, 80, 24).contains("building"));
+    // Its displacement is there (settled): nothing more to ask.
+    assert!(
+        !back.iter().any(|c| matches!(c, Command::Displace(_))),
+        "{back:?}"
+    );
+}
+
+/// The worker passes over the displacement of a solution whose solve a newer one followed
+/// (its lane runs the newest only), so an app that comes back to such a solution asks for it:
+/// before, the deformed view said "computing the displacement…" for good.
+#[test]
+fn coming_back_to_a_solution_without_its_displacement_asks_for_it() {
+    let scenario = Scenario::paper();
+    let mut engine = Engine::new(scenario.clone());
+    let mut app = App::new(scenario);
+    let request = app.update(Msg::Resize).commands;
+    let Some(Command::Solve(req)) = request.first() else {
+        panic!("{request:?}")
+    };
+    // The solution arrives; its displacement does not (passed over).
+    let reply = engine.solve(req, &|_| true, &mut |_| {});
+    app.update(Msg::Worker(reply));
+    let shown = app.current().expect("shown").clone();
+    assert!(shown.displacement.get().is_none());
+    app.update(key(KeyCode::Right));
+    let back = app.update(key(KeyCode::Left)).commands;
+    let Some(Command::Displace(again)) = back.iter().find(|c| matches!(c, Command::Displace(_))) else {
+        panic!("{back:?}")
+    };
+    assert!(Arc::ptr_eq(&again.solved, &shown));
+    let mut commands = back.clone();
+    commands.retain(|c| matches!(c, Command::Displace(_)));
+    riplab::tui::settle::carry_out(&mut app, &mut engine, commands);
+    assert!(shown.displacement.get().is_some());
+    assert!(!frame(&app, 100, 30).contains("computing the displacement"));
+}
+
+/// Issue 13 item 4: a solve's reply carries the pressures at once; the displacement (a solve
+/// with the whole factor, the larger part of a step to a built level) follows, and the
+/// deformed view says so meanwhile.
+#[test]
+fn the_pressures_are_shown_before_the_displacement_is_computed() {
+    let scenario = Scenario::paper();
+    let mut engine = Engine::new(scenario.clone());
+    let mut app = App::new(scenario);
+    app.show_timing = false;
+    let request = app.update(Msg::Resize).commands;
+    let Some(Command::Solve(req)) = request.first() else {
+        panic!("{request:?}")
+    };
+    let reply = engine.solve(req, &|_| true, &mut |_| {});
+    let Response::Solved {
+        result: Ok(solved), ..
+    } = &reply
+    else {
+        panic!("{reply:?}")
+    };
+    let solved = solved.clone();
+    assert!(solved.displacement.get().is_none(), "not computed with the solve");
+    assert!(app.update(Msg::Worker(reply)).redraw);
+    let first = render_app(&app, &LOOK, 100, 30);
+    assert!(first.contains("computing the displacement…"), "{first}");
+    assert!(first.contains("converged"), "{first}");
+    assert!(app.update(Msg::Worker(Engine::displace(&solved))).redraw);
+    let then = render_app(&app, &LOOK, 100, 30);
+    assert!(!then.contains("computing the displacement"), "{then}");
+    assert_eq!(
+        solved.displacement.get().map(Vec::len),
+        Some(2 * solved.disc.mesh().n_nodes())
+    );
+}
+
+/// Issue 11 item 3: the key table drives the dispatch: every key it binds is handled by the
+/// lab (the frame changes or a notice says why not), and a key it does not bind is not.
+#[test]
+fn every_key_of_the_table_is_handled_and_no_other() {
+    use riplab::tui::keys::{CONTROL, LAB};
+    for row in LAB {
+        for &(code, action) in row.bindings {
+            let mut app = App::new(Scenario::paper());
+            assert!(app.update(key(code)).redraw, "{code:?} ({action:?}) does nothing");
+        }
+    }
+    for row in CONTROL {
+        for &(code, action) in row.bindings {
+            let mut app = App::new(Scenario::paper());
+            let ctrl = Msg::Key(KeyEvent::new(code, KeyModifiers::CONTROL));
+            assert!(app.update(ctrl).redraw, "Ctrl {code:?} ({action:?}) does nothing");
+        }
+    }
+    // Issue 31: a key with no action says so.
+    for code in [KeyCode::Char('j'), KeyCode::F(5)] {
+        let mut app = App::new(Scenario::paper());
+        assert!(app.update(key(code)).redraw);
+        assert!(app.notice.unwrap().text.contains("does nothing here"));
+    }
+}
+
+/// Issue 14: `m` cycles the method (penalty → exact → alm → nitsche → penalty); each change
+/// re-solves, the line under the pressure chart names the method, what it needs and its
+/// iteration counts (the ALM's updates and inner Newton steps), at 80×24 too.
+#[test]
+fn the_method_key_cycles_and_the_method_line_shows() {
+    let mut engine = Engine::new(Scenario::paper());
+    let mut app = App::new(Scenario::paper());
+    app.show_timing = false;
+    app.settings.level = 1;
+    app.settings.epsilon = 1e-3;
+    settle(&mut app, &mut engine);
+    let line = |app: &App| {
+        frame(app, 80, 24)
+            .lines()
+            .find(|l| l.contains("needs"))
+            .map(str::to_string)
+            .unwrap_or_default()
+    };
+    assert!(
+        line(&app).contains("penalty: needs ε > 0"),
+        "{}",
+        frame(&app, 80, 24)
+    );
+    let penalty_load = app.current().unwrap().solution.load;
+    let mut seen = Vec::new();
+    for _ in 0..4 {
+        let commands = app.update(ch('m')).commands;
+        riplab::tui::settle::carry_out(&mut app, &mut engine, commands);
+        seen.push(app.settings.method.name());
+        let text = frame(&app, 80, 24);
+        match app.settings.method.name() {
+            "exact" => assert!(line(&app).contains("exact: needs inf-sup"), "{text}"),
+            "alm" => {
+                let l = line(&app);
+                assert!(l.contains("alm: needs ε > 0 (no ε error)"), "{text}");
+                let sol = &app.current().unwrap().solution;
+                let outer = sol.outer_iterations.unwrap();
+                // Warm-started from `exact`'s multipliers: one update confirms them.
+                let plural = if outer == 1 { "" } else { "s" };
+                assert!(
+                    l.contains(&format!(
+                        "{outer} update{plural} × {} Newton",
+                        sol.newton.iterations
+                    )),
+                    "{l}"
+                );
+                // The ALM at ε = 1e-3 carries the exact load, not the penalty's.
+                assert!(
+                    sol.load > 1.3 * penalty_load,
+                    "{} against {penalty_load}",
+                    sol.load
+                );
+                assert!(text.contains("alm ε=1e-3"), "the header names the method: {text}");
+            }
+            "nitsche" => {
+                assert!(line(&app).contains("nitsche: needs γ₀"), "{text}");
+                let sol = &app.current().unwrap().solution;
+                assert!(sol.newton.converged && sol.load > 0.0, "{text}");
+            }
+            _ => assert!(line(&app).contains("penalty"), "{text}"),
+        }
+    }
+    assert_eq!(seen, ["exact", "alm", "nitsche", "penalty"]);
+}
+
+/// The settings line at 80 columns never cuts a number: with a long method label (Nitsche's
+/// parameters) at the finest level, the counts and then the parameters give way and the depth
+/// is whole ("d=0" was drawn for d = 0.8).
+#[test]
+fn the_settings_line_drops_fields_rather_than_cutting_a_number() {
+    use riplab::contact::Method;
+    use riplab::contact::method::Gamma0;
+    for method in [
+        Method::Penalty,
+        Method::Exact,
+        Method::Alm { tolerance: 1e-10 },
+        Method::Nitsche {
+            theta: -1,
+            gamma0: Gamma0::Given(100.0),
+        },
+        Method::Nitsche {
+            theta: 1,
+            gamma0: Gamma0::Auto,
+        },
+    ] {
+        for level in [0, MAX_APP_LEVEL] {
+            let mut app = App::new(Scenario::paper());
+            (app.settings.method, app.settings.level) = (method, level);
+            app.settings.rule = Rule::Trapezoid;
+            let text = render_app(&app, &LOOK, 80, 24);
+            let line = text.lines().nth(1).unwrap().trim_end();
+            assert!(line.ends_with("│ d=0.8"), "{method:?} level {level}: {line}");
+            assert!(line.contains(&format!("level {level} ")), "{line}");
+        }
+    }
+}
+
+/// Issue 31, hidden series: a series equal to an earlier one (as M1's β̄_h/√h equals M3's
+/// β_h/√h, by (18)) is said to coincide in the legend, and its glyph stands beside the
+/// other's at every point instead of under it; a series elsewhere keeps its cells.
+#[test]
+fn coinciding_series_are_named_and_both_drawn() {
+    let same = [(-1.0, 0.0), (-0.5, 0.02), (0.0, 0.05)];
+    let apart = [(-1.0, -1.0), (-0.5, -0.9), (0.0, -0.8)];
+    for (width, height) in [(80, 14), (120, 30), (40, 10)] {
+        let mut terminal = ratatui::Terminal::new(TestBackend::new(width, height)).unwrap();
+        terminal
+            .draw(|f| {
+                let series = |name: &str, glyph: char, data| PlotSeries {
+                    name: name.into(),
+                    color: Color::Green,
+                    stroke: Stroke::None,
+                    glyph: Some(glyph),
+                    data,
+                };
+                Plot {
+                    title: " test ".into(),
+                    x: PlotAxis {
+                        title: "h".into(),
+                        bounds: [-1.2, 0.2],
+                        scale: Scale::Log10,
+                    },
+                    y: PlotAxis {
+                        title: "β".into(),
+                        bounds: [-1.5, 0.5],
+                        scale: Scale::Log10,
+                    },
+                    series: vec![
+                        series("M3", '3', &same[..]),
+                        series("M4", '4', &apart[..]),
+                        series("M1 p̄", '*', &same[..]),
+                    ],
+                    marker: Marker::Braille,
+                    theme: Theme { color: false },
+                }
+                .render(f, f.area())
+                .expect("room for the graph");
+            })
+            .unwrap();
+        let buf = terminal.backend().buffer().clone();
+        let text: Vec<String> = (0..height).map(|y| row_text(&buf, y).concat()).collect();
+        let legend = text[1..3].concat();
+        assert!(legend.contains("M1 p̄ (= 3)"), "{width}×{height}: {legend}");
+        assert!(!legend.contains("M4 (="), "{width}×{height}: {legend}");
+        let at = |g: &str| -> Vec<(u16, u16)> {
+            let mut out = Vec::new();
+            for y in 2..height {
+                for x in 0..width {
+                    if buf[(x, y)].symbol() == g {
+                        out.push((x, y));
+                    }
+                }
+            }
+            out
+        };
+        let (threes, stars, fours) = (at("3"), at("*"), at("4"));
+        assert_eq!(threes.len(), 3, "{width}×{height}:\n{}", text.join("\n"));
+        assert_eq!(stars.len(), 3, "{width}×{height}:\n{}", text.join("\n"));
+        assert_eq!(fours.len(), 3, "{width}×{height}:\n{}", text.join("\n"));
+        for (t, s) in threes.iter().zip(&stars) {
+            assert_eq!(t.1, s.1, "same row");
+            assert_eq!(t.0.abs_diff(s.0), 1, "side by side: {t:?} {s:?}");
+        }
+    }
+}
