@@ -15,12 +15,13 @@ use crate::mesh::Element;
 use crate::report::{Format, InfSupTable, SolveReport, StudyReport, Sweep, SweepFailure, SweepRow, output};
 use crate::scenario::{MAX_LEVEL, Scenario};
 use crate::scheme::Scheme;
-use crate::solve::{ContactParams, Discretization, check_request, sweep};
+use crate::solve::{ContactParams, Discretization, check_request};
 use crate::study::{Plan, ReferenceLevelError, all_ok};
 use crate::tui::{MarkerChoice, TuiOptions, render_to_string};
 use crate::vtu;
 
 mod checks;
+mod grading;
 mod outputs;
 mod tour;
 pub mod values;
@@ -252,6 +253,11 @@ pub struct SolveArgs {
     /// Let --plot and --vtu replace existing regular files.
     #[arg(long, requires = "output")]
     pub force: bool,
+    /// Grade the mesh at the contact edges: bisect the lines around them and re-solve, N
+    /// times (0 to 8), or `auto` until p̄ changes by less than 1e-3 [default: the scenario's
+    /// `[mesh] refine_edges`, else 0]
+    #[arg(long, value_name = "N|auto")]
+    pub refine_edges: Option<String>,
 }
 
 /// The arguments of `riplab infsup`.
@@ -316,6 +322,15 @@ pub struct StudyArgs {
     /// Output format (docs/design.md §7).
     #[arg(long, short, value_enum, default_value_t = Format::Table)]
     pub format: Format,
+    /// Edge gradings to study beside the levels, comma-separated (each 0 to 8 or `auto`): a
+    /// series per scheme and value [default: the scenario's `[mesh] refine_edges`, else 0]
+    #[arg(
+        long,
+        value_delimiter = ',',
+        conflicts_with = "sweep_epsilon",
+        value_name = "N,…"
+    )]
+    pub refine_edges: Vec<String>,
 }
 
 /// Parse an inclusive level range `a..b`, `a..=b` or `a`.
@@ -488,7 +503,8 @@ fn shown(path: &std::path::Path) -> String {
 }
 
 fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
-    let scenario = args.select.resolve()?;
+    let mut scenario = args.select.resolve()?;
+    scenario.refine_edges = grading::refine_edges(args.refine_edges.as_deref(), &scenario)?;
     let method = args.method.resolve(&scenario)?;
     let level = scenario.level;
     let range = scenario.epsilon_range(level);
@@ -589,7 +605,9 @@ fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
         .map(|(e, d)| params(e, d))
         .collect();
     let mut rows: Vec<SweepRow> = Vec::new();
-    for (params, solved) in instances.iter().zip(sweep(&disc, &instances)) {
+    let outcomes = grading::solve_all(&scenario, &disc, &instances, scenario.refine_edges);
+    for (params, (solved, graded, passes)) in instances.iter().zip(outcomes) {
+        let disc = graded.as_ref().unwrap_or(&disc);
         let sol = match solved {
             Ok(sol) => sol,
             Err(e) if many => {
@@ -610,9 +628,9 @@ fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
                 crate::text::num(params.obstacle.depth())
             ));
         }
-        rows.push(SweepRow::Solved(Box::new(SolveReport::new(
-            &scenario, level, &disc, &sol,
-        ))));
+        let mut report = SolveReport::new(&scenario, level, disc, &sol);
+        report.refine_edges = passes;
+        rows.push(SweepRow::Solved(Box::new(report)));
         if let Some(path) = &args.plot {
             let title = crate::plot::chart_title(&scenario.name, disc.mesh.element, level, &sol);
             crate::plot::pressure_svg(path, &title, &sol, scenario.half_model, args.force)
@@ -786,10 +804,12 @@ fn study(args: &StudyArgs) -> Result<ExitCode, CliError> {
         }
         Ok(fields)
     };
+    let refine = grading::refine_axis(&args.refine_edges, &scenario)?;
     let plan = if args.sweep_epsilon.is_empty() {
         Plan::Levels {
             levels: &levels,
             epsilon,
+            refine: &refine,
         }
     } else {
         Plan::Sweep {

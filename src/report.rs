@@ -2,6 +2,8 @@
 //! function per format — a human table, CSV, or JSON — chosen once by [`output`]. CSV cells are
 //! read from the JSON of the same struct ([`csv_table`]), so the two cannot drift apart.
 
+mod graded;
+
 use std::fmt::Write as _;
 
 use serde::Serialize;
@@ -140,6 +142,10 @@ pub struct SolveReport {
     pub level: u32,
     /// The cell size h: the largest cell side.
     pub h: f64,
+    /// The edge-grading passes the mesh had ([`crate::grading`]; 0: the uniform level).
+    pub refine_edges: u32,
+    /// The smallest cell side of the mesh.
+    pub h_min: f64,
     /// The penalty parameter ε (0 for `exact`).
     pub epsilon: f64,
     /// The contact method and its parameters (`method`, `theta`, `gamma0`, `alm_tol`).
@@ -282,6 +288,8 @@ impl SolveReport {
             scheme: Scheme::new(element, sol.params.rule).name(),
             level,
             h: disc.mesh.h(),
+            refine_edges: 0,
+            h_min: crate::grading::h_min(&disc.mesh.xs, &disc.mesh.ys),
             epsilon: sol.params.epsilon,
             method: sol.method_fields(),
             depth: sol.params.obstacle.depth(),
@@ -341,11 +349,12 @@ impl Report for SolveReport {
         };
         let _ = writeln!(
             s,
-            "{} — {}, level {} (h = {}), {} elements, {} dofs, {model}",
+            "{} — {}, level {} (h = {}{}), {} elements, {} dofs, {model}",
             self.scenario,
             self.scheme_label(),
-            self.level,
+            self.level_label(),
             self.h,
+            self.h_min_note(),
             self.n_elements,
             self.n_dofs
         );
@@ -455,7 +464,7 @@ pub struct Sweep {
 }
 
 /// The sweep's CSV columns: the parameters, the outcome, and each row's largest p and p̄.
-pub const SWEEP_COLUMNS: [(&str, Cell); 16] = [
+pub const SWEEP_COLUMNS: [(&str, Cell); 18] = [
     ("epsilon", Cell::Field("/epsilon")),
     ("method", Cell::Field("/method")),
     ("theta", Cell::Field("/theta")),
@@ -463,6 +472,8 @@ pub const SWEEP_COLUMNS: [(&str, Cell); 16] = [
     ("gamma0_auto", Cell::Field("/gamma0_auto")),
     ("alm_tol", Cell::Field("/alm_tol")),
     ("depth", Cell::Field("/depth")),
+    ("refine_edges", Cell::Field("/refine_edges")),
+    ("h_min", Cell::Field("/h_min")),
     ("status", Cell::Field("/status")),
     ("newton_iterations", Cell::Field("/newton_iterations")),
     ("outer_iterations", Cell::Field("/outer_iterations")),
@@ -485,11 +496,12 @@ impl Report for Sweep {
         if let Some(SweepRow::Solved(r)) = self.rows.iter().find(|r| matches!(r, SweepRow::Solved(_))) {
             let _ = writeln!(
                 s,
-                "{} — {}, level {} (h = {}), {} dofs",
+                "{} — {}, level {} (h = {}{}), {} dofs",
                 r.scenario,
                 r.scheme_label(),
-                r.level,
+                r.level_label(),
                 r.h,
+                r.h_min_note(),
                 r.n_dofs
             );
         }
@@ -650,14 +662,16 @@ impl Serialize for StudyReport<'_> {
 /// [`crate::study::Fit`]'s: its rates in the `rate_*` columns) or, last, the `reference` (its
 /// smallest cell side as `h`, its estimated error in `err_*`, why its refinement stopped in
 /// `reason`, and in `source` whether it was `computed` or read from the `cache`).
-pub const STUDY_COLUMNS: [(&str, Cell); 30] = [
+pub const STUDY_COLUMNS: [(&str, Cell); 32] = [
     ("kind", Cell::Field("/kind")),
     ("scheme", Cell::Field("/scheme")),
     ("element", Cell::Field("/element")),
     ("rule", Cell::Field("/rule")),
     ("level", Cell::Field("/level")),
     ("refinements", Cell::Field("/refinements")),
+    ("refine_edges", Cell::Field("/refine_edges")),
     ("h", Cell::First(&["/h", "/h_min"])),
+    ("h_min", Cell::Field("/h_min")),
     ("epsilon", Cell::Field("/epsilon")),
     ("method", Cell::Field("/method")),
     ("theta", Cell::Field("/theta")),
@@ -772,24 +786,23 @@ impl Report for StudyReport<'_> {
             "rate"
         );
         for (i, r) in rows.iter().enumerate() {
-            if i > 0 && rows[i - 1].scheme != r.scheme {
+            if i > 0 && !rows[i - 1].same_series(r) {
                 s.push('\n');
             }
             let head = format!(
                 "{:<14} {:>5} {:>9.6} {} {:>8}",
                 r.scheme,
-                r.level,
+                r.level_label(),
                 r.h,
                 r.method.epsilon_text(r.epsilon, 8),
                 r.n_dofs
             );
-            let last = rows
-                .get(i + 1)
-                .is_none_or(|n| n.scheme != r.scheme || n.method.setting() != r.method.setting());
-            let fit = study
-                .fits
-                .iter()
-                .find(|f| last && f.scheme == r.scheme && f.method == r.method.setting());
+            let last = rows.get(i + 1).is_none_or(|n| !n.same_series(r));
+            let fit = study.fits.iter().find(|f| {
+                last && f.scheme == r.scheme
+                    && f.method == r.method.setting()
+                    && f.refine_edges == r.grading.to_string()
+            });
             let (Some(e), Some(iterations), Some(ms)) = (&r.errors, r.newton_iterations, r.solve_ms) else {
                 // No result: the reason in place of the numbers.
                 let reason = r.reason.as_deref().unwrap_or("");

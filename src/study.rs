@@ -23,11 +23,13 @@ use crate::contact::{ContactPoints, Method, Rule};
 use crate::fem::basis::{CellRule, evaluate, field_at};
 use crate::fem::memory::{Limits, Sizes};
 use crate::fem::quadrature::gauss_legendre;
+use crate::grading::{GradedGrid, RefineEdges};
 use crate::mesh::{Element, MAX_LEVEL, Mesh};
 use crate::scenario::Scenario;
 use crate::scheme::Scheme;
 use crate::solve::{ContactParams, Discretization, Solution, solve_contact};
 
+mod graded;
 mod meaning;
 mod source;
 pub use meaning::check_contact;
@@ -44,10 +46,6 @@ struct Sample {
     value: [f64; 2],
     grad: [f64; 4],
 }
-
-/// How many vertex intervals on each side of a contact edge one refinement bisects, and how
-/// many of Γ_C's neighbouring rows of cells.
-const EDGE_WIDTH: usize = 2;
 
 /// The most edge refinements `--reference-refinements` accepts.
 pub const MAX_REFINEMENTS: u32 = 8;
@@ -139,8 +137,7 @@ impl ReferenceMesh {
 
     /// The smallest cell side (h of the uniform level when unrefined).
     pub fn h_min(&self) -> f64 {
-        let narrowest = |v: &[f64]| v.windows(2).map(|w| w[1] - w[0]).fold(f64::INFINITY, f64::min);
-        narrowest(&self.xs).min(narrowest(&self.ys))
+        crate::grading::h_min(&self.xs, &self.ys)
     }
 
     /// The contact edges of the pressure `p` (at Simpson's points on these lines): every
@@ -156,54 +153,22 @@ impl ReferenceMesh {
             })
             .collect();
         let points = ContactPoints::new(rule, &node_x, element.order());
-        let top = p.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-        let pressed = |v: f64| v > 1e-9 * top;
-        let mut edges: Vec<usize> = points
-            .points
-            .windows(2)
-            .zip(p.windows(2))
-            .filter(|(_, v)| pressed(v[0]) != pressed(v[1]))
-            .map(|(q, _)| q[0].edge.max(q[1].edge))
-            .collect();
-        edges.dedup();
-        edges
+        crate::grading::contact_edges(&points, p)
     }
 
-    /// The next refinement: the `EDGE_WIDTH` (2) x-intervals on each side of every contact edge
-    /// of `p` (and the edge's own) bisected, and the `EDGE_WIDTH` rows of cells next to
-    /// Γ_C; None when `p` has no contact edge (nothing to refine).
+    /// The next refinement, as a graded solve's ([`crate::grading::refine_lines`]): the
+    /// `EDGE_WIDTH` (2) x-intervals on each side of every contact edge of `p` (and the edge's
+    /// own) bisected, and the `EDGE_WIDTH` rows of cells next to Γ_C; None when `p` has no
+    /// contact edge (nothing to refine).
     pub fn refined(&self, p: &[f64]) -> Option<Self> {
-        let edges = self.contact_edges(p);
-        if edges.is_empty() {
-            return None;
-        }
-        let nx = self.xs.len() - 1;
-        let mut split = vec![false; nx];
-        for &e in &edges {
-            split[e.saturating_sub(EDGE_WIDTH)..=(e + EDGE_WIDTH).min(nx - 1)].fill(true);
-        }
-        let ny = self.ys.len() - 1;
-        let top: Vec<bool> = (0..ny).map(|c| c + EDGE_WIDTH >= ny).collect();
+        let (xs, ys) = crate::grading::refine_lines(&self.xs, &self.ys, &self.contact_edges(p))?;
         Some(ReferenceMesh {
             level: self.level,
             refinements: self.refinements + 1,
-            xs: bisect_marked(&self.xs, &split),
-            ys: bisect_marked(&self.ys, &top),
+            xs,
+            ys,
         })
     }
-}
-
-/// `lines` with the intervals marked in `split` bisected (the old lines are kept: nested).
-fn bisect_marked(lines: &[f64], split: &[bool]) -> Vec<f64> {
-    let mut out = Vec::with_capacity(2 * lines.len());
-    for (w, &s) in lines.windows(2).zip(split) {
-        out.push(w[0]);
-        if s {
-            out.push(0.5 * (w[0] + w[1]));
-        }
-    }
-    out.push(lines[lines.len() - 1]);
-    out
 }
 
 /// The reference's estimated error: its relative difference from the next coarser reference
@@ -732,6 +697,13 @@ pub struct StudyRow {
     pub method: MethodFields,
     /// The number of free dofs.
     pub n_dofs: usize,
+    /// The edge-grading passes its mesh had ([`crate::grading`]; 0: the uniform level).
+    pub refine_edges: u32,
+    /// The smallest cell side of its mesh (h on a uniform level of square cells).
+    pub h_min: f64,
+    /// The grading asked (`--refine-edges`): what tells its series apart.
+    #[serde(skip)]
+    pub grading: RefineEdges,
     /// Whether the row has a certified result.
     pub status: Status,
     /// Why the row has no (certified) result, when it has none.
@@ -772,6 +744,9 @@ impl StudyRow {
             epsilon,
             method: method.into(),
             n_dofs: scenario.n_dofs(level, element),
+            refine_edges: 0,
+            h_min: GradedGrid::uniform(scenario, level).h_min(),
+            grading: RefineEdges::default(),
             status: Status::Ok,
             reason: None,
             newton_iterations: None,
@@ -822,7 +797,7 @@ fn rates(prev: &StudyRow, row: &StudyRow, by_epsilon: bool) -> Option<Errors> {
     let scale = if by_epsilon {
         (row.epsilon / prev.epsilon).ln()
     } else {
-        (row.h / prev.h).ln()
+        (row.abscissa() / prev.abscissa()).ln()
     };
     let r = |a: f64, b: f64| (b / a).ln() / scale;
     let rates = Errors {
@@ -1027,6 +1002,10 @@ pub struct Fit {
     #[serde(flatten)]
     /// The method as asked ([`MethodFields::setting`]: `auto`'s γ₀ varies by level).
     pub method: MethodFields,
+    /// The edge-grading passes asked of its rows (`0`, `3` or `auto`; [`crate::grading`]).
+    pub refine_edges: String,
+    /// Its abscissa: `h`, `epsilon`, or for graded rows `n^-1/2` (the unknowns n).
+    pub abscissa: &'static str,
     /// The rows fitted: those with a result ([`Status::Ok`]), every error > 0, and h (ε) > 0.
     pub rows: usize,
     /// The slopes (None with fewer than two such rows).
@@ -1039,14 +1018,11 @@ pub fn fits(rows: &[StudyRow], by_epsilon: bool) -> Vec<Fit> {
     let mut start = 0;
     while start < rows.len() {
         let first = &rows[start];
-        let len = rows[start..]
-            .iter()
-            .take_while(|r| r.scheme == first.scheme && r.method.setting() == first.method.setting())
-            .count();
+        let len = rows[start..].iter().take_while(|r| r.same_series(first)).count();
         let usable: Vec<(f64, Errors)> = rows[start..start + len]
             .iter()
             .filter(|r| r.status == Status::Ok)
-            .filter_map(|r| Some((if by_epsilon { r.epsilon } else { r.h }, r.errors?)))
+            .filter_map(|r| Some((if by_epsilon { r.epsilon } else { r.abscissa() }, r.errors?)))
             .filter(|(x, e)| {
                 *x > 0.0
                     && [e.p, e.pbar, e.u, e.load]
@@ -1071,6 +1047,12 @@ pub fn fits(rows: &[StudyRow], by_epsilon: bool) -> Vec<Fit> {
             element: first.element,
             rule: first.rule,
             method: first.method.setting(),
+            refine_edges: first.grading.to_string(),
+            abscissa: match (by_epsilon, first.grading.grades()) {
+                (true, _) => "epsilon",
+                (false, true) => "n^-1/2",
+                (false, false) => "h",
+            },
             rows: usable.len(),
             rates,
         });
@@ -1082,12 +1064,15 @@ pub fn fits(rows: &[StudyRow], by_epsilon: bool) -> Vec<Fit> {
 /// What a study measures: a refinement over levels at one ε, or a sweep of ε at one level.
 #[derive(Clone, Copy, Debug)]
 pub enum Plan<'a> {
-    /// Every scheme at each of `levels`, at `epsilon` ([`convergence`]).
+    /// Every scheme at each of `levels`, at `epsilon` ([`convergence`]), for each grading of
+    /// `refine` (`--refine-edges`; `[RefineEdges::default()]`: uniform levels only).
     Levels {
         /// The levels studied.
         levels: &'a [u32],
         /// The penalty parameter ε of every row.
         epsilon: f64,
+        /// The edge gradings, each a series per scheme ([`crate::grading`]).
+        refine: &'a [RefineEdges],
     },
     /// Every scheme at `level`, at each of `epsilons` ([`epsilon_sweep`]).
     Sweep {
@@ -1126,8 +1111,12 @@ pub fn study(
     check_contact(scenario)?;
     let (mut reference, mut fields) = uniform_reference(scenario, reference_level, fetch)?;
     let (mut groups, by_epsilon) = match plan {
-        Plan::Levels { levels, epsilon } => (
-            convergence_kept(scenario, &reference, schemes, levels, method, epsilon),
+        Plan::Levels {
+            levels,
+            epsilon,
+            refine,
+        } => (
+            graded::levels_kept(scenario, &reference, schemes, levels, (method, epsilon), refine),
             false,
         ),
         Plan::Sweep { level, epsilons } => (
