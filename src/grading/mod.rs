@@ -255,3 +255,6 @@ mod tests {
         assert_eq!(h_min(&x2, &y2), 0.5);
     }
 }
+
+#[cfg(test)]
+mod solve_tests;
