@@ -256,7 +256,7 @@ pub struct SolveArgs {
     /// Grade the mesh at the contact edges: bisect the lines around them and re-solve, N
     /// times (0 to 8), or `auto` until p̄ changes by less than 1e-3 [default: the scenario's
     /// `[mesh] refine_edges`, else 0]
-    #[arg(long, value_name = "N|auto")]
+    #[arg(long, value_name = "N|auto", allow_hyphen_values = true)]
     pub refine_edges: Option<String>,
 }
 

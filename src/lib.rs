@@ -44,6 +44,7 @@ pub mod mesh;
 pub mod nitsche;
 pub mod penalty_error;
 pub mod plot;
+pub mod refine_edges;
 pub mod report;
 pub mod scenario;
 pub mod scheme;

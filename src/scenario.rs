@@ -4,9 +4,9 @@
 
 use crate::contact::{Method, Obstacle, Rule};
 use crate::fem::{DofMap, Integration};
-use crate::grading::RefineEdges;
 use crate::material::Material;
 use crate::mesh::{self, Element, Mesh};
+use crate::refine_edges::RefineEdges;
 
 /// The paper's problem, half model: `scenarios/hertz-paper.toml`.
 pub const DEFAULT_SCENARIO: &str = include_str!("../scenarios/hertz-paper.toml");

@@ -7,9 +7,9 @@ use toml::Spanned;
 use crate::contact::Rule;
 use crate::contact::method::{Gamma0, MethodError};
 use crate::fem::Integration;
-use crate::grading::{RefineEdges, RefineEdgesError};
 use crate::material::Plane;
 use crate::mesh::Element;
+use crate::refine_edges::{RefineEdges, RefineEdgesError};
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -115,7 +115,7 @@ pub(super) enum RawRefineEdges {
 }
 
 impl RawRefineEdges {
-    /// The grading written (0 to [`crate::grading::MAX_PASSES`], or `auto`).
+    /// The grading written (0 to [`crate::refine_edges::MAX_PASSES`], or `auto`).
     pub(super) fn parse(&self) -> Result<RefineEdges, RefineEdgesError> {
         match self {
             RawRefineEdges::Count(n) => RefineEdges::of_count(*n),
@@ -133,7 +133,7 @@ impl<'de> Deserialize<'de> for RawRefineEdges {
                 write!(
                     f,
                     "a number of passes 0 to {} or `\"auto\"`",
-                    crate::grading::MAX_PASSES
+                    crate::refine_edges::MAX_PASSES
                 )
             }
             fn visit_i64<E>(self, v: i64) -> Result<RawRefineEdges, E> {

@@ -12,8 +12,8 @@ use crate::check::{self, CheckError};
 use crate::contact::gap::Bump;
 use crate::contact::{Method, Obstacle};
 use crate::fem::Integration;
-use crate::grading::RefineEdges;
 use crate::material::Material;
+use crate::refine_edges::RefineEdges;
 use crate::scenario::Scenario;
 use crate::text::{num, sanitize, sanitize_lines};
 

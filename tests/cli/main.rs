@@ -6,6 +6,7 @@
 mod common;
 
 mod bad_input;
+mod grading;
 mod help;
 mod hostile;
 mod hostile_again;

@@ -9,6 +9,7 @@ mod common;
 
 mod contact;
 mod fem;
+mod grading;
 mod infsup;
 mod locking;
 mod methods;
