@@ -472,8 +472,6 @@ pub const SWEEP_COLUMNS: [(&str, Cell); 18] = [
     ("gamma0_auto", Cell::Field("/gamma0_auto")),
     ("alm_tol", Cell::Field("/alm_tol")),
     ("depth", Cell::Field("/depth")),
-    ("refine_edges", Cell::Field("/refine_edges")),
-    ("h_min", Cell::Field("/h_min")),
     ("status", Cell::Field("/status")),
     ("newton_iterations", Cell::Field("/newton_iterations")),
     ("outer_iterations", Cell::Field("/outer_iterations")),
@@ -482,6 +480,8 @@ pub const SWEEP_COLUMNS: [(&str, Cell); 18] = [
     ("max_p", Cell::Max("/points/p")),
     ("max_pbar", Cell::Max("/nodes/pbar")),
     ("total_ms", Cell::Field("/timing_ms/total")),
+    ("refine_edges", Cell::Field("/refine_edges")),
+    ("h_min", Cell::Field("/h_min")),
     ("reason", Cell::First(&["/diagnosis", "/reason"])),
 ];
 
