@@ -109,3 +109,50 @@ fn a_graded_solve_reports_its_passes_and_smallest_cell() {
         assert_eq!(cells[col("h_min")], "0.25", "{row}");
     }
 }
+
+/// `study --refine-edges 0,1` gives a graded series beside the uniform one: its rows name
+/// their passes and smallest cell, its fit is against n^(−1/2), the table shows `1+1e`, and
+/// the CSV has both columns.
+#[test]
+fn a_study_sweeps_the_grading_as_an_axis() {
+    let args = [
+        "study",
+        "--levels",
+        "0..1",
+        "--schemes",
+        "M1",
+        "--refine-edges",
+        "0,1",
+        "--no-cache",
+    ];
+    let (code, stdout, stderr) = riplab(&[&args[..], &["--format", "json"]].concat());
+    assert_eq!(code, 0, "{stderr}");
+    let v: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    let rows = v["rows"].as_array().unwrap();
+    let passes: Vec<u64> = rows.iter().map(|r| r["refine_edges"].as_u64().unwrap()).collect();
+    assert_eq!(passes, [0, 0, 1, 1]);
+    for r in &rows[2..] {
+        assert!(r["h_min"].as_f64() < r["h"].as_f64(), "{r}");
+        assert!(r["n_dofs"].as_u64() > rows[0]["n_dofs"].as_u64());
+    }
+    let fits = v["fits"].as_array().unwrap();
+    assert_eq!(fits.len(), 2);
+    assert_eq!(
+        (fits[0]["abscissa"].as_str(), fits[0]["refine_edges"].as_str()),
+        (Some("h"), Some("0"))
+    );
+    assert_eq!(
+        (fits[1]["abscissa"].as_str(), fits[1]["refine_edges"].as_str()),
+        (Some("n^-1/2"), Some("1"))
+    );
+    let (code, table, _) = riplab(&args);
+    assert_eq!(code, 0);
+    assert!(table.contains("M1              1+1e "), "{table}");
+    let (code, csv, _) = riplab(&[&args[..], &["--format", "csv"]].concat());
+    assert_eq!(code, 0);
+    let header = csv.lines().next().unwrap();
+    assert!(
+        header.contains(",refine_edges,") && header.contains(",h_min,"),
+        "{header}"
+    );
+}
