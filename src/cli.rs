@@ -611,7 +611,7 @@ fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
         let sol = match solved {
             Ok(sol) => sol,
             Err(e) if many => {
-                rows.push(SweepRow::Failed(SweepFailure::new(&scenario, &disc, params, &e)));
+                rows.push(SweepRow::Failed(SweepFailure::new(&scenario, disc, params, &e)));
                 continue;
             }
             Err(e) => return Err(e.into()),
@@ -638,9 +638,9 @@ fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
         }
         if let Some(path) = &args.vtu {
             let field = sol
-                .stress_field(&scenario, &disc)
+                .stress_field(&scenario, disc)
                 .map_err(|e| CliError::Failed(format!("the stress field: {e}")))?;
-            let [body, contact] = vtu::write(path, &disc, &sol, &field, args.force)
+            let [body, contact] = vtu::write(path, disc, &sol, &field, args.force)
                 .map_err(|e| CliError::Failed(format!("--vtu {e}")))?;
             note(&format!("wrote {} and {}", shown(&body), shown(&contact)));
         }

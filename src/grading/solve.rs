@@ -88,7 +88,7 @@ pub fn solve_graded(
         pbar_change: None,
         ms: sol.timing.total,
     }];
-    let mut spent = sol.timing.clone();
+    let mut spent = sol.timing;
     while refine.wants_pass(grid.passes, passes[passes.len() - 1].pbar_change) && sol.newton.converged {
         let Some(next) = grid.refined(&contact_edges(&sol.points, &sol.p)) else {
             break;
