@@ -155,3 +155,35 @@ fn the_inf_sup_estimate_runs_on_graded_meshes() {
         on_uniform.beta
     );
 }
+
+/// `auto` grades until p̄ changes by less than AUTO_TOLERANCE between passes (at most
+/// MAX_PASSES): every pass but the last changed it by more, and the last by less; each pass's
+/// change is measured against the one before.
+#[test]
+fn auto_grades_until_pbar_settles() {
+    let s = Scenario::paper();
+    let p = params(&s, Rule::Gauss1, Method::Penalty, 1e-6);
+    let uniform = Discretization::of(&s, 2, Element::Q1).unwrap();
+    let g = solve_graded(
+        &s,
+        (2, &uniform),
+        &p,
+        RefineEdges::Auto,
+        &NewtonOptions::default(),
+    )
+    .unwrap();
+    let changes: Vec<f64> = g.passes[1..].iter().map(|q| q.pbar_change.unwrap()).collect();
+    assert!(!changes.is_empty() && g.passes[0].pbar_change.is_none());
+    assert_eq!(g.grid.passes as usize, changes.len());
+    let (last, before) = changes.split_last().unwrap();
+    assert!(
+        *last < AUTO_TOLERANCE || g.grid.passes == MAX_PASSES,
+        "{changes:?}"
+    );
+    assert!(before.iter().all(|c| *c >= AUTO_TOLERANCE), "{changes:?}");
+    assert!(
+        g.passes
+            .windows(2)
+            .all(|w| w[1].h_min == w[0].h_min / 2.0 && w[1].n_dofs > w[0].n_dofs)
+    );
+}
