@@ -11,6 +11,7 @@ use crate::input::ScenarioError;
 use crate::tui::{MarkerChoice, TuiOptions};
 
 mod checks;
+mod grading;
 mod outputs;
 mod render_args;
 mod tour;

@@ -141,6 +141,16 @@ pub enum Workload {
         /// Its edge refinements.
         refinements: u32,
     },
+    /// A solve's grid at `level` with `element` after `passes` edge-grading passes
+    /// ([`crate::grading`]).
+    Graded {
+        /// Its uniform level.
+        level: u32,
+        /// The element.
+        element: Element,
+        /// Its edge-grading passes.
+        passes: u32,
+    },
     /// A problem of the finite element layer.
     Unknowns,
 }
@@ -182,6 +192,14 @@ fn too_large(workload: &Workload, unknowns: usize, need: u64, available: u64) ->
                 0 => String::new(),
                 k => format!(" + {k} edge refinements"),
             }
+        ),
+        Workload::Graded {
+            level,
+            element,
+            passes,
+        } => format!(
+            "level {level} with {} graded {passes} times at the contact edges: {unknowns} unknowns need about {need} and {available} is available; choose fewer --refine-edges or a coarser level",
+            element.name()
         ),
         Workload::Unknowns => {
             format!(

@@ -6,6 +6,7 @@ use crate::contact::{Method, Obstacle, Rule};
 use crate::fem::{DofMap, Integration};
 use crate::material::Material;
 use crate::mesh::{self, Element, Mesh};
+use crate::refine_edges::RefineEdges;
 
 /// The paper's problem, half model: `scenarios/hertz-paper.toml`.
 pub const DEFAULT_SCENARIO: &str = include_str!("../scenarios/hertz-paper.toml");
@@ -42,6 +43,9 @@ pub struct Scenario {
     pub integration: Integration,
     /// The mesh level, 0 ..= [`MAX_LEVEL`](crate::mesh::MAX_LEVEL).
     pub level: u32,
+    /// How many times a solve grades its mesh at the contact edges (`[mesh] refine_edges`;
+    /// [`crate::grading`]).
+    pub refine_edges: RefineEdges,
     /// The contact rule on Γ_C.
     pub rule: Rule,
     /// How the constraint is imposed: `[contact] method` (with its parameters), or by ε:

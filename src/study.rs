@@ -20,11 +20,13 @@ use crate::contact::ContactParams;
 use crate::contact::{Method, Rule};
 use crate::discretization::Discretization;
 use crate::error::SolveError;
+use crate::grading::RefineEdges;
 use crate::mesh::Element;
 use crate::scenario::Scenario;
 use crate::solve::solve_contact;
 
 mod errors;
+mod graded;
 mod grid;
 mod meaning;
 mod rates;
@@ -195,12 +197,15 @@ fn strip(groups: Vec<Vec<(StudyRow, Option<Kept>)>>) -> Vec<Vec<StudyRow>> {
 /// What a study measures: a refinement over levels at one ε, or a sweep of ε at one level.
 #[derive(Clone, Copy, Debug)]
 pub enum Plan<'a> {
-    /// Every scheme at each of `levels`, at `epsilon` ([`convergence`]).
+    /// Every scheme at each of `levels`, at `epsilon` ([`convergence`]), for each grading of
+    /// `refine` (`--refine-edges`; `[RefineEdges::default()]`: uniform levels only).
     Levels {
         /// The levels studied.
         levels: &'a [u32],
         /// The penalty parameter ε of every row.
         epsilon: f64,
+        /// The edge gradings, each a series per scheme ([`crate::grading`]).
+        refine: &'a [RefineEdges],
     },
     /// Every scheme at `level`, at each of `epsilons` ([`epsilon_sweep`]).
     Sweep {
@@ -239,8 +244,12 @@ pub fn study(
     check_contact(scenario)?;
     let (mut reference, mut fields) = uniform_reference(scenario, reference_level, fetch)?;
     let (mut groups, by_epsilon) = match plan {
-        Plan::Levels { levels, epsilon } => (
-            convergence_kept(scenario, &reference, schemes, levels, method, epsilon),
+        Plan::Levels {
+            levels,
+            epsilon,
+            refine,
+        } => (
+            graded::levels_kept(scenario, &reference, schemes, levels, (method, epsilon), refine),
             false,
         ),
         Plan::Sweep { level, epsilons } => (

@@ -130,6 +130,11 @@ pub struct SolveArgs {
     /// Let --plot and --vtu replace existing regular files.
     #[arg(long, requires = "output")]
     pub force: bool,
+    /// Grade the mesh at the contact edges: bisect the lines around them and re-solve, N
+    /// times (0 to 8), or `auto` until p̄ changes by less than 1e-3 [default: the scenario's
+    /// `[mesh] refine_edges`, else 0]
+    #[arg(long, value_name = "N|auto", allow_hyphen_values = true)]
+    pub refine_edges: Option<String>,
 }
 
 /// The arguments of `riplab infsup`.
@@ -194,6 +199,15 @@ pub struct StudyArgs {
     /// Output format (docs/design.md §7).
     #[arg(long, short, value_enum, default_value_t = Format::Table)]
     pub format: Format,
+    /// Edge gradings to study beside the levels, comma-separated (each 0 to 8 or `auto`): a
+    /// series per scheme and value [default: the scenario's `[mesh] refine_edges`, else 0]
+    #[arg(
+        long,
+        value_delimiter = ',',
+        conflicts_with = "sweep_epsilon",
+        value_name = "N,…"
+    )]
+    pub refine_edges: Vec<String>,
 }
 
 /// A `--levels` that is not a level or a range of levels.

@@ -3,16 +3,16 @@
 use std::process::ExitCode;
 
 use super::args::{SolveArgs, method_at};
-use super::{CliError, note, outputs, print, shown, usage};
+use super::{CliError, grading, note, outputs, print, shown, usage};
 use crate::contact::ContactParams;
 use crate::contact::Method;
 use crate::discretization::{Discretization, check_request};
 use crate::output::{SolveReport, Sweep, SweepFailure, SweepRow, output};
-use crate::solve::sweep;
 use crate::{check, vtu};
 
 pub(super) fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
-    let scenario = args.select.resolve()?;
+    let mut scenario = args.select.resolve()?;
+    scenario.refine_edges = grading::refine_edges(args.refine_edges.as_deref(), &scenario)?;
     let method = args.method.resolve(&scenario)?;
     let level = scenario.level;
     let range = scenario.epsilon_range(level);
@@ -113,11 +113,13 @@ pub(super) fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
         .map(|(e, d)| params(e, d))
         .collect();
     let mut rows: Vec<SweepRow> = Vec::new();
-    for (params, solved) in instances.iter().zip(sweep(&disc, &instances)) {
+    let outcomes = grading::solve_all(&scenario, &disc, &instances, scenario.refine_edges);
+    for (params, (solved, graded, passes)) in instances.iter().zip(outcomes) {
+        let disc = graded.as_ref().unwrap_or(&disc);
         let sol = match solved {
             Ok(sol) => sol,
             Err(e) if many => {
-                rows.push(SweepRow::Failed(SweepFailure::new(&scenario, &disc, params, &e)));
+                rows.push(SweepRow::Failed(SweepFailure::new(&scenario, disc, params, &e)));
                 continue;
             }
             Err(e) => return Err(e.into()),
@@ -134,9 +136,9 @@ pub(super) fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
                 crate::text::num(params.obstacle.depth())
             ));
         }
-        rows.push(SweepRow::Solved(Box::new(SolveReport::new(
-            &scenario, level, &disc, &sol,
-        ))));
+        let mut report = SolveReport::new(&scenario, level, disc, &sol);
+        report.refine_edges = passes;
+        rows.push(SweepRow::Solved(Box::new(report)));
         if let Some(path) = &args.plot {
             let title = crate::plot::chart_title(&scenario.name, disc.mesh.element, level, &sol);
             crate::plot::pressure_svg(path, &title, &sol, scenario.half_model, args.force)
@@ -144,9 +146,9 @@ pub(super) fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
         }
         if let Some(path) = &args.vtu {
             let field = sol
-                .stress_field(&scenario, &disc)
+                .stress_field(&scenario, disc)
                 .map_err(|e| CliError::Failed(format!("the stress field: {e}")))?;
-            let [body, contact] = vtu::write(path, &disc, &sol, &field, args.force)
+            let [body, contact] = vtu::write(path, disc, &sol, &field, args.force)
                 .map_err(|e| CliError::Failed(format!("--vtu {e}")))?;
             note(&format!("wrote {} and {}", shown(&body), shown(&contact)));
         }

@@ -3,7 +3,7 @@
 use std::process::ExitCode;
 
 use super::args::{Select, StudyArgs, method_at, parse_levels};
-use super::{CliError, note, print, shown, usage};
+use super::{CliError, grading, note, print, shown, usage};
 use crate::check;
 use crate::contact::Method;
 use crate::output::{Format, StudyReport, output};
@@ -113,10 +113,12 @@ pub(super) fn study(args: &StudyArgs) -> Result<ExitCode, CliError> {
         }
         Ok(fields)
     };
+    let refine = grading::refine_axis(&args.refine_edges, &scenario)?;
     let plan = if args.sweep_epsilon.is_empty() {
         Plan::Levels {
             levels: &levels,
             epsilon,
+            refine: &refine,
         }
     } else {
         Plan::Sweep {

@@ -9,6 +9,7 @@ use crate::contact::method::{Gamma0, MethodError};
 use crate::fem::Integration;
 use crate::material::Plane;
 use crate::mesh::Element;
+use crate::refine_edges::{RefineEdges, RefineEdgesError};
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -101,6 +102,52 @@ pub(super) struct RawMesh {
     pub(super) level: Option<Spanned<i64>>,
     #[serde(default)]
     pub(super) integration: Option<Integration>,
+    /// Edge-grading passes: a count or `"auto"` ([`RawRefineEdges`]).
+    #[serde(default)]
+    pub(super) refine_edges: Option<Spanned<RawRefineEdges>>,
+}
+
+/// `[mesh] refine_edges` as written: a whole number of passes, or text (`"auto"`); both
+/// checked by [`RefineEdges::parse`], any other TOML value refused naming what is allowed.
+pub(super) enum RawRefineEdges {
+    Count(i64),
+    Text(String),
+}
+
+impl RawRefineEdges {
+    /// The grading written (0 to [`crate::refine_edges::MAX_PASSES`], or `auto`).
+    pub(super) fn parse(&self) -> Result<RefineEdges, RefineEdgesError> {
+        match self {
+            RawRefineEdges::Count(n) => RefineEdges::of_count(*n),
+            RawRefineEdges::Text(t) => RefineEdges::parse(t),
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for RawRefineEdges {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct Visitor;
+        impl serde::de::Visitor<'_> for Visitor {
+            type Value = RawRefineEdges;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                write!(
+                    f,
+                    "a number of passes 0 to {} or `\"auto\"`",
+                    crate::refine_edges::MAX_PASSES
+                )
+            }
+            fn visit_i64<E>(self, v: i64) -> Result<RawRefineEdges, E> {
+                Ok(RawRefineEdges::Count(v))
+            }
+            fn visit_u64<E>(self, v: u64) -> Result<RawRefineEdges, E> {
+                Ok(RawRefineEdges::Count(i64::try_from(v).unwrap_or(i64::MAX)))
+            }
+            fn visit_str<E>(self, v: &str) -> Result<RawRefineEdges, E> {
+                Ok(RawRefineEdges::Text(v.to_string()))
+            }
+        }
+        d.deserialize_any(Visitor)
+    }
 }
 
 #[derive(Deserialize)]

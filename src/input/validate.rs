@@ -13,6 +13,7 @@ use crate::contact::gap::Bump;
 use crate::contact::{Method, Obstacle};
 use crate::fem::Integration;
 use crate::material::Material;
+use crate::refine_edges::RefineEdges;
 use crate::scenario::Scenario;
 use crate::text::{num, sanitize, sanitize_lines};
 
@@ -80,6 +81,13 @@ pub(super) fn scenario(text: &str, file: &str) -> Result<Scenario, ScenarioError
         }
         None => 0,
     };
+    let refine_edges = match &raw.mesh.refine_edges {
+        Some(r) => {
+            loc.check("mesh.refine_edges", r, |v| v.parse().map(|_| ()))?;
+            r.get_ref().parse().unwrap_or_default()
+        }
+        None => RefineEdges::default(),
+    };
     // The flattest cell of the level-0 grid (every level bisects both sides alike).
     let spacing = |v: &[f64]| {
         v.windows(2)
@@ -135,6 +143,7 @@ pub(super) fn scenario(text: &str, file: &str) -> Result<Scenario, ScenarioError
         y_lines,
         integration: raw.mesh.integration.unwrap_or(Integration::Full),
         level,
+        refine_edges,
         rule: raw.contact.rule,
         method,
         epsilon,

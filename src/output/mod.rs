@@ -5,6 +5,7 @@
 use serde::Serialize;
 
 mod csv;
+mod graded;
 mod infsup;
 mod solve;
 mod study;

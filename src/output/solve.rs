@@ -51,6 +51,10 @@ pub struct SolveReport {
     pub level: u32,
     /// The cell size h: the largest cell side.
     pub h: f64,
+    /// The edge-grading passes the mesh had ([`crate::grading`]; 0: the uniform level).
+    pub refine_edges: u32,
+    /// The smallest cell side of the mesh.
+    pub h_min: f64,
     /// The penalty parameter ε (0 for `exact`).
     pub epsilon: f64,
     /// The contact method and its parameters (`method`, `theta`, `gamma0`, `alm_tol`).
@@ -147,6 +151,8 @@ impl SolveReport {
             scheme: Scheme::new(element, sol.params.rule).name(),
             level,
             h: disc.mesh.h(),
+            refine_edges: 0,
+            h_min: crate::grading::h_min(&disc.mesh.xs, &disc.mesh.ys),
             epsilon: sol.params.epsilon,
             method: sol.method_fields(),
             depth: sol.params.obstacle.depth(),
@@ -206,11 +212,12 @@ impl Report for SolveReport {
         };
         let _ = writeln!(
             s,
-            "{} — {}, level {} (h = {}), {} elements, {} dofs, {model}",
+            "{} — {}, level {} (h = {}{}), {} elements, {} dofs, {model}",
             self.scenario,
             self.scheme_label(),
-            self.level,
+            self.level_label(),
             self.h,
+            self.h_min_note(),
             self.n_elements,
             self.n_dofs
         );

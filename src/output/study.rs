@@ -48,14 +48,16 @@ impl Serialize for StudyReport<'_> {
 /// [`crate::study::Fit`]'s: its rates in the `rate_*` columns) or, last, the `reference` (its
 /// smallest cell side as `h`, its estimated error in `err_*`, why its refinement stopped in
 /// `reason`, and in `source` whether it was `computed` or read from the `cache`).
-pub const STUDY_COLUMNS: [(&str, Cell); 30] = [
+pub const STUDY_COLUMNS: [(&str, Cell); 32] = [
     ("kind", Cell::Field("/kind")),
     ("scheme", Cell::Field("/scheme")),
     ("element", Cell::Field("/element")),
     ("rule", Cell::Field("/rule")),
     ("level", Cell::Field("/level")),
     ("refinements", Cell::Field("/refinements")),
+    ("refine_edges", Cell::Field("/refine_edges")),
     ("h", Cell::First(&["/h", "/h_min"])),
+    ("h_min", Cell::Field("/h_min")),
     ("epsilon", Cell::Field("/epsilon")),
     ("method", Cell::Field("/method")),
     ("theta", Cell::Field("/theta")),
@@ -170,24 +172,23 @@ impl Report for StudyReport<'_> {
             "rate"
         );
         for (i, r) in rows.iter().enumerate() {
-            if i > 0 && rows[i - 1].scheme != r.scheme {
+            if i > 0 && !rows[i - 1].same_series(r) {
                 s.push('\n');
             }
             let head = format!(
                 "{:<14} {:>5} {:>9.6} {} {:>8}",
                 r.scheme,
-                r.level,
+                r.level_label(),
                 r.h,
                 r.method.epsilon_text(r.epsilon, 8),
                 r.n_dofs
             );
-            let last = rows
-                .get(i + 1)
-                .is_none_or(|n| n.scheme != r.scheme || n.method.setting() != r.method.setting());
-            let fit = study
-                .fits
-                .iter()
-                .find(|f| last && f.scheme == r.scheme && f.method == r.method.setting());
+            let last = rows.get(i + 1).is_none_or(|n| !n.same_series(r));
+            let fit = study.fits.iter().find(|f| {
+                last && f.scheme == r.scheme
+                    && f.method == r.method.setting()
+                    && f.refine_edges == r.grading.to_string()
+            });
             let (Some(e), Some(iterations), Some(ms)) = (&r.errors, r.newton_iterations, r.solve_ms) else {
                 // No result: the reason in place of the numbers.
                 let reason = r.reason.as_deref().unwrap_or("");

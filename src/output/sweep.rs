@@ -81,7 +81,7 @@ pub struct Sweep {
 }
 
 /// The sweep's CSV columns: the parameters, the outcome, and each row's largest p and p̄.
-pub const SWEEP_COLUMNS: [(&str, Cell); 16] = [
+pub const SWEEP_COLUMNS: [(&str, Cell); 18] = [
     ("epsilon", Cell::Field("/epsilon")),
     ("method", Cell::Field("/method")),
     ("theta", Cell::Field("/theta")),
@@ -97,6 +97,8 @@ pub const SWEEP_COLUMNS: [(&str, Cell); 16] = [
     ("max_p", Cell::Max("/points/p")),
     ("max_pbar", Cell::Max("/nodes/pbar")),
     ("total_ms", Cell::Field("/timing_ms/total")),
+    ("refine_edges", Cell::Field("/refine_edges")),
+    ("h_min", Cell::Field("/h_min")),
     ("reason", Cell::First(&["/diagnosis", "/reason"])),
 ];
 
@@ -111,11 +113,12 @@ impl Report for Sweep {
         if let Some(SweepRow::Solved(r)) = self.rows.iter().find(|r| matches!(r, SweepRow::Solved(_))) {
             let _ = writeln!(
                 s,
-                "{} — {}, level {} (h = {}), {} dofs",
+                "{} — {}, level {} (h = {}{}), {} dofs",
                 r.scenario,
                 r.scheme_label(),
-                r.level,
+                r.level_label(),
                 r.h,
+                r.h_min_note(),
                 r.n_dofs
             );
         }

@@ -6,10 +6,6 @@ use crate::contact::Rule;
 use crate::mesh::{Element, MAX_LEVEL, Mesh};
 use crate::scenario::Scenario;
 
-/// How many vertex intervals on each side of a contact edge one refinement bisects, and how
-/// many of Γ_C's neighbouring rows of cells.
-const EDGE_WIDTH: usize = 2;
-
 /// The most edge refinements `--reference-refinements` accepts.
 pub const MAX_REFINEMENTS: u32 = 8;
 
@@ -100,8 +96,7 @@ impl ReferenceMesh {
 
     /// The smallest cell side (h of the uniform level when unrefined).
     pub fn h_min(&self) -> f64 {
-        let narrowest = |v: &[f64]| v.windows(2).map(|w| w[1] - w[0]).fold(f64::INFINITY, f64::min);
-        narrowest(&self.xs).min(narrowest(&self.ys))
+        crate::grading::h_min(&self.xs, &self.ys)
     }
 
     /// The contact edges of the pressure `p` (at Simpson's points on these lines): every
@@ -117,54 +112,22 @@ impl ReferenceMesh {
             })
             .collect();
         let points = ContactPoints::new(rule, &node_x, element.order());
-        let top = p.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-        let pressed = |v: f64| v > 1e-9 * top;
-        let mut edges: Vec<usize> = points
-            .points
-            .windows(2)
-            .zip(p.windows(2))
-            .filter(|(_, v)| pressed(v[0]) != pressed(v[1]))
-            .map(|(q, _)| q[0].edge.max(q[1].edge))
-            .collect();
-        edges.dedup();
-        edges
+        crate::grading::contact_edges(&points, p)
     }
 
-    /// The next refinement: the `EDGE_WIDTH` (2) x-intervals on each side of every contact edge
-    /// of `p` (and the edge's own) bisected, and the `EDGE_WIDTH` rows of cells next to
-    /// Γ_C; None when `p` has no contact edge (nothing to refine).
+    /// The next refinement, as a graded solve's ([`crate::grading::refine_lines`]): the
+    /// `EDGE_WIDTH` (2) x-intervals on each side of every contact edge of `p` (and the edge's
+    /// own) bisected, and the `EDGE_WIDTH` rows of cells next to Γ_C; None when `p` has no
+    /// contact edge (nothing to refine).
     pub fn refined(&self, p: &[f64]) -> Option<Self> {
-        let edges = self.contact_edges(p);
-        if edges.is_empty() {
-            return None;
-        }
-        let nx = self.xs.len() - 1;
-        let mut split = vec![false; nx];
-        for &e in &edges {
-            split[e.saturating_sub(EDGE_WIDTH)..=(e + EDGE_WIDTH).min(nx - 1)].fill(true);
-        }
-        let ny = self.ys.len() - 1;
-        let top: Vec<bool> = (0..ny).map(|c| c + EDGE_WIDTH >= ny).collect();
+        let (xs, ys) = crate::grading::refine_lines(&self.xs, &self.ys, &self.contact_edges(p))?;
         Some(ReferenceMesh {
             level: self.level,
             refinements: self.refinements + 1,
-            xs: bisect_marked(&self.xs, &split),
-            ys: bisect_marked(&self.ys, &top),
+            xs,
+            ys,
         })
     }
-}
-
-/// `lines` with the intervals marked in `split` bisected (the old lines are kept: nested).
-fn bisect_marked(lines: &[f64], split: &[bool]) -> Vec<f64> {
-    let mut out = Vec::with_capacity(2 * lines.len());
-    for (w, &s) in lines.windows(2).zip(split) {
-        out.push(w[0]);
-        if s {
-            out.push(0.5 * (w[0] + w[1]));
-        }
-    }
-    out.push(lines[lines.len() - 1]);
-    out
 }
 
 /// The reference's element and rule: Q2 + Simpson (M4) with the exact constraint.

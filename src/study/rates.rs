@@ -17,7 +17,7 @@ fn rates(prev: &StudyRow, row: &StudyRow, by_epsilon: bool) -> Option<Errors> {
     let scale = if by_epsilon {
         (row.epsilon / prev.epsilon).ln()
     } else {
-        (row.h / prev.h).ln()
+        (row.abscissa() / prev.abscissa()).ln()
     };
     let r = |a: f64, b: f64| (b / a).ln() / scale;
     let rates = Errors {
@@ -74,6 +74,10 @@ pub struct Fit {
     #[serde(flatten)]
     /// The method as asked ([`MethodFields::setting`]: `auto`'s γ₀ varies by level).
     pub method: MethodFields,
+    /// The edge-grading passes asked of its rows (`0`, `3` or `auto`; [`crate::grading`]).
+    pub refine_edges: String,
+    /// Its abscissa: `h`, `epsilon`, or for graded rows `n^-1/2` (the unknowns n).
+    pub abscissa: &'static str,
     /// The rows fitted: those with a result ([`Status::Ok`]), every error > 0, and h (ε) > 0.
     pub rows: usize,
     /// The slopes (None with fewer than two such rows).
@@ -86,14 +90,11 @@ pub fn fits(rows: &[StudyRow], by_epsilon: bool) -> Vec<Fit> {
     let mut start = 0;
     while start < rows.len() {
         let first = &rows[start];
-        let len = rows[start..]
-            .iter()
-            .take_while(|r| r.scheme == first.scheme && r.method.setting() == first.method.setting())
-            .count();
+        let len = rows[start..].iter().take_while(|r| r.same_series(first)).count();
         let usable: Vec<(f64, Errors)> = rows[start..start + len]
             .iter()
             .filter(|r| r.status == Status::Ok)
-            .filter_map(|r| Some((if by_epsilon { r.epsilon } else { r.h }, r.errors?)))
+            .filter_map(|r| Some((if by_epsilon { r.epsilon } else { r.abscissa() }, r.errors?)))
             .filter(|(x, e)| {
                 *x > 0.0
                     && [e.p, e.pbar, e.u, e.load]
@@ -118,6 +119,12 @@ pub fn fits(rows: &[StudyRow], by_epsilon: bool) -> Vec<Fit> {
             element: first.element,
             rule: first.rule,
             method: first.method.setting(),
+            refine_edges: first.grading.to_string(),
+            abscissa: match (by_epsilon, first.grading.grades()) {
+                (true, _) => "epsilon",
+                (false, true) => "n^-1/2",
+                (false, false) => "h",
+            },
             rows: usable.len(),
             rates,
         });

@@ -9,6 +9,7 @@ use crate::contact::method::MethodFields;
 use crate::contact::{Method, Rule};
 use crate::discretization::Discretization;
 use crate::error::SolveError;
+use crate::grading::{GradedGrid, RefineEdges};
 use crate::mesh::Element;
 use crate::scenario::Scenario;
 use crate::scheme::Scheme;
@@ -85,6 +86,13 @@ pub struct StudyRow {
     pub method: MethodFields,
     /// The number of free dofs.
     pub n_dofs: usize,
+    /// The edge-grading passes its mesh had ([`crate::grading`]; 0: the uniform level).
+    pub refine_edges: u32,
+    /// The smallest cell side of its mesh (h on a uniform level of square cells).
+    pub h_min: f64,
+    /// The grading asked (`--refine-edges`): what tells its series apart.
+    #[serde(skip)]
+    pub grading: RefineEdges,
     /// Whether the row has a certified result.
     pub status: Status,
     /// Why the row has no (certified) result, when it has none.
@@ -125,6 +133,9 @@ impl StudyRow {
             epsilon,
             method: method.into(),
             n_dofs: scenario.n_dofs(level, element),
+            refine_edges: 0,
+            h_min: GradedGrid::uniform(scenario, level).h_min(),
+            grading: RefineEdges::default(),
             status: Status::Ok,
             reason: None,
             newton_iterations: None,

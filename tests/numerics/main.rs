@@ -10,6 +10,7 @@ mod common;
 mod contact;
 mod extremes;
 mod fem;
+mod grading;
 mod infsup;
 mod locking;
 mod methods;

@@ -142,6 +142,9 @@ fn made_row(level: u32, h: f64, errors: Option<Errors>, status: Status) -> Study
         epsilon: 1e-6,
         method: Method::Penalty.into(),
         n_dofs: 10,
+        refine_edges: 0,
+        h_min: h,
+        grading: Default::default(),
         status,
         reason: None,
         newton_iterations: Some(1),
@@ -436,6 +439,7 @@ fn a_refined_study_measures_its_rows_against_the_final_reference() {
     let plan = Plan::Levels {
         levels: &levels,
         epsilon: 1e-8,
+        refine: &[Default::default()],
     };
     let s = study(&scenario, &schemes, None, plan, (2, 2), &mut fetch).unwrap();
     assert_eq!(s.reference.grid.refinements, 2, "{:?}", s.reference.stopped);

@@ -9,10 +9,7 @@ use crate::scheme::Scheme;
 use crate::stress::Quantity;
 
 use super::super::keys::{ExportKind, LabAction, lab_action};
-use super::{
-    App, Command, Compare, DEPTH_STEP, EPSILON_RANGE, MAX_APP_LEVEL, Notice, Scene, LEVEL_LIMIT_WHY,
-    shift_decades,
-};
+use super::{App, Command, Compare, DEPTH_STEP, EPSILON_RANGE, MAX_APP_LEVEL, Notice, Scene, shift_decades};
 
 impl App {
     pub(super) fn key(&mut self, key: KeyEvent, commands: &mut Vec<Command>) -> bool {
@@ -80,7 +77,7 @@ impl App {
             LabAction::Finer => {
                 if self.settings.level >= MAX_APP_LEVEL {
                     self.notice = Some(Notice::info(format!(
-                        "level {MAX_APP_LEVEL} is the lab's finest: {LEVEL_LIMIT_WHY}"
+                        "level {MAX_APP_LEVEL} is the lab's finest: level 8 takes seconds and GiB (riplab solve)"
                     )));
                 }
                 self.settings.level = (self.settings.level + 1).min(MAX_APP_LEVEL);

@@ -10,13 +10,13 @@ use std::ops::ControlFlow;
 use std::sync::{Arc, Mutex, OnceLock};
 use std::time::Instant;
 
+use crate::contact::ContactParams;
 use crate::contact::penalty::NewtonOptions;
-use crate::error::SolveError;
 use crate::contact::{Method, Rule, carried_forces};
+use crate::discretization::Discretization;
+use crate::error::SolveError;
 use crate::mesh::Element;
 use crate::scenario::Scenario;
-use crate::contact::ContactParams;
-use crate::discretization::Discretization;
 use crate::solve::solve_contact;
 
 use super::beta::{self, InfSup};

@@ -127,13 +127,16 @@ mod tests {
     fn row(level: u32, solve_ms: Option<f64>) -> StudyRow {
         StudyRow {
             scheme: "M1".into(),
-            element: "q1",
+            element: crate::mesh::Element::Q1,
             rule: "gauss1",
             level,
             h: 1.0,
             epsilon: 1e-6,
             method: Method::Penalty.into(),
             n_dofs: 68,
+            refine_edges: 0,
+            h_min: 1.0,
+            grading: Default::default(),
             status: Status::Ok,
             reason: None,
             newton_iterations: Some(1),

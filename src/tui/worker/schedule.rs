@@ -7,11 +7,11 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::mpsc::{self, Receiver};
 use std::time::Duration;
 
-use crate::error::SolveError;
 use crate::contact::{Method, Rule};
+use crate::discretization::Discretization;
+use crate::error::SolveError;
 use crate::mesh::Element;
 use crate::scenario::Scenario;
-use crate::discretization::Discretization;
 
 use super::super::beta;
 use super::super::build::{Build, Plan};

@@ -9,13 +9,16 @@ use super::*;
 fn row(scheme: &str, level: u32, n_dofs: usize, ms: f64, p: f64, pbar: f64, u: f64) -> StudyRow {
     StudyRow {
         scheme: scheme.into(),
-        element: "q1",
+        element: riplab::mesh::Element::Q1,
         rule: "gauss1",
         level,
         h: 1.0 / f64::from(1 << level),
         epsilon: 1e-6,
         method: riplab::contact::Method::Penalty.into(),
         n_dofs,
+        refine_edges: 0,
+        h_min: 1.0 / f64::from(1 << level),
+        grading: Default::default(),
         status: Status::Ok,
         reason: None,
         newton_iterations: Some(3),

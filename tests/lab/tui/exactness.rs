@@ -541,7 +541,7 @@ fn keys_say_why_and_close_help_only() {
         notice.contains("level 7") && notice.contains("level 8"),
         "{notice}"
     );
-    // Whole on an 80-column status line (the cost is composed from `level_8_cost!`).
+    // Whole on an 80-column status line.
     assert!(notice.chars().count() < 80, "{notice}");
     app.settings.level = 0;
     app.update(key(KeyCode::Left));

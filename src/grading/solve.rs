@@ -1,0 +1,200 @@
+//! A solve graded at its contact edges (issue 35): solve on the uniform level, find where the
+//! pressure's contact edges are, bisect the lines around them ([`GradedGrid::refined`]) and
+//! solve again, pass after pass. Each pass starts Newton from the last pass's pressure carried
+//! to the new points (forces = p(x)·w); the new grid has its own assembly, ordering and factor
+//! (nothing of the mesh's work carries over: its lines changed). Every method and element
+//! goes through [`solve_contact`], whose smoothing (17) uses the graded mesh's own weights.
+
+use std::ops::ControlFlow;
+
+use crate::contact::ContactParams;
+use crate::contact::ContactPoints;
+use crate::contact::penalty::NewtonOptions;
+use crate::discretization::Discretization;
+use crate::discretization::fem_error;
+use crate::error::{SolveError, Workload};
+use crate::fem::DofMap;
+use crate::fem::FemError;
+use crate::fem::memory::{Limits, Sizes};
+use crate::mesh::Element;
+use crate::scenario::Scenario;
+use crate::solution::{Solution, Timing};
+use crate::solve::solve_contact;
+
+use super::{GradedGrid, RefineEdges, contact_edges};
+
+/// One pass of a graded solve, as reported.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Pass {
+    /// The free dofs of its mesh.
+    pub n_dofs: usize,
+    /// Its smallest cell side.
+    pub h_min: f64,
+    /// The relative change of p̄ in L²(Γ_C) from the previous pass (None for the uniform one).
+    pub pbar_change: Option<f64>,
+    /// What the pass cost, ms (its mesh's work and Newton).
+    pub ms: f64,
+}
+
+/// A graded solve's result: the final grid, its discretisation and solution (whose timing is
+/// the sum of every pass's), and the passes.
+pub struct GradedSolve {
+    /// The final grid.
+    pub grid: GradedGrid,
+    /// The final grid's discretisation (None: no pass was made; the uniform level's, given).
+    pub graded: Option<Discretization>,
+    /// The final pass's solution; its [`Timing`] sums every pass.
+    pub sol: Solution,
+    /// Every pass, the uniform level first.
+    pub passes: Vec<Pass>,
+}
+
+impl GradedSolve {
+    /// Charge the uniform level's mesh work (assembly, ordering, factorisation) to the result,
+    /// for a caller that built `uniform` for this solve alone.
+    pub fn charge_uniform(&mut self, uniform: &Discretization) {
+        let mesh_work = Timing {
+            assembly: uniform.assembly_ms,
+            symbolic: uniform.symbolic_ms,
+            factorization: uniform.factorization_ms,
+            newton: 0.0,
+            total: uniform.assembly_ms + uniform.symbolic_ms + uniform.factorization_ms,
+        };
+        add(&mut self.sol.timing, &mesh_work);
+        self.passes[0].ms += mesh_work.total;
+    }
+
+    /// The final grid's discretisation: the graded one, or `uniform` (the one solved on).
+    pub fn disc<'a>(&'a self, uniform: &'a Discretization) -> &'a Discretization {
+        self.graded.as_ref().unwrap_or(uniform)
+    }
+}
+
+/// Solve `params` on `uniform`, the discretisation of `scenario`'s `level`, then grade at the
+/// contact edges as `refine` asks ([`RefineEdges::wants_pass`]), each pass warm-started from
+/// the last. The grading stops early when the pressure has no contact edge, or a pass does not
+/// converge (its solution is the result, not converged). A grid that does not fit the memory
+/// is refused before it is built. The uniform level's mesh work is the caller's to charge
+/// ([`Timing`] of the result: every pass's solve and every graded mesh's work).
+pub fn solve_graded(
+    scenario: &Scenario,
+    (level, uniform): (u32, &Discretization),
+    params: &ContactParams,
+    refine: RefineEdges,
+    opts: &NewtonOptions,
+) -> Result<GradedSolve, SolveError> {
+    let element = uniform.mesh.element;
+    let mut grid = GradedGrid::uniform(scenario, level);
+    let mut graded: Option<Discretization> = None;
+    let mut sol = solve_contact(uniform, params, None, opts, &mut |_| ControlFlow::Continue(()))?;
+    let mut passes = vec![Pass {
+        n_dofs: uniform.n_dofs(),
+        h_min: grid.h_min(),
+        pbar_change: None,
+        ms: sol.timing.total,
+    }];
+    let mut spent = sol.timing;
+    while refine.wants_pass(grid.passes, passes[passes.len() - 1].pbar_change) && sol.newton.converged {
+        let Some(next) = grid.refined(&contact_edges(&sol.points, &sol.p)) else {
+            break;
+        };
+        fits(scenario, &next, element)?;
+        let d = Discretization::new(
+            next.mesh(element, scenario.half_model),
+            scenario.material,
+            scenario.integration,
+        )?;
+        let points = d.contact_points(params.rule);
+        let initial = carried(&sol.points, &sol.p, &points);
+        let mut s = solve_contact(&d, params, Some(&initial), opts, &mut |_| {
+            ControlFlow::Continue(())
+        })?;
+        s.timing.include_mesh_work(&d);
+        passes.push(Pass {
+            n_dofs: d.n_dofs(),
+            h_min: next.h_min(),
+            pbar_change: Some(pbar_change(&sol, &s)),
+            ms: s.timing.total,
+        });
+        add(&mut spent, &s.timing);
+        (grid, graded, sol) = (next, Some(d), s);
+    }
+    sol.timing = spent;
+    Ok(GradedSolve {
+        grid,
+        graded,
+        sol,
+        passes,
+    })
+}
+
+/// Refuse `grid` with `element` when its memory estimate exceeds what this process may use.
+fn fits(scenario: &Scenario, grid: &GradedGrid, element: Element) -> Result<(), SolveError> {
+    let mesh = grid.mesh(element, scenario.half_model);
+    let (nnx, nny) = (mesh.node_x.len(), mesh.node_y.len());
+    let sizes = Sizes {
+        element,
+        unknowns: DofMap::count(nnx, nny, scenario.half_model),
+        trace: nnx,
+        points: crate::contact::Rule::ALL
+            .iter()
+            .map(|&rule| ContactPoints::new(rule, &mesh.node_x, element.order()).len())
+            .max()
+            .unwrap_or(nnx),
+    };
+    sizes.check(&Limits::of_process()).map_err(|e| match e {
+        FemError::TooLarge {
+            unknowns,
+            need,
+            available,
+        } => SolveError::TooLarge {
+            workload: Workload::Graded {
+                level: grid.level,
+                element,
+                passes: grid.passes,
+            },
+            unknowns,
+            need,
+            available,
+        },
+        e => fem_error(e, sizes.unknowns),
+    })
+}
+
+/// The contact forces at `to`'s points of the pressure `p` at `from`'s points: p(x)·w, the
+/// warm start of the next pass.
+fn carried(from: &ContactPoints, p: &[f64], to: &ContactPoints) -> Vec<f64> {
+    to.points
+        .iter()
+        .map(|q| from.interpolate(p, q.x).max(0.0) * q.weight)
+        .collect()
+}
+
+/// The relative change of p̄ in L²(Γ_C) from `old` to `new`: both piecewise linear on the
+/// new grid's vertices (whose lines contain the old's), integrated exactly.
+fn pbar_change(old: &Solution, new: &Solution) -> f64 {
+    let x = &new.points.vertex_x;
+    let d: Vec<f64> = x
+        .iter()
+        .zip(&new.pbar)
+        .map(|(&x, &p)| p - old.points.interpolate_vertices(&old.pbar, x))
+        .collect();
+    // ∫ of the square of a linear function on [a, b]: (b − a)(f_a² + f_a f_b + f_b²)/3.
+    let l2 = |f: &[f64]| -> f64 {
+        (0..x.len() - 1)
+            .map(|e| (x[e + 1] - x[e]) * (f[e] * f[e] + f[e] * f[e + 1] + f[e + 1] * f[e + 1]) / 3.0)
+            .sum::<f64>()
+            .sqrt()
+    };
+    let norm = l2(&new.pbar);
+    if norm > 0.0 { l2(&d) / norm } else { 0.0 }
+}
+
+/// Add `b`'s times to `a`'s.
+fn add(a: &mut Timing, b: &Timing) {
+    a.assembly += b.assembly;
+    a.symbolic += b.symbolic;
+    a.factorization += b.factorization;
+    a.newton += b.newton;
+    a.total += b.total;
+}
