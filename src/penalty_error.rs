@@ -32,20 +32,21 @@ pub fn load_error_bound(row: &StudyRow, young: f64) -> Option<f64> {
         .then(|| LOAD_ERROR_PER_KAPPA * row.epsilon * young / row.h)
 }
 
-/// The notes on the rows of a study whose load error is within ten times the penalty's bound
-/// (the penalty's share may exceed a tenth of it, and the row's rates may be ε's).
-pub fn dominated_rows(rows: &[StudyRow], young: f64) -> Vec<String> {
-    rows.iter()
-        .filter(|r| r.status == Status::Ok)
-        .filter_map(|r| {
-            let bound = load_error_bound(r, young)?;
-            let error = r.errors?.load;
-            (error <= 10.0 * bound).then(|| {
-                format!(
-                    "{} level {}: the load's error {error:.1e} is within ten times the penalty's bound ({bound:.1e} at ε = {:e}): ε may account for a tenth of it or more, and its rate may be ε's; --method exact measures the mesh alone",
-                    r.scheme, r.level, r.epsilon
-                )
-            })
-        })
-        .collect()
+/// The note on a row of a study whose load error is within ten times the penalty's bound (the
+/// penalty's share may exceed a tenth of it, and the row's rates may be ε's); None for every
+/// other row.
+pub fn dominated(r: &StudyRow, young: f64) -> Option<String> {
+    if r.status != Status::Ok {
+        return None;
+    }
+    let bound = load_error_bound(r, young)?;
+    let error = r.errors?.load;
+    (error <= 10.0 * bound).then(|| {
+        format!(
+            "{} level {}: the load's error {error:.1e} is within ten times the penalty's bound ({bound:.1e} at ε = {:e}): ε may account for a tenth of it or more, and its rate may be ε's; --method exact measures the mesh alone",
+            r.scheme,
+            r.level_label(),
+            r.epsilon
+        )
+    })
 }

@@ -126,7 +126,7 @@ pub(super) fn study(args: &StudyArgs) -> Result<ExitCode, CliError> {
             epsilons: &args.sweep_epsilon,
         }
     };
-    let study = crate::study::study(
+    let mut study = crate::study::study(
         &scenario,
         &schemes,
         method,
@@ -134,6 +134,17 @@ pub(super) fn study(args: &StudyArgs) -> Result<ExitCode, CliError> {
         (reference_level, args.reference_refinements as u32),
         &mut fetch,
     )?;
+    // Rows whose errors the penalty may account for: a field of the row (JSON, CSV) and a note
+    // (a refinement's; in an ε sweep the penalty's share is what is measured).
+    let mut notes = Vec::new();
+    if args.sweep_epsilon.is_empty() {
+        for row in &mut study.rows {
+            if let Some(why) = crate::penalty_error::dominated(row, scenario.material.young) {
+                row.epsilon_dominated = true;
+                notes.push(why);
+            }
+        }
+    }
     // The table says it in its own lines; JSON and CSV carry it in a field.
     if let (Some(why), false) = (&study.reference.stopped, args.format == Format::Table) {
         note(&format!(
@@ -148,10 +159,8 @@ pub(super) fn study(args: &StudyArgs) -> Result<ExitCode, CliError> {
         },
         args.format,
     ))?;
-    if args.sweep_epsilon.is_empty() {
-        for row in crate::penalty_error::dominated_rows(&study.rows, scenario.material.young) {
-            note(&format!("note: {row}"));
-        }
+    for why in notes {
+        note(&format!("note: {why}"));
     }
     let rows = study.rows;
     if all_ok(&rows) {

@@ -48,7 +48,7 @@ impl Serialize for StudyReport<'_> {
 /// [`crate::study::Fit`]'s: its rates in the `rate_*` columns) or, last, the `reference` (its
 /// smallest cell side as `h`, its estimated error in `err_*`, why its refinement stopped in
 /// `reason`, and in `source` whether it was `computed` or read from the `cache`).
-pub const STUDY_COLUMNS: [(&str, Cell); 32] = [
+pub const STUDY_COLUMNS: [(&str, Cell); 33] = [
     ("kind", Cell::Field("/kind")),
     ("scheme", Cell::Field("/scheme")),
     ("element", Cell::Field("/element")),
@@ -56,6 +56,7 @@ pub const STUDY_COLUMNS: [(&str, Cell); 32] = [
     ("level", Cell::Field("/level")),
     ("refinements", Cell::Field("/refinements")),
     ("refine_edges", Cell::Field("/refine_edges")),
+    ("epsilon_dominated", Cell::Field("/epsilon_dominated")),
     ("h", Cell::First(&["/h", "/h_min"])),
     ("h_min", Cell::Field("/h_min")),
     ("epsilon", Cell::Field("/epsilon")),
@@ -188,6 +189,8 @@ impl Report for StudyReport<'_> {
                 last && f.scheme == r.scheme
                     && f.method == r.method.setting()
                     && f.refine_edges == r.grading.to_string()
+                    // A fit needs two rows: with fewer it has no rates to show.
+                    && f.rows >= 2
             });
             let (Some(e), Some(iterations), Some(ms)) = (&r.errors, r.newton_iterations, r.solve_ms) else {
                 // No result: the reason in place of the numbers.

@@ -97,6 +97,10 @@ pub struct StudyRow {
     pub status: Status,
     /// Why the row has no (certified) result, when it has none.
     pub reason: Option<String>,
+    /// Whether the penalty's own load error may be a tenth of the row's or more, so that its
+    /// errors and rates may be ε's rather than the mesh's ([`crate::penalty_error::dominated`];
+    /// set by the command line, false for a row without a penalty).
+    pub epsilon_dominated: bool,
     /// Newton iterations (for the ALM, summed over the updates); None without a result.
     pub newton_iterations: Option<usize>,
     /// The ALM's multiplier updates (null for the other methods, or without a result).
@@ -138,6 +142,7 @@ impl StudyRow {
             grading: RefineEdges::default(),
             status: Status::Ok,
             reason: None,
+            epsilon_dominated: false,
             newton_iterations: None,
             outer_iterations: None,
             converged: false,

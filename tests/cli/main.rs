@@ -15,6 +15,7 @@ mod hostile_cache;
 mod modules;
 mod plot;
 mod readme;
+mod study_notes;
 mod tour_files;
 mod verify;
 mod vtu;

@@ -147,6 +147,7 @@ fn made_row(level: u32, h: f64, errors: Option<Errors>, status: Status) -> Study
         grading: Default::default(),
         status,
         reason: None,
+        epsilon_dominated: false,
         newton_iterations: Some(1),
         outer_iterations: None,
         converged: status == Status::Ok,

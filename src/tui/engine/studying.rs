@@ -139,6 +139,7 @@ mod tests {
             grading: Default::default(),
             status: Status::Ok,
             reason: None,
+            epsilon_dominated: false,
             newton_iterations: Some(1),
             outer_iterations: None,
             converged: true,

@@ -21,6 +21,7 @@ fn row(scheme: &str, level: u32, n_dofs: usize, ms: f64, p: f64, pbar: f64, u: f
         grading: Default::default(),
         status: Status::Ok,
         reason: None,
+        epsilon_dominated: false,
         newton_iterations: Some(3),
         outer_iterations: None,
         converged: true,
