@@ -197,26 +197,15 @@ impl Discretization {
         reserved: u64,
     ) -> Result<(), SolveError> {
         let sizes = Self::sizes(scenario, level, element);
-        sizes
-            .check(&Limits::of_process().less(reserved))
-            .map_err(|e| match e {
-                FemError::TooLarge {
-                    unknowns,
-                    need,
-                    available,
-                } => SolveError::TooLarge {
-                    workload: Workload::Level {
-                        level,
-                        element,
-                        trace: sizes.trace,
-                        reserved: reserved > 0,
-                    },
-                    unknowns,
-                    need,
-                    available,
-                },
-                e => fem_error(e, sizes.unknowns),
-            })
+        sizes.check(&Limits::of_process().less(reserved)).map_err(|e| {
+            let workload = Workload::Level {
+                level,
+                element,
+                trace: sizes.trace,
+                reserved: reserved > 0,
+            };
+            refused(e, workload, sizes.unknowns)
+        })
     }
 
     /// The sizes that decide the memory of the discretisation of `scenario` at `level` with
@@ -304,6 +293,12 @@ impl Discretization {
 
 /// The solver's error for a failure of the finite element layer on `n` unknowns.
 pub(crate) fn fem_error(e: FemError, n: usize) -> SolveError {
+    refused(e, Workload::Unknowns, n)
+}
+
+/// The solver's error for a failure of the finite element layer on `n` unknowns of
+/// `workload`: a refusal for memory names the workload ([`SolveError::TooLarge`]).
+pub(crate) fn refused(e: FemError, workload: Workload, n: usize) -> SolveError {
     match e {
         FemError::NotPositiveDefinite { pivot } => SolveError::Factorization {
             matrix: "stiffness",
@@ -315,7 +310,7 @@ pub(crate) fn fem_error(e: FemError, n: usize) -> SolveError {
             need,
             available,
         } => SolveError::TooLarge {
-            workload: Workload::Unknowns,
+            workload,
             unknowns,
             need,
             available,

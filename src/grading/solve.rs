@@ -11,10 +11,9 @@ use crate::contact::ContactParams;
 use crate::contact::ContactPoints;
 use crate::contact::penalty::NewtonOptions;
 use crate::discretization::Discretization;
-use crate::discretization::fem_error;
+use crate::discretization::refused;
 use crate::error::{SolveError, Workload};
 use crate::fem::DofMap;
-use crate::fem::FemError;
 use crate::fem::memory::{Limits, Sizes};
 use crate::mesh::Element;
 use crate::scenario::Scenario;
@@ -142,22 +141,13 @@ fn fits(scenario: &Scenario, grid: &GradedGrid, element: Element) -> Result<(), 
             .max()
             .unwrap_or(nnx),
     };
-    sizes.check(&Limits::of_process()).map_err(|e| match e {
-        FemError::TooLarge {
-            unknowns,
-            need,
-            available,
-        } => SolveError::TooLarge {
-            workload: Workload::Graded {
-                level: grid.level,
-                element,
-                passes: grid.passes,
-            },
-            unknowns,
-            need,
-            available,
-        },
-        e => fem_error(e, sizes.unknowns),
+    sizes.check(&Limits::of_process()).map_err(|e| {
+        let workload = Workload::Graded {
+            level: grid.level,
+            element,
+            passes: grid.passes,
+        };
+        refused(e, workload, sizes.unknowns)
     })
 }
 

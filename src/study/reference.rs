@@ -13,9 +13,8 @@ use crate::contact::ContactParams;
 use crate::contact::penalty::NewtonOptions;
 use crate::contact::{ContactPoints, Method, Rule};
 use crate::discretization::Discretization;
-use crate::discretization::fem_error;
+use crate::discretization::refused;
 use crate::error::{SolveError, Workload};
-use crate::fem::FemError;
 use crate::fem::basis::{CellRule, field_at};
 use crate::fem::memory::{Limits, Sizes};
 use crate::fem::quadrature::gauss_legendre;
@@ -165,21 +164,12 @@ pub(super) fn fits_memory(scenario: &Scenario, grid: &ReferenceMesh) -> Result<(
         trace: nnx,
         points: grid.lengths().1,
     };
-    sizes.check(&Limits::of_process()).map_err(|e| match e {
-        FemError::TooLarge {
-            unknowns,
-            need,
-            available,
-        } => SolveError::TooLarge {
-            workload: Workload::Reference {
-                level: grid.level,
-                refinements: grid.refinements,
-            },
-            unknowns,
-            need,
-            available,
-        },
-        e => fem_error(e, sizes.unknowns),
+    sizes.check(&Limits::of_process()).map_err(|e| {
+        let workload = Workload::Reference {
+            level: grid.level,
+            refinements: grid.refinements,
+        };
+        refused(e, workload, sizes.unknowns)
     })
 }
 
