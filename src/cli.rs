@@ -12,6 +12,8 @@ use crate::tui::{MarkerChoice, TuiOptions};
 
 mod checks;
 mod grading;
+#[cfg(test)]
+mod lab_help;
 mod outputs;
 mod render_args;
 mod tour;
@@ -37,7 +39,7 @@ mod infsup;
 mod lab;
 mod solve;
 mod study;
-pub use args::{InfsupArgs, LevelsError, MethodArgs, Select, SolveArgs, StudyArgs, parse_levels};
+pub use args::{InfsupArgs, Select, SolveArgs, StudyArgs};
 use infsup::infsup;
 pub use lab::RenderArgs;
 use lab::{RENDER_NOTES, lab, render};
@@ -145,6 +147,21 @@ impl CliError {
 
 fn usage(flag: &str, msg: impl std::fmt::Display) -> CliError {
     CliError::Usage(format!("invalid value for {flag}: {msg}"))
+}
+
+/// Parse the command line and run it; a parse error is printed plain and sanitised (clap echoes
+/// the values it refuses, which may hold escape sequences), with clap's exit code (2).
+pub fn main() -> ExitCode {
+    match Cli::try_parse() {
+        Ok(cli) => run(cli),
+        Err(e) if e.use_stderr() => {
+            let text = crate::text::sanitize_lines(&e.render().to_string());
+            // A closed stderr cannot be told about itself: the exit code stands.
+            let _ = write!(std::io::stderr().lock(), "{text}");
+            ExitCode::from(e.exit_code().clamp(0, 255) as u8)
+        }
+        Err(e) => e.exit(),
+    }
 }
 
 /// Run the command line; returns the process exit code.

@@ -27,10 +27,14 @@
 // Every public item is documented; CI's clippy makes a missing doc an error.
 #![warn(missing_docs)]
 
+// The lab's unit tests share helpers with the integration tests, which name the crate.
+#[cfg(test)]
+extern crate self as riplab;
+
 pub mod cache;
 pub mod check;
 #[cfg(feature = "cli")]
-pub mod cli;
+mod cli;
 pub mod contact;
 pub mod discretization;
 pub mod error;
@@ -54,7 +58,15 @@ pub mod stress;
 pub mod study;
 pub mod text;
 #[cfg(feature = "tui")]
-pub mod tui;
+mod tui;
 pub mod verify;
 pub mod vtu;
 pub mod warning;
+
+/// The `riplab` binary's command line (`riplab --help`): parse the arguments, run the command,
+/// and return its exit code (docs/design.md §8). The terminal lab and the command line are
+/// private to the library; this is their one entry.
+#[cfg(feature = "cli")]
+pub fn run_command_line() -> std::process::ExitCode {
+    cli::main()
+}

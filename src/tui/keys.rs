@@ -354,6 +354,7 @@ pub fn lab_help() -> Vec<(&'static str, &'static str)> {
 }
 
 /// The README's key table (Markdown), from [`LAB`] and [`CONTROL`].
+#[cfg(test)]
 pub fn readme_table() -> String {
     let mut out = String::from("| key | action |\n|---|---|\n");
     for row in LAB.iter().chain(CONTROL) {

@@ -27,6 +27,8 @@ mod runtime;
 mod runtime_export_tests;
 pub mod settle;
 pub mod shown;
+#[cfg(test)]
+mod tests;
 pub mod theme;
 pub mod tour;
 pub mod view;
@@ -135,6 +137,7 @@ pub enum RunError {
 
 /// One frame of `scene` as plain text, solved synchronously with the given overrides of the
 /// scenario's settings (timings left out so that the text is deterministic).
+#[cfg(test)]
 #[allow(clippy::too_many_arguments)]
 pub fn render_to_string(
     scenario: &Scenario,

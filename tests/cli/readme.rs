@@ -311,15 +311,3 @@ fn the_extraction_finds_the_readme_commands() {
     assert_eq!(s("scenarios/x.toml"), "render scenarios/x.toml --size 80x24");
     assert_eq!(s("solve --plot m1.svg"), "solve --plot /tmp/x/m1.svg");
 }
-
-/// Issue 11 item 3: the README's key table is the lab's key table (`riplab::tui::keys`), row
-/// for row.
-#[test]
-fn the_readme_key_table_is_the_labs() {
-    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
-    let table = riplab::tui::keys::readme_table();
-    assert!(
-        readme.contains(&table),
-        "README.md's key table differs from the lab's; it should read:\n{table}"
-    );
-}

@@ -20,7 +20,7 @@ pub use super::protocol::{
     Command, Compare, DisplaceRequest, InfSupKey, InfSupRequest, MAX_APP_LEVEL, Msg, Notice, Progress,
     Response, SolveKey, SolveRequest, Solved, StressRequest, Study, StudyKey, StudyRequest,
 };
-pub use overlays::{LOG_LEN, Overlays};
+pub use overlays::Overlays;
 
 /// Why the lab stops at [`MAX_APP_LEVEL`], for messages (the figures are BENCHMARKS.md's,
 /// "Fresh memory", not the code's).

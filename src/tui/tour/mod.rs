@@ -31,9 +31,11 @@ use crate::text::{sanitize, sanitize_lines};
 
 use super::app::{App, Compare, MAX_APP_LEVEL, Scene};
 
-pub use player::{TourApp, TourEffect, TourMsg};
+pub use player::{TourApp, TourMsg};
 pub use runtime::run_tour;
-pub use view::{MIN_TOUR_SIZE, render_step, view};
+#[cfg(test)]
+pub use view::render_step;
+pub use view::{MIN_TOUR_SIZE, view};
 
 /// The paper's tour, `tours/paper.toml`.
 pub const PAPER_TOUR: &str = include_str!("../../../tours/paper.toml");

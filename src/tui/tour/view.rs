@@ -182,6 +182,7 @@ fn too_small(frame: &mut Frame, area: Rect, tour: &TourApp, theme: Theme) {
 
 /// Step `index` of `tour` on a `width`×`height` test terminal as plain text, its lab solved
 /// synchronously (timings left out so that the text is deterministic).
+#[cfg(test)]
 pub fn render_step(tour: &Tour, index: usize, width: u16, height: u16) -> Result<String, String> {
     let mut engine = Engine::new(tour.scenario_of(index).clone());
     step_frame(tour, index, width, height, &mut engine).map(|(text, _)| text)

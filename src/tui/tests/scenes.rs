@@ -25,7 +25,7 @@ use riplab::mesh::Element;
 use riplab::scenario::Scenario;
 use std::sync::Arc;
 
-use crate::common::settled;
+use crate::tui::tests::settled;
 use riplab::study::{Errors, Status, StudyRow};
 use riplab::tui::app::{
     App, Command, Compare, MAX_APP_LEVEL, MAX_STUDY_LEVEL, Msg, Response, Scene, Study, StudyRequest,

@@ -297,14 +297,6 @@ fn sizes_outside_the_rule_are_refused() {
     }
     assert!(parse_size("eighty").unwrap_err().contains("not a size"));
     assert!(render_to_string(&Scenario::paper(), "mesh", 5, 5, Some(0), None, None, None).is_err());
-    for (size, code) in [("10000x10000", 2), ("5x5", 2), ("1x1", 2), ("80×24", 0)] {
-        let (got, out, err) = crate::common::riplab(&["render", "--size", size, "--level", "0"]);
-        assert_eq!(got, code, "--size {size}: {err}");
-        if code == 2 {
-            assert!(err.contains("--size") && err.contains("allowed"), "{err}");
-            assert!(out.is_empty());
-        }
-    }
 }
 
 /// Item 5: at 80 columns the status line keeps its message whole (unit included); issue 31:
@@ -360,9 +352,6 @@ fn export_failures_show_and_names_carry_epsilon_and_depth() {
         "{last}"
     );
     std::fs::remove_file(&file).unwrap();
-    // The help says where files go; the command line sets it.
-    let (_, help, _) = crate::common::riplab(&["--help"]);
-    assert!(help.contains("--export-dir"), "{help}");
 }
 
 /// A made-up estimate (the table's layout, not its numbers, is under test).

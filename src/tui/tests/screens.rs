@@ -12,7 +12,7 @@ use riplab::tui::settle::{carry_out, settle};
 use riplab::tui::theme::Theme;
 use riplab::tui::view::Look;
 
-use crate::common::settled;
+use crate::tui::tests::settled;
 
 const LOOK: Look = Look {
     theme: Theme { color: false },
@@ -119,7 +119,7 @@ fn the_convergence_scene_shows_five_levels_and_every_scheme_at_every_size() {
 /// to a second row and the key hints keep their place at the right of the first.
 #[test]
 fn no_status_or_help_line_is_cut_at_80x24() {
-    let scenario = crate::common::paper_with(&[("poisson", "poisson = 0.4999999")]);
+    let scenario = crate::tui::tests::common::paper_with(&[("poisson", "poisson = 0.4999999")]);
     for scene in Scene::ALL {
         let mut app = App::new(scenario.clone());
         app.scene = scene;
@@ -234,66 +234,6 @@ fn every_key_says_what_it_did() {
     assert!(log.iter().any(|t| t.contains("] ignored")), "{log:?}");
 }
 
-/// Done when, item 2: `render --keys f`, `--keys x`, `--keys l` and `--marker halfblock` show
-/// the projector view, the cursor's readout, the message log and no braille.
-#[test]
-fn render_applies_keys_and_the_marker() {
-    let render = |args: &[&str]| {
-        let mut all = vec!["render", "--size", "80x24"];
-        all.extend(args);
-        let (code, out, err) = crate::common::riplab(&all);
-        assert_eq!(code, 0, "{args:?}: {err}");
-        out
-    };
-    let projector = render(&["--keys", "f"]);
-    assert!(projector.starts_with("┌ pressure on Γ_C"), "{projector}");
-    assert!(projector.contains("f back"), "{projector}");
-    assert!(render(&["--keys", "x"]).contains("cursor x "));
-    let log = render(&["--keys", "xl"]);
-    assert!(
-        log.contains("┌ messages") && log.contains(", and . move the cursor"),
-        "{log}"
-    );
-    let braille = |s: &str| s.chars().any(|c| ('\u{2801}'..='\u{28ff}').contains(&c));
-    assert!(braille(&render(&[])));
-    let half = render(&["--marker", "halfblock"]);
-    assert!(!braille(&half) && half.contains('▀'), "{half}");
-    let (code, _, err) = crate::common::riplab(&["render", "--keys", "<ctrl-c>"]);
-    assert_eq!(code, 2, "{err}");
-    assert!(err.contains("<ctrl-c>") && err.contains("<tab>"), "{err}");
-}
-
-/// The smaller items: `render` says the lab's range 0 to 7 for any level above it, takes
-/// `--epsilon 0` as the exact constraint (as `--method`'s help says), `--export-dir`'s help
-/// names `v`, the tour file's header gives the lab's levels, and hertz-block's comment names
-/// the stress scene's key.
-#[test]
-fn render_ranges_exact_and_helps_agree() {
-    use riplab::tui::app::MAX_APP_LEVEL;
-    for level in ["8", "9", "70"] {
-        let (code, _, err) = crate::common::riplab(&["render", "--level", level]);
-        assert_eq!(code, 2, "{err}");
-        assert!(
-            err.contains(&format!("allowed: 0 to {MAX_APP_LEVEL}")),
-            "{level}: {err}"
-        );
-    }
-    let (code, out, err) =
-        crate::common::riplab(&["render", "--epsilon", "0", "--size", "80x24", "--level", "0"]);
-    assert_eq!(code, 0, "{err}");
-    assert!(out.contains("exact"), "{out}");
-    let (_, help, _) = crate::common::riplab(&["--help"]);
-    assert!(help.contains("`v` (VTU)"), "{help}");
-    let root = env!("CARGO_MANIFEST_DIR");
-    let tour = std::fs::read_to_string(format!("{root}/tours/paper.toml")).unwrap();
-    assert!(
-        tour.contains(&format!("level    = 0..={MAX_APP_LEVEL} ")),
-        "the tour's header"
-    );
-    let block = std::fs::read_to_string(format!("{root}/scenarios/hertz-block.toml")).unwrap();
-    assert!(block.contains("`c` cycles") && !block.contains("stress scene (`s`)"));
-}
-
 /// Item 4 on the stress map: `x` draws the cursor's line across the map and its readout in
 /// place of the peak's caption.
 #[test]
@@ -347,19 +287,6 @@ fn the_colour_bar_ends_at_the_marked_maximum() {
         .unwrap();
     let bar_top = frame.lines().nth(3).unwrap().trim_end_matches('│').trim_end();
     assert!(bar_top.ends_with(max), "bar `{bar_top}`, max {max}\n{frame}");
-}
-
-/// Done when, item 4: `render --help` lists every key of the lab's table (the help overlay
-/// and the README's table are read from the same table, `riplab::tui::keys::LAB`).
-#[test]
-fn render_help_lists_the_labs_keys() {
-    let (code, help, err) = crate::common::riplab(&["render", "--help"]);
-    assert_eq!(code, 0, "{err}");
-    for row in riplab::tui::keys::LAB {
-        let line = format!("  {:<16}{}", row.keys, row.what.join(" "));
-        assert!(help.contains(&line), "`{line}` in\n{help}");
-    }
-    assert!(help.contains("Exit codes:"), "the notes follow");
 }
 
 /// Item 2, progressively: the convergence study hands over each finished level's rows, and

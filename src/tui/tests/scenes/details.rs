@@ -3,7 +3,7 @@
 use super::*;
 
 /// Item 11: the too-small message wraps to fit; units on the axes; kernel spelled out; the
-/// convergence scene says whose ε; render explains its level range and lists every scene.
+/// convergence scene says whose ε (render's levels and scenes: tests/cli/lab_commands.rs, help.rs).
 #[test]
 fn smaller_things() {
     let text = frame(&App::new(Scenario::paper()), 40, 12);
@@ -31,21 +31,6 @@ fn smaller_things() {
     assert!(text.contains("kernel"), "M2's β_h is a kernel:\n{text}");
     let text = frame(&convergence_app(), 120, 40);
     assert!(text.contains("the scenario's ε"), "{text}");
-    let (code, _, err) = crate::common::riplab(&["render", "--level", "8", "--size", "80x24"]);
-    assert_eq!(code, 2);
-    assert!(err.contains("0 to 7") && err.contains("level 8 takes"), "{err}");
-    let (_, help, _) = crate::common::riplab(&["render", "--help"]);
-    for scene in Scene::ALL {
-        assert!(help.contains(scene.name()), "{scene:?} in\n{help}");
-    }
-    assert!(
-        help.contains("0 to 7") && help.contains("Mesh level 0 to 7"),
-        "{help}"
-    );
-    // Started without a terminal, the lab says what to use instead.
-    let (code, _, err) = crate::common::riplab(&[]);
-    assert_eq!(code, 2);
-    assert!(err.contains("riplab render"), "{err}");
 }
 
 /// Item 11: at level 5 the raw p is drawn over p̄ (its cells keep their colour).
@@ -125,26 +110,10 @@ fn long_builds_show_the_time_left() {
     );
 }
 
-/// Item 12: the README's sample frame is what `riplab render` prints for the command it names.
-#[test]
-fn readme_frame_is_rendered() {
-    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
-    let marker = "this is `riplab render ";
-    let at = readme.find(marker).expect("the README names its render command");
-    let rest = &readme[at + marker.len() - "render ".len()..];
-    let command = &rest[..rest.find('`').unwrap()];
-    let args: Vec<&str> = command.split_whitespace().collect();
-    let fence = rest.find("```\n").unwrap() + 4;
-    let frame = &rest[fence..fence + rest[fence..].find("```").unwrap()];
-    let (code, out, err) = crate::common::riplab(&args);
-    assert_eq!(code, 0, "{err}");
-    assert_eq!(frame, out, "the README's frame differs from `riplab {command}`");
-}
-
 /// Issue 10, item 2: the lab's status line says what is known to be poor about the answer.
 #[test]
 fn the_status_line_shows_warnings() {
-    let locking = crate::common::paper_with(&[("poisson", "poisson = 0.4999999")]);
+    let locking = crate::tui::tests::common::paper_with(&[("poisson", "poisson = 0.4999999")]);
     let mut app = App::new(locking.clone());
     app.show_timing = false;
     settle(&mut app, &mut Engine::new(locking));

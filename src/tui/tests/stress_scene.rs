@@ -9,7 +9,7 @@ use ratatui::symbols::Marker;
 
 use std::sync::Arc;
 
-use crate::common::settled;
+use crate::tui::tests::settled;
 use riplab::scenario::Scenario;
 use riplab::stress::Quantity;
 use riplab::tui::app::{Command, ExportKind, Msg, Scene};
