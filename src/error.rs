@@ -11,7 +11,9 @@ use crate::mesh::Element;
 use crate::text::num;
 
 mod diagnosis;
+mod input;
 pub use diagnosis::Diagnosis;
+pub use input::InputFault;
 
 /// Why a discretisation or a contact solve produced no result.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -64,13 +66,8 @@ pub enum SolveError {
     },
     /// A parameter of the solve is outside the range where its answer means something (or
     /// where double precision can represent it).
-    #[error("{what}: {message}")]
-    Input {
-        /// The parameter, e.g. "the indentation depth".
-        what: &'static str,
-        /// What is wrong with it, and what is allowed.
-        message: String,
-    },
+    #[error(transparent)]
+    Input(#[from] InputFault),
     /// A value of the solve outside its range ([`crate::check`]).
     #[error("{what}: {source}")]
     Range {
@@ -105,7 +102,7 @@ impl SolveError {
             SolveError::Kernel { .. }
                 | SolveError::TooLarge { .. }
                 | SolveError::OutOfMemory { .. }
-                | SolveError::Input { .. }
+                | SolveError::Input(_)
                 | SolveError::Range { .. }
         )
     }

@@ -50,12 +50,11 @@ impl Gamma0 {
         if text.eq_ignore_ascii_case("auto") {
             return Ok(Gamma0::Auto);
         }
-        text.parse().map(Gamma0::Given).map_err(|_| {
-            MethodError::Gamma0Text(format!(
-                "`{}` is neither `auto` nor a number",
-                crate::text::sanitize(text)
-            ))
-        })
+        text.parse()
+            .map(Gamma0::Given)
+            .map_err(|_| MethodError::Gamma0Text {
+                given: text.to_string(),
+            })
     }
 }
 
@@ -142,10 +141,9 @@ impl Method {
                 gamma0: DEFAULT_GAMMA0,
             },
             _ => {
-                return Err(MethodError::Name(format!(
-                    "`{name}` is not a method; allowed: {}",
-                    NAMES.join(", ")
-                )));
+                return Err(MethodError::Name {
+                    given: name.to_string(),
+                });
             }
         };
         method.with(theta, gamma0, alm_tol)
@@ -393,29 +391,36 @@ fn check_theta(value: f64) -> Result<i8, MethodError> {
     THETAS
         .into_iter()
         .find(|&t| f64::from(t) == value)
-        .ok_or_else(|| {
-            MethodError::Theta(format!(
-                "θ = {} is not allowed; allowed: 1 (symmetric), 0 (incomplete), -1 (skew-symmetric)",
-                num(value)
-            ))
-        })
+        .ok_or(MethodError::Theta { theta: value })
 }
 
 /// A method or one of its parameters that is not allowed; the message names what is.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum MethodError {
     /// Not one of the methods ([`NAMES`]).
-    #[error("{0}")]
-    Name(String),
+    #[error("`{}` is not a method; allowed: {}", crate::text::sanitize(given), NAMES.join(", "))]
+    Name {
+        /// The name given.
+        given: String,
+    },
     /// A θ not in [`THETAS`].
-    #[error("{0}")]
-    Theta(String),
+    #[error(
+        "θ = {} is not allowed; allowed: 1 (symmetric), 0 (incomplete), -1 (skew-symmetric)",
+        num(*theta)
+    )]
+    Theta {
+        /// The θ given.
+        theta: f64,
+    },
     /// A given γ₀ outside [`GAMMA0_RANGE`].
     #[error("{0}")]
     Gamma0(crate::check::CheckError),
     /// A γ₀ that is neither `auto` nor a number.
-    #[error("{0}")]
-    Gamma0Text(String),
+    #[error("`{}` is neither `auto` nor a number", crate::text::sanitize(given))]
+    Gamma0Text {
+        /// The text given.
+        given: String,
+    },
     /// An ALM tolerance outside (0, 1).
     #[error("{0}")]
     Tolerance(crate::check::CheckError),
@@ -438,9 +443,9 @@ impl MethodError {
     /// The key of the scenario file (and, with `--` and `_` as `-`, the flag) at fault.
     pub fn key(&self) -> &'static str {
         match self {
-            MethodError::Name(_) => "method",
-            MethodError::Theta(_) => "theta",
-            MethodError::Gamma0(_) | MethodError::Gamma0Text(_) => "gamma0",
+            MethodError::Name { .. } => "method",
+            MethodError::Theta { .. } => "theta",
+            MethodError::Gamma0(_) | MethodError::Gamma0Text { .. } => "gamma0",
             MethodError::Tolerance(_) => "alm_tol",
             MethodError::NotTaken { key, .. } => key,
             MethodError::NeedsEpsilon(_) => "epsilon",
@@ -460,7 +465,7 @@ mod tests {
         }
         assert!(matches!(
             Method::parse("foo", None, None, None),
-            Err(MethodError::Name(m)) if m.contains("penalty, exact, alm, nitsche")
+            Err(e @ MethodError::Name { .. }) if e.to_string() == "`foo` is not a method; allowed: penalty, exact, alm, nitsche"
         ));
     }
 
@@ -483,7 +488,7 @@ mod tests {
         );
         for bad in [2.0, 0.5, -2.0, f64::NAN] {
             assert!(
-                matches!(n(Some(bad), None), Err(MethodError::Theta(m)) if m.contains("allowed: 1 (symmetric), 0 (incomplete), -1"))
+                matches!(n(Some(bad), None), Err(MethodError::Theta { theta }) if theta.to_bits() == bad.to_bits())
             );
         }
         for bad in [-1.0, 0.0, 1e-9, 1e9, f64::INFINITY] {
@@ -495,7 +500,7 @@ mod tests {
         assert_eq!(Gamma0::parse(" AUTO "), Ok(Gamma0::Auto));
         assert_eq!(Gamma0::parse("1e3"), Ok(Gamma0::Given(1e3)));
         assert!(
-            matches!(Gamma0::parse("automatic"), Err(MethodError::Gamma0Text(m)) if m.contains("neither `auto` nor a number"))
+            matches!(Gamma0::parse("automatic"), Err(MethodError::Gamma0Text { given }) if given == "automatic")
         );
         for bad in [0.0, 1.0, -1e-3, f64::NAN] {
             assert!(matches!(
