@@ -12,8 +12,10 @@ use crate::text::num;
 
 mod diagnosis;
 mod input;
+mod method;
 pub use diagnosis::Diagnosis;
 pub use input::InputFault;
+pub use method::MethodError;
 
 /// Why a discretisation or a contact solve produced no result.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

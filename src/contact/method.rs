@@ -14,6 +14,7 @@
 
 use serde::Serialize;
 
+use crate::error::MethodError;
 use crate::text::num;
 
 /// θ of Nitsche's method: 1 symmetric, 0 incomplete, −1 skew-symmetric.
@@ -143,6 +144,7 @@ impl Method {
             _ => {
                 return Err(MethodError::Name {
                     given: name.to_string(),
+                    allowed: &NAMES,
                 });
             }
         };
@@ -392,65 +394,6 @@ fn check_theta(value: f64) -> Result<i8, MethodError> {
         .into_iter()
         .find(|&t| f64::from(t) == value)
         .ok_or(MethodError::Theta { theta: value })
-}
-
-/// A method or one of its parameters that is not allowed; the message names what is.
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
-pub enum MethodError {
-    /// Not one of the methods ([`NAMES`]).
-    #[error("`{}` is not a method; allowed: {}", crate::text::sanitize(given), NAMES.join(", "))]
-    Name {
-        /// The name given.
-        given: String,
-    },
-    /// A θ not in [`THETAS`].
-    #[error(
-        "θ = {} is not allowed; allowed: 1 (symmetric), 0 (incomplete), -1 (skew-symmetric)",
-        num(*theta)
-    )]
-    Theta {
-        /// The θ given.
-        theta: f64,
-    },
-    /// A given γ₀ outside [`GAMMA0_RANGE`].
-    #[error("{0}")]
-    Gamma0(crate::check::CheckError),
-    /// A γ₀ that is neither `auto` nor a number.
-    #[error("`{}` is neither `auto` nor a number", crate::text::sanitize(given))]
-    Gamma0Text {
-        /// The text given.
-        given: String,
-    },
-    /// An ALM tolerance outside (0, 1).
-    #[error("{0}")]
-    Tolerance(crate::check::CheckError),
-    /// A parameter given to a method that does not take it.
-    #[error("`{key}` is a parameter of {takes}, not of {method}")]
-    NotTaken {
-        /// The parameter's key, e.g. `alm_tol`.
-        key: &'static str,
-        /// The method it was given to.
-        method: &'static str,
-        /// The method that takes it.
-        takes: &'static str,
-    },
-    /// `penalty` or `alm` (the named one) at ε = 0.
-    #[error("{0} needs a penalty parameter ε > 0; ε = 0 is the exact method (`exact`)")]
-    NeedsEpsilon(&'static str),
-}
-
-impl MethodError {
-    /// The key of the scenario file (and, with `--` and `_` as `-`, the flag) at fault.
-    pub fn key(&self) -> &'static str {
-        match self {
-            MethodError::Name { .. } => "method",
-            MethodError::Theta { .. } => "theta",
-            MethodError::Gamma0(_) | MethodError::Gamma0Text { .. } => "gamma0",
-            MethodError::Tolerance(_) => "alm_tol",
-            MethodError::NotTaken { key, .. } => key,
-            MethodError::NeedsEpsilon(_) => "epsilon",
-        }
-    }
 }
 
 #[cfg(test)]

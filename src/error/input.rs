@@ -1,7 +1,7 @@
 //! The parameters of a solve that have no answer ([`super::SolveError::Input`]): each fault
 //! with the values that show it and the range allowed, its message naming the parameter.
 
-use crate::contact::method::MethodError;
+use super::MethodError;
 use crate::text::num;
 
 /// A parameter of the solve outside the range where its answer means something (or where
