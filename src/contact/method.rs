@@ -14,6 +14,7 @@
 
 use serde::Serialize;
 
+use crate::check::Allowed;
 use crate::error::MethodError;
 use crate::text::num;
 
@@ -219,7 +220,9 @@ impl Method {
                 tolerance,
                 0.0,
                 1.0,
-                "a relative tolerance 0 < tol < 1 (tolerances below about 1e-14 are not reachable in double precision and end as not converged)",
+                Allowed::Said(
+                    "a relative tolerance 0 < tol < 1 (tolerances below about 1e-14 are not reachable in double precision and end as not converged)",
+                ),
             )
             .map_err(MethodError::Tolerance),
             Method::Nitsche { theta, gamma0 } => {
@@ -232,11 +235,12 @@ impl Method {
                     gamma0,
                     lo,
                     hi,
-                    &format!(
-                        "`auto` or γ₀ from {} to {} (γ = γ₀·E/h; γ₀ ≤ 1e8 keeps Nitsche's equivalent penalty εE/h = 1/γ₀ above round-off)",
-                        num(lo),
-                        num(hi)
-                    ),
+                    Allowed::Range {
+                        what: "`auto` or γ₀",
+                        lo,
+                        hi,
+                        note: " (γ = γ₀·E/h; γ₀ ≤ 1e8 keeps Nitsche's equivalent penalty εE/h = 1/γ₀ above round-off)",
+                    },
                 )
                 .map_err(MethodError::Gamma0)
             }
