@@ -296,6 +296,19 @@ impl ForceBalance<'_> {
     }
 }
 
+impl Balance {
+    /// The assessment of an iterate so measured, with the law's `verdict` and `values`.
+    pub fn assessment<V>(self, verdict: Verdict, values: V) -> Assessment<Vec<bool>, V> {
+        Assessment {
+            active: count(&self.active),
+            states: self.active,
+            residual: self.residual,
+            verdict,
+            values,
+        }
+    }
+}
+
 /// The number of `true` in an active set.
 pub(crate) fn count(active: &[bool]) -> usize {
     active.iter().filter(|&&a| a).count()

@@ -24,7 +24,7 @@ use faer::linalg::solvers::Solve;
 use faer::{Mat, Side};
 
 use super::newton::{
-    self, Assessment, ForceBalance, Iteration, NewtonOptions, NewtonResult, SemismoothLaw, Verdict, count,
+    self, Assessment, ForceBalance, Iteration, NewtonOptions, NewtonResult, SemismoothLaw, Verdict,
 };
 use crate::error::{Diagnosis, SolveError};
 
@@ -115,21 +115,17 @@ pub(crate) fn round_off(d: &[f64], gy: &[f64]) -> Vec<f64> {
 /// The penalty's law (11) on the contact forces y at the rule's points ([`newton::drive`]).
 struct PenaltyLaw<'a, 'b>(&'b Penalty<'a>);
 
-/// What the penalty's law computes of an iterate y: s = d − Gy.
-struct Violation {
-    s: Vec<f64>,
-}
-
 impl SemismoothLaw for PenaltyLaw<'_, '_> {
     type States = Vec<bool>;
-    type Values = Violation;
+    /// s = u_n − g = d − Gy.
+    type Values = Vec<f64>;
 
     fn assess(
         &self,
         y: &[f64],
         previous: Option<&Vec<bool>>,
         opts: &NewtonOptions,
-    ) -> Assessment<Vec<bool>, Violation> {
+    ) -> Assessment<Vec<bool>, Vec<f64>> {
         let pb = self.0;
         let n = y.len();
         let inv_eps = 1.0 / pb.epsilon;
@@ -158,22 +154,16 @@ impl SemismoothLaw for PenaltyLaw<'_, '_> {
         } else {
             Verdict::Continue
         };
-        Assessment {
-            active: count(&m.active),
-            states: m.active,
-            residual: m.residual,
-            verdict,
-            values: Violation { s },
-        }
+        m.assessment(verdict, s)
     }
 
-    fn target(&self, _: &[f64], now: &Assessment<Vec<bool>, Violation>) -> Result<Vec<f64>, Diagnosis> {
+    fn target(&self, _: &[f64], now: &Assessment<Vec<bool>, Vec<f64>>) -> Result<Vec<f64>, Diagnosis> {
         let a: Vec<usize> = (0..now.states.len()).filter(|&q| now.states[q]).collect();
         Ok(active_forces(self.0, &a))
     }
 
     /// Full steps until an active set repeats; then the exact line search on Π(u(y)).
-    fn step(&self, y: &[f64], target: &[f64], now: &Assessment<Vec<bool>, Violation>, repeated: bool) -> f64 {
+    fn step(&self, y: &[f64], target: &[f64], now: &Assessment<Vec<bool>, Vec<f64>>, repeated: bool) -> f64 {
         if !repeated {
             return 1.0;
         }
@@ -184,7 +174,7 @@ impl SemismoothLaw for PenaltyLaw<'_, '_> {
         let gd = apply(pb.coupling, &delta, &moved);
         let b: Vec<f64> = gd.iter().map(|v| -v).collect();
         exact_step(
-            &now.values.s,
+            &now.values,
             &b,
             pb.weight,
             1.0 / pb.epsilon,
@@ -202,12 +192,25 @@ pub fn solve(
     opts: &NewtonOptions,
     on_iteration: &mut dyn FnMut(&Iteration) -> ControlFlow<()>,
 ) -> Result<NewtonResult, SolveError> {
+    on_points(&PenaltyLaw(pb), pb, initial, opts, on_iteration)
+}
+
+/// Drive `law`, a law on the contact forces at the rule's points of `pb` whose values are
+/// s = u_n − g, from the forces `initial` (from rest when None or of another length): the
+/// result holds the last forces and their s.
+pub(crate) fn on_points<L: SemismoothLaw<Values = Vec<f64>>>(
+    law: &L,
+    pb: &Penalty,
+    initial: Option<&[f64]>,
+    opts: &NewtonOptions,
+    on_iteration: &mut dyn FnMut(&Iteration) -> ControlFlow<()>,
+) -> Result<NewtonResult, SolveError> {
     let n = pb.coupling.nrows();
     let y = initial
         .filter(|y| y.len() == n)
         .map_or_else(|| vec![0.0; n], <[f64]>::to_vec);
-    let outcome = newton::drive(&PenaltyLaw(pb), y, opts, on_iteration)?;
-    let (y, s) = (outcome.x.clone(), outcome.last.values.s.clone());
+    let outcome = newton::drive(law, y, opts, on_iteration)?;
+    let (y, s) = (outcome.x.clone(), outcome.last.values.clone());
     Ok(outcome.result(y, s))
 }
 

@@ -11,10 +11,8 @@
 
 use std::ops::ControlFlow;
 
-use super::newton::{
-    self, Assessment, Iteration, NewtonOptions, NewtonResult, SemismoothLaw, Verdict, count,
-};
-use super::penalty::{Penalty, active_forces, apply, dot};
+use super::newton::{Assessment, Iteration, NewtonOptions, NewtonResult, SemismoothLaw, Verdict, count};
+use super::penalty::{Penalty, active_forces, apply, dot, on_points};
 use crate::error::{Diagnosis, SolveError};
 
 /// The complementarity law on the multipliers y at the rule's points (`.0` at ε = 0).
@@ -90,11 +88,5 @@ pub fn solve_exact(
     opts: &NewtonOptions,
     on_iteration: &mut dyn FnMut(&Iteration) -> ControlFlow<()>,
 ) -> Result<NewtonResult, SolveError> {
-    let n = pb.coupling.nrows();
-    let y = initial
-        .filter(|y| y.len() == n)
-        .map_or_else(|| vec![0.0; n], <[f64]>::to_vec);
-    let outcome = newton::drive(&Complementarity(pb), y, opts, on_iteration)?;
-    let (y, s) = (outcome.x.clone(), outcome.last.values.clone());
-    Ok(outcome.result(y, s))
+    on_points(&Complementarity(pb), pb, initial, opts, on_iteration)
 }

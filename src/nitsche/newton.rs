@@ -7,7 +7,7 @@ use faer::{Mat, Side};
 
 use super::operator::Operator;
 use crate::contact::newton::{
-    Assessment, ForceBalance, Iteration, NewtonOptions, NewtonResult, SemismoothLaw, Verdict, count, drive,
+    Assessment, ForceBalance, Iteration, NewtonOptions, NewtonResult, SemismoothLaw, Verdict, drive,
 };
 use crate::contact::penalty::{active_block, dot, round_off};
 use crate::error::{Diagnosis, SolveError};
@@ -107,17 +107,12 @@ impl SemismoothLaw for NitscheLaw<'_> {
             floor: &floor,
         }
         .measure(previous, opts.rtol);
-        Assessment {
-            active: count(&m.active),
-            states: m.active,
-            residual: m.residual,
-            verdict: if m.settled && m.accurate && m.residual.is_finite() {
-                Verdict::Converged
-            } else {
-                Verdict::Continue
-            },
-            values: Values { v, r },
-        }
+        let verdict = if m.settled && m.accurate && m.residual.is_finite() {
+            Verdict::Converged
+        } else {
+            Verdict::Continue
+        };
+        m.assessment(verdict, Values { v, r })
     }
 
     fn target(&self, _: &[f64], now: &Assessment<Vec<bool>, Values>) -> Result<Vec<f64>, Diagnosis> {
