@@ -2,7 +2,7 @@
 //! penalty (11) ([`super::penalty`]), the exact multipliers ([`super::signorini`]), the
 //! augmented Lagrangian's inner solves ([`super::alm`]) and Nitsche ([`crate::nitsche`]).
 //!
-//! A method supplies only its law ([`SemismoothLaw`]): the state set of an iterate (the active
+//! A method supplies only its law (`SemismoothLaw`): the state set of an iterate (the active
 //! set u_n − g > 0 of the complementarity, or any other method-defined set of point states),
 //! the relative residual and its stop test, the target of the linear system of a state set,
 //! and the step towards it. The driver owns the rest: the iterate, the report of each
