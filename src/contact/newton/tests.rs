@@ -139,3 +139,19 @@ fn force_balance_by_hand() {
     assert!(at(&[1.0, -1.0], &zero, &zero).measure(None, 2.0).accurate);
     assert_eq!(count(&m.active), 1);
 }
+
+/// A converged result has no failure; one marked not converged (e.g. by a caller's own check)
+/// without a cause reads as stalled at its last iteration and residual.
+#[test]
+fn a_failure_always_has_a_cause() {
+    let mut r = run::<false>(1.0, &NewtonOptions::default()).unwrap();
+    assert_eq!(r.failure(), None);
+    r.converged = false;
+    assert_eq!(
+        r.failure(),
+        Some(Diagnosis::Stalled {
+            iterations: 3,
+            residual: 0.0
+        })
+    );
+}
