@@ -27,16 +27,16 @@ pub enum CheckError {
     NotFinite {
         /// The value given.
         value: f64,
-        /// What is allowed, for the message.
-        allowed: String,
+        /// What is allowed.
+        allowed: Allowed,
     },
     /// A finite number outside `allowed`.
     #[error("{} is out of range; allowed: {allowed}", num(*value))]
     OutOfRange {
         /// The value given.
         value: f64,
-        /// What is allowed, for the message.
-        allowed: String,
+        /// What is allowed.
+        allowed: Allowed,
     },
     /// An integer outside lo..=hi.
     #[error("{value} is out of range; allowed: {lo} to {hi}")]
@@ -68,9 +68,34 @@ pub enum CheckError {
     Point(usize),
 }
 
+/// What a [`CheckError`] allows.
+#[derive(Clone, Copy, Debug, PartialEq, Error)]
+pub enum Allowed {
+    /// A range or a set said in words, e.g. "a finite number > 0".
+    #[error("{0}")]
+    Said(&'static str),
+    /// `what` from `lo` to `hi`, then `note` (e.g. why the range).
+    #[error("{what} from {} to {}{note}", num(*lo), num(*hi))]
+    Range {
+        /// What the value is, e.g. "a length".
+        what: &'static str,
+        /// The smallest allowed.
+        lo: f64,
+        /// The largest allowed.
+        hi: f64,
+        /// After the range: "" or " (why)".
+        note: &'static str,
+    },
+    /// An indentation depth within ± the body's `height`.
+    #[error("a depth between {} and {} (the body is {} high)", num(-height), num(*height), num(*height))]
+    Depth {
+        /// The body's height.
+        height: f64,
+    },
+}
+
 /// A finite number in (lo, hi) (open ends).
-pub fn open(value: f64, lo: f64, hi: f64, allowed: &str) -> Result<(), CheckError> {
-    let allowed = allowed.to_string();
+pub fn open(value: f64, lo: f64, hi: f64, allowed: Allowed) -> Result<(), CheckError> {
     if !value.is_finite() {
         Err(CheckError::NotFinite { value, allowed })
     } else if value > lo && value < hi {
@@ -80,7 +105,7 @@ pub fn open(value: f64, lo: f64, hi: f64, allowed: &str) -> Result<(), CheckErro
     }
 }
 /// A finite number in [lo, hi] (closed ends).
-pub fn closed(value: f64, lo: f64, hi: f64, allowed: &str) -> Result<(), CheckError> {
+pub fn closed(value: f64, lo: f64, hi: f64, allowed: Allowed) -> Result<(), CheckError> {
     if value.is_finite() && value >= lo && value <= hi {
         Ok(())
     } else {
@@ -89,25 +114,29 @@ pub fn closed(value: f64, lo: f64, hi: f64, allowed: &str) -> Result<(), CheckEr
 }
 /// A finite number > 0.
 pub fn positive(value: f64) -> Result<(), CheckError> {
-    open(value, 0.0, f64::INFINITY, "a finite number > 0")
+    open(value, 0.0, f64::INFINITY, Allowed::Said("a finite number > 0"))
 }
 /// A finite number ≥ 0.
 pub fn nonnegative(value: f64) -> Result<(), CheckError> {
     if value == 0.0 {
         Ok(())
     } else {
-        open(value, 0.0, f64::INFINITY, "a finite number ≥ 0")
+        open(value, 0.0, f64::INFINITY, Allowed::Said("a finite number ≥ 0"))
     }
 }
 /// A length: within [`LENGTH`].
 pub fn length(value: f64) -> Result<(), CheckError> {
     let (lo, hi) = LENGTH;
-    closed(
-        value,
+    closed(value, lo, hi, range("a length", lo, hi))
+}
+/// [`Allowed::Range`] without a note.
+fn range(what: &'static str, lo: f64, hi: f64) -> Allowed {
+    Allowed::Range {
+        what,
         lo,
         hi,
-        &format!("a length from {} to {}", num(lo), num(hi)),
-    )
+        note: "",
+    }
 }
 /// A length that may be 0 (a punch's flat half-width).
 pub fn length_or_zero(value: f64) -> Result<(), CheckError> {
@@ -116,22 +145,12 @@ pub fn length_or_zero(value: f64) -> Result<(), CheckError> {
 /// A coordinate or a signed offset: |value| at most [`LENGTH`]'s upper end.
 pub fn coordinate(value: f64) -> Result<(), CheckError> {
     let hi = LENGTH.1;
-    closed(
-        value,
-        -hi,
-        hi,
-        &format!("a finite number from {} to {}", num(-hi), num(hi)),
-    )
+    closed(value, -hi, hi, range("a finite number", -hi, hi))
 }
 /// Young's modulus: within [`YOUNG`].
 pub fn young(value: f64) -> Result<(), CheckError> {
     let (lo, hi) = YOUNG;
-    closed(
-        value,
-        lo,
-        hi,
-        &format!("a modulus from {} to {}", num(lo), num(hi)),
-    )
+    closed(value, lo, hi, range("a modulus", lo, hi))
 }
 /// The penalty parameter: ε > 0, or 0 for the exact constraint (its range depends on the
 /// mesh and the material: see [`crate::material::epsilon_range`]).
@@ -143,7 +162,7 @@ pub fn epsilon(value: f64) -> Result<(), CheckError> {
             value,
             0.0,
             f64::INFINITY,
-            "a finite number > 0, or 0 for the exact constraint",
+            Allowed::Said("a finite number > 0, or 0 for the exact constraint"),
         )
     }
 }
@@ -159,17 +178,7 @@ pub fn epsilon_in(value: f64, range: (f64, f64)) -> Result<(), CheckError> {
 /// The indentation depth: beyond the body's height it is meaningless (the obstacle would
 /// pass through the clamped base).
 pub fn depth(value: f64, height: f64) -> Result<(), CheckError> {
-    open(
-        value,
-        -height,
-        height,
-        &format!(
-            "a depth between {} and {} (the body is {} high)",
-            num(-height),
-            num(height),
-            num(height)
-        ),
-    )
+    open(value, -height, height, Allowed::Depth { height })
 }
 /// Poisson's ratio ν of an isotropic solid, short of incompressibility.
 pub fn poisson(value: f64) -> Result<(), CheckError> {
@@ -177,7 +186,9 @@ pub fn poisson(value: f64) -> Result<(), CheckError> {
         value,
         -1.0,
         0.5,
-        "−1 < ν < 0.5 (ν = 0.5 is incompressible, which the displacement formulation cannot represent)",
+        Allowed::Said(
+            "−1 < ν < 0.5 (ν = 0.5 is incompressible, which the displacement formulation cannot represent)",
+        ),
     )
 }
 /// An integer in lo..=hi.
@@ -219,11 +230,32 @@ mod tests {
             point(&[1.0]).unwrap_err().to_string(),
             "a point has 1 coordinates; allowed: [x, height]"
         );
-        assert_eq!(closed(1.0, 1.0, 1.0, "one"), Ok(()));
+        let one = Allowed::Said("one");
+        assert_eq!(closed(1.0, 1.0, 1.0, one), Ok(()));
         assert!(matches!(
-            closed(2.0, 1.0, 1.0, "one"),
+            closed(2.0, 1.0, 1.0, one),
             Err(CheckError::OutOfRange { value: 2.0, .. })
         ));
+        assert_eq!(
+            length(0.0),
+            Err(CheckError::OutOfRange {
+                value: 0.0,
+                allowed: Allowed::Range {
+                    what: "a length",
+                    lo: 1e-6,
+                    hi: 1e6,
+                    note: ""
+                }
+            })
+        );
+        assert_eq!(
+            length(0.0).unwrap_err().to_string(),
+            "0 is out of range; allowed: a length from 1e-6 to 1e6"
+        );
+        assert_eq!(
+            depth(3.0, 2.0).unwrap_err().to_string(),
+            "3 is out of range; allowed: a depth between -2 and 2 (the body is 2 high)"
+        );
         assert!(matches!(
             epsilon_in(1.0, (1e-3, 1e-2)),
             Err(CheckError::Epsilon { value: 1.0, .. })

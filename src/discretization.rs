@@ -11,7 +11,7 @@ use faer::Mat;
 
 use crate::check;
 use crate::contact::{ContactParams, ContactPoints, Method, Rule};
-use crate::error::{SolveError, Workload};
+use crate::error::{InputFault, SolveError, Workload};
 use crate::fem::factor::{Analysis, Factor};
 use crate::fem::memory::{Limits, Sizes};
 use crate::fem::{DofMap, FemError, Form, Integration, assemble};
@@ -330,22 +330,16 @@ pub fn check_params(
     n_points: usize,
     normals: usize,
 ) -> Result<(), SolveError> {
-    params.method.check().map_err(|e| SolveError::Input {
-        what: "the method",
-        message: e.to_string(),
-    })?;
+    params.method.check().map_err(InputFault::from)?;
     check::epsilon_in(params.epsilon, range).map_err(|source| SolveError::Range {
         what: "the penalty parameter ε",
         source,
     })?;
     if params.method.uses_epsilon() && params.epsilon == 0.0 {
-        return Err(SolveError::Input {
-            what: "the penalty parameter ε",
-            message: format!(
-                "{} needs ε > 0; ε = 0 is the exact method (`exact`)",
-                params.method.name()
-            ),
-        });
+        return Err(InputFault::NeedsEpsilon {
+            method: params.method.name(),
+        }
+        .into());
     }
     check::depth(params.obstacle.depth(), height).map_err(|source| SolveError::Range {
         what: "the indentation depth",

@@ -10,6 +10,13 @@ use crate::fem::error::gib;
 use crate::mesh::Element;
 use crate::text::num;
 
+mod diagnosis;
+mod input;
+mod method;
+pub use diagnosis::Diagnosis;
+pub use input::InputFault;
+pub use method::MethodError;
+
 /// Why a discretisation or a contact solve produced no result.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SolveError {
@@ -61,13 +68,8 @@ pub enum SolveError {
     },
     /// A parameter of the solve is outside the range where its answer means something (or
     /// where double precision can represent it).
-    #[error("{what}: {message}")]
-    Input {
-        /// The parameter, e.g. "the indentation depth".
-        what: &'static str,
-        /// What is wrong with it, and what is allowed.
-        message: String,
-    },
+    #[error(transparent)]
+    Input(#[from] InputFault),
     /// A value of the solve outside its range ([`crate::check`]).
     #[error("{what}: {source}")]
     Range {
@@ -86,7 +88,7 @@ pub enum SolveError {
         /// The last relative residual.
         residual: f64,
         /// Why, as far as the solver knows.
-        diagnosis: String,
+        diagnosis: Diagnosis,
     },
     /// A dense eigenvalue solve failed (faer's error).
     #[error("the eigenvalue solve of the inf-sup estimate failed: {0:?}")]
@@ -102,7 +104,7 @@ impl SolveError {
             SolveError::Kernel { .. }
                 | SolveError::TooLarge { .. }
                 | SolveError::OutOfMemory { .. }
-                | SolveError::Input { .. }
+                | SolveError::Input(_)
                 | SolveError::Range { .. }
         )
     }

@@ -185,9 +185,16 @@ pub enum StressError {
         /// The mesh's dofs, 2 per node.
         expected: usize,
     },
-    /// The L² projection's solve failed (the message says why).
-    #[error("the L² projection of the stresses failed: {0}")]
-    Projection(String),
+    /// The L² projection's conjugate gradients did not converge.
+    #[error(
+        "the L² projection of the stresses failed: conjugate gradients did not reach a relative residual of {tolerance:e} in {iterations} iterations"
+    )]
+    Projection {
+        /// The iterations taken.
+        iterations: usize,
+        /// The relative residual asked for.
+        tolerance: f64,
+    },
 }
 
 /// The stresses of a displacement field on a mesh.

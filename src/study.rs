@@ -14,12 +14,12 @@
 
 use std::ops::ControlFlow;
 
-use crate::contact::penalty::NewtonOptions;
+use crate::contact::newton::NewtonOptions;
 
 use crate::contact::ContactParams;
 use crate::contact::{Method, Rule};
 use crate::discretization::Discretization;
-use crate::error::SolveError;
+use crate::error::{InputFault, SolveError};
 use crate::grading::RefineEdges;
 use crate::mesh::Element;
 use crate::scenario::Scenario;
@@ -60,10 +60,7 @@ fn elements(schemes: &[(Element, Rule)]) -> Vec<Element> {
 /// The method a study's row at `epsilon` uses ([`Method::resolve`]: None and ε = 0 is
 /// `exact`), or why it has none.
 fn row_method(method: Option<Method>, epsilon: f64) -> Result<(Method, f64), SolveError> {
-    Method::resolve(method, epsilon).map_err(|e| SolveError::Input {
-        what: "the method",
-        message: e.to_string(),
-    })
+    Method::resolve(method, epsilon).map_err(|e| InputFault::from(e).into())
 }
 
 /// A row's contact parameters with `rule` at `epsilon`, and whether its method resolves (a row

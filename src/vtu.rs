@@ -51,7 +51,7 @@ pub enum VtuError {
     Io(PathBuf, io::Error),
     /// vtkio could not write the VTK XML.
     #[error("VTK XML: {0}")]
-    Vtk(String),
+    Vtk(#[source] vtkio::Error),
 }
 
 /// The Γ_C file that goes with the body's `path`: `FILE.vtu` → `FILE.contact.vtu`.
@@ -108,8 +108,7 @@ pub fn write(
 /// The VTK XML text of `vtk`.
 pub fn xml(vtk: Vtk) -> Result<Vec<u8>, VtuError> {
     let mut out = Vec::new();
-    vtk.write_xml(&mut out)
-        .map_err(|e| VtuError::Vtk(e.to_string()))?;
+    vtk.write_xml(&mut out).map_err(VtuError::Vtk)?;
     Ok(out)
 }
 

@@ -7,8 +7,9 @@ use clap::Args;
 
 use super::{CliError, usage, values};
 use crate::check::{self, CheckError};
-use crate::contact::method::{Gamma0, MethodError};
+use crate::contact::method::Gamma0;
 use crate::contact::{Method, Rule};
+use crate::error::MethodError;
 use crate::mesh::Element;
 use crate::mesh::MAX_LEVEL;
 use crate::output::Format;

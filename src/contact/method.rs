@@ -14,6 +14,8 @@
 
 use serde::Serialize;
 
+use crate::check::Allowed;
+use crate::error::MethodError;
 use crate::text::num;
 
 /// θ of Nitsche's method: 1 symmetric, 0 incomplete, −1 skew-symmetric.
@@ -50,12 +52,11 @@ impl Gamma0 {
         if text.eq_ignore_ascii_case("auto") {
             return Ok(Gamma0::Auto);
         }
-        text.parse().map(Gamma0::Given).map_err(|_| {
-            MethodError::Gamma0Text(format!(
-                "`{}` is neither `auto` nor a number",
-                crate::text::sanitize(text)
-            ))
-        })
+        text.parse()
+            .map(Gamma0::Given)
+            .map_err(|_| MethodError::Gamma0Text {
+                given: text.to_string(),
+            })
     }
 }
 
@@ -142,10 +143,10 @@ impl Method {
                 gamma0: DEFAULT_GAMMA0,
             },
             _ => {
-                return Err(MethodError::Name(format!(
-                    "`{name}` is not a method; allowed: {}",
-                    NAMES.join(", ")
-                )));
+                return Err(MethodError::Name {
+                    given: name.to_string(),
+                    allowed: &NAMES,
+                });
             }
         };
         method.with(theta, gamma0, alm_tol)
@@ -219,7 +220,9 @@ impl Method {
                 tolerance,
                 0.0,
                 1.0,
-                "a relative tolerance 0 < tol < 1 (tolerances below about 1e-14 are not reachable in double precision and end as not converged)",
+                Allowed::Said(
+                    "a relative tolerance 0 < tol < 1 (tolerances below about 1e-14 are not reachable in double precision and end as not converged)",
+                ),
             )
             .map_err(MethodError::Tolerance),
             Method::Nitsche { theta, gamma0 } => {
@@ -232,11 +235,12 @@ impl Method {
                     gamma0,
                     lo,
                     hi,
-                    &format!(
-                        "`auto` or γ₀ from {} to {} (γ = γ₀·E/h; γ₀ ≤ 1e8 keeps Nitsche's equivalent penalty εE/h = 1/γ₀ above round-off)",
-                        num(lo),
-                        num(hi)
-                    ),
+                    Allowed::Range {
+                        what: "`auto` or γ₀",
+                        lo,
+                        hi,
+                        note: " (γ = γ₀·E/h; γ₀ ≤ 1e8 keeps Nitsche's equivalent penalty εE/h = 1/γ₀ above round-off)",
+                    },
                 )
                 .map_err(MethodError::Gamma0)
             }
@@ -393,59 +397,7 @@ fn check_theta(value: f64) -> Result<i8, MethodError> {
     THETAS
         .into_iter()
         .find(|&t| f64::from(t) == value)
-        .ok_or_else(|| {
-            MethodError::Theta(format!(
-                "θ = {} is not allowed; allowed: 1 (symmetric), 0 (incomplete), -1 (skew-symmetric)",
-                num(value)
-            ))
-        })
-}
-
-/// A method or one of its parameters that is not allowed; the message names what is.
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
-pub enum MethodError {
-    /// Not one of the methods ([`NAMES`]).
-    #[error("{0}")]
-    Name(String),
-    /// A θ not in [`THETAS`].
-    #[error("{0}")]
-    Theta(String),
-    /// A given γ₀ outside [`GAMMA0_RANGE`].
-    #[error("{0}")]
-    Gamma0(crate::check::CheckError),
-    /// A γ₀ that is neither `auto` nor a number.
-    #[error("{0}")]
-    Gamma0Text(String),
-    /// An ALM tolerance outside (0, 1).
-    #[error("{0}")]
-    Tolerance(crate::check::CheckError),
-    /// A parameter given to a method that does not take it.
-    #[error("`{key}` is a parameter of {takes}, not of {method}")]
-    NotTaken {
-        /// The parameter's key, e.g. `alm_tol`.
-        key: &'static str,
-        /// The method it was given to.
-        method: &'static str,
-        /// The method that takes it.
-        takes: &'static str,
-    },
-    /// `penalty` or `alm` (the named one) at ε = 0.
-    #[error("{0} needs a penalty parameter ε > 0; ε = 0 is the exact method (`exact`)")]
-    NeedsEpsilon(&'static str),
-}
-
-impl MethodError {
-    /// The key of the scenario file (and, with `--` and `_` as `-`, the flag) at fault.
-    pub fn key(&self) -> &'static str {
-        match self {
-            MethodError::Name(_) => "method",
-            MethodError::Theta(_) => "theta",
-            MethodError::Gamma0(_) | MethodError::Gamma0Text(_) => "gamma0",
-            MethodError::Tolerance(_) => "alm_tol",
-            MethodError::NotTaken { key, .. } => key,
-            MethodError::NeedsEpsilon(_) => "epsilon",
-        }
-    }
+        .ok_or(MethodError::Theta { theta: value })
 }
 
 #[cfg(test)]
@@ -460,7 +412,7 @@ mod tests {
         }
         assert!(matches!(
             Method::parse("foo", None, None, None),
-            Err(MethodError::Name(m)) if m.contains("penalty, exact, alm, nitsche")
+            Err(e @ MethodError::Name { .. }) if e.to_string() == "`foo` is not a method; allowed: penalty, exact, alm, nitsche"
         ));
     }
 
@@ -483,7 +435,7 @@ mod tests {
         );
         for bad in [2.0, 0.5, -2.0, f64::NAN] {
             assert!(
-                matches!(n(Some(bad), None), Err(MethodError::Theta(m)) if m.contains("allowed: 1 (symmetric), 0 (incomplete), -1"))
+                matches!(n(Some(bad), None), Err(MethodError::Theta { theta }) if theta.to_bits() == bad.to_bits())
             );
         }
         for bad in [-1.0, 0.0, 1e-9, 1e9, f64::INFINITY] {
@@ -495,7 +447,7 @@ mod tests {
         assert_eq!(Gamma0::parse(" AUTO "), Ok(Gamma0::Auto));
         assert_eq!(Gamma0::parse("1e3"), Ok(Gamma0::Given(1e3)));
         assert!(
-            matches!(Gamma0::parse("automatic"), Err(MethodError::Gamma0Text(m)) if m.contains("neither `auto` nor a number"))
+            matches!(Gamma0::parse("automatic"), Err(MethodError::Gamma0Text { given }) if given == "automatic")
         );
         for bad in [0.0, 1.0, -1e-3, f64::NAN] {
             assert!(matches!(

@@ -8,6 +8,7 @@ pub mod gap;
 pub mod half_plane;
 pub mod hertz;
 pub mod method;
+pub mod newton;
 pub mod params;
 pub mod penalty;
 pub mod pressure;

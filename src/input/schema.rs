@@ -5,7 +5,8 @@ use serde::Deserialize;
 use toml::Spanned;
 
 use crate::contact::Rule;
-use crate::contact::method::{Gamma0, MethodError};
+use crate::contact::method::Gamma0;
+use crate::error::MethodError;
 use crate::fem::Integration;
 use crate::material::Plane;
 use crate::mesh::Element;

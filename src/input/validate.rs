@@ -162,7 +162,7 @@ impl Locator<'_> {
                 _ => Some(raw.epsilon.span()),
             }
         };
-        let fail = |e: crate::contact::method::MethodError| {
+        let fail = |e: crate::error::MethodError| {
             let key = e.key();
             // A parameter without a method is reported at the parameter.
             let span = at(key).or_else(|| at("method")).or_else(|| at("epsilon"));

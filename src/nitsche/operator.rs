@@ -10,8 +10,7 @@ use super::couplings::Couplings;
 use super::{NitscheParams, cache, couplings};
 use crate::contact::{ContactPoints, Rule};
 use crate::discretization::Discretization;
-use crate::error::SolveError;
-use crate::text::num;
+use crate::error::{InputFault, SolveError};
 
 /// Everything one (rule, θ, γ₀) needs: H and the maps back to σ_n.
 pub(super) struct Operator {
@@ -85,20 +84,16 @@ impl Operator {
         };
         // λ_max(C_γ^½ G_SS C_γ^½) = γ₀*/γ₀: computed only to say what γ₀ would do.
         let refused = || {
-            let star = scaled
+            let threshold = scaled
                 .self_adjoint_eigenvalues(Side::Lower)
                 .ok()
                 .and_then(|e| e.last().copied())
-                .map_or(String::new(), |l| {
-                    format!(" (here γ₀* = {:.3})", l * params.gamma0)
-                });
-            SolveError::Input {
-                what: "Nitsche's γ₀",
-                message: format!(
-                    "{} is too small for θ = {theta}: the method is stable for γ₀ > ((1 + θ)²/4)·γ₀*{star}, where K − ((1 + θ)²/4)(1/γ)∫σ_n σ_n stays positive definite (Chouly and Hild's condition); choose a larger γ₀ or θ = −1",
-                    num(params.gamma0)
-                ),
-            }
+                .map(|l| l * params.gamma0);
+            SolveError::from(InputFault::Unstable {
+                gamma0: params.gamma0,
+                theta,
+                threshold,
+            })
         };
         if kappa > 0.0 && kappa != theta && shifted(kappa).llt(Side::Lower).is_err() {
             return Err(refused());

@@ -7,8 +7,7 @@ use super::{NitscheParams, couplings};
 use crate::contact::Rule;
 use crate::contact::method::{AUTO_GAMMA0_FACTOR, GAMMA0_RANGE, Gamma0};
 use crate::discretization::Discretization;
-use crate::error::SolveError;
-use crate::text::num;
+use crate::error::{InputFault, SolveError};
 
 /// γ₀* of θ = 1 for `rule` on `disc`: K − (1/γ)SᵀWS is positive definite exactly for
 /// γ₀ > γ₀* = λ_max(C^½ G_SS C^½), C = diag(w_q h_q / E). θ needs γ₀ > ((1 + θ)²/4)·γ₀*
@@ -38,14 +37,7 @@ pub fn gamma0(disc: &Discretization, rule: Rule, gamma0: Gamma0) -> Result<f64, 
         let (lo, hi) = GAMMA0_RANGE;
         let chosen = (AUTO_GAMMA0_FACTOR * stability_threshold(disc, rule)?).max(lo);
         if chosen.is_nan() || chosen > hi {
-            return Err(SolveError::Input {
-                what: "Nitsche's γ₀",
-                message: format!(
-                    "`auto` would choose {} (10·γ₀*), above {} where γ's products leave double precision: the cells along Γ_C are too thin for Nitsche's method",
-                    num(chosen),
-                    num(hi)
-                ),
-            });
+            return Err(InputFault::AutoGamma0 { chosen, limit: hi }.into());
         }
         return Ok(chosen);
     };
@@ -55,20 +47,16 @@ pub fn gamma0(disc: &Discretization, rule: Rule, gamma0: Gamma0) -> Result<f64, 
 /// θ and γ₀ checked: θ ∈ [−1, 1], γ₀ within [`GAMMA0_RANGE`].
 pub fn check_params(nitsche: &NitscheParams) -> Result<(), SolveError> {
     if !(nitsche.theta.is_finite() && (-1.0..=1.0).contains(&nitsche.theta)) {
-        return Err(SolveError::Input {
-            what: "Nitsche's θ",
-            message: format!(
-                "{} is outside [−1, 1] (1 symmetric, 0 incomplete, −1 skew-symmetric)",
-                nitsche.theta
-            ),
-        });
+        return Err(InputFault::Theta { theta: nitsche.theta }.into());
     }
     let (lo, hi) = GAMMA0_RANGE;
     if !(nitsche.gamma0.is_finite() && (lo..=hi).contains(&nitsche.gamma0)) {
-        return Err(SolveError::Input {
-            what: "Nitsche's γ₀",
-            message: format!("{} is outside [{lo:e}, {hi:e}] (γ = γ₀·E/h)", nitsche.gamma0),
-        });
+        return Err(InputFault::Gamma0 {
+            gamma0: nitsche.gamma0,
+            lo,
+            hi,
+        }
+        .into());
     }
     Ok(())
 }

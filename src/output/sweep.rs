@@ -162,6 +162,7 @@ mod tests {
     use super::super::csv::csv_cell;
     use super::*;
     use crate::contact::Method;
+    use crate::error::InputFault;
     use crate::mesh::Element;
     use crate::solve::sweep;
 
@@ -176,10 +177,7 @@ mod tests {
             obstacle: scenario.obstacle.clone(),
         };
         let sol = sweep(&disc, std::slice::from_ref(&params)).remove(0).unwrap();
-        let error = SolveError::Input {
-            what: "the method",
-            message: "a reason, with a comma".into(),
-        };
+        let error = SolveError::Input(InputFault::Theta { theta: 2.0 });
         vec![
             SweepRow::Solved(Box::new(SolveReport::new(&scenario, 0, &disc, &sol))),
             SweepRow::Failed(SweepFailure::new(&scenario, &disc, &params, &error)),
@@ -238,7 +236,9 @@ mod tests {
         let max_p: f64 = solved[12].parse().unwrap();
         assert!(load > 0.0 && max_p > 0.0);
         assert!(
-            lines[2].ends_with(",\"the method: a reason, with a comma\""),
+            lines[2].ends_with(
+                ",\"Nitsche's θ: 2 is outside [−1, 1] (1 symmetric, 0 incomplete, −1 skew-symmetric)\""
+            ),
             "{}",
             lines[2]
         );

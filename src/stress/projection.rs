@@ -149,7 +149,8 @@ pub(super) fn conjugate_gradients(
         }
         rz = rz_next;
     }
-    Err(StressError::Projection(format!(
-        "conjugate gradients did not reach a relative residual of {TOLERANCE:e} in {MAX_ITERATIONS} iterations"
-    )))
+    Err(StressError::Projection {
+        iterations: MAX_ITERATIONS,
+        tolerance: TOLERANCE,
+    })
 }

@@ -4,19 +4,8 @@
 //! all, and a row is `ok` only when every number it reports is finite.
 
 use super::{Reference, Status, StudyRow};
-use crate::error::SolveError;
+use crate::error::{InputFault, SolveError};
 use crate::scenario::Scenario;
-use crate::text::num;
-
-/// The refusal of a study whose reference would have no contact.
-fn no_contact(why: String) -> SolveError {
-    SolveError::Input {
-        what: "the reference has no contact",
-        message: format!(
-            "{why}, so p_ref = 0 on Γ_C and the relative errors, which divide by its norms, are undefined; choose a depth > 0"
-        ),
-    }
-}
 
 /// Refuse a study of `scenario` before anything is solved when its obstacle does not reach
 /// the body (depth ≤ 0: the lowest point of the obstacle at or above the top; the body is
@@ -26,10 +15,7 @@ pub fn check_contact(scenario: &Scenario) -> Result<(), SolveError> {
     if depth > 0.0 {
         return Ok(());
     }
-    Err(no_contact(format!(
-        "the obstacle at depth {} does not reach the body",
-        num(depth)
-    )))
+    Err(InputFault::NoContact { depth }.into())
 }
 
 impl Reference {
@@ -37,23 +23,20 @@ impl Reference {
     pub fn check_meaningful(&self) -> Result<(), SolveError> {
         let norms = [self.p_norm, self.u_norm, self.load];
         if norms.iter().any(|v| !v.is_finite()) {
-            return Err(SolveError::Input {
-                what: "the reference",
-                message: format!(
-                    "its norms are not finite (‖p_ref‖₀ = {}, ‖u_ref‖₁ = {}, P_ref = {}); relative errors against it are undefined",
-                    num(self.p_norm),
-                    num(self.u_norm),
-                    num(self.load)
-                ),
-            });
+            return Err(InputFault::InfiniteReference {
+                p_norm: self.p_norm,
+                u_norm: self.u_norm,
+                load: self.load,
+            }
+            .into());
         }
         if norms.iter().any(|&v| v <= 0.0) {
-            return Err(no_contact(format!(
-                "its norms are zero (‖p_ref‖₀ = {}, ‖u_ref‖₁ = {}, P_ref = {})",
-                num(self.p_norm),
-                num(self.u_norm),
-                num(self.load)
-            )));
+            return Err(InputFault::ZeroReference {
+                p_norm: self.p_norm,
+                u_norm: self.u_norm,
+                load: self.load,
+            }
+            .into());
         }
         Ok(())
     }
@@ -102,6 +85,14 @@ mod tests {
     fn a_reference_without_contact_or_with_infinite_norms_is_refused() {
         assert_eq!(reference(1.0).check_meaningful(), Ok(()));
         let zero = reference(0.0).check_meaningful().unwrap_err();
+        assert_eq!(
+            zero,
+            SolveError::Input(InputFault::ZeroReference {
+                p_norm: 0.0,
+                u_norm: 0.0,
+                load: 0.0
+            })
+        );
         assert!(
             zero.to_string().starts_with("the reference has no contact"),
             "{zero}"
@@ -109,11 +100,17 @@ mod tests {
         assert!(zero.is_input());
         // 1e200 squared overflows: its norms are infinite.
         let huge = reference(1e200).check_meaningful().unwrap_err();
-        assert!(huge.to_string().contains("not finite"), "{huge}");
+        assert!(
+            matches!(huge, SolveError::Input(InputFault::InfiniteReference { p_norm, .. }) if p_norm == f64::INFINITY),
+            "{huge}"
+        );
         let mut s = Scenario::paper();
         assert_eq!(check_contact(&s), Ok(()));
         s.obstacle = s.obstacle.with_depth(-0.5);
-        assert!(check_contact(&s).unwrap_err().to_string().contains("depth -0.5"));
+        assert_eq!(
+            check_contact(&s),
+            Err(SolveError::Input(InputFault::NoContact { depth: -0.5 }))
+        );
     }
 
     /// A row whose errors are NaN is not `ok`.

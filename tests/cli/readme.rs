@@ -150,54 +150,90 @@ fn substitute(args: &[String], tmp: &Path) -> Vec<String> {
     out
 }
 
+/// Why a documented command's run breaks its promise.
+#[derive(Debug, thiserror::Error)]
+enum Broken {
+    #[error("exit {code}, documented {documented}: {stderr}")]
+    Exit {
+        code: i32,
+        documented: i32,
+        stderr: String,
+    },
+    #[error("not JSON: {0}")]
+    NotJson(serde_json::Error),
+    #[error("an empty JSON array")]
+    EmptyJson,
+    #[error("no CSV header")]
+    NoHeader,
+    #[error("not a CSV table: {0}")]
+    NotCsv(String),
+    #[error("the output lacks {0:?}")]
+    Lacks(&'static str),
+    #[error("no {what} written: {source}")]
+    NotWritten {
+        what: &'static str,
+        source: std::io::Error,
+    },
+    #[error("the {0} file is not what it should be")]
+    Malformed(&'static str),
+    #[error("no size")]
+    NoSize,
+    #[error("{got} lines, not {rows}")]
+    Lines { got: usize, rows: usize },
+    #[error("no {}", .0.display())]
+    Missing(PathBuf),
+    #[error("no check for `riplab {0}`: add one to tests/cli/readme.rs")]
+    NoCheck(String),
+}
+
 /// What the command printed is what it promises: a check per subcommand and format.
-fn check_output(args: &[String], stdout: &str, tmp: &Path) -> Result<(), String> {
+fn check_output(args: &[String], stdout: &str, tmp: &Path) -> Result<(), Broken> {
     let has = |flag: &str, value: &str| args.windows(2).any(|w| w[0] == flag && w[1] == value);
     let json = has("--format", "json") || has("-f", "json");
     let csv = has("--format", "csv") || has("-f", "csv");
     if json {
-        let value: serde_json::Value = serde_json::from_str(stdout).map_err(|e| format!("not JSON: {e}"))?;
+        let value: serde_json::Value = serde_json::from_str(stdout).map_err(Broken::NotJson)?;
         let objects: Vec<&serde_json::Value> = match &value {
             serde_json::Value::Array(a) => a.iter().collect(),
             other => vec![other],
         };
         if objects.is_empty() {
-            return Err("an empty JSON array".into());
+            return Err(Broken::EmptyJson);
         }
         return Ok(());
     }
     if csv {
         let mut lines = stdout.lines();
-        let header = lines.next().ok_or("no CSV header")?;
+        let header = lines.next().ok_or(Broken::NoHeader)?;
         let columns = header.split(',').count();
         if columns < 2 || lines.clone().count() == 0 {
-            return Err(format!("not a CSV table: {header}"));
+            return Err(Broken::NotCsv(header.to_string()));
         }
         return Ok(());
     }
-    let expect = |needle: &str| {
+    let expect = |needle: &'static str| {
         if stdout.contains(needle) {
             Ok(())
         } else {
-            Err(format!("the output lacks {needle:?}"))
+            Err(Broken::Lacks(needle))
+        }
+    };
+    let written = |flag: &str, what: &'static str, mark: &str| -> Result<(), Broken> {
+        let Some(i) = args.iter().position(|a| a == flag) else {
+            return Ok(());
+        };
+        let text = std::fs::read_to_string(tmp.join(Path::new(&args[i + 1]).file_name().unwrap()))
+            .map_err(|source| Broken::NotWritten { what, source })?;
+        if text.contains(mark) {
+            Ok(())
+        } else {
+            Err(Broken::Malformed(what))
         }
     };
     match args[0].as_str() {
         "solve" => {
-            if let Some(i) = args.iter().position(|a| a == "--vtu") {
-                let vtu = std::fs::read_to_string(tmp.join(Path::new(&args[i + 1]).file_name().unwrap()))
-                    .map_err(|e| format!("no VTU written: {e}"))?;
-                if !vtu.contains("<VTKFile") {
-                    return Err("the VTU file is not VTK XML".into());
-                }
-            }
-            if let Some(i) = args.iter().position(|a| a == "--plot") {
-                let svg = std::fs::read_to_string(tmp.join(Path::new(&args[i + 1]).file_name().unwrap()))
-                    .map_err(|e| format!("no SVG written: {e}"))?;
-                if !svg.contains("<svg") {
-                    return Err("the plot is not SVG".into());
-                }
-            }
+            written("--vtu", "VTU", "<VTKFile")?;
+            written("--plot", "SVG", "<svg")?;
             let sweep = args
                 .windows(2)
                 .any(|w| ["--epsilon", "--depth", "--kappa"].contains(&w[0].as_str()) && w[1].contains(','));
@@ -215,9 +251,10 @@ fn check_output(args: &[String], stdout: &str, tmp: &Path) -> Result<(), String>
                 .split(['x', '×'])
                 .nth(1)
                 .and_then(|r| r.parse().ok())
-                .ok_or("a size")?;
-            if stdout.lines().count() != rows {
-                return Err(format!("{} lines, not {rows}", stdout.lines().count()));
+                .ok_or(Broken::NoSize)?;
+            let got = stdout.lines().count();
+            if got != rows {
+                return Err(Broken::Lines { got, rows });
             }
             expect("riplab")
         }
@@ -229,16 +266,11 @@ fn check_output(args: &[String], stdout: &str, tmp: &Path) -> Result<(), String>
                 .find(|w| w[0] == "--handout")
                 .map(|w| w[1].clone());
             let index = Path::new(&dir.unwrap_or_default()).join("index.md");
-            index
-                .is_file()
-                .then_some(())
-                .ok_or(format!("no {}", index.display()))
+            index.is_file().then_some(()).ok_or(Broken::Missing(index))
         }
         "completions" => expect("riplab"),
         "man" => expect(".TH riplab"),
-        other => Err(format!(
-            "no check for `riplab {other}`: add one to tests/cli/readme.rs"
-        )),
+        other => Err(Broken::NoCheck(other.to_string())),
     }
 }
 
@@ -269,7 +301,11 @@ fn every_documented_command_runs() {
         );
         let code = out.status.code().unwrap_or(-1);
         let verdict = if code != doc.exit {
-            Err(format!("exit {code}, documented {}: {stderr}", doc.exit))
+            Err(Broken::Exit {
+                code,
+                documented: doc.exit,
+                stderr: stderr.to_string(),
+            })
         } else {
             check_output(&args, &stdout, &tmp)
         };

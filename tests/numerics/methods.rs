@@ -5,11 +5,12 @@
 use std::ops::ControlFlow;
 
 use crate::common::paper_with;
-use riplab::contact::ContactParams;
 use riplab::contact::method::Gamma0;
-use riplab::contact::penalty::NewtonOptions;
+use riplab::contact::newton::NewtonOptions;
+use riplab::contact::{ContactParams, alm};
 use riplab::contact::{Method, Obstacle, Rule};
 use riplab::discretization::Discretization;
+use riplab::error::Diagnosis;
 use riplab::fem::Integration;
 use riplab::material::{Material, Plane};
 use riplab::mesh::{Element, Mesh};
@@ -303,5 +304,30 @@ fn a_warm_start_from_another_depth_gives_the_answer_from_rest() {
                 assert!(rel_max(&warm.pbar, &rest.pbar) <= 1e-9, "{what}: p̄");
             }
         }
+    }
+}
+
+/// The ALM on M2 (q1 + gauss2: more points than normal displacements, so plain Uzawa) at
+/// ε = 1e-6 on the paper's problem at level 3 does not settle in [`alm::MAX_OUTER`] updates:
+/// the result is not converged, and its diagnosis is the updates', with their count and a
+/// relative change above the tolerance.
+#[test]
+fn an_alm_that_does_not_settle_says_why() {
+    let mut scenario = riplab::scenario::Scenario::paper();
+    scenario.level = 3;
+    scenario.rule = Rule::Gauss2;
+    scenario.epsilon = 1e-6;
+    scenario.method = Method::Alm {
+        tolerance: riplab::contact::method::DEFAULT_ALM_TOL,
+    };
+    let (_, sol) = riplab::solve::solve_scenario(&scenario).unwrap();
+    assert!(!sol.newton.converged);
+    assert_eq!(sol.outer_iterations, Some(alm::MAX_OUTER));
+    match sol.newton.diagnosis {
+        Some(Diagnosis::Updates { updates, change }) => {
+            assert_eq!(updates, alm::MAX_OUTER);
+            assert!(change > riplab::contact::method::DEFAULT_ALM_TOL, "{change:e}");
+        }
+        other => panic!("{other:?}"),
     }
 }

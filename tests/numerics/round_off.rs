@@ -2,12 +2,13 @@
 //! loses digits as ε shrinks; a solve warns where the estimate of that round-off exceeds 1e-6
 //! of p, and the estimate bounds the error measured against the exact constraint.
 
+use riplab::error::Diagnosis;
 use riplab::scenario::Scenario;
 use riplab::solve::solve_scenario;
 use riplab::warning::{ROUND_OFF_LIMIT, Warning};
 
 /// The paper's problem at level 4, M3 (unique multipliers at ε = 0), at `epsilon`.
-fn solve(epsilon: f64) -> riplab::solution::Solution {
+fn solve_at(epsilon: f64) -> riplab::solution::Solution {
     let mut scenario = Scenario::paper();
     scenario.level = 4;
     scenario.rule = riplab::contact::Rule::Trapezoid;
@@ -17,7 +18,12 @@ fn solve(epsilon: f64) -> riplab::solution::Solution {
     } else {
         riplab::contact::Method::Penalty
     };
-    let (_, sol) = solve_scenario(&scenario).unwrap();
+    solve_scenario(&scenario).unwrap().1
+}
+
+/// [`solve_at`], converged.
+fn solve(epsilon: f64) -> riplab::solution::Solution {
+    let sol = solve_at(epsilon);
     assert!(sol.newton.converged, "ε = {epsilon}");
     sol
 }
@@ -56,4 +62,13 @@ fn a_penalty_below_the_round_off_onset_warns() {
         let text = sol.warnings.iter().map(|w| w.to_string()).collect::<String>();
         assert!(text.contains("round-off") && text.contains("κ = εE/h"), "{text}");
     }
+}
+
+/// Far below the onset (ε = 1e-20, κ = 1.6e-16) round-off in u_n − g, amplified by 1/ε, is as
+/// large as the forces: no iterate is certified, and the diagnosis says so with the ε.
+#[test]
+fn a_penalty_swamped_by_round_off_is_not_converged() {
+    let sol = solve_at(1e-20);
+    assert!(!sol.newton.converged);
+    assert_eq!(sol.newton.diagnosis, Some(Diagnosis::Swamped { epsilon: 1e-20 }));
 }

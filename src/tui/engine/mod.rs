@@ -11,7 +11,7 @@ use std::sync::{Arc, Mutex, OnceLock};
 use std::time::Instant;
 
 use crate::contact::ContactParams;
-use crate::contact::penalty::NewtonOptions;
+use crate::contact::newton::NewtonOptions;
 use crate::contact::{Method, Rule, carried_forces};
 use crate::discretization::Discretization;
 use crate::error::SolveError;
@@ -53,11 +53,25 @@ pub enum Use {
     Estimate,
 }
 
+/// The points a solve's contact forces live on: the mesh, the rule and the kind of method
+/// (Nitsche's state lives on its own points, a point two edges share appearing twice; the
+/// other methods' on the rule's).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct ForcePoints {
+    /// The mesh level.
+    level: u32,
+    /// The element.
+    element: Element,
+    /// The contact rule.
+    rule: Rule,
+    /// Whether they are Nitsche's edge points.
+    nitsche: bool,
+}
+
 /// What the last contact solve leaves for the next to start from.
 struct Warm {
-    /// The mesh, rule and kind of method its forces belong to: Nitsche's state lives on its
-    /// own points (a point two edges share appears twice), the other methods' on the rule's.
-    on: (u32, Element, Rule, bool),
+    /// The points its forces belong to.
+    points: ForcePoints,
     /// The contact forces, the Newton iteration's state (docs/design.md §3).
     forces: Vec<f64>,
     /// The abscissae of the rule's points and the pressure p there: carried to another mesh or
@@ -124,7 +138,9 @@ impl Engine {
         let (rule, method) = self
             .warm
             .as_ref()
-            .map_or((self.scenario.rule, self.scenario.method), |w| (w.on.2, w.method));
+            .map_or((self.scenario.rule, self.scenario.method), |w| {
+                (w.points.rule, w.method)
+            });
         self.plan_for(level, element, rule, method)
     }
 
@@ -231,7 +247,7 @@ impl Engine {
     /// beside the mesh in use.
     pub fn next_prefetch(&self) -> Option<(u32, Element)> {
         let (level, element, _) = self.cache.last()?;
-        let last = self.warm.as_ref().map(|w| (w.on.2, w.method));
+        let last = self.warm.as_ref().map(|w| (w.points.rule, w.method));
         let candidates = [level.checked_add(1), level.checked_sub(1)];
         candidates
             .into_iter()
@@ -337,11 +353,16 @@ impl Engine {
             obstacle: self.scenario.obstacle.with_depth(key.depth),
         };
         let nitsche = matches!(key.method, Method::Nitsche { .. });
-        let on = (key.level, key.element, key.rule, nitsche);
+        let points = ForcePoints {
+            level: key.level,
+            element: key.element,
+            rule: key.rule,
+            nitsche,
+        };
         // The last forces if they live on these points; else the last pressure carried to
         // the rule's points (Nitsche shares them between its edge points).
         let (warm, carried) = match &self.warm {
-            Some(w) if w.on == on => (Some(w.forces.clone()), false),
+            Some(w) if w.points == points => (Some(w.forces.clone()), false),
             Some(w) => {
                 let to = disc.contact_points(key.rule);
                 (Some(carried_forces(&w.x, &w.p, &to)), true)
@@ -373,7 +394,7 @@ impl Engine {
         match result {
             Ok(solution) => {
                 self.warm = Some(Warm {
-                    on,
+                    points,
                     forces: solution.newton.forces.clone(),
                     x: solution.points.points.iter().map(|q| q.x).collect(),
                     p: solution.p.clone(),

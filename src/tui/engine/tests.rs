@@ -126,7 +126,12 @@ fn a_carried_start_that_fails_is_solved_again_from_rest() {
     let rest = solve(&mut Engine::new(scenario.clone()));
     let mut engine = Engine::new(scenario.clone());
     engine.warm = Some(Warm {
-        on: (2, key.element, key.rule, false),
+        points: ForcePoints {
+            level: 2,
+            element: key.element,
+            rule: key.rule,
+            nitsche: false,
+        },
         forces: Vec::new(),
         x: vec![-1.0, 1.0],
         p: vec![f64::NAN, f64::NAN],
