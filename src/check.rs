@@ -113,6 +113,7 @@ pub fn closed(value: f64, lo: f64, hi: f64, allowed: Allowed) -> Result<(), Chec
     }
 }
 /// A finite number > 0.
+#[cfg(feature = "tui")]
 pub fn positive(value: f64) -> Result<(), CheckError> {
     open(value, 0.0, f64::INFINITY, Allowed::Said("a finite number > 0"))
 }

@@ -5,7 +5,7 @@
 
 use faer::linalg::evd::EvdError;
 
-use crate::check::CheckError;
+pub use crate::check::{Allowed, CheckError};
 use crate::fem::error::gib;
 use crate::mesh::Element;
 use crate::text::num;
@@ -70,7 +70,7 @@ pub enum SolveError {
     /// where double precision can represent it).
     #[error(transparent)]
     Input(#[from] InputFault),
-    /// A value of the solve outside its range ([`crate::check`]).
+    /// A value of the solve outside its range ([`CheckError`]).
     #[error("{what}: {source}")]
     Range {
         /// The value, e.g. "the indentation depth".

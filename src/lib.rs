@@ -6,8 +6,7 @@
 //! The paper's problem in a few lines (M1 at level 1, the paper's 128 elements):
 //!
 //! ```
-//! use riplab::scenario::Scenario;
-//! use riplab::solve::solve_scenario;
+//! use riplab::{Scenario, solve_scenario};
 //!
 //! let mut scenario = Scenario::paper();
 //! scenario.level = 1;
@@ -21,8 +20,14 @@
 //! assert!((trapezoid - sol.load).abs() < 1e-9 * sol.load);
 //! ```
 //!
-//! Without default features (`cargo build --no-default-features`) the library builds without
-//! the terminal lab (`tui`) and the command line (`cli`).
+//! The core is re-exported here: a [`Scenario`] (the paper's, or a TOML file: [`ScenarioError`]
+//! says where it is wrong), [`solve_scenario`] or a [`Discretization`] and [`sweep`] with a
+//! [`Method`] and a [`Rule`], the [`Solution`] (p, p̄, the load, the displacement), the inf-sup
+//! estimate [`inf_sup`], the refinement [`study()`], the stresses [`quadrature_stresses`] and the
+//! [`vtu`] files; [`SolveError`] is every way a solve fails. The modules hold the rest of each
+//! concept's vocabulary. The terminal lab and the command line are private: the binary runs
+//! them through [`run_command_line`], and without default features (`cargo build
+//! --no-default-features`) the library builds without them.
 
 // Every public item is documented; CI's clippy makes a missing doc an error.
 #![warn(missing_docs)]
@@ -31,8 +36,22 @@
 #[cfg(test)]
 extern crate self as riplab;
 
+// The core: what a program needs to pose the paper's problem, solve it and analyse the
+// result; each item's home module holds the rest of its vocabulary.
+pub use contact::{Method, Rule};
+pub use discretization::Discretization;
+pub use error::SolveError;
+pub use infsup::{InfSup, inf_sup};
+pub use input::ScenarioError;
+pub use mesh::Element;
+pub use scenario::Scenario;
+pub use solution::Solution;
+pub use solve::{solve_scenario, sweep};
+pub use stress::{StressField, quadrature_stresses};
+pub use study::{Study, study};
+
 pub mod cache;
-pub mod check;
+pub(crate) mod check;
 #[cfg(feature = "cli")]
 mod cli;
 pub mod contact;
@@ -42,21 +61,21 @@ pub mod fem;
 pub mod grading;
 pub mod huge_pages;
 pub mod infsup;
-pub mod input;
+pub(crate) mod input;
 pub mod material;
 pub mod mesh;
 pub mod nitsche;
 pub mod output;
 pub mod penalty_error;
 pub mod plot;
-pub mod refine_edges;
+pub(crate) mod refine_edges;
 pub mod scenario;
 pub mod scheme;
 pub mod solution;
 pub mod solve;
 pub mod stress;
 pub mod study;
-pub mod text;
+pub(crate) mod text;
 #[cfg(feature = "tui")]
 mod tui;
 pub mod verify;

@@ -1,5 +1,5 @@
 //! Scenarios: the model of a problem (docs/design.md §1), with the paper's problem embedded as
-//! the default. A scenario is read from its TOML file by [`crate::input`]
+//! the default. A scenario is read from its TOML file by the library's reader
 //! ([`Scenario::load`], [`Scenario::parse`], [`Scenario::paper`]).
 
 use crate::contact::{Method, Obstacle, Rule};

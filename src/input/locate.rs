@@ -20,7 +20,7 @@ pub struct ScenarioError {
     pub key: Option<String>,
     /// What is wrong, and what is allowed.
     pub message: String,
-    /// The offending source line for display (an excerpt of a long one: [`EXCERPT_CHARS`]),
+    /// The offending source line for display (an excerpt of a long one),
     /// with the 1-based column of the caret in it.
     /// (Boxed: the error travels in every `Result` of the command line.)
     pub source_line: Option<Box<(String, usize)>>,

@@ -20,8 +20,10 @@ pub mod read;
 mod schema;
 mod validate;
 
-pub use locate::{Locator, ScenarioError};
-pub use read::{MAX_FILE_BYTES, read_toml};
+#[cfg(feature = "tui")]
+pub use locate::Locator;
+pub use locate::ScenarioError;
+pub use read::read_toml;
 /// γ₀ as written, read by tour steps too.
 #[cfg(feature = "tui")]
 pub(crate) use schema::RawGamma0;
