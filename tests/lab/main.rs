@@ -9,5 +9,6 @@ mod authoring;
 mod record;
 mod screens;
 mod tour;
+mod tour_numbers;
 mod tui;
 mod tui_stress;
