@@ -6,6 +6,7 @@
 mod common;
 
 mod authoring;
+mod axes;
 mod record;
 mod screens;
 mod tour;

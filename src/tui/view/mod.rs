@@ -15,6 +15,7 @@ pub mod plot;
 mod pressure;
 mod status;
 mod stress_map;
+mod yfit;
 
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Rect};
