@@ -12,6 +12,7 @@ mod help;
 mod hostile;
 mod hostile_again;
 mod hostile_cache;
+mod infsup_graded;
 mod modules;
 mod plot;
 mod readme;
