@@ -247,3 +247,40 @@ fn every_convergence_series_is_marked_near_each_of_its_values() {
         }
     }
 }
+
+/// Item 4: the mesh scene has axes: y from 0 to the block's height, x across its width, each
+/// label where the body's own lines are drawn (the bottom on the 0 row, the top at the far
+/// edge on the height's row, the left side in the column of its x), at 80×24 and 120×40.
+#[test]
+fn the_mesh_scene_has_axes_at_the_bodys_lines() {
+    let app = settled(1, Scene::Mesh);
+    let (x0, x1) = app.scenario.x_range();
+    let left = if app.scenario.half_model { -x1 } else { x0 };
+    let top = app.scenario.height;
+    for (w, h) in [(80, 24), (120, 40)] {
+        let frame = render_app(&app, &LOOK, w, h);
+        let c = chart(&frame, "deformed");
+        let values: Vec<f64> = c.y_ticks.iter().map(|t| t.1).collect();
+        assert!(
+            values.contains(&0.0) && values.contains(&top),
+            "{values:?}\n{frame}"
+        );
+        let braille = |c: char| ('\u{2801}'..='\u{28ff}').contains(&c);
+        let line_of = |v: f64| c.y_ticks.iter().find(|t| t.1 == v).unwrap().0;
+        // The bottom line across, the top's far left end on their ticks' rows.
+        let bottom = &c.lines[line_of(0.0)][c.axis + 1..];
+        assert!(
+            bottom.iter().filter(|&&ch| braille(ch)).count() > bottom.len() / 2,
+            "{frame}"
+        );
+        assert!(braille(c.lines[line_of(top)][c.axis + 2]), "{frame}");
+        // The left side in the column its x names, on every row of the body.
+        let col = place(&c.x_ticks, left, false).round() as usize;
+        for line in line_of(top)..=line_of(0.0) {
+            assert!(
+                (col.saturating_sub(1)..=col + 1).any(|k| braille(c.lines[line][k])),
+                "x = {left} at column {col}, line {line}\n{frame}"
+            );
+        }
+    }
+}

@@ -1,6 +1,6 @@
 //! The deformed configuration (like the paper's Figure 3): the mesh lines moved by the
 //! displacement (magnified when it is small), mirrored for a half model, with the obstacle.
-//! Near the contact in the explore scene; the whole body in the mesh scene.
+//! Near the contact in the explore scene; the whole body, with axes, in the mesh scene.
 
 use ratatui::Frame;
 use ratatui::layout::Rect;
@@ -15,6 +15,7 @@ use super::super::app::App;
 use super::super::protocol::Solved;
 use super::Look;
 use super::fmt::{sig, title_fit};
+use super::mesh_axes;
 
 /// How much of the body to show.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -50,7 +51,12 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look, extent: Ext
     };
     let block = Block::bordered().border_style(look.theme.axis());
     let inner = block.inner(area);
-    let (cols, rows) = (f64::from(inner.width.max(1)), f64::from(inner.height.max(1)));
+    // The whole body with its axes (the mesh scene); the contact zone without.
+    let axes = (extent == Extent::Full)
+        .then(|| mesh_axes::layout(inner, app.scenario.height))
+        .flatten();
+    let graph = axes.as_ref().map_or(inner, |(g, _)| *g);
+    let (cols, rows) = (f64::from(graph.width.max(1)), f64::from(graph.height.max(1)));
     let (xb, yb) = window(app, solved, extent, cols, rows);
     let scale = magnification(u, app.scenario.height);
     let (mesh_lines, thinned) = mesh_lines(
@@ -92,8 +98,11 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look, extent: Ext
         title_fit(&label, area.width.saturating_sub(2)),
         look.theme.title(),
     ));
+    frame.render_widget(block, area);
+    if let Some((graph, y_ticks)) = &axes {
+        mesh_axes::draw(frame, inner, *graph, (xb, yb), y_ticks, look.marker, look.theme);
+    }
     let canvas = Canvas::default()
-        .block(block)
         .marker(look.marker)
         .x_bounds(xb)
         .y_bounds(yb)
@@ -106,7 +115,7 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look, extent: Ext
                 ctx.draw(line);
             }
         });
-    frame.render_widget(canvas, area);
+    frame.render_widget(canvas, graph);
 }
 
 /// x and y bounds with equal scales on screen (a cell is about twice as tall as wide).
@@ -118,7 +127,8 @@ fn window(app: &App, solved: &Solved, extent: Extent, cols: f64, rows: f64) -> (
     let aspect = 2.0 * rows / cols; // data height per data width for square pixels
     match extent {
         Extent::Full => {
-            let (w, h) = (xhi - xlo, top * 1.3);
+            // A margin of 1% each side: the body's sides fall inside the canvas, not on its edge.
+            let (w, h) = (1.02 * (xhi - xlo), top * 1.3);
             let unit = (w / cols).max(h / (2.0 * rows));
             let (xr, yr) = (unit * cols, unit * 2.0 * rows);
             let xc = 0.5 * (xlo + xhi);

@@ -10,6 +10,7 @@ pub mod help;
 mod infsup_chart;
 mod infsup_panel;
 mod log;
+mod mesh_axes;
 mod method;
 pub mod plot;
 mod pressure;
