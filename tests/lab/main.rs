@@ -7,6 +7,7 @@ mod common;
 
 mod authoring;
 mod axes;
+mod hertz_block;
 mod record;
 mod screens;
 mod tour;

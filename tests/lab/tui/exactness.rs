@@ -448,7 +448,8 @@ fn legends_are_present_and_never_over_data() {
     let mut app = settled(1, Scene::Explore);
     app.show_hertz = true;
     for (text, name) in [
-        (frame(&app, 80, 24), "Hertz"),
+        // Hertz's entry (with its readout) may wrap to a row of its own: p̄'s shares one.
+        (frame(&app, 80, 24), "p̄ smoothed"),
         (frame(&infsup_app(), 80, 24), "M4"),
         (frame(&convergence_app(), 80, 24), "M4 p̄"),
     ] {
@@ -476,6 +477,8 @@ fn zoom_narrows_to_the_contact_zone() {
     .unwrap();
     let mut app = App::new(scenario.clone());
     app.show_timing = false;
+    // It opens zoomed in on its narrow contact (issue 31, item 5): start from the whole Γ_C.
+    app.zoom = false;
     settle(&mut app, &mut Engine::new(scenario));
     let x_labels = |text: &str| -> Vec<f64> {
         let lines: Vec<Vec<String>> = text
