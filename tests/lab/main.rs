@@ -8,6 +8,7 @@ mod common;
 mod authoring;
 mod axes;
 mod hertz_block;
+mod locking;
 mod record;
 mod screens;
 mod tour;
