@@ -13,6 +13,7 @@ use crate::contact::{Method, Rule};
 use crate::discretization::Discretization;
 use crate::mesh::Element;
 use crate::mesh::MAX_LEVEL;
+use crate::refine_edges::RefineEdges;
 use crate::scenario::Scenario;
 use crate::scheme::Scheme;
 use crate::solution::Solution;
@@ -37,6 +38,9 @@ pub struct SolveKey {
     pub epsilon: f64,
     /// The obstacle's depth d.
     pub depth: f64,
+    /// How many times the solve grades its mesh at the contact edges (`E` cycles it;
+    /// docs/design.md §6, edge grading).
+    pub refine_edges: RefineEdges,
 }
 
 /// Everything an inf-sup estimate depends on (the scenario aside).

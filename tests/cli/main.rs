@@ -16,6 +16,7 @@ mod infsup_graded;
 mod modules;
 mod plot;
 mod readme;
+mod render_graded;
 mod study_notes;
 mod tour_files;
 mod verify;

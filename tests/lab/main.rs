@@ -7,6 +7,7 @@ mod common;
 
 mod authoring;
 mod axes;
+mod grading_key;
 mod hertz_block;
 mod locking;
 mod record;

@@ -221,6 +221,7 @@ impl App {
                 DEFAULT_EPSILON
             },
             depth: scenario.obstacle.depth(),
+            refine_edges: scenario.refine_edges,
         }
     }
 

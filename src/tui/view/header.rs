@@ -7,6 +7,7 @@ use ratatui::widgets::Paragraph;
 
 use crate::contact::Method;
 use crate::fem::Integration;
+use crate::refine_edges::RefineEdges;
 use crate::scheme::Scheme;
 use crate::warning::LOCKING_POISSON;
 
@@ -64,7 +65,12 @@ fn settings_line(app: &App, theme: Theme, width: u16) -> Line<'static> {
         .current()
         .map(|c| format!(" {} dofs", c.disc.n_dofs()))
         .unwrap_or_default();
-    let counts = format!("{} el{dofs}", app.scenario.n_elements(s.level, s.element));
+    // The solved mesh's own count (a graded mesh has more than its level).
+    let elements = app.current().map_or_else(
+        || app.scenario.n_elements(s.level, s.element),
+        |c| c.disc.mesh.n_elements(),
+    );
+    let counts = format!("{elements} el{dofs}");
     // The penalty is the paper's method: its ε alone (the method line names it).
     let method = match s.method {
         Method::Penalty => format!("ε={:e}", s.epsilon),
@@ -98,7 +104,16 @@ fn settings_line(app: &App, theme: Theme, width: u16) -> Line<'static> {
                 theme.title(),
             ),
             sep(),
-            Span::raw(format!("level {} h={}", s.level, sig(app.scenario.h(s.level), 3))),
+            Span::raw(format!(
+                "level {}{} h={}",
+                s.level,
+                match s.refine_edges {
+                    RefineEdges::Passes(0) => String::new(),
+                    RefineEdges::Passes(n) => format!("+{n}e"),
+                    RefineEdges::Auto => "+auto".into(),
+                },
+                sig(app.scenario.h(s.level), 3)
+            )),
         ];
         if let Some(c) = counts {
             spans.extend([sep(), Span::raw(c.to_string())]);
