@@ -79,3 +79,20 @@ fn e_cycles_the_grading_and_the_lab_shows_the_graded_solve() {
         "{frame}"
     );
 }
+
+/// Item 4 with item 6: the mesh scene draws a graded mesh's dense lines no closer than two
+/// columns (one row) apart, so that the grading reads as denser lines, not solid blocks (it
+/// drew full braille cells ⣿ at the contact edges at 80×24).
+#[test]
+fn a_graded_mesh_reads_as_lines_not_blocks() {
+    let mut app = settled(2, Scene::Mesh);
+    let mut engine = Engine::new(Scenario::paper());
+    press(&mut app, &mut engine, 'E');
+    press(&mut app, &mut engine, 'E');
+    settle(&mut app, &mut engine);
+    for (w, h) in [(80, 24), (120, 40)] {
+        let frame = render_app(&app, &LOOK, w, h);
+        assert!(frame.contains("level 2+2e"), "{frame}");
+        assert!(!frame.contains('⣿'), "a solid block at {w}×{h}\n{frame}");
+    }
+}

@@ -176,7 +176,7 @@ fn magnification(u: &[f64], height: f64) -> f64 {
 }
 
 /// The deformed grid lines, every `k`-th vertex line so that a cell spans at least two
-/// terminal columns and one row, each line through every node (curved for Q2), mirrored for
+/// terminal columns and one row (and on a graded mesh no two lines closer than that), each line through every node (curved for Q2), mirrored for
 /// a half model; and `k`.
 fn mesh_lines(
     solved: &Solved,
@@ -198,19 +198,31 @@ fn mesh_lines(
         let (x, y) = mesh.node_coords(n);
         (x + scale * u[2 * n], y + scale * u[2 * n + 1])
     };
-    let every = |n: usize| -> Vec<usize> {
-        let mut v: Vec<usize> = (0..=n).step_by(k).collect();
-        if v.last() != Some(&n) {
-            v.push(n);
+    // Every k-th vertex line, and of those only lines at least `gap` from the last one kept
+    // (two columns across, one row up): a graded mesh's dense lines read as denser lines up
+    // to the screen's resolution instead of merging into solid blocks. The last line stays.
+    let every = |lines: &[f64], gap: f64| -> Vec<usize> {
+        let n = lines.len() - 1;
+        let mut v: Vec<usize> = Vec::new();
+        for i in (0..=n).step_by(k) {
+            if v.last().is_none_or(|&j| lines[i] - lines[j] >= gap) {
+                v.push(i);
+            }
+        }
+        match v.last() {
+            Some(&j) if j == n => {}
+            Some(&j) if lines[n] - lines[j] < gap && v.len() > 1 => *v.last_mut().unwrap() = n,
+            _ => v.push(n),
         }
         v
     };
+    let (gap_x, gap_y) = (2.0 * (xb[1] - xb[0]) / cols, (yb[1] - yb[0]) / rows);
     let mut polylines: Vec<Vec<(f64, f64)>> = Vec::new();
-    for jv in every(mesh.ny()) {
+    for jv in every(&mesh.ys, gap_y) {
         polylines.push((0..mesh.nnx()).map(|i| at(i, jv * p)).collect());
     }
     let nny = mesh.node_y.len();
-    for iv in every(mesh.nx()) {
+    for iv in every(&mesh.xs, gap_x) {
         polylines.push((0..nny).map(|j| at(iv * p, j)).collect());
     }
     let mut lines = Vec::new();
