@@ -98,7 +98,7 @@ pub(super) fn render(args: &RenderArgs, marker: MarkerChoice) -> Result<ExitCode
             marker,
         },
     )
-    .map_err(CliError::Usage)?;
+    .map_err(|e| CliError::Usage(e.to_string()))?;
     print(&frame.text)?;
     match frame.failure {
         Some(why) => Err(CliError::Failed(format!("the frame shows a failure: {why}"))),

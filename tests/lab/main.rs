@@ -16,3 +16,4 @@ mod tour;
 mod tour_numbers;
 mod tui;
 mod tui_stress;
+mod typed_errors;
