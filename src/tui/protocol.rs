@@ -8,6 +8,7 @@ use std::time::Instant;
 
 use crossterm::event::KeyEvent;
 
+use super::export::ExportError;
 use crate::contact::method::Gamma0;
 use crate::contact::{Method, Rule};
 use crate::discretization::Discretization;
@@ -387,7 +388,7 @@ pub enum Msg {
     /// A message from the worker.
     Worker(Response),
     /// The result of [`Command::Export`]: the file written, or what went wrong.
-    Exported(Result<String, String>),
+    Exported(Result<String, Arc<ExportError>>),
     /// Time passed while something long runs (the time left changes).
     Tick,
     /// A message for the status line (a tour step saved, a recording that failed).

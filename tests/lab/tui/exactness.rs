@@ -355,8 +355,12 @@ fn export_failures_show_and_names_carry_epsilon_and_depth() {
     let file = std::env::temp_dir().join(format!("riplab-not-a-dir-{}", std::process::id()));
     std::fs::write(&file, "x").unwrap();
     let err = riplab::tui::export::export_csv(&app.scenario, &solved, &file).unwrap_err();
-    assert!(err.contains(&file.display().to_string()), "{err}");
-    app.update(Msg::Exported(Err(err)));
+    assert!(
+        matches!(&err, riplab::tui::export::ExportError::Write { .. }),
+        "{err:?}"
+    );
+    assert!(err.to_string().contains(&file.display().to_string()), "{err}");
+    app.update(Msg::Exported(Err(err.into())));
     let text = frame(&app, 120, 40);
     let last = text.lines().last().unwrap();
     // The absolute directory, then why.
