@@ -18,6 +18,7 @@ pub mod errors;
 mod estimating;
 pub mod eta;
 pub mod export;
+mod export_error;
 mod job;
 pub mod keys;
 pub mod protocol;

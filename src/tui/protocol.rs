@@ -8,7 +8,7 @@ use std::time::Instant;
 
 use crossterm::event::KeyEvent;
 
-use super::export::ExportError;
+use super::export_error::ExportError;
 use crate::contact::method::Gamma0;
 use crate::contact::{Method, Rule};
 use crate::discretization::Discretization;

@@ -189,8 +189,8 @@ impl App {
             error: None,
             notice: narrow.map(|share| {
                 Notice::info(format!(
-                    "the contact zone spans {}% of Γ_C: opened zoomed in on it (z shows all of Γ_C)",
-                    super::view::fmt::sig(100.0 * share, 2)
+                    "the contact zone spans {:.1}% of Γ_C: opened zoomed in on it (z shows all of Γ_C)",
+                    100.0 * share
                 ))
             }),
             export_kind: ExportKind::Csv,

@@ -1,6 +1,7 @@
 //! Drawing the app: `view(&App, &mut Frame)` lays out the header, the scene, the error banner
 //! and the status line, and the help overlay on top. One module per scene part.
 
+mod cells;
 mod convergence;
 mod cursor;
 mod deformed;

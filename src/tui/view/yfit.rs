@@ -9,14 +9,14 @@
 //! that hold the data, the one with the most ticks among those within a quarter of the least
 //! height is taken (a small chart keeps its rows for the data, a big one gets its ticks).
 
-use super::plot::{Scale, cell_of};
+use super::cells::cell_of;
 
 /// The steps tried, in data units: 1, 2, 2.5 and 5 times the powers of ten (a linear axis);
-/// 1, 2, 3 and 5 decades (a log10 axis, whose data are log10 values).
-fn steps(scale: Scale, span: f64) -> Vec<f64> {
-    match scale {
-        Scale::Log10 => vec![1.0, 2.0, 3.0, 5.0],
-        Scale::Linear => {
+/// 1, 2, 3 and 5 decades (a log10 axis, `log`, whose data are log10 values).
+fn steps(log: bool, span: f64) -> Vec<f64> {
+    match log {
+        true => vec![1.0, 2.0, 3.0, 5.0],
+        false => {
             let p = 10f64.powf(span.log10().floor());
             [0.01, 0.1, 1.0, 10.0]
                 .into_iter()
@@ -27,11 +27,11 @@ fn steps(scale: Scale, span: f64) -> Vec<f64> {
 }
 
 /// The axis over `bounds` with `ticks` as they are when those ticks sit on evenly spaced rows
-/// of the `rows` rows of `per` dots; else [`fit`]'s (when it finds one).
+/// of the `rows` rows of `per` dots; else [`fit`]'s (when it finds one; `log`: a log10 axis).
 pub fn even_or_fit(
     bounds: [f64; 2],
     ticks: Vec<f64>,
-    scale: Scale,
+    log: bool,
     rows: u16,
     per: u16,
     max: usize,
@@ -46,13 +46,13 @@ pub fn even_or_fit(
     if cells.len() >= 2 && gaps.iter().all(|&d| d > 0 && d == gaps[0]) {
         return (bounds, ticks);
     }
-    fit(bounds, scale, rows, per, max).unwrap_or((bounds, ticks))
+    fit(bounds, log, rows, per, max).unwrap_or((bounds, ticks))
 }
 
 /// The bounds and ticks of an axis over `bounds` drawn on `rows` rows of `per` dots, at most
 /// `max` ticks: the upper bound raised so that the ticks sit on evenly spaced rows (module
 /// doc). None when no step gives two ticks (the caller keeps its bounds).
-pub fn fit(bounds: [f64; 2], scale: Scale, rows: u16, per: u16, max: usize) -> Option<([f64; 2], Vec<f64>)> {
+pub fn fit(bounds: [f64; 2], log: bool, rows: u16, per: u16, max: usize) -> Option<([f64; 2], Vec<f64>)> {
     let (lo, hi) = (bounds[0], bounds[1]);
     let span = hi - lo;
     if !(span > 0.0 && span.is_finite()) || rows < 2 || per == 0 {
@@ -62,7 +62,7 @@ pub fn fit(bounds: [f64; 2], scale: Scale, rows: u16, per: u16, max: usize) -> O
     // Ticks at least two rows apart where there are rows for it.
     let least = if rows >= 4 { 2 } else { 1 };
     let mut fits: Vec<(f64, Vec<f64>)> = Vec::new();
-    for s in steps(scale, span) {
+    for s in steps(log, span) {
         for m in least..=rows {
             let per_dot = s / (f64::from(m) * f64::from(per));
             let top = lo + (dots - 1.0) * per_dot;
@@ -89,7 +89,7 @@ pub fn fit(bounds: [f64; 2], scale: Scale, rows: u16, per: u16, max: usize) -> O
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::tui::view::plot::cell_of;
+    use crate::tui::view::cells::cell_of;
 
     /// The rows of `ticks` as the canvas draws them (from the bottom).
     fn rows_of(bounds: [f64; 2], ticks: &[f64], rows: u16, per: u16) -> Vec<u16> {
@@ -110,8 +110,8 @@ mod tests {
         ] {
             for rows in [3u16, 5, 6, 11, 20] {
                 for per in [1u16, 2, 4] {
-                    for scale in [Scale::Linear, Scale::Log10] {
-                        let Some((b, ticks)) = fit([lo, hi], scale, rows, per, 6) else {
+                    for log in [false, true] {
+                        let Some((b, ticks)) = fit([lo, hi], log, rows, per, 6) else {
                             continue;
                         };
                         assert_eq!(b[0], lo);
@@ -132,7 +132,7 @@ mod tests {
     #[test]
     fn the_paper_pressure_at_80x24_has_two_ticks_and_little_waste() {
         // Five rows of braille (the explore scene at 80×24), p from 0 to 283.
-        let (b, ticks) = fit([0.0, 283.0], Scale::Linear, 5, 4, 3).unwrap();
+        let (b, ticks) = fit([0.0, 283.0], false, 5, 4, 3).unwrap();
         assert_eq!(ticks, [0.0, 250.0]);
         assert!(b[1] < 300.0, "{b:?}");
     }
