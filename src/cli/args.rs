@@ -150,6 +150,11 @@ pub struct InfsupArgs {
     /// Every element × rule pair (the paper's M1–M4 first).
     #[arg(long, conflicts_with_all = ["element", "rule", "scheme"])]
     pub all: bool,
+    /// Estimate on meshes graded at the contact edges: each scheme's own solve graded N times
+    /// (or `auto`), as `solve --refine-edges` grades [default: the scenario's `[mesh]
+    /// refine_edges`, else 0]
+    #[arg(long, value_name = "N|auto")]
+    pub refine_edges: Option<String>,
     /// Output format (docs/design.md §7).
     #[arg(long, short, value_enum, default_value_t = Format::Table)]
     pub format: Format,

@@ -1,16 +1,25 @@
-//! `riplab infsup`: the discrete inf-sup constants of every scheme and level.
+//! `riplab infsup`: the discrete inf-sup constants of every scheme and level, on the uniform
+//! levels or (`--refine-edges`) on meshes graded at the contact edges.
 
 use std::process::ExitCode;
+use std::time::Instant;
 
 use super::args::{InfsupArgs, parse_levels};
-use super::{CliError, print, usage};
-use crate::contact::Rule;
+use super::{CliError, grading, note, print, usage};
+use crate::contact::newton::NewtonOptions;
+use crate::contact::{ContactParams, Rule};
+use crate::discretization::Discretization;
+use crate::error::SolveError;
+use crate::grading::{RefineEdges, solve_graded};
+use crate::infsup::{InfSupRow, TraceCompliance, estimate, fits, fits_beside, slope};
 use crate::mesh::Element;
 use crate::output::{InfSupTable, output};
+use crate::scenario::Scenario;
 use crate::scheme::Scheme;
 
 pub(super) fn infsup(args: &InfsupArgs) -> Result<ExitCode, CliError> {
     let scenario = args.select.resolve()?;
+    let refine = grading::refine_edges(args.refine_edges.as_deref(), &scenario)?;
     // `--level L` alone estimates that level; `--levels` a range (they exclude each other).
     let levels = match (&args.levels, args.select.level) {
         (Some(text), _) => parse_levels(text).map_err(|m| usage("--levels", m))?,
@@ -22,7 +31,64 @@ pub(super) fn infsup(args: &InfsupArgs) -> Result<ExitCode, CliError> {
     } else {
         vec![(scenario.element, scenario.rule)]
     };
-    let rows = crate::infsup::table(&scenario, &pairs, &levels)?;
+    let rows = if refine.grades() {
+        note(&format!(
+            "riplab: --refine-edges {refine}: β_h on meshes graded at the contact edges, each \
+             scheme's by its own solve at ε = {}; h is the level's widest cell",
+            crate::text::num(scenario.epsilon)
+        ));
+        graded_table(&scenario, &pairs, &levels, refine)?
+    } else {
+        crate::infsup::table(&scenario, &pairs, &levels)?
+    };
     print(&output(&InfSupTable { rows }, args.format))?;
     Ok(ExitCode::SUCCESS)
+}
+
+/// The table of [`crate::infsup::table`] on graded meshes: for each pair and level, the
+/// scheme's solve graded at its contact edges as `refine` asks ([`solve_graded`]: the edges
+/// are where its own pressure leaves contact), then β_h and β̄_h on the final mesh; grouped
+/// per pair by ascending level, each row with its slope from the one before. The mesh time
+/// of a row is its graded solve's and its trace compliance's.
+fn graded_table(
+    scenario: &Scenario,
+    pairs: &[(Element, Rule)],
+    levels: &[u32],
+    refine: RefineEdges,
+) -> Result<Vec<InfSupRow>, SolveError> {
+    let mut rows: Vec<InfSupRow> = Vec::new();
+    for &(element, rule) in pairs {
+        for &level in levels {
+            fits(scenario, level, element)?;
+            let t = Instant::now();
+            let uniform = Discretization::of(scenario, level, element)?;
+            let params = ContactParams::by_epsilon(rule, scenario.epsilon, scenario.obstacle.clone());
+            let graded = solve_graded(
+                scenario,
+                (level, &uniform),
+                &params,
+                refine,
+                &NewtonOptions::default(),
+            )?;
+            let disc = graded.disc(&uniform);
+            fits_beside(disc)?;
+            let compliance = TraceCompliance::new(disc)?;
+            let mesh_ms = t.elapsed().as_secs_f64() * 1e3;
+            let t = Instant::now();
+            let est = estimate(disc, &compliance, rule)?;
+            let mut row = InfSupRow::new(
+                level,
+                element,
+                rule,
+                est,
+                mesh_ms,
+                t.elapsed().as_secs_f64() * 1e3,
+            );
+            if let Some(prev) = rows.last().filter(|p| p.same_pair(&row)) {
+                row.slope = slope(prev, &row);
+            }
+            rows.push(row);
+        }
+    }
+    Ok(rows)
 }

@@ -44,6 +44,10 @@ pub struct RenderArgs {
     /// `<pageup>` `<pagedown>` `<lt>` name the others; at most 200)
     #[arg(long, default_value = "")]
     pub keys: String,
+    /// Edge grading: the solve graded N times at the contact edges (or `auto`), as the lab's
+    /// `E` sets it [default: the scenario's `[mesh] refine_edges`, else 0]
+    #[arg(long, value_name = "N|auto")]
+    pub refine_edges: Option<String>,
 }
 
 /// The terminal lab.
@@ -67,6 +71,7 @@ pub(super) fn render(args: &RenderArgs, marker: MarkerChoice) -> Result<ExitCode
     let (width, height) = crate::tui::parse_size(&args.size).map_err(|m| usage("--size", m))?;
     let input = render_args::render_input(args)?;
     let mut scenario = args.select.resolve()?;
+    scenario.refine_edges = super::grading::refine_edges(args.refine_edges.as_deref(), &scenario)?;
     if let Some(method) = input
         .method
         .map_or_else(|| args.method.resolve(&scenario), |m| Ok(Some(m)))?
@@ -93,7 +98,7 @@ pub(super) fn render(args: &RenderArgs, marker: MarkerChoice) -> Result<ExitCode
             marker,
         },
     )
-    .map_err(CliError::Usage)?;
+    .map_err(|e| CliError::Usage(e.to_string()))?;
     print(&frame.text)?;
     match frame.failure {
         Some(why) => Err(CliError::Failed(format!("the frame shows a failure: {why}"))),

@@ -12,6 +12,7 @@ use crate::output::{Report, SolveReport};
 use crate::plot::{chart_title, pressure_svg_string, write_file};
 use crate::scenario::Scenario;
 
+pub use super::export_error::ExportError;
 use super::protocol::Solved;
 
 /// How many numbered names to try before giving up.
@@ -19,37 +20,38 @@ const MAX_TRIES: u32 = 1000;
 
 /// Write `solved` to `<scenario>-<element>-<rule>-L<level>-eps<ε>-d<depth>[-N].csv` in `dir`;
 /// returns the path (absolute when `dir` is).
-pub fn export_csv(scenario: &Scenario, solved: &Solved, dir: &Path) -> Result<PathBuf, String> {
+pub fn export_csv(scenario: &Scenario, solved: &Solved, dir: &Path) -> Result<PathBuf, ExportError> {
     let report = SolveReport::new(scenario, solved.key.level, &solved.disc, &solved.solution);
     save_fresh(dir, &stem(scenario, solved), "csv", report.csv().as_bytes())
 }
 
 /// Write the pressure chart of `solved` to `<…>[-N].svg` in `dir` (the CSV export's names);
 /// returns the path.
-pub fn export_svg(scenario: &Scenario, solved: &Solved, dir: &Path) -> Result<PathBuf, String> {
+pub fn export_svg(scenario: &Scenario, solved: &Solved, dir: &Path) -> Result<PathBuf, ExportError> {
     let title = chart_title(
         &scenario.name,
         solved.key.element,
         solved.key.level,
         &solved.solution,
     );
-    let svg =
-        pressure_svg_string(&title, &solved.solution, scenario.half_model).map_err(|e| e.to_string())?;
+    let svg = pressure_svg_string(&title, &solved.solution, scenario.half_model)?;
     save_fresh(dir, &stem(scenario, solved), "svg", svg.as_bytes())
 }
 
 /// Write the body and Γ_C of `solved` as VTU ([`crate::vtu`]) to `<stem>[-N].vtu` and the
 /// same name with `.contact.vtu` in `dir`; returns the body's path.
-pub fn export_vtu(scenario: &Scenario, solved: &Solved, dir: &Path) -> Result<PathBuf, String> {
-    let field = solved.stress_field(scenario)?;
+pub fn export_vtu(scenario: &Scenario, solved: &Solved, dir: &Path) -> Result<PathBuf, ExportError> {
+    let field = solved.stress_field(scenario).map_err(ExportError::Stress)?;
     let u = solved.u();
     let mesh = &solved.disc.mesh;
-    let body = crate::vtu::xml(crate::vtu::body(mesh, u, &field)).map_err(|e| e.to_string())?;
-    let contact =
-        crate::vtu::xml(crate::vtu::contact(mesh, &solved.solution, u)).map_err(|e| e.to_string())?;
+    let body = crate::vtu::xml(crate::vtu::body(mesh, u, &field))?;
+    let contact = crate::vtu::xml(crate::vtu::contact(mesh, &solved.solution, u))?;
     let path = save_fresh(dir, &stem(scenario, solved), "vtu", &body)?;
     let second = crate::vtu::contact_path(&path);
-    write_file(&second, &contact, false).map_err(|e| format!("{}: {e}", second.display()))?;
+    write_file(&second, &contact, false).map_err(|source| ExportError::WriteContact {
+        path: second.clone(),
+        source,
+    })?;
     Ok(path)
 }
 
@@ -74,7 +76,7 @@ pub fn stem(scenario: &Scenario, solved: &Solved) -> String {
 }
 
 /// Write `bytes` to the first free name `stem.ext`, `stem-1.ext`, … in `dir`.
-fn save_fresh(dir: &Path, stem: &str, ext: &str, bytes: &[u8]) -> Result<PathBuf, String> {
+fn save_fresh(dir: &Path, stem: &str, ext: &str, bytes: &[u8]) -> Result<PathBuf, ExportError> {
     for n in 0..MAX_TRIES {
         let path = dir.join(if n == 0 {
             format!("{stem}.{ext}")
@@ -84,10 +86,18 @@ fn save_fresh(dir: &Path, stem: &str, ext: &str, bytes: &[u8]) -> Result<PathBuf
         match write_file(&path, bytes, false) {
             Ok(()) => return Ok(path),
             Err(e) if e.kind() == ErrorKind::AlreadyExists => continue,
-            Err(e) => return Err(format!("{}: {e}", dir.display())),
+            Err(source) => {
+                return Err(ExportError::Write {
+                    dir: dir.to_path_buf(),
+                    source,
+                });
+            }
         }
     }
-    Err(format!("no free file name for {stem}.{ext} in {}", dir.display()))
+    Err(ExportError::NoFreeName {
+        name: format!("{stem}.{ext}"),
+        dir: dir.to_path_buf(),
+    })
 }
 
 /// The scenario name reduced to characters safe in a file name.

@@ -58,6 +58,8 @@ pub enum LabAction {
     Hertz,
     /// Zoom to the contact zone (p̄ > 0) and back.
     Zoom,
+    /// The next edge grading: 0, 1, 2, 3 passes, auto.
+    Grade,
     /// Toggle the inf-sup estimate at every level up to the current one.
     AllLevels,
     /// The stress scene's next quantity (τ₁, von Mises, σ_yy).
@@ -192,6 +194,11 @@ pub const LAB: &[Row<LabAction>] = &[
         keys: "z",
         what: &["zoom to the contact zone (p̄ > 0) and back"],
         bindings: &[(Char('z'), L::Zoom)],
+    },
+    Row {
+        keys: "E",
+        what: &["edge grading: 0, 1, 2, 3 passes, auto"],
+        bindings: &[(Char('E'), L::Grade)],
     },
     Row {
         keys: "a",

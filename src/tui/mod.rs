@@ -14,9 +14,11 @@ pub mod app;
 pub mod beta;
 mod build;
 pub mod engine;
+pub mod errors;
 mod estimating;
 pub mod eta;
 pub mod export;
+mod export_error;
 mod job;
 pub mod keys;
 pub mod protocol;
@@ -33,6 +35,8 @@ pub mod theme;
 pub mod tour;
 pub mod view;
 pub mod worker;
+
+pub use errors::{RenderError, SizeError};
 
 use std::path::{Path, PathBuf};
 
@@ -148,7 +152,7 @@ pub fn render_to_string(
     element: Option<Element>,
     rule: Option<Rule>,
     epsilon: Option<f64>,
-) -> Result<Rendered, String> {
+) -> Result<Rendered, RenderError> {
     let plain = RenderExtras::default();
     render_with(
         scenario, scene, width, height, level, element, rule, epsilon, &plain,
@@ -178,20 +182,19 @@ pub fn render_with(
     rule: Option<Rule>,
     epsilon: Option<f64>,
     extras: &RenderExtras,
-) -> Result<Rendered, String> {
+) -> Result<Rendered, RenderError> {
     let names: Vec<&str> = Scene::ALL.iter().map(|s| s.name()).collect();
-    let scene = Scene::from_name(scene)
-        .ok_or_else(|| format!("unknown scene `{scene}`; scenes: {}", names.join(", ")))?;
+    let scene = Scene::from_name(scene).ok_or_else(|| RenderError::UnknownScene {
+        scene: scene.to_string(),
+        names: names.join(", "),
+    })?;
     check_size(width, height)?;
     let mut app = App::new(scenario.clone());
     app.scene = scene;
     app.show_timing = false;
     if let Some(level) = level {
         if level > MAX_APP_LEVEL {
-            return Err(format!(
-                "level {level} is out of range; allowed: 0 to {MAX_APP_LEVEL} (the lab's levels: {})",
-                app::LEVEL_LIMIT_WHY
-            ));
+            return Err(RenderError::Level { level });
         }
         app.settings.level = level;
     }
@@ -202,7 +205,7 @@ pub fn render_with(
         app.settings.rule = rule;
     }
     if let Some(epsilon) = epsilon {
-        crate::check::positive(epsilon).map_err(|e| format!("ε: {e}"))?;
+        crate::check::positive(epsilon).map_err(RenderError::Epsilon)?;
         app.settings.epsilon = epsilon;
     }
     let mut engine = Engine::new(scenario.clone());
@@ -249,7 +252,7 @@ fn shown_failure(app: &App) -> Option<String> {
 pub const MAX_SIZE: (u16, u16) = (1000, 500);
 
 /// The one size rule of the lab and `render`: at least [`view::MIN_SIZE`], at most [`MAX_SIZE`].
-pub fn check_size(width: impl Into<u32>, height: impl Into<u32>) -> Result<(), String> {
+pub fn check_size(width: impl Into<u32>, height: impl Into<u32>) -> Result<(), SizeError> {
     let (width, height) = (width.into(), height.into());
     let (min, max) = (view::MIN_SIZE, MAX_SIZE);
     let ok = (u32::from(min.0)..=u32::from(max.0)).contains(&width)
@@ -257,23 +260,14 @@ pub fn check_size(width: impl Into<u32>, height: impl Into<u32>) -> Result<(), S
     if ok {
         Ok(())
     } else {
-        Err(format!(
-            "size {width}x{height} is out of range; allowed: {}x{} to {}x{} (columns x rows)",
-            min.0, min.1, max.0, max.1
-        ))
+        Err(SizeError::OutOfRange { width, height })
     }
 }
 
 /// `COLUMNSxROWS` (`x`, `X` or `×`) parsed and checked by [`check_size`].
-pub fn parse_size(text: &str) -> Result<(u16, u16), String> {
-    let bad = || {
-        format!(
-            "`{text}` is not a size; allowed: COLUMNSxROWS from {}x{} to {}x{}, e.g. 120x40 or 120×40",
-            view::MIN_SIZE.0,
-            view::MIN_SIZE.1,
-            MAX_SIZE.0,
-            MAX_SIZE.1
-        )
+pub fn parse_size(text: &str) -> Result<(u16, u16), SizeError> {
+    let bad = || SizeError::NotASize {
+        text: text.to_string(),
     };
     let (w, h) = text.split_once(['x', 'X', '×']).ok_or_else(bad)?;
     // Parse wide (u32) so that 70000 is "out of range", not "not a size".

@@ -8,11 +8,13 @@ use std::time::Instant;
 
 use crossterm::event::KeyEvent;
 
+use super::export_error::ExportError;
 use crate::contact::method::Gamma0;
 use crate::contact::{Method, Rule};
 use crate::discretization::Discretization;
 use crate::mesh::Element;
 use crate::mesh::MAX_LEVEL;
+use crate::refine_edges::RefineEdges;
 use crate::scenario::Scenario;
 use crate::scheme::Scheme;
 use crate::solution::Solution;
@@ -37,6 +39,9 @@ pub struct SolveKey {
     pub epsilon: f64,
     /// The obstacle's depth d.
     pub depth: f64,
+    /// How many times the solve grades its mesh at the contact edges (`E` cycles it;
+    /// docs/design.md §6, edge grading).
+    pub refine_edges: RefineEdges,
 }
 
 /// Everything an inf-sup estimate depends on (the scenario aside).
@@ -383,7 +388,7 @@ pub enum Msg {
     /// A message from the worker.
     Worker(Response),
     /// The result of [`Command::Export`]: the file written, or what went wrong.
-    Exported(Result<String, String>),
+    Exported(Result<String, Arc<ExportError>>),
     /// Time passed while something long runs (the time left changes).
     Tick,
     /// A message for the status line (a tour step saved, a recording that failed).

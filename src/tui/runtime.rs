@@ -18,7 +18,7 @@ use crate::scenario::Scenario;
 
 use super::RunError;
 use super::app::{App, Command, ExportKind, Msg, Notice, Response, Scene};
-use super::export::{export_csv, export_svg, export_vtu};
+use super::export::{ExportError, export_csv, export_svg, export_vtu};
 use super::record::cast::Event as CastEvent;
 use super::record::{CastFile, Chapter, Recorder, Screen, Tap};
 use super::tour::author::{LabSource, save_step};
@@ -366,9 +366,7 @@ pub(super) fn suspend(terminal: &mut Term) -> io::Result<()> {
 /// business: see [`save_step`]).
 pub(super) fn export(app: &App, dir: &Path) -> Msg {
     let result = match (app.current(), app.export_kind) {
-        (_, ExportKind::TourStep) => {
-            Err("T adds a tour step in the lab (riplab --tour-out FILE), not inside a tour".into())
-        }
+        (_, ExportKind::TourStep) => Err(ExportError::TourStepInTour),
         (Some(solved), ExportKind::Csv) => {
             export_csv(&app.scenario, solved, dir).map(|p| p.display().to_string())
         }
@@ -385,9 +383,9 @@ pub(super) fn export(app: &App, dir: &Path) -> Msg {
             let contact = crate::vtu::contact_path(&p);
             format!("{} and {}", p.display(), contact.display())
         }),
-        (None, _) => Err("no solution to export".into()),
+        (None, _) => Err(ExportError::NoSolution),
     };
-    Msg::Exported(result)
+    Msg::Exported(result.map_err(std::sync::Arc::new))
 }
 
 /// What `render` draws, as one frame inside synchronized-output brackets.

@@ -25,6 +25,9 @@ pub struct Shown {
     pub full_load: f64,
     /// Hertz's solution for that load, where the obstacle has one (a cylinder).
     pub hertz: Option<Hertz>,
+    /// ‖p̄ − p_Hertz‖₀ / ‖p_Hertz‖₀ on Γ_C ([`Hertz::relative_error`], as `riplab solve`'s
+    /// `hertz.relative_error`), with Hertz.
+    pub hertz_error: Option<f64>,
     /// The exact circular indenter for that load (the circle, not Hertz's parabola).
     pub circle: Option<CircleContact>,
     /// The x range to zoom to ([`zoom_range`] over [`Shown::x_range`]); None without contact.
@@ -46,6 +49,7 @@ impl Shown {
         let (x0, x1) = scenario.x_range();
         let x_range = if half { [-x1, x1] } else { [x0, x1] };
         let full_load = if half { 2.0 * solution.load } else { solution.load };
+        let hertz = Hertz::for_load(&solution.params.obstacle, &scenario.material, full_load);
         Shown {
             x_range,
             raw: mirror(raw_pressure_edges(&solution.points, &solution.p).concat()),
@@ -64,7 +68,8 @@ impl Shown {
                 .chain(&solution.pbar)
                 .fold(0.0f64, |m, &v| m.max(v)),
             full_load,
-            hertz: Hertz::for_load(&solution.params.obstacle, &scenario.material, full_load),
+            hertz,
+            hertz_error: hertz.map(|h| h.relative_error(&solution.points, &solution.pbar)),
             circle: CircleContact::for_load(&solution.params.obstacle, &scenario.material, full_load),
             zone: zoom_range(solution, half, (x_range[0], x_range[1])),
         }
@@ -87,4 +92,16 @@ pub fn zoom_range(solution: &Solution, half: bool, (lo, hi): (f64, f64)) -> Opti
     let (a, b) = if half { (-b, b) } else { (a, b) };
     let margin = (0.25 * (b - a)).max(2.0 * cell);
     Some([(a - margin).max(lo), (b + margin).min(hi)])
+}
+
+/// The share of Γ_C that the obstacle reaches at the scenario's depth (its outline below the
+/// undeformed top), when under a twentieth: the lab then opens zoomed in on the contact zone,
+/// which on the whole of Γ_C is a spike at its centre (hertz-block: a ≈ 1 on a block 320
+/// wide).
+pub fn narrow_contact(scenario: &Scenario) -> Option<f64> {
+    let (x0, x1) = scenario.x_range();
+    let (lo, hi) = if scenario.half_model { (-x1, x1) } else { (x0, x1) };
+    let (a, b) = scenario.obstacle.contact_extent(lo, hi)?;
+    let share = (b - a) / (hi - lo);
+    (share < 0.05).then_some(share)
 }

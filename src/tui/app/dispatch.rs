@@ -5,6 +5,7 @@ use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 
 use crate::contact::Rule;
 use crate::mesh::Element;
+use crate::refine_edges::RefineEdges;
 use crate::scheme::Scheme;
 use crate::stress::Quantity;
 
@@ -142,6 +143,10 @@ impl App {
                 }
             }
             LabAction::Zoom => self.toggle_zoom(),
+            LabAction::Grade => {
+                self.settings.refine_edges = next_grading(self.settings.refine_edges);
+                self.notice = Some(Notice::info(grading_notice(self.settings.refine_edges)));
+            }
             LabAction::AllLevels => self.all_levels_key(),
             LabAction::NextQuantity => {
                 self.stress_quantity = self.stress_quantity.next();
@@ -310,5 +315,26 @@ fn key_name(code: KeyCode) -> String {
         KeyCode::Up => "↑".into(),
         KeyCode::Down => "↓".into(),
         other => format!("{other:?}"),
+    }
+}
+
+/// The grading after `r` in the cycle of `E`: 0, 1, 2, 3 passes, auto, 0.
+fn next_grading(r: RefineEdges) -> RefineEdges {
+    match r {
+        RefineEdges::Passes(n) if n < 3 => RefineEdges::Passes(n + 1),
+        RefineEdges::Passes(_) => RefineEdges::Auto,
+        RefineEdges::Auto => RefineEdges::Passes(0),
+    }
+}
+
+/// What `E` says it did.
+fn grading_notice(r: RefineEdges) -> String {
+    match r {
+        RefineEdges::Passes(0) => "edge grading off: the uniform level".into(),
+        RefineEdges::Passes(n) => format!(
+            "edge grading: {n} pass{} bisecting the lines around each contact edge, each solved again",
+            if n == 1 { "" } else { "es" }
+        ),
+        RefineEdges::Auto => "edge grading auto: passes until p̄ changes by under 1e-3 (at most 8)".into(),
     }
 }

@@ -166,6 +166,8 @@ impl App {
     /// The lab on `scenario` at its own settings (level capped at [`MAX_APP_LEVEL`]).
     pub fn new(scenario: Scenario) -> Self {
         let settings = App::defaults(&scenario);
+        // A contact zone too narrow to see on the whole of Γ_C opens zoomed in, and says so.
+        let narrow = crate::tui::shown::narrow_contact(&scenario);
         App {
             scenario,
             settings,
@@ -173,7 +175,7 @@ impl App {
             show_gap: false,
             show_hertz: false,
             show_help: false,
-            zoom: false,
+            zoom: narrow.is_some(),
             show_timing: true,
             all_levels: false,
             stress_quantity: Quantity::PrincipalShear,
@@ -185,7 +187,12 @@ impl App {
             failed: None,
             progress: None,
             error: None,
-            notice: None,
+            notice: narrow.map(|share| {
+                Notice::info(format!(
+                    "the contact zone spans {:.1}% of Γ_C: opened zoomed in on it (z shows all of Γ_C)",
+                    100.0 * share
+                ))
+            }),
             export_kind: ExportKind::Csv,
             infsup: HashMap::new(),
             infsup_pending: HashSet::new(),
@@ -214,6 +221,7 @@ impl App {
                 DEFAULT_EPSILON
             },
             depth: scenario.obstacle.depth(),
+            refine_edges: scenario.refine_edges,
         }
     }
 

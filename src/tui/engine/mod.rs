@@ -28,6 +28,7 @@ use super::protocol::{
 };
 use super::shown::Shown;
 
+mod graded;
 pub mod studying;
 #[cfg(test)]
 mod tests;
@@ -385,6 +386,11 @@ impl Engine {
                 ControlFlow::Continue(())
             })
         };
+        // Graded at the contact edges: the passes of crate::grading from the uniform level's
+        // solve, the final grid's discretisation shown (not cancellable between its passes).
+        if key.refine_edges.grades() {
+            return self.graded(req, &disc, &params, t);
+        }
         let mut result = newton(warm.as_deref());
         // A carried start is a guess: one that does not lead to convergence is not the
         // method's answer, so the solve starts again from rest.

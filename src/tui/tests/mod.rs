@@ -7,11 +7,17 @@
 mod common;
 
 mod authoring;
+mod axes;
+mod grading_key;
+mod hertz_block;
+mod locking;
 mod record;
 mod scenes;
 mod screens;
 mod stress_scene;
 mod tour;
+mod tour_numbers;
+mod typed_errors;
 
 use riplab::scenario::Scenario;
 

@@ -163,15 +163,13 @@ fn the_tour_compares_the_methods() {
         penalty.iter().zip(&exact).all(|(p, e)| *p > 3.0 * e),
         "{penalty:?} {exact:?}"
     );
-    // The numbers the caption quotes, to its digits.
+    // The numbers the caption quotes (the finest level's, which the table shows at 80×24), to
+    // three significant digits.
     let caption = &tour.steps[i].caption;
-    for (values, digits) in [(&penalty, 3), (&exact, 2)] {
-        for v in values.iter() {
-            let quoted = if *v >= 0.1 {
-                format!("{v:.digits$}")
-            } else {
-                format!("{v:.*e}", digits - 1)
-            };
+    for values in [&penalty, &exact] {
+        if let Some(v) = values.last() {
+            let decimals = (2 - v.log10().floor() as i32).max(0) as usize;
+            let quoted = format!("{v:.decimals$}");
             assert!(
                 caption.contains(&quoted),
                 "{quoted} in\n{caption}\n{penalty:?} {exact:?}"

@@ -204,7 +204,7 @@ pub(crate) fn step_frame(
             tour.steps.len()
         ));
     }
-    check_size(width, height)?;
+    check_size(width, height).map_err(|e| e.to_string())?;
     let mut player = TourApp::new(tour.clone(), None);
     player.show_timing = false;
     player.app.show_timing = false;

@@ -1,6 +1,6 @@
 //! The deformed configuration (like the paper's Figure 3): the mesh lines moved by the
 //! displacement (magnified when it is small), mirrored for a half model, with the obstacle.
-//! Near the contact in the explore scene; the whole body in the mesh scene.
+//! Near the contact in the explore scene; the whole body, with axes, in the mesh scene.
 
 use ratatui::Frame;
 use ratatui::layout::Rect;
@@ -15,6 +15,7 @@ use super::super::app::App;
 use super::super::protocol::Solved;
 use super::Look;
 use super::fmt::{sig, title_fit};
+use super::mesh_axes;
 
 /// How much of the body to show.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -50,7 +51,12 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look, extent: Ext
     };
     let block = Block::bordered().border_style(look.theme.axis());
     let inner = block.inner(area);
-    let (cols, rows) = (f64::from(inner.width.max(1)), f64::from(inner.height.max(1)));
+    // The whole body with its axes (the mesh scene); the contact zone without.
+    let axes = (extent == Extent::Full)
+        .then(|| mesh_axes::layout(inner, app.scenario.height))
+        .flatten();
+    let graph = axes.as_ref().map_or(inner, |(g, _)| *g);
+    let (cols, rows) = (f64::from(graph.width.max(1)), f64::from(graph.height.max(1)));
     let (xb, yb) = window(app, solved, extent, cols, rows);
     let scale = magnification(u, app.scenario.height);
     let (mesh_lines, thinned) = mesh_lines(
@@ -92,8 +98,11 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look, extent: Ext
         title_fit(&label, area.width.saturating_sub(2)),
         look.theme.title(),
     ));
+    frame.render_widget(block, area);
+    if let Some((graph, y_ticks)) = &axes {
+        mesh_axes::draw(frame, inner, *graph, (xb, yb), y_ticks, look.marker, look.theme);
+    }
     let canvas = Canvas::default()
-        .block(block)
         .marker(look.marker)
         .x_bounds(xb)
         .y_bounds(yb)
@@ -106,7 +115,7 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look, extent: Ext
                 ctx.draw(line);
             }
         });
-    frame.render_widget(canvas, area);
+    frame.render_widget(canvas, graph);
 }
 
 /// x and y bounds with equal scales on screen (a cell is about twice as tall as wide).
@@ -118,7 +127,8 @@ fn window(app: &App, solved: &Solved, extent: Extent, cols: f64, rows: f64) -> (
     let aspect = 2.0 * rows / cols; // data height per data width for square pixels
     match extent {
         Extent::Full => {
-            let (w, h) = (xhi - xlo, top * 1.3);
+            // A margin of 1% each side: the body's sides fall inside the canvas, not on its edge.
+            let (w, h) = (1.02 * (xhi - xlo), top * 1.3);
             let unit = (w / cols).max(h / (2.0 * rows));
             let (xr, yr) = (unit * cols, unit * 2.0 * rows);
             let xc = 0.5 * (xlo + xhi);
@@ -166,7 +176,7 @@ fn magnification(u: &[f64], height: f64) -> f64 {
 }
 
 /// The deformed grid lines, every `k`-th vertex line so that a cell spans at least two
-/// terminal columns and one row, each line through every node (curved for Q2), mirrored for
+/// terminal columns and one row (and on a graded mesh no two lines closer than that), each line through every node (curved for Q2), mirrored for
 /// a half model; and `k`.
 fn mesh_lines(
     solved: &Solved,
@@ -188,19 +198,31 @@ fn mesh_lines(
         let (x, y) = mesh.node_coords(n);
         (x + scale * u[2 * n], y + scale * u[2 * n + 1])
     };
-    let every = |n: usize| -> Vec<usize> {
-        let mut v: Vec<usize> = (0..=n).step_by(k).collect();
-        if v.last() != Some(&n) {
-            v.push(n);
+    // Every k-th vertex line, and of those only lines at least `gap` from the last one kept
+    // (two columns across, one row up): a graded mesh's dense lines read as denser lines up
+    // to the screen's resolution instead of merging into solid blocks. The last line stays.
+    let every = |lines: &[f64], gap: f64| -> Vec<usize> {
+        let n = lines.len() - 1;
+        let mut v: Vec<usize> = Vec::new();
+        for i in (0..=n).step_by(k) {
+            if v.last().is_none_or(|&j| lines[i] - lines[j] >= gap) {
+                v.push(i);
+            }
+        }
+        match v.last() {
+            Some(&j) if j == n => {}
+            Some(&j) if lines[n] - lines[j] < gap && v.len() > 1 => *v.last_mut().unwrap() = n,
+            _ => v.push(n),
         }
         v
     };
+    let (gap_x, gap_y) = (2.0 * (xb[1] - xb[0]) / cols, (yb[1] - yb[0]) / rows);
     let mut polylines: Vec<Vec<(f64, f64)>> = Vec::new();
-    for jv in every(mesh.ny()) {
+    for jv in every(&mesh.ys, gap_y) {
         polylines.push((0..mesh.nnx()).map(|i| at(i, jv * p)).collect());
     }
     let nny = mesh.node_y.len();
-    for iv in every(mesh.nx()) {
+    for iv in every(&mesh.xs, gap_x) {
         polylines.push((0..nny).map(|j| at(iv * p, j)).collect());
     }
     let mut lines = Vec::new();

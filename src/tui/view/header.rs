@@ -6,7 +6,10 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::Paragraph;
 
 use crate::contact::Method;
+use crate::fem::Integration;
+use crate::refine_edges::RefineEdges;
 use crate::scheme::Scheme;
+use crate::warning::LOCKING_POISSON;
 
 use super::super::app::{App, Scene};
 use super::super::theme::Theme;
@@ -48,7 +51,8 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, theme: Theme) {
     frame.render_widget(Paragraph::new(settings_line(app, theme, second.width)), second);
 }
 
-/// "M1 q1+gauss1 │ level 0 h=1 │ 32 el 90 dofs │ ε=1e-6 │ d=0.8" (dofs once solved), within
+/// "M1 q1+gauss1 │ level 0 h=1 │ 32 el 90 dofs │ ε=1e-6 │ d=0.8" (dofs once solved; then
+/// "ν=0.49 selective" where locking is the lesson), within
 /// `width` columns: the element and dof counts go first, then the method's parameters, so
 /// that no number is ever cut (a cut "d=0.8" would read "d=0").
 fn settings_line(app: &App, theme: Theme, width: u16) -> Line<'static> {
@@ -61,7 +65,12 @@ fn settings_line(app: &App, theme: Theme, width: u16) -> Line<'static> {
         .current()
         .map(|c| format!(" {} dofs", c.disc.n_dofs()))
         .unwrap_or_default();
-    let counts = format!("{} el{dofs}", app.scenario.n_elements(s.level, s.element));
+    // The solved mesh's own count (a graded mesh has more than its level).
+    let elements = app.current().map_or_else(
+        || app.scenario.n_elements(s.level, s.element),
+        |c| c.disc.mesh.n_elements(),
+    );
+    let counts = format!("{elements} el{dofs}");
     // The penalty is the paper's method: its ε alone (the method line names it).
     let method = match s.method {
         Method::Penalty => format!("ε={:e}", s.epsilon),
@@ -76,6 +85,16 @@ fn settings_line(app: &App, theme: Theme, width: u16) -> Line<'static> {
         Method::Penalty | Method::Alm { .. } => method.clone(),
         m => m.name().to_string(),
     };
+    // ν and the volumetric integration where locking is the lesson: a selective integration,
+    // or a ν from which Q1 integrated exactly locks (crate::warning::LOCKING_POISSON).
+    let (poisson, integration) = (app.scenario.material.poisson, app.scenario.integration);
+    let material = (integration == Integration::Selective || poisson >= LOCKING_POISSON).then(|| {
+        let name = match integration {
+            Integration::Full => "full",
+            Integration::Selective => "selective",
+        };
+        format!("ν={} {name}", sig(poisson, 7))
+    });
     let fields = |counts: Option<&str>, method: &str| -> Line<'static> {
         let sep = || Span::styled(" │ ", theme.faint());
         let mut spans = vec![
@@ -85,7 +104,16 @@ fn settings_line(app: &App, theme: Theme, width: u16) -> Line<'static> {
                 theme.title(),
             ),
             sep(),
-            Span::raw(format!("level {} h={}", s.level, sig(app.scenario.h(s.level), 3))),
+            Span::raw(format!(
+                "level {}{} h={}",
+                s.level,
+                match s.refine_edges {
+                    RefineEdges::Passes(0) => String::new(),
+                    RefineEdges::Passes(n) => format!("+{n}e"),
+                    RefineEdges::Auto => "+auto".into(),
+                },
+                sig(app.scenario.h(s.level), 3)
+            )),
         ];
         if let Some(c) = counts {
             spans.extend([sep(), Span::raw(c.to_string())]);
@@ -96,6 +124,9 @@ fn settings_line(app: &App, theme: Theme, width: u16) -> Line<'static> {
             sep(),
             Span::raw(format!("d={}", sig(s.depth, 4))),
         ]);
+        if let Some(material) = &material {
+            spans.extend([sep(), Span::raw(material.clone())]);
+        }
         Line::from(spans)
     };
     // The fullest line that fits; the shortest when none does.

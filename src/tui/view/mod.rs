@@ -1,6 +1,7 @@
 //! Drawing the app: `view(&App, &mut Frame)` lays out the header, the scene, the error banner
 //! and the status line, and the help overlay on top. One module per scene part.
 
+mod cells;
 mod convergence;
 mod cursor;
 mod deformed;
@@ -10,11 +11,13 @@ pub mod help;
 mod infsup_chart;
 mod infsup_panel;
 mod log;
+mod mesh_axes;
 mod method;
 pub mod plot;
 mod pressure;
 mod status;
 mod stress_map;
+mod yfit;
 
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Rect};

@@ -18,7 +18,9 @@ use ratatui::widgets::Block;
 use ratatui::widgets::canvas::{Canvas, Line as Segment, Painter, Shape};
 
 use super::super::theme::Theme;
+pub use super::cells::{cell_of, dots_per_cell};
 use super::fmt::{sig, title_fit};
+use super::yfit;
 
 /// How an axis maps values.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -80,32 +82,6 @@ pub struct Plot<'a> {
     pub marker: Marker,
     /// The colours (monochrome or not).
     pub theme: Theme,
-}
-
-/// Dots per cell of a marker (columns, rows), as ratatui's canvas grids have them.
-pub fn dots_per_cell(marker: Marker) -> (u16, u16) {
-    match marker {
-        Marker::Braille => (2, 4),
-        Marker::HalfBlock => (1, 2),
-        Marker::Quadrant => (2, 2),
-        Marker::Sextant => (2, 3),
-        Marker::Octant => (2, 4),
-        _ => (1, 1),
-    }
-}
-
-/// The cell offset (0-based, from the low end) at which ratatui's canvas draws `value` on an
-/// axis of `cells` cells over `bounds`, `per` dots per cell: the dot is
-/// round(t·(dots − 1)) for t = (value − lo)/(hi − lo), its cell that dot / per.
-pub fn cell_of(value: f64, bounds: [f64; 2], cells: u16, per: u16) -> Option<u16> {
-    let (lo, hi) = (bounds[0], bounds[1]);
-    let ordered = hi > lo;
-    if !ordered || !value.is_finite() || value < lo || value > hi || cells == 0 {
-        return None;
-    }
-    let dots = f64::from(cells) * f64::from(per);
-    let dot = ((value - lo) / (hi - lo) * (dots - 1.0)).round() as u16;
-    Some(dot / per)
 }
 
 /// Ticks on a linear axis: multiples of a 1-2-5 step, at most `max` of them.
@@ -254,8 +230,16 @@ impl Plot<'_> {
         let graph_rows = inner.height - legend_rows - 2;
         let per = dots_per_cell(self.marker);
         let max_y_ticks = usize::from(graph_rows / 2 + 1).min(6);
-        let y_ticks: Vec<(f64, String)> = self
-            .ticks(&self.y, max_y_ticks)
+        // The y bounds raised so that the ticks sit on evenly spaced rows (yfit's doc).
+        let (y_bounds, y_values) = yfit::even_or_fit(
+            self.y.bounds,
+            self.ticks(&self.y, max_y_ticks),
+            self.y.scale == Scale::Log10,
+            graph_rows,
+            per.1,
+            max_y_ticks,
+        );
+        let y_ticks: Vec<(f64, String)> = y_values
             .into_iter()
             .map(|v| (v, tick_label(v, self.y.scale)))
             .collect();
@@ -278,7 +262,7 @@ impl Plot<'_> {
         }
         let mut last_row = None;
         for (v, label) in &y_ticks {
-            let Some(off) = cell_of(*v, self.y.bounds, graph.height, per.1) else {
+            let Some(off) = cell_of(*v, y_bounds, graph.height, per.1) else {
                 continue;
             };
             let row = graph.bottom() - 1 - off;
@@ -317,7 +301,7 @@ impl Plot<'_> {
             buf.set_string(start, label_row, &label, axis_style);
             free_from = start + w + 1;
         }
-        self.draw_data(frame, graph);
+        self.draw_data(frame, graph, y_bounds);
         Some(Placed { graph })
     }
 
@@ -385,13 +369,14 @@ impl Plot<'_> {
             .find(|e| e.glyph.is_some() && same(e, s))
     }
 
-    /// The series on a canvas over `graph`, lines first, then the glyphs over them.
-    fn draw_data(&self, frame: &mut Frame, graph: Rect) {
+    /// The series on a canvas over `graph` (y over `y_bounds`), lines first, then the glyphs
+    /// over them.
+    fn draw_data(&self, frame: &mut Frame, graph: Rect, y_bounds: [f64; 2]) {
         let theme = self.theme;
         let canvas = Canvas::default()
             .marker(self.marker)
             .x_bounds(self.x.bounds)
-            .y_bounds(self.y.bounds)
+            .y_bounds(y_bounds)
             .paint(|ctx| {
                 for s in &self.series {
                     let color = theme.ink(s.color);
@@ -423,7 +408,8 @@ impl Plot<'_> {
         let per = dots_per_cell(self.marker);
         let buf: &mut Buffer = frame.buffer_mut();
         // Which series' glyph holds a cell: a glyph that lands on another series' moves to the
-        // next free cell of its row (right, else left), so that no series hides another.
+        // next free cell of its row (right, else left, up to three cells away), so that no series
+        // hides another.
         let mut taken: HashMap<(u16, u16), usize> = HashMap::new();
         for (i, s) in self.series.iter().enumerate() {
             let Some(g) = s.glyph else { continue };
@@ -431,20 +417,16 @@ impl Plot<'_> {
             for &(x, y) in s.data {
                 let (Some(cx), Some(cy)) = (
                     cell_of(x, self.x.bounds, graph.width, per.0),
-                    cell_of(y, self.y.bounds, graph.height, per.1),
+                    cell_of(y, y_bounds, graph.height, per.1),
                 ) else {
                     continue;
                 };
                 let free = |c: u16| taken.get(&(c, cy)).is_none_or(|&o| o == i);
-                let cx = [
-                    Some(cx),
-                    cx.checked_add(1).filter(|&c| c < graph.width),
-                    cx.checked_sub(1),
-                ]
-                .into_iter()
-                .flatten()
-                .find(|&c| free(c))
-                .unwrap_or(cx);
+                let cx = [0, 1, -1, 2, -2, 3, -3]
+                    .into_iter()
+                    .filter_map(|d: i32| u16::try_from(i32::from(cx) + d).ok().filter(|&c| c < graph.width))
+                    .find(|&c| free(c))
+                    .unwrap_or(cx);
                 taken.insert((cx, cy), i);
                 buf[(graph.x + cx, graph.bottom() - 1 - cy)]
                     .set_char(g)

@@ -82,9 +82,13 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
             data: &gap_pts,
         });
     }
-    if hertz.is_some() {
+    if let Some(h) = hertz {
+        // Hertz's half-width and peak for the computed load, and p̄'s distance from it.
+        let error = shown
+            .hertz_error
+            .map_or(String::new(), |e| format!(", p̄ off {}%", sig(100.0 * e, 2)));
         series.push(Series {
-            name: "Hertz".into(),
+            name: format!("Hertz a={} p₀={}{error}", sig(h.a, 3), sig(h.p0, 3)),
             color: theme.hertz_color(),
             stroke: Stroke::None,
             glyph: Some('+'),

@@ -292,10 +292,15 @@ fn sizes_outside_the_rule_are_refused() {
         "1001x40",
         "70000x30",
     ] {
-        let e = parse_size(bad).unwrap_err();
+        let e = parse_size(bad).unwrap_err().to_string();
         assert!(e.contains("allowed: 80x24 to 1000x500"), "{bad}: {e}");
     }
-    assert!(parse_size("eighty").unwrap_err().contains("not a size"));
+    assert!(
+        parse_size("eighty")
+            .unwrap_err()
+            .to_string()
+            .contains("not a size")
+    );
     assert!(render_to_string(&Scenario::paper(), "mesh", 5, 5, Some(0), None, None, None).is_err());
 }
 
@@ -342,8 +347,12 @@ fn export_failures_show_and_names_carry_epsilon_and_depth() {
     let file = std::env::temp_dir().join(format!("riplab-not-a-dir-{}", std::process::id()));
     std::fs::write(&file, "x").unwrap();
     let err = riplab::tui::export::export_csv(&app.scenario, &solved, &file).unwrap_err();
-    assert!(err.contains(&file.display().to_string()), "{err}");
-    app.update(Msg::Exported(Err(err)));
+    assert!(
+        matches!(&err, riplab::tui::export::ExportError::Write { .. }),
+        "{err:?}"
+    );
+    assert!(err.to_string().contains(&file.display().to_string()), "{err}");
+    app.update(Msg::Exported(Err(err.into())));
     let text = frame(&app, 120, 40);
     let last = text.lines().last().unwrap();
     // The absolute directory, then why.
@@ -437,7 +446,8 @@ fn legends_are_present_and_never_over_data() {
     let mut app = settled(1, Scene::Explore);
     app.show_hertz = true;
     for (text, name) in [
-        (frame(&app, 80, 24), "Hertz"),
+        // Hertz's entry (with its readout) may wrap to a row of its own: p̄'s shares one.
+        (frame(&app, 80, 24), "p̄ smoothed"),
         (frame(&infsup_app(), 80, 24), "M4"),
         (frame(&convergence_app(), 80, 24), "M4 p̄"),
     ] {
@@ -465,6 +475,8 @@ fn zoom_narrows_to_the_contact_zone() {
     .unwrap();
     let mut app = App::new(scenario.clone());
     app.show_timing = false;
+    // It opens zoomed in on its narrow contact (issue 31, item 5): start from the whole Γ_C.
+    app.zoom = false;
     settle(&mut app, &mut Engine::new(scenario));
     let x_labels = |text: &str| -> Vec<f64> {
         let lines: Vec<Vec<String>> = text

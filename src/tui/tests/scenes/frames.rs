@@ -156,7 +156,9 @@ fn sig5(x: f64) -> String {
 
 #[test]
 fn unknown_scene_lists_the_scenes() {
-    let err = render_to_string(&Scenario::paper(), "plot", 80, 24, None, None, None, None).unwrap_err();
+    let err = render_to_string(&Scenario::paper(), "plot", 80, 24, None, None, None, None)
+        .unwrap_err()
+        .to_string();
     assert!(err.contains("explore, infsup, mesh"), "{err}");
     assert!(render_to_string(&Scenario::paper(), "mesh", 80, 24, Some(9), None, None, None).is_err());
 }

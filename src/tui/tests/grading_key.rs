@@ -1,0 +1,98 @@
+//! Issue 35, the lab's part, item 6: `E` cycles the edge grading (0, 1, 2, 3 passes, auto),
+//! says what it set, the header shows it (`level 1+2e`) and the solve shown is the graded one:
+//! the same as the library's graded solve of the same settings, on its graded mesh.
+
+use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
+use riplab::contact::newton::NewtonOptions;
+use riplab::contact::{ContactParams, Method};
+use riplab::discretization::Discretization;
+use riplab::grading::{RefineEdges, solve_graded};
+use riplab::scenario::Scenario;
+use riplab::tui::app::{App, Msg, Scene};
+use riplab::tui::engine::Engine;
+use riplab::tui::render_app;
+use riplab::tui::settle::{carry_out, settle};
+
+use crate::tui::tests::settled;
+
+const LOOK: riplab::tui::view::Look = riplab::tui::view::Look {
+    theme: riplab::tui::theme::Theme { color: false },
+    marker: ratatui::symbols::Marker::Braille,
+};
+
+fn press(app: &mut App, engine: &mut Engine, c: char) {
+    let commands = app
+        .update(Msg::Key(KeyEvent::new(KeyCode::Char(c), KeyModifiers::NONE)))
+        .commands;
+    carry_out(app, engine, commands);
+}
+
+#[test]
+fn e_cycles_the_grading_and_the_lab_shows_the_graded_solve() {
+    let mut app = settled(1, Scene::Explore);
+    let mut engine = Engine::new(Scenario::paper());
+    let uniform_dofs = app.current().unwrap().disc.n_dofs();
+    let mut seen = Vec::new();
+    for _ in 0..5 {
+        press(&mut app, &mut engine, 'E');
+        seen.push(app.settings.refine_edges);
+    }
+    use RefineEdges::{Auto, Passes};
+    assert_eq!(seen, [Passes(1), Passes(2), Passes(3), Auto, Passes(0)]);
+    press(&mut app, &mut engine, 'E');
+    press(&mut app, &mut engine, 'E');
+    settle(&mut app, &mut engine);
+    assert!(
+        app.notice
+            .as_ref()
+            .unwrap()
+            .text
+            .contains("edge grading: 2 passes")
+    );
+    let shown = app.current().expect("the graded solve").clone();
+    let frame = render_app(&app, &LOOK, 80, 24);
+    assert!(frame.contains("level 1+2e"), "{frame}");
+    // The library's graded solve of the same settings: same mesh, same load.
+    let scenario = Scenario::paper();
+    let uniform = Discretization::of(&scenario, 1, scenario.element).unwrap();
+    let params = ContactParams {
+        rule: scenario.rule,
+        method: Method::Penalty,
+        epsilon: app.settings.epsilon,
+        obstacle: scenario.obstacle.clone(),
+    };
+    let g = solve_graded(
+        &scenario,
+        (1, &uniform),
+        &params,
+        Passes(2),
+        &NewtonOptions::default(),
+    )
+    .unwrap();
+    let graded = g.graded.expect("two passes made");
+    assert_eq!(shown.disc.n_dofs(), graded.n_dofs());
+    assert!(graded.n_dofs() > uniform_dofs);
+    let (a, b) = (shown.solution.load, g.sol.load);
+    assert!((a - b).abs() <= 1e-9 * b, "{a} against {b}");
+    assert!(
+        frame.contains(&format!(" el {} dofs", graded.n_dofs())),
+        "{frame}"
+    );
+}
+
+/// Item 4 with item 6: the mesh scene draws a graded mesh's dense lines no closer than two
+/// columns (one row) apart, so that the grading reads as denser lines, not solid blocks (it
+/// drew full braille cells ⣿ at the contact edges at 80×24).
+#[test]
+fn a_graded_mesh_reads_as_lines_not_blocks() {
+    let mut app = settled(2, Scene::Mesh);
+    let mut engine = Engine::new(Scenario::paper());
+    press(&mut app, &mut engine, 'E');
+    press(&mut app, &mut engine, 'E');
+    settle(&mut app, &mut engine);
+    for (w, h) in [(80, 24), (120, 40)] {
+        let frame = render_app(&app, &LOOK, w, h);
+        assert!(frame.contains("level 2+2e"), "{frame}");
+        assert!(!frame.contains('⣿'), "a solid block at {w}×{h}\n{frame}");
+    }
+}
