@@ -165,6 +165,7 @@ pub fn solve_contact(
         warnings,
         nodal_forces: None,
         gamma0: None,
+        friction: None,
     })
 }
 

@@ -280,5 +280,6 @@ pub fn solve(
         warnings,
         nodal_forces: Some(forces),
         gamma0: Some(nitsche.gamma0),
+        friction: None,
     })
 }
