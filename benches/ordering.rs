@@ -23,7 +23,7 @@ use faer::sparse::linalg::cholesky::{
 };
 use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
 use riplab::contact::ContactParams;
-use riplab::contact::penalty::NewtonOptions;
+use riplab::contact::newton::NewtonOptions;
 use riplab::discretization::Discretization;
 use riplab::fem::condense::{TraceFactor, TraceOrdering, factor_flops};
 use riplab::fem::factor::Analysis;

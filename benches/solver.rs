@@ -12,7 +12,7 @@ use std::ops::ControlFlow;
 use divan::Bencher;
 use riplab::contact::ContactParams;
 use riplab::contact::Rule;
-use riplab::contact::penalty::NewtonOptions;
+use riplab::contact::newton::NewtonOptions;
 use riplab::discretization::Discretization;
 use riplab::fem::factor::{Analysis, Factor};
 use riplab::fem::{DofMap, Form, SymCsc, assemble};

@@ -10,7 +10,7 @@ use std::ops::ControlFlow;
 
 use riplab::contact::ContactParams;
 use riplab::contact::Rule;
-use riplab::contact::penalty::NewtonOptions;
+use riplab::contact::newton::NewtonOptions;
 use riplab::discretization::Discretization;
 use riplab::mesh::Element;
 use riplab::nitsche::{self, NitscheParams};

@@ -10,6 +10,9 @@ use crate::fem::error::gib;
 use crate::mesh::Element;
 use crate::text::num;
 
+mod diagnosis;
+pub use diagnosis::Diagnosis;
+
 /// Why a discretisation or a contact solve produced no result.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SolveError {
@@ -86,7 +89,7 @@ pub enum SolveError {
         /// The last relative residual.
         residual: f64,
         /// Why, as far as the solver knows.
-        diagnosis: String,
+        diagnosis: Diagnosis,
     },
     /// A dense eigenvalue solve failed (faer's error).
     #[error("the eigenvalue solve of the inf-sup estimate failed: {0:?}")]

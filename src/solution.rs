@@ -6,7 +6,7 @@ use serde::Serialize;
 
 use crate::contact::friction::FrictionSolution;
 use crate::contact::method::MethodFields;
-use crate::contact::penalty::NewtonResult;
+use crate::contact::newton::NewtonResult;
 use crate::contact::{ContactParams, ContactPoints};
 use crate::discretization::Discretization;
 use crate::scenario::Scenario;

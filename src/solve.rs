@@ -9,12 +9,13 @@ use std::ops::ControlFlow;
 use std::time::Instant;
 
 use crate::contact::ContactParams;
-use crate::contact::penalty::{self, Iteration, NewtonOptions, Penalty};
+use crate::contact::newton::{Iteration, NewtonOptions};
+use crate::contact::penalty::{self, Penalty};
 use crate::contact::signorini::solve_exact;
 use crate::contact::{Method, Rule, alm, load, raw_pressure, smoothed_pressure};
 use crate::discretization::Discretization;
 use crate::discretization::ms_since;
-use crate::error::SolveError;
+use crate::error::{Diagnosis, SolveError};
 use crate::nitsche::{self, NitscheParams};
 use crate::scenario::Scenario;
 use crate::solution::{Solution, Timing};
@@ -131,9 +132,7 @@ pub fn solve_contact(
             && finite(&vertex_uy))
     {
         newton.converged = false;
-        newton.diagnosis = Some(
-            "a contact force, pressure or displacement is not finite: the problem's scaling overflows double precision".into(),
-        );
+        newton.diagnosis = Some(Diagnosis::Overflow);
     }
     let mut warnings: Vec<Warning> = disc.stiffness_warning().into_iter().collect();
     warnings.extend(warning::of_contact(&params.obstacle, &points, &p, disc.mesh.h()));

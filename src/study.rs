@@ -14,7 +14,7 @@
 
 use std::ops::ControlFlow;
 
-use crate::contact::penalty::NewtonOptions;
+use crate::contact::newton::NewtonOptions;
 
 use crate::contact::ContactParams;
 use crate::contact::{Method, Rule};

@@ -4,7 +4,7 @@
 
 use super::{CliError, usage};
 use crate::contact::ContactParams;
-use crate::contact::penalty::NewtonOptions;
+use crate::contact::newton::NewtonOptions;
 use crate::discretization::Discretization;
 use crate::error::SolveError;
 use crate::grading::{RefineEdges, solve_graded};

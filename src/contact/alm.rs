@@ -35,8 +35,9 @@
 use std::collections::HashSet;
 use std::ops::ControlFlow;
 
-use super::penalty::{self, Iteration, NewtonOptions, NewtonResult, Penalty, active_forces, dot};
-use crate::error::SolveError;
+use super::newton::{Iteration, NewtonOptions, NewtonResult};
+use super::penalty::{self, Penalty, active_forces, dot};
+use crate::error::{Diagnosis, SolveError};
 
 /// The largest number of outer (multiplier) updates.
 pub const MAX_OUTER: usize = 500;
@@ -146,15 +147,16 @@ pub fn solve(
         if done || !result.converged || !residual.is_finite() || outer == MAX_OUTER {
             let diagnosis = if done {
                 None
-            } else if !result.converged {
-                Some(format!(
-                    "the inner penalty Newton of outer iteration {outer} did not converge: {}",
-                    result.diagnosis.as_deref().unwrap_or("no reason given")
-                ))
+            } else if let Some(inner) = result.failure() {
+                Some(Diagnosis::Inner {
+                    outer,
+                    inner: Box::new(inner),
+                })
             } else {
-                Some(format!(
-                    "no convergence in {outer} multiplier updates (relative change {residual:.1e}); each update shrinks the error by about ε/(ε + σ), σ the compliance: a smaller ε needs fewer updates"
-                ))
+                Some(Diagnosis::Updates {
+                    updates: outer,
+                    change: residual,
+                })
             };
             let newton = NewtonResult {
                 forces,

@@ -10,6 +10,7 @@ pub mod half_plane;
 pub mod hertz;
 pub mod method;
 pub mod mindlin;
+pub mod newton;
 pub mod params;
 pub mod penalty;
 pub mod pressure;

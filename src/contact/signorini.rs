@@ -11,28 +11,33 @@
 
 use std::ops::ControlFlow;
 
-use super::penalty::{Iteration, NewtonOptions, NewtonResult, Penalty, Progress, active_forces, apply, dot};
-use crate::error::SolveError;
+use super::newton::{
+    self, Assessment, Iteration, NewtonOptions, NewtonResult, SemismoothLaw, Verdict, count,
+};
+use super::penalty::{Penalty, active_forces, apply, dot};
+use crate::error::{Diagnosis, SolveError};
 
-/// Solve the exact-constraint problem (`pb.epsilon` is ignored), from the multipliers
-/// `initial` when given.
-pub fn solve_exact(
-    pb: &Penalty,
-    initial: Option<&[f64]>,
-    opts: &NewtonOptions,
-    on_iteration: &mut dyn FnMut(&Iteration) -> ControlFlow<()>,
-) -> Result<NewtonResult, SolveError> {
-    let g = pb.coupling;
-    let n = g.nrows();
-    let d = pb.free_violation;
-    let exact = Penalty { epsilon: 0.0, ..*pb };
-    let mut y = initial
-        .filter(|y| y.len() == n)
-        .map_or_else(|| vec![0.0; n], <[f64]>::to_vec);
-    let mut progress = Progress::new(opts, on_iteration);
-    for it in 0.. {
+/// The complementarity law on the multipliers y at the rule's points (`.0` at ε = 0).
+struct Complementarity<'a, 'b>(&'b Penalty<'a>);
+
+impl SemismoothLaw for Complementarity<'_, '_> {
+    type States = Vec<bool>;
+    /// s = u_n − g = d − Gy.
+    type Values = Vec<f64>;
+    const CYCLE_STOPS: bool = true;
+
+    /// The active set A = {q : y_q + c_q s_q > 0}, c_q = 1/G_qq, and the natural residual.
+    fn assess(
+        &self,
+        y: &[f64],
+        _: Option<&Vec<bool>>,
+        opts: &NewtonOptions,
+    ) -> Assessment<Vec<bool>, Vec<f64>> {
+        let g = self.0.coupling;
+        let d = self.0.free_violation;
+        let n = y.len();
         let support: Vec<usize> = (0..n).filter(|&q| y[q] != 0.0).collect();
-        let gy = apply(g, &y, &support);
+        let gy = apply(g, y, &support);
         let s: Vec<f64> = (0..n).map(|q| d[q] - gy[q]).collect();
         let active: Vec<bool> = (0..n).map(|q| y[q] + s[q] / g[(q, q)] > 0.0).collect();
         // The natural residual of the complementarity, y − (y + c s)⁺ in force units: zero
@@ -42,27 +47,54 @@ pub fn solve_exact(
         let bad: Vec<f64> = (0..n)
             .map(|q| (y[q] - (y[q] + s[q] / g[(q, q)]).max(0.0)).abs())
             .collect();
-        let scale = dot(&y, &y).sqrt();
+        let scale = dot(y, y).sqrt();
         let residual = if scale > 0.0 {
             dot(&bad, &bad).sqrt() / scale
         } else {
             dot(&bad, &bad).sqrt()
         };
-        progress.record(it, residual, &active, 1.0)?;
-        let repeated = progress.repeated(&active);
-        let done = residual <= opts.rtol;
-        if done || repeated || it == opts.max_iterations || !residual.is_finite() {
-            let diagnosis = (!done).then(|| {
-                if repeated {
-                    format!("the active set cycles (after {it} iterations, relative residual {residual:.1e})")
-                } else {
-                    format!("no convergence in {it} iterations (relative residual {residual:.1e})")
-                }
-            });
-            return Ok(progress.finish(y, s, it, done, residual, diagnosis));
+        Assessment {
+            active: count(&active),
+            states: active,
+            residual,
+            verdict: if residual <= opts.rtol {
+                Verdict::Converged
+            } else {
+                Verdict::Continue
+            },
+            values: s,
         }
-        let a: Vec<usize> = (0..n).filter(|&q| active[q]).collect();
-        y = active_forces(&exact, &a);
     }
-    unreachable!("the loop returns")
+
+    /// G_AA y_A = d_A, y = 0 off A.
+    fn target(&self, _: &[f64], now: &Assessment<Vec<bool>, Vec<f64>>) -> Result<Vec<f64>, Diagnosis> {
+        let exact = Penalty {
+            epsilon: 0.0,
+            ..*self.0
+        };
+        let a: Vec<usize> = (0..now.states.len()).filter(|&q| now.states[q]).collect();
+        Ok(active_forces(&exact, &a))
+    }
+
+    /// The primal–dual active-set method takes the target itself.
+    fn update(&self, y: &mut Vec<f64>, target: Vec<f64>, _: f64) {
+        *y = target;
+    }
+}
+
+/// Solve the exact-constraint problem (`pb.epsilon` is ignored), from the multipliers
+/// `initial` when given.
+pub fn solve_exact(
+    pb: &Penalty,
+    initial: Option<&[f64]>,
+    opts: &NewtonOptions,
+    on_iteration: &mut dyn FnMut(&Iteration) -> ControlFlow<()>,
+) -> Result<NewtonResult, SolveError> {
+    let n = pb.coupling.nrows();
+    let y = initial
+        .filter(|y| y.len() == n)
+        .map_or_else(|| vec![0.0; n], <[f64]>::to_vec);
+    let outcome = newton::drive(&Complementarity(pb), y, opts, on_iteration)?;
+    let (y, s) = (outcome.x.clone(), outcome.last.values.clone());
+    Ok(outcome.result(y, s))
 }

@@ -9,7 +9,7 @@ use std::ops::ControlFlow;
 
 use crate::contact::ContactParams;
 use crate::contact::ContactPoints;
-use crate::contact::penalty::NewtonOptions;
+use crate::contact::newton::NewtonOptions;
 use crate::discretization::Discretization;
 use crate::discretization::refused;
 use crate::error::{SolveError, Workload};

@@ -6,7 +6,7 @@ use std::ops::ControlFlow;
 
 use super::*;
 use crate::contact::method::Gamma0;
-use crate::contact::penalty::NewtonOptions;
+use crate::contact::newton::NewtonOptions;
 use crate::contact::{ContactParams, Method, Rule};
 use crate::discretization::Discretization;
 use crate::solution::Solution;

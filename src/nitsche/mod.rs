@@ -58,10 +58,10 @@ use std::sync::{Arc, Mutex, OnceLock};
 use std::time::Instant;
 
 use crate::contact::method::Gamma0;
-use crate::contact::penalty::{Iteration, NewtonOptions};
+use crate::contact::newton::{Iteration, NewtonOptions};
 use crate::contact::{ContactParams, ContactPoints, Rule, load, smoothed_pressure};
 use crate::discretization::Discretization;
-use crate::error::SolveError;
+use crate::error::{Diagnosis, SolveError};
 use crate::solution::{Solution, Timing};
 use crate::warning;
 
@@ -252,9 +252,7 @@ pub fn solve(
         && !(load.is_finite() && finite(&p) && finite(&pbar) && finite(&vertex_uy) && finite(&forces))
     {
         newton.converged = false;
-        newton.diagnosis = Some(
-            "a contact pressure or displacement is not finite: the problem's scaling overflows double precision".into(),
-        );
+        newton.diagnosis = Some(Diagnosis::Overflow);
     }
     let mut warnings: Vec<_> = disc.stiffness_warning().into_iter().collect();
     warnings.extend(warning::of_contact(&params.obstacle, &points, &p, disc.mesh.h()));

@@ -168,7 +168,7 @@ impl SolveReport {
             },
             converged: sol.newton.converged,
             residual: sol.newton.residual,
-            diagnosis: sol.newton.diagnosis.clone(),
+            diagnosis: sol.newton.diagnosis.as_ref().map(ToString::to_string),
             load: sol.load,
             nodes: Nodes {
                 x: sol.points.vertex_x.clone(),

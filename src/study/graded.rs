@@ -10,7 +10,7 @@
 //! uniform series' rates against h.
 
 use super::{Kept, Reference, StudyRow, convergence_kept, row_params};
-use crate::contact::penalty::NewtonOptions;
+use crate::contact::newton::NewtonOptions;
 use crate::contact::{Method, Rule};
 use crate::discretization::Discretization;
 use crate::grading::{RefineEdges, solve_graded};

@@ -10,7 +10,7 @@ use serde::Serialize;
 use super::grid::{REFERENCE_SCHEME, ReferenceMesh};
 use super::source::ReferenceSource;
 use crate::contact::ContactParams;
-use crate::contact::penalty::NewtonOptions;
+use crate::contact::newton::NewtonOptions;
 use crate::contact::{ContactPoints, Method, Rule};
 use crate::discretization::Discretization;
 use crate::discretization::refused;
@@ -136,12 +136,12 @@ impl ReferenceFields {
             obstacle: scenario.obstacle.clone(),
         };
         let sol = solve_fresh(&disc, &params)?;
-        if !sol.newton.converged {
+        if let Some(diagnosis) = sol.newton.failure() {
             return Err(SolveError::NotConverged {
                 what: "the reference solution (q2 + simpson, ε = 0)",
                 iterations: sol.newton.iterations,
                 residual: sol.newton.residual,
-                diagnosis: sol.newton.diagnosis.clone().unwrap_or_default(),
+                diagnosis,
             });
         }
         Ok(ReferenceFields {

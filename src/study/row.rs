@@ -164,7 +164,7 @@ impl StudyRow {
                 kept = Some(k);
                 if !sol.newton.converged {
                     row.status = Status::NotConverged;
-                    row.reason = sol.newton.diagnosis.clone();
+                    row.reason = sol.newton.diagnosis.as_ref().map(ToString::to_string);
                 }
             }
             Err(e) => {

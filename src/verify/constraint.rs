@@ -6,7 +6,7 @@ use std::ops::ControlFlow;
 
 use super::{Case, Measured, converged};
 use crate::contact::method::DEFAULT_ALM_TOL;
-use crate::contact::penalty::NewtonOptions;
+use crate::contact::newton::NewtonOptions;
 use crate::contact::{ContactParams, Method};
 use crate::discretization::Discretization;
 use crate::error::SolveError;

@@ -110,15 +110,15 @@ pub fn cases() -> Vec<Case> {
 
 /// `sol`, or the error that says it did not converge.
 pub fn converged(sol: &crate::solution::Solution) -> Result<(), SolveError> {
-    if sol.newton.converged {
-        return Ok(());
+    match sol.newton.failure() {
+        None => Ok(()),
+        Some(diagnosis) => Err(SolveError::NotConverged {
+            what: "the case's solve",
+            iterations: sol.newton.iterations,
+            residual: sol.newton.residual,
+            diagnosis,
+        }),
     }
-    Err(SolveError::NotConverged {
-        what: "the case's solve",
-        iterations: sol.newton.iterations,
-        residual: sol.newton.residual,
-        diagnosis: sol.newton.diagnosis.clone().unwrap_or_default(),
-    })
 }
 
 /// A `--case` that names no case.

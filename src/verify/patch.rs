@@ -8,7 +8,7 @@
 use std::ops::ControlFlow;
 
 use super::{Case, Measured, converged};
-use crate::contact::penalty::NewtonOptions;
+use crate::contact::newton::NewtonOptions;
 use crate::contact::{ContactParams, Obstacle};
 use crate::discretization::Discretization;
 use crate::error::SolveError;

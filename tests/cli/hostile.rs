@@ -95,7 +95,7 @@ fn depths_beyond_the_body_are_refused() {
 #[test]
 fn the_library_refuses_unrepresentable_parameters() {
     use riplab::contact::ContactParams;
-    use riplab::contact::penalty::NewtonOptions;
+    use riplab::contact::newton::NewtonOptions;
     use riplab::discretization::Discretization;
     use riplab::error::SolveError;
     use riplab::solve::solve_contact;
@@ -117,7 +117,7 @@ fn the_library_refuses_unrepresentable_parameters() {
 #[test]
 fn a_stiffness_that_overflows_is_never_converged() {
     use riplab::contact::ContactParams;
-    use riplab::contact::penalty::NewtonOptions;
+    use riplab::contact::newton::NewtonOptions;
     use riplab::discretization::Discretization;
     use riplab::material::{Material, Plane};
     use riplab::solve::solve_contact;

@@ -5,7 +5,7 @@ use std::ops::ControlFlow;
 
 use crate::common::{Lcg, bottom_reaction, paper_with, rel};
 use riplab::contact::ContactParams;
-use riplab::contact::penalty::NewtonOptions;
+use riplab::contact::newton::NewtonOptions;
 use riplab::contact::pressure::{rule_product, smoothed_pressure, trapezoid_product};
 use riplab::contact::{ContactPoints, Obstacle, Rule};
 use riplab::discretization::Discretization;

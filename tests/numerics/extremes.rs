@@ -5,7 +5,7 @@ use std::ops::ControlFlow;
 
 use crate::common::paper_with;
 use riplab::contact::ContactParams;
-use riplab::contact::penalty::NewtonOptions;
+use riplab::contact::newton::NewtonOptions;
 use riplab::contact::{Obstacle, Rule};
 use riplab::discretization::Discretization;
 use riplab::error::{SolveError, Workload};

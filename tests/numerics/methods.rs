@@ -7,7 +7,7 @@ use std::ops::ControlFlow;
 use crate::common::paper_with;
 use riplab::contact::ContactParams;
 use riplab::contact::method::Gamma0;
-use riplab::contact::penalty::NewtonOptions;
+use riplab::contact::newton::NewtonOptions;
 use riplab::contact::{Method, Obstacle, Rule};
 use riplab::discretization::Discretization;
 use riplab::fem::Integration;

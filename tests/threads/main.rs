@@ -9,7 +9,7 @@ use std::ops::ControlFlow;
 
 use crate::common::paper_with;
 use riplab::contact::ContactParams;
-use riplab::contact::penalty::NewtonOptions;
+use riplab::contact::newton::NewtonOptions;
 use riplab::discretization::Discretization;
 use riplab::fem::factor::Factor;
 use riplab::fem::split::{SplitFactor, SplitOrdering};

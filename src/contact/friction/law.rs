@@ -150,7 +150,12 @@ impl StepProblem<'_> {
             }
         }
         for q in 0..n {
-            ns[q] = ROUNDOFF * (ns[q] + self.d[q].abs());
+            // A point the obstacle never reaches (d = −∞) has no round-off.
+            ns[q] = if self.d[q].is_finite() {
+                ROUNDOFF * (ns[q] + self.d[q].abs())
+            } else {
+                0.0
+            };
             nr[q] = ROUNDOFF * (nr[q] + self.e[q].abs() + self.shift.abs() + self.anchor[q].abs());
         }
         [s, r, ns, nr]

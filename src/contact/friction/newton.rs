@@ -1,24 +1,20 @@
 //! One shift step's semismooth Newton on the normal and tangential forces together
-//! (docs/design.md §11): the primal–dual active-set form of Hüeber, Stadler and Wohlmuth
-//! (2008), equivalently Alart–Curnier's generalized Newton on the natural residual of
-//! [`super::law`]. Each iterate's states (open, stick, slip ±) give the next iterate as the
-//! solution of [`super::system::target`]: F is piecewise linear, so a full step lands on the
-//! solution of the current sets. Converged means the natural residual is within the
-//! relative tolerance plus the round-off floor. A set of states seen before (a cycle) takes a
-//! damped step instead, the best of 1, ½, …, 1/64 on ‖F‖; a system that does not solve, the
-//! iteration limit or a non-finite residual end the step as not converged, with why.
-//!
-//! The iterate/stop/damp logic here is independent of the law (it sees codes and norms):
-//! it is meant to move onto the project's single semismooth Newton driver (issue 33).
+//! (docs/design.md §11), on the project's driver ([`crate::contact::newton::drive`]): the
+//! primal–dual active-set form of Hüeber, Stadler and Wohlmuth (2008), equivalently
+//! Alart–Curnier's generalized Newton on the natural residual of [`super::law`]. The iterate
+//! is x = (y, z); its state set is the points' codes (open, stick, slip + or −, so that a
+//! reversed slip is a change); the target of a set is [`super::system::target`] (F is
+//! piecewise linear, so a full step lands on the solution of the current sets). Converged:
+//! the natural residual within the relative tolerance plus the round-off floor. A set seen
+//! before (a cycle) takes the best damped step of 1, ½, …, 1/64 on ‖F‖.
 
-use std::collections::HashSet;
 use std::ops::ControlFlow;
 
 use super::State;
-use super::law::{Eval, StepProblem};
+use super::law::{Eval, Imposition, StepProblem};
 use super::system::target;
-use crate::contact::penalty::{Iteration, NewtonOptions};
-use crate::error::SolveError;
+use crate::contact::newton::{Assessment, Iteration, NewtonOptions, SemismoothLaw, Verdict, drive};
+use crate::error::{Diagnosis, SolveError};
 
 /// The most halvings of a damped step.
 const DAMPING_HALVINGS: i32 = 6;
@@ -38,107 +34,126 @@ pub struct StepResult {
     pub states: Vec<State>,
     /// Newton iterations taken.
     pub iterations: usize,
-    /// Whether the natural residual met the tolerance.
-    pub converged: bool,
     /// The last relative natural residual.
     pub residual: f64,
-    /// Why not, when not converged.
-    pub diagnosis: Option<String>,
+    /// Why not converged (None when converged).
+    pub diagnosis: Option<Diagnosis>,
     /// Every iteration.
     pub history: Vec<Iteration>,
 }
 
-/// The relative natural residual of `ev` at (y, z) and whether it is accurate (within
-/// `rtol` plus the floor) or swamped by round-off.
+impl StepResult {
+    /// Whether the step converged.
+    pub fn converged(&self) -> bool {
+        self.diagnosis.is_none()
+    }
+}
+
+/// The relative natural residual ‖F‖ of `ev` at (y, z), whether it is accurate (within
+/// `rtol` plus the round-off floor) and whether round-off swamps it.
 fn measure(ev: &Eval, y: &[f64], z: &[f64], rtol: f64) -> (f64, bool, bool) {
     let (res, scale, floor) = ev.residual(y, z);
     let rel = if scale > 0.0 { res / scale } else { res };
-    let swamped = scale > 0.0 && floor > 0.5 * scale;
-    (rel, res <= rtol * scale + floor, swamped)
+    (
+        rel,
+        res <= rtol * scale + floor,
+        scale > 0.0 && floor > 0.5 * scale,
+    )
+}
+
+/// The law of one step for the driver.
+struct StepLaw<'a, 'b>(&'a StepProblem<'b>);
+
+impl StepLaw<'_, '_> {
+    fn split<'x>(&self, x: &'x [f64]) -> (&'x [f64], &'x [f64]) {
+        x.split_at(self.0.len())
+    }
+
+    fn relative_residual(&self, x: &[f64]) -> f64 {
+        let (y, z) = self.split(x);
+        measure(&self.0.evaluate(y, z), y, z, 0.0).0
+    }
+}
+
+impl SemismoothLaw for StepLaw<'_, '_> {
+    type States = Vec<u8>;
+    type Values = Eval;
+
+    fn assess(
+        &self,
+        x: &[f64],
+        _previous: Option<&Vec<u8>>,
+        opts: &NewtonOptions,
+    ) -> Assessment<Vec<u8>, Eval> {
+        let (y, z) = self.split(x);
+        let ev = self.0.evaluate(y, z);
+        let (residual, accurate, swamped) = measure(&ev, y, z, opts.rtol);
+        let verdict = match self.0.imposition {
+            Imposition::Penalty { epsilon, epsilon_t } if swamped => Verdict::Fail(Diagnosis::Swamped {
+                epsilon: epsilon.min(epsilon_t),
+            }),
+            _ if accurate && residual.is_finite() => Verdict::Converged,
+            _ => Verdict::Continue,
+        };
+        Assessment {
+            states: ev.codes(),
+            active: ev.states.iter().filter(|&&s| s != State::Open).count(),
+            residual,
+            verdict,
+            values: ev,
+        }
+    }
+
+    fn target(&self, _x: &[f64], now: &Assessment<Vec<u8>, Eval>) -> Result<Vec<f64>, Diagnosis> {
+        let (mut y, z, _) = target(self.0, &now.values.states, &now.values.sign)?;
+        y.extend(z);
+        Ok(y)
+    }
+
+    fn step(&self, x: &[f64], target: &[f64], _now: &Assessment<Vec<u8>, Eval>, repeated: bool) -> f64 {
+        if !repeated {
+            return 1.0;
+        }
+        // A cycle: the best damped step on ‖F‖.
+        let mut best = (f64::INFINITY, 1.0);
+        for k in 0..=DAMPING_HALVINGS {
+            let a = 0.5_f64.powi(k);
+            let xa: Vec<f64> = x.iter().zip(target).map(|(p, q)| p + a * (q - p)).collect();
+            let rel = self.relative_residual(&xa);
+            if rel < best.0 {
+                best = (rel, a);
+            }
+        }
+        best.1
+    }
 }
 
 /// Solve the step `pb` from the forces (y, z), reporting each iteration to `on_iteration`
 /// (which may cancel).
 pub fn solve_step(
     pb: &StepProblem,
-    mut y: Vec<f64>,
-    mut z: Vec<f64>,
+    y: Vec<f64>,
+    z: Vec<f64>,
     opts: &NewtonOptions,
     on_iteration: &mut dyn FnMut(&Iteration) -> ControlFlow<()>,
 ) -> Result<StepResult, SolveError> {
-    let mut seen: HashSet<Vec<u8>> = HashSet::new();
-    let mut history = Vec::new();
-    let mut step = 1.0;
-    for it in 0.. {
-        let ev = pb.evaluate(&y, &z);
-        let (residual, accurate, swamped) = measure(&ev, &y, &z, opts.rtol);
-        let info = Iteration {
-            iteration: it,
-            residual,
-            active: ev.states.iter().filter(|&&s| s != State::Open).count(),
-            step,
-        };
-        history.push(info);
-        if on_iteration(&info).is_break() {
-            return Err(SolveError::Cancelled);
-        }
-        let finish = |y, z, converged, diagnosis: Option<String>| StepResult {
-            y,
-            z,
-            s: ev.s.clone(),
-            r: ev.r.clone(),
-            states: ev.states.clone(),
-            iterations: it,
-            converged,
-            residual,
-            diagnosis,
-            history: history.clone(),
-        };
-        if accurate && !swamped && residual.is_finite() {
-            return Ok(finish(y, z, true, None));
-        }
-        if swamped {
-            return Ok(finish(y, z, false, Some("ε or ε_t is below what double precision resolves here: round-off in u − g, amplified by 1/ε, is as large as the forces; use a larger ε".into())));
-        }
-        if !residual.is_finite() || it >= opts.max_iterations {
-            let why = if residual.is_finite() {
-                format!("no convergence in {it} Newton iterations (relative residual {residual:.1e})")
-            } else {
-                "the residual is not finite".into()
-            };
-            return Ok(finish(y, z, false, Some(why)));
-        }
-        let (ty, tz) = match target(pb, &ev.states, &ev.sign) {
-            Ok((ty, tz, _)) => (ty, tz),
-            Err(e) => return Ok(finish(y, z, false, Some(e.to_string()))),
-        };
-        step = 1.0;
-        if !seen.insert(ev.codes()) {
-            // A cycle: the best damped step on ‖F‖.
-            let mut best = (f64::INFINITY, 1.0);
-            for k in 0..=DAMPING_HALVINGS {
-                let a = 0.5_f64.powi(k);
-                let (ya, za) = blend(&y, &ty, &z, &tz, a);
-                let (res, scale, _) = pb.evaluate(&ya, &za).residual(&ya, &za);
-                let rel = if scale > 0.0 { res / scale } else { res };
-                if rel < best.0 {
-                    best = (rel, a);
-                }
-            }
-            step = best.1;
-        }
-        (y, z) = blend(&y, &ty, &z, &tz, step);
-    }
-    unreachable!("the loop returns")
-}
-
-/// (y + a(ty − y), z + a(tz − z)).
-fn blend(y: &[f64], ty: &[f64], z: &[f64], tz: &[f64], a: f64) -> (Vec<f64>, Vec<f64>) {
-    let mix = |u: &[f64], v: &[f64]| {
-        u.iter()
-            .zip(v)
-            .map(|(p, q)| if a == 1.0 { *q } else { p + a * (q - p) })
-            .collect()
-    };
-    (mix(y, ty), mix(z, tz))
+    let n = pb.len();
+    let mut x = y;
+    x.extend(z);
+    let out = drive(&StepLaw(pb), x, opts, on_iteration)?;
+    let z = out.x[n..].to_vec();
+    let mut y = out.x;
+    y.truncate(n);
+    let ev = out.last.values;
+    Ok(StepResult {
+        y,
+        z,
+        s: ev.s,
+        r: ev.r,
+        states: ev.states,
+        iterations: out.iterations,
+        residual: out.last.residual,
+        diagnosis: out.diagnosis,
+        history: out.history,
+    })
 }

@@ -20,8 +20,8 @@ use super::law::{Bound, Imposition, StepProblem};
 use super::newton::{StepResult, solve_step};
 use super::trace::Couplings;
 use crate::contact::alm::MAX_OUTER;
-use crate::contact::penalty::{Iteration, NewtonOptions};
-use crate::error::SolveError;
+use crate::contact::newton::{Iteration, NewtonOptions};
+use crate::error::{Diagnosis, SolveError};
 
 /// The most bisections of a failing shift step (2⁵ = 32 sub-steps).
 pub const MAX_BISECTIONS: u32 = 5;
@@ -143,18 +143,21 @@ impl PathProblem<'_> {
             (y, z) = (r.y.clone(), r.z.clone());
             r.iterations = iterations;
             r.history = history.clone();
-            if !r.converged {
+            if let Some(inner) = r.diagnosis.take() {
+                r.diagnosis = Some(Diagnosis::Inner {
+                    outer: k,
+                    inner: Box::new(inner),
+                });
                 return Ok(r);
             }
             if change.sqrt() <= tolerance * size.sqrt() || size == 0.0 {
                 return Ok(r);
             }
             if k == MAX_OUTER {
-                r.converged = false;
-                r.diagnosis = Some(format!(
-                    "the augmented Lagrangian's multipliers did not settle in {MAX_OUTER} updates (relative change {:.1e})",
-                    (change / size).sqrt()
-                ));
+                r.diagnosis = Some(Diagnosis::Updates {
+                    updates: MAX_OUTER,
+                    change: (change / size).sqrt(),
+                });
                 return Ok(r);
             }
         }
@@ -200,7 +203,7 @@ impl PathProblem<'_> {
             substeps: 1,
         });
         let mut last = press;
-        if last.converged {
+        if last.converged() {
             carried = Carried {
                 y: last.y.clone(),
                 z: last.z.clone(),
@@ -234,9 +237,7 @@ impl PathProblem<'_> {
                 }
             }
         } else {
-            last.diagnosis = last
-                .diagnosis
-                .map(|d| format!("the press (shift 0) did not converge: {d}"));
+            last.diagnosis = last.diagnosis.map(|d| Diagnosis::Press(Box::new(d)));
         }
         let iterations = reports.iter().map(|r| r.iterations).sum();
         last.iterations = iterations;
@@ -266,7 +267,7 @@ impl PathProblem<'_> {
         let r = self.step(carried, to, opts, outer, on_iteration)?;
         report.iterations += r.iterations;
         history.extend_from_slice(&r.history);
-        if r.converged {
+        if r.converged() {
             report.substeps += 1;
             *carried = Carried {
                 y: r.y.clone(),
@@ -277,10 +278,16 @@ impl PathProblem<'_> {
         }
         if depth >= MAX_BISECTIONS {
             let mut r = r;
-            r.diagnosis = Some(format!(
-                "the shift step from {from} to {to} did not converge after {MAX_BISECTIONS} bisections; the solve stopped at shift {from}: {}",
-                r.diagnosis.as_deref().unwrap_or("no diagnosis")
-            ));
+            let cause = r.diagnosis.take().unwrap_or(Diagnosis::Stalled {
+                iterations: r.iterations,
+                residual: r.residual,
+            });
+            r.diagnosis = Some(Diagnosis::Shift {
+                from,
+                to,
+                bisections: MAX_BISECTIONS,
+                cause: Box::new(cause),
+            });
             return Ok((r, false));
         }
         let mid = 0.5 * (from + to);

@@ -10,10 +10,10 @@ use super::law::{Bound, Imposition};
 use super::path::{FrictionSolution, PathProblem};
 use super::trace::{FrictionTrace, apply, nodal};
 use super::{Friction, Law};
-use crate::contact::penalty::{Iteration, NewtonOptions, NewtonResult};
+use crate::contact::newton::{Iteration, NewtonOptions, NewtonResult};
 use crate::contact::{ContactParams, Method, load, raw_pressure, smoothed_pressure};
 use crate::discretization::{Discretization, ms_since};
-use crate::error::SolveError;
+use crate::error::{Diagnosis, SolveError};
 use crate::solution::{Solution, Timing};
 use crate::warning::{self, Warning};
 
@@ -149,7 +149,7 @@ pub fn solve_with(
     let load_p = load(&points, &p);
     let tangential_load: f64 = last.z.iter().sum();
     let finite = |v: &[f64]| v.iter().all(|x| x.is_finite());
-    let mut converged = last.converged;
+    let mut converged = last.converged();
     let mut diagnosis = last.diagnosis.clone();
     if converged
         && !(load_p.is_finite()
@@ -159,7 +159,7 @@ pub fn solve_with(
                 .all(|v| finite(v)))
     {
         converged = false;
-        diagnosis = Some("a force, traction or displacement is not finite: the problem's scaling overflows double precision".into());
+        diagnosis = Some(Diagnosis::Overflow);
     }
     let mut warnings: Vec<Warning> = disc.stiffness_warning().into_iter().collect();
     warnings.extend(warning::of_contact(&params.obstacle, &points, &p, disc.mesh.h()));

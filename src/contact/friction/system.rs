@@ -21,7 +21,7 @@ use faer::{Mat, Side};
 
 use super::State;
 use super::law::{Bound, Imposition, StepProblem};
-use crate::error::SolveError;
+use crate::error::Diagnosis;
 
 /// The residual ‖Mx − b‖ an LU solution must meet, relative to ‖M‖‖x‖ + ‖b‖.
 const LU_TOLERANCE: f64 = 1e-10;
@@ -43,7 +43,7 @@ pub fn target(
     pb: &StepProblem,
     states: &[State],
     sign: &[f64],
-) -> Result<(Vec<f64>, Vec<f64>, Factorisation), SolveError> {
+) -> Result<(Vec<f64>, Vec<f64>, Factorisation), Diagnosis> {
     let n = pb.len();
     let g = pb.couplings;
     let a: Vec<usize> = (0..n).filter(|&q| states[q] != State::Open).collect();
@@ -123,7 +123,7 @@ pub fn solve(
     mat: &Mat<f64>,
     rhs: &Mat<f64>,
     symmetric: bool,
-) -> Result<(Mat<f64>, Factorisation), SolveError> {
+) -> Result<(Mat<f64>, Factorisation), Diagnosis> {
     if mat.nrows() == 0 {
         return Ok((Mat::zeros(0, 1), Factorisation::Cholesky));
     }
@@ -148,11 +148,7 @@ pub fn solve(
     if fits(&x) {
         return Ok((x, Factorisation::FullLu));
     }
-    Err(SolveError::Input {
-        what: "the friction coefficient μ",
-        message: "the Coulomb system is singular: μ too large for a unique incremental solution on this mesh"
-            .into(),
-    })
+    Err(Diagnosis::CoulombSingular)
 }
 
 #[cfg(test)]

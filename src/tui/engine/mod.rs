@@ -11,7 +11,7 @@ use std::sync::{Arc, Mutex, OnceLock};
 use std::time::Instant;
 
 use crate::contact::ContactParams;
-use crate::contact::penalty::NewtonOptions;
+use crate::contact::newton::NewtonOptions;
 use crate::contact::{Method, Rule, carried_forces};
 use crate::discretization::Discretization;
 use crate::error::SolveError;
