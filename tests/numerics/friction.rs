@@ -108,3 +108,189 @@ fn mu_zero_is_frictionless() {
         }
     }
 }
+
+/// Sign changes of successive differences above 1e-9 (tests/numerics/pressures.rs).
+fn turns(v: &[f64]) -> usize {
+    let d: Vec<f64> = v
+        .windows(2)
+        .map(|w| w[1] - w[0])
+        .filter(|d| d.abs() > 1e-9)
+        .collect();
+    d.windows(2).filter(|w| w[0] * w[1] < 0.0).count()
+}
+
+fn coulomb(mu: f64, shift: f64, steps: usize) -> Friction {
+    Friction {
+        law: Law::Coulomb { mu },
+        shift,
+        steps,
+        epsilon_t: None,
+    }
+}
+
+/// The Done-when: on `scenarios/cattaneo-mindlin.toml` at its default level the computed stick
+/// half-width is within 5% of Johnson's c = a√(1 − Q/(μP)) for the computed P and Q, and
+/// ‖t̄ − q‖₀ within 5% of ‖q‖₀ (q: Cattaneo–Mindlin's closed form, src/contact/mindlin.rs,
+/// itself checked by ∫q = Q and the stick zone's rigid motion).
+#[test]
+fn cattaneo_mindlin_within_five_percent() {
+    use riplab::contact::mindlin::{Mindlin, stick_half_width};
+    let s = Scenario::load(Path::new("scenarios/cattaneo-mindlin.toml")).unwrap();
+    let (_, sol) = riplab::solve::solve_scenario(&s).unwrap();
+    assert!(sol.newton.converged, "{:?}", sol.newton.diagnosis);
+    let f = sol.friction.as_ref().unwrap();
+    let mu = s.friction.law.mu().unwrap();
+    let ratio = f.tangential_load / (mu * sol.load);
+    assert!(ratio > 0.3 && ratio < 0.7, "Q/(μP) = {ratio}");
+    let m = Mindlin::for_loads(&s.obstacle, &s.material, sol.load, f.tangential_load, mu).unwrap();
+    let (width, runs) = stick_half_width(&sol.points, &f.states).unwrap();
+    assert_eq!(runs, 1);
+    assert!(
+        (width / m.c - 1.0).abs() <= 0.05,
+        "stick half-width {width} against c = {}",
+        m.c
+    );
+    let err = m.relative_error(&sol.points, &f.tbar);
+    assert!(err <= 0.05, "‖t̄ − q‖/‖q‖ = {err}");
+    // β ≈ 0: one shift step gives the same answer as the default steps (no point re-sticks).
+    let disc = Discretization::of_traced(&s, s.level, s.element, Trace::Full).unwrap();
+    let p = params(&s, s.rule, s.method, s.epsilon);
+    let one = with(
+        &disc,
+        &p,
+        &Friction {
+            steps: 1,
+            ..s.friction
+        },
+    );
+    assert!(max_rel(&one.friction.as_ref().unwrap().tbar, &f.tbar) <= 1e-8);
+}
+
+/// A very large μ sticks every contact point: the stick zone is the contact, and the contact
+/// nodes move with the obstacle, u_x = ξ, in the displacement of a sparse solve with the
+/// nodal forces (not the condensed algebra the solver used).
+#[test]
+fn large_mu_sticks_everywhere() {
+    use riplab::contact::mindlin::stick_half_width;
+    let s = full();
+    let disc = Discretization::of_traced(&s, 1, Element::Q1, Trace::Full).unwrap();
+    let p = params(&s, Rule::Trapezoid, Method::Exact, 0.0);
+    let shift = 0.01;
+    let sol = with(&disc, &p, &coulomb(1e6, shift, 2));
+    assert!(sol.newton.converged, "{:?}", sol.newton.diagnosis);
+    let f = sol.friction.as_ref().unwrap();
+    let contact: Vec<usize> = (0..f.states.len())
+        .filter(|&q| f.states[q] != State::Open)
+        .collect();
+    assert!(contact.len() > 4);
+    assert!(contact.iter().all(|&q| f.states[q] == State::Stick));
+    let (width, runs) = stick_half_width(&sol.points, &f.states).unwrap();
+    assert_eq!(runs, 1);
+    let x = |q: usize| sol.points.points[q].x;
+    let (lo, hi) = (contact[0], *contact.last().unwrap());
+    let half = 0.5 * (0.5 * (x(hi) + x(hi + 1)) - 0.5 * (x(lo - 1) + x(lo)));
+    assert!((width - half).abs() < 1e-12);
+    let u = sol.displacement(&disc);
+    let top = disc.mesh().top_nodes();
+    for &q in &contact {
+        let node = top[q];
+        assert!(
+            (u[2 * node] - shift).abs() <= 1e-9 * shift,
+            "u_x {} at {}",
+            u[2 * node],
+            x(q)
+        );
+        assert!(
+            (u[2 * node + 1] - s.obstacle.gap(x(q))).abs() <= 1e-9,
+            "u_y at {}",
+            x(q)
+        );
+    }
+}
+
+/// Q equals minus the sum of the horizontal reactions and P the sum of the vertical ones at
+/// the clamped bottom, from K u assembled on every dof (nothing held) with u the solution's
+/// displacement (its +Tᵀz included): equilibrium at the assembly's level, not the trace sums.
+#[test]
+fn tangential_load_is_the_horizontal_reaction() {
+    use riplab::fem::{Form, apply};
+    let s = full();
+    for (element, rule, method, eps) in [
+        (Element::Q1, Rule::Gauss1, Method::Penalty, 1e-6),
+        (Element::Q1, Rule::Trapezoid, Method::Exact, 0.0),
+        (Element::Q2, Rule::Simpson, Method::Exact, 0.0),
+    ] {
+        let disc = Discretization::of_traced(&s, 1, element, Trace::Full).unwrap();
+        let sol = with(&disc, &params(&s, rule, method, eps), &coulomb(0.3, 0.05, 4));
+        assert!(
+            sol.newton.converged,
+            "{element:?} {rule:?}: {:?}",
+            sol.newton.diagnosis
+        );
+        let q = sol.friction.as_ref().unwrap().tangential_load;
+        assert!(q > 0.1 * 0.3 * sol.load, "Q = {q}");
+        let mesh = disc.mesh();
+        let ku = apply(
+            mesh,
+            Form::Elasticity(s.material, s.integration),
+            &sol.displacement(&disc),
+        );
+        let nnx = mesh.nnx();
+        let (rx, ry): (f64, f64) = (0..nnx).fold((0.0, 0.0), |(a, b), n| (a + ku[2 * n], b + ku[2 * n + 1]));
+        assert!(
+            (rx + q).abs() <= 1e-9 * sol.load,
+            "{element:?} {rule:?}: Σ r_x = {rx}, Q = {q}"
+        );
+        assert!(
+            (ry - sol.load).abs() <= 1e-9 * sol.load,
+            "{element:?} {rule:?}: Σ r_y = {ry}, P = {}",
+            sol.load
+        );
+    }
+}
+
+/// M1 (Q1 + one-point Gauss, penalty): where the points slip, t = μp exactly, so t's raw
+/// values oscillate where p's do; t̄ on the slip zone's vertices does not (it rises to μp's
+/// peak and falls, one turn at most).
+#[test]
+fn m1_t_oscillates_where_p_does() {
+    let s = full();
+    let disc = Discretization::of_traced(&s, 1, Element::Q1, Trace::Full).unwrap();
+    let p = params(&s, Rule::Gauss1, Method::Penalty, 1e-6);
+    let sol = with(&disc, &p, &coulomb(0.3, 0.5, 8));
+    assert!(sol.newton.converged, "{:?}", sol.newton.diagnosis);
+    let f = sol.friction.as_ref().unwrap();
+    let slip: Vec<usize> = (0..f.states.len())
+        .filter(|&q| f.states[q] == State::Slip)
+        .collect();
+    assert!(!slip.is_empty());
+    for &q in &slip {
+        assert!(
+            (f.t[q].abs() - 0.3 * sol.p[q]).abs() <= 1e-12 * sol.p[q],
+            "t = μp at slip points"
+        );
+    }
+    // The right slip zone: from the last stick point to the contact's end.
+    let last_stick = (0..f.states.len())
+        .rfind(|&q| f.states[q] == State::Stick)
+        .unwrap_or(slip[0]);
+    let right: Vec<usize> = slip.iter().copied().filter(|&q| q > last_stick).collect();
+    let (pt, tt): (Vec<f64>, Vec<f64>) = right.iter().map(|&q| (sol.p[q], f.t[q].abs())).unzip();
+    assert!(turns(&pt) >= 2, "p does not oscillate here: {pt:?}");
+    assert_eq!(turns(&tt), turns(&pt));
+    // t̄ at the vertices strictly inside that zone.
+    let xs: Vec<f64> = right.iter().map(|&q| sol.points.points[q].x).collect();
+    let (lo, hi) = (xs[0], *xs.last().unwrap());
+    let tbar: Vec<f64> = sol
+        .points
+        .vertex_x
+        .iter()
+        .zip(&f.tbar)
+        .filter(|(x, _)| **x > lo && **x < hi)
+        .map(|(_, t)| *t)
+        .collect();
+    // At most one turn: the peak of μp (at shift 0.5 the zone reaches past it), no
+    // oscillation.
+    assert!(tbar.len() >= 3);
+    assert!(turns(&tbar) <= 1, "t̄ {tbar:?}");
+}

@@ -8,9 +8,12 @@
 //!
 //!   y* = (y + c_n s)⁺,   z* = proj_b(z − c_t v),
 //!
-//! and for the penalty (ε, ε_t) y* = (w/ε) s⁺, z* = proj_b(−(w/ε_t) v); b = μ y* (Coulomb)
-//! or w g where the point is in contact (Tresca), proj_b(τ) = max(−b, min(b, τ)). The solution
-//! is the fixed point y = y*, z = z*; the natural residual is (y − y*, z − z*) in force units.
+//! and for the penalty (ε, ε_t), whose laws y = (w/ε) s⁺ and z = proj_b(−(w/ε_t) v) are the
+//! same complementarity on the regularised gaps s − (ε/w) y and v + (ε_t/w) z,
+//! y* = (y + c_n(s − (ε/w)y))⁺, z* = proj_b(z − c_t(v + (ε_t/w)z)) with c_n = 1/((G_nn)_qq + ε/w),
+//! c_t = 1/((G_tt)_qq + ε_t/w); b = μ y* (Coulomb) or w g where the point is in contact
+//! (Tresca), proj_b(τ) = max(−b, min(b, τ)). The solution is the fixed point y = y*, z = z*;
+//! the natural residual is (y − y*, z − z*) in force units.
 
 use super::State;
 use super::trace::Couplings;
@@ -184,8 +187,17 @@ impl StepProblem<'_> {
                     (y[q] + cn * out.s[q], z[q] - ct * v, (cn, ct))
                 }
                 Imposition::Penalty { epsilon, epsilon_t } => {
-                    let (kn, kt) = (w / epsilon, w / epsilon_t);
-                    (kn * out.s[q], -kt * v, (kn, kt))
+                    // y = (w/ε)s⁺ ⇔ y = (y + c_n(s − (ε/w)y))⁺ for any c_n > 0, and
+                    // z = proj_b(−(w/ε_t)v) ⇔ z = proj_b(z − c_t(v + (ε_t/w)z)): the same
+                    // Alart–Curnier form on the regularised gaps, scaled by their diagonal
+                    // (the raw (w/ε)s decides the states far too sharply at small ε).
+                    let (dn, dt) = (epsilon / w, epsilon_t / w);
+                    let (cn, ct) = (1.0 / (g.g_nn[(q, q)] + dn), 1.0 / (g.g_tt[(q, q)] + dt));
+                    (
+                        y[q] + cn * (out.s[q] - dn * y[q]),
+                        z[q] - ct * (v + dt * z[q]),
+                        (cn, ct),
+                    )
                 }
             };
             out.floor[q] = kn * ns[q] + kt * nr[q];
