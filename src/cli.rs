@@ -11,6 +11,8 @@ use crate::input::ScenarioError;
 use crate::tui::{MarkerChoice, TuiOptions};
 
 mod checks;
+mod friction_args;
+mod friction_solve;
 mod grading;
 mod outputs;
 mod render_args;
@@ -18,6 +20,7 @@ mod tour;
 pub mod values;
 mod verify;
 
+pub use friction_args::FrictionArgs;
 pub use tour::TourArgs;
 
 /// The exit codes, as every `--help` shows them (a macro, so that other notes can extend it).

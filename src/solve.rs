@@ -9,7 +9,6 @@ use std::ops::ControlFlow;
 use std::time::Instant;
 
 use crate::contact::ContactParams;
-use crate::contact::friction::solve_friction;
 use crate::contact::newton::{Iteration, NewtonOptions};
 use crate::contact::penalty::{self, Penalty};
 use crate::contact::signorini::solve_exact;
@@ -17,6 +16,7 @@ use crate::contact::{Method, Rule, alm, load, raw_pressure, smoothed_pressure};
 use crate::discretization::ms_since;
 use crate::discretization::{Discretization, Trace};
 use crate::error::{Diagnosis, SolveError};
+use crate::friction::solve_friction;
 use crate::nitsche::{self, NitscheParams};
 use crate::scenario::Scenario;
 use crate::solution::{Solution, Timing};

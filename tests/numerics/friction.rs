@@ -4,10 +4,11 @@
 use std::ops::ControlFlow;
 use std::path::Path;
 
-use riplab::contact::friction::{Friction, Law, State, solve_friction};
+use riplab::contact::friction::{Friction, Law, State};
 use riplab::contact::newton::NewtonOptions;
 use riplab::contact::{ContactParams, Method, Rule};
 use riplab::discretization::{Discretization, Trace};
+use riplab::friction::solve_friction;
 use riplab::mesh::Element;
 use riplab::scenario::Scenario;
 use riplab::solution::Solution;

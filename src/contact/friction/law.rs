@@ -15,12 +15,25 @@
 //! (Tresca), proj_b(τ) = max(−b, min(b, τ)). The solution is the fixed point y = y*, z = z*;
 //! the natural residual is (y − y*, z − z*) in force units.
 
+use std::sync::Arc;
+
+use faer::Mat;
+
 use super::State;
-use super::trace::Couplings;
 
 /// Relative size of the round-off in s and r (a few units in the last place), as in
 /// [`crate::contact::penalty`].
 const ROUNDOFF: f64 = 16.0 * f64::EPSILON;
+
+/// The blocks of 𝔾 = P K⁻¹ Pᵀ between a rule's points.
+pub struct Couplings {
+    /// G_nn = T C_nn Tᵀ: normal displacement per normal force.
+    pub g_nn: Arc<Mat<f64>>,
+    /// G_nt = T C_nt Tᵀ: normal displacement per tangential force (G_tn = G_ntᵀ).
+    pub g_nt: Mat<f64>,
+    /// G_tt = T C_tt Tᵀ: tangential displacement per tangential force.
+    pub g_tt: Mat<f64>,
+}
 
 /// How both constraints are imposed.
 #[derive(Clone, Copy, Debug, PartialEq)]

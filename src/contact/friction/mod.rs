@@ -2,22 +2,18 @@
 //! contact rule's points with the same rule as the normal constraint (the penalty (11), the
 //! exact multipliers, the augmented Lagrangian), solved by a semismooth Newton (the
 //! primal–dual active-set form) on the normal and tangential forces together, condensed onto
-//! Γ_C's full trace [u_x, u_y] ([`trace`]). The obstacle is pressed to its depth, then moved
+//! Γ_C's full trace [u_x, u_y] ([`crate::friction`]). The obstacle is pressed to its depth, then moved
 //! sideways by a shift ξ in quasi-static steps ([`path`]); the tangential traction t at the
 //! points is smoothed to t̄ at the vertices with p̄'s weights, the paper's (16)–(17).
 
 pub mod law;
 pub mod newton;
 pub mod path;
-pub mod solve;
 pub mod system;
-pub mod trace;
 
 use serde::Serialize;
 
 pub use path::{FrictionSolution, StepReport};
-pub use solve::solve_friction;
-pub use trace::FrictionTrace;
 
 /// The default number of shift steps (docs/design.md §11: measured on `hertz-paper-full` and
 /// `cattaneo-mindlin`, STABILITY.md).

@@ -16,9 +16,9 @@ use std::ops::ControlFlow;
 use serde::Serialize;
 
 use super::State;
+use super::law::Couplings;
 use super::law::{Bound, Imposition, StepProblem};
 use super::newton::{StepResult, solve_step};
-use super::trace::Couplings;
 use crate::contact::alm::MAX_OUTER;
 use crate::contact::newton::{Iteration, NewtonOptions};
 use crate::error::{Diagnosis, SolveError};

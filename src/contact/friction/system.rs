@@ -154,8 +154,9 @@ pub fn solve(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::contact::friction::trace::{Couplings, FrictionTrace};
+    use crate::contact::friction::law::Couplings;
     use crate::discretization::Discretization;
+    use crate::friction::FrictionTrace;
     use crate::scenario::Scenario;
     use std::sync::Arc;
 

@@ -10,6 +10,7 @@ use std::sync::{Arc, Mutex};
 
 use faer::{Mat, MatRef};
 
+use crate::contact::friction::law::Couplings;
 use crate::contact::{ContactPoints, Rule};
 use crate::discretization::{Discretization, Trace, held_tangential};
 use crate::error::SolveError;
@@ -24,16 +25,6 @@ pub struct FrictionTrace {
     /// C on [u_x(Γ_C), u_y(Γ_C)], 2N × 2N.
     pub c_full: Mat<f64>,
     couplings: Mutex<HashMap<Rule, Arc<Couplings>>>,
-}
-
-/// The blocks of 𝔾 = P K⁻¹ Pᵀ between a rule's points.
-pub struct Couplings {
-    /// G_nn = T C_nn Tᵀ: normal displacement per normal force.
-    pub g_nn: Arc<Mat<f64>>,
-    /// G_nt = T C_nt Tᵀ: normal displacement per tangential force (G_tn = G_ntᵀ).
-    pub g_nt: Mat<f64>,
-    /// G_tt = T C_tt Tᵀ: tangential displacement per tangential force.
-    pub g_tt: Mat<f64>,
 }
 
 impl FrictionTrace {

@@ -6,10 +6,10 @@
 use std::ops::ControlFlow;
 use std::time::Instant;
 
-use super::law::{Bound, Imposition};
-use super::path::{FrictionSolution, PathProblem};
 use super::trace::{FrictionTrace, apply, nodal};
-use super::{Friction, Law};
+use crate::contact::friction::law::{Bound, Imposition};
+use crate::contact::friction::path::{FrictionSolution, PathProblem};
+use crate::contact::friction::{Friction, Law};
 use crate::contact::newton::{Iteration, NewtonOptions, NewtonResult};
 use crate::contact::{ContactParams, Method, load, raw_pressure, smoothed_pressure};
 use crate::discretization::{Discretization, ms_since};
