@@ -295,3 +295,28 @@ fn m1_t_oscillates_where_p_does() {
     assert!(tbar.len() >= 3);
     assert!(turns(&tbar) <= 1, "t̄ {tbar:?}");
 }
+
+/// A friction solve that does not converge says so, with the shift where it stopped: never
+/// converged, the diagnosis typed (the press, or a shift step after its bisections).
+#[test]
+fn a_solve_that_does_not_converge_says_where_it_stopped() {
+    use riplab::error::Diagnosis;
+    let s = full();
+    let disc = Discretization::of_traced(&s, 1, Element::Q1, Trace::Full).unwrap();
+    let p = params(&s, Rule::Trapezoid, Method::Exact, 0.0);
+    let opts = NewtonOptions {
+        max_iterations: 1,
+        ..NewtonOptions::default()
+    };
+    let sol = solve_friction(&disc, &p, &coulomb(0.3, 0.05, 2), None, &opts, &mut |_| {
+        ControlFlow::Continue(())
+    })
+    .unwrap();
+    assert!(!sol.newton.converged);
+    let why = sol.newton.diagnosis.clone().unwrap();
+    assert!(
+        matches!(why, Diagnosis::Press(_) | Diagnosis::Shift { .. }),
+        "{why:?}"
+    );
+    assert!(why.to_string().contains("shift"), "{why}");
+}
