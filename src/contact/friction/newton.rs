@@ -5,8 +5,9 @@
 //! is x = (y, z); its state set is the points' codes (open, stick, slip + or −, so that a
 //! reversed slip is a change); the target of a set is [`super::system::target`] (F is
 //! piecewise linear, so a full step lands on the solution of the current sets). Converged:
-//! the natural residual within the relative tolerance plus the round-off floor. A set seen
-//! before (a cycle) takes the best damped step of 1, ½, …, 1/64 on ‖F‖.
+//! the natural residual within the relative tolerance plus the round-off floor. Each step
+//! backtracks on ‖F‖ (the first of 1, ½, …, 1/64 that decreases it); when none does, the
+//! full step, or on a set seen before (a cycle) the best of them.
 
 use std::ops::ControlFlow;
 
@@ -69,9 +70,10 @@ impl StepLaw<'_, '_> {
         x.split_at(self.0.len())
     }
 
-    fn relative_residual(&self, x: &[f64]) -> f64 {
+    /// ‖F‖ at x, in force units.
+    fn absolute_residual(&self, x: &[f64]) -> f64 {
         let (y, z) = self.split(x);
-        measure(&self.0.evaluate(y, z), y, z, 0.0).0
+        self.0.evaluate(y, z).residual(y, z).0
     }
 }
 
@@ -110,21 +112,24 @@ impl SemismoothLaw for StepLaw<'_, '_> {
         Ok(y)
     }
 
-    fn step(&self, x: &[f64], target: &[f64], _now: &Assessment<Vec<u8>, Eval>, repeated: bool) -> f64 {
-        if !repeated {
-            return 1.0;
-        }
-        // A cycle: the best damped step on ‖F‖.
+    fn step(&self, x: &[f64], target: &[f64], now: &Assessment<Vec<u8>, Eval>, repeated: bool) -> f64 {
+        // Backtracking on ‖F‖: the first of 1, ½, …, 1/64 that decreases it enough; when none
+        // does, the full step (the active-set jump) unless the set repeats, then the best.
+        let (y, z) = self.split(x);
+        let start = now.values.residual(y, z).0;
         let mut best = (f64::INFINITY, 1.0);
         for k in 0..=DAMPING_HALVINGS {
             let a = 0.5_f64.powi(k);
             let xa: Vec<f64> = x.iter().zip(target).map(|(p, q)| p + a * (q - p)).collect();
-            let rel = self.relative_residual(&xa);
-            if rel < best.0 {
-                best = (rel, a);
+            let f = self.absolute_residual(&xa);
+            if f < (1.0 - 1e-4 * a) * start {
+                return a;
+            }
+            if f < best.0 {
+                best = (f, a);
             }
         }
-        best.1
+        if repeated { best.1 } else { 1.0 }
     }
 }
 
