@@ -170,7 +170,7 @@ mod tests {
                 }
             };
             // Pieces between the kinks (±c), the edges (±a) and x, each on θ where √ edges sit.
-            let mut cuts = vec![-a, -c, c, a, x];
+            let mut cuts = [-a, -c, c, a, x];
             cuts.sort_by(f64::total_cmp);
             let smooth = cuts
                 .windows(2)

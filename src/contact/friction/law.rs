@@ -141,11 +141,9 @@ impl StepProblem<'_> {
     pub fn displacements(&self, y: &[f64], z: &[f64]) -> [Vec<f64>; 4] {
         let n = self.len();
         let c = self.couplings;
-        let (mut s, mut r) = (self.d.to_vec(), vec![0.0; n]);
+        let mut s = self.d.to_vec();
+        let mut r: Vec<f64> = self.e.iter().map(|e| e - self.shift).collect();
         let (mut ns, mut nr) = (vec![0.0; n], vec![0.0; n]);
-        for q in 0..n {
-            r[q] = self.e[q] - self.shift;
-        }
         for q in 0..n {
             let (yq, zq) = (y[q], z[q]);
             if yq == 0.0 && zq == 0.0 {

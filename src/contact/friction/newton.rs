@@ -1,5 +1,5 @@
 //! One shift step's semismooth Newton on the normal and tangential forces together
-//! (docs/design.md §11), on the project's driver ([`crate::contact::newton::drive`]): the
+//! (docs/design.md §11), on the project's driver (`contact::newton::drive`): the
 //! primal–dual active-set form of Hüeber, Stadler and Wohlmuth (2008), equivalently
 //! Alart–Curnier's generalized Newton on the natural residual of [`super::law`]. The iterate
 //! is x = (y, z); its state set is the points' codes (open, stick, slip + or −, so that a

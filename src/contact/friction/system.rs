@@ -2,13 +2,17 @@
 //! §11): with the points split into contact A = S ∪ L (stick S, slip L with the direction σ)
 //! and open O, the iterate that satisfies the sets' equations —
 //!
+//! ```text
 //!   s_A = D_n y_A,   v_S = −D_t z_S,   z_L = σ_L b_L,   y_O = z_O = 0
+//! ```
 //!
 //! (D_n = diag(ε/w), D_t = diag(ε_t/w), both zero for the exact multipliers) — solves, in the
 //! unknowns (y_A, z_S), with Coulomb's z_L = μ Σ_L y_L or Tresca's known z_L = σ_L w_L g_L:
 //!
+//! ```text
 //!   [ (D_n + G_nn)_AA − μ (G_nt)_AL Σ_L    −(G_nt)_AS      ] [y_A]   [ d_A + (G_nt)_AL z_L      ]
 //!   [ −(G_tn)_SA + μ (G_tt)_SL Σ_L          (D_t + G_tt)_SS ] [z_S] = [ ξ + r̂_S − e_S − (G_tt)_SL z_L ]
+//! ```
 //!
 //! (the z_L terms of the right-hand side are Tresca's; Coulomb's are in the matrix). Tresca's
 //! matrix (and Coulomb's with no slip or μ = 0) is a principal block of the symmetric 𝔾 + D:
