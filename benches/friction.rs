@@ -72,11 +72,18 @@ fn coulomb_path(bencher: Bencher) {
         obstacle: s.obstacle.clone(),
     };
     let points = disc.contact_points(s.rule);
-    FrictionTrace::of(&disc).unwrap().couplings(&disc, s.rule, &points);
+    FrictionTrace::of(&disc)
+        .unwrap()
+        .couplings(&disc, s.rule, &points);
     bencher.bench(|| {
-        solve_friction(&disc, &params, &s.friction, None, &NewtonOptions::default(), &mut |_| {
-            ControlFlow::Continue(())
-        })
+        solve_friction(
+            &disc,
+            &params,
+            &s.friction,
+            None,
+            &NewtonOptions::default(),
+            &mut |_| ControlFlow::Continue(()),
+        )
         .unwrap()
         .load
     });
