@@ -321,3 +321,72 @@ fn a_solve_that_does_not_converge_says_where_it_stopped() {
     );
     assert!(why.to_string().contains("shift"), "{why}");
 }
+
+/// Tresca with the per-point threshold g_q = μ p_q of a Coulomb step's solution gives that
+/// solution back (it satisfies Tresca's conditions, and Tresca's incremental problem has one
+/// solution), by another system (Cholesky on the symmetric block, not Coulomb's LU): y and z
+/// to 1e-10, for the exact multipliers and the penalty.
+#[test]
+fn tresca_at_coulombs_pressure_is_coulomb() {
+    use riplab::contact::friction::law::{Bound, Imposition, StepProblem};
+    use riplab::contact::friction::newton::solve_step;
+    use riplab::friction::FrictionTrace;
+    let s = full();
+    let disc = Discretization::of_traced(&s, 2, Element::Q1, Trace::Full).unwrap();
+    for (rule, imposition) in [
+        (Rule::Trapezoid, Imposition::Exact),
+        (
+            Rule::Gauss1,
+            Imposition::Penalty {
+                epsilon: 1e-6,
+                epsilon_t: 1e-6,
+            },
+        ),
+    ] {
+        let points = disc.contact_points(rule);
+        let couplings = FrictionTrace::of(&disc).unwrap().couplings(&disc, rule, &points);
+        let w: Vec<f64> = points.points.iter().map(|q| q.weight).collect();
+        let n = w.len();
+        let d: Vec<f64> = points.points.iter().map(|q| -s.obstacle.gap(q.x)).collect();
+        let zero = vec![0.0; n];
+        let step = |bound| StepProblem {
+            couplings: &couplings,
+            d: &d,
+            e: &zero,
+            weight: &w,
+            bound,
+            imposition,
+            shift: 0.1,
+            anchor: &zero,
+        };
+        let solve = |pb: &StepProblem| {
+            solve_step(
+                pb,
+                zero.clone(),
+                zero.clone(),
+                &NewtonOptions::default(),
+                &mut |_| ControlFlow::Continue(()),
+            )
+            .unwrap()
+        };
+        let mu = 0.3;
+        let coulomb = solve(&step(Bound::Coulomb(mu)));
+        assert!(coulomb.converged(), "{rule:?}: {:?}", coulomb.diagnosis);
+        let slipping = coulomb.states.iter().filter(|&&x| x == State::Slip).count();
+        let sticking = coulomb.states.iter().filter(|&&x| x == State::Stick).count();
+        assert!(slipping > 0 && sticking > 0, "{rule:?}: partial slip");
+        let g: Vec<f64> = (0..n).map(|q| mu * coulomb.y[q] / w[q]).collect();
+        let tresca = solve(&step(Bound::Tresca(&g)));
+        assert!(tresca.converged(), "{rule:?}");
+        assert!(
+            max_rel(&tresca.y, &coulomb.y) <= 1e-10,
+            "{rule:?}: y {}",
+            max_rel(&tresca.y, &coulomb.y)
+        );
+        assert!(
+            max_rel(&tresca.z, &coulomb.z) <= 1e-10,
+            "{rule:?}: z {}",
+            max_rel(&tresca.z, &coulomb.z)
+        );
+    }
+}
