@@ -11,6 +11,8 @@ use crate::input::ScenarioError;
 use crate::tui::{MarkerChoice, TuiOptions};
 
 mod checks;
+mod friction_args;
+mod friction_solve;
 mod grading;
 #[cfg(test)]
 mod lab_help;
@@ -20,6 +22,7 @@ mod tour;
 pub mod values;
 mod verify;
 
+pub use friction_args::FrictionArgs;
 pub use tour::TourArgs;
 
 /// The exit codes, as every `--help` shows them (a macro, so that other notes can extend it).

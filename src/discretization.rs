@@ -55,6 +55,21 @@ pub struct Discretization {
     /// What a method builds on its first solve on this mesh and keeps with it (Nitsche's layer
     /// factor and couplings, [`crate::nitsche`]).
     pub(crate) kept: Kept,
+    /// The trace factorised last: Γ_C's normal dofs, or both components for friction.
+    pub(crate) trace: Trace,
+    /// On a [`Trace::Full`] discretisation: the u_x free dof of each Γ_C node (ascending x) and
+    /// the full trace compliance E K⁻¹ Eᵀ on [u_x(Γ_C), u_y(Γ_C)], 2N × 2N.
+    pub(crate) full_compliance: Option<(Vec<usize>, Mat<f64>)>,
+}
+
+/// Which of Γ_C's dofs a [`Discretization`] orders last and condenses onto.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Trace {
+    /// u_y of Γ_C's nodes: the frictionless contact (docs/design.md §6).
+    Normal,
+    /// [u_x(Γ_C), u_y(Γ_C)], each ascending x: friction's trace (docs/design.md §11); the
+    /// normal block of its compliance is the [`Trace::Normal`] one.
+    Full,
 }
 
 /// Per-mesh state of the solve methods, one value per type, made on first use and dropped
@@ -122,19 +137,48 @@ impl Discretization {
         material: Material,
         integration: Integration,
     ) -> Result<Self, SolveError> {
+        Self::with_trace(mesh, dofs, material, integration, Trace::Normal)
+    }
+
+    /// As [`Discretization::with_dofs`], ordering `trace` last: [`Trace::Full`] also
+    /// condenses onto Γ_C's u_x (friction), refused when one of them is held.
+    pub fn with_trace(
+        mesh: Mesh,
+        dofs: DofMap,
+        material: Material,
+        integration: Integration,
+        trace: Trace,
+    ) -> Result<Self, SolveError> {
         let mesh_element = mesh.element;
+        let contact_dofs = dofs.contact_dofs(&mesh);
+        let tangential = match trace {
+            Trace::Normal => None,
+            Trace::Full => Some(dofs.tangential_dofs(&mesh).ok_or_else(held_tangential)?),
+        };
         let t = Instant::now();
         let stiffness = assemble(&mesh, &dofs, Form::Elasticity(material, integration));
         let assembly_ms = ms_since(t);
-        let contact_dofs = dofs.contact_dofs(&mesh);
         let n = dofs.n_free();
+        let ordered: Vec<usize> = tangential
+            .iter()
+            .flatten()
+            .chain(&contact_dofs)
+            .copied()
+            .collect();
         let t = Instant::now();
-        let ordering =
-            Analysis::grid(&stiffness, &mesh, &dofs, &contact_dofs).map_err(|e| fem_error(e, n))?;
+        let ordering = Analysis::grid(&stiffness, &mesh, &dofs, &ordered).map_err(|e| fem_error(e, n))?;
         let symbolic_ms = ms_since(t);
         let t = Instant::now();
         let factor = Factor::new(&ordering, stiffness).map_err(|e| fem_error(e, n))?;
-        let compliance = factor.compliance();
+        let (compliance, full_compliance) = match tangential {
+            None => (factor.compliance(), None),
+            Some(tangential) => {
+                let full = factor.compliance();
+                let nn = contact_dofs.len();
+                let normal = full.submatrix(nn, nn, nn, nn).to_owned();
+                (normal, Some((tangential, full)))
+            }
+        };
         let factorization_ms = ms_since(t);
         Ok(Discretization {
             mesh,
@@ -151,6 +195,8 @@ impl Discretization {
             stiffness_warning: warning::of_material(&material, mesh_element, integration),
             couplings: Mutex::new(HashMap::new()),
             kept: Kept::default(),
+            trace,
+            full_compliance,
         })
     }
 
@@ -169,6 +215,38 @@ impl Discretization {
     /// ([`crate::fem::memory`]).
     pub fn of(scenario: &Scenario, level: u32, element: Element) -> Result<Self, SolveError> {
         Self::of_beside(scenario, level, element, 0)
+    }
+
+    /// [`Discretization::of`] with `trace` ordered last ([`Trace::Full`] for friction: one
+    /// factorisation gives both the normal and the full trace compliance).
+    pub fn of_traced(
+        scenario: &Scenario,
+        level: u32,
+        element: Element,
+        trace: Trace,
+    ) -> Result<Self, SolveError> {
+        if trace == Trace::Normal {
+            return Self::of(scenario, level, element);
+        }
+        let mut sizes = Self::sizes(scenario, level, element);
+        sizes.trace *= 2;
+        sizes.check(&Limits::of_process()).map_err(|e| {
+            let workload = Workload::Level {
+                level,
+                element,
+                trace: sizes.trace,
+                reserved: false,
+            };
+            refused(e, workload, sizes.unknowns)
+        })?;
+        let mesh = scenario.mesh(level, element);
+        let dofs = DofMap::model(&mesh);
+        Self::with_trace(mesh, dofs, scenario.material, scenario.integration, trace)
+    }
+
+    /// The trace this discretisation condensed onto.
+    pub fn trace(&self) -> Trace {
+        self.trace
     }
 
     /// [`Discretization::of`] beside other work under way that may still take `reserved`
@@ -289,6 +367,11 @@ impl Discretization {
         }
         f
     }
+}
+
+/// Friction's refusal of a mesh whose Γ_C u_x is held (a half model, a roller wall).
+pub(crate) fn held_tangential() -> SolveError {
+    InputFault::HeldTangential.into()
 }
 
 /// The solver's error for a failure of the finite element layer on `n` unknowns.

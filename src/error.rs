@@ -11,9 +11,11 @@ use crate::mesh::Element;
 use crate::text::num;
 
 mod diagnosis;
+mod friction;
 mod input;
 mod method;
 pub use diagnosis::Diagnosis;
+pub use friction::FrictionError;
 pub use input::InputFault;
 pub use method::MethodError;
 

@@ -58,6 +58,7 @@ pub mod contact;
 pub mod discretization;
 pub mod error;
 pub mod fem;
+pub mod friction;
 pub mod grading;
 pub mod huge_pages;
 pub mod infsup;

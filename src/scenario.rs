@@ -2,6 +2,7 @@
 //! the default. A scenario is read from its TOML file by the library's reader
 //! ([`Scenario::load`], [`Scenario::parse`], [`Scenario::paper`]).
 
+use crate::contact::friction::Friction;
 use crate::contact::{Method, Obstacle, Rule};
 use crate::fem::{DofMap, Integration};
 use crate::material::Material;
@@ -53,6 +54,9 @@ pub struct Scenario {
     pub method: Method,
     /// The penalty parameter (0 for `exact`).
     pub epsilon: f64,
+    /// Friction on Γ_C and the shift after the press (`[friction]`; [`Friction::NONE`]
+    /// without it).
+    pub friction: Friction,
 }
 
 impl Scenario {

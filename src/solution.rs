@@ -4,6 +4,7 @@
 
 use serde::Serialize;
 
+use crate::contact::friction::FrictionSolution;
 use crate::contact::method::MethodFields;
 use crate::contact::newton::NewtonResult;
 use crate::contact::{ContactParams, ContactPoints};
@@ -56,6 +57,9 @@ pub struct Solution {
     pub nodal_forces: Option<Vec<f64>>,
     /// Nitsche's γ₀ as used (`auto`'s choice included); None for the other methods.
     pub gamma0: Option<f64>,
+    /// The tangential forces, tractions and states of a solve with friction
+    /// ([`crate::contact::friction`]); None without.
+    pub friction: Option<FrictionSolution>,
 }
 
 impl Solution {
@@ -79,9 +83,9 @@ impl Solution {
         )
     }
 
-    /// Displacement on every dof (zero on the constrained ones): u = −K⁻¹ Eᵀ Tᵀ y (or
-    /// K⁻¹ f with [`Solution::nodal_forces`]), one solve with the mesh's factor, done only
-    /// when asked.
+    /// Displacement on every dof (zero on the constrained ones): u = −K⁻¹ Eᵀ Tᵀ y (with
+    /// friction + K⁻¹ E_tᵀ Tᵀ z; or K⁻¹ f with [`Solution::nodal_forces`]), one solve with the
+    /// mesh's factor, done only when asked.
     pub fn displacement(&self, disc: &Discretization) -> Vec<f64> {
         if let Some(f) = &self.nodal_forces {
             let mut u = f.clone();
@@ -92,6 +96,14 @@ impl Solution {
         let mut u = vec![0.0; disc.n_dofs()];
         for (&d, f) in disc.contact_dofs.iter().zip(&forces) {
             u[d] = -f;
+        }
+        if let Some(friction) = &self.friction
+            && let Some(dofs) = disc.dofs.tangential_dofs(&disc.mesh)
+        {
+            let tangential = Discretization::nodal_forces(&self.points, &friction.z, dofs.len());
+            for (&d, f) in dofs.iter().zip(&tangential) {
+                u[d] += f;
+            }
         }
         disc.factor.solve_in_place(&mut u, 1);
         disc.dofs.expand(&u, |_| 0.0)

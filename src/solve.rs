@@ -13,9 +13,10 @@ use crate::contact::newton::{Iteration, NewtonOptions};
 use crate::contact::penalty::{self, Penalty};
 use crate::contact::signorini::solve_exact;
 use crate::contact::{Method, Rule, alm, load, raw_pressure, smoothed_pressure};
-use crate::discretization::Discretization;
 use crate::discretization::ms_since;
+use crate::discretization::{Discretization, Trace};
 use crate::error::{Diagnosis, SolveError};
+use crate::friction::solve_friction;
 use crate::nitsche::{self, NitscheParams};
 use crate::scenario::Scenario;
 use crate::solution::{Solution, Timing};
@@ -164,12 +165,20 @@ pub fn solve_contact(
         warnings,
         nodal_forces: None,
         gamma0: None,
+        friction: None,
     })
 }
 
 /// A fresh solve of `scenario` as given (its level, element, rule, ε and obstacle).
+/// With friction ([`crate::contact::friction`]) the mesh is factorised once with the full
+/// trace last ([`Trace::Full`]) and the press and shift are solved on it.
 pub fn solve_scenario(scenario: &Scenario) -> Result<(Discretization, Solution), SolveError> {
-    let disc = Discretization::of(scenario, scenario.level, scenario.element)?;
+    let trace = if scenario.friction.is_on() {
+        Trace::Full
+    } else {
+        Trace::Normal
+    };
+    let disc = Discretization::of_traced(scenario, scenario.level, scenario.element, trace)?;
     // A scenario whose ε was set to 0 after parsing asks for the exact constraint.
     let method = match scenario.method {
         Method::Penalty if scenario.epsilon == 0.0 => Method::Exact,
@@ -181,9 +190,14 @@ pub fn solve_scenario(scenario: &Scenario) -> Result<(Discretization, Solution),
         epsilon: scenario.epsilon,
         obstacle: scenario.obstacle.clone(),
     };
-    let mut sol = solve_contact(&disc, &params, None, &NewtonOptions::default(), &mut |_| {
-        ControlFlow::Continue(())
-    })?;
+    let opts = NewtonOptions::default();
+    let mut sol = if scenario.friction.is_on() {
+        solve_friction(&disc, &params, &scenario.friction, None, &opts, &mut |_| {
+            ControlFlow::Continue(())
+        })?
+    } else {
+        solve_contact(&disc, &params, None, &opts, &mut |_| ControlFlow::Continue(()))?
+    };
     sol.timing.include_mesh_work(&disc);
     Ok((disc, sol))
 }

@@ -108,6 +108,9 @@ pub struct SolveArgs {
     /// The contact method and its parameters.
     #[command(flatten)]
     pub method: MethodArgs,
+    /// Friction and the shift after the press.
+    #[command(flatten)]
+    pub friction: super::FrictionArgs,
     /// Penalty parameter ε > 0 (0: the exact constraint); several, comma-separated, sweep on one mesh.
     #[arg(long, value_delimiter = ',', allow_hyphen_values = true, value_parser = values::number)]
     pub epsilon: Vec<f64>,

@@ -6,7 +6,7 @@ use super::args::{SolveArgs, method_at};
 use super::{CliError, grading, note, outputs, print, shown, usage};
 use crate::contact::ContactParams;
 use crate::contact::Method;
-use crate::discretization::{Discretization, check_request};
+use crate::discretization::{Discretization, Trace, check_request};
 use crate::output::{SolveReport, Sweep, SweepFailure, SweepRow, output};
 use crate::{check, vtu};
 
@@ -14,6 +14,14 @@ pub(super) fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
     let mut scenario = args.select.resolve()?;
     scenario.refine_edges = grading::refine_edges(args.refine_edges.as_deref(), &scenario)?;
     let method = args.method.resolve(&scenario)?;
+    let frictions = args.friction.resolve(&scenario)?;
+    let friction_on = frictions[0].is_on();
+    if friction_on && scenario.refine_edges.grades() {
+        return Err(usage(
+            "--refine-edges",
+            "edge grading is not available with friction yet; use a finer level",
+        ));
+    }
     let level = scenario.level;
     let range = scenario.epsilon_range(level);
     for &e in &args.epsilon {
@@ -54,7 +62,12 @@ pub(super) fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
     } else {
         args.depth.clone()
     };
-    let many = epsilons.len() > 1 || depths.len() > 1;
+    if frictions.len() > 1 && (epsilons.len() > 1 || depths.len() > 1) {
+        return Err(CliError::Usage(
+            "sweep one of --epsilon (or --kappa), --depth and --shift-steps at a time".into(),
+        ));
+    }
+    let many = epsilons.len() > 1 || depths.len() > 1 || frictions.len() > 1;
     if let Some(m) = method.filter(|m| !m.uses_epsilon() && epsilons.len() > 1) {
         return Err(usage(
             flag,
@@ -106,14 +119,22 @@ pub(super) fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
         vtu::check_targets(path, args.force).map_err(|e| usage("--vtu", e.to_string()))?;
     }
 
-    let disc = Discretization::of(&scenario, level, scenario.element)?;
-    let instances: Vec<ContactParams> = epsilons
+    let trace = if friction_on { Trace::Full } else { Trace::Normal };
+    let disc = Discretization::of_traced(&scenario, level, scenario.element, trace)?;
+    let mut instances: Vec<ContactParams> = epsilons
         .iter()
         .flat_map(|&e| depths.iter().map(move |&d| (e, d)))
         .map(|(e, d)| params(e, d))
         .collect();
     let mut rows: Vec<SweepRow> = Vec::new();
-    let outcomes = grading::solve_all(&scenario, &disc, &instances, scenario.refine_edges);
+    let outcomes = if friction_on {
+        if frictions.len() > 1 {
+            instances = vec![instances[0].clone(); frictions.len()];
+        }
+        super::friction_solve::solve_all(&disc, &instances, &frictions)
+    } else {
+        grading::solve_all(&scenario, &disc, &instances, scenario.refine_edges)
+    };
     for (params, (solved, graded, passes)) in instances.iter().zip(outcomes) {
         let disc = graded.as_ref().unwrap_or(&disc);
         let sol = match solved {

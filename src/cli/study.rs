@@ -16,6 +16,14 @@ pub(super) fn study(args: &StudyArgs) -> Result<ExitCode, CliError> {
         ..Select::default()
     }
     .resolve()?;
+    if scenario.friction.is_on() {
+        // Not yet (issue 34, item 8): a study would otherwise solve it without friction.
+        return Err(CliError::Usage(format!(
+            "{}: `study` does not take friction yet; the scenario's [friction] law {} would be ignored. Use `riplab solve` (with --level) per level",
+            crate::text::sanitize(&scenario.source),
+            scenario.friction.law.name()
+        )));
+    }
     let schemes = args
         .schemes
         .iter()

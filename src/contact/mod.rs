@@ -4,10 +4,12 @@
 
 pub mod alm;
 pub mod circle;
+pub mod friction;
 pub mod gap;
 pub mod half_plane;
 pub mod hertz;
 pub mod method;
+pub mod mindlin;
 pub mod newton;
 pub mod params;
 pub mod penalty;

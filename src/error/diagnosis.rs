@@ -57,6 +57,26 @@ pub enum Diagnosis {
         /// The last relative change of the contact forces.
         change: f64,
     },
+    /// Friction's Coulomb system of a state set is singular ([`crate::contact::friction`]).
+    #[error("the Coulomb system is singular: μ too large for a unique incremental solution on this mesh")]
+    CoulombSingular,
+    /// Friction's press (the shift 0) failed.
+    #[error("the press (shift 0) did not converge: {0}")]
+    Press(Box<Diagnosis>),
+    /// A friction shift step failed after its bisections: the solve stopped at `from`.
+    #[error(
+        "the shift step from {from} to {to} did not converge after {bisections} bisections; the solve stopped at shift {from}: {cause}"
+    )]
+    Shift {
+        /// The shift reached.
+        from: f64,
+        /// The shift the step aimed at.
+        to: f64,
+        /// Bisections tried.
+        bisections: u32,
+        /// Why the last sub-step failed.
+        cause: Box<Diagnosis>,
+    },
     /// A converged iterate whose forces, pressures or displacements are not finite.
     #[error(
         "a contact force, pressure or displacement is not finite: the problem's scaling overflows double precision"

@@ -1,7 +1,7 @@
 //! The parameters of a solve that have no answer ([`super::SolveError::Input`]): each fault
 //! with the values that show it and the range allowed, its message naming the parameter.
 
-use super::MethodError;
+use super::{FrictionError, MethodError};
 use crate::text::num;
 
 /// A parameter of the solve outside the range where its answer means something (or where
@@ -11,6 +11,36 @@ pub enum InputFault {
     /// The method or one of its parameters ([`MethodError`]).
     #[error("the method: {0}")]
     Method(#[from] MethodError),
+    /// A friction parameter ([`FrictionError`]).
+    #[error("friction: {0}")]
+    Friction(#[from] FrictionError),
+    /// Friction on a mesh whose Γ_C u_x is held (a half model, a roller wall).
+    #[error(
+        "friction: friction needs the full model (body.model = \"full\"): Γ_C's u_x is held here (a half model's symmetry line holds u_x = 0)"
+    )]
+    HeldTangential,
+    /// Friction asked of Nitsche's method.
+    #[error("friction: friction is imposed by penalty, exact or alm, not nitsche")]
+    FrictionOfNitsche,
+    /// A tangential penalty ε_t given to the exact method.
+    #[error("friction: epsilon_t is the tangential penalty of penalty and alm; exact takes none")]
+    TangentialPenaltyOfExact,
+    /// A shift that moves the obstacle's centre out of the body.
+    #[error(
+        "the shift: shift = {} moves the obstacle's centre to x = {} beyond the body; allowed: the centre strictly inside ({x0}, {x1})",
+        num(*shift),
+        num(*centre)
+    )]
+    ShiftBeyond {
+        /// The shift given.
+        shift: f64,
+        /// Where it moves the obstacle's centre.
+        centre: f64,
+        /// The body's left side.
+        x0: f64,
+        /// The body's right side.
+        x1: f64,
+    },
     /// A method with a penalty parameter (penalty, ALM) asked for at ε = 0.
     #[error("the penalty parameter ε: {method} needs ε > 0; ε = 0 is the exact method (`exact`)")]
     NeedsEpsilon {

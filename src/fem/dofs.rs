@@ -67,6 +67,13 @@ impl DofMap {
             .collect()
     }
 
+    /// The free dof of u_t = u_x at each Γ_C node of `mesh`, ascending x: the tangential
+    /// trace that friction adds to the normal one ([`crate::contact::friction`]). None when
+    /// one of them is held (a half model's symmetry line, a roller wall).
+    pub fn tangential_dofs(&self, mesh: &Mesh) -> Option<Vec<usize>> {
+        mesh.top_nodes().iter().map(|&n| self.free_index(2 * n)).collect()
+    }
+
     /// The free index of global dof `g`, if it is free.
     pub fn free_index(&self, g: usize) -> Option<usize> {
         let f = self.free[g];

@@ -14,6 +14,7 @@ use std::path::Path;
 
 use crate::scenario::{DEFAULT_SCENARIO, DEFAULT_SOURCE, Scenario};
 
+mod friction;
 pub mod locate;
 mod nesting;
 pub mod read;

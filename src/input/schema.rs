@@ -23,6 +23,21 @@ pub(super) struct RawScenario {
     pub(super) obstacle: RawObstacle,
     pub(super) mesh: RawMesh,
     pub(super) contact: RawContact,
+    /// `[friction]`, optional ([`super::friction`]).
+    #[serde(default)]
+    pub(super) friction: Option<Spanned<RawFriction>>,
+}
+
+/// `[friction]` as written: the law and its parameters, the shift and its steps.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawFriction {
+    pub(super) law: Spanned<String>,
+    pub(super) mu: Option<Spanned<f64>>,
+    pub(super) threshold: Option<Spanned<f64>>,
+    pub(super) shift: Option<Spanned<f64>>,
+    pub(super) steps: Option<Spanned<i64>>,
+    pub(super) epsilon_t: Option<Spanned<f64>>,
 }
 
 #[derive(Deserialize, Clone, Copy, PartialEq, Eq)]

@@ -119,6 +119,7 @@ pub(super) fn scenario(text: &str, file: &str) -> Result<Scenario, ScenarioError
     })?;
 
     let (method, epsilon) = loc.method(&raw.contact)?;
+    let friction = loc.friction(raw.friction.as_ref(), &raw.body, &obstacle, (x0, x1))?;
 
     let name = raw.name.unwrap_or_else(|| {
         Path::new(file)
@@ -147,6 +148,7 @@ pub(super) fn scenario(text: &str, file: &str) -> Result<Scenario, ScenarioError
         rule: raw.contact.rule,
         method,
         epsilon,
+        friction,
     })
 }
 

@@ -278,5 +278,6 @@ pub fn solve(
         warnings,
         nodal_forces: Some(forces),
         gamma0: Some(nitsche.gamma0),
+        friction: None,
     })
 }

@@ -5,12 +5,14 @@
 use serde::Serialize;
 
 mod csv;
+mod friction;
 mod graded;
 mod infsup;
 mod solve;
 mod study;
 mod sweep;
 pub use csv::{Cell, csv_table};
+pub use friction::{FrictionReport, MindlinReport};
 pub use infsup::{INFSUP_COLUMNS, InfSupTable};
 pub use solve::{CircleReport, HertzReport, Nodes, Points, SolveReport};
 pub use study::{STUDY_COLUMNS, StudyReport};

@@ -5,7 +5,9 @@ use std::fmt::Write as _;
 use serde::Serialize;
 
 use super::Report;
+use super::friction::{FrictionReport, MindlinReport};
 use crate::contact::circle::CircleContact;
+use crate::contact::friction::State;
 use crate::contact::hertz::Hertz;
 use crate::contact::method::MethodFields;
 use crate::discretization::Discretization;
@@ -24,6 +26,10 @@ pub struct Nodes {
     pub uy: Vec<f64>,
     /// The smoothed pressure p̄ (16)–(17) at each vertex.
     pub pbar: Vec<f64>,
+    /// u_x at each vertex, with friction (null without).
+    pub ux: Option<Vec<f64>>,
+    /// The smoothed tangential traction t̄ at each vertex, p̄'s weights, with friction.
+    pub tbar: Option<Vec<f64>>,
 }
 
 /// The `points` object of docs/design.md §7: the rule's points, ascending x, each distinct
@@ -34,6 +40,10 @@ pub struct Points {
     pub x: Vec<f64>,
     /// The raw pressure p (12) at each point, compression positive.
     pub p: Vec<f64>,
+    /// The raw tangential traction t at each point (on the body, along +x), with friction.
+    pub t: Option<Vec<f64>>,
+    /// Each point's `stick`, `slip` or `open`, with friction.
+    pub state: Option<Vec<State>>,
 }
 
 /// The JSON object of docs/design.md §7 (fields may be added, never change meaning).
@@ -88,6 +98,10 @@ pub struct SolveReport {
     pub points: Points,
     /// For a cylinder: the Hertz profile of the computed load and p̄'s distance from it.
     pub hertz: Option<HertzReport>,
+    /// The friction law, its loading and Q (law `none` without friction).
+    pub friction: FrictionReport,
+    /// Cattaneo–Mindlin for the computed P and Q (a cylinder with Coulomb friction).
+    pub mindlin: Option<MindlinReport>,
     /// Wall time of the solve's parts, in milliseconds.
     pub timing_ms: Timing,
     /// What is known to be poor about this answer ([`crate::warning`]).
@@ -174,11 +188,17 @@ impl SolveReport {
                 x: sol.points.vertex_x.clone(),
                 uy: sol.vertex_uy.clone(),
                 pbar: sol.pbar.clone(),
+                ux: sol.friction.as_ref().map(|f| f.vertex_ux.clone()),
+                tbar: sol.friction.as_ref().map(|f| f.tbar.clone()),
             },
             points: Points {
                 x: sol.points.points.iter().map(|q| q.x).collect(),
                 p: sol.p.clone(),
+                t: sol.friction.as_ref().map(|f| f.t.clone()),
+                state: sol.friction.as_ref().map(|f| f.states.clone()),
             },
+            friction: FrictionReport::new(sol),
+            mindlin: MindlinReport::new(scenario, sol),
             hertz: {
                 let full = if disc.mesh.symmetric_left {
                     2.0 * sol.load
@@ -264,6 +284,12 @@ impl Report for SolveReport {
                 );
             }
         }
+        if let Some(line) = self.friction.line() {
+            let _ = writeln!(s, "{line}");
+        }
+        if let Some(m) = &self.mindlin {
+            let _ = writeln!(s, "{}", m.line());
+        }
         let t = &self.timing_ms;
         let _ = writeln!(
             s,
@@ -292,6 +318,9 @@ impl Report for SolveReport {
     /// One row per Γ_C vertex (`node`: x, u_y, p̄) and per rule point (`point`: x, p), from
     /// `nodes` and `points`.
     fn csv(&self) -> String {
+        if self.friction.law != "none" {
+            return super::friction::csv(&self.nodes, &self.points);
+        }
         let mut s = String::from("kind,x,uy,pbar,p\n");
         for i in 0..self.nodes.x.len() {
             let _ = writeln!(

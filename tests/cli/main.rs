@@ -7,6 +7,7 @@ mod common;
 
 mod bad_input;
 mod docs_tables;
+mod friction;
 mod grading;
 mod help;
 mod hostile;

@@ -10,6 +10,7 @@ mod common;
 mod contact;
 mod extremes;
 mod fem;
+mod friction;
 mod grading;
 mod infsup;
 mod locking;

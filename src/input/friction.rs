@@ -1,0 +1,106 @@
+//! `[friction]` validated (docs/design.md §11): the law among [`Law::NAMES`], μ ≥ 0 or g ≥ 0
+//! finite and only with its law, the shift finite with the obstacle's shifted centre inside
+//! the body, the steps 1 to [`MAX_STEPS`], ε_t > 0; friction on a half model refused at
+//! `friction.law`, naming `body.model`. Every error: file, line, column, key, value, range.
+
+use std::ops::Range;
+
+use toml::Spanned;
+
+use super::locate::{Locator, ScenarioError};
+use super::schema::{Model, RawBody, RawFriction};
+use crate::contact::Obstacle;
+use crate::contact::friction::{DEFAULT_STEPS, Friction, Law, MAX_STEPS};
+use crate::error::FrictionError;
+use crate::text::num;
+
+impl Locator<'_> {
+    /// The friction of `[friction]` (none without the table).
+    pub(super) fn friction(
+        &self,
+        raw: Option<&Spanned<RawFriction>>,
+        body: &RawBody,
+        obstacle: &Obstacle,
+        (x0, x1): (f64, f64),
+    ) -> Result<Friction, ScenarioError> {
+        let Some(table) = raw else {
+            return Ok(Friction::NONE);
+        };
+        let raw = table.get_ref();
+        let at = |key: &str| -> Range<usize> {
+            let span = match key {
+                "mu" => raw.mu.as_ref().map(Spanned::span),
+                "threshold" => raw.threshold.as_ref().map(Spanned::span),
+                "shift" => raw.shift.as_ref().map(Spanned::span),
+                "steps" => raw.steps.as_ref().map(Spanned::span),
+                "epsilon_t" => raw.epsilon_t.as_ref().map(Spanned::span),
+                _ => None,
+            };
+            span.unwrap_or_else(|| raw.law.span())
+        };
+        let fail = |e: FrictionError| {
+            let key = e.key();
+            self.error(Some(at(key)), Some(format!("friction.{key}")), e.to_string())
+        };
+        let get = |v: &Option<Spanned<f64>>| v.as_ref().map(|v| *v.get_ref());
+        let law = Law::parse(raw.law.get_ref(), get(&raw.mu), get(&raw.threshold)).map_err(fail)?;
+        if law == Law::None {
+            let given = [
+                ("shift", raw.shift.is_some()),
+                ("steps", raw.steps.is_some()),
+                ("epsilon_t", raw.epsilon_t.is_some()),
+            ];
+            if let Some((key, _)) = given.iter().find(|(_, g)| *g) {
+                return Err(self.error(
+                    Some(at(key)),
+                    Some(format!("friction.{key}")),
+                    "does not apply to law none; its keys: law".into(),
+                ));
+            }
+            return Ok(Friction::NONE);
+        }
+        if body.model == Model::Half {
+            return Err(self.error(
+                Some(raw.law.span()),
+                Some("friction.law".into()),
+                "friction needs body.model = \"full\": the half model's symmetry line holds u_x = 0".into(),
+            ));
+        }
+        let steps = match &raw.steps {
+            Some(s) => {
+                let v = *s.get_ref();
+                if !(1..=MAX_STEPS as i64).contains(&v) {
+                    return Err(self.error(
+                        Some(s.span()),
+                        Some("friction.steps".into()),
+                        format!("steps = {v} is out of range; allowed: 1 to {MAX_STEPS}"),
+                    ));
+                }
+                v as usize
+            }
+            None => DEFAULT_STEPS,
+        };
+        let friction = Friction {
+            law,
+            shift: get(&raw.shift).unwrap_or(0.0),
+            steps,
+            epsilon_t: get(&raw.epsilon_t),
+        };
+        friction.check().map_err(fail)?;
+        let moved = obstacle.center() + friction.shift;
+        if !(moved > x0 && moved < x1) {
+            return Err(self.error(
+                Some(at("shift")),
+                Some("friction.shift".into()),
+                format!(
+                    "shift = {} moves the obstacle's centre to x = {}, beyond the body; allowed: the centre strictly inside ({}, {})",
+                    num(friction.shift),
+                    num(moved),
+                    num(x0),
+                    num(x1)
+                ),
+            ));
+        }
+        Ok(friction)
+    }
+}

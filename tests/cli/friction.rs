@@ -1,0 +1,208 @@
+//! Friction on the command line (issue 34): bad `[friction]` tables and flags exit 2 naming
+//! the file, line and key (or the flag) and the range; a friction solve's JSON carries the
+//! `friction`, `mindlin`, `nodes.ux/tbar` and `points.t/state` fields.
+
+use crate::common::riplab;
+
+/// (file, expected fragments of the message)
+const CASES: &[(&str, &[&str])] = &[
+    (
+        "friction-negative-mu.toml",
+        &[":36:6", "`friction.mu`", "-0.3 is out of range", "finite μ ≥ 0"],
+    ),
+    (
+        "friction-nan-mu.toml",
+        &[":36:6", "`friction.mu`", "NaN is out of range", "finite μ ≥ 0"],
+    ),
+    (
+        "friction-half.toml",
+        &[":39:7", "`friction.law`", "body.model = \"full\""],
+    ),
+    (
+        "friction-shift-beyond.toml",
+        &[":37:9", "`friction.shift`", "beyond the body", "(-8, 8)"],
+    ),
+    (
+        "friction-mu-with-tresca.toml",
+        &[":37:6", "`friction.mu`", "does not apply to law tresca"],
+    ),
+    ("friction-steps.toml", &[":37:9", "`friction.steps`", "1 to 1000"]),
+];
+
+#[test]
+fn bad_friction_tables_exit_2_with_a_located_message() {
+    for (file, fragments) in CASES {
+        let path = format!("{}/tests/bad/{file}", env!("CARGO_MANIFEST_DIR"));
+        let (code, stdout, stderr) = riplab(&["solve", &path]);
+        assert_eq!(code, 2, "{file}: exit code {code}, stderr: {stderr}");
+        assert!(stdout.is_empty(), "{file}: printed a result");
+        assert!(!stderr.contains("panicked"), "{file}: {stderr}");
+        for f in *fragments {
+            assert!(stderr.contains(f), "{file}: message lacks {f:?}:\n{stderr}");
+        }
+    }
+}
+
+#[test]
+fn bad_friction_flags_exit_2() {
+    let full = format!("{}/scenarios/hertz-paper-full.toml", env!("CARGO_MANIFEST_DIR"));
+    let full = full.as_str();
+    for (args, fragments) in [
+        (
+            &["solve", full, "--friction", "coulomb", "--mu", "-1"][..],
+            &["--mu", "finite μ ≥ 0"][..],
+        ),
+        (
+            &["solve", full, "--friction", "coulomb", "--mu", "nan"][..],
+            &["--mu", "NaN"][..],
+        ),
+        (
+            &["solve", "--friction", "coulomb", "--mu", "0.3"][..],
+            &["--friction", "body.model = \"half\""][..],
+        ),
+        (
+            &[
+                "solve",
+                full,
+                "--friction",
+                "coulomb",
+                "--mu",
+                "0.3",
+                "--shift",
+                "100",
+            ][..],
+            &["--shift", "beyond the body"][..],
+        ),
+        (
+            &["solve", full, "--mu", "0.3"][..],
+            &["--mu", "--friction coulomb"][..],
+        ),
+        (
+            &["solve", full, "--shift", "0.1"][..],
+            &["--shift", "with friction only"][..],
+        ),
+        (
+            &[
+                "solve",
+                full,
+                "--friction",
+                "tresca",
+                "--mu",
+                "0.3",
+                "--threshold",
+                "1",
+            ][..],
+            &["--mu", "does not apply"][..],
+        ),
+        (
+            &[
+                "solve",
+                full,
+                "--friction",
+                "coulomb",
+                "--mu",
+                "0.3",
+                "--shift-steps",
+                "0",
+            ][..],
+            &["--shift-steps", "1 to 1000"][..],
+        ),
+        (
+            &["solve", full, "--friction", "stiction"][..],
+            &["--friction", "none, coulomb, tresca"][..],
+        ),
+    ] {
+        let (code, stdout, stderr) = riplab(args);
+        assert_eq!(code, 2, "{args:?}: {stderr}");
+        assert!(stdout.is_empty(), "{args:?}");
+        for f in fragments {
+            assert!(stderr.contains(f), "{args:?}: lacks {f:?}: {stderr}");
+        }
+    }
+}
+
+/// The JSON of a friction solve: the law and its loading, Q, the states, t and t̄, and
+/// Cattaneo–Mindlin's block; Q equals the sum of the points' t weighted as P sums p (checked
+/// here from the printed numbers: Q/(μP) as printed).
+#[test]
+fn friction_json_fields() {
+    let path = format!("{}/scenarios/cattaneo-mindlin.toml", env!("CARGO_MANIFEST_DIR"));
+    let (code, stdout, stderr) = riplab(&["solve", &path, "--level", "1", "--format", "json"]);
+    assert_eq!(code, 0, "{stderr}");
+    let v: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    let f = &v["friction"];
+    assert_eq!(f["law"], "coulomb");
+    assert_eq!(
+        (f["mu"].as_f64(), f["shift"].as_f64(), f["steps"].as_u64()),
+        (Some(0.3), Some(0.0815), Some(1))
+    );
+    let (q, p) = (
+        f["tangential_load"].as_f64().unwrap(),
+        v["load"].as_f64().unwrap(),
+    );
+    assert!((f["load_ratio"].as_f64().unwrap() - q / (0.3 * p)).abs() < 1e-12);
+    let n = v["points"]["x"].as_array().unwrap().len();
+    assert_eq!(v["points"]["t"].as_array().unwrap().len(), n);
+    let states = v["points"]["state"].as_array().unwrap();
+    assert_eq!(states.len(), n);
+    let count = |s: &str| states.iter().filter(|x| *x == s).count() as u64;
+    assert_eq!(f["stick"].as_u64(), Some(count("stick")));
+    assert_eq!(f["slip"].as_u64(), Some(count("slip")));
+    assert_eq!(f["open"].as_u64(), Some(count("open")));
+    assert_eq!(f["step_iterations"].as_array().unwrap().len(), 2);
+    let m = v["nodes"]["x"].as_array().unwrap().len();
+    assert_eq!(v["nodes"]["ux"].as_array().unwrap().len(), m);
+    assert_eq!(v["nodes"]["tbar"].as_array().unwrap().len(), m);
+    let mindlin = &v["mindlin"];
+    assert!(mindlin["c"].as_f64().unwrap() > 0.0);
+    assert!(mindlin["relative_error"].as_f64().unwrap() < 0.2);
+    // Without friction: law none, nulls.
+    let (code, stdout, _) = riplab(&["solve", "--level", "0", "--format", "json"]);
+    assert_eq!(code, 0);
+    let v: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    assert_eq!(v["friction"]["law"], "none");
+    assert!(v["nodes"]["ux"].is_null() && v["points"]["state"].is_null() && v["mindlin"].is_null());
+}
+
+/// `--shift-steps 1,4` sweeps the steps on one mesh: one row each, with its own history.
+#[test]
+fn a_shift_steps_sweep_gives_each_row_its_steps() {
+    let path = format!("{}/scenarios/hertz-paper-full.toml", env!("CARGO_MANIFEST_DIR"));
+    let (code, stdout, stderr) = riplab(&[
+        "solve",
+        &path,
+        "--friction",
+        "coulomb",
+        "--mu",
+        "0.3",
+        "--shift",
+        "0.05",
+        "--shift-steps",
+        "1,4",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    let v: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    let rows = v
+        .as_array()
+        .or_else(|| v["rows"].as_array())
+        .expect("a sweep's rows");
+    assert_eq!(rows.len(), 2);
+    let steps: Vec<u64> = rows
+        .iter()
+        .map(|r| r["friction"]["steps"].as_u64().unwrap())
+        .collect();
+    assert_eq!(steps, [1, 4]);
+}
+
+/// `study` does not take friction yet: a scenario with `[friction]` is refused (exit 2), not
+/// studied without it.
+#[test]
+fn study_refuses_a_friction_scenario() {
+    let path = format!("{}/scenarios/cattaneo-mindlin.toml", env!("CARGO_MANIFEST_DIR"));
+    let (code, stdout, stderr) = riplab(&["study", &path, "--levels", "0..1"]);
+    assert_eq!(code, 2, "{stderr}");
+    assert!(stdout.is_empty());
+    assert!(stderr.contains("does not take friction"), "{stderr}");
+}
