@@ -110,11 +110,14 @@ impl FrictionReport {
         let width = self
             .stick_half_width
             .map_or("no stick point".into(), |w| format!("stick half-width {w:.5}"));
+        let steps = match self.steps.unwrap_or(0) {
+            1 => "1 step".to_string(),
+            n => format!("{n} steps"),
+        };
         Some(format!(
-            "friction {} ({parameter}), shift {} in {} steps: Q = {:.6}{ratio}; {} stick, {} slip, {} open points; {width}",
+            "friction {} ({parameter}), shift {} in {steps}: Q = {:.6}{ratio}; {} stick, {} slip, {} open points; {width}",
             self.law,
             self.shift.unwrap_or(0.0),
-            self.steps.unwrap_or(0),
             self.tangential_load,
             self.stick,
             self.slip,
