@@ -55,3 +55,14 @@ pub fn rel(a: f64, b: f64, floor: f64) -> f64 {
 pub fn no_panic(stderr: &str) {
     assert!(!stderr.contains("panicked"), "panicked: {stderr}");
 }
+
+/// Number of sign changes of successive differences above 1e-9: an oscillating sequence has
+/// many.
+pub fn turns(v: &[f64]) -> usize {
+    let d: Vec<f64> = v
+        .windows(2)
+        .map(|w| w[1] - w[0])
+        .filter(|d| d.abs() > 1e-9)
+        .collect();
+    d.windows(2).filter(|w| w[0] * w[1] < 0.0).count()
+}

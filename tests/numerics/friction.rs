@@ -110,16 +110,6 @@ fn mu_zero_is_frictionless() {
     }
 }
 
-/// Sign changes of successive differences above 1e-9 (tests/numerics/pressures.rs).
-fn turns(v: &[f64]) -> usize {
-    let d: Vec<f64> = v
-        .windows(2)
-        .map(|w| w[1] - w[0])
-        .filter(|d| d.abs() > 1e-9)
-        .collect();
-    d.windows(2).filter(|w| w[0] * w[1] < 0.0).count()
-}
-
 fn coulomb(mu: f64, shift: f64, steps: usize) -> Friction {
     Friction {
         law: Law::Coulomb { mu },
@@ -278,8 +268,11 @@ fn m1_t_oscillates_where_p_does() {
         .unwrap_or(slip[0]);
     let right: Vec<usize> = slip.iter().copied().filter(|&q| q > last_stick).collect();
     let (pt, tt): (Vec<f64>, Vec<f64>) = right.iter().map(|&q| (sol.p[q], f.t[q].abs())).unzip();
-    assert!(turns(&pt) >= 2, "p does not oscillate here: {pt:?}");
-    assert_eq!(turns(&tt), turns(&pt));
+    assert!(
+        crate::common::turns(&pt) >= 2,
+        "p does not oscillate here: {pt:?}"
+    );
+    assert_eq!(crate::common::turns(&tt), crate::common::turns(&pt));
     // t̄ at the vertices strictly inside that zone.
     let xs: Vec<f64> = right.iter().map(|&q| sol.points.points[q].x).collect();
     let (lo, hi) = (xs[0], *xs.last().unwrap());
@@ -294,7 +287,7 @@ fn m1_t_oscillates_where_p_does() {
     // At most one turn: the peak of μp (at shift 0.5 the zone reaches past it), no
     // oscillation.
     assert!(tbar.len() >= 3);
-    assert!(turns(&tbar) <= 1, "t̄ {tbar:?}");
+    assert!(crate::common::turns(&tbar) <= 1, "t̄ {tbar:?}");
 }
 
 /// A friction solve that does not converge says so, with the shift where it stopped: never

@@ -5,16 +5,6 @@ use crate::common::paper_with;
 use riplab::scheme::Scheme;
 use riplab::solve::solve_scenario;
 
-/// Number of sign changes of successive differences: an oscillating sequence has many.
-fn turns(v: &[f64]) -> usize {
-    let d: Vec<f64> = v
-        .windows(2)
-        .map(|w| w[1] - w[0])
-        .filter(|d| d.abs() > 1e-9)
-        .collect();
-    d.windows(2).filter(|w| w[0] * w[1] < 0.0).count()
-}
-
 fn table(scheme: &str, level: u32) -> (String, Vec<f64>, Vec<f64>) {
     let Scheme { element, rule } = Scheme::parse(scheme).unwrap();
     let mut s = paper_with(&[]);
@@ -52,6 +42,13 @@ fn m1_oscillates_and_smoothing_does_not() {
     let (_, p, pbar) = table("M1", 1);
     let contact_p: Vec<f64> = p.iter().cloned().take_while(|&v| v > 0.0).collect();
     let contact_pbar: Vec<f64> = pbar.iter().cloned().take_while(|&v| v > 0.0).collect();
-    assert!(turns(&contact_p) >= 3, "raw p should zig-zag: {contact_p:?}");
-    assert_eq!(turns(&contact_pbar), 0, "p̄ should be monotone: {contact_pbar:?}");
+    assert!(
+        crate::common::turns(&contact_p) >= 3,
+        "raw p should zig-zag: {contact_p:?}"
+    );
+    assert_eq!(
+        crate::common::turns(&contact_pbar),
+        0,
+        "p̄ should be monotone: {contact_pbar:?}"
+    );
 }
