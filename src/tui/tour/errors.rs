@@ -26,8 +26,8 @@ pub enum TourError {
         title: String,
         /// The step's level.
         level: u32,
-        /// Why, and the range allowed.
-        source: CheckError,
+        /// Why, and the range allowed (boxed: the check's error is large).
+        source: Box<CheckError>,
     },
     /// The step's depth is beyond its scenario's limit.
     #[error(

@@ -192,7 +192,7 @@ impl Tour {
                         step: i + 1,
                         title: step.title.clone(),
                         level,
-                        source,
+                        source: Box::new(source),
                     }
                 })?;
             }
