@@ -175,7 +175,7 @@ pub struct Peak {
 }
 
 /// Why the stresses of a displacement could not be computed.
-#[derive(Debug, thiserror::Error)]
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum StressError {
     /// The displacement is not one value per dof of the mesh.
     #[error("the displacement has {got} values; the mesh has {expected} dofs")]

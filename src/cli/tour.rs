@@ -63,7 +63,9 @@ pub(super) fn tour(args: &TourArgs, opts: TuiOptions) -> Result<ExitCode, CliErr
     if let Some(seconds) = args.auto {
         auto_interval(seconds).map_err(|m| usage("--auto", m))?;
     }
-    let tour = tour.with_scenario(scenario).map_err(CliError::Usage)?;
+    let tour = tour
+        .with_scenario(scenario)
+        .map_err(|e| CliError::Usage(e.to_string()))?;
     if args.check.is_some() {
         print(&listing(&tour))?;
         return Ok(ExitCode::SUCCESS);
@@ -82,7 +84,7 @@ fn handout(tour: &Tour, dir: &Path, width: u16, height: u16) -> Result<ExitCode,
         note(&format!("step {done}/{all} written"));
     })
     .map_err(|e| match e {
-        HandoutError::Directory(m) => usage("--handout", m),
+        e @ HandoutError::Directory { .. } => usage("--handout", e),
         other => CliError::Failed(format!("handout: {other}")),
     })?;
     let index = files.last().map(|p| p.display().to_string()).unwrap_or_default();

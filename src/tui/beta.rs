@@ -3,10 +3,11 @@
 
 use crate::contact::Rule;
 use crate::discretization::Discretization;
+use crate::error::SolveError;
 
 pub use crate::infsup::InfSup;
 
 /// β_h and β̄_h for `rule` on `disc` (costs about one factorisation).
-pub fn estimate(disc: &Discretization, rule: Rule) -> Result<InfSup, String> {
-    crate::infsup::inf_sup(disc, rule).map_err(|e| e.to_string())
+pub fn estimate(disc: &Discretization, rule: Rule) -> Result<InfSup, SolveError> {
+    crate::infsup::inf_sup(disc, rule)
 }

@@ -7,6 +7,7 @@ use std::sync::mpsc::{self, Receiver, RecvTimeoutError};
 use std::time::Duration;
 
 use super::beta::{InfSup, estimate};
+use super::lab_error::LabError;
 use super::protocol::{InfSupKey, Response};
 use crate::discretization::Discretization;
 
@@ -14,7 +15,7 @@ use crate::discretization::Discretization;
 pub struct Estimating {
     /// What is estimated.
     pub key: InfSupKey,
-    done: Receiver<Result<InfSup, String>>,
+    done: Receiver<Result<InfSup, LabError>>,
 }
 
 impl Estimating {
@@ -25,7 +26,7 @@ impl Estimating {
             .name("riplab-estimate".into())
             .spawn(move || {
                 // Nobody listens any more when the worker has ended: nothing to do then.
-                let _ = tx.send(estimate(&disc, key.rule));
+                let _ = tx.send(estimate(&disc, key.rule).map_err(LabError::from));
             })
             .ok()?;
         Some(Estimating { key, done })
@@ -36,7 +37,7 @@ impl Estimating {
         let result = match self.done.recv_timeout(wait) {
             Ok(result) => result,
             Err(RecvTimeoutError::Timeout) => return Err(self),
-            Err(RecvTimeoutError::Disconnected) => Err("the estimate ended without a result".into()),
+            Err(RecvTimeoutError::Disconnected) => Err(LabError::EstimateEnded),
         };
         Ok(Response::InfSup {
             key: self.key,

@@ -4,6 +4,7 @@
 use std::path::PathBuf;
 
 use crate::plot::PlotError;
+use crate::stress::StressError;
 use crate::vtu::VtuError;
 
 /// Why an export (`s`, `S`, `v`, or `T` inside a tour) wrote nothing.
@@ -45,7 +46,7 @@ pub enum ExportError {
     /// The VTU could not be made.
     #[error(transparent)]
     Vtu(#[from] VtuError),
-    /// The stresses the VTU carries could not be computed (the stress field's message).
-    #[error("{0}")]
-    Stress(String),
+    /// The stresses the VTU carries could not be computed.
+    #[error(transparent)]
+    Stress(#[from] StressError),
 }

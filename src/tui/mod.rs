@@ -21,6 +21,7 @@ pub mod export;
 mod export_error;
 mod job;
 pub mod keys;
+pub mod lab_error;
 pub mod protocol;
 pub mod record;
 pub mod render_keys;
@@ -52,6 +53,7 @@ use crate::text;
 
 use app::{App, MAX_APP_LEVEL, Scene};
 use engine::Engine;
+use lab_error::LabError;
 use record::CastFile;
 use settle::settle;
 use theme::Theme;
@@ -135,8 +137,8 @@ pub enum RunError {
     #[error("terminal: {0}")]
     Terminal(#[from] std::io::Error),
     /// The recording could not be written (the lab or tour itself ran).
-    #[error("{0}")]
-    Recording(String),
+    #[error(transparent)]
+    Recording(#[from] record::RecordingFailure),
 }
 
 /// One frame of `scene` as plain text, solved synchronously with the given overrides of the
@@ -231,12 +233,12 @@ pub struct Rendered {
     /// The frame as plain text.
     pub text: String,
     /// What failed in the frame's scene: the solve, the study or an inf-sup estimate.
-    pub failure: Option<String>,
+    pub failure: Option<LabError>,
 }
 
 /// The failure the frame of `app` shows for its scene: the solve's, the study's (the
 /// convergence scene) or an inf-sup estimate's (the infsup scene).
-fn shown_failure(app: &App) -> Option<String> {
+fn shown_failure(app: &App) -> Option<LabError> {
     if let Some(e) = &app.error {
         return Some(e.clone());
     }

@@ -9,6 +9,7 @@ use std::time::Instant;
 use crossterm::event::KeyEvent;
 
 use super::export_error::ExportError;
+use super::lab_error::LabError;
 use crate::contact::method::Gamma0;
 use crate::contact::{Method, Rule};
 use crate::discretization::Discretization;
@@ -18,7 +19,7 @@ use crate::refine_edges::RefineEdges;
 use crate::scenario::Scenario;
 use crate::scheme::Scheme;
 use crate::solution::Solution;
-use crate::stress::StressField;
+use crate::stress::{StressError, StressField};
 use crate::study::StudyRow;
 
 use super::beta::InfSup;
@@ -256,7 +257,7 @@ pub enum Response {
         /// The request's generation.
         generation: u64,
         /// The finished solve, or why it failed.
-        result: Result<Arc<Solved>, String>,
+        result: Result<Arc<Solved>, LabError>,
     },
     /// A stage of the study asked for with `generation` began.
     StudyProgress {
@@ -290,7 +291,7 @@ pub enum Response {
         /// The estimate's key.
         key: InfSupKey,
         /// The estimate, or why it failed; None when dropped unstarted.
-        result: Option<Result<InfSup, String>>,
+        result: Option<Result<InfSup, LabError>>,
     },
     /// The displacement of the solution with `key` is computed.
     Displaced {
@@ -310,7 +311,7 @@ pub enum Response {
         /// The study's key.
         key: StudyKey,
         /// The study, or why it failed; None when dropped unstarted.
-        result: Option<Result<Arc<Study>, String>>,
+        result: Option<Result<Arc<Study>, LabError>>,
     },
 }
 
@@ -333,7 +334,7 @@ pub struct Solved {
     pub total_ms: f64,
     /// The stresses, computed by the worker when the stress scene first shows this solution
     /// (`Engine::stresses`).
-    pub stresses: OnceLock<Result<Arc<StressField>, String>>,
+    pub stresses: OnceLock<Result<Arc<StressField>, StressError>>,
 }
 
 impl Solved {
@@ -345,7 +346,7 @@ impl Solved {
 
     /// The stresses of this solution (on `scenario`'s material), computed on first use and
     /// kept.
-    pub fn stress_field(&self, scenario: &Scenario) -> Result<Arc<StressField>, String> {
+    pub fn stress_field(&self, scenario: &Scenario) -> Result<Arc<StressField>, StressError> {
         self.stresses
             .get_or_init(|| {
                 StressField::new(
@@ -355,7 +356,6 @@ impl Solved {
                     self.u(),
                 )
                 .map(Arc::new)
-                .map_err(|e| e.to_string())
             })
             .clone()
     }

@@ -198,7 +198,7 @@ fn event_loop<P: Program>(
     while !program.should_quit() {
         if let Some(recorder) = recorder.as_deref_mut() {
             if let Some(failure) = recorder.new_failure() {
-                flow |= program.notice(Notice::failure(failure));
+                flow |= program.notice(Notice::failure(failure.to_string()));
             }
             let now = program.chapter();
             if let Some(marker) = now.marker(chapter.as_ref()) {

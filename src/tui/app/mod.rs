@@ -11,6 +11,7 @@ use crate::stress::Quantity;
 
 use super::beta::InfSup;
 pub use super::keys::ExportKind;
+use super::lab_error::LabError;
 
 mod dispatch;
 mod overlays;
@@ -136,20 +137,20 @@ pub struct App {
     /// Where the solve in flight is; None when none runs.
     pub progress: Option<Progress>,
     /// A failure to show in a banner.
-    pub error: Option<String>,
+    pub error: Option<LabError>,
     /// A one-off message for the status line (the file exported, why a key did nothing).
     pub notice: Option<Notice>,
     /// The kind of the last export asked for.
     pub export_kind: ExportKind,
     /// Inf-sup estimates computed so far.
-    pub infsup: HashMap<InfSupKey, Result<InfSup, String>>,
+    pub infsup: HashMap<InfSupKey, Result<InfSup, LabError>>,
     infsup_pending: HashSet<InfSupKey>,
     /// The estimate in flight whose mesh is being built, and where that build is.
     infsup_progress: Option<(InfSupKey, Progress)>,
     /// Every estimate asked for (a row once shown stays, and is asked again if dropped).
     infsup_wanted: HashSet<InfSupKey>,
     /// Work–precision studies computed so far (failures too: they are not retried).
-    pub studies: HashMap<StudyKey, Result<Arc<Study>, String>>,
+    pub studies: HashMap<StudyKey, Result<Arc<Study>, LabError>>,
     /// The study in flight and the generation it was asked for with.
     study_pending: Option<(u64, StudyKey)>,
     /// The stage of the study in flight.

@@ -7,6 +7,7 @@
 use std::collections::VecDeque;
 use std::sync::Arc;
 
+use super::super::lab_error::LabError;
 use super::{App, Notice};
 
 /// The most messages the log keeps (the oldest go first).
@@ -36,14 +37,18 @@ pub struct Overlays {
 impl App {
     /// Append the notice, the failure and the solver's first warning that are new since
     /// `before` (the notice and error then) to the log.
-    pub(super) fn log_new_messages(&mut self, before: (Option<Notice>, Option<String>), solved_before: bool) {
+    pub(super) fn log_new_messages(
+        &mut self,
+        before: (Option<Notice>, Option<LabError>),
+        solved_before: bool,
+    ) {
         let (notice, error) = before;
         let mut new = Vec::new();
         if let Some(n) = self.notice.as_ref().filter(|n| Some(*n) != notice.as_ref()) {
             new.push((n.failure, n.text.clone()));
         }
         if let Some(e) = self.error.as_ref().filter(|e| Some(*e) != error.as_ref()) {
-            new.push((true, e.clone()));
+            new.push((true, e.to_string()));
         }
         if !solved_before && let Some(solved) = &self.solved {
             let key = solved.key;

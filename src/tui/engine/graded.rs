@@ -47,7 +47,7 @@ impl Engine {
         });
         Response::Solved {
             generation: req.generation,
-            result: result.map_err(|e| e.to_string()),
+            result: result.map_err(Into::into),
         }
     }
 }

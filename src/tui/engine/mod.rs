@@ -23,6 +23,7 @@ use super::beta::{self, InfSup};
 use super::build::Plan;
 pub use super::build::{Built, Finished};
 use super::eta::Eta;
+use super::lab_error::LabError;
 use super::protocol::{
     InfSupKey, MAX_APP_LEVEL, Progress, Response, SolveRequest, Solved, StressRequest, Study, StudyKey,
 };
@@ -208,12 +209,12 @@ impl Engine {
         Some(disc)
     }
 
-    fn discretization(&mut self, level: u32, element: Element) -> Result<Arc<Discretization>, String> {
+    fn discretization(&mut self, level: u32, element: Element) -> Result<Arc<Discretization>, SolveError> {
         if let Some(disc) = self.cached(level, element) {
             return Ok(disc);
         }
         let t = Instant::now();
-        let disc = Arc::new(Discretization::of(&self.scenario, level, element).map_err(|e| e.to_string())?);
+        let disc = Arc::new(Discretization::of(&self.scenario, level, element)?);
         self.eta
             .record(self.unknowns(level, element), t.elapsed().as_secs_f64() * 1e3);
         self.cache.push((level, element, disc.clone()));
@@ -337,7 +338,7 @@ impl Engine {
             Err(e) => {
                 return Response::Solved {
                     generation,
-                    result: Err(e),
+                    result: Err(e.into()),
                 };
             }
         };
@@ -422,7 +423,7 @@ impl Engine {
             Err(SolveError::Cancelled) => Response::Cancelled { generation },
             Err(e) => Response::Solved {
                 generation,
-                result: Err(e.to_string()),
+                result: Err(e.into()),
             },
         }
     }
@@ -442,19 +443,19 @@ impl Engine {
     }
 
     /// The work–precision study of `key` ([`Studying::run`]), here.
-    pub fn study(&self, key: &StudyKey, report: &mut dyn FnMut(Progress)) -> Result<Arc<Study>, String> {
+    pub fn study(&self, key: &StudyKey, report: &mut dyn FnMut(Progress)) -> Result<Arc<Study>, LabError> {
         self.studying(key)?.run(report)
     }
 
     /// The work–precision study of `key`, ready to run on a thread of its own: the scenario, the
     /// estimate of each stage (from this engine's timings) and the engine's place for the
     /// finished study. An error if the engine runs another scenario.
-    pub fn studying(&self, key: &StudyKey) -> Result<Studying, String> {
+    pub fn studying(&self, key: &StudyKey) -> Result<Studying, LabError> {
         if key.scenario != self.scenario.name {
-            return Err(format!(
-                "the worker runs {}, not {}",
-                self.scenario.name, key.scenario
-            ));
+            return Err(LabError::OtherScenario {
+                runs: self.scenario.name.clone(),
+                asked: key.scenario.clone(),
+            });
         }
         // The reference: a Q2 build and an active-set solve of about the same cost (nothing
         // when the cache holds it).
@@ -481,8 +482,8 @@ impl Engine {
     }
 
     /// The inf-sup estimate of `key`.
-    pub fn inf_sup(&mut self, key: InfSupKey) -> Result<InfSup, String> {
+    pub fn inf_sup(&mut self, key: InfSupKey) -> Result<InfSup, LabError> {
         let disc = self.discretization(key.level, key.element)?;
-        beta::estimate(&disc, key.rule)
+        Ok(beta::estimate(&disc, key.rule)?)
     }
 }

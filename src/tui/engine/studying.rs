@@ -7,6 +7,7 @@ use crate::scenario::Scenario;
 use crate::scheme::Scheme;
 use crate::study::{StudyRow, convergence};
 
+use super::super::lab_error::LabError;
 use super::super::protocol::{Progress, Study, StudyKey};
 
 /// A work–precision study taken from the engine ([`super::Engine::studying`]), to run anywhere.
@@ -25,7 +26,7 @@ impl Studying {
     /// comparable); each stage (the reference, then each level) is announced to `report` with
     /// its estimate. A method a scheme cannot run (`exact` on a rule with a kernel) gives rows
     /// that say why.
-    pub fn run(self, report: &mut dyn FnMut(Progress)) -> Result<Arc<Study>, String> {
+    pub fn run(self, report: &mut dyn FnMut(Progress)) -> Result<Arc<Study>, LabError> {
         self.run_shown(report, &mut |_| {})
     }
 
@@ -35,7 +36,7 @@ impl Studying {
         self,
         report: &mut dyn FnMut(Progress),
         partial: &mut dyn FnMut(Arc<Study>),
-    ) -> Result<Arc<Study>, String> {
+    ) -> Result<Arc<Study>, LabError> {
         let kept = || self.kept.lock().unwrap_or_else(PoisonError::into_inner);
         if let Some(study) = kept().as_ref().filter(|s| s.key == self.key) {
             return Ok(study.clone());
@@ -47,8 +48,7 @@ impl Studying {
             estimate_ms: self.estimates_ms[0],
         });
         let dir = crate::cache::default_dir();
-        let (reference, _) = crate::cache::reference(&self.scenario, key.reference_level(), dir.as_deref())
-            .map_err(|e| e.to_string())?;
+        let (reference, _) = crate::cache::reference(&self.scenario, key.reference_level(), dir.as_deref())?;
         let mut rows = Vec::new();
         for (level, &estimate_ms) in (0..=key.max_level).zip(&self.estimates_ms[1..]) {
             report(Progress::Study {

@@ -99,7 +99,15 @@ fn a_refused_gamma0_is_the_solves_to_report_after_the_preparation() {
     assert!(engine.ready(2, Element::Q1, need), "prepared, refusal and all");
     match engine.solve(&SolveRequest { generation: 2, key }, &|_| true, &mut |_| {}) {
         Response::Solved { result: Err(e), .. } => {
-            assert!(e.contains("too small for θ = 1") && e.contains("γ₀* ="), "{e}");
+            let LabError::Solve(SolveError::Input(crate::error::InputFault::Unstable {
+                theta,
+                threshold: Some(_),
+                ..
+            })) = e
+            else {
+                panic!("{e}");
+            };
+            assert_eq!(theta, 1.0);
         }
         other => panic!("{other:?}"),
     }

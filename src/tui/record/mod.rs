@@ -39,6 +39,25 @@ pub enum RecordError {
     },
 }
 
+/// Why a recording stopped (shown on the status line and at exit).
+#[derive(Clone, Debug, thiserror::Error)]
+pub enum RecordingFailure {
+    /// A write failed (a full disk), or the writer's thread could not be started.
+    #[error("recording {name} failed: {source}")]
+    Write {
+        /// The file (sanitised).
+        name: String,
+        /// What the system said (shared: the writer's thread keeps it for the loop).
+        source: Arc<io::Error>,
+    },
+    /// The writer's thread stopped without finishing (it panicked).
+    #[error("recording {name}: the writer stopped")]
+    WriterStopped {
+        /// The file (sanitised).
+        name: String,
+    },
+}
+
 /// A new, empty asciicast file, created before the terminal is taken.
 #[derive(Debug)]
 pub struct CastFile {
@@ -75,8 +94,8 @@ enum Job {
 /// A recording in progress: events are timed here and written by a thread of their own.
 pub struct Recorder {
     tap: Tap,
-    /// The first write error, as a message (the thread stops writing after it).
-    failure: Arc<Mutex<Option<String>>>,
+    /// The first write error (the thread stops writing after it).
+    failure: Arc<Mutex<Option<Arc<io::Error>>>>,
     /// Whether the failure was already shown.
     reported: bool,
     thread: Option<JoinHandle<()>>,
@@ -113,13 +132,13 @@ impl Recorder {
             .name("riplab-record".into())
             .spawn(move || {
                 if let Err(e) = write_events(out, &header, &rx) {
-                    *shared.lock().unwrap_or_else(|p| p.into_inner()) = Some(e.to_string());
+                    *shared.lock().unwrap_or_else(|p| p.into_inner()) = Some(Arc::new(e));
                     wake();
                 }
             });
         let (thread, failure) = match thread {
             Ok(t) => (Some(t), failure),
-            Err(e) => (None, Arc::new(Mutex::new(Some(e.to_string())))),
+            Err(e) => (None, Arc::new(Mutex::new(Some(Arc::new(e))))),
         };
         Recorder {
             tap: Tap {
@@ -144,7 +163,7 @@ impl Recorder {
     }
 
     /// The recording's failure, the first time it is asked for after it happened.
-    pub fn new_failure(&mut self) -> Option<String> {
+    pub fn new_failure(&mut self) -> Option<RecordingFailure> {
         if self.reported {
             return None;
         }
@@ -153,18 +172,23 @@ impl Recorder {
         Some(failure)
     }
 
-    fn failure(&self) -> Option<String> {
-        let failure = self.failure.lock().unwrap_or_else(|p| p.into_inner()).clone()?;
-        Some(format!("recording {} failed: {failure}", self.name))
+    fn failure(&self) -> Option<RecordingFailure> {
+        let source = self.failure.lock().unwrap_or_else(|p| p.into_inner()).clone()?;
+        Some(RecordingFailure::Write {
+            name: self.name.clone(),
+            source,
+        })
     }
 
     /// Write what is left and close the file; the recording's failure, if any.
-    pub fn finish(mut self) -> Result<(), String> {
+    pub fn finish(mut self) -> Result<(), RecordingFailure> {
         let _ = self.tap.tx.send(Job::Finish);
         if let Some(thread) = self.thread.take()
             && thread.join().is_err()
         {
-            return Err(format!("recording {}: the writer stopped", self.name));
+            return Err(RecordingFailure::WriterStopped {
+                name: self.name.clone(),
+            });
         }
         match self.failure() {
             Some(f) => Err(f),

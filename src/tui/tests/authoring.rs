@@ -284,7 +284,7 @@ fn a_handout_has_each_steps_frame_chart_and_index() {
     }
     // Again into the same directory: refused, nothing replaced.
     let again = write_handout(&tour, &out, 100, 30, |_, _| {}).unwrap_err();
-    assert!(matches!(again, HandoutError::Directory(_)), "{again}");
+    assert!(matches!(again, HandoutError::Directory { .. }), "{again}");
     assert!(again.to_string().contains("not empty"), "{again}");
     assert_eq!(std::fs::read_to_string(out.join("index.md")).unwrap(), index);
     std::fs::remove_dir_all(&dir).unwrap();

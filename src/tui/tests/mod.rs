@@ -10,6 +10,7 @@ mod authoring;
 mod axes;
 mod grading_key;
 mod hertz_block;
+mod lab_errors;
 mod locking;
 mod record;
 mod scenes;

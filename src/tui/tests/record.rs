@@ -6,8 +6,8 @@ use std::io::Write;
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
-use riplab::tui::record::Recorder;
 use riplab::tui::record::cast::{Event, Header};
+use riplab::tui::record::{Recorder, RecordingFailure};
 
 /// A writer that fails as a full disk does.
 struct Full;
@@ -30,14 +30,21 @@ fn a_failed_recording_is_reported() {
     recorder.record(Event::Output(b"x".to_vec()));
     // The loop is woken as soon as the write fails.
     rx.recv_timeout(Duration::from_secs(10)).expect("woken");
+    let full = |failure: &RecordingFailure| {
+        matches!(failure, RecordingFailure::Write { name, source }
+            if name == "full.cast" && source.raw_os_error() == Some(28))
+    };
     let failure = recorder.new_failure().expect("the failure");
+    assert!(full(&failure), "{failure:?}");
+    // The status line's text, as before the failure was typed.
+    let disk = std::io::Error::from_raw_os_error(28);
+    assert_eq!(failure.to_string(), format!("recording full.cast failed: {disk}"));
     assert!(
-        failure.contains("full.cast") && failure.contains("No space left"),
-        "{failure}"
+        recorder.new_failure().is_none(),
+        "reported once on the status line"
     );
-    assert_eq!(recorder.new_failure(), None, "reported once on the status line");
     let end = recorder.finish().unwrap_err();
-    assert!(end.contains("No space left"), "{end}");
+    assert!(full(&end), "{end:?}");
 }
 
 /// The recorder's file holds every event in order, the header first.

@@ -21,8 +21,10 @@ use ratatui::symbols::Marker;
 
 use riplab::contact::Rule;
 use riplab::contact::hertz::Hertz;
+use riplab::error::SolveError;
 use riplab::mesh::Element;
 use riplab::scenario::Scenario;
+use riplab::tui::lab_error::LabError;
 use std::sync::Arc;
 
 use crate::tui::tests::settled;

@@ -11,7 +11,7 @@ use riplab::scenario::Scenario;
 use riplab::tui::app::{Command, Compare, Msg, Scene};
 use riplab::tui::engine::Engine;
 use riplab::tui::settle::{carry_out, settle};
-use riplab::tui::tour::{Tour, TourApp, TourMsg, auto_interval, render_step};
+use riplab::tui::tour::{Tour, TourApp, TourError, TourMsg, auto_interval, render_step};
 
 fn key(code: KeyCode) -> TourMsg {
     TourMsg::Lab(Msg::Key(KeyEvent::new(code, KeyModifiers::NONE)))
@@ -427,7 +427,17 @@ fn scenario_paths_are_relative_to_the_tour_file() {
     std::fs::write(&file, format!("{STEP}depth = 2.5\n")).unwrap();
     let tour = Tour::load(&file).unwrap();
     let e = tour.with_scenario(Scenario::paper()).unwrap_err();
-    assert!(e.contains("step 1") && e.contains("depth"), "{e}");
+    assert!(
+        matches!(
+            e,
+            TourError::Depth {
+                step: 1,
+                depth: 2.5,
+                ..
+            }
+        ),
+        "{e}"
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

@@ -13,6 +13,7 @@ use crate::scheme::Scheme;
 use crate::stress::Quantity;
 
 use super::super::app::{App, Compare, Notice};
+use super::errors::AuthorError;
 use super::{MAX_TITLE_WIDTH, Tour};
 
 /// The name of the tour file in the export directory when `--tour-out` is not given.
@@ -131,7 +132,7 @@ pub fn save_step(app: &App, source: &LabSource) -> Notice {
 }
 
 /// Add the step; the step's number and the file.
-fn add_step(app: &App, source: &LabSource) -> Result<(usize, PathBuf), String> {
+fn add_step(app: &App, source: &LabSource) -> Result<(usize, PathBuf), AuthorError> {
     let path = &source.tour_out;
     let shown = || crate::text::sanitize(&path.display().to_string()).into_owned();
     let dir = path.parent().unwrap_or(Path::new("."));
@@ -142,7 +143,7 @@ fn add_step(app: &App, source: &LabSource) -> Result<(usize, PathBuf), String> {
             Some(
                 relative
                     .to_str()
-                    .ok_or_else(|| format!("the scenario's path {} is not UTF-8", file.display()))?
+                    .ok_or_else(|| AuthorError::NotUtf8 { path: file.clone() })?
                     .to_string(),
             )
         }
@@ -150,11 +151,7 @@ fn add_step(app: &App, source: &LabSource) -> Result<(usize, PathBuf), String> {
     let step = step_toml(app, scenario.as_deref());
     let exists = std::fs::symlink_metadata(path).is_ok();
     let (n, text) = if exists {
-        let tour = Tour::load(path).map_err(|e| {
-            let first = e.to_string();
-            let first = first.lines().next().unwrap_or_default().to_string();
-            format!("{first} (T adds to a valid tour file only; --tour-out names another)")
-        })?;
+        let tour = Tour::load(path).map_err(|source| AuthorError::Invalid { source })?;
         (tour.steps.len() + 1, format!("\n{step}"))
     } else {
         (1, format!("{HEADER}\n{step}"))
@@ -164,10 +161,16 @@ fn add_step(app: &App, source: &LabSource) -> Result<(usize, PathBuf), String> {
     } else {
         std::fs::File::create_new(path)
     }
-    .map_err(|e| format!("{}: {e}", shown()))?;
+    .map_err(|source| AuthorError::Write {
+        path: shown(),
+        source,
+    })?;
     file.write_all(text.as_bytes())
         .and_then(|()| file.sync_all())
-        .map_err(|e| format!("{}: {e}", shown()))?;
+        .map_err(|source| AuthorError::Write {
+            path: shown(),
+            source,
+        })?;
     Ok((n, path.clone()))
 }
 

@@ -19,21 +19,29 @@ use super::super::app::{App, Msg, Scene};
 use super::super::engine::Engine;
 use super::super::settle::carry_out;
 use super::Tour;
+use super::errors::{DirectoryFault, StepError};
 use super::view::step_frame;
 
 /// Why a handout was not written.
 #[derive(Debug, thiserror::Error)]
 pub enum HandoutError {
     /// The directory holds files already, or is not a directory (bad input).
-    #[error("{0}")]
-    Directory(String),
+    #[error(
+        "{dir}: {fault}; a handout is written only into a new or empty directory (no file is ever replaced)"
+    )]
+    Directory {
+        /// The directory (sanitised).
+        dir: String,
+        /// What is wrong with it.
+        fault: DirectoryFault,
+    },
     /// A step could not be drawn or its chart made (the size out of range, a failed solve).
-    #[error("step {step}: {message}")]
+    #[error("step {step}: {source}")]
     Step {
         /// The step's number (1-based).
         step: usize,
         /// What went wrong.
-        message: String,
+        source: StepError,
     },
     /// A file could not be written.
     #[error("{path}: {source}")]
@@ -59,7 +67,7 @@ pub fn write_handout(
     let mut files = Vec::new();
     let mut index = intro(tour, width, height);
     for (i, step) in tour.steps.iter().enumerate() {
-        let fail = |message: String| HandoutError::Step { step: i + 1, message };
+        let fail = |source: StepError| HandoutError::Step { step: i + 1, source };
         // A fresh engine per step, as `render_step`'s: a warm start from the step before
         // would change the Newton steps the status line counts.
         let mut engine = Engine::new(tour.scenario_of(i).clone());
@@ -91,23 +99,22 @@ pub fn write_handout(
 /// The directory, created if missing; refused unless it is an empty directory.
 fn prepare(dir: &Path) -> Result<(), HandoutError> {
     let shown = crate::text::sanitize(&dir.display().to_string()).into_owned();
-    let refuse = |why: String| {
-        HandoutError::Directory(format!(
-            "{shown}: {why}; a handout is written only into a new or empty directory (no file is ever replaced)"
-        ))
+    let refuse = |fault: DirectoryFault| HandoutError::Directory {
+        dir: shown.clone(),
+        fault,
     };
     match std::fs::read_dir(dir) {
         Ok(mut entries) => {
             if entries.next().is_some() {
-                return Err(refuse("the directory is not empty".into()));
+                return Err(refuse(DirectoryFault::NotEmpty));
             }
             Ok(())
         }
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
-            std::fs::create_dir_all(dir).map_err(|e| refuse(format!("cannot create it: {e}")))
+            std::fs::create_dir_all(dir).map_err(|e| refuse(DirectoryFault::Create(e)))
         }
-        Err(e) if dir.exists() && !dir.is_dir() => Err(refuse(format!("not a directory ({e})"))),
-        Err(e) => Err(refuse(format!("cannot read it: {e}"))),
+        Err(e) if dir.exists() && !dir.is_dir() => Err(refuse(DirectoryFault::NotADirectory(e))),
+        Err(e) => Err(refuse(DirectoryFault::Read(e))),
     }
 }
 
@@ -120,25 +127,27 @@ fn save(path: &Path, bytes: &[u8]) -> Result<(), HandoutError> {
 
 /// The pressure chart of the step's settings (solved here if the step's scene shows no
 /// solution).
-fn chart(mut app: App, engine: &mut Engine) -> Result<String, String> {
+fn chart(mut app: App, engine: &mut Engine) -> Result<String, StepError> {
     if app.current().is_none() {
         // The mesh scene needs the solve alone (no inf-sup estimate, no study).
         app.scene = Scene::Mesh;
         let commands = app.update(Msg::Resize).commands;
         carry_out(&mut app, engine, commands);
     }
-    let solved = app.current().ok_or_else(|| {
-        app.error
-            .clone()
-            .unwrap_or_else(|| "the step has no solution".into())
-    })?;
+    let solved = app
+        .current()
+        .ok_or_else(|| app.error.clone().map_or(StepError::NoSolution, StepError::Failed))?;
     let title = chart_title(
         &app.scenario.name,
         solved.key.element,
         solved.key.level,
         &solved.solution,
     );
-    pressure_svg_string(&title, &solved.solution, app.scenario.half_model).map_err(|e| e.to_string())
+    Ok(pressure_svg_string(
+        &title,
+        &solved.solution,
+        app.scenario.half_model,
+    )?)
 }
 
 /// The index's first lines.

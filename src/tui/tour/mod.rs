@@ -7,6 +7,7 @@
 //! tick); [`view`] draws it; [`run_tour`] runs it in the terminal.
 
 pub mod author;
+pub mod errors;
 pub mod handout;
 pub mod listing;
 mod player;
@@ -30,7 +31,9 @@ use crate::stress::Quantity;
 use crate::text::{sanitize, sanitize_lines};
 
 use super::app::{App, Compare, MAX_APP_LEVEL, Scene};
+use errors::TextError;
 
+pub use errors::{AutoIntervalError, TourError};
 pub use player::{TourApp, TourMsg};
 pub use runtime::run_tour;
 #[cfg(test)]
@@ -177,30 +180,32 @@ impl Tour {
     /// The tour with `scenario` for the steps that do not name their own; every step's depth
     /// is checked against its scenario, and its ε against the range of its level (as the lab
     /// checks it when the step is played).
-    pub fn with_scenario(mut self, scenario: Scenario) -> Result<Tour, String> {
+    pub fn with_scenario(mut self, scenario: Scenario) -> Result<Tour, TourError> {
         self.scenario = scenario;
         for (i, step) in self.steps.iter().enumerate() {
             if let Some(epsilon) = step.epsilon.filter(|e| *e > 0.0) {
                 let scenario = self.scenario_of(i);
                 let level = step.level.unwrap_or(scenario.level).min(MAX_APP_LEVEL);
-                check::epsilon_in(epsilon, scenario.epsilon_range(level)).map_err(|m| {
-                    format!(
-                        "{}: step {} (`{}`): ε at level {level}: {m}",
-                        sanitize(&self.source),
-                        i + 1,
-                        step.title
-                    )
+                check::epsilon_in(epsilon, scenario.epsilon_range(level)).map_err(|source| {
+                    TourError::Epsilon {
+                        file: sanitize(&self.source).into_owned(),
+                        step: i + 1,
+                        title: step.title.clone(),
+                        level,
+                        source: Box::new(source),
+                    }
                 })?;
             }
             if let Some(depth) = step.depth {
                 let max = App::new(self.scenario_of(i).clone()).max_depth();
                 if depth > max + 1e-12 {
-                    return Err(format!(
-                        "{}: step {} (`{}`): depth {depth} is out of range for its scenario; allowed: 0 to {max}",
-                        self.source,
-                        i + 1,
-                        step.title
-                    ));
+                    return Err(TourError::Depth {
+                        file: sanitize(&self.source).into_owned(),
+                        step: i + 1,
+                        title: step.title.clone(),
+                        depth,
+                        max,
+                    });
                 }
             }
         }
@@ -248,36 +253,34 @@ impl Tour {
 }
 
 /// Text on one line of at most `width` characters, not blank.
-fn one_line(text: &str, width: usize) -> Result<(), String> {
+fn one_line(text: &str, width: usize) -> Result<(), TextError> {
     if text.trim().is_empty() {
-        return Err(format!("is empty; allowed: one line of 1 to {width} characters"));
+        return Err(TextError::EmptyLine { width });
     }
     if text.contains('\n') || text.chars().count() > width {
-        return Err(format!("allowed: one line of at most {width} characters"));
+        return Err(TextError::Line { width });
     }
     Ok(())
 }
 
 /// A caption of 1 to [`MAX_CAPTION_LINES`] lines of at most [`MAX_CAPTION_WIDTH`] characters.
-fn caption(text: &str) -> Result<(), String> {
-    let allowed = format!("1 to {MAX_CAPTION_LINES} lines of at most {MAX_CAPTION_WIDTH} characters");
+fn caption(text: &str) -> Result<(), TextError> {
     let lines: Vec<&str> = text.trim_matches('\n').lines().collect();
     if text.trim().is_empty() {
-        return Err(format!("is empty; allowed: {allowed}"));
+        return Err(TextError::EmptyCaption);
     }
     if lines.len() > MAX_CAPTION_LINES {
-        return Err(format!("has {} lines; allowed: {allowed}", lines.len()));
+        return Err(TextError::CaptionLines { lines: lines.len() });
     }
     if let Some((n, line)) = lines
         .iter()
         .enumerate()
         .find(|(_, l)| l.chars().count() > MAX_CAPTION_WIDTH)
     {
-        return Err(format!(
-            "line {} has {} characters; allowed: {allowed}",
-            n + 1,
-            line.chars().count()
-        ));
+        return Err(TextError::CaptionWidth {
+            line: n + 1,
+            chars: line.chars().count(),
+        });
     }
     Ok(())
 }
@@ -479,10 +482,10 @@ fn method(src: &Source, n: usize, raw: &RawStep) -> Result<Option<Method>, Scena
 }
 
 /// The interval of `--auto SECONDS`: a finite number of seconds in 0.5..=3600.
-pub fn auto_interval(seconds: f64) -> Result<Duration, String> {
+pub fn auto_interval(seconds: f64) -> Result<Duration, AutoIntervalError> {
     if seconds.is_finite() && (0.5..=3600.0).contains(&seconds) {
         Ok(Duration::from_secs_f64(seconds))
     } else {
-        Err(format!("{seconds} is out of range; allowed: 0.5 to 3600 seconds"))
+        Err(AutoIntervalError { seconds })
     }
 }

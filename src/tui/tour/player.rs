@@ -13,12 +13,13 @@ use crate::scenario::Scenario;
 use super::super::app::{App, Command, InfSupKey, Msg, Notice};
 use super::super::beta::InfSup;
 use super::super::keys::{TourAction, tour_action};
+use super::super::lab_error::LabError;
 use super::super::protocol::Solved;
 use super::Tour;
 use super::view::caption_rows;
 
 /// Inf-sup estimates by key, as the lab holds them.
-type Estimates = HashMap<InfSupKey, Result<InfSup, String>>;
+type Estimates = HashMap<InfSupKey, Result<InfSup, LabError>>;
 
 /// How many finished solves are kept for going back.
 const KEPT_SOLVES: usize = 16;

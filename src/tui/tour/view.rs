@@ -17,6 +17,7 @@ use super::super::view::help::key_popup;
 use super::super::view::{Look, view_in};
 use super::super::view::{MIN_AREA as LAB_MIN, centred_message};
 use super::super::{check_size, render_frame};
+use super::errors::StepError;
 use super::{Tour, TourApp};
 
 /// The smallest terminal the tour runs in: the lab's own minimum, its caption below the lab
@@ -183,7 +184,7 @@ fn too_small(frame: &mut Frame, area: Rect, tour: &TourApp, theme: Theme) {
 /// Step `index` of `tour` on a `width`×`height` test terminal as plain text, its lab solved
 /// synchronously (timings left out so that the text is deterministic).
 #[cfg(test)]
-pub fn render_step(tour: &Tour, index: usize, width: u16, height: u16) -> Result<String, String> {
+pub fn render_step(tour: &Tour, index: usize, width: u16, height: u16) -> Result<String, StepError> {
     let mut engine = Engine::new(tour.scenario_of(index).clone());
     step_frame(tour, index, width, height, &mut engine).map(|(text, _)| text)
 }
@@ -196,15 +197,14 @@ pub(crate) fn step_frame(
     width: u16,
     height: u16,
     engine: &mut Engine,
-) -> Result<(String, App), String> {
+) -> Result<(String, App), StepError> {
     if index >= tour.steps.len() {
-        return Err(format!(
-            "step {} does not exist; the tour has {} steps",
-            index + 1,
-            tour.steps.len()
-        ));
+        return Err(StepError::NoSuchStep {
+            step: index + 1,
+            steps: tour.steps.len(),
+        });
     }
-    check_size(width, height).map_err(|e| e.to_string())?;
+    check_size(width, height)?;
     let mut player = TourApp::new(tour.clone(), None);
     player.show_timing = false;
     player.app.show_timing = false;

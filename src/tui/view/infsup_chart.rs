@@ -14,6 +14,7 @@ use crate::scheme::Scheme;
 
 use super::super::app::{App, InfSupKey, MAX_APP_LEVEL};
 use super::super::beta::InfSup;
+use super::super::lab_error::LabError;
 use super::super::theme::Theme;
 use super::Look;
 use super::fmt::{sig, table_row};
@@ -161,7 +162,7 @@ fn table(app: &App, frame: &mut Frame, area: Rect, theme: Theme, all: &[Series],
         head.push_str(&format!(" {:>8}", s.label));
     }
     let mut lines = vec![Line::styled(head, theme.title())];
-    let mut first_error: Option<&str> = None;
+    let mut first_error: Option<&LabError> = None;
     let rows = area.height.saturating_sub(5) as usize;
     let shown = visible(levels, app.settings.level, rows);
     for &level in shown {

@@ -18,6 +18,7 @@ use super::super::build::{Build, Plan};
 use super::super::engine::{Engine, Use};
 use super::super::estimating::Estimating;
 use super::super::job::{Lane, Sink};
+use super::super::lab_error::LabError;
 use super::super::protocol::{
     InfSupRequest, Progress, Response, SolveRequest, Solved, StressRequest, StudyRequest,
 };
@@ -79,7 +80,7 @@ impl Waiting {
     }
 
     /// Answer the request [`Waiting::needs`] named with why its mesh could not be built.
-    fn fail(&mut self, needed_by: Option<u64>, error: String) -> Option<Response> {
+    fn fail(&mut self, needed_by: Option<u64>, error: LabError) -> Option<Response> {
         match needed_by {
             Some(generation) => {
                 self.solve.take()?;
@@ -152,7 +153,7 @@ impl Builds {
         engine: &mut Engine,
         needs: Option<(u32, Element, Use)>,
         wait: Duration,
-    ) -> Option<Result<Arc<Discretization>, String>> {
+    ) -> Option<Result<Arc<Discretization>, LabError>> {
         let mut needed = None;
         for b in std::mem::take(&mut self.0) {
             let (level, element) = (b.plan.level, b.plan.element);
@@ -160,18 +161,16 @@ impl Builds {
             match b.finished(if wanted.is_some() { wait } else { Duration::ZERO }) {
                 Ok(built) => {
                     let failure = built.as_ref().err().map(|e| match e {
-                        SolveError::Cancelled => {
-                            format!(
-                                "the build of level {level} with {} ended without a result",
-                                element.name()
-                            )
-                        }
-                        e => e.to_string(),
+                        SolveError::Cancelled => LabError::BuildEnded { level, element },
+                        e => LabError::from(e.clone()),
                     });
                     let use_ = wanted.map_or(Use::Background, |(_, _, u)| u);
                     let disc = engine.adopt(level, element, built, use_);
                     if wanted.is_some() {
-                        needed = Some(disc.ok_or_else(|| failure.unwrap_or_default()));
+                        needed = Some(match failure {
+                            Some(e) => Err(e),
+                            None => disc.ok_or(LabError::BuildEnded { level, element }),
+                        });
                     }
                 }
                 Err(b) => self.0.push(b),
@@ -309,7 +308,7 @@ pub(super) fn run(mut engine: Engine, rx: &Receiver<Request>, latest: &AtomicU64
                             }
                             None => Some(Response::InfSup {
                                 key: req.key,
-                                result: Some(beta::estimate(&disc, req.key.rule)),
+                                result: Some(beta::estimate(&disc, req.key.rule).map_err(LabError::from)),
                             }),
                         }
                     }),

@@ -153,7 +153,7 @@ fn newer_studies_supersede_older_ones() {
     let reply = Response::Study {
         generation: old.generation,
         key: old.key.clone(),
-        result: Some(Err("stale".into())),
+        result: Some(Err(SolveError::Cancelled.into())),
     };
     assert!(!app.update(Msg::Worker(reply)).redraw);
     assert!(app.studies.is_empty());

@@ -420,7 +420,7 @@ fn stepping_levels_fast_loses_no_row() {
         let reply = match command {
             Command::Solve(r) => Response::Solved {
                 generation: r.generation,
-                result: Err("not under test".into()),
+                result: Err(SolveError::Cancelled.into()),
             },
             Command::InfSup(r) => Response::InfSup {
                 key: r.key,

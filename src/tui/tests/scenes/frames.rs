@@ -93,9 +93,11 @@ fn error_banner_keeps_the_last_result() {
     };
     app.update(Msg::Worker(Response::Solved {
         generation: req.generation,
-        result: Err(
-            "the Jacobian is not positive definite (Numeric); is the body held against rigid motion?".into(),
-        ),
+        result: Err(SolveError::Factorization {
+            matrix: "stiffness",
+            pivot: 12,
+        }
+        .into()),
     }));
     assert!(app.error.is_some());
     assert!(app.solved.is_some(), "the level-0 result stays on screen");
@@ -111,10 +113,14 @@ fn a_long_error_is_shown_whole() {
     let Some(Command::Solve(req)) = effect.commands.first() else {
         panic!("a new level asks for a solve: {effect:?}");
     };
-    let refusal = "the method: Nitsche's γ₀: 100 is too small for θ = 1: the method is stable for γ₀ > ((1 + θ)²/4)·γ₀* (here γ₀* = 1245.043), where K − ((1 + θ)²/4)(1/γ)∫σ_n σ_n stays positive definite (Chouly and Hild's condition); choose a larger γ₀ or θ = −1";
+    let refusal = riplab::error::InputFault::Unstable {
+        gamma0: 100.0,
+        theta: 1.0,
+        threshold: Some(1245.043),
+    };
     app.update(Msg::Worker(Response::Solved {
         generation: req.generation,
-        result: Err(refusal.into()),
+        result: Err(SolveError::from(refusal).into()),
     }));
     let text = frame(&app, 80, 24);
     let shown: String = text.split_whitespace().collect::<Vec<_>>().join(" ");
@@ -415,16 +421,16 @@ fn no_key_sequence_panics() {
             let reply = match command {
                 Command::Solve(r) => Response::Solved {
                     generation: r.generation,
-                    result: Err("test failure".into()),
+                    result: Err(LabError::EstimateEnded),
                 },
                 Command::InfSup(r) => Response::InfSup {
                     key: r.key,
-                    result: Some(Err("test failure".into())),
+                    result: Some(Err(LabError::EstimateEnded)),
                 },
                 Command::Study(r) => Response::Study {
                     generation: r.generation,
                     key: r.key,
-                    result: Some(Err("test failure".into())),
+                    result: Some(Err(LabError::EstimateEnded)),
                 },
                 Command::Stresses(r) => Response::Stresses { key: r.solved.key },
                 Command::Displace(r) => Response::Displaced { key: r.solved.key },

@@ -241,7 +241,7 @@ fn an_estimate_waiting_for_its_mesh_shows_the_build() {
     );
     app.update(Msg::Worker(Response::InfSup {
         key: m4,
-        result: Some(Err("test".into())),
+        result: Some(Err(LabError::EstimateEnded)),
     }));
     assert!(app.infsup_building().is_none() && !app.wants_tick());
 }
@@ -279,6 +279,21 @@ fn a_refused_build_answers_its_solve_with_why() {
             let Err(e) = result else {
                 panic!("level {MAX_APP_LEVEL} of the huge grid was not refused")
             };
+            assert!(
+                matches!(
+                    e,
+                    LabError::Solve(SolveError::TooLarge {
+                        workload: riplab::error::Workload::Level {
+                            level: MAX_APP_LEVEL,
+                            ..
+                        },
+                        ..
+                    })
+                ),
+                "{e}"
+            );
+            // What the banner says, as before the reply was typed.
+            let e = e.to_string();
             assert!(e.contains("needs about") && e.contains("coarser level"), "{e}");
             break;
         }
