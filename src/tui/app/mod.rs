@@ -13,6 +13,7 @@ use super::beta::InfSup;
 pub use super::keys::ExportKind;
 
 mod dispatch;
+mod integration;
 mod overlays;
 mod replies;
 
@@ -222,6 +223,7 @@ impl App {
             },
             depth: scenario.obstacle.depth(),
             refine_edges: scenario.refine_edges,
+            integration: scenario.integration,
         }
     }
 
@@ -283,6 +285,7 @@ impl App {
             schemes,
             methods,
             epsilon,
+            integration: s.integration,
         }
     }
 

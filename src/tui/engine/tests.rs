@@ -131,6 +131,7 @@ fn a_carried_start_that_fails_is_solved_again_from_rest() {
             element: key.element,
             rule: key.rule,
             nitsche: false,
+            integration: key.integration,
         },
         forces: Vec::new(),
         x: vec![-1.0, 1.0],
