@@ -161,3 +161,29 @@ fn a_tour_step_carries_the_integration() {
     assert!(e.contains("integration") && e.contains("selective"), "{e}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// The stresses of a solve switched to full integration are those of its own mesh's
+/// integration, not the scenario's (selective, whose volumetric stress is taken at the
+/// reduced points).
+#[test]
+fn the_stresses_follow_the_solves_integration() {
+    use riplab::stress::StressField;
+    use riplab::tui::engine::Engine;
+    use riplab::tui::settle::settle;
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/scenarios/near-incompressible.toml");
+    let mut scenario = Scenario::load(std::path::Path::new(path)).unwrap();
+    scenario.level = 1;
+    let mut app = App::new(scenario.clone());
+    let mut engine = Engine::new(scenario.clone());
+    press_i(&mut app, &mut engine);
+    settle(&mut app, &mut engine);
+    let solved = app.current().unwrap().clone();
+    assert_eq!(solved.key.integration, Integration::Full);
+    let shown = solved.stress_field(&scenario).unwrap();
+    let u = solved.u();
+    let full = StressField::new(&solved.disc.mesh, &scenario.material, Integration::Full, u).unwrap();
+    let selective =
+        StressField::new(&solved.disc.mesh, &scenario.material, Integration::Selective, u).unwrap();
+    assert!(shown.elements == full.elements && shown.nodal == full.nodal);
+    assert!(shown.elements != selective.elements);
+}
