@@ -16,16 +16,17 @@ impl App {
             Integration::Full => Integration::Selective,
             Integration::Selective => Integration::Full,
         };
+        // One status row at 80 columns beside the key hint, p1's remark on a second.
         let what = match s.integration {
-            Integration::Full => "full: λ div u integrated exactly (Q1 locks as ν → ½)",
-            Integration::Selective => "selective: λ div u one Gauss order lower (no locking as ν → ½)",
+            Integration::Full => "full: λ div u exact (Q1 locks as ν → ½",
+            Integration::Selective => "selective: λ div u reduced (no locking",
         };
         let nu = self.scenario.material.poisson;
         let p1 = if s.element == Element::P1 {
-            "; p1's strains are constant, so it changes nothing"
+            "; p1's strains are constant: it changes nothing"
         } else {
             ""
         };
-        self.notice = Some(Notice::info(format!("integration {what}, ν = {nu}{p1}")));
+        self.notice = Some(Notice::info(format!("integration {what}; ν = {nu}){p1}")));
     }
 }

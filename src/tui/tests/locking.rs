@@ -86,6 +86,11 @@ fn i_switches_the_integration_and_the_lab_solves_with_it() {
     let frame = render_app(&app, &LOOK, 80, 24);
     let line = frame.lines().nth(1).unwrap();
     assert!(line.ends_with("│ ν=0.49 full"), "{line}");
+    let said = "integration full: λ div u exact (Q1 locks as ν → ½; ν = 0.49)";
+    assert!(
+        frame.lines().any(|l| l.contains(said)),
+        "said in one row\n{frame}"
+    );
     assert!(!std::sync::Arc::ptr_eq(&shown.disc, &first.disc));
 
     press_i(&mut app, &mut engine);
