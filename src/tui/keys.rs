@@ -60,6 +60,9 @@ pub enum LabAction {
     Zoom,
     /// The next edge grading: 0, 1, 2, 3 passes, auto.
     Grade,
+    /// The stiffness's volumetric integration: full ↔ selective
+    /// ([`crate::fem::Integration`]).
+    Integration,
     /// Toggle the inf-sup estimate at every level up to the current one.
     AllLevels,
     /// The stress scene's next quantity (τ₁, von Mises, σ_yy).
@@ -199,6 +202,11 @@ pub const LAB: &[Row<LabAction>] = &[
         keys: "E",
         what: &["edge grading: 0, 1, 2, 3 passes, auto"],
         bindings: &[(Char('E'), L::Grade)],
+    },
+    Row {
+        keys: "i",
+        what: &["volumetric integration: full / selective"],
+        bindings: &[(Char('i'), L::Integration)],
     },
     Row {
         keys: "a",

@@ -13,6 +13,7 @@ use super::lab_error::LabError;
 use crate::contact::method::Gamma0;
 use crate::contact::{Method, Rule};
 use crate::discretization::Discretization;
+use crate::fem::Integration;
 use crate::mesh::Element;
 use crate::mesh::MAX_LEVEL;
 use crate::refine_edges::RefineEdges;
@@ -43,6 +44,9 @@ pub struct SolveKey {
     /// How many times the solve grades its mesh at the contact edges (`E` cycles it;
     /// docs/design.md §6, edge grading).
     pub refine_edges: RefineEdges,
+    /// How the stiffness's volumetric part is integrated (`i` toggles full and selective;
+    /// [`Integration`]): each has its own discretisation.
+    pub integration: Integration,
 }
 
 /// Everything an inf-sup estimate depends on (the scenario aside).
@@ -83,6 +87,8 @@ pub struct StudyKey {
     pub methods: Vec<Method>,
     /// The penalty parameter of `penalty` and `alm` (the others do not use it).
     pub epsilon: f64,
+    /// How the stiffness's volumetric part is integrated (the lab's `i`).
+    pub integration: Integration,
 }
 
 /// A method's parameters and ε are finite ([`Method::check`], [`super::app::EPSILON_RANGE`]),
@@ -96,6 +102,7 @@ impl std::hash::Hash for StudyKey {
         self.compare.hash(state);
         self.schemes.hash(state);
         self.epsilon.to_bits().hash(state);
+        self.integration.hash(state);
         for m in &self.methods {
             m.name().hash(state);
             m.theta().hash(state);
@@ -344,15 +351,15 @@ impl Solved {
             .get_or_init(|| self.solution.displacement(&self.disc))
     }
 
-    /// The stresses of this solution (on `scenario`'s material), computed on first use and
-    /// kept.
+    /// The stresses of this solution (on `scenario`'s material, with its discretisation's
+    /// integration), computed on first use and kept.
     pub fn stress_field(&self, scenario: &Scenario) -> Result<Arc<StressField>, StressError> {
         self.stresses
             .get_or_init(|| {
                 StressField::new(
                     &self.disc.mesh,
                     &scenario.material,
-                    scenario.integration,
+                    self.disc.integration,
                     self.u(),
                 )
                 .map(Arc::new)

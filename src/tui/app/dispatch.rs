@@ -147,6 +147,7 @@ impl App {
                 self.settings.refine_edges = next_grading(self.settings.refine_edges);
                 self.notice = Some(Notice::info(grading_notice(self.settings.refine_edges)));
             }
+            LabAction::Integration => self.switch_integration(),
             LabAction::AllLevels => self.all_levels_key(),
             LabAction::NextQuantity => {
                 self.stress_quantity = self.stress_quantity.next();

@@ -14,6 +14,7 @@ pub use super::keys::ExportKind;
 use super::lab_error::LabError;
 
 mod dispatch;
+mod integration;
 mod overlays;
 mod replies;
 
@@ -223,6 +224,7 @@ impl App {
             },
             depth: scenario.obstacle.depth(),
             refine_edges: scenario.refine_edges,
+            integration: scenario.integration,
         }
     }
 
@@ -284,6 +286,7 @@ impl App {
             schemes,
             methods,
             epsilon,
+            integration: s.integration,
         }
     }
 

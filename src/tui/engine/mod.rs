@@ -15,6 +15,7 @@ use crate::contact::newton::NewtonOptions;
 use crate::contact::{Method, Rule, carried_forces};
 use crate::discretization::Discretization;
 use crate::error::SolveError;
+use crate::fem::Integration;
 use crate::mesh::Element;
 use crate::scenario::Scenario;
 use crate::solve::solve_contact;
@@ -68,6 +69,8 @@ struct ForcePoints {
     rule: Rule,
     /// Whether they are Nitsche's edge points.
     nitsche: bool,
+    /// The stiffness's integration (the forces balance its K).
+    integration: Integration,
 }
 
 /// What the last contact solve leaves for the next to start from.
@@ -87,6 +90,8 @@ struct Warm {
 
 /// Owns the discretisation cache (least recently used last out) and the warm start.
 pub struct Engine {
+    /// The scenario, its integration that of the last request ([`Engine::follow`]): the
+    /// cache keeps meshes of either, and serves those of this one.
     pub(in crate::tui) scenario: Scenario,
     cache: Vec<(u32, Element, Arc<Discretization>)>,
     /// The last contact solve's state: where the next one starts ([`Warm`]).
@@ -118,6 +123,18 @@ impl Engine {
             unfit: Vec::new(),
             peaks: RefCell::default(),
         }
+    }
+
+    /// Serve and build meshes integrated as `integration` from now on (the lab's `i`; the
+    /// meshes of the other stay cached for a switch back).
+    pub fn follow(&mut self, integration: Integration) {
+        self.scenario.integration = integration;
+    }
+
+    /// Whether the cached `entry` is the mesh of `level` with `element` integrated as the
+    /// scenario now is.
+    fn is(&self, entry: &(u32, Element, Arc<Discretization>), level: u32, element: Element) -> bool {
+        (entry.0, entry.1) == (level, element) && entry.2.integration == self.scenario.integration
     }
 
     /// The unknowns of the mesh at `level` for `element`, counted without building it.
@@ -186,7 +203,7 @@ impl Engine {
     pub(in crate::tui) fn peek(&self, level: u32, element: Element) -> Option<Arc<Discretization>> {
         self.cache
             .iter()
-            .find(|(l, e, _)| (*l, *e) == (level, element))
+            .find(|entry| self.is(entry, level, element))
             .map(|(_, _, d)| d.clone())
     }
 
@@ -202,7 +219,7 @@ impl Engine {
         let i = self
             .cache
             .iter()
-            .position(|(l, e, _)| (*l, *e) == (level, element))?;
+            .position(|entry| self.is(entry, level, element))?;
         let entry = self.cache.remove(i);
         let disc = entry.2.clone();
         self.cache.push(entry);
@@ -267,7 +284,8 @@ impl Engine {
     /// (None when it failed: a failed build is not tried in the background again). A solve's
     /// becomes the mesh in use; an estimate's or a background one goes just behind the mesh
     /// in use in the cache's order, kept while the budget allows (an estimate holds its mesh
-    /// meanwhile); a background one for another element than the one in use is dropped.
+    /// meanwhile); a background one for another element than the one in use is dropped, and any
+    /// one integrated otherwise than the scenario now is ([`Engine::follow`]).
     pub fn adopt(
         &mut self,
         level: u32,
@@ -293,7 +311,10 @@ impl Engine {
             self.prepare_eta.record(disc.n_dofs(), ms);
         }
         let in_use = self.cache.last().map(|(_, e, _)| *e);
-        if (use_ == Use::Background && in_use != Some(element)) || self.has(level, element) {
+        // A build started before a switch of the integration (`i`) is not kept: the next
+        // request wants the other.
+        let stale = disc.integration != self.scenario.integration;
+        if stale || (use_ == Use::Background && in_use != Some(element)) || self.has(level, element) {
             return Some(disc);
         }
         let at = match use_ {
@@ -307,7 +328,7 @@ impl Engine {
 
     /// Whether the mesh of `level` with `element` is built.
     pub fn has(&self, level: u32, element: Element) -> bool {
-        self.cache.iter().any(|(l, e, _)| (*l, *e) == (level, element))
+        self.cache.iter().any(|entry| self.is(entry, level, element))
     }
 
     /// Run `req`; `is_current(generation)` false cancels it; progress goes to `report`.
@@ -320,6 +341,7 @@ impl Engine {
         let t = Instant::now();
         let generation = req.generation;
         let key = req.key;
+        self.follow(key.integration);
         if self.cached(key.level, key.element).is_none() {
             let unknowns = self.unknowns(key.level, key.element);
             report(Response::Progress {
@@ -360,6 +382,7 @@ impl Engine {
             element: key.element,
             rule: key.rule,
             nitsche,
+            integration: key.integration,
         };
         // The last forces if they live on these points; else the last pressure carried to
         // the rule's points (Nitsche shares them between its edge points).
@@ -474,14 +497,18 @@ impl Engine {
             self.eta.predict_ms(unknowns)
         });
         Ok(Studying {
-            scenario: self.scenario.clone(),
+            scenario: Scenario {
+                integration: key.integration,
+                ..self.scenario.clone()
+            },
             key: key.clone(),
             estimates_ms: std::iter::once(reference).chain(levels).collect(),
             kept: self.study.clone(),
         })
     }
 
-    /// The inf-sup estimate of `key`.
+    /// The inf-sup estimate of `key`, on the mesh of the current integration (β_h does not
+    /// depend on it: A is the H¹ Gram matrix of (7), [`crate::infsup`]).
     pub fn inf_sup(&mut self, key: InfSupKey) -> Result<InfSup, LabError> {
         let disc = self.discretization(key.level, key.element)?;
         Ok(beta::estimate(&disc, key.rule)?)

@@ -139,6 +139,7 @@ fn a_carried_start_that_fails_is_solved_again_from_rest() {
             element: key.element,
             rule: key.rule,
             nitsche: false,
+            integration: key.integration,
         },
         forces: Vec::new(),
         x: vec![-1.0, 1.0],
@@ -149,4 +150,47 @@ fn a_carried_start_that_fails_is_solved_again_from_rest() {
     assert!(again.solution.newton.converged);
     assert_eq!(again.solution.newton.iterations, rest.solution.newton.iterations);
     assert_eq!(again.solution.load, rest.solution.load);
+}
+
+/// Issue 31, item 5: a background build started before the lab's `i` switched the
+/// integration is not kept (it would be served as the mesh of the other integration), and the
+/// next prefetch builds the mesh of the new one.
+#[test]
+fn a_build_of_the_integration_switched_from_is_not_kept() {
+    use crate::fem::Integration;
+    let scenario = Scenario::paper();
+    let mut engine = Engine::new(scenario.clone());
+    let key = SolveKey {
+        level: 1,
+        ..App::defaults(&scenario)
+    };
+    let response = engine.solve(&SolveRequest { generation: 1, key }, &|_| true, &mut |_| {});
+    assert!(matches!(response, Response::Solved { result: Ok(_), .. }));
+    assert_eq!(engine.next_prefetch(), Some((2, Element::Q1)));
+    let plan = engine.plan(2, Element::Q1);
+    let build = Build::start(&engine.scenario, plan, 0, None).expect("a thread");
+    let Ok(Ok(finished)) = build.finished(Duration::from_secs(120)) else {
+        panic!("the build finished");
+    };
+    assert_eq!(finished.disc.integration, Integration::Full);
+    engine.follow(Integration::Selective);
+    engine.adopt(2, Element::Q1, Ok(finished), Use::Background);
+    assert!(!engine.has(2, Element::Q1));
+    assert!(
+        !engine.has(1, Element::Q1),
+        "level 1 is built fully integrated only"
+    );
+    engine.follow(Integration::Full);
+    assert!(engine.has(1, Element::Q1));
+    assert!(!engine.has(2, Element::Q1), "the stale build was dropped");
+    engine.follow(Integration::Selective);
+    assert_eq!(engine.next_prefetch(), Some((2, Element::Q1)));
+    let plan = engine.plan(2, Element::Q1);
+    let build = Build::start(&engine.scenario, plan, 0, None).expect("a thread");
+    let Ok(Ok(finished)) = build.finished(Duration::from_secs(120)) else {
+        panic!("the build finished");
+    };
+    assert_eq!(finished.disc.integration, Integration::Selective);
+    engine.adopt(2, Element::Q1, Ok(finished), Use::Background);
+    assert!(engine.has(2, Element::Q1));
 }

@@ -1,5 +1,6 @@
-//! `T` in the lab: the lab's current state (scenario, scheme, level, ε, method and its
-//! parameters, depth, scene, what it compares, overlays, zoom, the stress quantity) added as a
+//! `T` in the lab: the lab's current state (scenario, scheme, level, the integration when
+//! switched from the scenario's, ε, method and its parameters, depth, scene, what it
+//! compares, overlays, zoom, the stress quantity) added as a
 //! `[[step]]` to a tour file, with a caption left for the teacher to write. The file is
 //! `--tour-out FILE`, else `riplab-tour.toml` in the export directory; it is created if it does
 //! not exist, and added to only if it already reads as a valid tour, so that `T` never changes
@@ -9,6 +10,7 @@ use std::io::Write as _;
 use std::path::{Path, PathBuf};
 
 use crate::contact::method::Gamma0;
+use crate::fem::Integration;
 use crate::scheme::Scheme;
 use crate::stress::Quantity;
 
@@ -65,6 +67,13 @@ pub fn step_toml(app: &App, scenario: Option<&str>) -> String {
     }
     lines.push(format!("scheme = {}", text(&scheme)));
     lines.push(format!("level = {}", s.level));
+    if s.integration != app.scenario.integration {
+        let name = match s.integration {
+            Integration::Full => "full",
+            Integration::Selective => "selective",
+        };
+        lines.push(format!("integration = {}", text(name)));
+    }
     lines.push(format!("epsilon = {}", float(s.epsilon)));
     lines.push(format!("method = {}", text(s.method.name())));
     if let Some(theta) = s.method.theta() {

@@ -22,6 +22,7 @@ use toml::Spanned;
 
 use crate::check;
 use crate::contact::{Method, Rule};
+use crate::fem::Integration;
 use crate::input::Locator as Source;
 use crate::input::{RawGamma0, ScenarioError, read_toml};
 use crate::mesh::Element;
@@ -81,6 +82,8 @@ pub struct Step {
     pub rule: Option<Rule>,
     /// The mesh level (clamped to [`MAX_APP_LEVEL`]); None keeps the scenario's.
     pub level: Option<u32>,
+    /// The stiffness's volumetric integration (`i` in the lab); None keeps the scenario's.
+    pub integration: Option<Integration>,
     /// The penalty parameter ε (0: the `exact` method); None keeps the scenario's.
     pub epsilon: Option<f64>,
     /// The contact method ([`Method::parse`], default parameters); ε = 0 alone is `exact`.
@@ -120,6 +123,7 @@ struct RawStep {
     element: Option<Spanned<Element>>,
     rule: Option<Spanned<Rule>>,
     level: Option<Spanned<i64>>,
+    integration: Option<Spanned<Integration>>,
     epsilon: Option<Spanned<f64>>,
     method: Option<Spanned<String>>,
     theta: Option<Spanned<f64>>,
@@ -231,6 +235,7 @@ impl Tour {
         s.element = step.element.unwrap_or(s.element);
         s.rule = step.rule.unwrap_or(s.rule);
         s.level = step.level.unwrap_or(s.level).min(MAX_APP_LEVEL);
+        s.integration = step.integration.unwrap_or(s.integration);
         // ε = 0 is the exact method (the lab keeps its ε for penalty and alm).
         match step.epsilon {
             Some(0.0) => s.method = Method::Exact,
@@ -421,6 +426,7 @@ fn step(src: &Source, n: usize, raw: &RawStep, dir: Option<&Path>) -> Result<Ste
         element,
         rule,
         level,
+        integration: raw.integration.as_ref().map(|i| *i.get_ref()),
         epsilon: raw.epsilon.as_ref().map(|e| *e.get_ref()),
         method,
         depth: raw.depth.as_ref().map(|d| *d.get_ref()),

@@ -86,15 +86,18 @@ fn settings_line(app: &App, theme: Theme, width: u16) -> Line<'static> {
         m => m.name().to_string(),
     };
     // ν and the volumetric integration where locking is the lesson: a selective integration,
-    // or a ν from which Q1 integrated exactly locks (crate::warning::LOCKING_POISSON).
-    let (poisson, integration) = (app.scenario.material.poisson, app.scenario.integration);
-    let material = (integration == Integration::Selective || poisson >= LOCKING_POISSON).then(|| {
-        let name = match integration {
-            Integration::Full => "full",
-            Integration::Selective => "selective",
-        };
-        format!("ν={} {name}", sig(poisson, 7))
-    });
+    // one switched from the scenario's (`i`), or a ν from which Q1 integrated exactly locks
+    // (crate::warning::LOCKING_POISSON).
+    let (poisson, integration) = (app.scenario.material.poisson, s.integration);
+    let switched = integration != app.scenario.integration;
+    let material =
+        (integration == Integration::Selective || switched || poisson >= LOCKING_POISSON).then(|| {
+            let name = match integration {
+                Integration::Full => "full",
+                Integration::Selective => "selective",
+            };
+            format!("ν={} {name}", sig(poisson, 7))
+        });
     let fields = |counts: Option<&str>, method: &str| -> Line<'static> {
         let sep = || Span::styled(" │ ", theme.faint());
         let mut spans = vec![

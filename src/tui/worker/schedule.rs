@@ -180,6 +180,14 @@ impl Builds {
     }
 }
 
+/// A solve's integration is the engine's from its arrival on: the meshes built for it (and
+/// in the background next) are integrated so ([`Engine::follow`]).
+fn follow(engine: &mut Engine, r: &Request) {
+    if let Request::Solve(req) = r {
+        engine.follow(req.key.integration);
+    }
+}
+
 /// The worker loop: the newest solve first (older ones are dropped), then the displacement
 /// of the solution just sent and the stresses of the solution shown (each on a thread of its
 /// own in its [`Lane`], its reply sent from there), then the newest study (likewise), then
@@ -238,11 +246,13 @@ pub(super) fn run(mut engine: Engine, rx: &Receiver<Request>, latest: &AtomicU64
                 }
             };
             if let Some(r) = next {
+                follow(&mut engine, &r);
                 waiting.take(r);
             }
             continue;
         }
         while let Ok(r) = rx.try_recv() {
+            follow(&mut engine, &r);
             waiting.take(r);
         }
         let current = |g: u64| latest.load(Ordering::SeqCst) == g;
