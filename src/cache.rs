@@ -77,8 +77,9 @@ pub fn fields(
     let key = key(scenario, grid);
     let path = dir.join(format!("reference-{:016x}.bin", fnv1a(key.as_bytes())));
     let (n_u, n_p) = grid.lengths();
-    let read =
-        file::read(&path, &key, n_u, n_p).filter(|fields| meaning::check(scenario, grid, fields).is_ok());
+    let n_t = if scenario.friction.is_on() { n_p } else { 0 };
+    let read = file::read(&path, &key, n_u, n_p, n_t)
+        .filter(|fields| meaning::check(scenario, grid, fields).is_ok());
     if let Some(mut fields) = read {
         fields.source = ReferenceSource::Cache;
         return Ok((fields, Provenance::Cached(path)));
@@ -92,7 +93,9 @@ pub fn fields(
 }
 
 /// Everything the reference depends on, as text (f64's Debug form round-trips exactly); a
-/// refined grid adds its refinement count and its vertex lines.
+/// refined grid adds its refinement count and its vertex lines, friction its law, shift and
+/// steps ([`crate::study::reference_friction`]), so that a frictionless reference is never
+/// read for a study with friction, nor the other way round.
 fn key(s: &Scenario, grid: &ReferenceMesh) -> String {
     let mut key = format!(
         "riplab {} numerics {} reference {:?} level {}\nbody {:?} x {:?} y {:?} half {}\nmaterial {:?}\nintegration {:?}\nobstacle {:?}",
@@ -108,6 +111,10 @@ fn key(s: &Scenario, grid: &ReferenceMesh) -> String {
         s.integration,
         s.obstacle
     );
+    let friction = crate::study::reference_friction(s);
+    if friction.is_on() {
+        key.push_str(&format!("\nfriction {friction:?}"));
+    }
     if grid.refinements > 0 {
         key.push_str(&format!(
             "\nrefinements {}\nxs {:?}\nys {:?}",

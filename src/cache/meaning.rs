@@ -24,11 +24,13 @@ const REACTION_TOLERANCE: f64 = 1e-6;
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum Meaningless {
     /// Its sizes are not the mesh's.
-    #[error("its sizes {found:?} (displacements, pressures, dofs) are not the mesh's {expected:?}")]
+    #[error(
+        "its sizes {found:?} (displacements, pressures and tangential tractions, dofs) are not the mesh's {expected:?}"
+    )]
     Sizes {
-        /// (displacements, pressures, dofs) it holds.
+        /// (displacements, pressures and tangential tractions, dofs) it holds.
         found: (usize, usize, usize),
-        /// (displacements, pressures, dofs) of the mesh.
+        /// (displacements, pressures and tangential tractions, dofs) of the mesh.
         expected: (usize, usize, usize),
     },
     /// A number that is not finite, or a negative time.
@@ -56,16 +58,20 @@ pub enum Meaningless {
 pub fn check(scenario: &Scenario, grid: &ReferenceMesh, fields: &ReferenceFields) -> Result<(), Meaningless> {
     let (n_u, n_p) = grid.lengths();
     let n_dofs = grid.n_dofs(scenario);
-    if (fields.u.len(), fields.p.len(), fields.n_dofs) != (n_u, n_p, n_dofs) {
+    // With friction a tangential traction at each pressure's point.
+    let n_t = if scenario.friction.is_on() { n_p } else { 0 };
+    let traction = fields.p.len() + fields.t.len();
+    if (fields.u.len(), fields.p.len(), fields.t.len(), fields.n_dofs) != (n_u, n_p, n_t, n_dofs) {
         return Err(Meaningless::Sizes {
-            found: (fields.u.len(), fields.p.len(), fields.n_dofs),
-            expected: (n_u, n_p, n_dofs),
+            found: (fields.u.len(), traction, fields.n_dofs),
+            expected: (n_u, n_p + n_t, n_dofs),
         });
     }
     let finite = [fields.load, fields.ms]
         .iter()
         .chain(&fields.u)
         .chain(&fields.p)
+        .chain(&fields.t)
         .all(|v| v.is_finite());
     if !finite || fields.ms < 0.0 {
         return Err(Meaningless::NotFinite);
