@@ -173,6 +173,54 @@ mod tests {
         assert!(key.contains(&format!("numerics {NUMERICS_ID} ")), "{key}");
     }
 
+    /// A frictionless reference is never read for a study with friction, nor the other way
+    /// round, nor one μ's for another's: each has its own key and entry, and each is read
+    /// back as stored (t with friction, none without).
+    #[test]
+    fn friction_and_frictionless_references_are_kept_apart() {
+        use crate::contact::friction::{Friction, Law};
+        let dir = std::env::temp_dir().join(format!("riplab-cache-friction-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/scenarios/hertz-paper-full.toml");
+        let plain = Scenario::load(Path::new(path)).unwrap();
+        let with = |mu: f64, epsilon_t: Option<f64>| {
+            let mut s = plain.clone();
+            s.friction = Friction {
+                law: Law::Coulomb { mu },
+                shift: 0.05,
+                steps: 2,
+                epsilon_t,
+            };
+            s
+        };
+        let grid = ReferenceMesh::uniform(&plain, 0);
+        let stored = |s: &Scenario| match fields(s, &grid, Some(&dir)).unwrap() {
+            (f, Provenance::Stored(p)) => (f, p),
+            other => panic!("not computed and stored: {:?}", other.1),
+        };
+        let cached = |s: &Scenario| match fields(s, &grid, Some(&dir)).unwrap() {
+            (f, Provenance::Cached(p)) => (f, p),
+            other => panic!("not read: {:?}", other.1),
+        };
+        let (f0, p0) = stored(&plain);
+        let (f3, p3) = stored(&with(0.3, None));
+        let (f6, p6) = stored(&with(0.6, None));
+        assert!(p0 != p3 && p3 != p6 && p0 != p6);
+        assert!(f0.t.is_empty() && !f3.t.is_empty() && f3.t != f6.t);
+        let same = |a: &ReferenceFields, b: &ReferenceFields| {
+            (&a.u, &a.p, &a.t, a.load) == (&b.u, &b.p, &b.t, b.load)
+        };
+        assert!(same(&cached(&plain).0, &f0));
+        assert!(same(&cached(&with(0.3, None)).0, &f3));
+        // The rows' ε_t is not the reference's (it imposes friction exactly): the same entry.
+        assert_eq!(cached(&with(0.3, Some(1e-6))).1, p3);
+        // A frictionless entry planted at a friction entry's path is not believed.
+        std::fs::copy(&p0, &p3).unwrap();
+        let (again, _) = stored(&with(0.3, None));
+        assert!(same(&again, &f3));
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
     #[test]
     fn fnv1a_matches_its_published_test_vectors() {
         assert_eq!(fnv1a(b""), 0xcbf29ce484222325);

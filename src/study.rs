@@ -295,3 +295,6 @@ pub fn study(
         friction: scenario.friction,
     })
 }
+
+#[cfg(test)]
+mod friction_tests;

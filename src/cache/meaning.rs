@@ -4,7 +4,9 @@
 //! finite, its load P is I(p, 1) of its own pressure (`contact::pressure::load`), and its
 //! displacement is in equilibrium with that load: the vertical reaction of the clamped bottom,
 //! Σ (K u)_y with K applied cell by cell ([`crate::fem::apply`]), equals P (the body carries
-//! no other load). An entry that fails any check is recomputed and replaced.
+//! no other load); with friction its horizontal reaction Σ (K u)_x balances its tangential
+//! load Q = I(t, 1) (docs/design.md §11: the traction on the body is +t in x). An entry that
+//! fails any check is recomputed and replaced.
 
 use crate::contact::ContactPoints;
 use crate::contact::pressure::load;
@@ -50,6 +52,19 @@ pub enum Meaningless {
         /// The bottom's reaction of its displacement.
         reaction: f64,
         /// The load it holds.
+        load: f64,
+    },
+    /// With friction, its displacement's horizontal reaction at the bottom does not balance
+    /// its tangential load.
+    #[error(
+        "its displacement's horizontal reaction {} does not balance its tangential load {}",
+        num(*reaction),
+        num(*load)
+    )]
+    Tangential {
+        /// The bottom's horizontal reaction of its displacement.
+        reaction: f64,
+        /// Its tangential load Q = I(t, 1).
         load: f64,
     },
 }
@@ -108,6 +123,16 @@ pub fn check(scenario: &Scenario, grid: &ReferenceMesh, fields: &ReferenceFields
             load: fields.load,
         });
     }
+    if !fields.t.is_empty() {
+        let q = load(&points, &fields.t);
+        let horizontal: f64 = (0..mesh.nnx()).map(|i| ku[2 * mesh.node(i, 0)]).sum();
+        if !horizontal.is_finite() || (horizontal + q).abs() > REACTION_TOLERANCE * scale {
+            return Err(Meaningless::Tangential {
+                reaction: horizontal,
+                load: q,
+            });
+        }
+    }
     Ok(())
 }
 
@@ -142,5 +167,40 @@ mod tests {
             f.load *= 1.5;
         });
         assert!(matches!(scaled, Meaningless::Reaction { .. }), "{scaled}");
+    }
+
+    /// With friction (μ = 0.3, a shift) a solved reference passes, its bottom balancing Q; its
+    /// t ×1.5, a t missing, or a frictionless entry read for friction each fail.
+    #[test]
+    fn a_friction_reference_balances_its_tangential_load() {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/scenarios/hertz-paper-full.toml");
+        let plain = Scenario::load(std::path::Path::new(path)).unwrap();
+        let mut s = plain.clone();
+        s.friction = crate::contact::friction::Friction {
+            law: crate::contact::friction::Law::Coulomb { mu: 0.3 },
+            shift: 0.05,
+            steps: 2,
+            epsilon_t: None,
+        };
+        let grid = ReferenceMesh::uniform(&s, 0);
+        let good = ReferenceFields::solve_on(&s, &grid).unwrap();
+        assert_eq!(check(&s, &grid, &good), Ok(()));
+        assert!(good.t.iter().any(|&t| t > 0.0));
+        let mut scaled = good.clone();
+        scaled.t.iter_mut().for_each(|t| *t *= 1.5);
+        assert!(matches!(
+            check(&s, &grid, &scaled),
+            Err(Meaningless::Tangential { .. })
+        ));
+        let frictionless = ReferenceFields::solve_on(&plain, &grid).unwrap();
+        assert!(frictionless.t.is_empty());
+        assert!(matches!(
+            check(&s, &grid, &frictionless),
+            Err(Meaningless::Sizes { .. })
+        ));
+        assert!(matches!(
+            check(&plain, &grid, &good),
+            Err(Meaningless::Sizes { .. })
+        ));
     }
 }
