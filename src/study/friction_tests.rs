@@ -25,7 +25,7 @@ fn coulomb(mu: f64) -> Friction {
 /// The study of `scenario` at `plan` with `schemes` against the uniform reference at
 /// `reference_level` (no edge refinement, no cache).
 fn run(scenario: &Scenario, schemes: &[(Element, Rule)], plan: Plan, reference_level: u32) -> Study {
-    let mut fetch = |grid: &ReferenceMesh| crate::cache::fields(scenario, grid, None).map(|(f, _)| f);
+    let mut fetch = |grid: &ReferenceMesh| ReferenceFields::solve_on(scenario, grid);
     study(scenario, schemes, None, plan, (reference_level, 0), &mut fetch).unwrap()
 }
 
