@@ -77,8 +77,9 @@ pub fn fields(
     let key = key(scenario, grid);
     let path = dir.join(format!("reference-{:016x}.bin", fnv1a(key.as_bytes())));
     let (n_u, n_p) = grid.lengths();
-    let read =
-        file::read(&path, &key, n_u, n_p).filter(|fields| meaning::check(scenario, grid, fields).is_ok());
+    let n_t = if scenario.friction.is_on() { n_p } else { 0 };
+    let read = file::read(&path, &key, n_u, n_p, n_t)
+        .filter(|fields| meaning::check(scenario, grid, fields).is_ok());
     if let Some(mut fields) = read {
         fields.source = ReferenceSource::Cache;
         return Ok((fields, Provenance::Cached(path)));
@@ -92,7 +93,9 @@ pub fn fields(
 }
 
 /// Everything the reference depends on, as text (f64's Debug form round-trips exactly); a
-/// refined grid adds its refinement count and its vertex lines.
+/// refined grid adds its refinement count and its vertex lines, friction its law, shift and
+/// steps ([`crate::study::reference_friction`]), so that a frictionless reference is never
+/// read for a study with friction, nor the other way round.
 fn key(s: &Scenario, grid: &ReferenceMesh) -> String {
     let mut key = format!(
         "riplab {} numerics {} reference {:?} level {}\nbody {:?} x {:?} y {:?} half {}\nmaterial {:?}\nintegration {:?}\nobstacle {:?}",
@@ -108,6 +111,10 @@ fn key(s: &Scenario, grid: &ReferenceMesh) -> String {
         s.integration,
         s.obstacle
     );
+    let friction = crate::study::reference_friction(s);
+    if friction.is_on() {
+        key.push_str(&format!("\nfriction {friction:?}"));
+    }
     if grid.refinements > 0 {
         key.push_str(&format!(
             "\nrefinements {}\nxs {:?}\nys {:?}",
@@ -164,6 +171,54 @@ mod tests {
         assert_eq!(NUMERICS_ID.len(), 16);
         assert!(NUMERICS_ID.bytes().all(|b| b.is_ascii_hexdigit()));
         assert!(key.contains(&format!("numerics {NUMERICS_ID} ")), "{key}");
+    }
+
+    /// A frictionless reference is never read for a study with friction, nor the other way
+    /// round, nor one μ's for another's: each has its own key and entry, and each is read
+    /// back as stored (t with friction, none without).
+    #[test]
+    fn friction_and_frictionless_references_are_kept_apart() {
+        use crate::contact::friction::{Friction, Law};
+        let dir = std::env::temp_dir().join(format!("riplab-cache-friction-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/scenarios/hertz-paper-full.toml");
+        let plain = Scenario::load(Path::new(path)).unwrap();
+        let with = |mu: f64, epsilon_t: Option<f64>| {
+            let mut s = plain.clone();
+            s.friction = Friction {
+                law: Law::Coulomb { mu },
+                shift: 0.05,
+                steps: 2,
+                epsilon_t,
+            };
+            s
+        };
+        let grid = ReferenceMesh::uniform(&plain, 0);
+        let stored = |s: &Scenario| match fields(s, &grid, Some(&dir)).unwrap() {
+            (f, Provenance::Stored(p)) => (f, p),
+            other => panic!("not computed and stored: {:?}", other.1),
+        };
+        let cached = |s: &Scenario| match fields(s, &grid, Some(&dir)).unwrap() {
+            (f, Provenance::Cached(p)) => (f, p),
+            other => panic!("not read: {:?}", other.1),
+        };
+        let (f0, p0) = stored(&plain);
+        let (f3, p3) = stored(&with(0.3, None));
+        let (f6, p6) = stored(&with(0.6, None));
+        assert!(p0 != p3 && p3 != p6 && p0 != p6);
+        assert!(f0.t.is_empty() && !f3.t.is_empty() && f3.t != f6.t);
+        let same = |a: &ReferenceFields, b: &ReferenceFields| {
+            (&a.u, &a.p, &a.t, a.load) == (&b.u, &b.p, &b.t, b.load)
+        };
+        assert!(same(&cached(&plain).0, &f0));
+        assert!(same(&cached(&with(0.3, None)).0, &f3));
+        // The rows' ε_t is not the reference's (it imposes friction exactly): the same entry.
+        assert_eq!(cached(&with(0.3, Some(1e-6))).1, p3);
+        // A frictionless entry planted at a friction entry's path is not believed.
+        std::fs::copy(&p0, &p3).unwrap();
+        let (again, _) = stored(&with(0.3, None));
+        assert!(same(&again, &f3));
+        let _ = std::fs::remove_dir_all(&dir);
     }
 
     #[test]

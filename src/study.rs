@@ -12,18 +12,14 @@
 //! square-root profile, until that estimate is at most a tenth of the smallest error any row
 //! reports ([`study`], docs/design.md §6).
 
-use std::ops::ControlFlow;
-
-use crate::contact::newton::NewtonOptions;
-
 use crate::contact::ContactParams;
+use crate::contact::friction::Friction;
 use crate::contact::{Method, Rule};
 use crate::discretization::Discretization;
 use crate::error::{InputFault, SolveError};
 use crate::grading::RefineEdges;
 use crate::mesh::Element;
 use crate::scenario::Scenario;
-use crate::solve::solve_contact;
 
 mod errors;
 mod graded;
@@ -40,8 +36,8 @@ pub use grid::{MAX_REFINEMENTS, REFERENCE_SCHEME, ReferenceLevelError, Reference
 pub use meaning::check_contact;
 use rates::with_rates;
 pub use rates::{Fit, fits, least_squares_slope};
-use reference::solve_fresh;
-pub use reference::{Estimate, Reference, ReferenceFields, TARGET_SHARE, Target};
+pub use reference::{Estimate, Reference, ReferenceFields, TARGET_SHARE, Target, reference_friction};
+use reference::{solve_row, solve_warm};
 pub use refine::{Fetch, refine_reference, uniform_reference};
 pub use row::{Status, StudyRow, all_ok};
 pub use source::ReferenceSource;
@@ -117,7 +113,7 @@ fn convergence_kept(
                 let (m, e) = (params.method, params.epsilon);
                 let solved = disc.as_ref().map_err(Clone::clone).and_then(|disc| {
                     resolved?;
-                    let mut sol = solve_fresh(disc, &params)?;
+                    let mut sol = solve_row(disc, &params, &scenario.friction)?;
                     sol.timing.include_mesh_work(disc);
                     Ok((disc, sol))
                 });
@@ -163,13 +159,7 @@ fn epsilon_sweep_kept(
                 let (m, e) = (params.method, params.epsilon);
                 let solved = disc.as_ref().map_err(Clone::clone).and_then(|disc| {
                     resolved?;
-                    let sol = solve_contact(
-                        disc,
-                        &params,
-                        previous.as_deref(),
-                        &NewtonOptions::default(),
-                        &mut |_| ControlFlow::Continue(()),
-                    )?;
+                    let sol = solve_warm(disc, &params, &scenario.friction, previous.as_deref())?;
                     Ok((disc, sol))
                 });
                 if let Ok((_, sol)) = &solved {
@@ -223,6 +213,9 @@ pub struct Study {
     pub rows: Vec<StudyRow>,
     /// One least-squares fit per scheme (and method), in the rows' order.
     pub fits: Vec<Fit>,
+    /// The friction of every row and of the reference (the scenario's; [`Friction::NONE`]:
+    /// frictionless).
+    pub friction: Friction,
 }
 
 /// Every scheme of `plan` against a reference at `reference_level` (≥ 1) that is refined at
@@ -230,6 +223,9 @@ pub struct Study {
 /// tenth of the smallest error any row reports ([`Target`]). The rows are solved once: after a
 /// refinement their errors are measured again against the refined reference from what they
 /// kept. `fetch` provides the reference's fields on a grid (solved, or from the cache).
+/// With the scenario's friction on, every row and the reference are solved with it
+/// (docs/design.md §11) and the rows report t̄'s and Q's errors too; edge-graded rows do not
+/// take friction ([`InputFault::GradedFriction`]).
 pub fn study(
     scenario: &Scenario,
     schemes: &[(Element, Rule)],
@@ -239,6 +235,12 @@ pub fn study(
     fetch: &mut Fetch,
 ) -> Result<Study, SolveError> {
     check_contact(scenario)?;
+    if let Plan::Levels { refine, .. } = plan
+        && scenario.friction.is_on()
+        && refine.iter().any(|r| r.grades())
+    {
+        return Err(InputFault::GradedFriction.into());
+    }
     let (mut reference, mut fields) = uniform_reference(scenario, reference_level, fetch)?;
     let (mut groups, by_epsilon) = match plan {
         Plan::Levels {
@@ -290,5 +292,9 @@ pub fn study(
         reference,
         rows,
         fits,
+        friction: scenario.friction,
     })
 }
+
+#[cfg(test)]
+mod friction_tests;

@@ -30,14 +30,14 @@ const TMP_PREFIX: &str = ".reference-";
 const TMP_SUFFIX: &str = ".tmp";
 
 fn encode(key: &str, f: &ReferenceFields) -> Vec<u8> {
-    let mut out = Vec::with_capacity(64 + key.len() + 8 * (f.u.len() + f.p.len()));
+    let mut out = Vec::with_capacity(64 + key.len() + 8 * (f.u.len() + f.p.len() + f.t.len()));
     out.extend_from_slice(MAGIC);
     out.extend_from_slice(&(key.len() as u64).to_le_bytes());
     out.extend_from_slice(key.as_bytes());
     for n in [f.u.len(), f.p.len(), f.n_dofs] {
         out.extend_from_slice(&(n as u64).to_le_bytes());
     }
-    for v in [f.load, f.ms].iter().chain(&f.u).chain(&f.p) {
+    for v in [f.load, f.ms].iter().chain(&f.u).chain(&f.p).chain(&f.t) {
         out.extend_from_slice(&v.to_le_bytes());
     }
     let sum = fnv1a(&out);
@@ -45,9 +45,10 @@ fn encode(key: &str, f: &ReferenceFields) -> Vec<u8> {
     out
 }
 
-/// The size of the entry of `key` with `n_u` displacements and `n_p` pressures.
-fn entry_size(key: &str, n_u: usize, n_p: usize) -> usize {
-    8 + 8 + key.len() + 3 * 8 + 8 * (2 + n_u + n_p) + 8
+/// The size of the entry of `key` with `n_u` displacements, `n_p` pressures and `n_t`
+/// tangential tractions (0 without friction; its key says whether it has friction).
+fn entry_size(key: &str, n_u: usize, n_p: usize, n_t: usize) -> usize {
+    8 + 8 + key.len() + 3 * 8 + 8 * (2 + n_u + n_p + n_t) + 8
 }
 
 /// Open `path` for reading without following a link and without blocking on a FIFO.
@@ -75,9 +76,10 @@ fn read_bytes(path: &Path, size: usize) -> Option<Vec<u8>> {
     (bytes.len() == size).then_some(bytes)
 }
 
-/// The entry at `path` if it is exactly the one asked for; None for anything else.
-pub fn read(path: &Path, key: &str, n_u: usize, n_p: usize) -> Option<ReferenceFields> {
-    let size = entry_size(key, n_u, n_p);
+/// The entry at `path` if it is exactly the one asked for (`n_t` tangential tractions after
+/// its pressures: 0 without friction); None for anything else.
+pub fn read(path: &Path, key: &str, n_u: usize, n_p: usize, n_t: usize) -> Option<ReferenceFields> {
+    let size = entry_size(key, n_u, n_p, n_t);
     let bytes = read_bytes(path, size)?;
     let (body, sum) = bytes.split_at(size - 8);
     if fnv1a(body) != u64::from_le_bytes(sum.try_into().ok()?) {
@@ -102,9 +104,11 @@ pub fn read(path: &Path, key: &str, n_u: usize, n_p: usize) -> Option<ReferenceF
     let (load, ms) = (float(), float());
     let u: Vec<f64> = (0..n_u).map(|_| float()).collect();
     let p: Vec<f64> = (0..n_p).map(|_| float()).collect();
+    let t: Vec<f64> = (0..n_t).map(|_| float()).collect();
     Some(ReferenceFields {
         u,
         p,
+        t,
         load,
         n_dofs,
         ms,
@@ -199,6 +203,7 @@ mod tests {
         ReferenceFields {
             u: vec![0.0, -1.5, 2.25e-300, 7.0],
             p: vec![1.0, 2.0, 3.0],
+            t: Vec::new(),
             load: 643.0075,
             n_dofs: 3,
             ms: 12.5,
@@ -218,21 +223,21 @@ mod tests {
         let dir = scratch("unit");
         let path = dir.join("entry.bin");
         write(&dir, &path, "key A", &fields()).unwrap();
-        assert_eq!(read(&path, "key A", 4, 3), Some(fields()));
+        assert_eq!(read(&path, "key A", 4, 3, 0), Some(fields()));
         // Another key of the same length, other lengths: not this entry.
-        assert_eq!(read(&path, "key B", 4, 3), None);
-        assert_eq!(read(&path, "key A", 5, 3), None);
+        assert_eq!(read(&path, "key B", 4, 3, 0), None);
+        assert_eq!(read(&path, "key A", 5, 3, 0), None);
         // One flipped byte anywhere: refused by the checksum (or the header).
         let good = fs::read(&path).unwrap();
         for i in [0, 9, 20, good.len() / 2, good.len() - 1] {
             let mut bad = good.clone();
             bad[i] ^= 0x10;
             fs::write(&path, &bad).unwrap();
-            assert_eq!(read(&path, "key A", 4, 3), None, "byte {i}");
+            assert_eq!(read(&path, "key A", 4, 3, 0), None, "byte {i}");
         }
         // Truncated: refused.
         fs::write(&path, &good[..good.len() - 3]).unwrap();
-        assert_eq!(read(&path, "key A", 4, 3), None);
+        assert_eq!(read(&path, "key A", 4, 3, 0), None);
         // Nothing but the entry is left: no temporary.
         let names: Vec<_> = fs::read_dir(&dir)
             .unwrap()
@@ -259,7 +264,7 @@ mod tests {
         assert_eq!(unsafe { libc::mkfifo(fifo.as_ptr(), 0o600) }, 0);
         write(&dir, &path, "key", &fields()).unwrap();
         assert_eq!(fs::read(&victim).unwrap(), b"precious");
-        assert_eq!(read(&path, "key", 4, 3), Some(fields()));
+        assert_eq!(read(&path, "key", 4, 3, 0), Some(fields()));
         fs::remove_dir_all(&dir).unwrap();
     }
 
@@ -273,17 +278,17 @@ mod tests {
         write(&dir, &good, "key", &fields()).unwrap();
         let link = dir.join("link.bin");
         std::os::unix::fs::symlink(&good, &link).unwrap();
-        assert_eq!(read(&link, "key", 4, 3), None, "a link is not followed");
+        assert_eq!(read(&link, "key", 4, 3, 0), None, "a link is not followed");
         let zero = dir.join("zero.bin");
         std::os::unix::fs::symlink("/dev/zero", &zero).unwrap();
-        assert_eq!(read(&zero, "key", 4, 3), None);
+        assert_eq!(read(&zero, "key", 4, 3, 0), None);
         let fifo = dir.join("fifo.bin");
         let c = std::ffi::CString::new(fifo.to_str().unwrap()).unwrap();
         // SAFETY: mkfifo with a valid C string.
         assert_eq!(unsafe { libc::mkfifo(c.as_ptr(), 0o600) }, 0);
-        assert_eq!(read(&fifo, "key", 4, 3), None, "a FIFO is not waited on");
+        assert_eq!(read(&fifo, "key", 4, 3, 0), None, "a FIFO is not waited on");
         fs::create_dir(dir.join("dir.bin")).unwrap();
-        assert_eq!(read(&dir.join("dir.bin"), "key", 4, 3), None);
+        assert_eq!(read(&dir.join("dir.bin"), "key", 4, 3, 0), None);
         fs::remove_dir_all(&dir).unwrap();
     }
 

@@ -4,7 +4,9 @@
 //! finite, its load P is I(p, 1) of its own pressure (`contact::pressure::load`), and its
 //! displacement is in equilibrium with that load: the vertical reaction of the clamped bottom,
 //! Σ (K u)_y with K applied cell by cell ([`crate::fem::apply`]), equals P (the body carries
-//! no other load). An entry that fails any check is recomputed and replaced.
+//! no other load); with friction its horizontal reaction Σ (K u)_x balances its tangential
+//! load Q = I(t, 1) (docs/design.md §11: the traction on the body is +t in x). An entry that
+//! fails any check is recomputed and replaced.
 
 use crate::contact::ContactPoints;
 use crate::contact::pressure::load;
@@ -24,11 +26,13 @@ const REACTION_TOLERANCE: f64 = 1e-6;
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum Meaningless {
     /// Its sizes are not the mesh's.
-    #[error("its sizes {found:?} (displacements, pressures, dofs) are not the mesh's {expected:?}")]
+    #[error(
+        "its sizes {found:?} (displacements, pressures and tangential tractions, dofs) are not the mesh's {expected:?}"
+    )]
     Sizes {
-        /// (displacements, pressures, dofs) it holds.
+        /// (displacements, pressures and tangential tractions, dofs) it holds.
         found: (usize, usize, usize),
-        /// (displacements, pressures, dofs) of the mesh.
+        /// (displacements, pressures and tangential tractions, dofs) of the mesh.
         expected: (usize, usize, usize),
     },
     /// A number that is not finite, or a negative time.
@@ -50,22 +54,39 @@ pub enum Meaningless {
         /// The load it holds.
         load: f64,
     },
+    /// With friction, its displacement's horizontal reaction at the bottom does not balance
+    /// its tangential load.
+    #[error(
+        "its displacement's horizontal reaction {} does not balance its tangential load {}",
+        num(*reaction),
+        num(*load)
+    )]
+    Tangential {
+        /// The bottom's horizontal reaction of its displacement.
+        reaction: f64,
+        /// Its tangential load Q = I(t, 1).
+        load: f64,
+    },
 }
 
 /// Why `fields` cannot be the reference of `scenario` on `grid`, if it cannot.
 pub fn check(scenario: &Scenario, grid: &ReferenceMesh, fields: &ReferenceFields) -> Result<(), Meaningless> {
     let (n_u, n_p) = grid.lengths();
     let n_dofs = grid.n_dofs(scenario);
-    if (fields.u.len(), fields.p.len(), fields.n_dofs) != (n_u, n_p, n_dofs) {
+    // With friction a tangential traction at each pressure's point.
+    let n_t = if scenario.friction.is_on() { n_p } else { 0 };
+    let traction = fields.p.len() + fields.t.len();
+    if (fields.u.len(), fields.p.len(), fields.t.len(), fields.n_dofs) != (n_u, n_p, n_t, n_dofs) {
         return Err(Meaningless::Sizes {
-            found: (fields.u.len(), fields.p.len(), fields.n_dofs),
-            expected: (n_u, n_p, n_dofs),
+            found: (fields.u.len(), traction, fields.n_dofs),
+            expected: (n_u, n_p + n_t, n_dofs),
         });
     }
     let finite = [fields.load, fields.ms]
         .iter()
         .chain(&fields.u)
         .chain(&fields.p)
+        .chain(&fields.t)
         .all(|v| v.is_finite());
     if !finite || fields.ms < 0.0 {
         return Err(Meaningless::NotFinite);
@@ -102,6 +123,16 @@ pub fn check(scenario: &Scenario, grid: &ReferenceMesh, fields: &ReferenceFields
             load: fields.load,
         });
     }
+    if !fields.t.is_empty() {
+        let q = load(&points, &fields.t);
+        let horizontal: f64 = (0..mesh.nnx()).map(|i| ku[2 * mesh.node(i, 0)]).sum();
+        if !horizontal.is_finite() || (horizontal + q).abs() > REACTION_TOLERANCE * scale {
+            return Err(Meaningless::Tangential {
+                reaction: horizontal,
+                load: q,
+            });
+        }
+    }
     Ok(())
 }
 
@@ -136,5 +167,40 @@ mod tests {
             f.load *= 1.5;
         });
         assert!(matches!(scaled, Meaningless::Reaction { .. }), "{scaled}");
+    }
+
+    /// With friction (μ = 0.3, a shift) a solved reference passes, its bottom balancing Q; its
+    /// t ×1.5, a t missing, or a frictionless entry read for friction each fail.
+    #[test]
+    fn a_friction_reference_balances_its_tangential_load() {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/scenarios/hertz-paper-full.toml");
+        let plain = Scenario::load(std::path::Path::new(path)).unwrap();
+        let mut s = plain.clone();
+        s.friction = crate::contact::friction::Friction {
+            law: crate::contact::friction::Law::Coulomb { mu: 0.3 },
+            shift: 0.05,
+            steps: 2,
+            epsilon_t: None,
+        };
+        let grid = ReferenceMesh::uniform(&s, 0);
+        let good = ReferenceFields::solve_on(&s, &grid).unwrap();
+        assert_eq!(check(&s, &grid, &good), Ok(()));
+        assert!(good.t.iter().any(|&t| t > 0.0));
+        let mut scaled = good.clone();
+        scaled.t.iter_mut().for_each(|t| *t *= 1.5);
+        assert!(matches!(
+            check(&s, &grid, &scaled),
+            Err(Meaningless::Tangential { .. })
+        ));
+        let frictionless = ReferenceFields::solve_on(&plain, &grid).unwrap();
+        assert!(frictionless.t.is_empty());
+        assert!(matches!(
+            check(&s, &grid, &frictionless),
+            Err(Meaningless::Sizes { .. })
+        ));
+        assert!(matches!(
+            check(&plain, &grid, &good),
+            Err(Meaningless::Sizes { .. })
+        ));
     }
 }

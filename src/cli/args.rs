@@ -177,6 +177,9 @@ pub struct StudyArgs {
     /// The contact method and its parameters.
     #[command(flatten)]
     pub method: MethodArgs,
+    /// Friction and the shift after the press, of every row and of the reference.
+    #[command(flatten)]
+    pub friction: super::FrictionArgs,
     /// Penalty parameter of the studied solves [default for the penalty: κ = εE/h = 1e-6 at
     /// the finest level, or the scenario's ε when smaller; for the other methods the
     /// scenario's].

@@ -16,14 +16,8 @@ pub(super) fn study(args: &StudyArgs) -> Result<ExitCode, CliError> {
         ..Select::default()
     }
     .resolve()?;
-    if scenario.friction.is_on() {
-        // Not yet (issue 34, item 8): a study would otherwise solve it without friction.
-        return Err(CliError::Usage(format!(
-            "{}: `study` does not take friction yet; the scenario's [friction] law {} would be ignored. Use `riplab solve` (with --level) per level",
-            crate::text::sanitize(&scenario.source),
-            scenario.friction.law.name()
-        )));
-    }
+    let mut scenario = scenario;
+    scenario.friction = study_friction(args, &scenario)?;
     let schemes = args
         .schemes
         .iter()
@@ -91,8 +85,12 @@ pub(super) fn study(args: &StudyArgs) -> Result<ExitCode, CliError> {
         i64::from(crate::study::MAX_REFINEMENTS),
     )
     .map_err(|m| usage("--reference-refinements", m))?;
+    let with = match scenario.friction.is_on() {
+        true => format!(", with {} friction imposed exactly", scenario.friction.law.name()),
+        false => String::new(),
+    };
     note(&format!(
-        "the reference: q2 + simpson, ε = 0 (exact constraint), level {reference_level} and, for its estimated error, level {} …",
+        "the reference: q2 + simpson, ε = 0 (exact constraint){with}, level {reference_level} and, for its estimated error, level {} …",
         reference_level - 1
     ));
     let dir = (!args.no_cache).then(crate::cache::default_dir).flatten();
@@ -122,6 +120,12 @@ pub(super) fn study(args: &StudyArgs) -> Result<ExitCode, CliError> {
         Ok(fields)
     };
     let refine = grading::refine_axis(&args.refine_edges, &scenario)?;
+    if scenario.friction.is_on() && refine.iter().any(|r| r.grades()) {
+        return Err(usage(
+            "--refine-edges",
+            "edge grading is not available with friction yet; study uniform levels (--refine-edges 0)",
+        ));
+    }
     let plan = if args.sweep_epsilon.is_empty() {
         Plan::Levels {
             levels: &levels,
@@ -182,5 +186,22 @@ pub(super) fn study(args: &StudyArgs) -> Result<ExitCode, CliError> {
             "{n} of {} rows have no certified result (their status and reason are in the output)",
             rows.len()
         )))
+    }
+}
+
+/// The friction of every row and of the reference: the scenario's `[friction]` with the
+/// options applied ([`super::FrictionArgs::resolve`]); one loading history only (a list of
+/// --shift-steps is `solve`'s sweep).
+fn study_friction(
+    args: &StudyArgs,
+    scenario: &crate::scenario::Scenario,
+) -> Result<crate::contact::friction::Friction, CliError> {
+    let frictions = args.friction.resolve(scenario)?;
+    match frictions[..] {
+        [one] => Ok(one),
+        _ => Err(usage(
+            "--shift-steps",
+            "a study takes one number of steps (a list sweeps them in `riplab solve`)",
+        )),
     }
 }

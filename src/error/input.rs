@@ -22,6 +22,11 @@ pub enum InputFault {
     /// Friction asked of Nitsche's method.
     #[error("friction: friction is imposed by penalty, exact or alm, not nitsche")]
     FrictionOfNitsche,
+    /// Friction asked of a study's edge-graded rows (`--refine-edges`).
+    #[error(
+        "friction: a study's edge-graded rows (--refine-edges) do not take friction; study uniform levels"
+    )]
+    GradedFriction,
     /// A tangential penalty ε_t given to the exact method.
     #[error("friction: epsilon_t is the tangential penalty of penalty and alm; exact takes none")]
     TangentialPenaltyOfExact,

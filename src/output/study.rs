@@ -21,26 +21,45 @@ impl StudyReport<'_> {
     /// The JSON of the reference (the study's `reference` object).
     fn reference_json(&self) -> serde_json::Value {
         let reference = &self.study.reference;
-        serde_json::json!({
+        let mut json = serde_json::json!({
             "element": reference.element.name(), "rule": reference.rule.name(), "epsilon": 0.0,
             "level": reference.level, "refinements": reference.grid.refinements,
             "h_min": reference.grid.h_min(), "n_dofs": reference.n_dofs,
             "load": reference.load, "ms": reference.ms, "source": reference.source,
             "estimate": reference.estimate, "target": reference.target,
             "target_met": reference.target.map(|_| reference.stopped.is_none()), "stopped": reference.stopped,
+        });
+        if let Some(q) = reference.tangential_load() {
+            json["tangential_load"] = q.into();
+        }
+        json
+    }
+
+    /// The study's `friction` object (present with friction only): the law, its parameter,
+    /// the shift, its steps and ε_t of the rows (the reference imposes friction exactly).
+    fn friction_json(&self) -> Option<serde_json::Value> {
+        let f = &self.study.friction;
+        f.is_on().then(|| {
+            serde_json::json!({
+                "law": f.law.name(), "mu": f.law.mu(), "threshold": f.law.threshold(),
+                "shift": f.shift, "steps": f.steps, "epsilon_t": f.epsilon_t,
+            })
         })
     }
 }
 
 impl Serialize for StudyReport<'_> {
     fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        serde_json::json!({
+        let mut json = serde_json::json!({
             "scenario": self.scenario,
             "reference": self.reference_json(),
             "rows": self.study.rows,
             "fits": self.study.fits,
-        })
-        .serialize(s)
+        });
+        if let Some(f) = self.friction_json() {
+            json["friction"] = f;
+        }
+        json.serialize(s)
     }
 }
 
@@ -48,7 +67,7 @@ impl Serialize for StudyReport<'_> {
 /// [`crate::study::Fit`]'s: its rates in the `rate_*` columns) or, last, the `reference` (its
 /// smallest cell side as `h`, its estimated error in `err_*`, why its refinement stopped in
 /// `reason`, and in `source` whether it was `computed` or read from the `cache`).
-pub const STUDY_COLUMNS: [(&str, Cell); 33] = [
+pub const STUDY_COLUMNS: [(&str, Cell); 37] = [
     ("kind", Cell::Field("/kind")),
     ("scheme", Cell::Field("/scheme")),
     ("element", Cell::Field("/element")),
@@ -76,10 +95,14 @@ pub const STUDY_COLUMNS: [(&str, Cell); 33] = [
     ("err_pbar", Cell::Field("/errors/pbar")),
     ("err_u", Cell::First(&["/errors/u", "/estimate/u"])),
     ("err_load", Cell::First(&["/errors/load", "/estimate/load"])),
+    ("err_tbar", Cell::Field("/errors/tbar")),
+    ("err_tangential_load", Cell::Field("/errors/tangential_load")),
     ("rate_p", Cell::Field("/rates/p")),
     ("rate_pbar", Cell::Field("/rates/pbar")),
     ("rate_u", Cell::Field("/rates/u")),
     ("rate_load", Cell::Field("/rates/load")),
+    ("rate_tbar", Cell::Field("/rates/tbar")),
+    ("rate_tangential_load", Cell::Field("/rates/tangential_load")),
     ("reason", Cell::First(&["/reason", "/stopped"])),
     ("source", Cell::Field("/source")),
 ];
@@ -123,11 +146,13 @@ impl Report for StudyReport<'_> {
         let rate = |r: &Option<Errors>, f: fn(&Errors) -> f64| {
             r.as_ref().map_or(String::new(), |e| format!("{:.2}", f(e)))
         };
+        let friction = study.friction.is_on();
         let _ = writeln!(
             s,
-            "{scenario}: reference {}+{}, ε = 0 (exact constraint), level {}{}, {} dofs, load {:.6}",
+            "{scenario}: reference {}+{}, ε = 0 (exact constraint{}), level {}{}, {} dofs, load {:.6}{}",
             reference.element.name(),
             reference.rule.name(),
+            friction_words(study),
             reference.level,
             match reference.grid.refinements {
                 0 => String::new(),
@@ -135,7 +160,10 @@ impl Report for StudyReport<'_> {
                 k => format!(" + {k} edge refinements"),
             },
             reference.n_dofs,
-            reference.load
+            reference.load,
+            reference
+                .tangential_load()
+                .map_or(String::new(), |q| format!(", Q {q:.6}"))
         );
         let _ = writeln!(s, "{}", reference_estimate(reference));
         if let Some(why) = &reference.stopped {
@@ -153,7 +181,13 @@ impl Report for StudyReport<'_> {
             s,
             "relative errors: p, p̄ in L²(Γ_C); u in H¹ (7); load P; rate = observed order between successive rows; fit = least-squares order over the scheme's rows"
         );
-        let _ = writeln!(
+        if friction {
+            let _ = writeln!(
+                s,
+                "friction: t̄ in L²(Γ_C) relative to ‖p‖, Q relative to P (docs/design.md §11)"
+            );
+        }
+        let _ = write!(
             s,
             "{:<14} {:>5} {:>9} {:>8} {:>8} {:>7} {:>9} {:>10} {:>5} {:>10} {:>5} {:>10} {:>5} {:>10} {:>5}",
             "scheme",
@@ -171,6 +205,15 @@ impl Report for StudyReport<'_> {
             "rate",
             "load",
             "rate"
+        );
+        let _ = writeln!(
+            s,
+            "{}",
+            if friction {
+                format!(" {:>10} {:>5} {:>10} {:>5}", "t̄", "rate", "Q", "rate")
+            } else {
+                String::new()
+            }
         );
         for (i, r) in rows.iter().enumerate() {
             if i > 0 && !rows[i - 1].same_series(r) {
@@ -206,9 +249,13 @@ impl Report for StudyReport<'_> {
             } else {
                 format!("  {}", r.status.word().to_uppercase())
             };
+            let tangential = match friction {
+                true => friction_cells(Some(e), &r.rates),
+                false => String::new(),
+            };
             let _ = writeln!(
                 s,
-                "{head} {:>7} {:>9.1} {:>10.3e} {:>5} {:>10.3e} {:>5} {:>10.3e} {:>5} {:>10.3e} {:>5}{flag}",
+                "{head} {:>7} {:>9.1} {:>10.3e} {:>5} {:>10.3e} {:>5} {:>10.3e} {:>5} {:>10.3e} {:>5}{tangential}{flag}",
                 iterations,
                 ms,
                 e.p,
@@ -221,7 +268,11 @@ impl Report for StudyReport<'_> {
                 rate(&r.rates, |e| e.load)
             );
             if let Some(f) = fit {
-                let _ = writeln!(s, "{}", fit_line(f, &rate));
+                let tangential = match friction {
+                    true => friction_cells(None, &f.rates),
+                    false => String::new(),
+                };
+                let _ = writeln!(s, "{}{tangential}", fit_line(f, &rate));
             }
         }
         let reasons: Vec<String> = rows
@@ -246,6 +297,30 @@ impl Report for StudyReport<'_> {
         }
         s
     }
+}
+
+/// The reference's friction for the table's first line: `, coulomb μ = 0.3` (empty without).
+fn friction_words(study: &Study) -> String {
+    let f = &study.friction;
+    match (f.law.mu(), f.law.threshold()) {
+        (Some(mu), _) => format!(", coulomb μ = {mu}"),
+        (_, Some(g)) => format!(", tresca g = {g}"),
+        _ => String::new(),
+    }
+}
+
+/// The table's t̄ and Q cells: a row's errors (`errors`) and rates, or a fit's rates alone.
+fn friction_cells(errors: Option<&Errors>, rates: &Option<Errors>) -> String {
+    let error = |v: Option<f64>| v.map_or(String::new(), |v| format!("{v:.3e}"));
+    let rate = |v: Option<f64>| v.map_or(String::new(), |v| format!("{v:.2}"));
+    let r = |f: fn(&Errors) -> Option<f64>| rate(rates.as_ref().and_then(f));
+    format!(
+        " {:>10} {:>5} {:>10} {:>5}",
+        error(errors.and_then(|e| e.tbar)),
+        r(|e| e.tbar),
+        error(errors.and_then(|e| e.tangential_load)),
+        r(|e| e.tangential_load)
+    )
 }
 
 /// The table's lines on the reference's estimated error and what the study asked of it.

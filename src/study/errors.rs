@@ -1,5 +1,7 @@
 //! The errors of a row against the reference (Theorem 2 (26)): p and p̄ in L²(Γ_C), u in H¹ (7)
-//! and the load, integrated at the reference's Gauss points.
+//! and the load, integrated at the reference's Gauss points; with friction also the smoothed
+//! tangential traction t̄ and the tangential load Q (docs/design.md §11), each relative to the
+//! normal one's norm (‖p_ref‖₀, P_ref: t ≤ μp, and t vanishes at μ = 0).
 
 use serde::Serialize;
 
@@ -23,6 +25,30 @@ pub struct Errors {
     pub u: f64,
     /// |P − P_ref| / P_ref.
     pub load: f64,
+    /// With friction: ‖t̄ − t_ref‖₀ / ‖p_ref‖₀ on Γ_C, t̄ the smoothed tangential traction
+    /// (t's (16)–(17)); None without friction.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tbar: Option<f64>,
+    /// With friction: |Q − Q_ref| / P_ref, Q = ∫ t dx the tangential load; None without.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tangential_load: Option<f64>,
+}
+
+impl Errors {
+    /// Every error it reports (t̄'s and Q's when it has them).
+    pub fn values(&self) -> impl Iterator<Item = f64> {
+        [self.p, self.pbar, self.u, self.load]
+            .into_iter()
+            .chain(self.tbar)
+            .chain(self.tangential_load)
+    }
+}
+
+/// A solution's friction as the error integrals see it: t̄ at Γ_C's vertices and Q.
+#[derive(Clone, Copy)]
+pub(super) struct Tangential<'a> {
+    pub(super) tbar: &'a [f64],
+    pub(super) load: f64,
 }
 
 /// A solution as the error integrals see it: a displacement on a mesh nested in the
@@ -35,6 +61,7 @@ pub(super) struct Field<'a> {
     pub(super) p: &'a [f64],
     pub(super) pbar: Option<&'a [f64]>,
     pub(super) load: f64,
+    pub(super) tangential: Option<Tangential<'a>>,
 }
 
 /// The relative differences of `field` from the reference.
@@ -46,6 +73,19 @@ pub(super) fn differences(reference: &Reference, field: &Field) -> Errors {
         ep += w * (p - pref).powi(2);
         epbar += w * (pbar - pref).powi(2);
     }
+    let (tbar, tangential_load) = match (&field.tangential, &reference.tangential) {
+        (Some(t), Some(r)) => {
+            let mut et = 0.0;
+            for (&(x, w, _), tref) in reference.edge_points.iter().zip(&r.edge_t) {
+                et += w * (field.points.interpolate_vertices(t.tbar, x) - tref).powi(2);
+            }
+            (
+                Some(et.sqrt() / reference.p_norm),
+                Some((t.load - r.load).abs() / reference.load),
+            )
+        }
+        _ => (None, None),
+    };
     let mut eu = 0.0;
     for c in &reference.cell_points {
         let (vh, gh) = evaluate(field.mesh, field.u, c.x, c.y);
@@ -62,6 +102,8 @@ pub(super) fn differences(reference: &Reference, field: &Field) -> Errors {
         pbar: epbar.sqrt() / reference.p_norm,
         u: eu.sqrt() / reference.u_norm,
         load: (field.load - reference.load).abs() / reference.load,
+        tbar,
+        tangential_load,
     }
 }
 
@@ -74,6 +116,8 @@ pub(super) struct Kept {
     pub(super) p: Vec<f64>,
     pub(super) pbar: Vec<f64>,
     pub(super) load: f64,
+    /// t̄ at Γ_C's vertices and Q, with friction.
+    pub(super) tangential: Option<(Vec<f64>, f64)>,
 }
 
 impl Kept {
@@ -85,6 +129,7 @@ impl Kept {
             p: sol.p.clone(),
             pbar: sol.pbar.clone(),
             load: sol.load,
+            tangential: sol.friction.as_ref().map(|f| (f.tbar.clone(), f.tangential_load)),
         }
     }
 
@@ -98,6 +143,10 @@ impl Kept {
                 p: &self.p,
                 pbar: Some(&self.pbar),
                 load: self.load,
+                tangential: self
+                    .tangential
+                    .as_ref()
+                    .map(|(tbar, load)| Tangential { tbar, load: *load }),
             },
         )
     }
@@ -129,6 +178,7 @@ impl Reference {
                 p: &fields.p,
                 pbar: None,
                 load: fields.load,
+                tangential: None,
             },
         );
         Estimate {

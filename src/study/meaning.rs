@@ -50,9 +50,7 @@ impl StudyRow {
             return;
         }
         let finite = self.load.is_none_or(f64::is_finite)
-            && self
-                .errors
-                .is_none_or(|e| [e.p, e.pbar, e.u, e.load].iter().all(|v| v.is_finite()));
+            && self.errors.is_none_or(|e| e.values().all(f64::is_finite));
         if !finite {
             self.status = Status::Failed;
             self.reason = Some("its load or its errors against the reference are not finite numbers".into());
@@ -72,6 +70,7 @@ mod tests {
         let fields = ReferenceFields {
             u: vec![scale; n_u],
             p: vec![scale; n_p],
+            t: Vec::new(),
             load: scale,
             n_dofs: n_u,
             ms: 1.0,
@@ -128,6 +127,8 @@ mod tests {
             pbar: 0.1,
             u: 0.1,
             load: 0.1,
+            tbar: None,
+            tangential_load: None,
         });
         row.certify();
         assert_eq!(row.status, Status::Failed);

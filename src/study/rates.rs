@@ -20,17 +20,18 @@ fn rates(prev: &StudyRow, row: &StudyRow, by_epsilon: bool) -> Option<Errors> {
         (row.abscissa() / prev.abscissa()).ln()
     };
     let r = |a: f64, b: f64| (b / a).ln() / scale;
+    // t̄'s and Q's rates only where both rows have a nonzero error (μ = 0: none).
+    let both = |a: Option<f64>, b: Option<f64>| Some(r(a?, b?)).filter(|v| v.is_finite());
     let rates = Errors {
         p: r(a.p, b.p),
         pbar: r(a.pbar, b.pbar),
         u: r(a.u, b.u),
         load: r(a.load, b.load),
+        tbar: both(a.tbar, b.tbar),
+        tangential_load: both(a.tangential_load, b.tangential_load),
     };
     // An error of 0 (or a scale of 0) has no rate: never a non-finite one.
-    [rates.p, rates.pbar, rates.u, rates.load]
-        .iter()
-        .all(|v| v.is_finite())
-        .then_some(rates)
+    rates.values().all(f64::is_finite).then_some(rates)
 }
 
 /// Rows grouped per scheme, in `schemes`' order, each group with its rates from the row
@@ -106,12 +107,22 @@ pub fn fits(rows: &[StudyRow], by_epsilon: bool) -> Vec<Fit> {
             let points: Vec<(f64, f64)> = usable.iter().map(|(x, e)| (x.ln(), f(e).ln())).collect();
             least_squares_slope(&points)
         };
+        // t̄'s and Q's slopes only when every fitted row has a nonzero error of them.
+        let optional = |f: fn(&Errors) -> Option<f64>| {
+            let points: Option<Vec<(f64, f64)>> = usable
+                .iter()
+                .map(|(x, e)| f(e).filter(|v| *v > 0.0).map(|v| (x.ln(), v.ln())))
+                .collect();
+            least_squares_slope(&points?)
+        };
         let rates = (|| {
             Some(Errors {
                 p: slope(|e| e.p)?,
                 pbar: slope(|e| e.pbar)?,
                 u: slope(|e| e.u)?,
                 load: slope(|e| e.load)?,
+                tbar: optional(|e| e.tbar),
+                tangential_load: optional(|e| e.tangential_load),
             })
         })();
         out.push(Fit {

@@ -10,7 +10,9 @@ use serde::Serialize;
 use super::grid::{REFERENCE_SCHEME, ReferenceMesh};
 use super::source::ReferenceSource;
 use crate::contact::ContactParams;
+use crate::contact::friction::Friction;
 use crate::contact::newton::NewtonOptions;
+use crate::contact::pressure::load;
 use crate::contact::{ContactPoints, Method, Rule};
 use crate::discretization::Discretization;
 use crate::discretization::refused;
@@ -18,6 +20,7 @@ use crate::error::{SolveError, Workload};
 use crate::fem::basis::{CellRule, field_at};
 use crate::fem::memory::{Limits, Sizes};
 use crate::fem::quadrature::gauss_legendre;
+use crate::friction::solve_friction;
 use crate::mesh::Element;
 use crate::scenario::Scenario;
 use crate::solution::Solution;
@@ -90,12 +93,58 @@ pub struct Reference {
     pub(super) cell_points: Vec<Sample>,
     pub(super) p_norm: f64,
     pub(super) u_norm: f64,
+    /// With friction: its tangential traction where p's is, and Q.
+    pub(super) tangential: Option<TangentialReference>,
 }
 
-pub(super) fn solve_fresh(disc: &Discretization, params: &ContactParams) -> Result<Solution, SolveError> {
-    solve_contact(disc, params, None, &NewtonOptions::default(), &mut |_| {
-        ControlFlow::Continue(())
-    })
+/// The reference's friction (docs/design.md §11): t_ref at the Gauss points of
+/// [`Reference::edge_points`], in their order, and its tangential load Q_ref = ∫ t_ref dx.
+pub(super) struct TangentialReference {
+    pub(super) edge_t: Vec<f64>,
+    pub(super) load: f64,
+}
+
+/// A fresh solve of `params` on `disc` with `friction` ([`solve_friction`] when it is on,
+/// [`solve_contact`] otherwise).
+pub(super) fn solve_row(
+    disc: &Discretization,
+    params: &ContactParams,
+    friction: &Friction,
+) -> Result<Solution, SolveError> {
+    solve_warm(disc, params, friction, None)
+}
+
+/// [`solve_row`] warm-started from an earlier solve's forces (frictionless only: a friction
+/// path starts from its press).
+pub(super) fn solve_warm(
+    disc: &Discretization,
+    params: &ContactParams,
+    friction: &Friction,
+    initial: Option<&[f64]>,
+) -> Result<Solution, SolveError> {
+    let mut go_on = |_: &_| ControlFlow::Continue(());
+    let opts = NewtonOptions::default();
+    if friction.is_on() {
+        solve_friction(disc, params, friction, None, &opts, &mut go_on)
+    } else {
+        solve_contact(disc, params, initial, &opts, &mut go_on)
+    }
+}
+
+impl Reference {
+    /// With friction, its tangential load Q_ref = ∫ t_ref dx (None without friction).
+    pub fn tangential_load(&self) -> Option<f64> {
+        self.tangential.as_ref().map(|t| t.load)
+    }
+}
+
+/// The friction of a study's reference: the scenario's, without a tangential penalty (the
+/// reference imposes both conditions exactly, ε = 0; ε_t belongs to the rows).
+pub fn reference_friction(scenario: &Scenario) -> Friction {
+    Friction {
+        epsilon_t: None,
+        ..scenario.friction
+    }
 }
 
 /// What the reference is made of: the displacement on every dof of the Q2 mesh and the
@@ -108,6 +157,9 @@ pub struct ReferenceFields {
     pub p: Vec<f64>,
     /// The load P of the modelled body.
     pub load: f64,
+    /// With friction, the exact tangential traction t at Simpson's points on Γ_C, ascending x
+    /// (empty without friction).
+    pub t: Vec<f64>,
     /// The number of free dofs.
     pub n_dofs: usize,
     /// The time the solve took, ms.
@@ -122,8 +174,9 @@ impl ReferenceFields {
         Self::solve_on(scenario, &ReferenceMesh::uniform(scenario, level))
     }
 
-    /// Solve Q2 + Simpson with the exact constraint on `grid`, refused before anything is
-    /// allocated when it does not fit the memory ([`crate::fem::memory`]).
+    /// Solve Q2 + Simpson with the exact constraint on `grid` (and the scenario's friction,
+    /// imposed exactly too: [`reference_friction`]), refused before anything is allocated when
+    /// it does not fit the memory ([`crate::fem::memory`]).
     pub fn solve_on(scenario: &Scenario, grid: &ReferenceMesh) -> Result<Self, SolveError> {
         let t = Instant::now();
         let rule = REFERENCE_SCHEME.1;
@@ -135,10 +188,15 @@ impl ReferenceFields {
             epsilon: 0.0,
             obstacle: scenario.obstacle.clone(),
         };
-        let sol = solve_fresh(&disc, &params)?;
+        let friction = reference_friction(scenario);
+        let sol = solve_row(&disc, &params, &friction)?;
         if let Some(diagnosis) = sol.newton.failure() {
             return Err(SolveError::NotConverged {
-                what: "the reference solution (q2 + simpson, ε = 0)",
+                what: if friction.is_on() {
+                    "the reference solution (q2 + simpson, ε = 0, with friction)"
+                } else {
+                    "the reference solution (q2 + simpson, ε = 0)"
+                },
                 iterations: sol.newton.iterations,
                 residual: sol.newton.residual,
                 diagnosis,
@@ -146,6 +204,7 @@ impl ReferenceFields {
         }
         Ok(ReferenceFields {
             u: sol.displacement(&disc),
+            t: sol.friction.as_ref().map(|f| f.t.clone()).unwrap_or_default(),
             p: sol.p,
             load: sol.load,
             n_dofs: disc.n_dofs(),
@@ -219,6 +278,13 @@ impl Reference {
                 }
             }
         }
+        let tangential = (!fields.t.is_empty()).then(|| TangentialReference {
+            edge_t: edge_points
+                .iter()
+                .map(|&(x, _, _)| points.interpolate(&fields.t, x))
+                .collect(),
+            load: load(&points, &fields.t),
+        });
         let p_norm = edge_points.iter().map(|(_, w, p)| w * p * p).sum::<f64>().sqrt();
         let u_norm = cells
             .iter()
@@ -241,6 +307,7 @@ impl Reference {
             cell_points: cells,
             p_norm,
             u_norm,
+            tangential,
         }
     }
 }

@@ -195,14 +195,3 @@ fn a_shift_steps_sweep_gives_each_row_its_steps() {
         .collect();
     assert_eq!(steps, [1, 4]);
 }
-
-/// `study` does not take friction yet: a scenario with `[friction]` is refused (exit 2), not
-/// studied without it.
-#[test]
-fn study_refuses_a_friction_scenario() {
-    let path = format!("{}/scenarios/cattaneo-mindlin.toml", env!("CARGO_MANIFEST_DIR"));
-    let (code, stdout, stderr) = riplab(&["study", &path, "--levels", "0..1"]);
-    assert_eq!(code, 2, "{stderr}");
-    assert!(stdout.is_empty());
-    assert!(stderr.contains("does not take friction"), "{stderr}");
-}

@@ -20,6 +20,7 @@ mod plot;
 mod readme;
 mod record;
 mod render_graded;
+mod study_friction;
 mod study_notes;
 mod tour_files;
 mod verify;

@@ -168,6 +168,8 @@ fn the_least_squares_rate_recovers_a_known_slope_and_ignores_rows_without_result
         pbar: 0.7 * h.powf(1.5),
         u: 2.0 * h,
         load: 0.1 * h * h,
+        tbar: Some(0.4 * h.powf(0.75)),
+        tangential_load: Some(0.2 * h.powi(3)),
     };
     let mut rows: Vec<StudyRow> = (0..4)
         .map(|l| {
@@ -184,7 +186,15 @@ fn the_least_squares_rate_recovers_a_known_slope_and_ignores_rows_without_result
     assert_eq!(fitted.len(), 1);
     assert_eq!(fitted[0].rows, 4);
     let r = fitted[0].rates.unwrap();
-    for (got, want) in [(r.p, 0.5), (r.pbar, 1.5), (r.u, 1.0), (r.load, 2.0)] {
+    let (tbar, q) = (r.tbar.unwrap(), r.tangential_load.unwrap());
+    for (got, want) in [
+        (r.p, 0.5),
+        (r.pbar, 1.5),
+        (r.u, 1.0),
+        (r.load, 2.0),
+        (tbar, 0.75),
+        (q, 3.0),
+    ] {
         assert!((got - want).abs() < 1e-12, "{got} vs {want}");
     }
     // Noisy errors: the fit is the slope of the regression line, here by hand:
@@ -223,6 +233,8 @@ fn auto_gamma0_rows_are_fitted_together() {
                     pbar: h,
                     u: h,
                     load: h,
+                    tbar: None,
+                    tangential_load: None,
                 }),
                 Status::Ok,
             );
@@ -250,6 +262,8 @@ fn fits_of_two(rows: &[StudyRow]) -> Option<Errors> {
         pbar: r(a.pbar, b.pbar),
         u: r(a.u, b.u),
         load: r(a.load, b.load),
+        tbar: None,
+        tangential_load: None,
     };
     // Round to the fit's own round-off.
     let got = fits(rows, false)[0].rates.unwrap();

@@ -32,6 +32,8 @@ fn row(scheme: &str, level: u32, n_dofs: usize, ms: f64, p: f64, pbar: f64, u: f
             pbar,
             u,
             load: pbar,
+            tbar: None,
+            tangential_load: None,
         }),
         rates: None,
     }
