@@ -170,6 +170,7 @@ impl App {
         let settings = App::defaults(&scenario);
         // A contact zone too narrow to see on the whole of Γ_C opens zoomed in, and says so.
         let narrow = crate::tui::shown::narrow_contact(&scenario);
+        let notice = opening_notice(&scenario, narrow);
         App {
             scenario,
             settings,
@@ -189,12 +190,7 @@ impl App {
             failed: None,
             progress: None,
             error: None,
-            notice: narrow.map(|share| {
-                Notice::info(format!(
-                    "the contact zone spans {:.1}% of Γ_C: opened zoomed in on it (z shows all of Γ_C)",
-                    100.0 * share
-                ))
-            }),
+            notice,
             export_kind: ExportKind::Csv,
             infsup: HashMap::new(),
             infsup_pending: HashSet::new(),
@@ -481,5 +477,28 @@ pub fn shift_decades(value: f64, decades: i32) -> f64 {
             Err(_) => value,
         },
         None => value,
+    }
+}
+
+/// What the lab says as it opens: that it solves without the scenario's friction (docs/design.md
+/// §11: `riplab solve` and `study` take it; the lab does not draw t yet), and that a contact
+/// zone too narrow to see on the whole of Γ_C is shown zoomed in.
+fn opening_notice(scenario: &Scenario, narrow: Option<f64>) -> Option<Notice> {
+    let friction = scenario.friction.is_on().then(|| {
+        format!(
+            "the lab solves without the scenario's friction ({}): `riplab solve` and `study` take it",
+            scenario.friction.law.name()
+        )
+    });
+    let zoom = narrow.map(|share| {
+        format!(
+            "the contact zone spans {:.1}% of Γ_C: opened zoomed in on it (z shows all of Γ_C)",
+            100.0 * share
+        )
+    });
+    match (friction, zoom) {
+        (Some(f), Some(z)) => Some(Notice::failure(format!("{f}; {z}"))),
+        (Some(f), None) => Some(Notice::failure(f)),
+        (None, z) => z.map(Notice::info),
     }
 }
