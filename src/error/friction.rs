@@ -24,12 +24,12 @@ pub enum FrictionError {
         law: &'static str,
     },
     /// A value out of range.
-    #[error("{key} = {value} is out of range; allowed: {}", allowed(key))]
+    #[error("{key} = {} is out of range; allowed: {}", crate::text::num(*value), allowed(key))]
     Range {
         /// The key.
         key: &'static str,
-        /// Its value, as printed.
-        value: String,
+        /// Its value.
+        value: f64,
     },
     /// The number of shift steps out of range.
     #[error("steps = {steps} is out of range; allowed: 1 to {max}")]

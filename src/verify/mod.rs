@@ -8,12 +8,13 @@
 //! Each case names its reference's source. The cases live one family per module:
 //! [`half_space`] (Hertz, the exact circle, the rounded punch), [`patch`] (the contact patch
 //! test), [`infsup`] (β_h's orders), [`manufactured`] (H¹ rates), [`constraint`] (ALM = exact,
-//! the penalty's O(ε)).
+//! the penalty's O(ε)), [`mindlin`] (Cattaneo–Mindlin's stick zone and traction).
 
 pub mod constraint;
 pub mod half_space;
 pub mod infsup;
 pub mod manufactured;
+pub mod mindlin;
 pub mod patch;
 pub mod report;
 pub mod stored;
@@ -105,6 +106,7 @@ pub fn cases() -> Vec<Case> {
     let mut all = Vec::from(half_space::cases());
     all.extend([patch::CASE, infsup::CASE, manufactured::CASE]);
     all.extend(constraint::cases());
+    all.push(mindlin::CASE);
     all
 }
 

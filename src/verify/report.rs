@@ -48,14 +48,14 @@ impl Report for Verification {
         let mut s = String::new();
         let _ = writeln!(
             s,
-            "{:<14} {:<38} {:>2} {:>11} {:>11} {:>10} {:>10} {:>5} {:>10} {:>5}",
+            "{:<16} {:<38} {:>2} {:>11} {:>11} {:>10} {:>10} {:>5} {:>10} {:>5}",
             "case", "quantity", "L", "computed", "reference", "error", "tolerance", "right", "change", "same"
         );
         for (i, c) in self.checks.iter().enumerate() {
             let same = c.unchanged.map_or("-", Verdict::name);
             let _ = writeln!(
                 s,
-                "{:<14} {} {:>2} {:>11} {:>11} {:>10} {:>10} {:>5} {:>10} {:>5}",
+                "{:<16} {} {:>2} {:>11} {:>11} {:>10} {:>10} {:>5} {:>10} {:>5}",
                 c.case,
                 pad(&c.quantity, 38),
                 c.level,
@@ -68,11 +68,11 @@ impl Report for Verification {
                 same
             );
             if let Some(why) = &c.reason {
-                let _ = writeln!(s, "{:<14} failed: {why}", "");
+                let _ = writeln!(s, "{:<16} failed: {why}", "");
             }
             let last_of_case = self.checks.get(i + 1).is_none_or(|n| n.case != c.case);
             if last_of_case {
-                let _ = writeln!(s, "{:<14} source: {}", "", c.source);
+                let _ = writeln!(s, "{:<16} source: {}", "", c.source);
             }
         }
         let ok = self.checks.iter().filter(|c| c.verdict == Verdict::Ok).count();
@@ -132,8 +132,8 @@ impl Report for CaseList {
     fn table(&self) -> String {
         let mut s = String::new();
         for c in &self.cases {
-            let _ = writeln!(s, "{:<14} level {}  {}", c.name, c.default_level, c.description);
-            let _ = writeln!(s, "{:<14} source: {}", "", c.source);
+            let _ = writeln!(s, "{:<16} level {}  {}", c.name, c.default_level, c.description);
+            let _ = writeln!(s, "{:<16} source: {}", "", c.source);
         }
         s
     }

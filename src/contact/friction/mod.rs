@@ -123,7 +123,7 @@ impl Law {
         } else {
             Err(FrictionError::Range {
                 key,
-                value: crate::text::num(v),
+                value: v,
             })
         }
     }
@@ -163,7 +163,7 @@ impl Friction {
         if !self.shift.is_finite() {
             return Err(FrictionError::Range {
                 key: "shift",
-                value: crate::text::num(self.shift),
+                value: self.shift,
             });
         }
         if !(1..=MAX_STEPS).contains(&self.steps) {
@@ -177,7 +177,7 @@ impl Friction {
         {
             return Err(FrictionError::Range {
                 key: "epsilon_t",
-                value: crate::text::num(e),
+                value: e,
             });
         }
         Ok(())
