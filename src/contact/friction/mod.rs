@@ -121,10 +121,7 @@ impl Law {
         if v.is_finite() && v >= 0.0 {
             Ok(())
         } else {
-            Err(FrictionError::Range {
-                key,
-                value: v,
-            })
+            Err(FrictionError::Range { key, value: v })
         }
     }
 }
