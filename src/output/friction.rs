@@ -9,6 +9,7 @@ use crate::contact::friction::{Law, State};
 use crate::contact::mindlin::{Mindlin, stick_half_width};
 use crate::scenario::Scenario;
 use crate::solution::Solution;
+use crate::text::num;
 
 /// The `friction` object: present in every solve's JSON, `law = "none"` and nulls without
 /// friction.
@@ -100,8 +101,8 @@ impl FrictionReport {
             return None;
         }
         let parameter = match (self.mu, self.threshold) {
-            (Some(mu), _) => format!("μ = {mu}"),
-            (_, Some(g)) => format!("g = {g}"),
+            (Some(mu), _) => format!("μ = {}", num(mu)),
+            (_, Some(g)) => format!("g = {}", num(g)),
             _ => String::new(),
         };
         let ratio = self
@@ -117,7 +118,7 @@ impl FrictionReport {
         Some(format!(
             "friction {} ({parameter}), shift {} in {steps}: Q = {:.6}{ratio}; {} stick, {} slip, {} open points; {width}",
             self.law,
-            self.shift.unwrap_or(0.0),
+            num(self.shift.unwrap_or(0.0)),
             self.tangential_load,
             self.stick,
             self.slip,

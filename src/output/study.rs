@@ -303,8 +303,8 @@ impl Report for StudyReport<'_> {
 fn friction_words(study: &Study) -> String {
     let f = &study.friction;
     match (f.law.mu(), f.law.threshold()) {
-        (Some(mu), _) => format!(", coulomb μ = {mu}"),
-        (_, Some(g)) => format!(", tresca g = {g}"),
+        (Some(mu), _) => format!(", coulomb μ = {}", crate::text::num(mu)),
+        (_, Some(g)) => format!(", tresca g = {}", crate::text::num(g)),
         _ => String::new(),
     }
 }

@@ -195,3 +195,28 @@ fn a_shift_steps_sweep_gives_each_row_its_steps() {
         .collect();
     assert_eq!(steps, [1, 4]);
 }
+
+/// Tiny and huge friction parameters are printed in scientific notation, not as hundreds of
+/// digits (`μ = 1e-300` was written out as 0.000… to 300 places); the study's first line too.
+#[test]
+fn extreme_friction_parameters_print_short() {
+    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/scenarios/cattaneo-mindlin.toml");
+    for (args, said) in [
+        (vec!["--mu", "1e-300"], "(μ = 1e-300), shift 0.0815"),
+        (vec!["--shift", "1e-300"], "(μ = 0.3), shift 1e-300 in"),
+        (
+            vec!["--friction", "tresca", "--threshold", "1e300"],
+            "(g = 1e300)",
+        ),
+    ] {
+        let mut all = vec!["solve", file, "--level", "0"];
+        all.extend(args);
+        let (code, out, err) = crate::common::riplab(&all);
+        assert_eq!(code, 0, "{all:?}: {err}");
+        let line = out
+            .lines()
+            .find(|l| l.starts_with("friction "))
+            .expect("the friction line");
+        assert!(line.contains(said) && line.chars().count() < 200, "{line}");
+    }
+}
