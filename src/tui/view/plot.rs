@@ -325,11 +325,22 @@ impl Plot<'_> {
                 continue;
             }
             let style = Style::new().fg(self.theme.ink(s.color));
-            // A series equal to an earlier one says so: its glyphs stand beside that one's.
-            let same = self
-                .coincides_with(s)
-                .and_then(|earlier| earlier.glyph)
-                .map_or_else(String::new, |g| format!(" (= {g})"));
+            // A series equal to an earlier one says so: its glyphs stand beside that one's, a
+            // line names the one it lies on (its name's first word).
+            let same = self.coincides_with(s).map_or_else(String::new, |earlier| {
+                let label = earlier.glyph.map_or_else(
+                    || {
+                        earlier
+                            .name
+                            .split_whitespace()
+                            .next()
+                            .unwrap_or_default()
+                            .to_string()
+                    },
+                    String::from,
+                );
+                format!(" (= {label})")
+            });
             entries.push(vec![
                 Span::styled(format!(" {}", sample(s.stroke, s.glyph, self.marker)), style),
                 Span::raw(format!(" {}{same} ", s.name)),
@@ -349,12 +360,14 @@ impl Plot<'_> {
         lines.into_iter().map(Line::from).collect()
     }
 
-    /// The earlier series with a glyph whose points `s` repeats (the same x and, to a
-    /// millionth of the y axis's span, the same y at every point), if any.
+    /// The earlier series that `s` repeats, if any: for a series of glyphs, an earlier one
+    /// with the same points (the same x and, to a millionth of the y axis's span, the same y);
+    /// for a line, an earlier line drawn along the same path (each one's points on the other's
+    /// polyline to that tolerance), as M3's raw p, linear between the vertices, lies on p̄.
     fn coincides_with(&self, s: &Series) -> Option<&Series<'_>> {
         let span = |b: [f64; 2]| (b[1] - b[0]).abs();
         let (tx, ty) = (1e-9 * span(self.x.bounds), 1e-6 * span(self.y.bounds));
-        let same = |a: &Series, b: &Series| {
+        let same_points = |a: &Series, b: &Series| {
             !a.data.is_empty()
                 && a.data.len() == b.data.len()
                 && a.data
@@ -362,11 +375,20 @@ impl Plot<'_> {
                     .zip(b.data)
                     .all(|(p, q)| (p.0 - q.0).abs() <= tx && (p.1 - q.1).abs() <= ty)
         };
-        s.glyph?;
-        self.series
-            .iter()
-            .take_while(|e| !std::ptr::eq(*e, s))
-            .find(|e| e.glyph.is_some() && same(e, s))
+        let same_path = |a: &Series, b: &Series| {
+            a.data.len() > 1
+                && b.data.len() > 1
+                && on_path(a.data, b.data, tx, ty)
+                && on_path(b.data, a.data, tx, ty)
+        };
+        let earlier = self.series.iter().take_while(|e| !std::ptr::eq(*e, s));
+        match s.glyph {
+            Some(_) => earlier.filter(|e| e.glyph.is_some()).find(|e| same_points(e, s)),
+            None if s.stroke != Stroke::None => earlier
+                .filter(|e| e.glyph.is_none() && e.stroke != Stroke::None)
+                .find(|e| same_path(e, s)),
+            None => None,
+        }
     }
 
     /// The series on a canvas over `graph` (y over `y_bounds`), lines first, then the glyphs
@@ -434,4 +456,42 @@ impl Plot<'_> {
             }
         }
     }
+}
+
+/// Whether `a` and `b` span the same x range (within `tx`) and every point of `a` lies on the
+/// polyline through `b` (within `tx` in x and `ty` in y of one of its segments; a vertical
+/// segment holds the y between its ends).
+fn on_path(a: &[(f64, f64)], b: &[(f64, f64)], tx: f64, ty: f64) -> bool {
+    let range = |d: &[(f64, f64)]| {
+        d.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+            (lo.min(p.0), hi.max(p.0))
+        })
+    };
+    let ((alo, ahi), (blo, bhi)) = (range(a), range(b));
+    let on_segment = |&(x, y): &(f64, f64), w: &[(f64, f64)]| {
+        let ((x0, y0), (x1, y1)) = (w[0], w[1]);
+        if x < x0.min(x1) - tx || x > x0.max(x1) + tx {
+            return false;
+        }
+        if (x1 - x0).abs() <= tx {
+            return y >= y0.min(y1) - ty && y <= y0.max(y1) + ty;
+        }
+        let at = y0 + (y1 - y0) * ((x - x0) / (x1 - x0)).clamp(0.0, 1.0);
+        (y - at).abs() <= ty
+    };
+    // The segments that can hold x: all of them, or, along a path drawn left to right, those
+    // from the last vertex left of x − tx on.
+    let sorted = b.windows(2).all(|w| w[0].0 <= w[1].0);
+    let holds = |p: &(f64, f64)| {
+        let from = if sorted {
+            b.partition_point(|q| q.0 < p.0 - tx).saturating_sub(1)
+        } else {
+            0
+        };
+        b[from..]
+            .windows(2)
+            .take_while(|w| !sorted || w[0].0 <= p.0 + tx)
+            .any(|w| on_segment(p, w))
+    };
+    (alo - blo).abs() <= tx && (ahi - bhi).abs() <= tx && a.iter().all(holds)
 }
