@@ -35,6 +35,13 @@ fn render_applies_keys_and_the_marker() {
         log.contains("┌ messages") && log.contains(", and . move the cursor"),
         "{log}"
     );
+    // Before any message the log says so in its title, not "1 lines" over a placeholder.
+    let empty = render(&["--keys", "l"]);
+    assert!(
+        empty.contains("┌ messages: none yet") && !empty.contains("1 lines"),
+        "{empty}"
+    );
+    assert!(log.contains("messages: 1 line (any key closes)"), "{log}");
     let braille = |s: &str| s.chars().any(|c| ('\u{2801}'..='\u{28ff}').contains(&c));
     assert!(braille(&render(&[])));
     let half = render(&["--marker", "halfblock"]);

@@ -30,16 +30,22 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, theme: Theme) {
             lines.push(Line::from(vec![Span::raw(lead), Span::styled(row, style)]));
         }
     }
-    if lines.is_empty() {
-        lines.push(Line::raw("no messages yet"));
+    let empty = lines.is_empty();
+    if empty {
+        lines.push(Line::raw(
+            "no notice, failure or solver warning yet (the status line shows the last solve)",
+        ));
     }
     let rows = usize::from(area.height.saturating_sub(2)).max(1);
     let last_first = lines.len().saturating_sub(rows);
     let first = last_first.saturating_sub(usize::from(app.overlays.log_scroll));
     let total = lines.len();
     let shown: Vec<Line> = lines.into_iter().skip(first).take(rows).collect();
-    let title = if total <= rows {
-        format!(" messages: {total} lines (any key closes) ")
+    let title = if empty {
+        " messages: none yet (any key closes) ".to_string()
+    } else if total <= rows {
+        let plural = if total == 1 { "" } else { "s" };
+        format!(" messages: {total} line{plural} (any key closes) ")
     } else {
         format!(
             " messages: lines {}–{} of {total} (↑ ↓ scroll, other keys close) ",
