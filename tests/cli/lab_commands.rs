@@ -109,3 +109,19 @@ fn readme_frame_is_rendered() {
     assert_eq!(code, 0, "{err}");
     assert_eq!(frame, out, "the README's frame differs from `riplab {command}`");
 }
+
+/// The stress scene's caption reads a peak on the axis of symmetry as x = 0, not as the
+/// round-off of the full model's node there (it read "x = -2.56e-14" on hertz-paper-full).
+#[test]
+fn a_peak_on_the_axis_reads_x_0() {
+    let (code, out, err) = crate::common::riplab(&[
+        "render",
+        "scenarios/hertz-paper-full.toml",
+        "--scene",
+        "stress",
+        "--size",
+        "80x24",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("(x = 0)") && !out.contains("e-1"), "{out}");
+}

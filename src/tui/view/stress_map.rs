@@ -240,6 +240,13 @@ fn caption_line(peak: &Peak, map: &HeatMap, theme: Theme) -> Line<'static> {
     } else {
         "max"
     };
+    // A peak on the axis of symmetry found at round-off off it (x = −2.6e-14 on a full
+    // model) reads as the axis.
+    let x = if peak.x.abs() <= 1e-9 * (map.x.1 - map.x.0).abs() {
+        0.0
+    } else {
+        peak.x
+    };
     Line::from(vec![
         Span::styled(format!(" {MARKER} "), theme.title()),
         Span::raw(format!(
@@ -247,7 +254,7 @@ fn caption_line(peak: &Peak, map: &HeatMap, theme: Theme) -> Line<'static> {
             peak.quantity.symbol(),
             sig(peak.value, 4),
             sig(peak.depth, 3),
-            sig(peak.x, 3)
+            sig(x, 3)
         )),
         Span::styled(
             format!(
