@@ -20,6 +20,7 @@ mod pressures;
 mod round_off;
 mod scenario_props;
 mod scenarios;
+mod sliding;
 mod stresses;
 mod study;
 mod verify;
