@@ -383,3 +383,69 @@ fn tresca_at_coulombs_pressure_is_coulomb() {
         );
     }
 }
+
+/// Coulomb's step as the fixed point of Tresca's (the issue's "Tresca with g equal to μ times
+/// a frozen frictionless pressure equals Coulomb's fixed point started from it"): from the
+/// frictionless pressure p⁰, g^k = μ p^k and p^{k+1} = Tresca(g^k)'s pressure. On
+/// hertz-paper-full (Dundurs' β ≈ 0.29, so the shear changes p) the first Tresca solve is not
+/// Coulomb's, and the iterates contract onto Coulomb's solution, found by the other solver.
+#[test]
+fn coulomb_is_the_fixed_point_of_tresca_from_the_frictionless_pressure() {
+    use riplab::contact::friction::law::{Bound, Imposition, StepProblem};
+    use riplab::contact::friction::newton::solve_step;
+    use riplab::friction::FrictionTrace;
+    let s = full();
+    let disc = Discretization::of_traced(&s, 2, Element::Q1, Trace::Full).unwrap();
+    let rule = Rule::Trapezoid;
+    let points = disc.contact_points(rule);
+    let couplings = FrictionTrace::of(&disc).unwrap().couplings(&disc, rule, &points);
+    let w: Vec<f64> = points.points.iter().map(|q| q.weight).collect();
+    let n = w.len();
+    let d: Vec<f64> = points.points.iter().map(|q| -s.obstacle.gap(q.x)).collect();
+    let zero = vec![0.0; n];
+    let step = |bound| StepProblem {
+        couplings: &couplings,
+        d: &d,
+        e: &zero,
+        weight: &w,
+        bound,
+        imposition: Imposition::Exact,
+        shift: 0.1,
+        anchor: &zero,
+    };
+    let solve = |pb: &StepProblem| {
+        let out = solve_step(
+            pb,
+            zero.clone(),
+            zero.clone(),
+            &NewtonOptions::default(),
+            &mut |_| ControlFlow::Continue(()),
+        )
+        .unwrap();
+        assert!(out.converged(), "{:?}", out.diagnosis);
+        out
+    };
+    let mu = 0.3;
+    let coulomb = solve(&step(Bound::Coulomb(mu)));
+    let frictionless = solve(&step(Bound::Coulomb(0.0)));
+    let mut y = frictionless.y;
+    let mut distances = Vec::new();
+    for _ in 0..30 {
+        let g: Vec<f64> = (0..n).map(|q| mu * y[q] / w[q]).collect();
+        let tresca = solve(&StepProblem {
+            bound: Bound::Tresca(&g),
+            ..step(Bound::Coulomb(0.0))
+        });
+        distances.push(max_rel(&tresca.y, &coulomb.y).max(max_rel(&tresca.z, &coulomb.z)));
+        y = tresca.y;
+        if distances.last() < Some(&1e-10) {
+            break;
+        }
+    }
+    assert!(
+        distances[0] > 1e-4,
+        "the first Tresca solve differs: {distances:?}"
+    );
+    assert!(*distances.last().unwrap() < 1e-10, "{distances:?}");
+    assert!(distances.windows(2).all(|d| d[1] < d[0]), "{distances:?}");
+}
