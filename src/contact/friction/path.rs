@@ -80,7 +80,25 @@ struct Carried {
     anchor: Vec<f64>,
 }
 
-impl PathProblem<'_> {
+impl<'a> PathProblem<'a> {
+    /// The step problem at `shift` with the normal data `d` and the anchors `anchor` (the
+    /// ALM's inner problems shift both by its multipliers).
+    fn at<'b>(&self, d: &'b [f64], shift: f64, anchor: &'b [f64]) -> StepProblem<'b>
+    where
+        'a: 'b,
+    {
+        StepProblem {
+            couplings: self.couplings,
+            d,
+            e: self.e,
+            weight: self.weight,
+            bound: self.bound,
+            imposition: self.imposition,
+            shift,
+            anchor,
+        }
+    }
+
     /// The step at `shift` from `from` (forces warm, anchors fixed).
     fn step(
         &self,
@@ -91,16 +109,7 @@ impl PathProblem<'_> {
         on_iteration: &mut dyn FnMut(&Iteration) -> ControlFlow<()>,
     ) -> Result<StepResult, SolveError> {
         let Some(tolerance) = self.alm else {
-            let pb = StepProblem {
-                couplings: self.couplings,
-                d: self.d,
-                e: self.e,
-                weight: self.weight,
-                bound: self.bound,
-                imposition: self.imposition,
-                shift,
-                anchor: &from.anchor,
-            };
+            let pb = self.at(self.d, shift, &from.anchor);
             return solve_step(&pb, from.y.clone(), from.z.clone(), opts, on_iteration);
         };
         let Imposition::Penalty { epsilon, epsilon_t } = self.imposition else {
@@ -118,16 +127,7 @@ impl PathProblem<'_> {
         for k in 1..=MAX_OUTER {
             let d: Vec<f64> = (0..n).map(|q| self.d[q] + epsilon * y[q] / w[q]).collect();
             let anchor: Vec<f64> = (0..n).map(|q| from.anchor[q] + epsilon_t * z[q] / w[q]).collect();
-            let pb = StepProblem {
-                couplings: self.couplings,
-                d: &d,
-                e: self.e,
-                weight: w,
-                bound: self.bound,
-                imposition: self.imposition,
-                shift,
-                anchor: &anchor,
-            };
+            let pb = self.at(&d, shift, &anchor);
             let mut r = solve_step(&pb, y.clone(), z.clone(), &inner, on_iteration)?;
             iterations += r.iterations;
             history.append(&mut r.history);
