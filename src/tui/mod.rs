@@ -30,6 +30,7 @@ mod runtime;
 mod runtime_export_tests;
 pub mod settle;
 pub mod shown;
+mod study_grading;
 #[cfg(test)]
 mod tests;
 pub mod theme;

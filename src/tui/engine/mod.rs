@@ -494,7 +494,7 @@ impl Engine {
                 .iter()
                 .map(|&e| key.methods.len() * self.unknowns(level, e))
                 .sum();
-            self.eta.predict_ms(unknowns)
+            self.eta.predict_ms(unknowns) * studying::cost_factor(key.refine_edges)
         });
         Ok(Studying {
             scenario: Scenario {
