@@ -48,3 +48,37 @@ pub fn convergence_graded(
     let groups = graded::levels_kept(scenario, reference, schemes, levels, (method, epsilon), &[refine]);
     with_rates(strip(groups), false)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::contact::friction::{Friction, Law};
+    use crate::study::{ReferenceFields, ReferenceMesh, Status, uniform_reference};
+
+    /// With the scenario's friction on, every graded row says that grading does not take it
+    /// (the study refuses the same, [`InputFault::GradedFriction`]) instead of solving without
+    /// it; the uniform rows are solved with it.
+    #[test]
+    fn graded_rows_refuse_friction() {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/scenarios/hertz-paper-full.toml");
+        let mut s = Scenario::load(std::path::Path::new(path)).unwrap();
+        s.friction = Friction {
+            law: Law::Coulomb { mu: 0.3 },
+            shift: 0.05,
+            steps: 2,
+            epsilon_t: None,
+        };
+        let mut fetch = |grid: &ReferenceMesh| ReferenceFields::solve_on(&s, grid);
+        let (reference, _) = uniform_reference(&s, 1, &mut fetch).unwrap();
+        let m1 = [(Element::Q1, Rule::Gauss1)];
+        let graded = convergence_graded(&s, &reference, &m1, &[0], (None, 1e-6), RefineEdges::Passes(1));
+        assert_eq!(graded.len(), 1);
+        let reason = SolveError::from(InputFault::GradedFriction).to_string();
+        assert_eq!(graded[0].status, Status::Failed);
+        assert_eq!(graded[0].reason.as_deref(), Some(reason.as_str()));
+        assert_eq!(graded[0].grading, RefineEdges::Passes(1));
+        let uniform = convergence_graded(&s, &reference, &m1, &[0], (None, 1e-6), RefineEdges::default());
+        assert_eq!(uniform[0].status, Status::Ok, "{:?}", uniform[0].reason);
+        assert!(uniform[0].errors.unwrap().tbar.is_some(), "solved with friction");
+    }
+}
