@@ -24,6 +24,7 @@ pub mod keys;
 pub mod lab_error;
 pub mod protocol;
 pub mod record;
+pub mod regrade;
 pub mod render_keys;
 mod runtime;
 #[cfg(test)]

@@ -349,6 +349,8 @@ pub struct Solved {
     pub shown: Shown,
     /// Wall time of the request, mesh work included, in ms.
     pub total_ms: f64,
+    /// With edge grading on, how the solve came by its graded grid (None: uniform).
+    pub regrade: Option<super::regrade::Regrade>,
     /// The stresses, computed by the worker when the stress scene first shows this solution
     /// (`Engine::stresses`).
     pub stresses: OnceLock<Result<Arc<StressField>, StressError>>,

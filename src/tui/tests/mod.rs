@@ -14,6 +14,7 @@ mod hertz_block;
 mod lab_errors;
 mod locking;
 mod record;
+mod regrade;
 mod scenes;
 mod screens;
 mod stress_scene;
