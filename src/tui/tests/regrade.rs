@@ -7,8 +7,8 @@ use std::ops::ControlFlow;
 use std::sync::Arc;
 
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
+use riplab::contact::ContactParams;
 use riplab::contact::newton::NewtonOptions;
-use riplab::contact::{ContactParams, Method};
 use riplab::discretization::Discretization;
 use riplab::grading::{GradedGrid, RefineEdges, solve_graded};
 use riplab::scenario::Scenario;

@@ -162,6 +162,9 @@ pub fn study_epsilon(app: &App) -> String {
     format!("{whose} ε={:e}", key.epsilon)
 }
 
+/// What names a row's curve: its scheme or its method.
+type NameOf = fn(&StudyRow) -> &str;
+
 /// One curve of the chart: the rows of a scheme (M1–M4) or of a method, uniform or graded
 /// (`M1+2e`), its colour, line and glyph.
 struct Curve<'a> {
@@ -175,7 +178,7 @@ struct Curve<'a> {
 /// The curves of `study`: one per scheme or one per method, as the key compares, each
 /// followed by its graded series when the study grades.
 fn curves(study: &Study) -> Vec<Curve<'_>> {
-    let (table, graded_glyphs, of): (&[Legend], &[char; 4], fn(&StudyRow) -> &str) = match study.key.compare {
+    let (table, graded_glyphs, of): (&[Legend], &[char; 4], NameOf) = match study.key.compare {
         Compare::Schemes => (&SCHEMES, &GRADED_SCHEME_GLYPHS, |r| r.scheme.as_str()),
         Compare::Methods => (&METHODS, &GRADED_METHOD_GLYPHS, |r| r.method.method),
     };
