@@ -64,7 +64,8 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
             if study.key.refine_edges.grades() {
                 let curves = curves(study);
                 let color_of = |name: &str| curves.iter().find(|c| c.name == name).map(|c| c.color);
-                paired_table(frame, bottom, look.theme, study, &levels, &color_of);
+                let title = table_title(study, &levels);
+                paired_table(frame, bottom, look.theme, study, (&levels, title), &color_of);
             } else {
                 table(frame, bottom, look.theme, study, &levels);
             }
@@ -354,7 +355,7 @@ fn table(frame: &mut Frame, area: Rect, theme: Theme, study: &Study, levels: &[u
 }
 
 /// The table's title: the reference, and which levels its rows show when not all.
-pub(super) fn table_title(study: &Study, levels: &[u32]) -> String {
+fn table_title(study: &Study, levels: &[u32]) -> String {
     let max = finest(study);
     let shown = match levels {
         [first, ..] if *first == max && max > 0 => format!(" · rows: level {max} (chart: 0 to {max})"),

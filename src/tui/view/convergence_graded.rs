@@ -12,7 +12,6 @@ use crate::study::{Status, StudyRow};
 
 use super::super::app::{Compare, Study};
 use super::super::theme::Theme;
-use super::convergence::table_title;
 use super::fmt::sig;
 
 /// The glyphs of M1–M4's graded series (their uniform series are `1`–`4`).
@@ -21,14 +20,14 @@ pub(super) const GRADED_SCHEME_GLYPHS: [char; 4] = ['a', 'b', 'c', 'd'];
 /// are `P`, `A`, `N`, `E`).
 pub(super) const GRADED_METHOD_GLYPHS: [char; 4] = ['p', 'a', 'n', 'e'];
 
-/// The table of a graded study at `levels`: a line per uniform row, its graded row beside it
+/// The table of a graded study at `levels`, headed `title`: a line per uniform row, its graded row beside it
 /// (`L+e` the level as graded, `4+2e`); a row without a result says why in a word.
 pub(super) fn paired_table(
     frame: &mut Frame,
     area: Rect,
     theme: Theme,
     study: &Study,
-    levels: &[u32],
+    (levels, title): (&[u32], String),
     color_of: &dyn Fn(&str) -> Option<Color>,
 ) {
     let methods = study.key.compare == Compare::Methods;
@@ -69,7 +68,7 @@ pub(super) fn paired_table(
     frame.render_widget(
         Paragraph::new(lines).block(
             Block::bordered()
-                .title(Span::styled(table_title(study, levels), theme.title()))
+                .title(Span::styled(title, theme.title()))
                 .border_style(theme.axis()),
         ),
         area,
