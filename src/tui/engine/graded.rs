@@ -90,7 +90,8 @@ impl Engine {
     /// its last forces (or its pressure carried to another rule's points, and from rest if that
     /// does not converge); the solve when the contact edges it finds lie inside the grid's
     /// band, the cancellation when `is_current` says so, None otherwise (graded again from the
-    /// uniform level: [`Engine::graded`]).
+    /// uniform level: [`Engine::graded`]). A uniform solve lets the last graded grid go (its
+    /// discretisation may hold gigabytes at level 7, outside the cache's budget).
     pub(super) fn on_graded_grid(
         &mut self,
         req: &SolveRequest,
@@ -100,6 +101,10 @@ impl Engine {
     ) -> Option<Response> {
         let key = req.key;
         let generation = req.generation;
+        if !key.refine_edges.grades() {
+            self.last_graded = None;
+            return None;
+        }
         let last = self.last_graded.as_ref().filter(|l| l.serves == serves(&key))?;
         let params = self.contact_params(&key);
         let disc = last.disc.clone();

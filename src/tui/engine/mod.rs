@@ -346,9 +346,7 @@ impl Engine {
         let key = req.key;
         self.follow(key.integration);
         // Graded: on the last graded grid first, kept while the contact edges stay in its band.
-        if key.refine_edges.grades()
-            && let Some(kept) = self.on_graded_grid(req, is_current, report, t)
-        {
+        if let Some(kept) = self.on_graded_grid(req, is_current, report, t) {
             return kept;
         }
         if self.cached(key.level, key.element).is_none() {

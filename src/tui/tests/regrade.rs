@@ -162,3 +162,39 @@ fn a_large_depth_change_regrades() {
         "the first depth's lines again"
     );
 }
+
+/// A uniform solve lets the graded grid go (its memory is outside the cache's budget): `E`
+/// round to 0 passes and on to 2 again grades afresh instead of keeping the old grid.
+#[test]
+fn a_uniform_solve_lets_the_graded_grid_go() {
+    let mut engine = Engine::new(Scenario::paper());
+    let mut app = graded_lab(&mut engine, 2);
+    let first = app.current().unwrap().clone();
+    let mut seen = Vec::new();
+    for _ in 0..5 {
+        press(&mut app, &mut engine, 'E');
+        seen.push((app.settings.refine_edges, app.current().unwrap().regrade));
+    }
+    use RefineEdges::{Auto, Passes};
+    // auto: as many passes as p̄ asks (the library's test `auto_grades_until_pbar_settles`).
+    assert!(
+        matches!(seen[1].1, Some(Regrade::Graded { passes: 1.. })),
+        "{seen:?}"
+    );
+    assert_eq!(
+        seen,
+        [
+            (Passes(3), Some(Regrade::Graded { passes: 3 })),
+            (Auto, seen[1].1),
+            (Passes(0), None),
+            (Passes(1), Some(Regrade::Graded { passes: 1 })),
+            (Passes(2), Some(Regrade::Graded { passes: 2 })),
+        ]
+    );
+    let again = app.current().unwrap();
+    assert!(!Arc::ptr_eq(&first.disc, &again.disc));
+    assert_eq!(
+        first.disc.mesh.xs, again.disc.mesh.xs,
+        "the same lines, graded again"
+    );
+}
