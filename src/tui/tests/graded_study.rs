@@ -334,3 +334,35 @@ fn an_e_press_on_the_convergence_scene_solves_only_the_graded_rows() {
     }
     assert_eq!(graded.rows.len(), 2 * uniform.rows.len());
 }
+
+/// `E` on the convergence scene asks for the study with the new grading (its uniform rows the
+/// engine keeps, above), and the scene says what it computes.
+#[test]
+fn e_on_the_convergence_scene_asks_for_the_graded_study() {
+    use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
+    use riplab::tui::app::Command;
+    let mut app = graded_app(RefineEdges::default());
+    let studies = |commands: Vec<Command>| -> Vec<StudyKey> {
+        commands
+            .into_iter()
+            .filter_map(|c| match c {
+                Command::Study(r) => Some(r.key),
+                _ => None,
+            })
+            .collect()
+    };
+    let first = studies(app.update(Msg::Resize).commands);
+    assert_eq!(first.len(), 1);
+    assert_eq!(first[0].refine_edges, RefineEdges::default());
+    let e = Msg::Key(KeyEvent::new(KeyCode::Char('E'), KeyModifiers::NONE));
+    let graded = studies(app.update(e).commands);
+    assert_eq!(graded.len(), 1, "{graded:?}");
+    assert_eq!(graded[0].refine_edges, RefineEdges::Passes(1));
+    assert_eq!(graded[0].ungraded(), first[0]);
+    app.notice = None;
+    let text = render_app(&app, &LOOK, 80, 24);
+    assert!(
+        text.contains("then M1–M4 (penalty), uniform and +1e") && text.contains("at levels 0 to 4…"),
+        "{text}"
+    );
+}
