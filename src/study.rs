@@ -21,6 +21,7 @@ use crate::grading::RefineEdges;
 use crate::mesh::Element;
 use crate::scenario::Scenario;
 
+mod convergence_graded;
 mod errors;
 mod graded;
 mod grid;
@@ -30,6 +31,7 @@ mod reference;
 mod refine;
 mod row;
 mod source;
+pub use convergence_graded::convergence_graded;
 use errors::Kept;
 pub use errors::{Errors, errors};
 pub use grid::{MAX_REFINEMENTS, REFERENCE_SCHEME, ReferenceLevelError, ReferenceMesh, reference_level};

@@ -13,6 +13,7 @@ use crate::contact::ContactPoints;
 use crate::mesh::{Element, Mesh};
 use crate::scenario::Scenario;
 
+mod band;
 pub mod solve;
 
 pub use solve::{GradedSolve, Pass, solve_graded};

@@ -24,12 +24,14 @@ pub mod keys;
 pub mod lab_error;
 pub mod protocol;
 pub mod record;
+pub mod regrade;
 pub mod render_keys;
 mod runtime;
 #[cfg(test)]
 mod runtime_export_tests;
 pub mod settle;
 pub mod shown;
+mod study_grading;
 #[cfg(test)]
 mod tests;
 pub mod theme;

@@ -89,6 +89,9 @@ pub struct StudyKey {
     pub epsilon: f64,
     /// How the stiffness's volumetric part is integrated (the lab's `i`).
     pub integration: Integration,
+    /// The lab's edge grading (`E`): when it grades, each scheme and method also has a series
+    /// graded so at every level, beside the uniform one (`riplab study --refine-edges 0,N`).
+    pub refine_edges: RefineEdges,
 }
 
 /// A method's parameters and ε are finite ([`Method::check`], [`super::app::EPSILON_RANGE`]),
@@ -103,6 +106,7 @@ impl std::hash::Hash for StudyKey {
         self.schemes.hash(state);
         self.epsilon.to_bits().hash(state);
         self.integration.hash(state);
+        self.refine_edges.to_string().hash(state);
         for m in &self.methods {
             m.name().hash(state);
             m.theta().hash(state);
@@ -124,9 +128,14 @@ impl StudyKey {
         self.max_level + 1
     }
 
-    /// What is compared, for messages: `M1–M4 (penalty)` or `the methods on M3`.
+    /// What is compared, for messages: `M1–M4 (penalty)` or `the methods on M3`, with
+    /// `, uniform and +2e` when graded series go beside the uniform ones.
     pub fn label(&self) -> String {
-        match self.compare {
+        let graded = self
+            .graded_suffix()
+            .map(|g| format!(", uniform and {g}"))
+            .unwrap_or_default();
+        let compared = match self.compare {
             Compare::Schemes => {
                 let methods: Vec<&str> = self.methods.iter().map(|m| m.name()).collect();
                 format!("M1–M4 ({})", methods.join(", "))
@@ -139,7 +148,8 @@ impl StudyKey {
                     .collect();
                 format!("the methods on {}", schemes.join(", "))
             }
-        }
+        };
+        compared + &graded
     }
 }
 
@@ -339,6 +349,8 @@ pub struct Solved {
     pub shown: Shown,
     /// Wall time of the request, mesh work included, in ms.
     pub total_ms: f64,
+    /// With edge grading on, how the solve came by its graded grid (None: uniform).
+    pub regrade: Option<super::regrade::Regrade>,
     /// The stresses, computed by the worker when the stress scene first shows this solution
     /// (`Engine::stresses`).
     pub stresses: OnceLock<Result<Arc<StressField>, StressError>>,

@@ -259,7 +259,8 @@ impl App {
 
     /// The study the convergence scene shows at the current settings: M1–M4 with the lab's
     /// method at the scenario's ε ([`App::defaults`]), or the methods ([`compared_methods`]) on
-    /// the lab's scheme at the lab's ε (what the penalty's error depends on).
+    /// the lab's scheme at the lab's ε (what the penalty's error depends on); with the lab's
+    /// edge grading on, each also graded so, beside the uniform levels.
     pub fn study_key(&self) -> StudyKey {
         let s = &self.settings;
         let (schemes, methods, epsilon) = match self.compare {
@@ -283,6 +284,7 @@ impl App {
             methods,
             epsilon,
             integration: s.integration,
+            refine_edges: s.refine_edges,
         }
     }
 

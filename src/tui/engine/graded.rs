@@ -2,22 +2,157 @@
 //! uniform level's discretisation, its final grid's discretisation kept with the solution so
 //! that every view (the mesh scene's lines, the pressures, the stresses) shows the graded
 //! mesh. Each pass builds its own mesh and factor (nothing of the cache's work carries over:
-//! the lines changed), so the graded meshes are not cached.
+//! the lines changed), so the graded meshes are not in the cache; the last one is kept
+//! ([`LastGraded`]): a re-solve of the same level, element, integration and grading after an
+//! ε, depth, rule or method change solves on it first, warm-started, and keeps it when the
+//! contact edges found there lie inside its refined band ([`GradedGrid::holds_edges`]): no new
+//! grid, no new factor. Otherwise it grades again from the level's uniform solve, as a fresh
+//! `riplab solve --refine-edges N` does ([`Regrade`] says which in the status line).
 
+use std::ops::ControlFlow;
 use std::sync::{Arc, OnceLock};
 use std::time::Instant;
 
-use crate::contact::ContactParams;
 use crate::contact::newton::NewtonOptions;
+use crate::contact::{ContactParams, Method, Rule, carried_forces};
 use crate::discretization::Discretization;
-use crate::grading::solve_graded;
+use crate::error::SolveError;
+use crate::fem::Integration;
+use crate::grading::{GradedGrid, RefineEdges, solve_graded};
+use crate::mesh::Element;
+use crate::solution::Solution;
+use crate::solve::solve_contact;
 
-use super::super::protocol::{Response, SolveRequest, Solved};
+use super::super::protocol::{Progress, Response, SolveKey, SolveRequest, Solved};
+use super::super::regrade::Regrade;
 use super::super::shown::Shown;
 use super::Engine;
 
+/// The last graded solve: its grid, the grid's discretisation and where its Newton ended.
+pub(super) struct LastGraded {
+    /// The settings it serves: a solve with these grades the same level the same way.
+    serves: (u32, Element, Integration, RefineEdges),
+    /// The graded grid (after at least one pass).
+    grid: GradedGrid,
+    /// Its discretisation (assembled, ordered and factorised).
+    disc: Arc<Discretization>,
+    /// The rule and whether the method was Nitsche's: what its forces live on.
+    points: (Rule, bool),
+    /// The contact forces, the Newton iteration's state.
+    forces: Vec<f64>,
+    /// The abscissae of the rule's points and p there, to carry to another rule.
+    x: Vec<f64>,
+    p: Vec<f64>,
+}
+
+impl LastGraded {
+    /// What `key` leaves of `grid`, `disc` and `sol` for the next graded solve (None for a grid
+    /// without a pass: nothing to keep).
+    fn of(key: &SolveKey, grid: GradedGrid, disc: Arc<Discretization>, sol: &Solution) -> Option<Self> {
+        (grid.passes > 0).then(|| LastGraded {
+            serves: serves(key),
+            grid,
+            disc,
+            points: (key.rule, is_nitsche(key.method)),
+            forces: sol.newton.forces.clone(),
+            x: sol.points.points.iter().map(|q| q.x).collect(),
+            p: sol.p.clone(),
+        })
+    }
+}
+
+/// The settings a graded grid serves: the level, element, integration and grading of `key`.
+fn serves(key: &SolveKey) -> (u32, Element, Integration, RefineEdges) {
+    (key.level, key.element, key.integration, key.refine_edges)
+}
+
+fn is_nitsche(method: Method) -> bool {
+    matches!(method, Method::Nitsche { .. })
+}
+
 impl Engine {
-    /// Solve `req` on `uniform` graded as its key asks, started at `t`.
+    /// The contact parameters of `key`: `exact` has no ε ([`Method::resolve`]); the others
+    /// keep the lab's.
+    pub(super) fn contact_params(&self, key: &SolveKey) -> ContactParams {
+        ContactParams {
+            rule: key.rule,
+            method: key.method,
+            epsilon: if key.method.uses_epsilon() {
+                key.epsilon
+            } else {
+                0.0
+            },
+            obstacle: self.scenario.obstacle.with_depth(key.depth),
+        }
+    }
+
+    /// Solve `req` on the last graded grid if it serves `req`'s settings, warm-started from
+    /// its last forces (or its pressure carried to another rule's points, and from rest if that
+    /// does not converge); the solve when the contact edges it finds lie inside the grid's
+    /// band, the cancellation when `is_current` says so, None otherwise (graded again from the
+    /// uniform level: [`Engine::graded`]). A uniform solve lets the last graded grid go (its
+    /// discretisation may hold gigabytes at level 7, outside the cache's budget).
+    pub(super) fn on_graded_grid(
+        &mut self,
+        req: &SolveRequest,
+        is_current: &dyn Fn(u64) -> bool,
+        report: &mut dyn FnMut(Response),
+        t: Instant,
+    ) -> Option<Response> {
+        let key = req.key;
+        let generation = req.generation;
+        if !key.refine_edges.grades() {
+            self.last_graded = None;
+            return None;
+        }
+        let last = self.last_graded.as_ref().filter(|l| l.serves == serves(&key))?;
+        let params = self.contact_params(&key);
+        let disc = last.disc.clone();
+        let carried = last.points != (key.rule, is_nitsche(key.method));
+        let start = match carried {
+            false => last.forces.clone(),
+            true => carried_forces(&last.x, &last.p, &disc.contact_points(key.rule)),
+        };
+        let mut newton = |start: Option<&[f64]>| {
+            solve_contact(&disc, &params, start, &NewtonOptions::default(), &mut |it| {
+                if !is_current(generation) {
+                    return ControlFlow::Break(());
+                }
+                report(Response::Progress {
+                    generation,
+                    progress: Progress::Newton {
+                        iteration: it.iteration,
+                        residual: it.residual,
+                        active: it.active,
+                    },
+                });
+                ControlFlow::Continue(())
+            })
+        };
+        let mut result = newton(Some(&start));
+        if carried && result.as_ref().is_ok_and(|s| !s.newton.converged) {
+            result = newton(None);
+        }
+        let sol = match result {
+            Err(SolveError::Cancelled) => return Some(Response::Cancelled { generation }),
+            Ok(sol) if sol.newton.converged => sol,
+            // No answer on this grid: graded afresh (and said so).
+            _ => {
+                self.last_graded = None;
+                return None;
+            }
+        };
+        if !last.grid.holds_edges(&sol.points, &sol.p) {
+            return None;
+        }
+        let grid = last.grid.clone();
+        self.last_graded = LastGraded::of(&key, grid, disc.clone(), &sol);
+        Some(self.solved(req, disc, sol, t, Regrade::Kept))
+    }
+
+    /// Solve `req` on `uniform` graded as its key asks, started at `t`: [`solve_graded`] from
+    /// the level's uniform solve (again, when the last graded grid of these settings no longer
+    /// held the contact edges).
     pub(super) fn graded(
         &mut self,
         req: &SolveRequest,
@@ -26,6 +161,10 @@ impl Engine {
         t: Instant,
     ) -> Response {
         let key = req.key;
+        let again = self
+            .last_graded
+            .as_ref()
+            .is_some_and(|l| l.serves == serves(&key));
         let graded = solve_graded(
             &self.scenario,
             (key.level, uniform),
@@ -33,21 +172,45 @@ impl Engine {
             key.refine_edges,
             &NewtonOptions::default(),
         );
-        let result = graded.map(|g| {
-            let disc = g.graded.map_or_else(|| uniform.clone(), Arc::new);
-            Arc::new(Solved {
-                key,
+        match graded {
+            Ok(g) => {
+                let disc = g.graded.map_or_else(|| uniform.clone(), Arc::new);
+                let passes = g.grid.passes;
+                self.last_graded = LastGraded::of(&key, g.grid, disc.clone(), &g.sol);
+                let regrade = match again {
+                    true => Regrade::Regraded { passes },
+                    false => Regrade::Graded { passes },
+                };
+                self.solved(req, disc, g.sol, t, regrade)
+            }
+            Err(e) => Response::Solved {
+                generation: req.generation,
+                result: Err(e.into()),
+            },
+        }
+    }
+
+    /// The reply of a graded solve of `req` on `disc`.
+    fn solved(
+        &self,
+        req: &SolveRequest,
+        disc: Arc<Discretization>,
+        solution: Solution,
+        t: Instant,
+        regrade: Regrade,
+    ) -> Response {
+        Response::Solved {
+            generation: req.generation,
+            result: Ok(Arc::new(Solved {
+                key: req.key,
                 disc,
-                shown: Shown::new(&self.scenario, &g.sol),
-                solution: g.sol,
+                shown: Shown::new(&self.scenario, &solution),
+                solution,
                 displacement: OnceLock::new(),
                 total_ms: t.elapsed().as_secs_f64() * 1e3,
                 stresses: OnceLock::new(),
-            })
-        });
-        Response::Solved {
-            generation: req.generation,
-            result: result.map_err(Into::into),
+                regrade: Some(regrade),
+            })),
         }
     }
 }

@@ -10,7 +10,6 @@ use std::ops::ControlFlow;
 use std::sync::{Arc, Mutex, OnceLock};
 use std::time::Instant;
 
-use crate::contact::ContactParams;
 use crate::contact::newton::NewtonOptions;
 use crate::contact::{Method, Rule, carried_forces};
 use crate::discretization::Discretization;
@@ -96,6 +95,9 @@ pub struct Engine {
     cache: Vec<(u32, Element, Arc<Discretization>)>,
     /// The last contact solve's state: where the next one starts ([`Warm`]).
     warm: Option<Warm>,
+    /// The last graded solve's grid and state: where the next graded one of the same level,
+    /// element, integration and grading starts ([`graded::LastGraded`]).
+    last_graded: Option<graded::LastGraded>,
     /// The last study (a study takes seconds; a second app on the same engine reuses it),
     /// shared with the study's thread ([`Studying`]).
     study: Arc<Mutex<Option<Arc<Study>>>>,
@@ -117,6 +119,7 @@ impl Engine {
             scenario,
             cache: Vec::new(),
             warm: None,
+            last_graded: None,
             study: Arc::default(),
             eta: Eta::default(),
             prepare_eta: Eta::preparing(),
@@ -342,6 +345,10 @@ impl Engine {
         let generation = req.generation;
         let key = req.key;
         self.follow(key.integration);
+        // Graded: on the last graded grid first, kept while the contact edges stay in its band.
+        if let Some(kept) = self.on_graded_grid(req, is_current, report, t) {
+            return kept;
+        }
         if self.cached(key.level, key.element).is_none() {
             let unknowns = self.unknowns(key.level, key.element);
             report(Response::Progress {
@@ -364,18 +371,7 @@ impl Engine {
                 };
             }
         };
-        // `exact` has no ε ([`Method::resolve`]); the others keep the lab's.
-        let epsilon = if key.method.uses_epsilon() {
-            key.epsilon
-        } else {
-            0.0
-        };
-        let params = ContactParams {
-            rule: key.rule,
-            method: key.method,
-            epsilon,
-            obstacle: self.scenario.obstacle.with_depth(key.depth),
-        };
+        let params = self.contact_params(&key);
         let nitsche = matches!(key.method, Method::Nitsche { .. });
         let points = ForcePoints {
             level: key.level,
@@ -440,6 +436,7 @@ impl Engine {
                         displacement: OnceLock::new(),
                         total_ms: t.elapsed().as_secs_f64() * 1e3,
                         stresses: OnceLock::new(),
+                        regrade: None,
                     })),
                 }
             }
@@ -494,7 +491,7 @@ impl Engine {
                 .iter()
                 .map(|&e| key.methods.len() * self.unknowns(level, e))
                 .sum();
-            self.eta.predict_ms(unknowns)
+            self.eta.predict_ms(unknowns) * studying::cost_factor(key.refine_edges)
         });
         Ok(Studying {
             scenario: Scenario {

@@ -3,9 +3,10 @@
 use std::sync::{Arc, Mutex, PoisonError};
 use std::time::Instant;
 
+use crate::refine_edges::RefineEdges;
 use crate::scenario::Scenario;
 use crate::scheme::Scheme;
-use crate::study::{StudyRow, convergence};
+use crate::study::{StudyRow, convergence_graded};
 
 use super::super::lab_error::LabError;
 use super::super::protocol::{Progress, Study, StudyKey};
@@ -25,13 +26,15 @@ impl Studying {
     /// reference one level finer, at the key's ε (fresh solves, so the timings are
     /// comparable); each stage (the reference, then each level) is announced to `report` with
     /// its estimate. A method a scheme cannot run (`exact` on a rule with a kernel) gives rows
-    /// that say why.
+    /// that say why. With the key's grading on, each level's rows graded so follow its uniform
+    /// ones ([`convergence_graded`], as `riplab study --refine-edges 0,N`), timed likewise.
     pub fn run(self, report: &mut dyn FnMut(Progress)) -> Result<Arc<Study>, LabError> {
         self.run_shown(report, &mut |_| {})
     }
 
     /// [`Studying::run`], each finished level's rows (with those before it) also handed to
-    /// `partial` as a study of the levels so far, so that the points appear as computed.
+    /// `partial` as a study of the levels so far, so that the points appear as computed (a
+    /// graded study hands its uniform rows of a level over before its graded ones).
     pub fn run_shown(
         self,
         report: &mut dyn FnMut(Progress),
@@ -49,6 +52,10 @@ impl Studying {
         });
         let dir = crate::cache::default_dir();
         let (reference, _) = crate::cache::reference(&self.scenario, key.reference_level(), dir.as_deref())?;
+        // The uniform rows of the last study, when it differs from this one only in its
+        // grading (an `E` press on the convergence scene): kept, only the graded rows solved.
+        let uniform_of = kept().clone().filter(|s| s.key.ungraded() == key.ungraded());
+        let gradings = key.gradings();
         let mut rows = Vec::new();
         for (level, &estimate_ms) in (0..=key.max_level).zip(&self.estimates_ms[1..]) {
             report(Progress::Study {
@@ -56,22 +63,36 @@ impl Studying {
                 started: Instant::now(),
                 estimate_ms,
             });
-            for &method in &key.methods {
-                let solve = || {
-                    convergence(
-                        &self.scenario,
-                        &reference,
-                        &key.schemes,
-                        &[level],
-                        Some(method),
-                        key.epsilon,
-                    )
-                };
-                let runs: Vec<Vec<StudyRow>> = (0..TIMED_RUNS).map(|_| solve()).collect();
-                rows.extend(median_times(runs));
-            }
-            if level < key.max_level {
-                partial(Arc::new(self.ordered(rows.clone())));
+            for (g, &grading) in gradings.iter().enumerate() {
+                let kept_rows = uniform_of.as_ref().filter(|_| !grading.grades()).map(|s| {
+                    s.rows
+                        .iter()
+                        .filter(|r| r.level == level && !r.grading.grades())
+                        .cloned()
+                        .collect::<Vec<_>>()
+                });
+                match kept_rows {
+                    Some(kept_rows) => rows.extend(kept_rows),
+                    None => {
+                        for &method in &key.methods {
+                            let solve = || {
+                                convergence_graded(
+                                    &self.scenario,
+                                    &reference,
+                                    &key.schemes,
+                                    &[level],
+                                    (Some(method), key.epsilon),
+                                    grading,
+                                )
+                            };
+                            let runs: Vec<Vec<StudyRow>> = (0..TIMED_RUNS).map(|_| solve()).collect();
+                            rows.extend(median_times(runs));
+                        }
+                    }
+                }
+                if level < key.max_level || g + 1 < gradings.len() {
+                    partial(Arc::new(self.ordered(rows.clone())));
+                }
             }
         }
         let study = Arc::new(self.ordered(rows));
@@ -81,7 +102,8 @@ impl Studying {
 }
 
 impl Studying {
-    /// A study of `rows` in the key's order: by scheme, then method, then ascending level.
+    /// A study of `rows` in the key's order: by scheme, then method, the uniform series before
+    /// the graded one, then ascending level.
     fn ordered(&self, mut rows: Vec<StudyRow>) -> Study {
         let key = &self.key;
         let scheme_index = |r: &StudyRow| {
@@ -90,11 +112,21 @@ impl Studying {
                 .position(|&(e, rule)| Scheme::new(e, rule).label() == r.scheme)
         };
         let method_index = |r: &StudyRow| key.methods.iter().position(|m| m.name() == r.method.method);
-        rows.sort_by_key(|r| (scheme_index(r), method_index(r), r.level));
+        rows.sort_by_key(|r| (scheme_index(r), method_index(r), r.grading.grades(), r.level));
         Study {
             key: key.clone(),
             rows,
         }
+    }
+}
+
+/// What a level of a study with the grading `refine` costs against its uniform rows alone:
+/// a graded row solves the uniform level and then each pass on a finer grid (`auto` counted as
+/// three passes), a rough estimate for the time left.
+pub(super) fn cost_factor(refine: RefineEdges) -> f64 {
+    match refine {
+        RefineEdges::Passes(n) => 1.0 + f64::from(n + u32::from(n > 0)),
+        _ => 5.0,
     }
 }
 

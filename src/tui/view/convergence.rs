@@ -2,8 +2,10 @@
 //! log-log, a marker at each level) over a table of the numbers. It compares either the
 //! schemes M1–M4 with the lab's method (M1's raw p dotted) or the contact methods on the
 //! lab's scheme (`w` toggles, [`Compare`]); a method that has no answer on the scheme (`exact`
-//! on a rule with a kernel) says so in the legend and the table. The study runs on request
-//! (see [`App::study_key`]).
+//! on a rule with a kernel) says so in the legend and the table. With the lab's edge grading
+//! on (`E`), each scheme or method also has its graded series, its points marked by a letter
+//! (no line: the legend keeps to two rows at 80 columns), and the table pairs each uniform row with its graded one
+//! ([`super::convergence_graded`]). The study runs on request (see [`App::study_key`]).
 
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Rect};
@@ -17,6 +19,7 @@ use super::super::app::{App, Compare, Study};
 use super::super::engine::studying::TIMED_RUNS;
 use super::super::theme::Theme;
 use super::Look;
+use super::convergence_graded::{GRADED_METHOD_GLYPHS, GRADED_SCHEME_GLYPHS, paired_table};
 use super::fmt::sig;
 use super::plot::{Axis, Plot, Scale, Series, Stroke};
 
@@ -54,11 +57,18 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
     match (app.studies.get(&key), partial) {
         (Some(Ok(study)), _) | (None, Some(study)) => {
             let levels = shown_levels(study, area.height);
-            let rows = study.rows.iter().filter(|r| levels.contains(&r.level)).count() as u16;
+            let rows = table_lines(study, &levels) as u16;
             let [top, bottom] =
                 Layout::vertical([Constraint::Fill(1), Constraint::Length(rows + 3)]).areas(area);
             chart(frame, top, look, app, study);
-            table(frame, bottom, look.theme, study, &levels);
+            if study.key.refine_edges.grades() {
+                let curves = curves(study);
+                let color_of = |name: &str| curves.iter().find(|c| c.name == name).map(|c| c.color);
+                let title = table_title(study, &levels);
+                paired_table(frame, bottom, look.theme, study, (&levels, title), &color_of);
+            } else {
+                table(frame, bottom, look.theme, study, &levels);
+            }
         }
         (other, _) => {
             let text = match other {
@@ -96,10 +106,20 @@ fn finest(study: &Study) -> u32 {
         .unwrap_or(study.key.max_level)
 }
 
+/// The lines of the table at `levels`: one per uniform row (a graded row shares its uniform
+/// row's line).
+fn table_lines(study: &Study, levels: &[u32]) -> usize {
+    study
+        .rows
+        .iter()
+        .filter(|r| levels.contains(&r.level) && !r.grading.grades())
+        .count()
+}
+
 /// The levels the table has room for: all, or the finest that fit (at least one).
 fn shown_levels(study: &Study, height: u16) -> Vec<u32> {
     let max = finest(study);
-    let per_level = study.rows.iter().filter(|r| r.level == max).count().max(1);
+    let per_level = table_lines(study, &[max]).max(1);
     let room = height.saturating_sub(MIN_CHART_HEIGHT + 3) as usize / per_level;
     let n = (room.max(1) as u32).min(max + 1);
     (max + 1 - n..=max).collect()
@@ -143,36 +163,66 @@ pub fn study_epsilon(app: &App) -> String {
     format!("{whose} ε={:e}", key.epsilon)
 }
 
-/// One curve of the chart: the rows of a scheme (M1–M4) or of a method, its colour and glyph.
+/// What names a row's curve: its scheme or its method.
+type NameOf = fn(&StudyRow) -> &str;
+
+/// One curve of the chart: the rows of a scheme (M1–M4) or of a method, uniform or graded
+/// (`M1+2e`), its colour, line and glyph.
 struct Curve<'a> {
-    name: &'a str,
+    name: String,
     color: Color,
+    stroke: Stroke,
     glyph: char,
     rows: Vec<&'a StudyRow>,
 }
 
-/// The curves of `study`: one per scheme or one per method, as the key compares.
+/// The curves of `study`: one per scheme or one per method, as the key compares, each
+/// followed by its graded series when the study grades.
 fn curves(study: &Study) -> Vec<Curve<'_>> {
-    let (table, of): (&[Legend], fn(&StudyRow) -> &str) = match study.key.compare {
-        Compare::Schemes => (&SCHEMES, |r| r.scheme.as_str()),
-        Compare::Methods => (&METHODS, |r| r.method.method),
+    let (table, graded_glyphs, of): (&[Legend], &[char; 4], NameOf) = match study.key.compare {
+        Compare::Schemes => (&SCHEMES, &GRADED_SCHEME_GLYPHS, |r| r.scheme.as_str()),
+        Compare::Methods => (&METHODS, &GRADED_METHOD_GLYPHS, |r| r.method.method),
     };
-    table
-        .iter()
-        .map(|&(name, color, glyph)| Curve {
-            name,
+    let suffix = study.key.graded_suffix();
+    let rows_of = |name: &str, graded: bool| -> Vec<&StudyRow> {
+        study
+            .rows
+            .iter()
+            .filter(|r| of(r) == name && r.grading.grades() == graded)
+            .collect()
+    };
+    let mut out = Vec::new();
+    for (&(name, color, glyph), &graded_glyph) in table.iter().zip(graded_glyphs) {
+        out.push(Curve {
+            name: name.into(),
             color,
+            stroke: Stroke::Solid,
             glyph,
-            rows: study.rows.iter().filter(|r| of(r) == name).collect(),
-        })
-        .filter(|c| !c.rows.is_empty())
-        .collect()
+            rows: rows_of(name, false),
+        });
+        if let Some(suffix) = &suffix {
+            out.push(Curve {
+                name: format!("{name}{suffix}"),
+                color,
+                stroke: Stroke::None,
+                glyph: graded_glyph,
+                rows: rows_of(name, true),
+            });
+        }
+    }
+    out.retain(|c| !c.rows.is_empty());
+    out
 }
 
-/// The legend's name of `curve`: `M1 p̄`, or why it has no point (`exact: kernel`).
+/// The legend's name of `curve`: `M1 p̄`, `M1+2e p̄`, or why it has no point (`exact:
+/// kernel`; nothing for a graded curve: its uniform one or the table says why, and the legend
+/// keeps to its two rows).
 fn legend(curve: &Curve) -> String {
     if curve.rows.iter().any(|r| r.status == Status::Ok) {
         return format!("{} p̄", curve.name);
+    }
+    if curve.stroke == Stroke::None {
+        return String::new();
     }
     let word = curve.rows.first().map_or("no rows", |r| r.status.word());
     format!("{}: {word}", curve.name)
@@ -205,7 +255,7 @@ fn chart(frame: &mut Frame, area: Rect, look: &Look, app: &App, study: &Study) {
         series.push(Series {
             name: legend(curve),
             color: curve.color,
-            stroke: Stroke::Solid,
+            stroke: curve.stroke,
             glyph: Some(curve.glyph),
             data: pts,
         });
@@ -293,16 +343,7 @@ fn table(frame: &mut Frame, area: Rect, theme: Theme, study: &Study, levels: &[u
             Span::raw(numbers),
         ]));
     }
-    let max = finest(study);
-    let shown = match levels {
-        [first, ..] if *first == max && max > 0 => format!(" · rows: level {max} (chart: 0 to {max})"),
-        [first, ..] if *first > 0 => format!(" · rows: levels {first} to {max} (chart: 0 to {max})"),
-        _ => String::new(),
-    };
-    let title = format!(
-        " relative errors against q2+simpson level {}{shown} ",
-        study.key.reference_level()
-    );
+    let title = table_title(study, levels);
     frame.render_widget(
         Paragraph::new(lines).block(
             Block::bordered()
@@ -311,4 +352,18 @@ fn table(frame: &mut Frame, area: Rect, theme: Theme, study: &Study, levels: &[u
         ),
         area,
     );
+}
+
+/// The table's title: the reference, and which levels its rows show when not all.
+fn table_title(study: &Study, levels: &[u32]) -> String {
+    let max = finest(study);
+    let shown = match levels {
+        [first, ..] if *first == max && max > 0 => format!(" · rows: level {max} (chart: 0 to {max})"),
+        [first, ..] if *first > 0 => format!(" · rows: levels {first} to {max} (chart: 0 to {max})"),
+        _ => String::new(),
+    };
+    format!(
+        " relative errors against q2+simpson level {}{shown} ",
+        study.key.reference_level()
+    )
 }

@@ -3,6 +3,7 @@
 
 mod cells;
 mod convergence;
+mod convergence_graded;
 mod cursor;
 mod deformed;
 pub mod fmt;

@@ -268,6 +268,10 @@ fn state(app: &App, theme: Theme) -> Vec<Span<'static>> {
     if app.show_timing {
         spans.push(Span::raw(format!(" · {} ms", sig(solved.total_ms, 3))));
     }
+    // With edge grading: graded, the graded grid kept, or graded again (issue 35).
+    if let Some(regrade) = solved.regrade {
+        spans.push(Span::raw(format!(" · {}", regrade.text())));
+    }
     // What is known to be poor about this answer (locking, an unresolved obstacle, a narrow
     // contact zone): the first warning, cut to fit like the rest of the message.
     if let Some(warning) = solved.solution.warnings.first() {

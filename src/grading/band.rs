@@ -1,0 +1,56 @@
+//! Whether a solve's contact edges still lie in a graded grid's refined band (issue 35): the
+//! lab keeps a graded grid across ε and depth changes while they do, and grades again from the
+//! uniform level when they left it (docs/design.md §6, edge grading).
+
+use crate::contact::ContactPoints;
+
+use super::{GradedGrid, contact_edges};
+
+impl GradedGrid {
+    /// Whether the contact edges of the pressure `p` at `points` (a solve on this grid) all
+    /// lie in its finest band ([`GradedGrid::in_band`]): the grid has had a pass (a uniform
+    /// grid has no band) and the pressure has at least one edge.
+    pub fn holds_edges(&self, points: &ContactPoints, p: &[f64]) -> bool {
+        let edges = contact_edges(points, p);
+        let x = &points.vertex_x;
+        self.passes > 0 && !edges.is_empty() && edges.iter().all(|&e| self.in_band(0.5 * (x[e] + x[e + 1])))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::contact::Rule;
+    use crate::mesh::Element;
+    use crate::scenario::Scenario;
+
+    /// A pressure p(x) = max(0, 1 − x/a) at `points`: one contact edge, at x = a.
+    fn pressed_to(points: &ContactPoints, a: f64) -> Vec<f64> {
+        points.points.iter().map(|q| (1.0 - q.x / a).max(0.0)).collect()
+    }
+
+    /// A grid graded twice around the vertex interval that holds x = a holds an edge at a, or
+    /// a little beside it in the band, but not one two of the level's cells away, nor a
+    /// pressure without an edge; the uniform grid holds none (it has no band).
+    #[test]
+    fn a_graded_grid_holds_the_edges_in_its_band_only() {
+        let s = Scenario::paper();
+        let uniform = GradedGrid::uniform(&s, 2);
+        let at = |grid: &GradedGrid| {
+            let mesh = grid.mesh(Element::Q1, s.half_model);
+            ContactPoints::new(Rule::Gauss1, &mesh.node_x, 1)
+        };
+        let h = uniform.xs[1] - uniform.xs[0];
+        let a = uniform.xs[2] + 0.3 * h;
+        let once = uniform.refined(&[2]).unwrap();
+        let e = once.xs.iter().position(|&x| x > a).unwrap() - 1;
+        let twice = once.refined(&[e]).unwrap();
+        let points = at(&twice);
+        assert!(twice.holds_edges(&points, &pressed_to(&points, a)));
+        assert!(twice.holds_edges(&points, &pressed_to(&points, a + 0.4 * h)));
+        assert!(!twice.holds_edges(&points, &pressed_to(&points, a + 2.0 * h)));
+        assert!(!twice.holds_edges(&points, &vec![1.0; points.points.len()]));
+        let flat = at(&uniform);
+        assert!(!uniform.holds_edges(&flat, &pressed_to(&flat, a)));
+    }
+}
