@@ -10,6 +10,7 @@ use crossterm::event::KeyEvent;
 
 use super::export_error::ExportError;
 use super::lab_error::LabError;
+use crate::contact::friction::Friction;
 use crate::contact::method::Gamma0;
 use crate::contact::{Method, Rule};
 use crate::discretization::Discretization;
@@ -47,6 +48,9 @@ pub struct SolveKey {
     /// How the stiffness's volumetric part is integrated (`i` toggles full and selective;
     /// [`Integration`]): each has its own discretisation.
     pub integration: Integration,
+    /// The friction law and the shift after the press (`F`, `u`/`U`, `<`/`>`; docs/design.md
+    /// §11): a solve with friction is another solve.
+    pub friction: Friction,
 }
 
 /// Everything an inf-sup estimate depends on (the scenario aside).
@@ -89,6 +93,8 @@ pub struct StudyKey {
     pub epsilon: f64,
     /// How the stiffness's volumetric part is integrated (the lab's `i`).
     pub integration: Integration,
+    /// The friction of every row and of the reference (the lab's `F`).
+    pub friction: Friction,
 }
 
 /// A method's parameters and ε are finite ([`Method::check`], [`super::app::EPSILON_RANGE`]),
@@ -103,6 +109,7 @@ impl std::hash::Hash for StudyKey {
         self.schemes.hash(state);
         self.epsilon.to_bits().hash(state);
         self.integration.hash(state);
+        super::friction_settings::hash_friction(&self.friction, state);
         for m in &self.methods {
             m.name().hash(state);
             m.theta().hash(state);

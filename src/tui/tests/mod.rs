@@ -8,6 +8,7 @@ mod common;
 
 mod authoring;
 mod axes;
+mod friction;
 mod grading_key;
 mod hertz_block;
 mod lab_errors;

@@ -6,6 +6,7 @@ mod convergence;
 mod cursor;
 mod deformed;
 pub mod fmt;
+mod friction;
 mod header;
 pub mod help;
 mod infsup_chart;
