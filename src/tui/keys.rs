@@ -205,7 +205,7 @@ pub const LAB: &[Row<LabAction>] = &[
     },
     Row {
         keys: "F",
-        what: &["friction: none, coulomb, tresca (full model)"],
+        what: &["friction law: none, coulomb, tresca"],
         bindings: &[(Char('F'), L::NextLaw)],
     },
     Row {

@@ -38,10 +38,6 @@ pub struct FrictionShown {
     pub mindlin: Option<Mindlin>,
     /// ‖t̄ − q‖₀/‖q‖₀, with Mindlin.
     pub mindlin_error: Option<f64>,
-    /// The largest |t| and |t̄| (0 without a tangential traction).
-    pub peak: f64,
-    /// The smallest of t and t̄, and 0.
-    pub low: f64,
 }
 
 impl FrictionShown {
@@ -72,7 +68,6 @@ impl FrictionShown {
             .copied()
             .zip(f.tbar.iter().copied())
             .collect();
-        let values = || f.t.iter().chain(&f.tbar).copied();
         Some(FrictionShown {
             law: f.friction.law,
             shift: f.friction.shift,
@@ -85,8 +80,6 @@ impl FrictionShown {
             stick_half_width: report.stick_half_width,
             mindlin,
             mindlin_error: mindlin_report.map(|m| m.relative_error),
-            peak: values().fold(0.0, |m, v| m.max(v.abs())),
-            low: values().fold(0.0, f64::min),
         })
     }
 }

@@ -270,3 +270,50 @@ fn the_friction_keys_say_what_they_did() {
     press(&mut app, &mut engine, "0");
     assert_eq!(app.settings.friction, Friction::NONE);
 }
+
+/// Item 5: the friction keys are in the help overlay, the README's key table and `riplab
+/// render --help`'s list, with the same words; `render --keys` can press them (`<lt>` is `<`),
+/// and they act as in the lab.
+#[test]
+fn the_friction_keys_are_documented_everywhere() {
+    let help = riplab::tui::keys::lab_help();
+    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+    let render = riplab::tui::keys::with_lab_keys("");
+    for (keys, what) in [
+        ("F", "friction law: none, coulomb, tresca"),
+        ("u  U", "friction μ (or g) down / up a step"),
+        ("<  >", "shift ξ ÷ 1.25 / × 1.25 after the press"),
+    ] {
+        assert!(help.contains(&(keys, what)), "{keys} in the help");
+        let ticked: Vec<String> = keys.split_whitespace().map(|k| format!("`{k}`")).collect();
+        let row = format!("| {} | {what} |", ticked.join(" "));
+        assert!(readme.contains(&row), "{row} in the README");
+        assert!(
+            render.contains(&format!("  {keys:<16}{what}\n")),
+            "{keys} in render --help"
+        );
+    }
+    let scenario = cattaneo();
+    let (mut app, mut engine) = lab(&scenario, 0);
+    for key in riplab::tui::render_keys::parse_keys("<lt>U").unwrap() {
+        let commands = app.update(Msg::Key(key)).commands;
+        carry_out(&mut app, &mut engine, commands);
+    }
+    assert_eq!(app.settings.friction.shift, 0.0652, "0.0815 ÷ 1.25");
+    assert_eq!(app.settings.friction.law, Law::Coulomb { mu: 0.4 });
+    let solved = app.current().unwrap();
+    assert_eq!(solved.solution.friction.as_ref().unwrap().friction.shift, 0.0652);
+}
+
+/// Item 1: an export's name carries the friction (a friction solve's file never takes a
+/// frictionless one's name), and its CSV the tangential columns.
+#[test]
+fn an_export_names_the_friction() {
+    let (app, _) = lab(&cattaneo(), 0);
+    let solved = app.current().unwrap();
+    let stem = riplab::tui::export::stem(&app.scenario, solved);
+    assert!(stem.ends_with("-d0.35-coulomb0.3-xi0.0815"), "{stem}");
+    let (plain, _) = lab(&paper_full(), 0);
+    let stem = riplab::tui::export::stem(&plain.scenario, plain.current().unwrap());
+    assert!(stem.ends_with("-d0.8"), "{stem}");
+}

@@ -9,6 +9,7 @@ mod common;
 mod authoring;
 mod axes;
 mod friction;
+mod friction_frames;
 mod grading_key;
 mod hertz_block;
 mod lab_errors;

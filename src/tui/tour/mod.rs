@@ -7,6 +7,7 @@
 //! tick); [`view`] draws it; [`run_tour`] runs it in the terminal.
 
 pub mod author;
+mod embedded;
 pub mod errors;
 pub mod handout;
 pub mod listing;
@@ -252,6 +253,11 @@ impl Tour {
         app.show_hertz = step.hertz;
         app.all_levels = step.all_levels;
         app.zoom = step.zoom;
+        // A step that zooms chose to: the lab's "opened zoomed in" notice would take the
+        // status line, whose numbers the caption quotes.
+        if step.zoom {
+            app.notice = None;
+        }
         app.stress_quantity = step.quantity.unwrap_or(app.stress_quantity);
         app
     }
@@ -298,17 +304,20 @@ fn step(src: &Source, n: usize, raw: &RawStep, dir: Option<&Path>) -> Result<Ste
     let scenario = match &raw.scenario {
         None => None,
         Some(path) => {
-            let Some(dir) = dir else {
-                return Err(src.error(Some(path.span()), Some(key("scenario")), "a scenario path needs a tour file to be relative to; allowed only in a tour read from a file".into()));
-            };
-            let full = dir.join(path.get_ref());
-            Some(Scenario::load(&full).map_err(|e| {
+            let cannot = |e: ScenarioError| {
                 src.error(
                     Some(path.span()),
                     Some(key("scenario")),
                     format!("cannot load the scenario: {e}"),
                 )
-            })?)
+            };
+            match (dir, embedded::scenario_text(path.get_ref())) {
+                (Some(dir), _) => Some(Scenario::load(&dir.join(path.get_ref())).map_err(cannot)?),
+                (None, Some(text)) => Some(Scenario::parse(text, path.get_ref()).map_err(cannot)?),
+                (None, None) => {
+                    return Err(src.error(Some(path.span()), Some(key("scenario")), "a scenario path needs a tour file to be relative to; allowed only in a tour read from a file".into()));
+                }
+            }
         }
     };
     let (mut element, mut rule) = (

@@ -48,10 +48,9 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
     // With friction: t, t̄, the stick zone and (with `h`) q on the same axis.
     let friction = shown.friction.as_ref();
     let layer = friction.map(|f| friction::Layer::new(f, xb, app.show_hertz));
-    let (peak, low) = match (friction, &layer) {
-        (Some(f), Some(l)) => (peak.max(l.peak(f)), l.low(f)),
-        _ => (peak, 0.0),
-    };
+    let (peak, low) = layer
+        .as_ref()
+        .map_or((peak, 0.0), |l| (peak.max(l.peak()), l.low()));
     let ymax = nice_ceil(peak * 1.05);
     let ymin = if low < 0.0 { -nice_ceil(-low * 1.05) } else { 0.0 };
 
@@ -170,7 +169,9 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
             scale: Scale::Linear,
         },
         y: Axis {
-            title: if on { "p, t (units of E)" } else { "p (units of E)" }.into(),
+            title: layer
+                .as_ref()
+                .map_or("p (units of E)".into(), friction::Layer::y_title),
             bounds: [ymin, ymax],
             scale: Scale::Linear,
         },
