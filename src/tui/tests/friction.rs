@@ -317,3 +317,38 @@ fn an_export_names_the_friction() {
     let stem = riplab::tui::export::stem(&plain.scenario, plain.current().unwrap());
     assert!(stem.ends_with("-d0.8"), "{stem}");
 }
+
+/// Item 1, the lab's `T`: a step written from a lab whose friction differs from the
+/// scenario's carries it (law, μ, shift), and the tour plays it back with the same friction;
+/// a step's friction keys are validated like the scenario's, naming the key.
+#[test]
+fn a_tour_step_carries_the_friction() {
+    use riplab::tui::tour::Tour;
+    let (mut app, mut engine) = lab(&cattaneo(), 0);
+    press(&mut app, &mut engine, "U>");
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/scenarios/cattaneo-mindlin.toml");
+    let step = riplab::tui::tour::author::step_toml(&app, Some(path));
+    assert!(
+        step.contains("friction = \"coulomb\"\nmu = 0.4\nshift = 0.102\n"),
+        "{step}"
+    );
+    let text = format!("title = \"friction\"\n{step}");
+    let tour = Tour::parse(&text, "t.toml", Some(std::path::Path::new("/"))).unwrap();
+    assert_eq!(tour.app(0).settings.friction, app.settings.friction);
+    // The scenario's own friction is not written.
+    let (plain, _) = lab(&cattaneo(), 0);
+    assert!(!riplab::tui::tour::author::step_toml(&plain, None).contains("friction"));
+    for (keys, key, says) in [
+        ("mu = 0.3", "step[1].mu", "give friction = \"coulomb\""),
+        ("friction = \"coulomb\"\nmu = -1.0", "step[1].mu", "μ ≥ 0"),
+        ("friction = \"tresca\"", "step[1].threshold", "threshold"),
+        ("friction = \"stiction\"", "step[1].friction", "stiction"),
+    ] {
+        let text = format!("title = \"t\"\n[[step]]\ntitle = \"s\"\ncaption = \"c\"\n{keys}\n");
+        let e = Tour::parse(&text, "t.toml", None).unwrap_err().to_string();
+        assert!(
+            e.contains(key) && e.contains(says) && e.contains("t.toml"),
+            "{keys}: {e}"
+        );
+    }
+}

@@ -9,6 +9,7 @@
 pub mod author;
 mod embedded;
 pub mod errors;
+pub mod friction_step;
 pub mod handout;
 pub mod listing;
 mod player;
@@ -105,6 +106,8 @@ pub struct Step {
     pub zoom: bool,
     /// What the stress scene shows (`c` in the lab); None: τ₁.
     pub quantity: Option<Quantity>,
+    /// The friction law and shift over the scenario's (`F`, `u`/`U`, `<`/`>` in the lab).
+    pub friction: Option<friction_step::StepFriction>,
 }
 
 #[derive(Deserialize)]
@@ -135,6 +138,10 @@ struct RawStep {
     compare: Option<Spanned<String>>,
     overlays: Option<Spanned<Vec<Spanned<String>>>>,
     quantity: Option<Spanned<String>>,
+    friction: Option<Spanned<String>>,
+    mu: Option<Spanned<f64>>,
+    threshold: Option<Spanned<f64>>,
+    shift: Option<Spanned<f64>>,
 }
 
 impl Tour {
@@ -259,6 +266,9 @@ impl Tour {
             app.notice = None;
         }
         app.stress_quantity = step.quantity.unwrap_or(app.stress_quantity);
+        if let Some(f) = &step.friction {
+            app.settings.friction = f.over(app.settings.friction);
+        }
         app
     }
 }
@@ -446,6 +456,16 @@ fn step(src: &Source, n: usize, raw: &RawStep, dir: Option<&Path>) -> Result<Ste
         all_levels: on[2],
         zoom: on[3],
         quantity,
+        friction: friction_step::parse(
+            src,
+            n,
+            &friction_step::Raw {
+                law: raw.friction.as_ref(),
+                mu: raw.mu.as_ref(),
+                threshold: raw.threshold.as_ref(),
+                shift: raw.shift.as_ref(),
+            },
+        )?,
     })
 }
 
