@@ -93,8 +93,9 @@ pub struct StudyKey {
     pub epsilon: f64,
     /// How the stiffness's volumetric part is integrated (the lab's `i`).
     pub integration: Integration,
-    /// The friction of every row and of the reference (the lab's `F`).
-    pub friction: Friction,
+    /// The friction of every row and of the reference (the lab's `F`; boxed: the study's
+    /// key travels in the worker's replies, which stay small).
+    pub friction: Box<Friction>,
 }
 
 /// A method's parameters and ε are finite ([`Method::check`], [`super::app::EPSILON_RANGE`]),

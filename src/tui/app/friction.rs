@@ -11,6 +11,9 @@ use super::super::friction_settings::{
 };
 use super::{App, Notice};
 
+/// How a friction key's notice ends while its solve runs.
+const RE_SOLVING: &str = " — re-solving";
+
 /// Why a half model takes no friction, and where to find a full one.
 pub const HALF_MODEL: &str = "friction needs the full model (body.model = \"full\"): this half model holds u_x = 0 on its symmetry line; open scenarios/cattaneo-mindlin.toml or hertz-paper-full.toml";
 
@@ -130,17 +133,25 @@ impl App {
             .unwrap_or_else(|| round3(0.02 * self.scenario.h(self.settings.level)))
     }
 
+    /// A friction key's "— re-solving" gives way to the solve's own readout (Q, Q/(μP), the
+    /// stick zone) once it arrives; the log keeps it.
+    pub(super) fn solved_friction(&mut self) {
+        if self.notice.as_ref().is_some_and(|n| n.text.ends_with(RE_SOLVING)) {
+            self.notice = None;
+        }
+    }
+
     /// What the friction keys set, and what the solve will say of it.
     fn say_friction(&mut self) {
         let f = self.settings.friction;
-        let mut text = format!("friction: {} — re-solving", label(&f));
+        let mut text = format!("friction: {}{RE_SOLVING}", label(&f));
         if f.is_on() && matches!(self.settings.method, Method::Nitsche { .. }) {
             text = format!(
                 "friction: {} — nitsche takes no friction (m: another method)",
                 label(&f)
             );
         } else if !f.is_on() {
-            text = "friction off — re-solving".into();
+            text = format!("friction off{RE_SOLVING}");
         }
         self.notice = Some(Notice::info(text));
     }

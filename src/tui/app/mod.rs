@@ -285,7 +285,7 @@ impl App {
             methods,
             epsilon,
             integration: s.integration,
-            friction: s.friction,
+            friction: Box::new(s.friction),
         }
     }
 

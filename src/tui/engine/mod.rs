@@ -507,7 +507,7 @@ impl Engine {
         Ok(Studying {
             scenario: Scenario {
                 integration: key.integration,
-                friction: key.friction,
+                friction: *key.friction,
                 ..self.scenario.clone()
             },
             key: key.clone(),

@@ -64,6 +64,12 @@ pub fn press(app: &mut App, engine: &mut Engine, keys: &str) {
     }
 }
 
+/// The last message of the status line (a friction key's "— re-solving" gives way to the
+/// solve's readout when the solve arrives; the log keeps it).
+fn said(app: &App) -> String {
+    app.overlays.log.back().map(|l| l.1.clone()).unwrap_or_default()
+}
+
 fn close(a: f64, b: f64) -> bool {
     (a - b).abs() <= 1e-12 * a.abs().max(b.abs()).max(1e-300)
 }
@@ -138,7 +144,7 @@ fn the_friction_is_part_of_every_key() {
     let (mut app, mut engine) = lab(&scenario, 1);
     let with = app.current().unwrap().clone();
     let study = app.study_key();
-    assert_eq!(study.friction, scenario.friction);
+    assert_eq!(*study.friction, scenario.friction);
     // F: coulomb → tresca → none.
     press(&mut app, &mut engine, "FF");
     assert_eq!(app.settings.friction.law, Law::None);
@@ -225,7 +231,7 @@ fn the_friction_keys_say_what_they_did() {
         0.02 * width
     );
     assert_eq!(app.settings.friction.law, Law::Coulomb { mu: 0.3 });
-    let text = app.notice.clone().unwrap().text;
+    let text = said(&app);
     assert_eq!(
         text,
         format!(
@@ -235,6 +241,7 @@ fn the_friction_keys_say_what_they_did() {
     );
     let solved = app.current().unwrap();
     assert!(solved.solution.newton.converged && solved.shown.friction.is_some());
+    assert!(app.notice.is_none(), "the readout, once solved: {:?}", app.notice);
     // u/U through the list, to its ends.
     press(&mut app, &mut engine, "U");
     assert_eq!(app.settings.friction.law, Law::Coulomb { mu: 0.4 });
@@ -248,7 +255,7 @@ fn the_friction_keys_say_what_they_did() {
         app.settings.friction.shift,
         riplab::tui::friction_settings::round3(xi0 * 1.25)
     );
-    assert!(app.notice.clone().unwrap().text.contains("shift ξ = "));
+    assert!(said(&app).contains("shift ξ = "));
     // Tresca: g = μ × the shown p̄'s peak (μ at least 0.3), then ×/÷ 1.25.
     press(&mut app, &mut engine, "F");
     let Law::Tresca { threshold } = app.settings.friction.law else {
@@ -265,7 +272,7 @@ fn the_friction_keys_say_what_they_did() {
     assert!(app.current().unwrap().solution.newton.converged);
     press(&mut app, &mut engine, "F");
     assert_eq!(app.settings.friction.law, Law::None);
-    assert_eq!(app.notice.clone().unwrap().text, "friction off — re-solving");
+    assert_eq!(said(&app), "friction off — re-solving");
     // 0 returns to the scenario's (frictionless) settings.
     press(&mut app, &mut engine, "0");
     assert_eq!(app.settings.friction, Friction::NONE);
