@@ -13,8 +13,8 @@ pub const MU_STEPS: [f64; 10] = [0.0, 0.05, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.8, 1
 /// The factor of a step of g (`u`/`U`) and of the shift (`<`/`>`).
 pub const FACTOR: f64 = 1.25;
 /// The default shift ξ₀ as a share of the width the obstacle's outline cuts through the top
-/// at the depth d: 2% (Q/(μP) ≈ 0.35 on `hertz-paper-full` at μ = 0.3, ≈ 0.65 on
-/// `cattaneo-mindlin`; docs/design.md §11).
+/// at the depth d: 2%, partial slip (a stick and a slip zone) at μ = 0.3 on the repository's
+/// cylinders (measured in docs/design.md §11, "The lab").
 pub const SHIFT_SHARE: f64 = 0.02;
 /// The shifts `<`/`>` reach: |ξ| from ξ₀/100 to 20 ξ₀.
 pub const SHIFT_RANGE: (f64, f64) = (0.01, 20.0);
