@@ -132,9 +132,10 @@ impl StudyKey {
         self.max_level + 1
     }
 
-    /// What is compared, for messages: `M1–M4 (penalty)` or `the methods on M3`.
+    /// What is compared, for messages: `M1–M4 (penalty)` or `the methods on M3`, with the
+    /// friction when on (`… with coulomb μ = 0.3, shift ξ = 0.0815`).
     pub fn label(&self) -> String {
-        match self.compare {
+        let compared = match self.compare {
             Compare::Schemes => {
                 let methods: Vec<&str> = self.methods.iter().map(|m| m.name()).collect();
                 format!("M1–M4 ({})", methods.join(", "))
@@ -147,6 +148,14 @@ impl StudyKey {
                     .collect();
                 format!("the methods on {}", schemes.join(", "))
             }
+        };
+        if self.friction.is_on() {
+            format!(
+                "{compared} with {}",
+                super::friction_settings::label(&self.friction)
+            )
+        } else {
+            compared
         }
     }
 }

@@ -145,6 +145,11 @@ fn the_friction_is_part_of_every_key() {
     let with = app.current().unwrap().clone();
     let study = app.study_key();
     assert_eq!(*study.friction, scenario.friction);
+    assert_eq!(
+        study.label(),
+        "M1–M4 (exact) with coulomb μ = 0.3, shift ξ = 0.0815",
+        "the convergence scene says its study runs with the friction"
+    );
     // F: coulomb → tresca → none.
     press(&mut app, &mut engine, "FF");
     assert_eq!(app.settings.friction.law, Law::None);
