@@ -75,6 +75,13 @@ impl Mindlin {
 /// outermost stick points (between each and its outer neighbour), and the number of runs of
 /// consecutive stick points (1 for one zone); None with no stick point.
 pub fn stick_half_width(cp: &ContactPoints, states: &[State]) -> Option<(f64, usize)> {
+    stick_extent(cp, states).map(|(left, right, runs)| (0.5 * (right - left), runs))
+}
+
+/// The computed stick zone's ends (the midpoints outside its outermost stick points, or
+/// the outermost point itself at an end of Γ_C) and its number of runs; None with no stick
+/// point. [`stick_half_width`] is half the distance between the ends.
+pub fn stick_extent(cp: &ContactPoints, states: &[State]) -> Option<(f64, f64, usize)> {
     let stick: Vec<usize> = (0..states.len()).filter(|&q| states[q] == State::Stick).collect();
     let (&first, &last) = (stick.first()?, stick.last()?);
     let x = |q: usize| cp.points[q].x;
@@ -89,7 +96,7 @@ pub fn stick_half_width(cp: &ContactPoints, states: &[State]) -> Option<(f64, us
         0.5 * (x(last) + x(last + 1))
     };
     let runs = 1 + stick.windows(2).filter(|w| w[1] != w[0] + 1).count();
-    Some((0.5 * (right - left), runs))
+    Some((left, right, runs))
 }
 
 #[cfg(test)]

@@ -57,15 +57,22 @@ pub fn export_vtu(scenario: &Scenario, solved: &Solved, dir: &Path) -> Result<Pa
 
 /// `<scenario>-<element>-<rule>-L<level>-eps<ε>-d<depth>`, e.g.
 /// `hertz-paper-q1-gauss1-L1-eps1e-6-d0.8`; a method other than the penalty is named after
-/// the rule (`…-gauss1-alm-L1-…`; `exact` has ε = 0).
+/// the rule (`…-gauss1-alm-L1-…`; `exact` has ε = 0); with friction the law, μ or g and the
+/// shift follow (`…-d0.35-coulomb0.3-xi0.0815`).
 pub fn stem(scenario: &Scenario, solved: &Solved) -> String {
     let params = &solved.solution.params;
     let method = match params.method {
         crate::contact::Method::Penalty => String::new(),
         m => format!("-{}", m.name()),
     };
+    // With friction: the law, μ or g, and the shift.
+    let friction = solved.solution.friction.as_ref().map_or(String::new(), |f| {
+        let law = f.friction.law;
+        let value = law.mu().or(law.threshold()).unwrap_or(0.0);
+        format!("-{}{value}-xi{}", law.name(), f.friction.shift)
+    });
     format!(
-        "{}-{}-{}{method}-L{}-eps{:e}-d{}",
+        "{}-{}-{}{method}-L{}-eps{:e}-d{}{friction}",
         sanitize(&scenario.name),
         solved.key.element.name(),
         params.rule.name(),

@@ -83,6 +83,16 @@ pub enum LabAction {
     Projector,
     /// Open the log of every message since the lab started.
     Log,
+    /// The next friction law: none, coulomb, tresca (a full model only).
+    NextLaw,
+    /// μ (coulomb) one step up its list, or g (tresca) × 1.25.
+    FrictionUp,
+    /// μ one step down, or g ÷ 1.25.
+    FrictionDown,
+    /// The shift ξ × 1.25.
+    ShiftUp,
+    /// The shift ξ ÷ 1.25.
+    ShiftDown,
 }
 
 /// What a key does in the tour (any other key is the lab's).
@@ -192,6 +202,21 @@ pub const LAB: &[Row<LabAction>] = &[
         keys: "g  h",
         what: &["gap / Hertz overlay on the pressure chart"],
         bindings: &[(Char('g'), L::Gap), (Char('h'), L::Hertz)],
+    },
+    Row {
+        keys: "F",
+        what: &["friction law: none, coulomb, tresca"],
+        bindings: &[(Char('F'), L::NextLaw)],
+    },
+    Row {
+        keys: "u  U",
+        what: &["friction μ (or g) down / up a step"],
+        bindings: &[(Char('u'), L::FrictionDown), (Char('U'), L::FrictionUp)],
+    },
+    Row {
+        keys: "<  >",
+        what: &["shift ξ ÷ 1.25 / × 1.25 after the press"],
+        bindings: &[(Char('<'), L::ShiftDown), (Char('>'), L::ShiftUp)],
     },
     Row {
         keys: "z",

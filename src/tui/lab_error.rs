@@ -32,6 +32,11 @@ pub enum LabError {
         /// The element.
         element: Element,
     },
+    /// Friction asked of an edge-graded solve (`riplab solve` refuses it too).
+    #[error(
+        "friction: edge grading (E) does not take friction yet; E back to 0 passes, or F to friction none"
+    )]
+    GradedFriction,
     /// The thread of an inf-sup estimate ended without sending its result.
     #[error("the estimate ended without a result")]
     EstimateEnded,

@@ -19,6 +19,7 @@ mod estimating;
 pub mod eta;
 pub mod export;
 mod export_error;
+pub mod friction_settings;
 mod job;
 pub mod keys;
 pub mod lab_error;
@@ -31,6 +32,7 @@ mod runtime;
 mod runtime_export_tests;
 pub mod settle;
 pub mod shown;
+pub mod shown_friction;
 mod study_grading;
 #[cfg(test)]
 mod tests;

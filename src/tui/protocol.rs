@@ -10,6 +10,7 @@ use crossterm::event::KeyEvent;
 
 use super::export_error::ExportError;
 use super::lab_error::LabError;
+use crate::contact::friction::Friction;
 use crate::contact::method::Gamma0;
 use crate::contact::{Method, Rule};
 use crate::discretization::Discretization;
@@ -47,6 +48,9 @@ pub struct SolveKey {
     /// How the stiffness's volumetric part is integrated (`i` toggles full and selective;
     /// [`Integration`]): each has its own discretisation.
     pub integration: Integration,
+    /// The friction law and the shift after the press (`F`, `u`/`U`, `<`/`>`; docs/design.md
+    /// §11): a solve with friction is another solve.
+    pub friction: Friction,
 }
 
 /// Everything an inf-sup estimate depends on (the scenario aside).
@@ -92,6 +96,9 @@ pub struct StudyKey {
     /// The lab's edge grading (`E`): when it grades, each scheme and method also has a series
     /// graded so at every level, beside the uniform one (`riplab study --refine-edges 0,N`).
     pub refine_edges: RefineEdges,
+    /// The friction of every row and of the reference (the lab's `F`; boxed: the study's
+    /// key travels in the worker's replies, which stay small).
+    pub friction: Box<Friction>,
 }
 
 /// A method's parameters and ε are finite ([`Method::check`], [`super::app::EPSILON_RANGE`]),
@@ -107,6 +114,7 @@ impl std::hash::Hash for StudyKey {
         self.epsilon.to_bits().hash(state);
         self.integration.hash(state);
         self.refine_edges.to_string().hash(state);
+        super::friction_settings::hash_friction(&self.friction, state);
         for m in &self.methods {
             m.name().hash(state);
             m.theta().hash(state);
@@ -129,7 +137,8 @@ impl StudyKey {
     }
 
     /// What is compared, for messages: `M1–M4 (penalty)` or `the methods on M3`, with
-    /// `, uniform and +2e` when graded series go beside the uniform ones.
+    /// `, uniform and +2e` when graded series go beside the uniform ones, and the friction
+    /// when on (`… with coulomb μ = 0.3, shift ξ = 0.0815`).
     pub fn label(&self) -> String {
         let graded = self
             .graded_suffix()
@@ -149,7 +158,14 @@ impl StudyKey {
                 format!("the methods on {}", schemes.join(", "))
             }
         };
-        compared + &graded
+        if self.friction.is_on() {
+            format!(
+                "{compared}{graded} with {}",
+                super::friction_settings::label(&self.friction)
+            )
+        } else {
+            compared + &graded
+        }
     }
 }
 

@@ -4,6 +4,7 @@
 //! that load, and the
 //! contact zone the views zoom to.
 
+use super::shown_friction::FrictionShown;
 use crate::contact::circle::CircleContact;
 use crate::contact::hertz::Hertz;
 use crate::plot::raw_pressure_edges;
@@ -32,6 +33,8 @@ pub struct Shown {
     pub circle: Option<CircleContact>,
     /// The x range to zoom to ([`zoom_range`] over [`Shown::x_range`]); None without contact.
     pub zone: Option<[f64; 2]>,
+    /// The tangential traction and its numbers, with friction ([`FrictionShown`]).
+    pub friction: Option<FrictionShown>,
 }
 
 impl Shown {
@@ -72,6 +75,7 @@ impl Shown {
             hertz_error: hertz.map(|h| h.relative_error(&solution.points, &solution.pbar)),
             circle: CircleContact::for_load(&solution.params.obstacle, &scenario.material, full_load),
             zone: zoom_range(solution, half, (x_range[0], x_range[1])),
+            friction: FrictionShown::new(scenario, solution),
         }
     }
 }

@@ -59,7 +59,7 @@ fn check_lists_the_steps_without_a_terminal() {
     let paper = concat!(env!("CARGO_MANIFEST_DIR"), "/tours/paper.toml");
     let (code, out, _) = riplab(&["tour", "--check", paper]);
     assert_eq!(code, 0);
-    assert!(out.contains("a valid tour of 14 steps"), "{out}");
+    assert!(out.contains("a valid tour of 15 steps"), "{out}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

@@ -143,6 +143,11 @@ impl App {
                 }
             }
             LabAction::Zoom => self.toggle_zoom(),
+            LabAction::NextLaw => self.next_law(),
+            LabAction::FrictionUp => self.step_friction(true),
+            LabAction::FrictionDown => self.step_friction(false),
+            LabAction::ShiftUp => self.step_shift(true),
+            LabAction::ShiftDown => self.step_shift(false),
             LabAction::Grade => {
                 self.settings.refine_edges = next_grading(self.settings.refine_edges);
                 self.notice = Some(Notice::info(grading_notice(self.settings.refine_edges)));

@@ -14,6 +14,7 @@ pub use super::keys::ExportKind;
 use super::lab_error::LabError;
 
 mod dispatch;
+mod friction;
 mod integration;
 mod overlays;
 mod replies;
@@ -170,7 +171,7 @@ impl App {
         let settings = App::defaults(&scenario);
         // A contact zone too narrow to see on the whole of Γ_C opens zoomed in, and says so.
         let narrow = crate::tui::shown::narrow_contact(&scenario);
-        let notice = opening_notice(&scenario, narrow);
+        let notice = opening_notice(narrow);
         App {
             scenario,
             settings,
@@ -221,6 +222,7 @@ impl App {
             depth: scenario.obstacle.depth(),
             refine_edges: scenario.refine_edges,
             integration: scenario.integration,
+            friction: scenario.friction,
         }
     }
 
@@ -285,6 +287,7 @@ impl App {
             epsilon,
             integration: s.integration,
             refine_edges: s.refine_edges,
+            friction: Box::new(s.friction),
         }
     }
 
@@ -482,25 +485,13 @@ pub fn shift_decades(value: f64, decades: i32) -> f64 {
     }
 }
 
-/// What the lab says as it opens: that it solves without the scenario's friction (docs/design.md
-/// §11: `riplab solve` and `study` take it; the lab does not draw t yet), and that a contact
-/// zone too narrow to see on the whole of Γ_C is shown zoomed in.
-fn opening_notice(scenario: &Scenario, narrow: Option<f64>) -> Option<Notice> {
-    let friction = scenario.friction.is_on().then(|| {
-        format!(
-            "the lab solves without the scenario's friction ({}): `riplab solve` and `study` take it",
-            scenario.friction.law.name()
-        )
-    });
-    let zoom = narrow.map(|share| {
-        format!(
+/// What the lab says as it opens: that a contact zone too narrow to see on the whole of Γ_C
+/// is shown zoomed in.
+fn opening_notice(narrow: Option<f64>) -> Option<Notice> {
+    narrow.map(|share| {
+        Notice::info(format!(
             "the contact zone spans {:.1}% of Γ_C: opened zoomed in on it (z shows all of Γ_C)",
             100.0 * share
-        )
-    });
-    match (friction, zoom) {
-        (Some(f), Some(z)) => Some(Notice::failure(format!("{f}; {z}"))),
-        (Some(f), None) => Some(Notice::failure(f)),
-        (None, z) => z.map(Notice::info),
-    }
+        ))
+    })
 }

@@ -25,6 +25,7 @@ impl App {
                     Ok(solved) => {
                         self.solved = Some(solved);
                         self.error = None;
+                        self.solved_friction();
                     }
                     Err(e) => {
                         self.failed = Some(self.settings);

@@ -105,6 +105,11 @@ impl Engine {
             self.last_graded = None;
             return None;
         }
+        // Graded solves take no friction: the friction solve refuses them
+        // (LabError::GradedFriction), never this grid's frictionless answer.
+        if key.friction.is_on() {
+            return None;
+        }
         let last = self.last_graded.as_ref().filter(|l| l.serves == serves(&key))?;
         let params = self.contact_params(&key);
         let disc = last.disc.clone();

@@ -29,6 +29,7 @@ use super::protocol::{
 };
 use super::shown::Shown;
 
+mod friction;
 mod graded;
 pub mod studying;
 #[cfg(test)]
@@ -85,6 +86,9 @@ struct Warm {
     p: Vec<f64>,
     /// The method (with its parameters): what a background build prepares ([`Plan::method`]).
     method: Method,
+    /// The tangential forces of a solve with friction (None without): with `forces`, where
+    /// the next friction solve on the same points starts ([`crate::friction::solve_friction`]).
+    z: Option<Vec<f64>>,
 }
 
 /// Owns the discretisation cache (least recently used last out) and the warm start.
@@ -406,6 +410,9 @@ impl Engine {
                 ControlFlow::Continue(())
             })
         };
+        if key.friction.is_on() {
+            return self.solve_friction(req, disc, &params, points, t, is_current, report);
+        }
         // Graded at the contact edges: the passes of crate::grading from the uniform level's
         // solve, the final grid's discretisation shown (not cancellable between its passes).
         if key.refine_edges.grades() {
@@ -425,6 +432,7 @@ impl Engine {
                     x: solution.points.points.iter().map(|q| q.x).collect(),
                     p: solution.p.clone(),
                     method: key.method,
+                    z: None,
                 });
                 Response::Solved {
                     generation,
@@ -496,6 +504,7 @@ impl Engine {
         Ok(Studying {
             scenario: Scenario {
                 integration: key.integration,
+                friction: *key.friction,
                 ..self.scenario.clone()
             },
             key: key.clone(),

@@ -145,6 +145,7 @@ fn a_carried_start_that_fails_is_solved_again_from_rest() {
         x: vec![-1.0, 1.0],
         p: vec![f64::NAN, f64::NAN],
         method: key.method,
+        z: None,
     });
     let again = solve(&mut engine);
     assert!(again.solution.newton.converged);

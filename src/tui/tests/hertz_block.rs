@@ -59,23 +59,3 @@ fn the_hertz_overlay_reads_out_a_p0_and_the_error() {
     assert!(frame.contains(&legend), "`{legend}` in\n{frame}");
     assert!(error > 0.0 && error < 0.02, "{error}");
 }
-
-/// A scenario with friction opens with the lab saying it solves without it (the lab does not
-/// draw t yet: nothing the file asks for is dropped silently).
-#[test]
-fn the_lab_says_it_solves_without_the_scenarios_friction() {
-    let text = std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/scenarios/cattaneo-mindlin.toml"
-    ))
-    .unwrap();
-    let scenario = riplab::scenario::Scenario::parse(&text, "cattaneo-mindlin.toml").unwrap();
-    let app = riplab::tui::app::App::new(scenario);
-    let notice = app.notice.as_ref().expect("a notice");
-    assert!(
-        notice.failure && notice.text.contains("without the scenario's friction (coulomb)"),
-        "{notice:?}"
-    );
-    let plain = riplab::tui::app::App::new(riplab::scenario::Scenario::paper());
-    assert!(plain.notice.is_none(), "{:?}", plain.notice);
-}

@@ -9,6 +9,8 @@ mod common;
 mod authoring;
 mod axes;
 mod coinciding;
+mod friction;
+mod friction_frames;
 mod graded_study;
 mod grading_key;
 mod hertz_block;

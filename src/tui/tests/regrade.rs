@@ -198,3 +198,26 @@ fn a_uniform_solve_lets_the_graded_grid_go() {
         "the same lines, graded again"
     );
 }
+
+/// With a graded grid kept, switching friction on (`F`) does not serve that grid's
+/// frictionless answer: the lab refuses graded friction and says so.
+#[test]
+fn the_kept_graded_grid_does_not_serve_a_friction_solve() {
+    let scenario = Scenario::load(std::path::Path::new("scenarios/hertz-paper-full.toml")).unwrap();
+    let mut engine = Engine::new(scenario.clone());
+    let mut app = App::new(scenario);
+    app.show_timing = false;
+    app.settings.level = 1;
+    settle(&mut app, &mut engine);
+    press(&mut app, &mut engine, 'E');
+    press(&mut app, &mut engine, 'E');
+    press(&mut app, &mut engine, '+');
+    assert!(app.error.is_none() && app.solved.is_some());
+    press(&mut app, &mut engine, 'F');
+    assert!(
+        matches!(app.error, Some(riplab::tui::lab_error::LabError::GradedFriction)),
+        "{:?}",
+        app.error
+    );
+    assert!(app.solved.as_ref().is_some_and(|s| !s.key.friction.is_on()));
+}

@@ -58,7 +58,7 @@ fn frame(app: &App, w: u16, h: u16) -> String {
 
 /// The status area of a frame (issue 31: wrapped, never cut): its rows from the one with the
 /// key hints down, joined with single spaces.
-fn status_of(text: &str) -> String {
+pub(super) fn status_of(text: &str) -> String {
     let lines: Vec<&str> = text.lines().collect();
     let first = lines
         .iter()

@@ -88,6 +88,11 @@ pub fn step_toml(app: &App, scenario: Option<&str>) -> String {
         lines.push(format!("alm_tol = {}", float(tol)));
     }
     lines.push(format!("depth = {}", float(s.depth)));
+    lines.extend(super::friction_step::lines(
+        &s.friction,
+        &app.scenario.friction,
+        float,
+    ));
     lines.push(format!("scene = {}", text(app.scene.name())));
     if app.compare == Compare::Methods {
         lines.push("compare = \"methods\"".into());

@@ -7,7 +7,9 @@
 //! tick); [`view`] draws it; [`run_tour`] runs it in the terminal.
 
 pub mod author;
+mod embedded;
 pub mod errors;
+pub mod friction_step;
 pub mod handout;
 pub mod listing;
 mod player;
@@ -104,6 +106,8 @@ pub struct Step {
     pub zoom: bool,
     /// What the stress scene shows (`c` in the lab); None: τ₁.
     pub quantity: Option<Quantity>,
+    /// The friction law and shift over the scenario's (`F`, `u`/`U`, `<`/`>` in the lab).
+    pub friction: Option<friction_step::StepFriction>,
 }
 
 #[derive(Deserialize)]
@@ -134,6 +138,10 @@ struct RawStep {
     compare: Option<Spanned<String>>,
     overlays: Option<Spanned<Vec<Spanned<String>>>>,
     quantity: Option<Spanned<String>>,
+    friction: Option<Spanned<String>>,
+    mu: Option<Spanned<f64>>,
+    threshold: Option<Spanned<f64>>,
+    shift: Option<Spanned<f64>>,
 }
 
 impl Tour {
@@ -252,7 +260,15 @@ impl Tour {
         app.show_hertz = step.hertz;
         app.all_levels = step.all_levels;
         app.zoom = step.zoom;
+        // A step that zooms chose to: the lab's "opened zoomed in" notice would take the
+        // status line, whose numbers the caption quotes.
+        if step.zoom {
+            app.notice = None;
+        }
         app.stress_quantity = step.quantity.unwrap_or(app.stress_quantity);
+        if let Some(f) = &step.friction {
+            app.settings.friction = f.over(app.settings.friction);
+        }
         app
     }
 }
@@ -298,17 +314,20 @@ fn step(src: &Source, n: usize, raw: &RawStep, dir: Option<&Path>) -> Result<Ste
     let scenario = match &raw.scenario {
         None => None,
         Some(path) => {
-            let Some(dir) = dir else {
-                return Err(src.error(Some(path.span()), Some(key("scenario")), "a scenario path needs a tour file to be relative to; allowed only in a tour read from a file".into()));
-            };
-            let full = dir.join(path.get_ref());
-            Some(Scenario::load(&full).map_err(|e| {
+            let cannot = |e: ScenarioError| {
                 src.error(
                     Some(path.span()),
                     Some(key("scenario")),
                     format!("cannot load the scenario: {e}"),
                 )
-            })?)
+            };
+            match (dir, embedded::scenario_text(path.get_ref())) {
+                (Some(dir), _) => Some(Scenario::load(&dir.join(path.get_ref())).map_err(cannot)?),
+                (None, Some(text)) => Some(Scenario::parse(text, path.get_ref()).map_err(cannot)?),
+                (None, None) => {
+                    return Err(src.error(Some(path.span()), Some(key("scenario")), "a scenario path needs a tour file to be relative to; allowed only in a tour read from a file".into()));
+                }
+            }
         }
     };
     let (mut element, mut rule) = (
@@ -437,6 +456,16 @@ fn step(src: &Source, n: usize, raw: &RawStep, dir: Option<&Path>) -> Result<Ste
         all_levels: on[2],
         zoom: on[3],
         quantity,
+        friction: friction_step::parse(
+            src,
+            n,
+            &friction_step::Raw {
+                law: raw.friction.as_ref(),
+                mu: raw.mu.as_ref(),
+                threshold: raw.threshold.as_ref(),
+                shift: raw.shift.as_ref(),
+            },
+        )?,
     })
 }
 

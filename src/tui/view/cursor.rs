@@ -1,6 +1,7 @@
 //! The cursor on the pressure chart and the stress map (`x`, moved with `,` and `.`): a vertical line at a contact
 //! point of Γ_C (a vertex, where p̄ is defined) and a readout of x, p (both one-sided values
-//! where the raw pressure steps there), p̄, the gap g and, when overlaid, Hertz's pressure.
+//! where the raw pressure steps there), p̄, the gap g, with friction t and t̄ (t one-sided
+//! like p) and, when overlaid, Hertz's pressure.
 
 use ratatui::Frame;
 use ratatui::layout::Rect;
@@ -68,6 +69,18 @@ pub fn readout(app: &App) -> Option<String> {
             "–".into()
         }
     );
+    if let Some(f) = &solved.shown.friction {
+        let t: Vec<String> = raw_at(&f.t_edges, x).iter().map(|&v| sig(v, 4)).collect();
+        let tbar = f
+            .tbar
+            .iter()
+            .find(|v| v.0 == x)
+            .map_or("–".into(), |v| sig(v.1, 4));
+        text.push_str(&format!(
+            " · t {} · t̄ {tbar}",
+            if t.is_empty() { "–".into() } else { t.join(" | ") }
+        ));
+    }
     if app.show_hertz
         && let Some(h) = solved.shown.hertz
     {

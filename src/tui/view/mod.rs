@@ -7,6 +7,7 @@ mod convergence_graded;
 mod cursor;
 mod deformed;
 pub mod fmt;
+mod friction;
 mod header;
 pub mod help;
 mod infsup_chart;

@@ -11,7 +11,7 @@ use ratatui::widgets::{Block, Paragraph};
 use super::super::app::App;
 use super::fmt::{nice_ceil, sig};
 use super::plot::{Axis, Plot, Scale, Series, Stroke};
-use super::{Look, cursor};
+use super::{Look, cursor, friction};
 
 /// Samples of the overlays across the width.
 const OVERLAY_SAMPLES: usize = 41;
@@ -45,7 +45,14 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
     let peak = data_max
         .max(hertz.map_or(0.0, |h| h.p0))
         .max(circle.map_or(0.0, |c| c.p0));
+    // With friction: t, t̄, the stick zone and (with `h`) q on the same axis.
+    let friction = shown.friction.as_ref();
+    let layer = friction.map(|f| friction::Layer::new(f, xb, app.show_hertz));
+    let (peak, low) = layer
+        .as_ref()
+        .map_or((peak, 0.0), |l| (peak.max(l.peak()), l.low()));
     let ymax = nice_ceil(peak * 1.05);
+    let ymin = if low < 0.0 { -nice_ceil(-low * 1.05) } else { 0.0 };
 
     // Inside the contact zone only: outside it both are 0, on p̄'s own line, and their marks
     // along the whole axis hid it.
@@ -104,25 +111,46 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
             data: &circle_pts,
         });
     }
+    let inks = friction::Inks {
+        smooth: theme.ink(ratatui::style::Color::Green),
+        raw: theme.ink(ratatui::style::Color::LightRed),
+        overlay: theme.hertz_color(),
+        stick: theme.ink(ratatui::style::Color::LightGreen),
+    };
+    series.extend(layer.as_ref().and_then(|l| l.overlay(&inks)));
+    // With friction the legend is long: p's names short (the title names the rule).
+    let on = friction.is_some();
     series.push(Series {
-        name: "p̄ smoothed".into(),
+        name: if on { "p̄" } else { "p̄ smoothed" }.into(),
         color: theme.smooth_color(),
         stroke: Stroke::Solid,
         glyph: None,
         data: &shown.pbar,
     });
     series.push(Series {
-        name: format!("p {}", sol.params.rule.name()),
+        name: if on {
+            "p".into()
+        } else {
+            format!("p {}", sol.params.rule.name())
+        },
         color: theme.raw_color(),
         stroke: Stroke::Dotted,
         glyph: None,
         data: &shown.raw,
     });
+    if let Some(l) = &layer {
+        series.extend(l.series(&inks));
+    }
     // A contact zone under a sixth of the axis is worth zooming into: say so.
     let narrow = shown.zone.is_some_and(|[a, b]| b - a < (full[1] - full[0]) / 6.0);
     let key = solved.key;
     let title = format!(
-        " pressure on Γ_C{}{} · {}+{} level {} ",
+        " {}{}{} · {}+{} level {} ",
+        if friction.is_some() {
+            "p and t on Γ_C"
+        } else {
+            "pressure on Γ_C"
+        },
         if half { " (mirrored)" } else { "" },
         match (zoomed.is_some(), narrow) {
             (true, _) => " · zoom (z: back)",
@@ -141,8 +169,10 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
             scale: Scale::Linear,
         },
         y: Axis {
-            title: "p (units of E)".into(),
-            bounds: [0.0, ymax],
+            title: layer
+                .as_ref()
+                .map_or("p (units of E)".into(), friction::Layer::y_title),
+            bounds: [ymin, ymax],
             scale: Scale::Linear,
         },
         series,
@@ -150,6 +180,9 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
         theme,
     };
     let placed = plot.render(frame, area);
+    if let (Some(placed), Some(ends)) = (placed, layer.as_ref().and_then(|l| l.stick)) {
+        friction::draw_stick(frame, placed, xb, ends, look.marker, inks.stick);
+    }
     if let (Some(placed), Some((x, _))) = (placed, app.cursor_point()) {
         cursor::draw_line(frame, placed, xb, x, look.marker, theme);
     }

@@ -265,6 +265,9 @@ fn state(app: &App, theme: Theme) -> Vec<Span<'static>> {
     if app.scenario.half_model {
         spans.push(Span::raw(format!(" (full {})", sig(solved.shown.full_load, 5))));
     }
+    if let Some(f) = &solved.shown.friction {
+        spans.push(Span::raw(format!(" · {}", super::friction::status(f))));
+    }
     if app.show_timing {
         spans.push(Span::raw(format!(" · {} ms", sig(solved.total_ms, 3))));
     }

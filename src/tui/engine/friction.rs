@@ -1,0 +1,109 @@
+//! The lab's solve with friction (docs/design.md §11; issue 34): the press and the shift of
+//! [`solve_friction`], the library's entry that `riplab solve` calls, on the cached mesh (its
+//! full trace made once per mesh and kept with it), warm-started from the last friction
+//! solve on the same points. Edge grading does not take friction (as `riplab solve` refuses
+//! it); Nitsche's method and a half model are refused by the library, and the refusal is the
+//! reply.
+
+use std::ops::ControlFlow;
+use std::sync::{Arc, OnceLock};
+use std::time::Instant;
+
+use crate::contact::ContactParams;
+use crate::contact::newton::NewtonOptions;
+use crate::discretization::Discretization;
+use crate::error::SolveError;
+use crate::friction::solve_friction;
+
+use super::super::lab_error::LabError;
+use super::super::protocol::{Progress, Response, SolveRequest, Solved};
+use super::super::shown::Shown;
+use super::{Engine, ForcePoints, Warm};
+
+impl Engine {
+    /// Solve `req` (its friction on) on `disc` with `params`, on the force points `points`,
+    /// started at `t`; `is_current(generation)` false cancels it.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn solve_friction(
+        &mut self,
+        req: &SolveRequest,
+        disc: Arc<Discretization>,
+        params: &ContactParams,
+        points: ForcePoints,
+        t: Instant,
+        is_current: &dyn Fn(u64) -> bool,
+        report: &mut dyn FnMut(Response),
+    ) -> Response {
+        let (generation, key) = (req.generation, req.key);
+        if key.refine_edges.grades() {
+            return Response::Solved {
+                generation,
+                result: Err(LabError::GradedFriction),
+            };
+        }
+        let mut friction = key.friction;
+        // `exact` takes no tangential penalty (as it takes no ε): the scenario's ε_t is
+        // penalty's and alm's.
+        if !key.method.uses_epsilon() {
+            friction.epsilon_t = None;
+        }
+        // The last friction solve's forces when they live on these points.
+        let warm = self
+            .warm
+            .as_ref()
+            .filter(|w| w.points == points)
+            .and_then(|w| w.z.as_ref().map(|z| (w.forces.clone(), z.clone())));
+        let initial = warm.as_ref().map(|(y, z)| (y.as_slice(), z.as_slice()));
+        let result = solve_friction(
+            &disc,
+            params,
+            &friction,
+            initial,
+            &NewtonOptions::default(),
+            &mut |it| {
+                if !is_current(generation) {
+                    return ControlFlow::Break(());
+                }
+                report(Response::Progress {
+                    generation,
+                    progress: Progress::Newton {
+                        iteration: it.iteration,
+                        residual: it.residual,
+                        active: it.active,
+                    },
+                });
+                ControlFlow::Continue(())
+            },
+        );
+        match result {
+            Ok(solution) => {
+                self.warm = Some(Warm {
+                    points,
+                    forces: solution.newton.forces.clone(),
+                    x: solution.points.points.iter().map(|q| q.x).collect(),
+                    p: solution.p.clone(),
+                    method: key.method,
+                    z: solution.friction.as_ref().map(|f| f.z.clone()),
+                });
+                Response::Solved {
+                    generation,
+                    result: Ok(Arc::new(Solved {
+                        key,
+                        disc,
+                        shown: Shown::new(&self.scenario, &solution),
+                        solution,
+                        displacement: OnceLock::new(),
+                        total_ms: t.elapsed().as_secs_f64() * 1e3,
+                        stresses: OnceLock::new(),
+                        regrade: None,
+                    })),
+                }
+            }
+            Err(SolveError::Cancelled) => Response::Cancelled { generation },
+            Err(e) => Response::Solved {
+                generation,
+                result: Err(e.into()),
+            },
+        }
+    }
+}
