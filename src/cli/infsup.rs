@@ -10,7 +10,7 @@ use crate::contact::newton::NewtonOptions;
 use crate::contact::{ContactParams, Rule};
 use crate::discretization::Discretization;
 use crate::error::SolveError;
-use crate::grading::{RefineEdges, solve_graded};
+use crate::grading::{Grading, solve_graded};
 use crate::infsup::{InfSupRow, TraceCompliance, estimate, fits, fits_beside, slope};
 use crate::mesh::Element;
 use crate::output::{InfSupTable, output};
@@ -33,8 +33,13 @@ pub(super) fn infsup(args: &InfsupArgs) -> Result<ExitCode, CliError> {
     };
     let rows = if refine.grades() {
         note(&format!(
-            "riplab: --refine-edges {refine}: β_h on meshes graded at the contact edges, each \
+            "riplab: --refine-edges {refine}: β_h on meshes graded at the contact {}, each \
              scheme's by its own solve at ε = {}; h is the level's widest cell",
+            if matches!(refine, Grading::Zone(_)) {
+                "zone"
+            } else {
+                "edges"
+            },
             crate::text::num(scenario.epsilon)
         ));
         graded_table(&scenario, &pairs, &levels, refine)?
@@ -54,7 +59,7 @@ fn graded_table(
     scenario: &Scenario,
     pairs: &[(Element, Rule)],
     levels: &[u32],
-    refine: RefineEdges,
+    refine: Grading,
 ) -> Result<Vec<InfSupRow>, SolveError> {
     let mut rows: Vec<InfSupRow> = Vec::new();
     for &(element, rule) in pairs {

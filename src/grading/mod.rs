@@ -1,6 +1,6 @@
 //! Meshes graded at the contact edges (issue 35, docs/design.md §6): a uniform level's vertex
 //! lines with the intervals around each contact edge, and the rows of cells next to Γ_C,
-//! bisected once per pass. Where the pressure has its square-root profile (the edges of the
+//! bisected once per pass; or over the whole contact zone ([`zone`]). Where the pressure has its square-root profile (the edges of the
 //! contact zone), a uniform mesh's error of p and p̄ is set by the two cells that hold an
 //! edge; bisecting only there buys the accuracy of a much finer level for a few more unknowns.
 //!
@@ -14,6 +14,7 @@ use crate::mesh::{Element, Mesh};
 use crate::scenario::Scenario;
 
 pub mod solve;
+pub mod zone;
 
 pub use solve::{GradedSolve, Pass, solve_graded};
 
@@ -21,9 +22,10 @@ pub use solve::{GradedSolve, Pass, solve_graded};
 /// own), and how many of Γ_C's neighbouring rows of cells.
 pub const EDGE_WIDTH: usize = 2;
 
-pub use crate::refine_edges::{AUTO_TOLERANCE, MAX_PASSES, RefineEdges, RefineEdgesError};
+pub use crate::refine_edges::{AUTO_TOLERANCE, Grading, MAX_PASSES, RefineEdges, RefineEdgesError};
 
-/// A grid graded at the contact edges: a uniform level's vertex lines after `passes` passes.
+/// A grid graded at the contact edges (or over the contact zone): a uniform level's vertex
+/// lines after `passes` passes.
 #[derive(Clone, Debug, PartialEq)]
 pub struct GradedGrid {
     /// The uniform level it grades.

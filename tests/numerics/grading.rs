@@ -12,7 +12,7 @@ use riplab::study::{Plan, ReferenceFields, ReferenceMesh, study};
 #[test]
 fn m1_pbar_error_falls_with_every_pass() {
     let s = Scenario::paper();
-    let refine = [0, 1, 2, 3].map(RefineEdges::Passes);
+    let refine = [0, 1, 2, 3].map(|n| RefineEdges::Passes(n).into());
     let plan = Plan::Levels {
         levels: &[2],
         epsilon: riplab::penalty_error::default_epsilon(&s, 2),
