@@ -32,14 +32,16 @@ pub(super) fn infsup(args: &InfsupArgs) -> Result<ExitCode, CliError> {
         vec![(scenario.element, scenario.rule)]
     };
     let rows = if refine.grades() {
+        let (graded, h) = match refine {
+            Grading::Zone(_) => (
+                "over the contact zone",
+                "graded mesh's widest cell (a slope only between different h)",
+            ),
+            Grading::Edges(_) => ("at the contact edges", "level's widest cell"),
+        };
         note(&format!(
-            "riplab: --refine-edges {refine}: β_h on meshes graded at the contact {}, each \
-             scheme's by its own solve at ε = {}; h is the level's widest cell",
-            if matches!(refine, Grading::Zone(_)) {
-                "zone"
-            } else {
-                "edges"
-            },
+            "riplab: --refine-edges {refine}: β_h on meshes graded {graded}, each scheme's by its \
+             own solve at ε = {}; h is the {h}",
             crate::text::num(scenario.epsilon)
         ));
         graded_table(&scenario, &pairs, &levels, refine)?

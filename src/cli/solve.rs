@@ -19,7 +19,7 @@ pub(super) fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
     if friction_on && scenario.grading().grades() {
         return Err(usage(
             "--refine-edges",
-            "edge grading is not available with friction yet; use a finer level",
+            "grading (at the edges or over the zone) is not available with friction yet; use a finer level",
         ));
     }
     let level = scenario.level;

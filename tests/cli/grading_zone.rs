@@ -178,3 +178,30 @@ fn the_lab_refuses_zone_grading_clearly() {
         }
     }
 }
+
+/// `infsup --refine-edges 2z`: two levels whose zone-graded meshes have the same widest cell
+/// (0.25 at levels 0 and 1) get no slope, never an infinite one (it printed `-inf`); every
+/// number in the JSON is finite, and the note says what h is.
+#[test]
+fn infsup_over_the_zone_reports_no_infinite_slope() {
+    let args = ["infsup", "--levels", "0..1", "--refine-edges", "2z"];
+    let (code, table, stderr) = riplab(&args);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(!table.contains("inf") && !table.contains("NaN"), "{table}");
+    assert!(
+        stderr.contains("graded over the contact zone") && stderr.contains("graded mesh's widest cell"),
+        "{stderr}"
+    );
+    let (code, json, _) = riplab(&[&args[..], &["--format", "json"]].concat());
+    assert_eq!(code, 0);
+    let rows: Vec<serde_json::Value> = serde_json::from_str(&json).unwrap();
+    assert_eq!(rows.len(), 2);
+    assert_eq!((&rows[0]["h"], &rows[1]["h"]), (&0.25.into(), &0.25.into()));
+    assert!(rows[1]["slope"].is_null(), "{}", rows[1]);
+    for r in &rows {
+        assert!(
+            r["beta"].as_f64().is_some_and(|b| b.is_finite() && b > 0.0),
+            "{r}"
+        );
+    }
+}
