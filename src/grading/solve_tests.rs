@@ -78,9 +78,8 @@ fn a_graded_solve_is_the_solve_on_its_lines() {
             0.0,
         ),
     ];
-    for ((element, rule, method, epsilon), refine) in cases
-        .into_iter()
-        .flat_map(|c| gradings(2).map(|g| (c.clone(), g)))
+    for ((element, rule, method, epsilon), refine) in
+        cases.into_iter().flat_map(|c| gradings(2).map(|g| (c, g)))
     {
         let p = params(&s, rule, method, epsilon);
         let (g, _) = graded(&s, 2, element, &p, refine);
