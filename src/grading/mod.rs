@@ -1,8 +1,10 @@
 //! Meshes graded at the contact edges (issue 35, docs/design.md §6): a uniform level's vertex
 //! lines with the intervals around each contact edge, and the rows of cells next to Γ_C,
-//! bisected once per pass; or over the whole contact zone ([`zone`]). Where the pressure has its square-root profile (the edges of the
-//! contact zone), a uniform mesh's error of p and p̄ is set by the two cells that hold an
-//! edge; bisecting only there buys the accuracy of a much finer level for a few more unknowns.
+//! bisected once per pass; or over the whole contact zone ([`zone`]). Where the pressure has
+//! its square-root profile (the edges of the contact zone), a uniform mesh's error of p and p̄
+//! is set by the two cells that hold an edge; bisecting only there buys the accuracy of a much
+//! finer level for a few more unknowns, until (17) meets the band's changes of edge length
+//! ([`zone`] says why, and grades the whole zone instead).
 //!
 //! The same lines serve the study's reference ([`crate::study::ReferenceMesh::refined`]) and a
 //! graded solve ([`solve::solve_graded`]): grading is only a choice of lines, so a graded mesh

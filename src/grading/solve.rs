@@ -1,8 +1,9 @@
 //! A solve graded at its contact edges (issue 35): solve on the uniform level, find where the
 //! pressure's contact edges are, bisect the lines around them ([`GradedGrid::refined`]; over
-//! the contact zone: [`GradedGrid::zoned`]) and solve again, pass after pass. Each pass starts Newton from the last pass's pressure carried
-//! to the new points (forces = p(x)·w); the new grid has its own assembly, ordering and factor
-//! (nothing of the mesh's work carries over: its lines changed). Every method and element
+//! the contact zone: [`GradedGrid::zoned`]) and solve again, pass after pass. Each pass
+//! starts Newton from the last pass's pressure carried to the new points (forces = p(x)·w);
+//! the new grid has its own assembly, ordering and factor (nothing of the mesh's work carries
+//! over: its lines changed). Every method and element
 //! goes through [`solve_contact`], whose smoothing (17) uses the graded mesh's own weights.
 
 use std::ops::ControlFlow;
@@ -73,9 +74,10 @@ impl GradedSolve {
 /// Solve `params` on `uniform`, the discretisation of `scenario`'s `level`, then grade at the
 /// contact edges (or over the contact zone) as `refine` asks ([`Grading::wants_pass`]), each
 /// pass warm-started from the last. The grading stops early when the pressure has no contact
-/// edge (zone), or a pass does not converge (its solution is the result, not converged). A grid that does not fit the memory
-/// is refused before it is built. The uniform level's mesh work is the caller's to charge
-/// ([`Timing`] of the result: every pass's solve and every graded mesh's work).
+/// edge (zone), or a pass does not converge (its solution is the result, not converged). A
+/// grid that does not fit the memory is refused before it is built. The uniform level's mesh
+/// work is the caller's to charge ([`Timing`] of the result: every pass's solve and every
+/// graded mesh's work).
 pub fn solve_graded(
     scenario: &Scenario,
     (level, uniform): (u32, &Discretization),
