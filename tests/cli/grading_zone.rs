@@ -205,3 +205,31 @@ fn infsup_over_the_zone_reports_no_infinite_slope() {
         );
     }
 }
+
+/// Friction with a zone grading is refused as with an edge grading, naming both: `solve` and
+/// `study` on the full model with Coulomb friction, exit 2.
+#[test]
+fn friction_with_a_zone_grading_is_refused() {
+    let friction = [
+        "scenarios/hertz-paper-full.toml",
+        "--friction",
+        "coulomb",
+        "--mu",
+        "0.3",
+    ];
+    for args in [
+        [&["solve", "-l", "1", "--refine-edges", "2z"][..], &friction].concat(),
+        [
+            &["study", "--levels", "0..1", "--refine-edges", "0,1z"][..],
+            &friction,
+        ]
+        .concat(),
+    ] {
+        let (code, stdout, stderr) = riplab(&args);
+        assert_eq!(code, 2, "{args:?}: {stderr}");
+        assert!(stdout.is_empty());
+        no_panic(&stderr);
+        let named = "--refine-edges: grading (at the edges or over the zone) is not available with friction";
+        assert!(stderr.contains(named), "{args:?}: {stderr}");
+    }
+}
