@@ -298,9 +298,11 @@ impl InfSupRow {
     }
 }
 
-/// The observed slope of log β_h against log h between two rows (None where β_h = 0).
+/// The observed slope of log β_h against log h between two rows (None where β_h = 0, or where
+/// both have the same h: two zone-graded meshes of different levels may).
 pub fn slope(prev: &InfSupRow, row: &InfSupRow) -> Option<f64> {
-    (prev.beta > 0.0 && row.beta > 0.0).then(|| (row.beta / prev.beta).ln() / (row.h / prev.h).ln())
+    (prev.beta > 0.0 && row.beta > 0.0 && row.h != prev.h)
+        .then(|| (row.beta / prev.beta).ln() / (row.h / prev.h).ln())
 }
 
 /// The inf-sup table of `riplab infsup`: every pair of `pairs` at every level of `levels`,

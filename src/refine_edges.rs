@@ -1,6 +1,6 @@
-//! How many times a solve grades its mesh at the contact edges (issue 35): the value of
-//! `--refine-edges N|auto` and of a scenario's `[mesh] refine_edges`, the grading itself being
-//! [`crate::grading`]'s.
+//! How a solve grades its mesh (issue 35): the value of `--refine-edges N|Nz|auto` and of a
+//! scenario's `[mesh] refine_edges`, at the contact edges ([`RefineEdges`]) or over the contact
+//! zone ([`Grading::Zone`]), the grading itself being [`crate::grading`]'s.
 
 use std::fmt;
 
@@ -29,9 +29,11 @@ impl Default for RefineEdges {
     }
 }
 
-/// A refine-edges value that is neither `auto` nor a pass count in range.
+/// A refine-edges value that is neither `auto`, a pass count in range, nor a zone's (`Nz`).
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("`{given}` is not a number of edge-grading passes; allowed: 0 to {MAX_PASSES}, or auto")]
+#[error(
+    "`{given}` is not a grading; allowed: 0 to {MAX_PASSES}, or auto (passes at the contact edges), or 1z to {MAX_PASSES}z (passes over the contact zone)"
+)]
 pub struct RefineEdgesError {
     /// The text given (sanitised by the caller before it reaches a terminal).
     pub given: String,
@@ -85,6 +87,107 @@ impl fmt::Display for RefineEdges {
     }
 }
 
+/// How a solve grades its mesh: at the contact edges (`N`, `Ne`, `auto`: [`RefineEdges`]) or
+/// over the whole contact zone (`Nz`: [`crate::grading::zone`]). Written as on the command
+/// line (`3`, `auto`, `3z`), and so in JSON and CSV.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Grading {
+    /// Passes at the contact edges (`Passes(0)`: the uniform level).
+    Edges(RefineEdges),
+    /// This many passes over the contact zone (at least 1).
+    Zone(u32),
+}
+
+impl Default for Grading {
+    /// No grading: the uniform level.
+    fn default() -> Self {
+        Grading::Edges(RefineEdges::default())
+    }
+}
+
+impl From<RefineEdges> for Grading {
+    fn from(r: RefineEdges) -> Self {
+        Grading::Edges(r)
+    }
+}
+
+impl Grading {
+    /// `N` or `Ne` (edge passes), `auto`, or `Nz` (zone passes; `0z` is the uniform level).
+    pub fn parse(text: &str) -> Result<Self, RefineEdgesError> {
+        let text = text.trim();
+        let refused = || RefineEdgesError {
+            given: crate::text::sanitize(text).into_owned(),
+        };
+        let zone = text.strip_suffix(['z', 'Z']);
+        let count = zone.or_else(|| text.strip_suffix(['e', 'E']));
+        match count {
+            Some(n) if !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()) => {
+                let passes = RefineEdges::parse(n).map_err(|_| refused())?;
+                Ok(match (zone, passes) {
+                    (Some(_), RefineEdges::Passes(n)) if n > 0 => Grading::Zone(n),
+                    _ => Grading::Edges(passes),
+                })
+            }
+            Some(_) => Err(refused()),
+            None => RefineEdges::parse(text).map(Grading::Edges),
+        }
+    }
+
+    /// `n` passes of the kind of `self` (edges for `auto`).
+    pub fn with_passes(self, n: u32) -> Self {
+        match self {
+            Grading::Zone(_) if n > 0 => Grading::Zone(n),
+            _ => Grading::Edges(RefineEdges::Passes(n)),
+        }
+    }
+
+    /// Whether a solve with this setting grades at all.
+    pub fn grades(self) -> bool {
+        self != Grading::default()
+    }
+
+    /// The letter of a graded level's label (`4+3e`, `4+3z`).
+    pub fn letter(self) -> char {
+        match self {
+            Grading::Edges(_) => 'e',
+            Grading::Zone(_) => 'z',
+        }
+    }
+
+    /// The label of `level` after `passes` passes of this grading: `4`, `4+3e` or `4+3z`.
+    pub fn level_label(self, level: u32, passes: u32) -> String {
+        match passes {
+            0 => level.to_string(),
+            n => format!("{level}+{n}{}", self.letter()),
+        }
+    }
+
+    /// Whether another pass is wanted after `done` passes ([`RefineEdges::wants_pass`]).
+    pub fn wants_pass(self, done: u32, change: Option<f64>) -> bool {
+        match self {
+            Grading::Edges(r) => r.wants_pass(done, change),
+            Grading::Zone(n) => done < n,
+        }
+    }
+}
+
+impl fmt::Display for Grading {
+    /// As written on the command line: `3`, `auto` or `3z`.
+    fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        match self {
+            Grading::Edges(r) => r.fmt(f),
+            Grading::Zone(n) => write!(f, "{n}z"),
+        }
+    }
+}
+
+/// JSON carries the text of [`fmt::Display`] (`"3"`, `"auto"`, `"3z"`).
+impl serde::Serialize for Grading {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.collect_str(self)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -105,5 +208,33 @@ mod tests {
         assert!(
             RefineEdges::Passes(2).wants_pass(1, Some(0.0)) && !RefineEdges::Passes(2).wants_pass(2, None)
         );
+    }
+
+    /// `Nz` is a zone grading, `N`/`Ne`/`auto` an edge grading, `0z` the uniform level; the
+    /// text reads back; anything else names what is allowed.
+    #[test]
+    fn grading_parses_edges_and_zones() {
+        use Grading::{Edges, Zone};
+        assert_eq!(Grading::parse("3z"), Ok(Zone(3)));
+        assert_eq!(Grading::parse(" 2Z"), Ok(Zone(2)));
+        assert_eq!(Grading::parse("0z"), Ok(Grading::default()));
+        assert_eq!(Grading::parse("2e"), Ok(Edges(RefineEdges::Passes(2))));
+        assert_eq!(Grading::parse("2"), Ok(Edges(RefineEdges::Passes(2))));
+        assert_eq!(Grading::parse("auto"), Ok(Edges(RefineEdges::Auto)));
+        for g in [Zone(3), Edges(RefineEdges::Passes(2)), Edges(RefineEdges::Auto)] {
+            assert_eq!(Grading::parse(&g.to_string()), Ok(g));
+        }
+        for bad in ["9z", "z", "-1z", "2ze", "autoz", "1.5z", "ze"] {
+            let e = Grading::parse(bad).unwrap_err().to_string();
+            assert!(
+                e.contains("or 1z to 8z (passes over the contact zone)"),
+                "{bad}: {e}"
+            );
+        }
+        assert_eq!(Zone(3).level_label(4, 3), "4+3z");
+        assert_eq!(Zone(3).level_label(4, 0), "4");
+        assert_eq!(Edges(RefineEdges::Auto).level_label(4, 2), "4+2e");
+        assert!(Zone(2).wants_pass(1, Some(0.0)) && !Zone(2).wants_pass(2, Some(1.0)));
+        assert!(Zone(1).grades() && !Grading::default().grades());
     }
 }

@@ -7,7 +7,7 @@ use crate::contact::{Method, Obstacle, Rule};
 use crate::fem::{DofMap, Integration};
 use crate::material::Material;
 use crate::mesh::{self, Element, Mesh};
-use crate::refine_edges::RefineEdges;
+use crate::refine_edges::{Grading, RefineEdges};
 
 /// The paper's problem, half model: `scenarios/hertz-paper.toml`.
 pub const DEFAULT_SCENARIO: &str = include_str!("../scenarios/hertz-paper.toml");
@@ -47,6 +47,9 @@ pub struct Scenario {
     /// How many times a solve grades its mesh at the contact edges (`[mesh] refine_edges`;
     /// [`crate::grading`]).
     pub refine_edges: RefineEdges,
+    /// How many times a solve grades its mesh over the contact zone instead (`[mesh]
+    /// refine_edges = "Nz"`; 0: none, and then `refine_edges` says; [`Scenario::grading`]).
+    pub refine_zone: u32,
     /// The contact rule on Γ_C.
     pub rule: Rule,
     /// How the constraint is imposed: `[contact] method` (with its parameters), or by ε:
@@ -104,6 +107,23 @@ impl Scenario {
             (self.x_lines.len() - 1) << level,
             (self.y_lines.len() - 1) << level,
         )
+    }
+
+    /// How a solve grades its mesh: over the contact zone when `refine_zone` > 0, else at the
+    /// contact edges as `refine_edges` says.
+    pub fn grading(&self) -> Grading {
+        match self.refine_zone {
+            0 => Grading::Edges(self.refine_edges),
+            n => Grading::Zone(n),
+        }
+    }
+
+    /// Set how a solve grades its mesh (both fields of [`Scenario::grading`]).
+    pub fn set_grading(&mut self, grading: Grading) {
+        (self.refine_edges, self.refine_zone) = match grading {
+            Grading::Edges(r) => (r, 0),
+            Grading::Zone(n) => (RefineEdges::default(), n),
+        };
     }
 
     /// The penalty parameters accepted at `level` ([`crate::material::epsilon_range`]).

@@ -17,7 +17,7 @@ use crate::contact::friction::Friction;
 use crate::contact::{Method, Rule};
 use crate::discretization::Discretization;
 use crate::error::{InputFault, SolveError};
-use crate::grading::RefineEdges;
+use crate::grading::Grading;
 use crate::mesh::Element;
 use crate::scenario::Scenario;
 
@@ -187,14 +187,15 @@ fn strip(groups: Vec<Vec<(StudyRow, Option<Kept>)>>) -> Vec<Vec<StudyRow>> {
 #[derive(Clone, Copy, Debug)]
 pub enum Plan<'a> {
     /// Every scheme at each of `levels`, at `epsilon` ([`convergence`]), for each grading of
-    /// `refine` (`--refine-edges`; `[RefineEdges::default()]`: uniform levels only).
+    /// `refine` (`--refine-edges`; `[Grading::default()]`: uniform levels only).
     Levels {
         /// The levels studied.
         levels: &'a [u32],
         /// The penalty parameter ε of every row.
         epsilon: f64,
-        /// The edge gradings, each a series per scheme ([`crate::grading`]).
-        refine: &'a [RefineEdges],
+        /// The gradings (at the edges or over the zone), each a series per scheme
+        /// ([`crate::grading`]).
+        refine: &'a [Grading],
     },
     /// Every scheme at `level`, at each of `epsilons` ([`epsilon_sweep`]).
     Sweep {

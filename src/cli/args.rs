@@ -135,9 +135,10 @@ pub struct SolveArgs {
     #[arg(long, requires = "output")]
     pub force: bool,
     /// Grade the mesh at the contact edges: bisect the lines around them and re-solve, N
-    /// times (0 to 8), or `auto` until p̄ changes by less than 1e-3 [default: the scenario's
-    /// `[mesh] refine_edges`, else 0]
-    #[arg(long, value_name = "N|auto", allow_hyphen_values = true)]
+    /// times (0 to 8), or `auto` until p̄ changes by less than 1e-3; `Nz` (1z to 8z) grades
+    /// over the whole contact zone instead: Γ_C uniform across it, halved N times, the cells
+    /// growing away from it and from Γ_C [default: the scenario's `[mesh] refine_edges`, else 0]
+    #[arg(long, value_name = "N|Nz|auto", allow_hyphen_values = true)]
     pub refine_edges: Option<String>,
 }
 
@@ -154,9 +155,9 @@ pub struct InfsupArgs {
     #[arg(long, conflicts_with_all = ["element", "rule", "scheme"])]
     pub all: bool,
     /// Estimate on meshes graded at the contact edges: each scheme's own solve graded N times
-    /// (or `auto`), as `solve --refine-edges` grades [default: the scenario's `[mesh]
-    /// refine_edges`, else 0]
-    #[arg(long, value_name = "N|auto")]
+    /// (or `auto`; `Nz` over the contact zone), as `solve --refine-edges` grades [default: the
+    /// scenario's `[mesh] refine_edges`, else 0]
+    #[arg(long, value_name = "N|Nz|auto")]
     pub refine_edges: Option<String>,
     /// Output format (docs/design.md §7).
     #[arg(long, short, value_enum, default_value_t = Format::Table)]
@@ -211,8 +212,10 @@ pub struct StudyArgs {
     /// Output format (docs/design.md §7).
     #[arg(long, short, value_enum, default_value_t = Format::Table)]
     pub format: Format,
-    /// Edge gradings to study beside the levels, comma-separated (each 0 to 8 or `auto`): a
-    /// series per scheme and value [default: the scenario's `[mesh] refine_edges`, else 0]
+    /// Gradings to study beside the levels, comma-separated (each 0 to 8 or `auto` at the
+    /// contact edges, or 1z to 8z over the contact zone, as `solve --refine-edges`): a series
+    /// per scheme and value, its rows labelled `4+3e`, `4+3z` [default: the scenario's `[mesh]
+    /// refine_edges`, else 0]
     #[arg(
         long,
         value_delimiter = ',',

@@ -1,5 +1,5 @@
-//! `--refine-edges N|auto` of `riplab solve` and the axis `--refine-edges 0,1,2,…` of `riplab
-//! study` ([`crate::grading`]): parsed and checked here, solved through
+//! `--refine-edges N|Nz|auto` of `riplab solve` and the axis `--refine-edges 0,1,2z,…` of
+//! `riplab study` ([`crate::grading`]): parsed and checked here, solved through
 //! [`solve_graded`].
 
 use super::{CliError, usage};
@@ -7,29 +7,47 @@ use crate::contact::ContactParams;
 use crate::contact::newton::NewtonOptions;
 use crate::discretization::Discretization;
 use crate::error::SolveError;
-use crate::grading::{RefineEdges, solve_graded};
+use crate::grading::{Grading, RefineEdges, solve_graded};
 use crate::scenario::Scenario;
 use crate::solution::Solution;
 use crate::solve::sweep;
 
 /// The grading of a solve: `--refine-edges` when given, else the scenario's
 /// `[mesh] refine_edges`.
-pub(super) fn refine_edges(text: Option<&str>, scenario: &Scenario) -> Result<RefineEdges, CliError> {
+pub(super) fn refine_edges(text: Option<&str>, scenario: &Scenario) -> Result<Grading, CliError> {
     match text {
-        Some(t) => RefineEdges::parse(t).map_err(|e| usage("--refine-edges", e)),
-        None => Ok(scenario.refine_edges),
+        Some(t) => Grading::parse(t).map_err(|e| usage("--refine-edges", e)),
+        None => Ok(scenario.grading()),
+    }
+}
+
+/// The lab's grading (`render --refine-edges`, the scenario's `[mesh] refine_edges`): at the
+/// contact edges only, its `E` key's values; a zone grading (`Nz`) is refused, naming where it
+/// came from.
+pub(super) fn lab_grading(text: Option<&str>, scenario: &Scenario) -> Result<RefineEdges, CliError> {
+    match refine_edges(text, scenario)? {
+        Grading::Edges(r) => Ok(r),
+        Grading::Zone(n) => Err(CliError::Usage(format!(
+            "{}: {n}z grades over the contact zone, which the lab does not (yet); it grades at the contact edges: 0 to {}, or auto",
+            if text.is_some() {
+                "--refine-edges"
+            } else {
+                "the scenario's [mesh] refine_edges"
+            },
+            crate::grading::MAX_PASSES
+        ))),
     }
 }
 
 /// A study's gradings: each value of `--refine-edges` once, in the order given, else the
 /// scenario's `[mesh] refine_edges`.
-pub(super) fn refine_axis(texts: &[String], scenario: &Scenario) -> Result<Vec<RefineEdges>, CliError> {
+pub(super) fn refine_axis(texts: &[String], scenario: &Scenario) -> Result<Vec<Grading>, CliError> {
     if texts.is_empty() {
-        return Ok(vec![scenario.refine_edges]);
+        return Ok(vec![scenario.grading()]);
     }
-    let mut out: Vec<RefineEdges> = Vec::new();
+    let mut out: Vec<Grading> = Vec::new();
     for t in texts {
-        let r = RefineEdges::parse(t).map_err(|e| usage("--refine-edges", e))?;
+        let r = Grading::parse(t).map_err(|e| usage("--refine-edges", e))?;
         if !out.contains(&r) {
             out.push(r);
         }
@@ -49,7 +67,7 @@ pub(super) fn solve_all(
     scenario: &Scenario,
     uniform: &Discretization,
     params: &[ContactParams],
-    refine: RefineEdges,
+    refine: Grading,
 ) -> Vec<Outcome> {
     if !refine.grades() {
         return sweep(uniform, params).into_iter().map(|r| (r, None, 0)).collect();

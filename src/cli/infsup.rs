@@ -10,7 +10,7 @@ use crate::contact::newton::NewtonOptions;
 use crate::contact::{ContactParams, Rule};
 use crate::discretization::Discretization;
 use crate::error::SolveError;
-use crate::grading::{RefineEdges, solve_graded};
+use crate::grading::{Grading, solve_graded};
 use crate::infsup::{InfSupRow, TraceCompliance, estimate, fits, fits_beside, slope};
 use crate::mesh::Element;
 use crate::output::{InfSupTable, output};
@@ -32,9 +32,16 @@ pub(super) fn infsup(args: &InfsupArgs) -> Result<ExitCode, CliError> {
         vec![(scenario.element, scenario.rule)]
     };
     let rows = if refine.grades() {
+        let (graded, h) = match refine {
+            Grading::Zone(_) => (
+                "over the contact zone",
+                "graded mesh's widest cell (a slope only between different h)",
+            ),
+            Grading::Edges(_) => ("at the contact edges", "level's widest cell"),
+        };
         note(&format!(
-            "riplab: --refine-edges {refine}: β_h on meshes graded at the contact edges, each \
-             scheme's by its own solve at ε = {}; h is the level's widest cell",
+            "riplab: --refine-edges {refine}: β_h on meshes graded {graded}, each scheme's by its \
+             own solve at ε = {}; h is the {h}",
             crate::text::num(scenario.epsilon)
         ));
         graded_table(&scenario, &pairs, &levels, refine)?
@@ -54,7 +61,7 @@ fn graded_table(
     scenario: &Scenario,
     pairs: &[(Element, Rule)],
     levels: &[u32],
-    refine: RefineEdges,
+    refine: Grading,
 ) -> Result<Vec<InfSupRow>, SolveError> {
     let mut rows: Vec<InfSupRow> = Vec::new();
     for &(element, rule) in pairs {

@@ -61,6 +61,7 @@ pub(super) fn lab(
         ..Select::default()
     }
     .resolve()?;
+    super::grading::lab_grading(None, &scenario)?;
     let record = tour::with_terminal("the lab", record.as_deref())?;
     crate::tui::run(scenario, file.as_deref(), &opts, record).map_err(|e| CliError::Failed(e.to_string()))?;
     Ok(ExitCode::SUCCESS)
@@ -71,7 +72,8 @@ pub(super) fn render(args: &RenderArgs, marker: MarkerChoice) -> Result<ExitCode
     let (width, height) = crate::tui::parse_size(&args.size).map_err(|m| usage("--size", m))?;
     let input = render_args::render_input(args)?;
     let mut scenario = args.select.resolve()?;
-    scenario.refine_edges = super::grading::refine_edges(args.refine_edges.as_deref(), &scenario)?;
+    let grading = super::grading::lab_grading(args.refine_edges.as_deref(), &scenario)?;
+    scenario.set_grading(grading.into());
     if let Some(method) = input
         .method
         .map_or_else(|| args.method.resolve(&scenario), |m| Ok(Some(m)))?

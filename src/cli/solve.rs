@@ -12,14 +12,14 @@ use crate::{check, vtu};
 
 pub(super) fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
     let mut scenario = args.select.resolve()?;
-    scenario.refine_edges = grading::refine_edges(args.refine_edges.as_deref(), &scenario)?;
+    scenario.set_grading(grading::refine_edges(args.refine_edges.as_deref(), &scenario)?);
     let method = args.method.resolve(&scenario)?;
     let frictions = args.friction.resolve(&scenario)?;
     let friction_on = frictions[0].is_on();
-    if friction_on && scenario.refine_edges.grades() {
+    if friction_on && scenario.grading().grades() {
         return Err(usage(
             "--refine-edges",
-            "edge grading is not available with friction yet; use a finer level",
+            "grading (at the edges or over the zone) is not available with friction yet; use a finer level",
         ));
     }
     let level = scenario.level;
@@ -133,7 +133,7 @@ pub(super) fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
         }
         super::friction_solve::solve_all(&disc, &instances, &frictions)
     } else {
-        grading::solve_all(&scenario, &disc, &instances, scenario.refine_edges)
+        grading::solve_all(&scenario, &disc, &instances, scenario.grading())
     };
     for (params, (solved, graded, passes)) in instances.iter().zip(outcomes) {
         let disc = graded.as_ref().unwrap_or(&disc);
@@ -158,7 +158,7 @@ pub(super) fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
             ));
         }
         let mut report = SolveReport::new(&scenario, level, disc, &sol);
-        report.refine_edges = passes;
+        (report.refine_edges, report.grading) = (passes, scenario.grading());
         rows.push(SweepRow::Solved(Box::new(report)));
         if let Some(path) = &args.plot {
             let title = crate::plot::chart_title(&scenario.name, disc.mesh.element, level, &sol);

@@ -123,7 +123,7 @@ pub(super) fn study(args: &StudyArgs) -> Result<ExitCode, CliError> {
     if scenario.friction.is_on() && refine.iter().any(|r| r.grades()) {
         return Err(usage(
             "--refine-edges",
-            "edge grading is not available with friction yet; study uniform levels (--refine-edges 0)",
+            "grading (at the edges or over the zone) is not available with friction yet; study uniform levels (--refine-edges 0)",
         ));
     }
     let plan = if args.sweep_epsilon.is_empty() {

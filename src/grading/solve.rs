@@ -1,8 +1,9 @@
 //! A solve graded at its contact edges (issue 35): solve on the uniform level, find where the
-//! pressure's contact edges are, bisect the lines around them ([`GradedGrid::refined`]) and
-//! solve again, pass after pass. Each pass starts Newton from the last pass's pressure carried
-//! to the new points (forces = p(x)·w); the new grid has its own assembly, ordering and factor
-//! (nothing of the mesh's work carries over: its lines changed). Every method and element
+//! pressure's contact edges are, bisect the lines around them ([`GradedGrid::refined`]; over
+//! the contact zone: [`GradedGrid::zoned`]) and solve again, pass after pass. Each pass
+//! starts Newton from the last pass's pressure carried to the new points (forces = p(x)·w);
+//! the new grid has its own assembly, ordering and factor (nothing of the mesh's work carries
+//! over: its lines changed). Every method and element
 //! goes through [`solve_contact`], whose smoothing (17) uses the graded mesh's own weights.
 
 use std::ops::ControlFlow;
@@ -20,7 +21,8 @@ use crate::scenario::Scenario;
 use crate::solution::{Solution, Timing};
 use crate::solve::solve_contact;
 
-use super::{GradedGrid, RefineEdges, contact_edges};
+use super::zone::contact_zones;
+use super::{GradedGrid, Grading, contact_edges};
 
 /// One pass of a graded solve, as reported.
 #[derive(Clone, Debug, PartialEq)]
@@ -70,20 +72,23 @@ impl GradedSolve {
 }
 
 /// Solve `params` on `uniform`, the discretisation of `scenario`'s `level`, then grade at the
-/// contact edges as `refine` asks ([`RefineEdges::wants_pass`]), each pass warm-started from
-/// the last. The grading stops early when the pressure has no contact edge, or a pass does not
-/// converge (its solution is the result, not converged). A grid that does not fit the memory
-/// is refused before it is built. The uniform level's mesh work is the caller's to charge
-/// ([`Timing`] of the result: every pass's solve and every graded mesh's work).
+/// contact edges (or over the contact zone) as `refine` asks ([`Grading::wants_pass`]), each
+/// pass warm-started from the last. The grading stops early when the pressure has no contact
+/// edge (zone), or a pass does not converge (its solution is the result, not converged). A
+/// grid that does not fit the memory is refused before it is built. The uniform level's mesh
+/// work is the caller's to charge ([`Timing`] of the result: every pass's solve and every
+/// graded mesh's work).
 pub fn solve_graded(
     scenario: &Scenario,
     (level, uniform): (u32, &Discretization),
     params: &ContactParams,
-    refine: RefineEdges,
+    refine: impl Into<Grading>,
     opts: &NewtonOptions,
 ) -> Result<GradedSolve, SolveError> {
+    let refine = refine.into();
     let element = uniform.mesh.element;
-    let mut grid = GradedGrid::uniform(scenario, level);
+    let base = GradedGrid::uniform(scenario, level);
+    let mut grid = base.clone();
     let mut graded: Option<Discretization> = None;
     let mut sol = solve_contact(uniform, params, None, opts, &mut |_| ControlFlow::Continue(()))?;
     let mut passes = vec![Pass {
@@ -94,7 +99,11 @@ pub fn solve_graded(
     }];
     let mut spent = sol.timing;
     while refine.wants_pass(grid.passes, passes[passes.len() - 1].pbar_change) && sol.newton.converged {
-        let Some(next) = grid.refined(&contact_edges(&sol.points, &sol.p)) else {
+        let next = match refine {
+            Grading::Edges(_) => grid.refined(&contact_edges(&sol.points, &sol.p)),
+            Grading::Zone(_) => grid.zoned(&base, &contact_zones(&sol.points, &sol.p)),
+        };
+        let Some(next) = next else {
             break;
         };
         fits(scenario, &next, element)?;

@@ -1,6 +1,7 @@
-//! The tests issue 35 lists that need no reference: a graded solve is a solve on its lines;
-//! the lines nest and hold the contact edges; the inf-sup estimate runs on graded meshes (M1's
-//! p̄ error falling with every pass is tests/numerics/grading.rs).
+//! The tests issue 35 lists that need no reference, for both gradings (at the edges, over the
+//! zone): a graded solve is a solve on its lines; the lines nest and hold the contact edges;
+//! the inf-sup estimate runs on graded meshes (M1's p̄ error falling with every pass is
+//! tests/numerics/grading.rs).
 
 use std::ops::ControlFlow;
 
@@ -26,18 +27,16 @@ fn graded(
     level: u32,
     element: Element,
     p: &ContactParams,
-    n: u32,
+    refine: Grading,
 ) -> (GradedSolve, Discretization) {
     let uniform = Discretization::of(scenario, level, element).unwrap();
-    let g = solve_graded(
-        scenario,
-        (level, &uniform),
-        p,
-        RefineEdges::Passes(n),
-        &NewtonOptions::default(),
-    )
-    .unwrap();
+    let g = solve_graded(scenario, (level, &uniform), p, refine, &NewtonOptions::default()).unwrap();
     (g, uniform)
+}
+
+/// Two and three passes of each grading.
+fn gradings(n: u32) -> [Grading; 2] {
+    [RefineEdges::Passes(n).into(), Grading::Zone(n)]
 }
 
 fn fresh(disc: &Discretization, p: &ContactParams) -> Solution {
@@ -56,7 +55,7 @@ fn relative(a: &[f64], b: &[f64]) -> f64 {
 
 /// A graded solve equals a fresh solve on a scenario whose level-0 lines are the graded ones
 /// (the grading is only a choice of lines, and the warm start only a start), for every
-/// method and element.
+/// method and element, at the edges and over the zone.
 #[test]
 fn a_graded_solve_is_the_solve_on_its_lines() {
     let s = Scenario::paper();
@@ -79,9 +78,11 @@ fn a_graded_solve_is_the_solve_on_its_lines() {
             0.0,
         ),
     ];
-    for (element, rule, method, epsilon) in cases {
+    for ((element, rule, method, epsilon), refine) in
+        cases.into_iter().flat_map(|c| gradings(2).map(|g| (c, g)))
+    {
         let p = params(&s, rule, method, epsilon);
-        let (g, _) = graded(&s, 2, element, &p, 2);
+        let (g, _) = graded(&s, 2, element, &p, refine);
         assert_eq!(
             g.grid.passes, 2,
             "{element:?} {method:?}: {:?}",
@@ -92,7 +93,7 @@ fn a_graded_solve_is_the_solve_on_its_lines() {
         let disc = Discretization::of(&lines, 0, element).unwrap();
         let sol = fresh(&disc, &p);
         assert!(g.sol.newton.converged && sol.newton.converged);
-        let what = format!("{element:?} {rule:?} {method:?}");
+        let what = format!("{element:?} {rule:?} {method:?} {refine}");
         assert!(
             relative(&sol.p, &g.sol.p) <= 1e-12,
             "{what}: p {}",
@@ -106,13 +107,19 @@ fn a_graded_solve_is_the_solve_on_its_lines() {
 
 /// The graded lines contain the uniform level's (nesting, as the reference's), each pass
 /// halves the smallest cell, and the contact edges of the final solve lie in the finest band:
-/// the paper's problem (two edges: the symmetry line is not one) and two-bumps (four).
+/// the paper's problem (two edges: the symmetry line is not one) and two-bumps (four). Over
+/// the zone, every edge of Γ_C with a pressed point, and its neighbours, has the smallest
+/// length: (17) sees no change of edge length where p > 0.
 #[test]
 fn the_lines_nest_and_the_final_edges_lie_in_the_band() {
     let bumps = Scenario::load(std::path::Path::new("scenarios/two-bumps.toml")).unwrap();
-    for (s, level, n_edges) in [(Scenario::paper(), 3, 1), (bumps, 2, 4)] {
+    let cases = [(Scenario::paper(), 3, 1), (bumps, 2, 4)];
+    for ((s, level, n_edges), refine) in cases
+        .into_iter()
+        .flat_map(|c| gradings(3).map(|g| (c.clone(), g)))
+    {
         let p = params(&s, s.rule, Method::Penalty, s.epsilon);
-        let (g, uniform) = graded(&s, level, s.element, &p, 3);
+        let (g, uniform) = graded(&s, level, s.element, &p, refine);
         let lines = GradedGrid::uniform(&s, level);
         assert!(lines.xs.iter().all(|x| g.grid.xs.contains(x)), "{}", s.name);
         assert!(lines.ys.iter().all(|y| g.grid.ys.contains(y)), "{}", s.name);
@@ -122,40 +129,53 @@ fn the_lines_nest_and_the_final_edges_lie_in_the_band() {
         let edges = contact_edges(&g.sol.points, &g.sol.p);
         assert!(edges.len() >= n_edges, "{}: {edges:?}", s.name);
         let x = &g.sol.points.vertex_x;
-        for e in edges {
+        for &e in &edges {
             assert!(
                 g.grid.in_band(0.5 * (x[e] + x[e + 1])),
-                "{}: edge {e} at {}",
+                "{} {refine}: edge {e} at {}",
                 s.name,
                 x[e]
             );
         }
+        if let Grading::Zone(_) = refine {
+            let zones = super::zone::contact_zones(&g.sol.points, &g.sol.p);
+            assert_eq!(zones.len(), n_edges.div_ceil(2), "{} {zones:?}", s.name);
+            for (a, b) in zones {
+                let span = &x[a.saturating_sub(1)..=(b + 2).min(x.len() - 1)];
+                let h = h_min(&g.grid.xs, &g.grid.xs);
+                let uniform = span.windows(2).all(|w| ((w[1] - w[0]) - h).abs() <= 1e-12 * h);
+                assert!(uniform, "{} {refine}: {span:?}", s.name);
+            }
+        }
     }
 }
 
-/// The inf-sup estimate runs on a graded mesh: β_h and β̄_h of M1 on the graded lines are the
-/// explicit-lines mesh's, finite and positive, and grading lowers β_h below the uniform
+/// The inf-sup estimate runs on a graded mesh (either grading): β_h and β̄_h of M1 on the
+/// graded lines are the explicit-lines mesh's, finite and positive, and grading lowers β_h below the uniform
 /// level's (its smallest edges are finer: β_h ∝ √h_min where the pressure lives on them).
 #[test]
 fn the_inf_sup_estimate_runs_on_graded_meshes() {
     let s = Scenario::paper();
     let p = params(&s, Rule::Gauss1, Method::Penalty, 1e-6);
-    let (g, uniform) = graded(&s, 1, Element::Q1, &p, 2);
-    let on_graded = crate::infsup::inf_sup(g.disc(&uniform), Rule::Gauss1).unwrap();
-    let mut lines = s.clone();
-    (lines.x_lines, lines.y_lines, lines.level) = (g.grid.xs.clone(), g.grid.ys.clone(), 0);
-    let explicit =
-        crate::infsup::inf_sup(&Discretization::of(&lines, 0, Element::Q1).unwrap(), Rule::Gauss1).unwrap();
-    let on_uniform = crate::infsup::inf_sup(&uniform, Rule::Gauss1).unwrap();
-    assert!(on_graded.beta.is_finite() && on_graded.beta > 0.0 && on_graded.beta_bar > 0.0);
-    assert!((on_graded.beta - explicit.beta).abs() <= 1e-9 * explicit.beta);
-    assert!((on_graded.beta_bar - explicit.beta_bar).abs() <= 1e-9 * explicit.beta_bar);
-    assert!(
-        on_graded.beta < on_uniform.beta,
-        "{} {}",
-        on_graded.beta,
-        on_uniform.beta
-    );
+    for refine in gradings(2) {
+        let (g, uniform) = graded(&s, 1, Element::Q1, &p, refine);
+        let on_graded = crate::infsup::inf_sup(g.disc(&uniform), Rule::Gauss1).unwrap();
+        let mut lines = s.clone();
+        (lines.x_lines, lines.y_lines, lines.level) = (g.grid.xs.clone(), g.grid.ys.clone(), 0);
+        let explicit =
+            crate::infsup::inf_sup(&Discretization::of(&lines, 0, Element::Q1).unwrap(), Rule::Gauss1)
+                .unwrap();
+        let on_uniform = crate::infsup::inf_sup(&uniform, Rule::Gauss1).unwrap();
+        assert!(on_graded.beta.is_finite() && on_graded.beta > 0.0 && on_graded.beta_bar > 0.0);
+        assert!((on_graded.beta - explicit.beta).abs() <= 1e-9 * explicit.beta);
+        assert!((on_graded.beta_bar - explicit.beta_bar).abs() <= 1e-9 * explicit.beta_bar);
+        assert!(
+            on_graded.beta < on_uniform.beta,
+            "{refine}: {} {}",
+            on_graded.beta,
+            on_uniform.beta
+        );
+    }
 }
 
 /// `auto` grades until p̄ changes by less than AUTO_TOLERANCE between passes (at most

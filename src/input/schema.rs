@@ -10,7 +10,7 @@ use crate::error::MethodError;
 use crate::fem::Integration;
 use crate::material::Plane;
 use crate::mesh::Element;
-use crate::refine_edges::{RefineEdges, RefineEdgesError};
+use crate::refine_edges::{Grading, RefineEdges, RefineEdgesError};
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -118,24 +118,24 @@ pub(super) struct RawMesh {
     pub(super) level: Option<Spanned<i64>>,
     #[serde(default)]
     pub(super) integration: Option<Integration>,
-    /// Edge-grading passes: a count or `"auto"` ([`RawRefineEdges`]).
+    /// Edge-grading passes: a count, `"auto"` or `"Nz"` ([`RawRefineEdges`]).
     #[serde(default)]
     pub(super) refine_edges: Option<Spanned<RawRefineEdges>>,
 }
 
-/// `[mesh] refine_edges` as written: a whole number of passes, or text (`"auto"`); both
-/// checked by [`RefineEdges::parse`], any other TOML value refused naming what is allowed.
+/// `[mesh] refine_edges` as written: a whole number of passes, or text (`"auto"`, `"3z"`);
+/// both checked by [`Grading::parse`], any other TOML value refused naming what is allowed.
 pub(super) enum RawRefineEdges {
     Count(i64),
     Text(String),
 }
 
 impl RawRefineEdges {
-    /// The grading written (0 to [`crate::refine_edges::MAX_PASSES`], or `auto`).
-    pub(super) fn parse(&self) -> Result<RefineEdges, RefineEdgesError> {
+    /// The grading written (0 to [`crate::refine_edges::MAX_PASSES`], `auto`, or `Nz`).
+    pub(super) fn parse(&self) -> Result<Grading, RefineEdgesError> {
         match self {
-            RawRefineEdges::Count(n) => RefineEdges::of_count(*n),
-            RawRefineEdges::Text(t) => RefineEdges::parse(t),
+            RawRefineEdges::Count(n) => RefineEdges::of_count(*n).map(Grading::Edges),
+            RawRefineEdges::Text(t) => Grading::parse(t),
         }
     }
 }
@@ -148,7 +148,7 @@ impl<'de> Deserialize<'de> for RawRefineEdges {
             fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
                 write!(
                     f,
-                    "a number of passes 0 to {} or `\"auto\"`",
+                    "a number of passes 0 to {} or `\"auto\"` or `\"1z\"` to `\"{0}z\"`",
                     crate::refine_edges::MAX_PASSES
                 )
             }

@@ -13,7 +13,7 @@ use crate::contact::gap::Bump;
 use crate::contact::{Method, Obstacle};
 use crate::fem::Integration;
 use crate::material::Material;
-use crate::refine_edges::RefineEdges;
+use crate::refine_edges::Grading;
 use crate::scenario::Scenario;
 use crate::text::{num, sanitize, sanitize_lines};
 
@@ -81,12 +81,12 @@ pub(super) fn scenario(text: &str, file: &str) -> Result<Scenario, ScenarioError
         }
         None => 0,
     };
-    let refine_edges = match &raw.mesh.refine_edges {
+    let grading = match &raw.mesh.refine_edges {
         Some(r) => {
             loc.check("mesh.refine_edges", r, |v| v.parse().map(|_| ()))?;
             r.get_ref().parse().unwrap_or_default()
         }
-        None => RefineEdges::default(),
+        None => Grading::default(),
     };
     // The flattest cell of the level-0 grid (every level bisects both sides alike).
     let spacing = |v: &[f64]| {
@@ -126,7 +126,7 @@ pub(super) fn scenario(text: &str, file: &str) -> Result<Scenario, ScenarioError
             .file_stem()
             .map_or_else(|| "scenario".into(), |s| s.to_string_lossy().into_owned())
     });
-    Ok(Scenario {
+    let mut scenario = Scenario {
         name: sanitize(&name).into_owned(),
         description: sanitize_lines(&raw.description),
         source: file.to_string(),
@@ -144,12 +144,15 @@ pub(super) fn scenario(text: &str, file: &str) -> Result<Scenario, ScenarioError
         y_lines,
         integration: raw.mesh.integration.unwrap_or(Integration::Full),
         level,
-        refine_edges,
+        refine_edges: Default::default(),
+        refine_zone: 0,
         rule: raw.contact.rule,
         method,
         epsilon,
         friction,
-    })
+    };
+    scenario.set_grading(grading);
+    Ok(scenario)
 }
 
 impl Locator<'_> {

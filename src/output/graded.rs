@@ -1,12 +1,11 @@
-//! How reports show a mesh graded at the contact edges ([`crate::grading`]).
+//! How reports show a mesh graded at the contact edges or over the contact zone
+//! ([`crate::grading`]).
 
 impl super::SolveReport {
-    /// The level as the report shows it: `4`, or `4+3e` after three edge-grading passes.
+    /// The level as the report shows it: `4`, or `4+3e` after three edge-grading passes
+    /// (`4+3z` over the contact zone).
     pub fn level_label(&self) -> String {
-        match self.refine_edges {
-            0 => self.level.to_string(),
-            n => format!("{}+{n}e", self.level),
-        }
+        self.grading.level_label(self.level, self.refine_edges)
     }
 
     /// `, h_min = …` for a graded mesh (empty on a uniform level).

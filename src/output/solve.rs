@@ -63,6 +63,9 @@ pub struct SolveReport {
     pub h: f64,
     /// The edge-grading passes the mesh had ([`crate::grading`]; 0: the uniform level).
     pub refine_edges: u32,
+    /// The grading asked, as `--refine-edges` writes it (`0`, `3`, `auto`, `3z`: over the
+    /// contact zone).
+    pub grading: crate::grading::Grading,
     /// The smallest cell side of the mesh.
     pub h_min: f64,
     /// The penalty parameter ε (0 for `exact`).
@@ -166,6 +169,7 @@ impl SolveReport {
             level,
             h: disc.mesh.h(),
             refine_edges: 0,
+            grading: Default::default(),
             h_min: crate::grading::h_min(&disc.mesh.xs, &disc.mesh.ys),
             epsilon: sol.params.epsilon,
             method: sol.method_fields(),

@@ -67,7 +67,7 @@ impl Serialize for StudyReport<'_> {
 /// [`crate::study::Fit`]'s: its rates in the `rate_*` columns) or, last, the `reference` (its
 /// smallest cell side as `h`, its estimated error in `err_*`, why its refinement stopped in
 /// `reason`, and in `source` whether it was `computed` or read from the `cache`).
-pub const STUDY_COLUMNS: [(&str, Cell); 37] = [
+pub const STUDY_COLUMNS: [(&str, Cell); 38] = [
     ("kind", Cell::Field("/kind")),
     ("scheme", Cell::Field("/scheme")),
     ("element", Cell::Field("/element")),
@@ -75,6 +75,7 @@ pub const STUDY_COLUMNS: [(&str, Cell); 37] = [
     ("level", Cell::Field("/level")),
     ("refinements", Cell::Field("/refinements")),
     ("refine_edges", Cell::Field("/refine_edges")),
+    ("grading", Cell::Field("/grading")),
     ("epsilon_dominated", Cell::Field("/epsilon_dominated")),
     ("h", Cell::First(&["/h", "/h_min"])),
     ("h_min", Cell::Field("/h_min")),

@@ -81,7 +81,7 @@ pub struct Sweep {
 }
 
 /// The sweep's CSV columns: the parameters, the outcome, and each row's largest p and p̄.
-pub const SWEEP_COLUMNS: [(&str, Cell); 18] = [
+pub const SWEEP_COLUMNS: [(&str, Cell); 19] = [
     ("epsilon", Cell::Field("/epsilon")),
     ("method", Cell::Field("/method")),
     ("theta", Cell::Field("/theta")),
@@ -98,6 +98,7 @@ pub const SWEEP_COLUMNS: [(&str, Cell); 18] = [
     ("max_pbar", Cell::Max("/nodes/pbar")),
     ("total_ms", Cell::Field("/timing_ms/total")),
     ("refine_edges", Cell::Field("/refine_edges")),
+    ("grading", Cell::Field("/grading")),
     ("h_min", Cell::Field("/h_min")),
     ("reason", Cell::First(&["/diagnosis", "/reason"])),
 ];

@@ -5,6 +5,7 @@
 use super::*;
 use crate::contact::friction::{Friction, Law};
 use crate::error::InputFault;
+use crate::grading::RefineEdges;
 
 /// `scenarios/hertz-paper-full.toml` (Kikuchi's example, modelled whole).
 fn full() -> Scenario {
@@ -43,7 +44,7 @@ fn the_tangential_errors_fall_with_the_level() {
     let plan = Plan::Levels {
         levels: &levels,
         epsilon: 1e-6,
-        refine: &[RefineEdges::default()],
+        refine: &[Grading::default()],
     };
     let study = run(&s, &[M1, M3], plan, 3);
     let q = study.reference.tangential_load().unwrap();
@@ -85,7 +86,7 @@ fn mu_zero_is_the_frictionless_study() {
     let plan = Plan::Levels {
         levels: &levels,
         epsilon: 1e-6,
-        refine: &[RefineEdges::default()],
+        refine: &[Grading::default()],
     };
     let (a, b) = (run(&plain, &[M1, M3], plan, 2), run(&zero, &[M1, M3], plan, 2));
     assert_eq!(a.reference.tangential_load(), None);
@@ -145,7 +146,7 @@ fn graded_rows_refuse_friction() {
     let plan = Plan::Levels {
         levels: &[0],
         epsilon: 1e-6,
-        refine: &[RefineEdges::default(), RefineEdges::Passes(1)],
+        refine: &[Grading::default(), RefineEdges::Passes(1).into()],
     };
     let mut fetch =
         |_: &ReferenceMesh| -> Result<ReferenceFields, SolveError> { panic!("nothing is solved") };

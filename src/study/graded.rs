@@ -1,5 +1,6 @@
-//! A study's rows on meshes graded at the contact edges: `--refine-edges 0,1,2,…`
-//! is an axis beside the levels; each value is a series per scheme ([`crate::grading`]). A
+//! A study's rows on meshes graded at the contact edges or over the contact zone:
+//! `--refine-edges 0,1,2,2z,…` is an axis beside the levels; each value is a series per scheme
+//! ([`crate::grading`]). A
 //! graded row's solve is every pass's (the uniform level's solve, then each graded one), so
 //! its time is what the accuracy cost. Its errors are integrated at the reference's points as
 //! a uniform row's; its lines need not be the reference's (the reference refines at its own
@@ -13,7 +14,7 @@ use super::{Kept, Reference, StudyRow, convergence_kept, row_params};
 use crate::contact::newton::NewtonOptions;
 use crate::contact::{Method, Rule};
 use crate::discretization::Discretization;
-use crate::grading::{RefineEdges, solve_graded};
+use crate::grading::{Grading, solve_graded};
 use crate::mesh::Element;
 use crate::scenario::Scenario;
 
@@ -29,7 +30,7 @@ pub(super) fn levels_kept(
     schemes: &[(Element, Rule)],
     levels: &[u32],
     (method, epsilon): (Option<Method>, f64),
-    refine: &[RefineEdges],
+    refine: &[Grading],
 ) -> Vec<Series> {
     let per_grading: Vec<Vec<Series>> = refine
         .iter()
@@ -58,7 +59,7 @@ fn graded_series(
     scheme: (Element, Rule),
     levels: &[u32],
     (method, epsilon): (Option<Method>, f64),
-    refine: RefineEdges,
+    refine: Grading,
 ) -> Series {
     levels
         .iter()
@@ -109,11 +110,9 @@ impl StudyRow {
             && self.grading == other.grading
     }
 
-    /// The level as tables show it: `4`, or `4+3e` after three edge-grading passes.
+    /// The level as tables show it: `4`, or `4+3e` after three edge-grading passes (`4+3z`
+    /// over the contact zone).
     pub fn level_label(&self) -> String {
-        match self.refine_edges {
-            0 => self.level.to_string(),
-            n => format!("{}+{n}e", self.level),
-        }
+        self.grading.level_label(self.level, self.refine_edges)
     }
 }

@@ -75,7 +75,7 @@ pub struct Fit {
     #[serde(flatten)]
     /// The method as asked ([`MethodFields::setting`]: `auto`'s γ₀ varies by level).
     pub method: MethodFields,
-    /// The edge-grading passes asked of its rows (`0`, `3` or `auto`; [`crate::grading`]).
+    /// The grading asked of its rows (`0`, `3`, `auto` or `3z`; [`crate::grading`]).
     pub refine_edges: String,
     /// Its abscissa: `h`, `epsilon`, or for graded rows `n^-1/2` (the unknowns n).
     pub abscissa: &'static str,

@@ -9,7 +9,7 @@ use crate::contact::method::MethodFields;
 use crate::contact::{Method, Rule};
 use crate::discretization::Discretization;
 use crate::error::SolveError;
-use crate::grading::{GradedGrid, RefineEdges};
+use crate::grading::{GradedGrid, Grading};
 use crate::mesh::Element;
 use crate::scenario::Scenario;
 use crate::scheme::Scheme;
@@ -91,8 +91,7 @@ pub struct StudyRow {
     /// The smallest cell side of its mesh (h on a uniform level of square cells).
     pub h_min: f64,
     /// The grading asked (`--refine-edges`): what tells its series apart.
-    #[serde(skip)]
-    pub grading: RefineEdges,
+    pub grading: Grading,
     /// Whether the row has a certified result.
     pub status: Status,
     /// Why the row has no (certified) result, when it has none.
@@ -139,7 +138,7 @@ impl StudyRow {
             n_dofs: scenario.n_dofs(level, element),
             refine_edges: 0,
             h_min: GradedGrid::uniform(scenario, level).h_min(),
-            grading: RefineEdges::default(),
+            grading: Grading::default(),
             status: Status::Ok,
             reason: None,
             epsilon_dominated: false,

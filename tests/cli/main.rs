@@ -9,6 +9,7 @@ mod bad_input;
 mod docs_tables;
 mod friction;
 mod grading;
+mod grading_zone;
 mod help;
 mod hostile;
 mod hostile_again;
