@@ -5,8 +5,8 @@
 use super::{Reference, StudyRow, graded, strip, with_rates};
 use crate::contact::{Method, Rule};
 use crate::error::{InputFault, SolveError};
-use crate::grading::RefineEdges;
 use crate::mesh::Element;
+use crate::refine_edges::Grading;
 use crate::scenario::Scenario;
 
 /// Every scheme at every level, each solve graded as `refine` asks (fresh solves with
@@ -20,8 +20,9 @@ pub fn convergence_graded(
     schemes: &[(Element, Rule)],
     levels: &[u32],
     (method, epsilon): (Option<Method>, f64),
-    refine: RefineEdges,
+    refine: impl Into<Grading>,
 ) -> Vec<StudyRow> {
+    let refine: Grading = refine.into();
     if !refine.grades() {
         return super::convergence(scenario, reference, schemes, levels, method, epsilon);
     }
@@ -53,6 +54,7 @@ pub fn convergence_graded(
 mod tests {
     use super::*;
     use crate::contact::friction::{Friction, Law};
+    use crate::refine_edges::RefineEdges;
     use crate::study::{ReferenceFields, ReferenceMesh, Status, uniform_reference};
 
     /// With the scenario's friction on, every graded row says that grading does not take it
@@ -76,7 +78,7 @@ mod tests {
         let reason = SolveError::from(InputFault::GradedFriction).to_string();
         assert_eq!(graded[0].status, Status::Failed);
         assert_eq!(graded[0].reason.as_deref(), Some(reason.as_str()));
-        assert_eq!(graded[0].grading, RefineEdges::Passes(1));
+        assert_eq!(graded[0].grading, Grading::from(RefineEdges::Passes(1)));
         let uniform = convergence_graded(&s, &reference, &m1, &[0], (None, 1e-6), RefineEdges::default());
         assert_eq!(uniform[0].status, Status::Ok, "{:?}", uniform[0].reason);
         assert!(uniform[0].errors.unwrap().tbar.is_some(), "solved with friction");

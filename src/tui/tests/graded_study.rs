@@ -70,7 +70,7 @@ fn the_labs_graded_study_is_riplab_studys() {
         Plan::Levels {
             levels: &[0, 1, 2],
             epsilon: key.epsilon,
-            refine: &[RefineEdges::Passes(0), RefineEdges::Passes(2)],
+            refine: &[RefineEdges::Passes(0).into(), RefineEdges::Passes(2).into()],
         },
         (3, 0),
         &mut fetch,
@@ -106,7 +106,7 @@ fn the_labs_graded_study_is_riplab_studys() {
     assert!(
         graded
             .iter()
-            .all(|r| r.grading == RefineEdges::Passes(2) && r.refine_edges == 2)
+            .all(|r| r.grading == RefineEdges::Passes(2).into() && r.refine_edges == 2)
     );
     assert_eq!(graded[2].level_label(), "2+2e");
     let uniform = series(&lab.rows, m1);
@@ -223,7 +223,7 @@ fn row(
         n_dofs: [90, 306, 1122][level as usize] + 40 * passes as usize,
         refine_edges: passes,
         h_min: h / f64::from(1 << passes),
-        grading: refine,
+        grading: refine.into(),
         status: Status::Ok,
         reason: None,
         epsilon_dominated: false,
