@@ -71,6 +71,14 @@ impl Mindlin {
     }
 }
 
+/// Dundurs' |β| for a rigid indenter on `material`: (κ − 1)/(κ + 1) = μ/(λ + 2μ) with the
+/// model's Lamé constants, (1 − 2ν)/(2(1 − ν)) in plane strain (Johnson §5.8). Cattaneo and
+/// Mindlin's solution assumes β = 0, where the shear does not change the pressure.
+pub fn dundurs_beta(material: &Material) -> f64 {
+    let (lambda, mu) = material.lame();
+    mu / (lambda + 2.0 * mu)
+}
+
 /// The computed stick zone: half the distance between the midpoints that lie outside the
 /// outermost stick points (between each and its outer neighbour), and the number of runs of
 /// consecutive stick points (1 for one zone); None with no stick point.
@@ -104,6 +112,22 @@ mod tests {
     use super::*;
     use crate::fem::quadrature::gauss_legendre;
     use crate::material::Plane;
+
+    /// β by hand: ν = 0.3 in plane strain, 0.4/1.4; in plane stress (1 − ν)/2; ν = ½ − 10⁻³
+    /// (cattaneo-mindlin's 0.499) about 10⁻³.
+    #[test]
+    fn dundurs_beta_by_hand() {
+        let at = |poisson, plane| {
+            dundurs_beta(&Material {
+                young: 1000.0,
+                poisson,
+                plane,
+            })
+        };
+        assert!((at(0.3, Plane::Strain) - 0.4 / 1.4).abs() < 1e-15);
+        assert!((at(0.3, Plane::Stress) - 0.35).abs() < 1e-15);
+        assert!((at(0.499, Plane::Strain) - 0.002 / 1.002).abs() < 1e-15);
+    }
 
     fn mindlin(q_over_mup: f64) -> Mindlin {
         let material = Material {

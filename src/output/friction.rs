@@ -6,7 +6,7 @@
 use serde::Serialize;
 
 use crate::contact::friction::{Law, State};
-use crate::contact::mindlin::{Mindlin, stick_half_width};
+use crate::contact::mindlin::{Mindlin, dundurs_beta, stick_half_width};
 use crate::scenario::Scenario;
 use crate::solution::Solution;
 use crate::text::num;
@@ -54,6 +54,8 @@ pub struct MindlinReport {
     pub stick_half_width: Option<f64>,
     /// ‖t̄ − q‖₀/‖q‖₀ on Γ_C.
     pub relative_error: f64,
+    /// The body's Dundurs |β| (the solution assumes 0).
+    pub beta: f64,
 }
 
 impl FrictionReport {
@@ -143,6 +145,7 @@ impl MindlinReport {
             c: m.c,
             stick_half_width: stick_half_width(&sol.points, &f.states).map(|w| w.0),
             relative_error: m.relative_error(&sol.points, &f.tbar),
+            beta: dundurs_beta(&scenario.material),
         })
     }
 
@@ -150,8 +153,8 @@ impl MindlinReport {
     pub fn line(&self) -> String {
         let width = self.stick_half_width.map_or("none".into(), |w| format!("{w:.5}"));
         format!(
-            "Cattaneo–Mindlin (β = 0, for this P and Q): c = {:.5} (computed stick half-width {width}); ‖t̄ − q‖₀/‖q‖₀ = {:.3e}",
-            self.c, self.relative_error
+            "Cattaneo–Mindlin (β = 0; this body's β = {:.3}, for this P and Q): c = {:.5} (computed stick half-width {width}); ‖t̄ − q‖₀/‖q‖₀ = {:.3e}",
+            self.beta, self.c, self.relative_error
         )
     }
 }

@@ -6,7 +6,7 @@
 //! command line cannot disagree.
 
 use crate::contact::friction::Law;
-use crate::contact::mindlin::{Mindlin, stick_extent};
+use crate::contact::mindlin::{Mindlin, dundurs_beta, stick_extent};
 use crate::output::{FrictionReport, MindlinReport};
 use crate::scenario::Scenario;
 use crate::solution::Solution;
@@ -38,6 +38,8 @@ pub struct FrictionShown {
     pub mindlin: Option<Mindlin>,
     /// ‖t̄ − q‖₀/‖q‖₀, with Mindlin.
     pub mindlin_error: Option<f64>,
+    /// The body's Dundurs |β|: Mindlin's q assumes 0.
+    pub beta: f64,
 }
 
 impl FrictionShown {
@@ -80,6 +82,7 @@ impl FrictionShown {
             stick_half_width: report.stick_half_width,
             mindlin,
             mindlin_error: mindlin_report.map(|m| m.relative_error),
+            beta: dundurs_beta(&scenario.material),
         })
     }
 }

@@ -220,3 +220,37 @@ fn extreme_friction_parameters_print_short() {
         assert!(line.contains(said) && line.chars().count() < 200, "{line}");
     }
 }
+
+/// Cattaneo–Mindlin's q assumes Dundurs' β = 0: `solve` names the body's β beside it (0.286 for
+/// ν = 0.3 in plane strain, (1 − 2ν)/(2(1 − ν)) by hand), and the lab's status line does when
+/// it is far from 0 (hertz-paper-full) but not on cattaneo-mindlin (ν = 0.499: 0.002).
+#[test]
+fn mindlin_names_the_bodys_dundurs_beta() {
+    let (code, out, err) = crate::common::riplab(&[
+        "solve",
+        "scenarios/hertz-paper-full.toml",
+        "-l",
+        "1",
+        "--friction",
+        "coulomb",
+        "--mu",
+        "0.3",
+        "--shift",
+        "0.14",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("(β = 0; this body's β = 0.286,"), "{out}");
+    let render = |scenario: &str, keys: &str| {
+        let (code, out, err) =
+            crate::common::riplab(&["render", scenario, "--keys", keys, "--size", "80x24"]);
+        assert_eq!(code, 0, "{err}");
+        out.split_whitespace().collect::<Vec<_>>().join(" ")
+    };
+    let full = render("scenarios/hertz-paper-full.toml", "F");
+    assert!(full.contains("Mindlin (β=0; here 0.29) c="), "{full}");
+    let decoupled = render("scenarios/cattaneo-mindlin.toml", "1");
+    assert!(
+        decoupled.contains("Mindlin c=") && !decoupled.contains("here 0."),
+        "{decoupled}"
+    );
+}

@@ -186,6 +186,10 @@ pub fn draw_stick(
     }
 }
 
+/// The Dundurs |β| from which the status line says that Mindlin's q assumes β = 0
+/// (cattaneo-mindlin's ν = 0.499 gives 0.002).
+const BETA_NAMED: f64 = 0.05;
+
 /// The status line's friction part, the numbers `riplab solve` prints: "coulomb μ = 0.3,
 /// shift ξ = 0.0815: Q=20.51 Q/(μP)=0.4995 · stick half-width 0.8125, Mindlin c=0.809,
 /// t̄ off q 2.3%" (Mindlin for a cylinder with Coulomb and 0 < Q < μP).
@@ -202,7 +206,19 @@ pub fn status(shown: &FrictionShown) -> String {
         format!("stick half-width {}", sig(w, 4))
     });
     let mindlin = match (shown.mindlin, shown.mindlin_error) {
-        (Some(m), Some(e)) => format!(", Mindlin c={}, t̄ off q {}%", sig(m.c, 4), sig(100.0 * e, 2)),
+        // Mindlin's q assumes β = 0: a body far from it is named (hertz-paper-full's 0.29).
+        (Some(m), Some(e)) => {
+            let beta = if shown.beta >= BETA_NAMED {
+                format!(" (β=0; here {})", sig(shown.beta, 2))
+            } else {
+                String::new()
+            };
+            format!(
+                ", Mindlin{beta} c={}, t̄ off q {}%",
+                sig(m.c, 4),
+                sig(100.0 * e, 2)
+            )
+        }
         _ => String::new(),
     };
     format!(
