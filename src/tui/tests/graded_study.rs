@@ -318,6 +318,18 @@ fn graded_convergence_80x24() {
     snap!("tui__convergence_graded_methods_80x24", text);
 }
 
+/// With zone grading (`3z`) the graded series read `M1+3z p̄` in the legend and `2+3z` in the
+/// table (issue 35, zone grading in the lab).
+#[test]
+fn zone_graded_convergence_80x24() {
+    let app = made_up(Compare::Schemes, Grading::Zone(3), None);
+    let text = render_app(&app, &LOOK, 80, 24);
+    for name in ["a M1+3z p̄", "d M4+3z p̄", "2+3z"] {
+        assert!(text.contains(name), "`{name}` in\n{text}");
+    }
+    assert!(!text.contains("+3e"), "{text}");
+}
+
 /// `E` on the convergence scene asks for a study that differs from the last only in its
 /// grading: the engine keeps the uniform rows (their very times) and solves the graded ones.
 #[test]
