@@ -7,7 +7,7 @@ use crate::contact::ContactParams;
 use crate::contact::newton::NewtonOptions;
 use crate::discretization::Discretization;
 use crate::error::SolveError;
-use crate::grading::{Grading, RefineEdges, solve_graded};
+use crate::grading::{Grading, solve_graded};
 use crate::scenario::Scenario;
 use crate::solution::Solution;
 use crate::solve::sweep;
@@ -18,24 +18,6 @@ pub(super) fn refine_edges(text: Option<&str>, scenario: &Scenario) -> Result<Gr
     match text {
         Some(t) => Grading::parse(t).map_err(|e| usage("--refine-edges", e)),
         None => Ok(scenario.grading()),
-    }
-}
-
-/// The lab's grading (`render --refine-edges`, the scenario's `[mesh] refine_edges`): at the
-/// contact edges only, its `E` key's values; a zone grading (`Nz`) is refused, naming where it
-/// came from.
-pub(super) fn lab_grading(text: Option<&str>, scenario: &Scenario) -> Result<RefineEdges, CliError> {
-    match refine_edges(text, scenario)? {
-        Grading::Edges(r) => Ok(r),
-        Grading::Zone(n) => Err(CliError::Usage(format!(
-            "{}: {n}z grades over the contact zone, which the lab does not (yet); it grades at the contact edges: 0 to {}, or auto",
-            if text.is_some() {
-                "--refine-edges"
-            } else {
-                "the scenario's [mesh] refine_edges"
-            },
-            crate::grading::MAX_PASSES
-        ))),
     }
 }
 

@@ -44,9 +44,10 @@ pub struct RenderArgs {
     /// `<pageup>` `<pagedown>` `<lt>` name the others; at most 200)
     #[arg(long, default_value = "")]
     pub keys: String,
-    /// Edge grading: the solve graded N times at the contact edges (or `auto`), as the lab's
-    /// `E` sets it [default: the scenario's `[mesh] refine_edges`, else 0]
-    #[arg(long, value_name = "N|auto")]
+    /// Grading: the solve graded N times at the contact edges (or `auto`), or `Nz` (1z to 8z)
+    /// over the contact zone, as the lab's `E` sets it [default: the scenario's `[mesh]
+    /// refine_edges`, else 0]
+    #[arg(long, value_name = "N|auto|Nz")]
     pub refine_edges: Option<String>,
 }
 
@@ -61,7 +62,6 @@ pub(super) fn lab(
         ..Select::default()
     }
     .resolve()?;
-    super::grading::lab_grading(None, &scenario)?;
     let record = tour::with_terminal("the lab", record.as_deref())?;
     crate::tui::run(scenario, file.as_deref(), &opts, record).map_err(|e| CliError::Failed(e.to_string()))?;
     Ok(ExitCode::SUCCESS)
@@ -72,8 +72,8 @@ pub(super) fn render(args: &RenderArgs, marker: MarkerChoice) -> Result<ExitCode
     let (width, height) = crate::tui::parse_size(&args.size).map_err(|m| usage("--size", m))?;
     let input = render_args::render_input(args)?;
     let mut scenario = args.select.resolve()?;
-    let grading = super::grading::lab_grading(args.refine_edges.as_deref(), &scenario)?;
-    scenario.set_grading(grading.into());
+    let grading = super::grading::refine_edges(args.refine_edges.as_deref(), &scenario)?;
+    scenario.set_grading(grading);
     if let Some(method) = input
         .method
         .map_or_else(|| args.method.resolve(&scenario), |m| Ok(Some(m)))?

@@ -4,6 +4,7 @@
 
 use crate::contact::ContactPoints;
 
+use super::zone::contact_zones;
 use super::{GradedGrid, contact_edges};
 
 impl GradedGrid {
@@ -14,6 +15,22 @@ impl GradedGrid {
         let edges = contact_edges(points, p);
         let x = &points.vertex_x;
         self.passes > 0 && !edges.is_empty() && edges.iter().all(|&e| self.in_band(0.5 * (x[e] + x[e + 1])))
+    }
+
+    /// Whether the contact zones of the pressure `p` at `points` (a solve on this zone-graded
+    /// grid, [`GradedGrid::zoned`]) lie in its finest band: every pressed vertex interval and
+    /// the interval beyond each end of a zone, so that Γ_C's edges are equal wherever (17)
+    /// averages a pressure (docs/design.md §6, zone grading). False for a grid without a pass
+    /// or a pressure without a zone.
+    pub fn holds_zone(&self, points: &ContactPoints, p: &[f64]) -> bool {
+        let zones = contact_zones(points, p);
+        let x = &points.vertex_x;
+        let last = x.len() - 2;
+        self.passes > 0
+            && !zones.is_empty()
+            && zones.iter().all(|&(a, b)| {
+                (a.saturating_sub(1)..=(b + 1).min(last)).all(|e| self.in_band(0.5 * (x[e] + x[e + 1])))
+            })
     }
 }
 
@@ -52,5 +69,32 @@ mod tests {
         assert!(!twice.holds_edges(&points, &vec![1.0; points.points.len()]));
         let flat = at(&uniform);
         assert!(!uniform.holds_edges(&flat, &pressed_to(&flat, a)));
+    }
+
+    /// A grid zone-graded once for a zone of x < a holds a pressure over x < a, or over a
+    /// narrower zone, but not one whose zone reaches three of the level's cells further (past
+    /// the halved band) nor one pressed everywhere; the uniform grid holds none.
+    #[test]
+    fn a_zone_grid_holds_its_contact_zone_in_its_finest_band_only() {
+        let s = Scenario::paper();
+        let uniform = GradedGrid::uniform(&s, 2);
+        let at = |grid: &GradedGrid| {
+            let mesh = grid.mesh(Element::Q1, s.half_model);
+            ContactPoints::new(Rule::Gauss1, &mesh.node_x, 1)
+        };
+        let h = uniform.xs[1] - uniform.xs[0];
+        let a = uniform.xs[2] + 0.3 * h;
+        let flat = at(&uniform);
+        let zones = contact_zones(&flat, &pressed_to(&flat, a));
+        let once = uniform.zoned(&uniform, &zones).unwrap();
+        let points = at(&once);
+        assert!(once.holds_zone(&points, &pressed_to(&points, a)));
+        assert!(once.holds_zone(&points, &pressed_to(&points, a - h)));
+        // The halved band: the zone's intervals, EDGE_WIDTH beyond, and SPREAD·h/2 further.
+        let band_end = once.xs.windows(2).take_while(|w| w[1] - w[0] < 0.75 * h).count();
+        let past = once.xs[band_end] + 0.5 * h;
+        assert!(!once.holds_zone(&points, &pressed_to(&points, past)));
+        assert!(!once.holds_zone(&points, &vec![1.0; points.points.len()]));
+        assert!(!uniform.holds_zone(&flat, &pressed_to(&flat, a)));
     }
 }

@@ -58,7 +58,8 @@ pub enum LabAction {
     Hertz,
     /// Zoom to the contact zone (p̄ > 0) and back.
     Zoom,
-    /// The next edge grading: 0, 1, 2, 3 passes, auto.
+    /// The next grading: 0, 1, 2, 3 passes at the contact edges, auto, 1z, 2z, 3z over the
+    /// contact zone.
     Grade,
     /// The stiffness's volumetric integration: full ↔ selective
     /// ([`crate::fem::Integration`]).
@@ -225,7 +226,7 @@ pub const LAB: &[Row<LabAction>] = &[
     },
     Row {
         keys: "E",
-        what: &["edge grading: 0, 1, 2, 3 passes, auto"],
+        what: &["grading: 0–3, auto (edges), 1z–3z (zone)"],
         bindings: &[(Char('E'), L::Grade)],
     },
     Row {

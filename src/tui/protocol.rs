@@ -17,7 +17,7 @@ use crate::discretization::Discretization;
 use crate::fem::Integration;
 use crate::mesh::Element;
 use crate::mesh::MAX_LEVEL;
-use crate::refine_edges::RefineEdges;
+use crate::refine_edges::Grading;
 use crate::scenario::Scenario;
 use crate::scheme::Scheme;
 use crate::solution::Solution;
@@ -42,9 +42,9 @@ pub struct SolveKey {
     pub epsilon: f64,
     /// The obstacle's depth d.
     pub depth: f64,
-    /// How many times the solve grades its mesh at the contact edges (`E` cycles it;
-    /// docs/design.md §6, edge grading).
-    pub refine_edges: RefineEdges,
+    /// How the solve grades its mesh: at the contact edges or over the contact zone (`E`
+    /// cycles it; docs/design.md §6).
+    pub refine_edges: Grading,
     /// How the stiffness's volumetric part is integrated (`i` toggles full and selective;
     /// [`Integration`]): each has its own discretisation.
     pub integration: Integration,
@@ -93,9 +93,10 @@ pub struct StudyKey {
     pub epsilon: f64,
     /// How the stiffness's volumetric part is integrated (the lab's `i`).
     pub integration: Integration,
-    /// The lab's edge grading (`E`): when it grades, each scheme and method also has a series
-    /// graded so at every level, beside the uniform one (`riplab study --refine-edges 0,N`).
-    pub refine_edges: RefineEdges,
+    /// The lab's grading (`E`, at the edges or over the zone): when it grades, each scheme and
+    /// method also has a series graded so at every level, beside the uniform one (`riplab
+    /// study --refine-edges 0,N` or `0,Nz`).
+    pub refine_edges: Grading,
     /// The friction of every row and of the reference (the lab's `F`; boxed: the study's
     /// key travels in the worker's replies, which stay small).
     pub friction: Box<Friction>,

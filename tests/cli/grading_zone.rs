@@ -1,8 +1,7 @@
 //! `--refine-edges Nz` and `[mesh] refine_edges = "Nz"` (issue 35): grading over the contact
 //! zone. Bad values name the flag or the key and what is allowed, exit 2; a zone-graded solve
 //! and a study's zone series report `refine_edges` (passes made), `grading` (the value asked)
-//! and the smallest cell in JSON, CSV and the table (`1+2z`); the lab, which grades at the
-//! edges only, refuses it clearly.
+//! and the smallest cell in JSON, CSV and the table (`1+2z`); `render` (the lab) draws it.
 
 use crate::common::{no_panic, paper_text, riplab, scratch_file};
 
@@ -153,30 +152,41 @@ fn a_study_sweeps_zone_gradings() {
     assert_eq!(zone_rows.count(), 2, "{csv}");
 }
 
-/// The lab grades at the contact edges only: `render --refine-edges 2z` names the flag, a
-/// scenario whose `refine_edges` is `"2z"` names the key, both say what the lab allows; exit 2.
+/// The lab grades over the zone too: `render --refine-edges 3z` and a scenario whose
+/// `refine_edges` is `"3z"` draw the zone-graded solve (the header says `level 1+3z`, the
+/// graded mesh's unknowns, more than the level's); `render --refine-edges 9z` names the flag
+/// and the range, exit 2.
 #[test]
-fn the_lab_refuses_zone_grading_clearly() {
-    let text = paper_text(&[("level = 0", "level = 1\nrefine_edges = \"2z\"")]);
-    let path = scratch_file("lab-two-zones.toml", &text);
-    for (args, names) in [
-        (
-            &["render", "--size", "80x24", "--refine-edges", "2z"][..],
-            "--refine-edges",
-        ),
-        (
-            &["render", path.to_str().unwrap(), "--size", "80x24"],
-            "[mesh] refine_edges",
-        ),
+fn render_draws_a_zone_graded_solve() {
+    let text = paper_text(&[("level = 0", "level = 1\nrefine_edges = \"3z\"")]);
+    let path = scratch_file("lab-three-zones.toml", &text);
+    let (code, uniform, stderr) = riplab(&["render", "-l", "1", "--size", "80x24"]);
+    assert_eq!(code, 0, "{stderr}");
+    let dofs = |frame: &str| -> usize {
+        let at = frame.find(" el ").expect("the counts");
+        let n = frame[at + 4..].split(' ').next().unwrap();
+        n.parse().unwrap()
+    };
+    let mut frames = Vec::new();
+    for args in [
+        &["render", "-l", "1", "--size", "80x24", "--refine-edges", "3z"][..],
+        &["render", path.to_str().unwrap(), "--size", "80x24"],
     ] {
-        let (code, stdout, stderr) = riplab(args);
-        assert_eq!(code, 2, "{args:?}: {stderr}");
-        assert!(stdout.is_empty());
+        let (code, frame, stderr) = riplab(args);
+        assert_eq!(code, 0, "{args:?}: {stderr}");
         no_panic(&stderr);
-        for f in [names, "2z grades over the contact zone", "0 to 8, or auto"] {
-            assert!(stderr.contains(f), "{args:?} lacks {f:?}: {stderr}");
-        }
+        assert!(frame.contains("level 1+3z"), "{args:?}\n{frame}");
+        assert!(dofs(&frame) > dofs(&uniform), "{frame}\n{uniform}");
+        frames.push(frame);
     }
+    assert_eq!(frames[0], frames[1], "the flag and the key alike");
+    let (code, stdout, stderr) = riplab(&["render", "--size", "80x24", "--refine-edges", "9z"]);
+    assert_eq!(code, 2, "{stderr}");
+    assert!(stdout.is_empty());
+    assert!(
+        stderr.contains("--refine-edges") && stderr.contains(ALLOWED),
+        "{stderr}"
+    );
 }
 
 /// `infsup --refine-edges 2z`: two levels whose zone-graded meshes have the same widest cell

@@ -5,7 +5,7 @@ use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 
 use crate::contact::Rule;
 use crate::mesh::Element;
-use crate::refine_edges::RefineEdges;
+use crate::refine_edges::{Grading, RefineEdges};
 use crate::scheme::Scheme;
 use crate::stress::Quantity;
 
@@ -324,23 +324,35 @@ fn key_name(code: KeyCode) -> String {
     }
 }
 
-/// The grading after `r` in the cycle of `E`: 0, 1, 2, 3 passes, auto, 0.
-fn next_grading(r: RefineEdges) -> RefineEdges {
+/// The grading after `r` in the cycle of `E`: 0, 1, 2, 3 edge passes, auto, 1z, 2z, 3z zone
+/// passes, 0 (a value beyond the cycle, from a scenario or the command line, goes on to the
+/// next kind's first).
+fn next_grading(r: Grading) -> Grading {
+    use Grading::{Edges, Zone};
     match r {
-        RefineEdges::Passes(n) if n < 3 => RefineEdges::Passes(n + 1),
-        RefineEdges::Passes(_) => RefineEdges::Auto,
-        RefineEdges::Auto => RefineEdges::Passes(0),
+        Edges(RefineEdges::Passes(n)) if n < 3 => Edges(RefineEdges::Passes(n + 1)),
+        Edges(RefineEdges::Passes(_)) => Edges(RefineEdges::Auto),
+        Edges(RefineEdges::Auto) => Zone(1),
+        Zone(n) if n < 3 => Zone(n + 1),
+        Zone(_) => Grading::default(),
     }
 }
 
 /// What `E` says it did.
-fn grading_notice(r: RefineEdges) -> String {
+fn grading_notice(r: Grading) -> String {
+    let passes = |n: u32| format!("{n} pass{}", if n == 1 { "" } else { "es" });
     match r {
-        RefineEdges::Passes(0) => "edge grading off: the uniform level".into(),
-        RefineEdges::Passes(n) => format!(
-            "edge grading: {n} pass{} bisecting the lines around each contact edge, each solved again",
-            if n == 1 { "" } else { "es" }
+        Grading::Edges(RefineEdges::Passes(0)) => "grading off: the uniform level".into(),
+        Grading::Edges(RefineEdges::Passes(n)) => format!(
+            "edge grading: {} bisecting the lines around each contact edge, each solved again",
+            passes(n)
         ),
-        RefineEdges::Auto => "edge grading auto: passes until p̄ changes by under 1e-3 (at most 8)".into(),
+        Grading::Edges(RefineEdges::Auto) => {
+            "edge grading auto: passes until p̄ changes by under 1e-3 (at most 8)".into()
+        }
+        Grading::Zone(n) => format!(
+            "zone grading: {} halving Γ_C's cells over the whole contact zone, each solved again",
+            passes(n)
+        ),
     }
 }

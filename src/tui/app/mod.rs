@@ -220,7 +220,7 @@ impl App {
                 DEFAULT_EPSILON
             },
             depth: scenario.obstacle.depth(),
-            refine_edges: scenario.refine_edges,
+            refine_edges: scenario.grading(),
             integration: scenario.integration,
             friction: scenario.friction,
         }

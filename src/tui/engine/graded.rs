@@ -1,11 +1,12 @@
-//! The lab's solve graded at the contact edges (`E`; issue 35): [`solve_graded`] from the
+//! The lab's graded solve (`E`; issue 35), at the contact edges or over the contact zone: [`solve_graded`] from the
 //! uniform level's discretisation, its final grid's discretisation kept with the solution so
 //! that every view (the mesh scene's lines, the pressures, the stresses) shows the graded
 //! mesh. Each pass builds its own mesh and factor (nothing of the cache's work carries over:
 //! the lines changed), so the graded meshes are not in the cache; the last one is kept
 //! ([`LastGraded`]): a re-solve of the same level, element, integration and grading after an
 //! ε, depth, rule or method change solves on it first, warm-started, and keeps it when the
-//! contact edges found there lie inside its refined band ([`GradedGrid::holds_edges`]): no new
+//! contact edges found there lie inside its refined band ([`GradedGrid::holds_edges`]; a zone
+//! grid: the whole contact zone inside its finest band, [`GradedGrid::holds_zone`]): no new
 //! grid, no new factor. Otherwise it grades again from the level's uniform solve, as a fresh
 //! `riplab solve --refine-edges N` does ([`Regrade`] says which in the status line).
 
@@ -18,7 +19,7 @@ use crate::contact::{ContactParams, Method, Rule, carried_forces};
 use crate::discretization::Discretization;
 use crate::error::SolveError;
 use crate::fem::Integration;
-use crate::grading::{GradedGrid, RefineEdges, solve_graded};
+use crate::grading::{GradedGrid, Grading, solve_graded};
 use crate::mesh::Element;
 use crate::solution::Solution;
 use crate::solve::solve_contact;
@@ -31,7 +32,7 @@ use super::Engine;
 /// The last graded solve: its grid, the grid's discretisation and where its Newton ended.
 pub(super) struct LastGraded {
     /// The settings it serves: a solve with these grades the same level the same way.
-    serves: (u32, Element, Integration, RefineEdges),
+    serves: (u32, Element, Integration, Grading),
     /// The graded grid (after at least one pass).
     grid: GradedGrid,
     /// Its discretisation (assembled, ordered and factorised).
@@ -62,7 +63,7 @@ impl LastGraded {
 }
 
 /// The settings a graded grid serves: the level, element, integration and grading of `key`.
-fn serves(key: &SolveKey) -> (u32, Element, Integration, RefineEdges) {
+fn serves(key: &SolveKey) -> (u32, Element, Integration, Grading) {
     (key.level, key.element, key.integration, key.refine_edges)
 }
 
@@ -89,7 +90,7 @@ impl Engine {
     /// Solve `req` on the last graded grid if it serves `req`'s settings, warm-started from
     /// its last forces (or its pressure carried to another rule's points, and from rest if that
     /// does not converge); the solve when the contact edges it finds lie inside the grid's
-    /// band, the cancellation when `is_current` says so, None otherwise (graded again from the
+    /// band (a zone grid: its contact zone), the cancellation when `is_current` says so, None otherwise (graded again from the
     /// uniform level: [`Engine::graded`]). A uniform solve lets the last graded grid go (its
     /// discretisation may hold gigabytes at level 7, outside the cache's budget).
     pub(super) fn on_graded_grid(
@@ -147,7 +148,11 @@ impl Engine {
                 return None;
             }
         };
-        if !last.grid.holds_edges(&sol.points, &sol.p) {
+        let holds = match key.refine_edges {
+            Grading::Edges(_) => last.grid.holds_edges(&sol.points, &sol.p),
+            Grading::Zone(_) => last.grid.holds_zone(&sol.points, &sol.p),
+        };
+        if !holds {
             return None;
         }
         let grid = last.grid.clone();

@@ -3,7 +3,7 @@
 use std::sync::{Arc, Mutex, PoisonError};
 use std::time::Instant;
 
-use crate::refine_edges::RefineEdges;
+use crate::refine_edges::{Grading, RefineEdges};
 use crate::scenario::Scenario;
 use crate::scheme::Scheme;
 use crate::study::{StudyRow, convergence_graded};
@@ -122,11 +122,11 @@ impl Studying {
 
 /// What a level of a study with the grading `refine` costs against its uniform rows alone:
 /// a graded row solves the uniform level and then each pass on a finer grid (`auto` counted as
-/// three passes), a rough estimate for the time left.
-pub(super) fn cost_factor(refine: RefineEdges) -> f64 {
+/// three passes; a zone pass as an edge pass), a rough estimate for the time left.
+pub(super) fn cost_factor(refine: Grading) -> f64 {
     match refine {
-        RefineEdges::Passes(n) => 1.0 + f64::from(n + u32::from(n > 0)),
-        _ => 5.0,
+        Grading::Edges(RefineEdges::Passes(n)) | Grading::Zone(n) => 1.0 + f64::from(n + u32::from(n > 0)),
+        Grading::Edges(RefineEdges::Auto) => 5.0,
     }
 }
 

@@ -6,7 +6,7 @@
 use std::sync::{Arc, OnceLock};
 
 use riplab::contact::Rule;
-use riplab::grading::RefineEdges;
+use riplab::grading::{Grading, RefineEdges};
 use riplab::scenario::Scenario;
 use riplab::study::Errors;
 use riplab::study::{Plan, Status, StudyRow};
@@ -22,16 +22,16 @@ const LOOK: Look = Look {
 };
 
 /// The paper's app on the convergence scene with `refine` set (timings hidden).
-fn graded_app(refine: RefineEdges) -> App {
+fn graded_app(refine: impl Into<Grading>) -> App {
     let mut app = App::new(Scenario::paper());
     app.show_timing = false;
     app.scene = Scene::Convergence;
-    app.settings.refine_edges = refine;
+    app.settings.refine_edges = refine.into();
     app
 }
 
 /// The study the app's key asks for at `refine`, on the real engine, with `max_level`.
-fn key_of(refine: RefineEdges, max_level: u32) -> StudyKey {
+fn key_of(refine: impl Into<Grading>, max_level: u32) -> StudyKey {
     let mut key = graded_app(refine).study_key();
     key.max_level = max_level;
     key
@@ -51,7 +51,10 @@ fn series<'a>(rows: &'a [StudyRow], of: &StudyRow) -> Vec<&'a StudyRow> {
 fn the_labs_graded_study_is_riplab_studys() {
     let scenario = Scenario::paper();
     let key = key_of(RefineEdges::Passes(2), 2);
-    assert_eq!(key.gradings(), [RefineEdges::Passes(0), RefineEdges::Passes(2)]);
+    assert_eq!(
+        key.gradings(),
+        [Grading::default(), RefineEdges::Passes(2).into()]
+    );
     assert_eq!(key.label(), "M1–M4 (penalty), uniform and +2e");
     let mut partials: Vec<Arc<Study>> = Vec::new();
     let lab = Engine::new(scenario.clone())
@@ -203,13 +206,13 @@ fn row(
     scheme: &str,
     method: riplab::contact::Method,
     level: u32,
-    refine: RefineEdges,
+    refine: Grading,
     ms: f64,
     pbar: f64,
 ) -> StudyRow {
     let passes = match refine {
-        RefineEdges::Passes(n) => n,
-        _ => 3,
+        Grading::Edges(RefineEdges::Passes(n)) | Grading::Zone(n) => n,
+        Grading::Edges(RefineEdges::Auto) => 3,
     };
     let h = 1.0 / f64::from(1 << level);
     StudyRow {
@@ -223,7 +226,7 @@ fn row(
         n_dofs: [90, 306, 1122][level as usize] + 40 * passes as usize,
         refine_edges: passes,
         h_min: h / f64::from(1 << passes),
-        grading: refine.into(),
+        grading: refine,
         status: Status::Ok,
         reason: None,
         epsilon_dominated: false,
@@ -247,7 +250,7 @@ fn row(
 /// The app on the convergence scene at level 2 with a made-up study of `key`'s schemes (or
 /// methods) at levels 0 to 2, uniform and graded as `refine`; `kernel` names a method without
 /// an answer.
-fn made_up(compare: Compare, refine: RefineEdges, kernel: Option<&str>) -> App {
+fn made_up(compare: Compare, refine: impl Into<Grading>, kernel: Option<&str>) -> App {
     let mut app = graded_app(refine);
     app.compare = compare;
     app.settings.level = 2;
@@ -315,6 +318,18 @@ fn graded_convergence_80x24() {
     snap!("tui__convergence_graded_methods_80x24", text);
 }
 
+/// With zone grading (`3z`) the graded series read `M1+3z p̄` in the legend and `2+3z` in the
+/// table (issue 35, zone grading in the lab).
+#[test]
+fn zone_graded_convergence_80x24() {
+    let app = made_up(Compare::Schemes, Grading::Zone(3), None);
+    let text = render_app(&app, &LOOK, 80, 24);
+    for name in ["a M1+3z p̄", "d M4+3z p̄", "2+3z"] {
+        assert!(text.contains(name), "`{name}` in\n{text}");
+    }
+    assert!(!text.contains("+3e"), "{text}");
+}
+
 /// `E` on the convergence scene asks for a study that differs from the last only in its
 /// grading: the engine keeps the uniform rows (their very times) and solves the graded ones.
 #[test]
@@ -353,11 +368,11 @@ fn e_on_the_convergence_scene_asks_for_the_graded_study() {
     };
     let first = studies(app.update(Msg::Resize).commands);
     assert_eq!(first.len(), 1);
-    assert_eq!(first[0].refine_edges, RefineEdges::default());
+    assert_eq!(first[0].refine_edges, Grading::default());
     let e = Msg::Key(KeyEvent::new(KeyCode::Char('E'), KeyModifiers::NONE));
     let graded = studies(app.update(e).commands);
     assert_eq!(graded.len(), 1, "{graded:?}");
-    assert_eq!(graded[0].refine_edges, RefineEdges::Passes(1));
+    assert_eq!(graded[0].refine_edges, RefineEdges::Passes(1).into());
     assert_eq!(graded[0].ungraded(), first[0]);
     app.notice = None;
     let text = render_app(&app, &LOOK, 80, 24);

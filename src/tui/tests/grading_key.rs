@@ -6,7 +6,7 @@ use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use riplab::contact::newton::NewtonOptions;
 use riplab::contact::{ContactParams, Method};
 use riplab::discretization::Discretization;
-use riplab::grading::{RefineEdges, solve_graded};
+use riplab::grading::{Grading, RefineEdges, solve_graded};
 use riplab::scenario::Scenario;
 use riplab::tui::app::{App, Msg, Scene};
 use riplab::tui::engine::Engine;
@@ -33,12 +33,25 @@ fn e_cycles_the_grading_and_the_lab_shows_the_graded_solve() {
     let mut engine = Engine::new(Scenario::paper());
     let uniform_dofs = app.current().unwrap().disc.n_dofs();
     let mut seen = Vec::new();
-    for _ in 0..5 {
+    for _ in 0..8 {
         press(&mut app, &mut engine, 'E');
         seen.push(app.settings.refine_edges);
     }
+    use Grading::{Edges, Zone};
     use RefineEdges::{Auto, Passes};
-    assert_eq!(seen, [Passes(1), Passes(2), Passes(3), Auto, Passes(0)]);
+    assert_eq!(
+        seen,
+        [
+            Edges(Passes(1)),
+            Edges(Passes(2)),
+            Edges(Passes(3)),
+            Edges(Auto),
+            Zone(1),
+            Zone(2),
+            Zone(3),
+            Edges(Passes(0))
+        ]
+    );
     press(&mut app, &mut engine, 'E');
     press(&mut app, &mut engine, 'E');
     settle(&mut app, &mut engine);

@@ -24,6 +24,7 @@ mod stress_scene;
 mod tour;
 mod tour_numbers;
 mod typed_errors;
+mod zone_key;
 
 use riplab::scenario::Scenario;
 

@@ -41,7 +41,7 @@ fn graded_lab(engine: &mut Engine, level: u32) -> App {
     settle(&mut app, engine);
     press(&mut app, engine, 'E');
     press(&mut app, engine, 'E');
-    assert_eq!(app.settings.refine_edges, RefineEdges::Passes(2));
+    assert_eq!(app.settings.refine_edges, RefineEdges::Passes(2).into());
     app
 }
 
@@ -171,11 +171,12 @@ fn a_uniform_solve_lets_the_graded_grid_go() {
     let mut app = graded_lab(&mut engine, 2);
     let first = app.current().unwrap().clone();
     let mut seen = Vec::new();
-    for _ in 0..5 {
+    for _ in 0..8 {
         press(&mut app, &mut engine, 'E');
         seen.push((app.settings.refine_edges, app.current().unwrap().regrade));
     }
     use RefineEdges::{Auto, Passes};
+    use riplab::grading::Grading::{Edges, Zone};
     // auto: as many passes as p̄ asks (the library's test `auto_grades_until_pbar_settles`).
     assert!(
         matches!(seen[1].1, Some(Regrade::Graded { passes: 1.. })),
@@ -184,11 +185,14 @@ fn a_uniform_solve_lets_the_graded_grid_go() {
     assert_eq!(
         seen,
         [
-            (Passes(3), Some(Regrade::Graded { passes: 3 })),
-            (Auto, seen[1].1),
-            (Passes(0), None),
-            (Passes(1), Some(Regrade::Graded { passes: 1 })),
-            (Passes(2), Some(Regrade::Graded { passes: 2 })),
+            (Edges(Passes(3)), Some(Regrade::Graded { passes: 3 })),
+            (Edges(Auto), seen[1].1),
+            (Zone(1), Some(Regrade::Graded { passes: 1 })),
+            (Zone(2), Some(Regrade::Graded { passes: 2 })),
+            (Zone(3), Some(Regrade::Graded { passes: 3 })),
+            (Edges(Passes(0)), None),
+            (Edges(Passes(1)), Some(Regrade::Graded { passes: 1 })),
+            (Edges(Passes(2)), Some(Regrade::Graded { passes: 2 })),
         ]
     );
     let again = app.current().unwrap();

@@ -7,11 +7,11 @@ use ratatui::widgets::Paragraph;
 
 use crate::contact::Method;
 use crate::fem::Integration;
-use crate::refine_edges::RefineEdges;
 use crate::scheme::Scheme;
 use crate::warning::LOCKING_POISSON;
 
 use super::super::app::{App, Scene};
+use super::super::study_grading::graded_suffix;
 use super::super::theme::Theme;
 use super::fmt::{sig, title_fit};
 
@@ -110,11 +110,7 @@ fn settings_line(app: &App, theme: Theme, width: u16) -> Line<'static> {
             Span::raw(format!(
                 "level {}{} h={}",
                 s.level,
-                match s.refine_edges {
-                    RefineEdges::Passes(0) => String::new(),
-                    RefineEdges::Passes(n) => format!("+{n}e"),
-                    RefineEdges::Auto => "+auto".into(),
-                },
+                graded_suffix(s.refine_edges).unwrap_or_default(),
                 sig(app.scenario.h(s.level), 3)
             )),
         ];
