@@ -5,7 +5,6 @@
 //! it); Nitsche's method and a half model are refused by the library, and the refusal is the
 //! reply.
 
-use std::ops::ControlFlow;
 use std::sync::{Arc, OnceLock};
 use std::time::Instant;
 
@@ -16,7 +15,7 @@ use crate::error::SolveError;
 use crate::friction::solve_friction;
 
 use super::super::lab_error::LabError;
-use super::super::protocol::{Progress, Response, SolveRequest, Solved};
+use super::super::protocol::{Response, SolveRequest, Solved};
 use super::super::shown::Shown;
 use super::{Engine, ForcePoints, Warm};
 
@@ -60,20 +59,7 @@ impl Engine {
             &friction,
             initial,
             &NewtonOptions::default(),
-            &mut |it| {
-                if !is_current(generation) {
-                    return ControlFlow::Break(());
-                }
-                report(Response::Progress {
-                    generation,
-                    progress: Progress::Newton {
-                        iteration: it.iteration,
-                        residual: it.residual,
-                        active: it.active,
-                    },
-                });
-                ControlFlow::Continue(())
-            },
+            &mut |it| super::newton_step(generation, is_current, &mut *report, it),
         );
         match result {
             Ok(solution) => {

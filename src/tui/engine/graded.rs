@@ -10,7 +10,6 @@
 //! grid, no new factor. Otherwise it grades again from the level's uniform solve, as a fresh
 //! `riplab solve --refine-edges N` does ([`Regrade`] says which in the status line).
 
-use std::ops::ControlFlow;
 use std::sync::{Arc, OnceLock};
 use std::time::Instant;
 
@@ -24,7 +23,7 @@ use crate::mesh::Element;
 use crate::solution::Solution;
 use crate::solve::solve_contact;
 
-use super::super::protocol::{Progress, Response, SolveKey, SolveRequest, Solved};
+use super::super::protocol::{Response, SolveKey, SolveRequest, Solved};
 use super::super::regrade::Regrade;
 use super::super::shown::Shown;
 use super::Engine;
@@ -121,18 +120,7 @@ impl Engine {
         };
         let mut newton = |start: Option<&[f64]>| {
             solve_contact(&disc, &params, start, &NewtonOptions::default(), &mut |it| {
-                if !is_current(generation) {
-                    return ControlFlow::Break(());
-                }
-                report(Response::Progress {
-                    generation,
-                    progress: Progress::Newton {
-                        iteration: it.iteration,
-                        residual: it.residual,
-                        active: it.active,
-                    },
-                });
-                ControlFlow::Continue(())
+                super::newton_step(generation, is_current, &mut *report, it)
             })
         };
         let mut result = newton(Some(&start));

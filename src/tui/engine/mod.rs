@@ -10,7 +10,7 @@ use std::ops::ControlFlow;
 use std::sync::{Arc, Mutex, OnceLock};
 use std::time::Instant;
 
-use crate::contact::newton::NewtonOptions;
+use crate::contact::newton::{Iteration, NewtonOptions};
 use crate::contact::{Method, Rule, carried_forces};
 use crate::discretization::Discretization;
 use crate::error::SolveError;
@@ -396,18 +396,7 @@ impl Engine {
         };
         let mut newton = |start: Option<&[f64]>| {
             solve_contact(&disc, &params, start, &NewtonOptions::default(), &mut |it| {
-                if !is_current(generation) {
-                    return ControlFlow::Break(());
-                }
-                report(Response::Progress {
-                    generation,
-                    progress: Progress::Newton {
-                        iteration: it.iteration,
-                        residual: it.residual,
-                        active: it.active,
-                    },
-                });
-                ControlFlow::Continue(())
+                newton_step(generation, is_current, &mut *report, it)
             })
         };
         if key.friction.is_on() {
@@ -519,4 +508,26 @@ impl Engine {
         let disc = self.discretization(key.level, key.element)?;
         Ok(beta::estimate(&disc, key.rule)?)
     }
+}
+
+/// One Newton iteration of the solve `generation`: reported as progress, or the solve
+/// cancelled once `is_current(generation)` is false.
+fn newton_step(
+    generation: u64,
+    is_current: &dyn Fn(u64) -> bool,
+    report: &mut dyn FnMut(Response),
+    it: &Iteration,
+) -> ControlFlow<()> {
+    if !is_current(generation) {
+        return ControlFlow::Break(());
+    }
+    report(Response::Progress {
+        generation,
+        progress: Progress::Newton {
+            iteration: it.iteration,
+            residual: it.residual,
+            active: it.active,
+        },
+    });
+    ControlFlow::Continue(())
 }
