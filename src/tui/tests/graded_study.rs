@@ -175,7 +175,8 @@ fn settled_graded() -> App {
 /// its graded row (`4` beside `4+1e`).
 #[test]
 fn every_graded_series_is_drawn_at_every_size() {
-    let app = settled_graded();
+    let mut app = settled_graded();
+    crate::tui::tests::steady_times(&mut app);
     assert!(
         app.clone().update(Msg::Resize).commands.is_empty(),
         "the study is there"

@@ -103,7 +103,8 @@ fn the_infsup_scene_shows_five_levels_and_every_series_at_every_size() {
 /// each scheme's mark at each level, at every size.
 #[test]
 fn the_convergence_scene_shows_five_levels_and_every_scheme_at_every_size() {
-    let app = settled(0, Scene::Convergence);
+    let mut app = settled(0, Scene::Convergence);
+    crate::tui::tests::steady_times(&mut app);
     for (w, h) in SIZES {
         let frame = render_app(&app, &LOOK, w, h);
         assert!(frame.contains("levels 0 to 4"), "{frame}");
