@@ -5,19 +5,17 @@
 //! it); Nitsche's method and a half model are refused by the library, and the refusal is the
 //! reply.
 
-use std::sync::{Arc, OnceLock};
+use std::sync::Arc;
 use std::time::Instant;
 
 use crate::contact::ContactParams;
 use crate::contact::newton::NewtonOptions;
 use crate::discretization::Discretization;
-use crate::error::SolveError;
 use crate::friction::solve_friction;
 
 use super::super::lab_error::LabError;
-use super::super::protocol::{Response, SolveRequest, Solved};
-use super::super::shown::Shown;
-use super::{Engine, ForcePoints, Warm};
+use super::super::protocol::{Response, SolveRequest};
+use super::{Engine, ForcePoints};
 
 impl Engine {
     /// Solve `req` (its friction on) on `disc` with `params`, on the force points `points`,
@@ -61,35 +59,6 @@ impl Engine {
             &NewtonOptions::default(),
             &mut |it| super::newton_step(generation, is_current, &mut *report, it),
         );
-        match result {
-            Ok(solution) => {
-                self.warm = Some(Warm {
-                    points,
-                    forces: solution.newton.forces.clone(),
-                    x: solution.points.points.iter().map(|q| q.x).collect(),
-                    p: solution.p.clone(),
-                    method: key.method,
-                    z: solution.friction.as_ref().map(|f| f.z.clone()),
-                });
-                Response::Solved {
-                    generation,
-                    result: Ok(Arc::new(Solved {
-                        key,
-                        disc,
-                        shown: Shown::new(&self.scenario, &solution),
-                        solution,
-                        displacement: OnceLock::new(),
-                        total_ms: t.elapsed().as_secs_f64() * 1e3,
-                        stresses: OnceLock::new(),
-                        regrade: None,
-                    })),
-                }
-            }
-            Err(SolveError::Cancelled) => Response::Cancelled { generation },
-            Err(e) => Response::Solved {
-                generation,
-                result: Err(e.into()),
-            },
-        }
+        self.answer(generation, key, disc, points, t, result)
     }
 }

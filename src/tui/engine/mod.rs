@@ -413,6 +413,21 @@ impl Engine {
         if carried && result.as_ref().is_ok_and(|s| !s.newton.converged) {
             result = newton(None);
         }
+        self.answer(generation, key, disc, points, t, result)
+    }
+
+    /// The reply to the solve `generation` of `key` on `disc` started at `t`: its solution
+    /// shown (and its forces, and friction's, kept to warm the next solve on `points`), a
+    /// cancellation, or its failure.
+    fn answer(
+        &mut self,
+        generation: u64,
+        key: super::protocol::SolveKey,
+        disc: Arc<Discretization>,
+        points: ForcePoints,
+        t: Instant,
+        result: Result<crate::solution::Solution, SolveError>,
+    ) -> Response {
         match result {
             Ok(solution) => {
                 self.warm = Some(Warm {
@@ -421,7 +436,7 @@ impl Engine {
                     x: solution.points.points.iter().map(|q| q.x).collect(),
                     p: solution.p.clone(),
                     method: key.method,
-                    z: None,
+                    z: solution.friction.as_ref().map(|f| f.z.clone()),
                 });
                 Response::Solved {
                     generation,
