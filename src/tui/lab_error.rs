@@ -32,9 +32,10 @@ pub enum LabError {
         /// The element.
         element: Element,
     },
-    /// Friction asked of an edge-graded solve (`riplab solve` refuses it too).
+    /// Friction asked of a graded solve, at the edges or over the zone (`riplab solve`
+    /// refuses it too).
     #[error(
-        "friction: edge grading (E) does not take friction yet; E back to 0 passes, or F to friction none"
+        "friction: grading (E, at the edges or over the zone) does not take friction yet; E back to 0 passes, or F to friction none"
     )]
     GradedFriction,
     /// The thread of an inf-sup estimate ended without sending its result.

@@ -198,7 +198,7 @@ fn refused_friction_solves_say_why_and_keep_the_last_frame() {
     press(&mut app, &mut engine, "E");
     let error = app.error.as_ref().expect("refused").to_string();
     assert!(
-        error.contains("edge grading (E) does not take friction"),
+        error.contains("grading (E, at the edges or over the zone) does not take friction"),
         "{error}"
     );
 }

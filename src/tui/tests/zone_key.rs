@@ -166,5 +166,8 @@ fn friction_with_zone_grading_is_refused() {
         "{:?}",
         app.error
     );
+    // The refusal names the zone grading, not only the edges'.
+    let said = app.error.as_ref().unwrap().to_string();
+    assert!(said.contains("over the zone"), "{said}");
     assert!(app.solved.as_ref().is_some_and(|s| !s.key.friction.is_on()));
 }
