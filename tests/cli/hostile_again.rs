@@ -64,27 +64,64 @@ fn riplab_limited(mib: u64, args: &[&str]) -> (i32, String) {
     )
 }
 
+/// `needs about X GiB` and `has Y GiB available` of a memory refusal, in bytes (one decimal:
+/// each ±0.05 GiB).
+fn need_and_available(stderr: &str) -> Option<(f64, f64)> {
+    let gib_after = |key: &str| -> Option<f64> {
+        let rest = &stderr[stderr.find(key)? + key.len()..];
+        let number = rest.trim_start().split_whitespace().next()?;
+        Some(number.parse::<f64>().ok()? * f64::from(1u32 << 30))
+    };
+    Some((gib_after("needs about")?, gib_after("this process has")?))
+}
+
 /// Under address-space limits around what Q2 level 5 needs, `infsup` either answers or is
 /// refused with exit 2 and a message about memory: never an abort, never "not positive
 /// definite" (a factorisation that ran out of memory used to say so).
+///
+/// The limits are derived from riplab's own estimate, never fixed: what the process maps
+/// before the check (the gemm kernels' reservation, thread stacks) depends on the CPU and its
+/// caches, so a first run under a small limit reads the estimate and what was left of the
+/// limit, and the limits tried are that mapping plus fractions of the estimate. Below the
+/// estimate the refusal is certain on every host; above it the estimate promises the work
+/// fits, so the largest limit must answer.
 #[test]
 fn the_inf_sup_estimate_is_refused_before_it_runs_out_of_memory() {
     let args = ["infsup", "--levels", "5", "--element", "q2", "--threads", "1"];
-    let mut refused = 0;
-    for mib in [1300, 1400, 1500, 1600] {
+    const MIB: f64 = (1u64 << 20) as f64;
+    // A probe: the smallest of these limits that leaves the process some room to start, and
+    // is refused, gives the estimate and the mapping (the limit less what was available).
+    let (need, mapped) = [512u64, 768, 1024, 1536, 2048]
+        .into_iter()
+        .find_map(|mib| {
+            let (code, stderr) = riplab_limited(mib, &args);
+            let (need, available) = need_and_available(&stderr)?;
+            (code == 2 && available >= 0.1 * f64::from(1u32 << 30))
+                .then_some((need, mib as f64 * MIB - available))
+        })
+        .expect("a probe under 512–2048 MiB is refused with the estimate and what is available");
+    // One decimal of GiB on each figure: ±0.1 GiB on the sum, far inside the 25% below.
+    let limit = |fraction: f64| ((mapped + fraction * need) / MIB).ceil() as u64;
+    for fraction in [0.75, 0.95, 1.1, 1.3, 1.6] {
+        let mib = limit(fraction);
         let (code, stderr) = riplab_limited(mib, &args);
         no_panic(&stderr);
-        assert!(code == 0 || code == 2, "{mib} MiB: exit {code}: {stderr}");
-        assert!(!stderr.contains("positive definite"), "{mib} MiB: {stderr}");
+        let at = format!("{fraction} of the estimate ({mib} MiB)");
+        assert!(code == 0 || code == 2, "{at}: exit {code}: {stderr}");
+        assert!(!stderr.contains("positive definite"), "{at}: {stderr}");
         if code == 2 {
-            refused += 1;
             assert!(
                 stderr.contains("choose a coarser level") && stderr.contains("available"),
-                "{mib} MiB: {stderr}"
+                "{at}: {stderr}"
             );
         }
+        if fraction < 0.8 {
+            assert_eq!(code, 2, "{at}: below the estimate and not refused: {stderr}");
+        }
+        if fraction > 1.5 {
+            assert_eq!(code, 0, "{at}: the estimate said it fits: {stderr}");
+        }
     }
-    assert!(refused > 0, "no limit was tight enough to test the refusal");
 }
 
 /// The lab aborted (SIGABRT, as a failed allocation does) leaves the alternate screen and
