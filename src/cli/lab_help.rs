@@ -59,15 +59,14 @@ fn helps_and_files_agree_with_the_lab() {
     assert!(block.contains("`c` cycles") && !block.contains("stress scene (`s`)"));
 }
 
-/// Issue 11 item 3: the README's key table is the lab's key table (`riplab::tui::keys`), row
-/// for row.
+/// docs/lab.md's key table is the lab's key table (`riplab::tui::keys`), row for row.
 #[test]
-fn the_readme_key_table_is_the_labs() {
-    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+fn the_documented_key_table_is_the_labs() {
+    let docs = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/lab.md")).unwrap();
     let table = riplab::tui::keys::readme_table();
     assert!(
-        readme.contains(&table),
-        "README.md's key table differs from the lab's; it should read:\n{table}"
+        docs.contains(&table),
+        "docs/lab.md's key table differs from the lab's; it should read:\n{table}"
     );
 }
 

@@ -1,6 +1,6 @@
 //! Every key of the lab and of the tour, in one table each. The dispatch
-//! ([`lab_action`], [`tour_action`]), the help overlays and the README's key table are all
-//! read from these tables (a test keeps the README equal to [`readme_table`]), so that a key
+//! ([`lab_action`], [`tour_action`]), the help overlays and docs/lab.md's key table are all
+//! read from these tables (a test keeps docs/lab.md equal to [`readme_table`]), so that a key
 //! cannot do one thing and be documented as another.
 
 use crossterm::event::KeyCode;
@@ -394,7 +394,7 @@ pub fn lab_help() -> Vec<(&'static str, &'static str)> {
     lines
 }
 
-/// The README's key table (Markdown), from [`LAB`] and [`CONTROL`].
+/// docs/lab.md's key table (Markdown), from [`LAB`] and [`CONTROL`].
 #[cfg(test)]
 pub fn readme_table() -> String {
     let mut out = String::from("| key | action |\n|---|---|\n");

@@ -6,6 +6,7 @@
 mod common;
 
 mod bad_input;
+mod design_map;
 mod docs_tables;
 mod friction;
 mod grading;

@@ -191,6 +191,14 @@ fn check_output(args: &[String], stdout: &str, tmp: &Path) -> Result<(), Broken>
     let has = |flag: &str, value: &str| args.windows(2).any(|w| w[0] == flag && w[1] == value);
     let json = has("--format", "json") || has("-f", "json");
     let csv = has("--format", "csv") || has("-f", "csv");
+    // A command's help (docs/cli.md shows each one): clap's usage line.
+    if args.iter().any(|a| a == "--help") {
+        return if stdout.contains("Usage: riplab") {
+            Ok(())
+        } else {
+            Err(Broken::Lacks("Usage: riplab"))
+        };
+    }
     if json {
         let value: serde_json::Value = serde_json::from_str(stdout).map_err(Broken::NotJson)?;
         let objects: Vec<&serde_json::Value> = match &value {

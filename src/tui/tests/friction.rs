@@ -283,13 +283,13 @@ fn the_friction_keys_say_what_they_did() {
     assert_eq!(app.settings.friction, Friction::NONE);
 }
 
-/// Item 5: the friction keys are in the help overlay, the README's key table and `riplab
+/// The friction keys are in the help overlay, docs/lab.md's key table and `riplab
 /// render --help`'s list, with the same words; `render --keys` can press them (`<lt>` is `<`),
 /// and they act as in the lab.
 #[test]
 fn the_friction_keys_are_documented_everywhere() {
     let help = riplab::tui::keys::lab_help();
-    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/lab.md")).unwrap();
     let render = riplab::tui::keys::with_lab_keys("");
     for (keys, what) in [
         ("F", "friction law: none, coulomb, tresca"),
@@ -299,7 +299,7 @@ fn the_friction_keys_are_documented_everywhere() {
         assert!(help.contains(&(keys, what)), "{keys} in the help");
         let ticked: Vec<String> = keys.split_whitespace().map(|k| format!("`{k}`")).collect();
         let row = format!("| {} | {what} |", ticked.join(" "));
-        assert!(readme.contains(&row), "{row} in the README");
+        assert!(readme.contains(&row), "{row} in docs/lab.md");
         assert!(
             render.contains(&format!("  {keys:<16}{what}\n")),
             "{keys} in render --help"
