@@ -61,6 +61,11 @@ pub struct Cli {
     /// Monochrome display (also when the NO_COLOR environment variable is set).
     #[arg(long, global = true)]
     pub no_color: bool,
+    /// No mouse in the lab and the tour (the terminal keeps its own selection of text); with
+    /// it, a click on a tab changes the scene, the wheel scrolls the help and the log, and a
+    /// click on the pressure chart places the cursor.
+    #[arg(long, global = true)]
+    pub no_mouse: bool,
     /// Where the lab's and the tour's `s` (CSV), `S` (SVG) and `v` (VTU) exports go; the
     /// current directory when omitted. Files are never overwritten.
     #[arg(long, global = true, value_name = "DIR")]
@@ -192,6 +197,7 @@ pub fn run(cli: Cli) -> ExitCode {
             TuiOptions {
                 marker: cli.marker,
                 no_color: cli.no_color,
+                no_mouse: cli.no_mouse,
                 export_dir: cli.export_dir.clone(),
                 tour_out: None,
             },
@@ -215,6 +221,7 @@ pub fn run(cli: Cli) -> ExitCode {
             TuiOptions {
                 marker: cli.marker,
                 no_color: cli.no_color,
+                no_mouse: cli.no_mouse,
                 export_dir: cli.export_dir.clone(),
                 tour_out: cli.tour_out,
             },
@@ -252,13 +259,21 @@ fn shown(path: &std::path::Path) -> String {
     crate::text::sanitize(&path.display().to_string()).into_owned()
 }
 
-/// The error of a lab or tour started without a terminal.
+/// The error of a lab or tour started without a terminal, or on one that cannot show its
+/// escape sequences (TERM=dumb).
 fn needs_terminal(what: &str) -> Result<(), CliError> {
     use std::io::IsTerminal;
-    if std::io::stdout().is_terminal() && std::io::stdin().is_terminal() {
-        return Ok(());
+    if !(std::io::stdout().is_terminal() && std::io::stdin().is_terminal()) {
+        return Err(CliError::Usage(format!(
+            "{what} needs a terminal (stdin and stdout are not both one); for a frame as text use `riplab render` (e.g. `riplab render --scene explore --size 100x30`)"
+        )));
     }
-    Err(CliError::Usage(format!(
-        "{what} needs a terminal (stdin and stdout are not both one); for a frame as text use `riplab render` (e.g. `riplab render --scene explore --size 100x30`)"
-    )))
+    // A terminal that cannot move its cursor (Emacs' shell, a plain serial console) would
+    // show the escape sequences as text.
+    if std::env::var_os("TERM").is_some_and(|t| t == "dumb") {
+        return Err(CliError::Usage(format!(
+            "{what} draws with escape sequences, and TERM=dumb says this terminal cannot show them; run it in a terminal emulator (TERM=xterm-256color or the like), or print a frame as text with `riplab render` (e.g. `riplab render --scene explore --size 100x30`)"
+        )));
+    }
+    Ok(())
 }

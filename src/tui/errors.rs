@@ -57,4 +57,12 @@ pub enum RenderError {
     /// An ε that is not a finite number > 0.
     #[error("ε: {0}")]
     Epsilon(#[source] CheckError),
+    /// A key of `--keys` that quits the lab (`q`, Ctrl-C): there is no frame after it.
+    #[error(
+        "--keys: key {at} quits the lab, and render draws the lab running; leave it out (Esc only goes back)"
+    )]
+    Quits {
+        /// The key's place in `--keys`, from 1.
+        at: usize,
+    },
 }

@@ -24,6 +24,8 @@ pub enum ExportKind {
 pub enum LabAction {
     /// Quit the lab.
     Quit,
+    /// Back: close the help or the log, else leave the projector view; never quits.
+    Back,
     /// Open the help overlay.
     Help,
     /// The next coarser mesh level.
@@ -111,7 +113,7 @@ pub enum TourAction {
     ScrollUp,
     /// Scroll a long caption down a line.
     ScrollDown,
-    /// Quit the tour.
+    /// Quit the tour (asking once before its last step).
     Quit,
     /// Open the help overlay.
     Help,
@@ -135,9 +137,14 @@ use TourAction as T;
 /// The lab's keys (and with Ctrl held: [`CONTROL`]).
 pub const LAB: &[Row<LabAction>] = &[
     Row {
-        keys: "q  Esc",
+        keys: "q",
         what: &["quit"],
-        bindings: &[(Char('q'), L::Quit), (KeyCode::Esc, L::Quit)],
+        bindings: &[(Char('q'), L::Quit)],
+    },
+    Row {
+        keys: "Esc",
+        what: &["back: close help, log or projector view"],
+        bindings: &[(KeyCode::Esc, L::Back)],
     },
     Row {
         keys: "?",
@@ -333,9 +340,9 @@ pub const TOUR: &[Row<TourAction>] = &[
         bindings: &[(KeyCode::Up, T::ScrollUp), (KeyCode::Down, T::ScrollDown)],
     },
     Row {
-        keys: "q  Esc  Ctrl-C",
-        what: &["quit the tour"],
-        bindings: &[(Char('q'), T::Quit), (KeyCode::Esc, T::Quit)],
+        keys: "q  Ctrl-C",
+        what: &["quit the tour (q asks once before the end)"],
+        bindings: &[(Char('q'), T::Quit)],
     },
     Row {
         keys: "?",

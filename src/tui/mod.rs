@@ -9,7 +9,6 @@
 //! cancelling older ones; [`settle()`] drives the same engine synchronously. The app and the
 //! worker speak through [`protocol`] alone.
 
-mod abort_guard;
 pub mod app;
 pub mod beta;
 mod build;
@@ -33,6 +32,7 @@ mod runtime_export_tests;
 pub mod settle;
 pub mod shown;
 pub mod shown_friction;
+mod signals;
 mod study_grading;
 #[cfg(test)]
 mod tests;
@@ -47,6 +47,7 @@ use std::path::{Path, PathBuf};
 
 use ratatui::backend::TestBackend;
 use ratatui::buffer::{Buffer, CellWidth};
+use ratatui::layout::Rect;
 use ratatui::symbols::Marker;
 use ratatui::{Frame, Terminal};
 
@@ -96,6 +97,10 @@ pub struct TuiOptions {
     pub marker: MarkerChoice,
     /// Monochrome (the environment's NO_COLOR is honoured as well).
     pub no_color: bool,
+    /// No mouse (`--no-mouse`): the terminal keeps its own selection of text; otherwise a
+    /// click on a tab changes the scene, the wheel scrolls the help and the log, and a click
+    /// on the pressure chart places the cursor.
+    pub no_mouse: bool,
     /// Where `s` and `S` write; the current directory when None.
     pub export_dir: Option<PathBuf>,
     /// Where the lab's `T` adds tour steps; `riplab-tour.toml` in the export directory when
@@ -131,7 +136,8 @@ pub fn run(
         scenario_file: scenario_file.map(std::path::absolute).transpose()?,
     };
     let title = format!("riplab lab: {}", text::sanitize(&scenario.name));
-    runtime::run(scenario, look, dir, source, record.map(|r| (r, title)))
+    let recording = record.map(|r| (r, title));
+    runtime::run(scenario, look, dir, source, recording, !opts.no_mouse)
 }
 
 /// Why the lab or the tour ended with an error.
@@ -216,8 +222,11 @@ pub fn render_with(
     }
     let mut engine = Engine::new(scenario.clone());
     settle(&mut app, &mut engine);
-    for &key in &extras.keys {
+    for (i, &key) in extras.keys.iter().enumerate() {
         let commands = app.update(app::Msg::Key(key)).commands;
+        if app.should_quit() {
+            return Err(RenderError::Quits { at: i + 1 });
+        }
         settle::carry_out(&mut app, &mut engine, commands);
     }
     let look = Look {
@@ -253,9 +262,16 @@ fn shown_failure(app: &App) -> Option<LabError> {
     }
 }
 
-/// The largest frame `riplab render` draws: a sane bound checked before anything is
-/// allocated (a 1000×500 buffer of cells is a few tens of MB).
+/// The largest frame `riplab render`, the lab and the tour draw: a sane bound checked before
+/// anything is allocated (a 1000×500 buffer of cells is a few tens of MB).
 pub const MAX_SIZE: (u16, u16) = (1000, 500);
+
+/// Where the lab and the tour draw in a terminal of `(columns, rows)`: its top-left corner,
+/// at most [`MAX_SIZE`], so that the frame's buffers never grow with the terminal (a
+/// 30000×20000 terminal's would take 29 GB).
+pub fn drawn_area((width, height): (u16, u16)) -> Rect {
+    Rect::new(0, 0, width.min(MAX_SIZE.0), height.min(MAX_SIZE.1))
+}
 
 /// The one size rule of the lab and `render`: at least [`view::MIN_SIZE`], at most [`MAX_SIZE`].
 pub fn check_size(width: impl Into<u32>, height: impl Into<u32>) -> Result<(), SizeError> {

@@ -6,7 +6,7 @@
 use std::sync::{Arc, OnceLock};
 use std::time::Instant;
 
-use crossterm::event::KeyEvent;
+use crossterm::event::{KeyEvent, MouseEvent};
 
 use super::export_error::ExportError;
 use super::lab_error::LabError;
@@ -419,6 +419,8 @@ pub const MAX_APP_LEVEL: u32 = if MAX_LEVEL < 7 { MAX_LEVEL } else { 7 };
 pub enum Msg {
     /// A key pressed.
     Key(KeyEvent),
+    /// A click, a wheel turn or a move of the mouse (with `--no-mouse`, none arrive).
+    Mouse(MouseEvent),
     /// The terminal was resized (redraw).
     Resize,
     /// A message from the worker.

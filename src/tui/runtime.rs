@@ -1,22 +1,23 @@
 //! The interactive loop of the lab and the tour ([`run_program`], driving a [`Program`]): the
-//! terminal (raw mode, alternate screen, restored on exit and on panic by ratatui), an input
-//! thread and the workers feeding one channel, and a redraw only when an update says the
-//! screen changed, inside synchronized-output brackets.
+//! terminal (raw mode, alternate screen, mouse reports unless `--no-mouse`; restored on exit,
+//! on panic by ratatui's hook, on a signal or an abort by [`super::signals`]), an input thread
+//! and the workers feeding one channel, and a redraw only when an update says the screen
+//! changed, inside synchronized-output brackets. The frame is at most [`super::MAX_SIZE`]
+//! whatever the terminal's size ([`super::drawn_area`]).
 
 use std::io;
 use std::path::{Path, PathBuf};
 use std::sync::mpsc::{self, RecvTimeoutError};
 use std::time::Duration;
 
-use crossterm::event::Event;
+use crossterm::event::{DisableMouseCapture, EnableMouseCapture, Event};
 use crossterm::terminal::{BeginSynchronizedUpdate, EndSynchronizedUpdate};
 use ratatui::backend::CrosstermBackend;
 use ratatui::layout::Size;
-use ratatui::{Frame, Terminal};
+use ratatui::{Frame, Terminal, TerminalOptions, Viewport};
 
 use crate::scenario::Scenario;
 
-use super::RunError;
 use super::app::{App, Command, ExportKind, Msg, Notice, Response, Scene};
 use super::export::{ExportError, export_csv, export_svg, export_vtu};
 use super::record::cast::Event as CastEvent;
@@ -24,6 +25,7 @@ use super::record::{CastFile, Chapter, Recorder, Screen, Tap};
 use super::tour::author::{LabSource, save_step};
 use super::view::{Look, MIN_SIZE, view};
 use super::worker::Worker;
+use super::{RunError, drawn_area};
 
 /// The terminal of the lab and the tour: crossterm on standard output, through the writer
 /// that records it when asked ([`Screen`]).
@@ -42,6 +44,8 @@ pub(super) enum Input {
     Broken(io::Error),
     /// The recording failed (the loop shows why on the status line).
     RecordingFailed,
+    /// SIGTERM, SIGHUP or SIGINT: the loop ends as on `q` ([`super::signals`]).
+    Signal,
 }
 
 /// What an update asks of the loop.
@@ -64,8 +68,8 @@ impl std::ops::BitOrAssign for Flow {
 pub(super) trait Program {
     /// The first update, before the first frame.
     fn start(&mut self) -> Flow;
-    /// One input from the terminal or a worker (never [`Input::Broken`] nor
-    /// [`Input::RecordingFailed`]).
+    /// One input from the terminal or a worker (never [`Input::Broken`],
+    /// [`Input::RecordingFailed`] nor [`Input::Signal`]).
     fn input(&mut self, input: Input) -> Flow;
     /// The wait of [`Program::wait`] is over with no input.
     fn tick(&mut self) -> Flow;
@@ -106,15 +110,17 @@ fn forward_terminal(tx: mpsc::Sender<Input>) -> io::Result<()> {
 pub(super) const TICK: Duration = Duration::from_millis(250);
 
 /// Run the lab on `scenario` until the user quits, exporting into `dir` (absolute) and adding
-/// tour steps as `source` says, recording if asked; the terminal is restored in every case.
+/// tour steps as `source` says, recording if asked, with the mouse if `mouse`; the terminal
+/// is restored in every case.
 pub fn run(
     scenario: Scenario,
     look: Look,
     dir: PathBuf,
     source: LabSource,
     recording: Recording,
+    mouse: bool,
 ) -> Result<(), RunError> {
-    run_program(recording, |tx, _| {
+    run_program(recording, mouse, |tx, _| {
         let worker = Worker::spawn(scenario.clone(), move |r| tx.send(Input::Worker(0, r)).is_ok());
         Ok(Lab {
             app: App::new(scenario),
@@ -126,60 +132,89 @@ pub fn run(
     })
 }
 
-/// The one event loop of the lab and the tour: the terminal (raw mode, alternate screen,
-/// restored on every path, a panic included, by ratatui's hook, an abort by
-/// [`super::abort_guard`]), an input thread and the
-/// program's workers feeding one channel, and a redraw only when an update says the screen
-/// changed, inside synchronized-output brackets. `start` makes the program from the
-/// channel's sender (for its workers) and the terminal's size. With a recording, everything
-/// the terminal is sent goes to it as well (the terminal's restoring included), with the
-/// resizes and a marker at each new chapter ([`Chapter::marker`]); a recording that failed is
-/// an error at the end.
+/// The one event loop of the lab and the tour: the terminal (raw mode, alternate screen, the
+/// mouse's reports if `mouse`), restored on every path — a panic included, by ratatui's hook;
+/// SIGTERM, SIGHUP and SIGINT by ending the loop as `q` does, then the process as the signal
+/// asks; an abort by [`super::signals`]' handler —, an input thread and the program's workers
+/// feeding one channel, and a redraw only when an update says the screen changed, inside
+/// synchronized-output brackets. `start` makes the program from the channel's sender (for its
+/// workers) and the terminal's size. With a recording, everything the terminal is sent goes
+/// to it as well (the terminal's restoring included), with the resizes and a marker at each
+/// new chapter ([`Chapter::marker`]); a recording that failed is an error at the end. The
+/// frame, its buffers and the recording's size are the terminal's, at most
+/// [`super::MAX_SIZE`] ([`drawn_area`]).
 pub(super) fn run_program<P: Program>(
     recording: Recording,
+    mouse: bool,
     start: impl FnOnce(mpsc::Sender<Input>, Size) -> io::Result<P>,
 ) -> Result<(), RunError> {
-    let abort = super::abort_guard::Guard::install();
-    let size = crossterm::terminal::size()?;
     let (tx, rx) = mpsc::channel::<Input>();
+    let signals = {
+        let tx = tx.clone();
+        super::signals::Guard::install(move |_| {
+            let _ = tx.send(Input::Signal);
+        })
+    };
+    let drawn = drawn_area(crossterm::terminal::size()?);
     let mut recorder = recording.map(|(file, title)| {
         let tx = tx.clone();
         let wake = move || {
             let _ = tx.send(Input::RecordingFailed);
         };
-        Recorder::start(file, (size.0, size.1), &title, wake)
+        Recorder::start(file, (drawn.width, drawn.height), &title, wake)
     });
-    let mut terminal = take_terminal(recorder.as_ref().map(Recorder::tap))?;
-    let result = event_loop(&mut terminal, recorder.as_mut(), (tx, rx), start);
+    let mut terminal = take_terminal(recorder.as_ref().map(Recorder::tap), mouse)?;
+    let result = event_loop(&mut terminal, recorder.as_mut(), mouse, (tx, rx), start);
     // Restored through the terminal's writer, so that a recording ends as the terminal does.
     let restored = give_back(&mut terminal);
     if restored.is_err() {
         ratatui::restore();
+        let _ = crossterm::execute!(io::stdout(), DisableMouseCapture);
     }
-    drop(abort);
+    drop(terminal);
     let recorded = match recorder {
         Some(recorder) => recorder.finish().map_err(RunError::Recording),
         None => Ok(()),
     };
+    // After a signal the process ends here, the terminal and the recording finished.
+    signals.finish();
     result.map_err(RunError::Terminal).and(recorded)
 }
 
-/// Raw mode and the alternate screen on a terminal writing through [`Screen`]; a panic
-/// restores the terminal first (as `ratatui::init` does).
-fn take_terminal(tap: Option<Tap>) -> io::Result<Term> {
+/// Raw mode, the alternate screen and (with `mouse`) the mouse's reports, on a terminal
+/// writing through [`Screen`] whose buffers are the size of [`drawn_area`]; a panic restores
+/// the terminal first (as `ratatui::init` does).
+fn take_terminal(tap: Option<Tap>, mouse: bool) -> io::Result<Term> {
     let hook = std::panic::take_hook();
     std::panic::set_hook(Box::new(move |info| {
         ratatui::restore();
+        let _ = crossterm::execute!(io::stdout(), DisableMouseCapture);
         hook(info);
     }));
     crossterm::terminal::enable_raw_mode()?;
     let mut screen = Screen::new(tap);
     crossterm::execute!(screen, crossterm::terminal::EnterAlternateScreen)?;
-    Terminal::new(CrosstermBackend::new(screen))
+    if mouse {
+        crossterm::execute!(screen, EnableMouseCapture)?;
+    }
+    // A fixed viewport: ratatui sizes its two buffers to it, where a fullscreen one follows
+    // the terminal to any size; the loop resizes it ([`resize_to`]).
+    let viewport = Viewport::Fixed(drawn_area(crossterm::terminal::size()?));
+    Terminal::with_options(CrosstermBackend::new(screen), TerminalOptions { viewport })
 }
 
-/// The cursor shown, raw mode off, the alternate screen left.
+/// The terminal is now `(columns, rows)`: the frame follows it, within [`super::MAX_SIZE`].
+fn resize_to(terminal: &mut Term, size: (u16, u16)) -> io::Result<()> {
+    let area = drawn_area(size);
+    if area != terminal.get_frame().area() {
+        terminal.resize(area)?;
+    }
+    Ok(())
+}
+
+/// The mouse's reports stopped, the cursor shown, raw mode off, the alternate screen left.
 fn give_back(terminal: &mut Term) -> io::Result<()> {
+    crossterm::execute!(terminal.backend_mut(), DisableMouseCapture)?;
     terminal.show_cursor()?;
     crossterm::terminal::disable_raw_mode()?;
     crossterm::execute!(terminal.backend_mut(), crossterm::terminal::LeaveAlternateScreen)
@@ -188,6 +223,7 @@ fn give_back(terminal: &mut Term) -> io::Result<()> {
 fn event_loop<P: Program>(
     terminal: &mut Term,
     mut recorder: Option<&mut Recorder>,
+    mouse: bool,
     (tx, rx): (mpsc::Sender<Input>, mpsc::Receiver<Input>),
     start: impl FnOnce(mpsc::Sender<Input>, Size) -> io::Result<P>,
 ) -> io::Result<()> {
@@ -207,7 +243,7 @@ fn event_loop<P: Program>(
             chapter = Some(now);
         }
         if flow.suspend {
-            suspend(terminal)?;
+            suspend(terminal, mouse)?;
             flow.redraw = true;
         }
         if flow.redraw {
@@ -233,12 +269,17 @@ fn event_loop<P: Program>(
         for input in first.into_iter().chain(std::iter::from_fn(|| rx.try_recv().ok())) {
             let input = match input {
                 Input::Broken(e) => return Err(e),
+                Input::Signal => return Ok(()),
                 // Shown by the check above the next draw.
                 Input::RecordingFailed => continue,
                 input => input,
             };
-            if let (Input::Terminal(Event::Resize(w, h)), Some(recorder)) = (&input, recorder.as_deref()) {
-                recorder.record(CastEvent::Resize(*w, *h));
+            if let Input::Terminal(Event::Resize(w, h)) = input {
+                resize_to(terminal, (w, h))?;
+                if let Some(recorder) = recorder.as_deref() {
+                    let drawn = drawn_area((w, h));
+                    recorder.record(CastEvent::Resize(drawn.width, drawn.height));
+                }
             }
             flow |= program.input(input);
             if program.should_quit() {
@@ -302,11 +343,14 @@ impl Program for Lab {
     fn input(&mut self, input: Input) -> Flow {
         let msg = match input {
             Input::Terminal(Event::Key(key)) => Msg::Key(key),
+            Input::Terminal(Event::Mouse(event)) => Msg::Mouse(event),
             Input::Terminal(Event::Resize(w, h)) => {
                 self.app.overlays.too_small = too_small((w, h));
                 Msg::Resize
             }
-            Input::Terminal(_) | Input::Broken(_) | Input::RecordingFailed => return Flow::default(),
+            Input::Terminal(_) | Input::Broken(_) | Input::RecordingFailed | Input::Signal => {
+                return Flow::default();
+            }
             Input::Worker(_, r) => Msg::Worker(r),
         };
         self.apply(msg)
@@ -341,8 +385,9 @@ impl Program for Lab {
 }
 
 /// Ctrl-Z: restore the terminal, stop the process as the shell's Ctrl-Z would (SIGTSTP,
-/// sent by `kill`, std having no call for it), and take the terminal again once resumed.
-pub(super) fn suspend(terminal: &mut Term) -> io::Result<()> {
+/// sent by `kill`, std having no call for it), and take the terminal again once resumed (the
+/// mouse's reports too, with `mouse`).
+pub(super) fn suspend(terminal: &mut Term, mouse: bool) -> io::Result<()> {
     if give_back(terminal).is_err() {
         ratatui::restore();
     }
@@ -358,6 +403,9 @@ pub(super) fn suspend(terminal: &mut Term) -> io::Result<()> {
         crossterm::terminal::EnterAlternateScreen,
         crossterm::terminal::Clear(crossterm::terminal::ClearType::All)
     )?;
+    if mouse {
+        crossterm::execute!(terminal.backend_mut(), EnableMouseCapture)?;
+    }
     terminal.swap_buffers();
     stopped.map(|_| ())
 }

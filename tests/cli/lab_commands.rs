@@ -125,3 +125,20 @@ fn a_peak_on_the_axis_reads_x_0() {
     assert_eq!(code, 0, "{err}");
     assert!(out.contains("(x = 0)") && !out.contains("e-1"), "{out}");
 }
+
+/// Esc goes back and never quits: `render --keys` of an overlay's key, Esc, Esc draws the
+/// scene (the lab still running); a key that quits is refused, naming its place, exit 2.
+#[test]
+fn esc_closes_overlays_and_render_refuses_a_quitting_key() {
+    for keys in ["l<esc>", "l<esc><esc>", "?<esc>", "?<esc><esc>", "f<esc><esc>"] {
+        let (code, out, err) = crate::common::riplab(&["render", "--size", "80x24", "--keys", keys]);
+        assert_eq!(code, 0, "{keys}: {err}");
+        assert!(
+            out.contains("pressure on Γ_C") && out.contains("explore") && !out.contains("┌ messages"),
+            "{keys}: {out}"
+        );
+    }
+    let (code, out, err) = crate::common::riplab(&["render", "--keys", "]q]"]);
+    assert_eq!(code, 2, "{out}");
+    assert!(out.is_empty() && err.contains("key 2 quits the lab"), "{err}");
+}

@@ -50,6 +50,14 @@ impl App {
         let before = self.settings;
         match action {
             LabAction::Quit => self.quit = true,
+            // The help and the log were closed above (any key closes them).
+            LabAction::Back if self.overlays.projector => {
+                self.overlays.projector = false;
+                self.notice = Some(Notice::info("projector view off"));
+            }
+            LabAction::Back => {
+                self.notice = Some(Notice::info("Esc goes back: nothing is open to close (q quits)"));
+            }
             LabAction::Help => {
                 self.show_help = true;
                 self.overlays.help_scroll = 0;
@@ -273,7 +281,7 @@ impl App {
     }
 
     /// ↑ ↓ PageUp PageDown scroll the open help or log; any other key closes it.
-    fn scroll_overlay(&mut self, code: KeyCode) {
+    pub(super) fn scroll_overlay(&mut self, code: KeyCode) {
         let step: i32 = match code {
             KeyCode::Up => -1,
             KeyCode::Down => 1,

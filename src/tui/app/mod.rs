@@ -16,6 +16,7 @@ use super::lab_error::LabError;
 mod dispatch;
 mod friction;
 mod integration;
+mod mouse;
 mod overlays;
 mod replies;
 
@@ -23,7 +24,7 @@ pub use super::protocol::{
     Command, Compare, DisplaceRequest, InfSupKey, InfSupRequest, MAX_APP_LEVEL, Msg, Notice, Progress,
     Response, SolveKey, SolveRequest, Solved, StressRequest, Study, StudyKey, StudyRequest,
 };
-pub use overlays::Overlays;
+pub use overlays::{Drawn, Overlays};
 
 /// Why the lab stops at [`MAX_APP_LEVEL`], for messages (the figures are BENCHMARKS.md's,
 /// "Fresh memory", not the code's).
@@ -328,6 +329,7 @@ impl App {
         let mut commands = Vec::new();
         let redraw = match msg {
             Msg::Key(key) => self.key(key, &mut commands),
+            Msg::Mouse(event) => self.mouse(event),
             Msg::Resize => true,
             Msg::Worker(response) => self.worker(response),
             Msg::Exported(result) => {

@@ -4,8 +4,11 @@
 //! projector view (`f`) and whether the terminal is too small for the lab (keys other than
 //! `q` ignored then, each saying so).
 
+use std::cell::Cell;
 use std::collections::VecDeque;
 use std::sync::Arc;
+
+use ratatui::layout::Rect;
 
 use super::super::lab_error::LabError;
 use super::{App, Notice};
@@ -32,6 +35,17 @@ pub struct Overlays {
     pub projector: bool,
     /// The terminal is smaller than the lab's minimum (set by the runtime, and by `render`).
     pub too_small: bool,
+    /// Where the last frame put what the mouse can click (set by the view as it draws).
+    pub drawn: Cell<Drawn>,
+}
+
+/// Where the last frame drew the parts a click acts on, in the frame's cells.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Drawn {
+    /// The scene tabs of the header (each ` name `, in [`super::Scene::ALL`]'s order).
+    pub tabs: Option<Rect>,
+    /// The pressure chart's graph and the x range it spans.
+    pub chart: Option<(Rect, [f64; 2])>,
 }
 
 impl App {

@@ -16,6 +16,7 @@ mod grading_key;
 mod hertz_block;
 mod lab_errors;
 mod locking;
+mod mouse;
 mod record;
 mod regrade;
 mod scenes;

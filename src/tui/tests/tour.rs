@@ -227,6 +227,7 @@ fn too_small_and_help() {
     assert!(!player.show_help);
     assert_eq!(player.index(), 0);
     player.update(ch('q'));
+    player.update(ch('q'));
     assert!(player.should_quit());
 }
 
@@ -268,8 +269,38 @@ fn keys_advance_go_back_and_stay_in_bounds() {
     player.update(key(KeyCode::Home));
     assert_eq!(player.index(), 0);
     assert!(!player.should_quit());
+}
+
+/// Esc never ends the tour (it goes back: closes the help, the lab's log or projector view);
+/// `q` before the last step asks once — a second `q` quits, any other key goes on — and at
+/// the last step quits at once.
+#[test]
+fn esc_never_quits_the_tour_and_q_asks_once_before_the_end() {
+    let tour = Tour::paper();
+    let mut player = TourApp::new(tour, None);
+    let said = |p: &TourApp| p.app.notice.as_ref().map(|n| n.text.clone()).unwrap_or_default();
+    player.update(ch('l'));
+    assert!(player.app.overlays.show_log);
     player.update(key(KeyCode::Esc));
+    assert!(!player.app.overlays.show_log && !player.should_quit());
+    player.update(key(KeyCode::Esc));
+    assert!(!player.should_quit(), "Esc Esc ends the tour");
+    player.update(ch('q'));
+    assert!(!player.should_quit(), "q at step 1 ends the tour at once");
+    assert!(
+        said(&player).contains("q again ends the tour"),
+        "{}",
+        said(&player)
+    );
+    player.update(ch(' '));
+    assert_eq!(player.index(), 1, "the key after the question acts");
+    player.update(ch('q'));
+    player.update(ch('q'));
     assert!(player.should_quit());
+    let mut player = TourApp::new(Tour::paper(), None);
+    player.update(key(KeyCode::End));
+    player.update(ch('q'));
+    assert!(player.should_quit(), "q at the last step quits at once");
 }
 
 #[test]

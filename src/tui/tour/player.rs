@@ -63,6 +63,8 @@ pub struct TourApp {
     /// Whether the terminal is large enough for the tour (auto-advance pauses otherwise).
     pub fits: bool,
     quit: bool,
+    /// `q` was pressed before the last step: the next key quits if it is `q` again.
+    quit_asked: bool,
     /// Recent solves, with their scenarios, for going back without solving again.
     solves: Vec<(Scenario, Arc<Solved>)>,
     /// Inf-sup estimates per scenario.
@@ -83,6 +85,7 @@ impl TourApp {
             caption_scroll: 0,
             fits: true,
             quit: false,
+            quit_asked: false,
             solves: Vec::new(),
             estimates: Vec::new(),
         }
@@ -146,6 +149,8 @@ impl TourApp {
                 if !matches!(key.kind, KeyEventKind::Press | KeyEventKind::Repeat) {
                     return TourEffect::default();
                 }
+                // Asked by the key before: any key but `q` goes on.
+                let asked = std::mem::take(&mut self.quit_asked);
                 if key.modifiers.contains(KeyModifiers::CONTROL) {
                     if matches!(key.code, KeyCode::Char('c' | 'C')) {
                         self.quit = true;
@@ -170,8 +175,20 @@ impl TourApp {
                     return self.lab(Msg::Key(key));
                 };
                 match action {
-                    TourAction::Quit => {
+                    TourAction::Quit if asked || self.at_end() => {
                         self.quit = true;
+                        return TourEffect {
+                            redraw: true,
+                            ..TourEffect::default()
+                        };
+                    }
+                    TourAction::Quit => {
+                        // A lesson is not ended by a stray key: asked once.
+                        self.quit_asked = true;
+                        let (n, last) = (self.index + 1, self.tour.steps.len());
+                        self.app.notice = Some(Notice::info(format!(
+                            "step {n} of {last}: q again ends the tour, any other key goes on"
+                        )));
                         return TourEffect {
                             redraw: true,
                             ..TourEffect::default()
@@ -207,6 +224,8 @@ impl TourApp {
                     TourAction::Last => Some(last),
                 }
             }
+            // The tour's help is over the lab: a click there is not the lab's.
+            TourMsg::Lab(Msg::Mouse(_)) if self.show_help => return TourEffect::default(),
             TourMsg::Lab(other) => return self.lab(other),
         };
         match target {

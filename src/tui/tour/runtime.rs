@@ -40,7 +40,7 @@ pub fn run_tour(
     };
     let dir = opts.export_dir()?;
     let title = format!("riplab tour: {}", tour.title);
-    run_program(record.map(|r| (r, title)), |tx, size| {
+    run_program(record.map(|r| (r, title)), !opts.no_mouse, |tx, size| {
         let mut player = TourApp::new(tour, auto);
         player.set_size(size.width, size.height);
         let scenario = player.app.scenario.clone();
@@ -121,6 +121,7 @@ impl Program for Session {
         }
         let msg = match input {
             Input::Terminal(Event::Key(key)) => Msg::Key(key),
+            Input::Terminal(Event::Mouse(event)) => Msg::Mouse(event),
             Input::Terminal(Event::Resize(width, height)) => {
                 let fitted = self.player.fits;
                 self.player.set_size(width, height);
@@ -132,7 +133,11 @@ impl Program for Session {
             }
             Input::Worker(epoch, r) if epoch == self.epoch => Msg::Worker(r),
             // Other terminal events, replies of a replaced worker.
-            Input::Terminal(_) | Input::Worker(..) | Input::Broken(_) | Input::RecordingFailed => {
+            Input::Terminal(_)
+            | Input::Worker(..)
+            | Input::Broken(_)
+            | Input::RecordingFailed
+            | Input::Signal => {
                 return Flow::default();
             }
         };

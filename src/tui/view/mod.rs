@@ -9,6 +9,7 @@ mod deformed;
 pub mod fmt;
 mod friction;
 mod header;
+pub use header::tab_at;
 pub mod help;
 mod infsup_chart;
 mod infsup_panel;
@@ -27,7 +28,7 @@ use ratatui::symbols::Marker;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Paragraph, Wrap};
 
-use super::app::{App, Scene};
+use super::app::{App, Drawn, Scene};
 use super::theme::Theme;
 
 /// The smallest terminal the layout is made for.
@@ -48,6 +49,8 @@ pub const MIN_AREA: (u16, u16) = (80, 20);
 
 /// Draw `app` into the whole frame (at least [`MIN_SIZE`]).
 pub fn view(app: &App, frame: &mut Frame, look: &Look) {
+    // Nothing to click until this frame draws it.
+    app.overlays.drawn.set(Drawn::default());
     let area = frame.area();
     if area.width < MIN_SIZE.0 || area.height < MIN_SIZE.1 {
         let said = app
@@ -85,6 +88,7 @@ fn wrapped_rows(text: &str, width: u16) -> u16 {
 /// Draw `app` into `area` of the frame (at least [`MIN_AREA`]; the guided tour puts its
 /// caption below).
 pub fn view_in(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
+    app.overlays.drawn.set(Drawn::default());
     if area.width < MIN_AREA.0 || area.height < MIN_AREA.1 {
         too_small(frame, area, look.theme, "");
         return;

@@ -8,7 +8,7 @@ use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::widgets::{Block, Paragraph};
 
-use super::super::app::App;
+use super::super::app::{App, Drawn};
 use super::fmt::{nice_ceil, sig};
 use super::plot::{Axis, Plot, Scale, Series, Stroke};
 use super::{Look, cursor, friction};
@@ -180,6 +180,14 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
         theme,
     };
     let placed = plot.render(frame, area);
+    if let Some(placed) = placed {
+        // Where a click places the cursor.
+        let drawn = app.overlays.drawn.get();
+        app.overlays.drawn.set(Drawn {
+            chart: Some((placed.graph, xb)),
+            ..drawn
+        });
+    }
     if let (Some(placed), Some(ends)) = (placed, layer.as_ref().and_then(|l| l.stick)) {
         friction::draw_stick(frame, placed, xb, ends, look.marker, inks.stick);
     }

@@ -284,14 +284,24 @@ fn tab_cycles_scenes_both_ways() {
     assert_eq!(app.scene, Scene::Stress);
 }
 
+/// Esc goes back — it closes the help, the log, the projector view — and never quits, so
+/// that `l` Esc Esc (a reflex) does not end a lesson; `q` and Ctrl-C quit.
 #[test]
-fn quit_keys() {
+fn esc_goes_back_and_only_q_quits() {
     let mut app = App::new(Scenario::paper());
-    app.update(ch('?'));
-    app.update(key(KeyCode::Esc));
-    assert!(!app.show_help && !app.should_quit(), "Esc first closes the help");
-    app.update(key(KeyCode::Esc));
-    assert!(app.should_quit());
+    for open in ['?', 'l', 'f'] {
+        app.update(ch(open));
+        app.update(key(KeyCode::Esc));
+        let o = &app.overlays;
+        assert!(
+            !app.show_help && !o.show_log && !o.projector && !app.should_quit(),
+            "{open} then Esc closes it"
+        );
+        app.update(key(KeyCode::Esc));
+        assert!(!app.should_quit(), "{open} Esc Esc quits");
+        let said = app.notice.as_ref().map(|n| n.text.clone()).unwrap_or_default();
+        assert!(said.contains("q quits"), "{said}");
+    }
 
     let mut app = App::new(Scenario::paper());
     app.update(ch('q'));
