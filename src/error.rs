@@ -8,6 +8,7 @@ use faer::linalg::evd::EvdError;
 pub use crate::check::{Allowed, CheckError};
 use crate::fem::error::gib;
 use crate::mesh::Element;
+use crate::refine_edges::Grading;
 use crate::text::num;
 
 mod diagnosis;
@@ -145,15 +146,14 @@ pub enum Workload {
         /// Its edge refinements.
         refinements: u32,
     },
-    /// A solve's grid at `level` with `element` after `passes` edge-grading passes
-    /// ([`crate::grading`]).
+    /// A solve at `level` with `element` graded as `grading` asks ([`crate::grading`]).
     Graded {
         /// Its uniform level.
         level: u32,
         /// The element.
         element: Element,
-        /// Its edge-grading passes.
-        passes: u32,
+        /// The grading asked for (at the edges or over the zone, and its passes).
+        grading: Grading,
     },
     /// A problem of the finite element layer.
     Unknowns,
@@ -200,10 +200,11 @@ fn too_large(workload: &Workload, unknowns: usize, need: u64, available: u64) ->
         Workload::Graded {
             level,
             element,
-            passes,
+            grading,
         } => format!(
-            "level {level} with {} graded {passes} times at the contact edges: {unknowns} unknowns need about {need} and {available} is available; choose fewer --refine-edges or a coarser level",
-            element.name()
+            "level {level} with {} {}: {unknowns} unknowns on its finest grid, about {need} at the solve's peak (the uniform level's, the previous pass's and the last pass's discretisations); this process has {available} available ({limits}): choose fewer passes or a coarser level",
+            element.name(),
+            grading.described()
         ),
         Workload::Unknowns => {
             format!(

@@ -169,6 +169,26 @@ impl Grading {
             Grading::Zone(n) => done < n,
         }
     }
+
+    /// The grading in words, for messages: where it grades, its passes, and its text (`graded
+    /// over the contact zone, 8 passes (8z)`).
+    pub fn described(self) -> String {
+        let passes = |n: u32| match n {
+            1 => "1 pass".to_string(),
+            n => format!("{n} passes"),
+        };
+        match self {
+            Grading::Edges(RefineEdges::Passes(0)) => "not graded (0)".into(),
+            Grading::Edges(RefineEdges::Passes(n)) => {
+                format!("graded at the contact edges, {} ({n})", passes(n))
+            }
+            Grading::Edges(RefineEdges::Auto) => format!(
+                "graded at the contact edges until p̄ settles, at most {} (auto)",
+                passes(MAX_PASSES)
+            ),
+            Grading::Zone(n) => format!("graded over the contact zone, {} ({n}z)", passes(n)),
+        }
+    }
 }
 
 impl fmt::Display for Grading {

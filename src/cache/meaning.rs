@@ -5,8 +5,12 @@
 //! displacement is in equilibrium with that load: the vertical reaction of the clamped bottom,
 //! Σ (K u)_y with K applied cell by cell ([`crate::fem::apply`]), equals P (the body carries
 //! no other load); with friction its horizontal reaction Σ (K u)_x balances its tangential
-//! load Q = I(t, 1) (docs/design.md §11: the traction on the body is +t in x). An entry that
-//! fails any check is recomputed and replaced.
+//! load Q = I(t, 1) (docs/design.md §11: the traction on the body is +t in x). Consistency is
+//! not enough: u, p, t and the load of a solution all scaled by one factor, or a true solution
+//! of another depth written under this key, pass those checks; so the entry must also solve
+//! its own obstacle's contact (4) at Simpson's points on Γ_C: u_n ≤ g, p ≥ 0 and
+//! p (u_n − g) = 0, u_n read from its displacement and g from the scenario's obstacle. An entry
+//! that fails any check is recomputed and replaced.
 
 use crate::contact::ContactPoints;
 use crate::contact::pressure::load;
@@ -21,6 +25,12 @@ const LOAD_TOLERANCE: f64 = 1e-9;
 /// The relative agreement asked of the bottom's reaction and the load (the exact method's
 /// Newton stops at a residual far below this; tests/numerics/contact.rs finds 1e-9).
 const REACTION_TOLERANCE: f64 = 1e-6;
+
+/// The relative agreement asked of the contact conditions (4) at the points: u_n − g at most
+/// this share of the displacement's scale above 0, p at most this share of its largest value
+/// below 0, and p (u_n − g) at most this share of their product of scales (the exact method
+/// solves G_AA y_A = d_A: u_n − g is round-off on its active points, p is 0 off them).
+const CONTACT_TOLERANCE: f64 = 1e-6;
 
 /// Why a cached reference is not believed.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
@@ -66,6 +76,22 @@ pub enum Meaningless {
         reaction: f64,
         /// Its tangential load Q = I(t, 1).
         load: f64,
+    },
+    /// Its displacement and pressure do not satisfy its own obstacle's contact conditions (4)
+    /// at a point of Γ_C: a penetration, a tension, or a pressure across a gap.
+    #[error(
+        "at x = {} on Γ_C its u_n − g is {} with p = {}: not the contact of its obstacle (u_n ≤ g, p ≥ 0, p (u_n − g) = 0)",
+        num(*x),
+        num(*gap),
+        num(*p)
+    )]
+    Contact {
+        /// The point's x.
+        x: f64,
+        /// u_n − g there (−∞ where the obstacle does not reach).
+        gap: f64,
+        /// p there.
+        p: f64,
     },
 }
 
@@ -123,6 +149,7 @@ pub fn check(scenario: &Scenario, grid: &ReferenceMesh, fields: &ReferenceFields
             load: fields.load,
         });
     }
+    contact(scenario, &mesh, &points, fields)?;
     if !fields.t.is_empty() {
         let q = load(&points, &fields.t);
         let horizontal: f64 = (0..mesh.nnx()).map(|i| ku[2 * mesh.node(i, 0)]).sum();
@@ -136,12 +163,51 @@ pub fn check(scenario: &Scenario, grid: &ReferenceMesh, fields: &ReferenceFields
     Ok(())
 }
 
+/// Whether `fields` satisfy the contact conditions (4) of `scenario`'s obstacle at `points`:
+/// u_n ≤ g, p ≥ 0 and p (u_n − g) = 0 within [`CONTACT_TOLERANCE`] of the scales of u_n
+/// (the largest |u_n| or the depth) and of p (its largest |p|).
+fn contact(
+    scenario: &Scenario,
+    mesh: &crate::mesh::Mesh,
+    points: &ContactPoints,
+    fields: &ReferenceFields,
+) -> Result<(), Meaningless> {
+    let top: Vec<f64> = mesh.top_nodes().iter().map(|&n| fields.u[2 * n + 1]).collect();
+    let un = points.trace_of(&top);
+    let length = un
+        .iter()
+        .fold(scenario.obstacle.depth().abs(), |m, v| m.max(v.abs()))
+        .max(f64::MIN_POSITIVE);
+    let force = fields
+        .p
+        .iter()
+        .fold(0.0_f64, |m, v| m.max(v.abs()))
+        .max(f64::MIN_POSITIVE);
+    let tol = CONTACT_TOLERANCE;
+    for ((q, &un), &p) in points.points.iter().zip(&un).zip(&fields.p) {
+        let gap = un - scenario.obstacle.gap(q.x);
+        let penetrates = gap > tol * length;
+        let pulls = p < -tol * force;
+        // Where the obstacle does not reach (g = +∞) nothing may press.
+        let across = if gap.is_finite() {
+            p > 0.0 && p * -gap > tol * force * length
+        } else {
+            p > tol * force
+        };
+        if penetrates || pulls || across {
+            return Err(Meaningless::Contact { x: q.x, gap, p });
+        }
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
     /// A solved reference passes; its pressure ×1.5, a load of 1e308, n_dofs = 2⁶⁴ − 1, a NaN
-    /// time, or its displacement ×1.5 with its pressure (a consistent load) each fail.
+    /// time, its pressure ×1.5 with its load, everything ×1.5 (u, p and the load: consistent,
+    /// but not its obstacle's contact), or another depth's true solution each fail.
     #[test]
     fn only_a_reference_that_means_what_it_says_is_believed() {
         let s = Scenario::paper();
@@ -167,10 +233,25 @@ mod tests {
             f.load *= 1.5;
         });
         assert!(matches!(scaled, Meaningless::Reaction { .. }), "{scaled}");
+        // Everything ×1.5 (u, p and the load): consistent, but u_n = 1.5 g where it presses.
+        let all = bad(&|f| {
+            f.u.iter_mut().for_each(|u| *u *= 1.5);
+            f.p.iter_mut().for_each(|p| *p *= 1.5);
+            f.load *= 1.5;
+        });
+        assert!(matches!(all, Meaningless::Contact { .. }), "{all}");
+        // A true solution of depth 0.7 read for depth 0.8: 0.1 short of the obstacle.
+        let mut shallower = s.clone();
+        shallower.obstacle = s.obstacle.with_depth(0.7);
+        let other = ReferenceFields::solve_on(&shallower, &grid).unwrap();
+        assert_eq!(check(&shallower, &grid, &other), Ok(()));
+        let e = check(&s, &grid, &other).unwrap_err();
+        assert!(matches!(e, Meaningless::Contact { gap, .. } if gap > 0.09), "{e}");
     }
 
-    /// With friction (μ = 0.3, a shift) a solved reference passes, its bottom balancing Q; its
-    /// t ×1.5, a t missing, or a frictionless entry read for friction each fail.
+    /// With friction (μ = 0.3, a shift) a solved reference passes, its bottom balancing Q; u,
+    /// p, t and the load all ×1.5, its t ×1.5, a t missing, or a frictionless entry read for
+    /// friction each fail.
     #[test]
     fn a_friction_reference_balances_its_tangential_load() {
         let path = concat!(env!("CARGO_MANIFEST_DIR"), "/scenarios/hertz-paper-full.toml");
@@ -186,6 +267,12 @@ mod tests {
         let good = ReferenceFields::solve_on(&s, &grid).unwrap();
         assert_eq!(check(&s, &grid, &good), Ok(()));
         assert!(good.t.iter().any(|&t| t > 0.0));
+        let mut all = good.clone();
+        for v in all.u.iter_mut().chain(&mut all.p).chain(&mut all.t) {
+            *v *= 1.5;
+        }
+        all.load *= 1.5;
+        assert!(matches!(check(&s, &grid, &all), Err(Meaningless::Contact { .. })));
         let mut scaled = good.clone();
         scaled.t.iter_mut().for_each(|t| *t *= 1.5);
         assert!(matches!(

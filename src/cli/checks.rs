@@ -10,8 +10,9 @@ use crate::scenario::Scenario;
 use crate::tui::app::{App, MAX_APP_LEVEL};
 
 /// The request of a `render` frame of `scene` checked as the command that computes it would
-/// check it: the solve's parameters ([`check_request`]) and its memory, an inf-sup estimate's
-/// memory ([`crate::infsup::fits`]), a study's contact ([`crate::study::check_contact`]).
+/// check it: the solve's parameters ([`check_request`]) and its memory (graded: from its lines,
+/// [`crate::grading::estimate`]), an inf-sup estimate's memory ([`crate::infsup::fits`]), a
+/// study's contact ([`crate::study::check_contact`]).
 pub(super) fn render_request(scenario: &Scenario, scene: &str, epsilon: Option<f64>) -> Result<(), CliError> {
     let (level, element) = (scenario.level, scenario.element);
     // A level beyond the lab's is refused by the frame's own checks.
@@ -31,6 +32,8 @@ pub(super) fn render_request(scenario: &Scenario, scene: &str, epsilon: Option<f
         obstacle: scenario.obstacle.clone(),
     };
     check_request(scenario, level, element, &params)?;
+    // A grading's estimate holds the uniform level's: it speaks first, naming the grading.
+    crate::grading::estimate::fits(scenario, level, element, scenario.grading(), |_| 0)?;
     Discretization::fits_beside(scenario, level, element, 0)?;
     match scene {
         "infsup" => crate::infsup::fits(scenario, level, element)?,

@@ -7,6 +7,7 @@
 use clap::Args;
 
 use super::{CliError, usage, values};
+use crate::contact::Method;
 use crate::contact::friction::{DEFAULT_STEPS, Friction, Law, MAX_STEPS};
 use crate::error::FrictionError;
 use crate::scenario::Scenario;
@@ -27,9 +28,8 @@ pub struct FrictionArgs {
     /// The obstacle's sideways shift after the press (its centre stays inside the body).
     #[arg(long, allow_negative_numbers = true, value_parser = values::number)]
     pub shift: Option<f64>,
-    /// Quasi-static steps of the shift, 1 to 1000 [default: the scenario's, else 8]; several,
-    /// comma-separated, sweep on one mesh.
-    #[arg(long, value_delimiter = ',')]
+    /// Quasi-static steps of the shift (its range and default from the constants).
+    #[arg(long, value_delimiter = ',', help = shift_steps_help())]
     pub shift_steps: Vec<usize>,
     /// The tangential penalty ε_t > 0 of penalty and alm [default: ε].
     #[arg(long, allow_negative_numbers = true, value_parser = values::number)]
@@ -37,6 +37,49 @@ pub struct FrictionArgs {
 }
 
 impl FrictionArgs {
+    /// Refuse `frictions` with `method` before any work, blaming the flag that asked for the
+    /// conflict: friction with Nitsche's method, ε_t with the exact method (the solve's own
+    /// check, [`crate::friction::solve::check`], would find them after the assembly).
+    /// `method_flag` names what chose the method (`--method`, `--epsilon`, `--kappa`); a
+    /// friction the flags did not set is the scenario's.
+    pub fn check_method(
+        &self,
+        method: Method,
+        frictions: &[Friction],
+        method_flag: &str,
+    ) -> Result<(), CliError> {
+        let from_flags = self.friction.is_some() || self.mu.is_some() || self.threshold.is_some();
+        if let Method::Nitsche { .. } = method {
+            return Err(if from_flags {
+                usage(
+                    "--friction",
+                    "friction is imposed by penalty, exact or alm, not by nitsche (the method here)",
+                )
+            } else {
+                usage(
+                    method_flag,
+                    format!(
+                        "nitsche takes no friction, and the scenario's `[friction] law = \"{}\"` asks for it; friction is imposed by penalty, exact or alm",
+                        frictions[0].law.name()
+                    ),
+                )
+            });
+        }
+        if method == Method::Exact && frictions.iter().any(|f| f.epsilon_t.is_some()) {
+            return Err(match self.epsilon_t {
+                Some(_) => usage(
+                    "--epsilon-t",
+                    "is the tangential penalty of penalty and alm; the method here is exact, which takes none",
+                ),
+                None => usage(
+                    method_flag,
+                    "exact takes no tangential penalty, and the scenario's `[friction] epsilon_t` gives one; choose penalty or alm",
+                ),
+            });
+        }
+        Ok(())
+    }
+
     /// The friction of each row: the scenario's `[friction]` with the options applied and
     /// checked (one row unless --shift-steps lists several).
     pub fn resolve(&self, scenario: &Scenario) -> Result<Vec<Friction>, CliError> {
@@ -126,4 +169,11 @@ impl FrictionArgs {
             })
             .collect()
     }
+}
+
+/// `--shift-steps`'s help, its range and default from [`MAX_STEPS`] and [`DEFAULT_STEPS`].
+fn shift_steps_help() -> String {
+    format!(
+        "Quasi-static steps of the shift, 1 to {MAX_STEPS} [default: the scenario's, else {DEFAULT_STEPS}]; several, comma-separated, sweep on one mesh"
+    )
 }

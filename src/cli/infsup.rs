@@ -10,6 +10,7 @@ use crate::contact::newton::NewtonOptions;
 use crate::contact::{ContactParams, Rule};
 use crate::discretization::Discretization;
 use crate::error::SolveError;
+use crate::fem::memory::Sizes;
 use crate::grading::{Grading, solve_graded};
 use crate::infsup::{InfSupRow, TraceCompliance, estimate, fits, fits_beside, slope};
 use crate::mesh::Element;
@@ -31,6 +32,16 @@ pub(super) fn infsup(args: &InfsupArgs) -> Result<ExitCode, CliError> {
     } else {
         vec![(scenario.element, scenario.rule)]
     };
+    // Every level's memory, from its lines, before anything is assembled.
+    for &(element, _) in &pairs {
+        for &level in &levels {
+            if refine.grades() {
+                crate::grading::estimate::fits(&scenario, level, element, refine, Sizes::infsup_extra_bytes)?;
+            } else {
+                fits(&scenario, level, element)?;
+            }
+        }
+    }
     let rows = if refine.grades() {
         let (graded, h) = match refine {
             Grading::Zone(_) => (

@@ -17,10 +17,7 @@ pub(super) fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
     let frictions = args.friction.resolve(&scenario)?;
     let friction_on = frictions[0].is_on();
     if friction_on && scenario.grading().grades() {
-        return Err(usage(
-            "--refine-edges",
-            "grading (at the edges or over the zone) is not available with friction yet; use a finer level",
-        ));
+        return Err(graded_friction(args.refine_edges.is_some(), &scenario));
     }
     let level = scenario.level;
     let range = scenario.epsilon_range(level);
@@ -55,7 +52,15 @@ pub(super) fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
         "--kappa"
     };
     for &e in &epsilons {
-        method_at(method, e, flag)?;
+        let (m, _) = method_at(method, e, flag)?;
+        if friction_on {
+            let named = if args.method.method.is_some() {
+                "--method"
+            } else {
+                flag
+            };
+            args.friction.check_method(m, &frictions, named)?;
+        }
     }
     let depths = if args.depth.is_empty() {
         vec![scenario.obstacle.depth()]
@@ -119,6 +124,8 @@ pub(super) fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
         vtu::check_targets(path, args.force).map_err(|e| usage("--vtu", e.to_string()))?;
     }
 
+    // A graded solve's memory, from its lines, before the uniform level is built.
+    crate::grading::estimate::fits(&scenario, level, scenario.element, scenario.grading(), |_| 0)?;
     let trace = if friction_on { Trace::Full } else { Trace::Normal };
     let disc = Discretization::of_traced(&scenario, level, scenario.element, trace)?;
     let mut instances: Vec<ContactParams> = epsilons
@@ -202,6 +209,25 @@ pub(super) fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
             failed.join("; ")
         )))
     }
+}
+
+/// The refusal of friction on a graded mesh, naming what asked for each: `--refine-edges`
+/// when given, else the friction flags over the scenario's `[mesh] refine_edges` (a scenario
+/// file with both is refused where it asks them, [`crate::input`]).
+fn graded_friction(flag_given: bool, scenario: &crate::scenario::Scenario) -> CliError {
+    if flag_given {
+        return usage(
+            "--refine-edges",
+            "grading (at the edges or over the zone) is not available with friction yet; use a finer level",
+        );
+    }
+    usage(
+        "--friction",
+        format!(
+            "friction is not available on a graded mesh yet, and the scenario's `[mesh] refine_edges = {}` grades it; give --refine-edges 0, or use a finer level",
+            scenario.grading()
+        ),
+    )
 }
 
 pub(super) fn plot_error(path: &std::path::Path, e: &std::io::Error) -> CliError {

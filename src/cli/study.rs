@@ -121,10 +121,22 @@ pub(super) fn study(args: &StudyArgs) -> Result<ExitCode, CliError> {
     };
     let refine = grading::refine_axis(&args.refine_edges, &scenario)?;
     if scenario.friction.is_on() && refine.iter().any(|r| r.grades()) {
-        return Err(usage(
-            "--refine-edges",
-            "grading (at the edges or over the zone) is not available with friction yet; study uniform levels (--refine-edges 0)",
-        ));
+        // A scenario with both is refused where it asks them (crate::input): the friction
+        // here is the flags'.
+        return Err(if args.refine_edges.is_empty() {
+            usage(
+                "--friction",
+                format!(
+                    "friction is not available on graded meshes yet, and the scenario's `[mesh] refine_edges = {}` grades them; give --refine-edges 0",
+                    scenario.grading()
+                ),
+            )
+        } else {
+            usage(
+                "--refine-edges",
+                "grading (at the edges or over the zone) is not available with friction yet; study uniform levels (--refine-edges 0)",
+            )
+        });
     }
     let plan = if args.sweep_epsilon.is_empty() {
         Plan::Levels {

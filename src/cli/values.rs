@@ -31,8 +31,7 @@ pub fn number(text: &str) -> Result<f64, NumberError> {
     let value: f64 = trimmed.parse().map_err(|_| NumberError::NotANumber {
         text: trimmed.to_string(),
     })?;
-    let mantissa = trimmed.split(['e', 'E']).next().unwrap_or("");
-    if value == 0.0 && mantissa.bytes().any(|b| (b'1'..=b'9').contains(&b)) {
+    if crate::input::literals::underflows(trimmed, value) {
         return Err(NumberError::Underflow {
             text: trimmed.to_string(),
         });

@@ -16,6 +16,7 @@ use crate::mesh::{Element, Mesh};
 use crate::scenario::Scenario;
 
 mod band;
+pub mod estimate;
 pub mod solve;
 pub mod zone;
 

@@ -14,8 +14,7 @@ use crate::contact::newton::NewtonOptions;
 use crate::discretization::Discretization;
 use crate::discretization::refused;
 use crate::error::{SolveError, Workload};
-use crate::fem::DofMap;
-use crate::fem::memory::{Limits, Sizes};
+use crate::fem::memory::Limits;
 use crate::mesh::Element;
 use crate::scenario::Scenario;
 use crate::solution::{Solution, Timing};
@@ -106,7 +105,7 @@ pub fn solve_graded(
         let Some(next) = next else {
             break;
         };
-        fits(scenario, &next, element)?;
+        fits(scenario, &next, element, refine)?;
         let d = Discretization::new(
             next.mesh(element, scenario.half_model),
             scenario.material,
@@ -136,25 +135,21 @@ pub fn solve_graded(
     })
 }
 
-/// Refuse `grid` with `element` when its memory estimate exceeds what this process may use.
-fn fits(scenario: &Scenario, grid: &GradedGrid, element: Element) -> Result<(), SolveError> {
-    let mesh = grid.mesh(element, scenario.half_model);
-    let (nnx, nny) = (mesh.node_x.len(), mesh.node_y.len());
-    let sizes = Sizes {
-        element,
-        unknowns: DofMap::count(nnx, nny, scenario.half_model),
-        trace: nnx,
-        points: crate::contact::Rule::ALL
-            .iter()
-            .map(|&rule| ContactPoints::new(rule, &mesh.node_x, element.order()).len())
-            .max()
-            .unwrap_or(nnx),
-    };
+/// Refuse `grid` with `element` (a pass of `grading`) when its memory estimate exceeds what
+/// this process may use beside what it holds (the up-front estimate, [`super::estimate`],
+/// predicted the passes; this is the pass the solve found).
+fn fits(
+    scenario: &Scenario,
+    grid: &GradedGrid,
+    element: Element,
+    grading: Grading,
+) -> Result<(), SolveError> {
+    let sizes = grid.sizes(element, scenario.half_model);
     sizes.check(&Limits::of_process()).map_err(|e| {
         let workload = Workload::Graded {
             level: grid.level,
             element,
-            passes: grid.passes,
+            grading,
         };
         refused(e, workload, sizes.unknowns)
     })

@@ -1,17 +1,20 @@
 //! `[friction]` validated (docs/design.md §11): the law among [`Law::NAMES`], μ ≥ 0 or g ≥ 0
 //! finite and only with its law, the shift finite with the obstacle's shifted centre inside
 //! the body, the steps 1 to [`MAX_STEPS`], ε_t > 0; friction on a half model refused at
-//! `friction.law`, naming `body.model`. Every error: file, line, column, key, value, range.
+//! `friction.law`, naming `body.model`; friction with what the rest of the file asks and it
+//! cannot take (Nitsche's method, ε_t with the exact method, a grading) refused at the key
+//! that asks it. Every error: file, line, column, key, value, range.
 
 use std::ops::Range;
 
 use toml::Spanned;
 
 use super::locate::{Locator, ScenarioError};
-use super::schema::{Model, RawBody, RawFriction};
-use crate::contact::Obstacle;
+use super::schema::{Model, RawBody, RawFriction, RawScenario};
 use crate::contact::friction::{DEFAULT_STEPS, Friction, Law, MAX_STEPS};
+use crate::contact::{Method, Obstacle};
 use crate::error::FrictionError;
+use crate::refine_edges::Grading;
 use crate::text::num;
 
 impl Locator<'_> {
@@ -102,5 +105,52 @@ impl Locator<'_> {
             ));
         }
         Ok(friction)
+    }
+}
+
+impl Locator<'_> {
+    /// Refuse `friction` (of `raw`'s `[friction]`) with what the rest of the file asks and it
+    /// cannot take, at the key that asks it: Nitsche's method (`friction.law`: friction is
+    /// imposed by penalty, exact or alm), a tangential penalty ε_t with the exact method
+    /// (`friction.epsilon_t`), a grading (`mesh.refine_edges`: graded meshes take no friction).
+    pub(super) fn friction_conflicts(
+        &self,
+        raw: &RawScenario,
+        method: Method,
+        friction: &Friction,
+        grading: Grading,
+    ) -> Result<(), ScenarioError> {
+        let Some(table) = raw.friction.as_ref().filter(|_| friction.is_on()) else {
+            return Ok(());
+        };
+        let table = table.get_ref();
+        if let Method::Nitsche { .. } = method {
+            return Err(self.error(
+                Some(table.law.span()),
+                Some("friction.law".into()),
+                format!(
+                    "{} friction is imposed by penalty, exact or alm, not by contact.method = \"nitsche\"; choose another method, or law = \"none\"",
+                    friction.law.name()
+                ),
+            ));
+        }
+        if let (Method::Exact, Some(e)) = (method, &table.epsilon_t) {
+            return Err(self.error(
+                Some(e.span()),
+                Some("friction.epsilon_t".into()),
+                "is the tangential penalty of penalty and alm; the method here is exact (contact.method = \"exact\", or epsilon = 0), which takes none".into(),
+            ));
+        }
+        match &raw.mesh.refine_edges {
+            Some(r) if grading.grades() => Err(self.error(
+                Some(r.span()),
+                Some("mesh.refine_edges".into()),
+                format!(
+                    "{grading} grades the mesh, and grading (at the edges or over the zone) is not available with friction (friction.law = \"{}\") yet; use a finer level",
+                    friction.law.name()
+                ),
+            )),
+            _ => Ok(()),
+        }
     }
 }

@@ -5,6 +5,8 @@
 //! - `schema`: the TOML schema serde reads;
 //! - [`locate`]: the error locator (file, line, column, key, the offending line);
 //! - `nesting`: keys nested too deep, refused with their line before the TOML reader;
+//! - [`literals`]: numbers as written (underflowing decimals, integers beyond 64 bits),
+//!   refused at their key before serde reads them;
 //! - `validate`: the schema checked and turned into the model.
 //!
 //! Every value is checked against its allowed range ([`crate::check`]); an error names the
@@ -15,6 +17,7 @@ use std::path::Path;
 use crate::scenario::{DEFAULT_SCENARIO, DEFAULT_SOURCE, Scenario};
 
 mod friction;
+pub mod literals;
 pub mod locate;
 mod nesting;
 pub mod read;

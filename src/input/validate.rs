@@ -21,6 +21,7 @@ use crate::text::{num, sanitize, sanitize_lines};
 pub(super) fn scenario(text: &str, file: &str) -> Result<Scenario, ScenarioError> {
     let loc = Locator { file, text };
     loc.check_nesting()?;
+    loc.check_numbers(integer_range)?;
     let raw: RawScenario =
         toml::from_str(text).map_err(|e| loc.error(e.span(), None, e.message().trim().to_string()))?;
 
@@ -120,6 +121,7 @@ pub(super) fn scenario(text: &str, file: &str) -> Result<Scenario, ScenarioError
 
     let (method, epsilon) = loc.method(&raw.contact)?;
     let friction = loc.friction(raw.friction.as_ref(), &raw.body, &obstacle, (x0, x1))?;
+    loc.friction_conflicts(&raw, method, &friction, grading)?;
 
     let name = raw.name.unwrap_or_else(|| {
         Path::new(file)
@@ -153,6 +155,18 @@ pub(super) fn scenario(text: &str, file: &str) -> Result<Scenario, ScenarioError
     };
     scenario.set_grading(grading);
     Ok(scenario)
+}
+
+/// The range of each integer key of a scenario file, as the validation checks it (for an
+/// integer too large to read, [`Locator::check_numbers`]).
+fn integer_range(key: &str) -> Option<(i64, i64)> {
+    match key {
+        "mesh.level" => Some((0, i64::from(crate::mesh::MAX_LEVEL))),
+        "mesh.nx" | "mesh.ny" => Some((1, check::MAX_CELLS_0)),
+        "mesh.refine_edges" => Some((0, i64::from(crate::refine_edges::MAX_PASSES))),
+        "friction.steps" => Some((1, crate::contact::friction::MAX_STEPS as i64)),
+        _ => None,
+    }
 }
 
 impl Locator<'_> {

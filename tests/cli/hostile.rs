@@ -7,7 +7,11 @@ use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-use crate::common::{no_panic, paper_text, riplab, scratch_file as scratch};
+use riplab::discretization::Discretization;
+use riplab::mesh::Element;
+use riplab::scenario::Scenario;
+
+use crate::common::{no_panic, paper_text, riplab, riplab_under_half_of, scratch_file as scratch};
 
 /// Run riplab with a time limit: (exit code, stdout, stderr); a hang fails the test.
 fn riplab_within(args: &[&str], limit: Duration) -> (i32, String, String) {
@@ -399,14 +403,18 @@ fn force_never_replaces_links_fifos_or_devices() {
         use std::os::unix::fs::FileTypeExt as _;
         assert!(std::fs::symlink_metadata(&fifo).unwrap().file_type().is_fifo());
     }
-    // An existing file is refused before a solve that would take long.
-    let start = Instant::now();
-    let (code, stdout, stderr) = riplab(&["solve", "--level", "7", "--plot", target.to_str().unwrap()]);
+    // An existing file is refused before a solve that would take long: under half the
+    // memory of level 7 (whose guard would refuse it in other words) it is still "exists".
+    let level7 = Discretization::sizes(&Scenario::paper(), 7, Element::Q1);
+    let (code, stdout, stderr) = riplab_under_half_of(
+        &level7,
+        &["solve", "--level", "7", "--plot", target.to_str().unwrap()],
+    );
     assert_eq!(code, 2, "{stderr}");
     assert!(stdout.is_empty() && stderr.contains("exists"), "{stderr}");
     assert!(
-        start.elapsed() < Duration::from_secs(5),
-        "the check came after the solve"
+        !stderr.contains("choose a coarser level"),
+        "the check came after the solve's"
     );
     // A regular file is replaced with --force.
     let (code, _, stderr) = riplab(&["solve", "--plot", target.to_str().unwrap(), "--force"]);
@@ -471,13 +479,17 @@ fn smaller_holes_are_closed() {
     let (code, _, stderr) = riplab(&["study", "--level", "2"]);
     assert_eq!(code, 2, "{stderr}");
     assert!(stderr.contains("--sweep-epsilon"), "{stderr}");
-    // ε = 0 with a kernel rule is refused before the (here expensive) assembly.
-    let start = Instant::now();
-    let (code, _, stderr) = riplab(&["solve", "--scheme", "M2", "--epsilon", "0", "--level", "8"]);
+    // ε = 0 with a kernel rule is refused before the (here expensive) assembly: under half the
+    // memory of level 8, whose guard would refuse it in other words.
+    let level8 = Discretization::sizes(&Scenario::paper(), 8, Element::Q1);
+    let (code, _, stderr) = riplab_under_half_of(
+        &level8,
+        &["solve", "--scheme", "M2", "--epsilon", "0", "--level", "8"],
+    );
     assert_eq!(code, 2, "{stderr}");
     assert!(stderr.contains("not unique"), "{stderr}");
     assert!(
-        start.elapsed() < Duration::from_secs(3),
+        !stderr.contains("choose a coarser level"),
         "refused only after assembly"
     );
 }

@@ -47,3 +47,25 @@ pub fn scratch_file(name: &str, text: &str) -> std::path::PathBuf {
     std::fs::write(&path, text).unwrap();
     path
 }
+/// Run riplab ARGS under an address-space limit (`ulimit -v`, the child's alone) of half the
+/// peak riplab's own estimate gives a discretisation of `sizes` (`Sizes::peak_bytes`): its
+/// memory guard refuses that discretisation before allocating anything, saying so, so any
+/// other refusal seen under this limit was made before it was assembled. (Pass the sizes of
+/// a level of hundreds of MiB or more: half of that is far more than riplab's start takes.)
+/// Exit code, stdout and stderr.
+pub fn riplab_under_half_of(sizes: &riplab::fem::memory::Sizes, args: &[&str]) -> (i32, String, String) {
+    let kib = sizes.peak_bytes() / 2 / 1024;
+    let out = std::process::Command::new("sh")
+        .arg("-c")
+        .arg(format!("ulimit -v {kib} && exec \"$0\" \"$@\""))
+        .arg(env!("CARGO_BIN_EXE_riplab"))
+        .args(args)
+        .env("XDG_CACHE_HOME", test_cache())
+        .output()
+        .expect("runs");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into(),
+        String::from_utf8_lossy(&out.stderr).into(),
+    )
+}

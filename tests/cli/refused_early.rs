@@ -1,0 +1,129 @@
+//! Requests with no answer refused before any work, in the user's words: graded and inf-sup
+//! requests estimated from their lines and refused naming the level, the element, the
+//! grading and the memory; a method that takes no friction refused before the assembly. Each
+//! runs under an address-space limit of half riplab's own estimate for the uniform level the
+//! command would build first (`riplab_under_half_of`): had the command gone on to build it,
+//! its memory guard would have refused it in other words.
+
+use riplab::discretization::Discretization;
+use riplab::mesh::Element;
+use riplab::scenario::Scenario;
+
+use crate::common::{no_panic, riplab_under_half_of, scratch_file};
+
+fn paper_sizes(level: u32, element: Element) -> riplab::fem::memory::Sizes {
+    Discretization::sizes(&Scenario::paper(), level, element)
+}
+
+/// Exit 2, nothing printed, and every fragment in the message.
+fn refused(out: (i32, String, String), fragments: &[&str]) {
+    let (code, stdout, stderr) = out;
+    no_panic(&stderr);
+    assert_eq!(code, 2, "{stderr}");
+    assert!(stdout.is_empty(), "{stdout}");
+    for f in fragments {
+        assert!(stderr.contains(f), "lacks {f:?}: {stderr}");
+    }
+}
+
+/// `solve --level 8 --refine-edges 8z` (44–54 s and 5.5 GB before it was refused as "graded 1
+/// times at the contact edges"), an edge grading of level 8, `infsup --levels 6 --refine-edges
+/// 8z --element q2`, `render --level 7 --refine-edges 8z` (exit 1 after 46 s) and a scenario's
+/// `[mesh] refine_edges = "8z"` at q2 level 7: each refused from its lines, exit 2, naming the
+/// level, the element, the grading and the memory.
+#[test]
+fn graded_requests_are_refused_from_their_lines_before_any_assembly() {
+    let memory = ["GiB", "available", "choose fewer passes or a coarser level"];
+    let zone8 = "graded over the contact zone, 8 passes (8z)";
+    refused(
+        riplab_under_half_of(
+            &paper_sizes(8, Element::Q1),
+            &["solve", "--level", "8", "--refine-edges", "8z"],
+        ),
+        &[&[&format!("level 8 with q1 {zone8}")[..]][..], &memory].concat(),
+    );
+    refused(
+        riplab_under_half_of(
+            &paper_sizes(8, Element::Q1),
+            &["solve", "--level", "8", "--refine-edges", "3"],
+        ),
+        &[
+            &["level 8 with q1 graded at the contact edges, 3 passes (3)"][..],
+            &memory,
+        ]
+        .concat(),
+    );
+    refused(
+        riplab_under_half_of(
+            &paper_sizes(6, Element::Q2),
+            &[
+                "infsup",
+                "--levels",
+                "6",
+                "--refine-edges",
+                "8z",
+                "--element",
+                "q2",
+            ],
+        ),
+        &[&[&format!("level 6 with q2 {zone8}")[..]][..], &memory].concat(),
+    );
+    refused(
+        riplab_under_half_of(
+            &paper_sizes(7, Element::Q1),
+            &["render", "--level", "7", "--refine-edges", "8z"],
+        ),
+        &[&[&format!("level 7 with q1 {zone8}")[..]][..], &memory].concat(),
+    );
+    let text = crate::common::paper_text(&[
+        ("element", "element = \"q2\""),
+        ("level", "level = 7\nrefine_edges = \"8z\""),
+    ]);
+    let file = scratch_file("graded-q2-level-7.toml", &text);
+    refused(
+        riplab_under_half_of(&paper_sizes(7, Element::Q2), &["solve", file.to_str().unwrap()]),
+        &[&[&format!("level 7 with q2 {zone8}")[..]][..], &memory].concat(),
+    );
+}
+
+/// `solve scenarios/cattaneo-mindlin.toml --level 5 --method nitsche` was a usage error found
+/// after 9–16 s of assembly; so was ε_t with its exact method. Both are refused first,
+/// naming the flag and the scenario's friction.
+#[test]
+fn a_method_that_takes_no_friction_is_refused_before_any_assembly() {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/scenarios/cattaneo-mindlin.toml");
+    let sizes = Discretization::sizes(&Scenario::load(path.as_ref()).unwrap(), 5, Element::Q1);
+    refused(
+        riplab_under_half_of(&sizes, &["solve", path, "--level", "5", "--method", "nitsche"]),
+        &[
+            "invalid value for --method: nitsche takes no friction",
+            "`[friction] law = \"coulomb\"`",
+        ],
+    );
+    refused(
+        riplab_under_half_of(&sizes, &["solve", path, "--level", "5", "--epsilon-t", "1e-6"]),
+        &[
+            "invalid value for --epsilon-t: is the tangential penalty of penalty and alm; the method here is exact",
+        ],
+    );
+    let full = concat!(env!("CARGO_MANIFEST_DIR"), "/scenarios/hertz-paper-full.toml");
+    let sizes = Discretization::sizes(&Scenario::load(full.as_ref()).unwrap(), 7, Element::Q1);
+    refused(
+        riplab_under_half_of(
+            &sizes,
+            &[
+                "solve",
+                full,
+                "--level",
+                "7",
+                "--method",
+                "nitsche",
+                "--friction",
+                "coulomb",
+                "--mu",
+                "0.3",
+            ],
+        ),
+        &["invalid value for --friction: friction is imposed by penalty, exact or alm, not by nitsche"],
+    );
+}
