@@ -207,6 +207,7 @@ pub(super) fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
 pub(super) fn plot_error(path: &std::path::Path, e: &std::io::Error) -> CliError {
     let what = match e.kind() {
         std::io::ErrorKind::AlreadyExists => "exists; not overwritten (--force replaces it)".to_string(),
+        std::io::ErrorKind::InvalidInput => format!("{e} (--force replaces regular files only)"),
         _ => e.to_string(),
     };
     usage("--plot", format!("{}: {what}", shown(path)))

@@ -24,5 +24,6 @@ mod render_graded;
 mod study_friction;
 mod study_notes;
 mod tour_files;
+mod tours_and_outputs;
 mod verify;
 mod vtu;
