@@ -6,10 +6,10 @@
 //! along Γ_C, mirrored to the full width for a half model. Files are written atomically and
 //! never overwritten unless asked.
 
+use std::ffi::OsStr;
 use std::fs;
 use std::io::{self, Write as _};
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicU64, Ordering};
 
 use plotters::drawing::DrawingAreaErrorKind;
 use plotters::prelude::*;
@@ -299,20 +299,52 @@ pub fn check_target(path: &Path, overwrite: bool) -> io::Result<()> {
         Err(e) => Err(e),
         Ok(meta) if !meta.file_type().is_file() => Err(io::Error::new(
             io::ErrorKind::InvalidInput,
-            "is not a regular file (a link, FIFO, device or directory); --force replaces regular files only",
+            "is not a regular file (a link, FIFO, device or directory): never replaced",
         )),
         Ok(_) if overwrite => Ok(()),
         Ok(_) => Err(io::ErrorKind::AlreadyExists.into()),
     }
 }
 
-/// Write `bytes` to `path` atomically: to a fresh temporary file in the same directory, then
-/// moved into place. Unless `overwrite`, an existing `path` is left alone and the error is of
-/// kind [`io::ErrorKind::AlreadyExists`] (a hard link is made, which fails if the name is taken
-/// even under a race; where hard links are not supported, a rename onto a name that does not
-/// exist). The temporary file is gone afterwards in every case.
+/// How many fresh temporary names [`write_file`] tries before it gives up.
+const TEMPORARY_TRIES: usize = 8;
+
+/// A new temporary file for `name` in `dir`: `.NAME.PID.RANDOM.tmp`, its random part drawn
+/// from the operating system's entropy, so that nobody can plant a file or a link at it in
+/// advance; created exclusively (`create_new`: never through an existing name or link). A
+/// name that is taken is passed over, never removed; the error after [`TEMPORARY_TRIES`] taken
+/// names is not [`io::ErrorKind::AlreadyExists`], which would say the target exists.
+fn create_temporary(dir: &Path, name: &OsStr) -> io::Result<(fs::File, PathBuf)> {
+    use std::hash::{BuildHasher as _, Hasher as _};
+    for _ in 0..TEMPORARY_TRIES {
+        // RandomState's keys are random per thread and advance with each state made.
+        let mut h = std::collections::hash_map::RandomState::new().build_hasher();
+        h.write_u64(u64::from(std::process::id()));
+        let tmp = dir.join(format!(
+            ".{}.{}.{:016x}.tmp",
+            name.to_string_lossy(),
+            std::process::id(),
+            h.finish()
+        ));
+        match fs::File::create_new(&tmp) {
+            Ok(f) => return Ok((f, tmp)),
+            Err(e) if e.kind() == io::ErrorKind::AlreadyExists => continue,
+            Err(e) => return Err(e),
+        }
+    }
+    Err(io::Error::other(format!(
+        "no fresh temporary name in {} after {TEMPORARY_TRIES} tries",
+        dir.display()
+    )))
+}
+
+/// Write `bytes` to `path` atomically: to a fresh temporary file in the same directory
+/// ([`create_temporary`]), then moved into place. Unless `overwrite`, an existing `path` is
+/// left alone and the error is of kind [`io::ErrorKind::AlreadyExists`] (a hard link is made,
+/// which fails if the name is taken even under a race; where hard links are not supported, a
+/// rename onto a name that does not exist). The temporary file is gone afterwards in every
+/// case, and no other file is ever removed.
 pub fn write_file(path: &Path, bytes: &[u8], overwrite: bool) -> io::Result<()> {
-    static COUNTER: AtomicU64 = AtomicU64::new(0);
     check_target(path, overwrite)?;
     let name = path
         .file_name()
@@ -321,28 +353,28 @@ pub fn write_file(path: &Path, bytes: &[u8], overwrite: bool) -> io::Result<()> 
         Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
         _ => PathBuf::from("."),
     };
-    let n = COUNTER.fetch_add(1, Ordering::Relaxed);
-    let tmp = dir.join(format!(
-        ".{}.{}-{n}.tmp",
-        name.to_string_lossy(),
-        std::process::id()
-    ));
-    let write = || -> io::Result<()> {
-        let mut f = fs::File::create_new(&tmp)?;
-        f.write_all(bytes)?;
-        f.sync_all()
-    };
-    let result = write().and_then(|()| {
+    let (mut f, tmp) = create_temporary(&dir, name)?;
+    // Whether the temporary was renamed into place (its name then no longer riplab's).
+    let mut renamed = false;
+    let result = f.write_all(bytes).and_then(|()| f.sync_all()).and_then(|()| {
         if overwrite {
+            renamed = true;
             return fs::rename(&tmp, path);
         }
         match fs::hard_link(&tmp, path) {
             Ok(()) => Ok(()),
             Err(e) if e.kind() == io::ErrorKind::AlreadyExists => Err(e),
-            Err(_) if fs::symlink_metadata(path).is_err() => fs::rename(&tmp, path),
+            Err(_) if fs::symlink_metadata(path).is_err() => {
+                renamed = true;
+                fs::rename(&tmp, path)
+            }
             Err(e) => Err(e),
         }
     });
-    let _ = fs::remove_file(&tmp);
+    drop(f);
+    // The temporary is riplab's own (created exclusively above) unless a rename moved it.
+    if !(renamed && result.is_ok()) {
+        let _ = fs::remove_file(&tmp);
+    }
     result
 }

@@ -8,6 +8,7 @@ use clap::Args;
 use super::args::{MethodArgs, Select};
 use super::{CliError, checks, print, render_args, tour, usage, values};
 use crate::check;
+use crate::tui::lab_error::LabError;
 use crate::tui::{MarkerChoice, RenderExtras, TuiOptions, render_with};
 
 /// The notes under `riplab render --help`.
@@ -101,9 +102,17 @@ pub(super) fn render(args: &RenderArgs, marker: MarkerChoice) -> Result<ExitCode
         },
     )
     .map_err(|e| CliError::Usage(e.to_string()))?;
-    print(&frame.text)?;
     match frame.failure {
-        Some(why) => Err(CliError::Failed(format!("the frame shows a failure: {why}"))),
-        None => Ok(ExitCode::SUCCESS),
+        // A request the solve refuses as bad input is refused as `solve` refuses it: its
+        // message, exit 2, no frame (STABILITY.md).
+        Some(LabError::Solve(e)) if e.is_input() => Err(CliError::Solve(e)),
+        Some(why) => {
+            print(&frame.text)?;
+            Err(CliError::Failed(format!("the frame shows a failure: {why}")))
+        }
+        None => {
+            print(&frame.text)?;
+            Ok(ExitCode::SUCCESS)
+        }
     }
 }

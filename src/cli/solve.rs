@@ -233,6 +233,7 @@ fn graded_friction(flag_given: bool, scenario: &crate::scenario::Scenario) -> Cl
 pub(super) fn plot_error(path: &std::path::Path, e: &std::io::Error) -> CliError {
     let what = match e.kind() {
         std::io::ErrorKind::AlreadyExists => "exists; not overwritten (--force replaces it)".to_string(),
+        std::io::ErrorKind::InvalidInput => format!("{e} (--force replaces regular files only)"),
         _ => e.to_string(),
     };
     usage("--plot", format!("{}: {what}", shown(path)))

@@ -31,6 +31,9 @@ pub use read::read_toml;
 /// γ₀ as written, read by tour steps too.
 #[cfg(feature = "tui")]
 pub(crate) use schema::RawGamma0;
+/// `refine_edges` as written, read by tour steps too.
+#[cfg(feature = "tui")]
+pub(crate) use schema::RawRefineEdges;
 
 /// Reading a scenario: from the embedded default, a file or a text.
 impl Scenario {

@@ -125,14 +125,14 @@ pub(super) struct RawMesh {
 
 /// `[mesh] refine_edges` as written: a whole number of passes, or text (`"auto"`, `"3z"`);
 /// both checked by [`Grading::parse`], any other TOML value refused naming what is allowed.
-pub(super) enum RawRefineEdges {
+pub(crate) enum RawRefineEdges {
     Count(i64),
     Text(String),
 }
 
 impl RawRefineEdges {
     /// The grading written (0 to [`crate::refine_edges::MAX_PASSES`], `auto`, or `Nz`).
-    pub(super) fn parse(&self) -> Result<Grading, RefineEdgesError> {
+    pub(crate) fn parse(&self) -> Result<Grading, RefineEdgesError> {
         match self {
             RawRefineEdges::Count(n) => RefineEdges::of_count(*n).map(Grading::Edges),
             RawRefineEdges::Text(t) => Grading::parse(t),

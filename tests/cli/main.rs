@@ -29,5 +29,6 @@ mod study_friction;
 mod study_notes;
 mod terminal;
 mod tour_files;
+mod tours_and_outputs;
 mod verify;
 mod vtu;

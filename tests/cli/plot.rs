@@ -116,3 +116,33 @@ fn write_file_reports_a_missing_directory_and_a_bad_name() {
     assert!(write_file(std::path::Path::new("/"), b"x", true).is_err());
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// Links planted at the temporary names a writer could predict (`.a.svg.<pid>-<n>.tmp`, the
+/// names it used) are neither blamed on the target (it said "a.svg: exists"), followed nor
+/// removed (it deleted the link it had not made): the temporary is a fresh random name, and
+/// only riplab's own file is ever removed. With `overwrite` likewise.
+#[test]
+fn planted_temporaries_are_never_followed_or_removed() {
+    let dir = scratch("planted");
+    let victim = dir.join("victim.txt");
+    std::fs::write(&victim, "keep").unwrap();
+    let pid = std::process::id();
+    let planted: Vec<PathBuf> = (0..256)
+        .map(|n| dir.join(format!(".a.svg.{pid}-{n}.tmp")))
+        .collect();
+    for link in &planted {
+        std::os::unix::fs::symlink(&victim, link).unwrap();
+    }
+    let target = dir.join("a.svg");
+    write_file(&target, b"<svg/>", false).unwrap_or_else(|e| panic!("{e}"));
+    write_file(&target, b"<svg>2</svg>", true).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(std::fs::read_to_string(&target).unwrap(), "<svg>2</svg>");
+    assert_eq!(std::fs::read_to_string(&victim).unwrap(), "keep");
+    for link in &planted {
+        let kind = std::fs::symlink_metadata(link).unwrap().file_type();
+        assert!(kind.is_symlink(), "{}", link.display());
+    }
+    // Nothing else is left: the planted links, the victim and the chart.
+    assert_eq!(std::fs::read_dir(&dir).unwrap().count(), planted.len() + 2);
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -23,6 +23,7 @@ mod scenes;
 mod screens;
 mod stress_scene;
 mod tour;
+mod tour_checks;
 mod tour_numbers;
 mod typed_errors;
 mod zone_key;

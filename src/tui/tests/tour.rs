@@ -52,7 +52,7 @@ fn every_tour_loads_and_every_step_solves() {
     let unsourced = |tour: &Tour| {
         let mut steps = tour.steps.clone();
         for s in steps.iter_mut().filter_map(|s| s.scenario.as_mut()) {
-            s.source.clear();
+            std::sync::Arc::make_mut(s).source.clear();
         }
         steps
     };

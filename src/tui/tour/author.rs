@@ -1,16 +1,21 @@
-//! `T` in the lab: the lab's current state (scenario, scheme, level, the integration when
-//! switched from the scenario's, ε, method and its parameters, depth, scene, what it
-//! compares, overlays, zoom, the stress quantity) added as a
-//! `[[step]]` to a tour file, with a caption left for the teacher to write. The file is
-//! `--tour-out FILE`, else `riplab-tour.toml` in the export directory; it is created if it does
-//! not exist, and added to only if it already reads as a valid tour, so that `T` never changes
-//! another kind of file. `riplab tour --tour FILE` plays the steps back to the same screens.
+//! `T` in the lab: the lab's current state (scenario, scheme, level, the grading when it
+//! grades or differs from the scenario's, the integration when switched from the scenario's,
+//! ε, method and its parameters, depth, friction, scene, what it compares, overlays, zoom, the
+//! stress quantity) added as a `[[step]]` to a tour file, with a caption left for the teacher
+//! to write. The file is `--tour-out FILE`, else `riplab-tour.toml` in the export directory;
+//! it is created if it does not exist, and added to only if it already reads as a valid tour
+//! and stays within the size a tour file may have, so that `T` never changes another kind of
+//! file nor makes a tour unreadable. A screen whose friction a step would not play (the tour's
+//! check refuses it: [`super::friction_step::check`]) is not written. `riplab tour --tour
+//! FILE` plays the steps back to the same screens.
 
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
 
 use crate::contact::method::Gamma0;
 use crate::fem::Integration;
+use crate::input::read::MAX_FILE_BYTES;
+use crate::refine_edges::{Grading, RefineEdges};
 use crate::scheme::Scheme;
 use crate::stress::Quantity;
 
@@ -67,6 +72,9 @@ pub fn step_toml(app: &App, scenario: Option<&str>) -> String {
     }
     lines.push(format!("scheme = {}", text(&scheme)));
     lines.push(format!("level = {}", s.level));
+    if s.refine_edges.grades() || s.refine_edges != app.scenario.grading() {
+        lines.push(format!("refine_edges = {}", grading(s.refine_edges)));
+    }
     if s.integration != app.scenario.integration {
         let name = match s.integration {
             Integration::Full => "full",
@@ -116,6 +124,15 @@ pub fn step_toml(app: &App, scenario: Option<&str>) -> String {
     lines.join("\n") + "\n"
 }
 
+/// A grading as `[mesh] refine_edges` takes it: a count of passes at the contact edges, or
+/// `"auto"`, or `"Nz"` over the contact zone.
+fn grading(value: Grading) -> String {
+    match value {
+        Grading::Edges(RefineEdges::Passes(n)) => n.to_string(),
+        other => text(&other.to_string()),
+    }
+}
+
 /// A TOML string (quoted and escaped by the toml crate).
 fn text(value: &str) -> String {
     toml::Value::String(value.to_string()).to_string()
@@ -162,11 +179,20 @@ fn add_step(app: &App, source: &LabSource) -> Result<(usize, PathBuf), AuthorErr
             )
         }
     };
+    super::friction_step::check(app)?;
     let step = step_toml(app, scenario.as_deref());
     let exists = std::fs::symlink_metadata(path).is_ok();
     let (n, text) = if exists {
-        let tour = Tour::load(path).map_err(|source| AuthorError::Invalid { source })?;
-        (tour.steps.len() + 1, format!("\n{step}"))
+        let (tour, size) = Tour::read(path).map_err(|source| AuthorError::Invalid { source })?;
+        let text = format!("\n{step}");
+        if (size + text.len()) as u64 > MAX_FILE_BYTES {
+            return Err(AuthorError::TooLarge {
+                path: shown(),
+                size,
+                adding: text.len(),
+            });
+        }
+        (tour.steps.len() + 1, text)
     } else {
         (1, format!("{HEADER}\n{step}"))
     };

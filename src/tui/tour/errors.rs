@@ -1,12 +1,15 @@
-//! The tour's typed errors (issue 33): a step's settings its scenario refuses, a title or
-//! caption that does not fit, an `--auto` interval out of range, a step that cannot be drawn
-//! and a step `T` could not add. Their messages are the ones users saw as text before.
+//! The tour's typed errors (issue 33): a step's settings its scenario refuses (its friction
+//! among them), a title or caption that does not fit, an `--auto` interval out of range, a
+//! step that cannot be drawn and a step `T` could not add. Their messages are the ones users saw as text before.
 
 use std::path::PathBuf;
 
 use crate::check::CheckError;
 use crate::input::ScenarioError;
+use crate::input::read::MAX_FILE_BYTES;
 use crate::plot::PlotError;
+use crate::refine_edges::Grading;
+use crate::text::num;
 
 use super::super::errors::SizeError;
 use super::super::lab_error::LabError;
@@ -44,6 +47,55 @@ pub enum TourError {
         depth: f64,
         /// The scenario's largest depth.
         max: f64,
+    },
+    /// The step's friction is one the lab refuses to solve on its scenario.
+    #[error("{file}: step {step} (`{title}`): {source}")]
+    Friction {
+        /// The tour file (sanitised).
+        file: String,
+        /// The step's number (1-based).
+        step: usize,
+        /// The step's title.
+        title: String,
+        /// Why.
+        source: FrictionStepError,
+    },
+}
+
+/// Why the lab refuses a screen's friction ([`super::friction_step::check`]): in a tour
+/// step (found when the tour is read) or in the lab's `T` (no step written).
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum FrictionStepError {
+    /// Friction on a half model, whose symmetry line holds Γ_C's u_x.
+    #[error(
+        "friction needs the full model (body.model = \"full\"): the scenario's half model holds u_x = 0 on its symmetry line"
+    )]
+    HalfModel,
+    /// Friction with Nitsche's method.
+    #[error("friction is imposed by penalty, exact or alm, not nitsche")]
+    Nitsche,
+    /// Friction on a graded mesh.
+    #[error(
+        "grading (refine_edges = \"{0}\") does not take friction yet; give refine_edges = 0 or friction = \"none\""
+    )]
+    Graded(Grading),
+    /// A shift that moves the obstacle's centre out of the body.
+    #[error(
+        "shift = {} moves the obstacle's centre to x = {}, beyond the body; allowed: the centre strictly inside ({}, {})",
+        num(*shift),
+        num(*centre),
+        num(*x0),
+        num(*x1)
+    )]
+    ShiftBeyond {
+        /// The shift.
+        shift: f64,
+        /// Where it moves the obstacle's centre.
+        centre: f64,
+        /// The body's left side.
+        x0: f64,
+        /// The body's right side.
+        x1: f64,
     },
 }
 
@@ -147,6 +199,21 @@ pub enum AuthorError {
     Invalid {
         /// Why the file is not a valid tour.
         source: ScenarioError,
+    },
+    /// The lab's screen is one a tour step cannot be played as (its friction refused).
+    #[error("a step at these settings would not play: {0}")]
+    Refused(#[from] FrictionStepError),
+    /// The step would make the tour file larger than a tour may be.
+    #[error(
+        "{path} has {size} bytes and the step {adding} more: beyond the {MAX_FILE_BYTES} bytes (1 MiB) a tour file may have (--tour-out names another)"
+    )]
+    TooLarge {
+        /// The tour file (sanitised).
+        path: String,
+        /// Its size, bytes.
+        size: usize,
+        /// The bytes the step would add.
+        adding: usize,
     },
     /// The tour file could not be written.
     #[error("{path}: {source}")]

@@ -2,16 +2,21 @@
 //! "tresca"` with `mu` or `threshold`, and `shift`, validated as the scenario's `[friction]`
 //! is (each error names the file, line, key and range), applied over the scenario's own by
 //! [`super::Tour::app`], and written by the lab's `T` when the lab's differs from the
-//! scenario's ([`super::author`]).
+//! scenario's ([`super::author`]). A step's friction is checked against its scenario's model,
+//! its method and its grading as the lab refuses them ([`check`]), when the tour is read.
 
 use std::ops::Range;
 
 use toml::Spanned;
 
+use crate::contact::Method;
 use crate::contact::friction::{Friction, Law};
 use crate::input::Locator as Source;
 use crate::input::ScenarioError;
 use crate::text::num;
+
+use super::super::app::App;
+use super::errors::FrictionStepError;
 
 /// What a step sets of the friction; what it leaves out is the scenario's.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -109,4 +114,36 @@ pub fn lines(friction: &Friction, own: &Friction, float: fn(f64) -> String) -> V
         out.push(format!("shift = {}", float(friction.shift)));
     }
     out
+}
+
+/// Whether the lab at `app`'s settings can solve its friction, as the lab itself refuses it:
+/// a half model holds Γ_C's u_x (`F` says so), Nitsche's method and a graded mesh take no
+/// friction (the solve's banner says so), and the shifted obstacle's centre must stay inside
+/// the body (the solve's check, docs/design.md §11). Friction off always passes.
+pub fn check(app: &App) -> Result<(), FrictionStepError> {
+    let s = &app.settings;
+    let friction = &s.friction;
+    if !friction.is_on() {
+        return Ok(());
+    }
+    if app.scenario.half_model {
+        return Err(FrictionStepError::HalfModel);
+    }
+    if let Method::Nitsche { .. } = s.method {
+        return Err(FrictionStepError::Nitsche);
+    }
+    if s.refine_edges.grades() {
+        return Err(FrictionStepError::Graded(s.refine_edges));
+    }
+    let (x0, x1) = app.scenario.x_range();
+    let centre = app.scenario.obstacle.center() + friction.shift;
+    if !(centre > x0 && centre < x1) {
+        return Err(FrictionStepError::ShiftBeyond {
+            shift: friction.shift,
+            centre,
+            x0,
+            x1,
+        });
+    }
+    Ok(())
 }

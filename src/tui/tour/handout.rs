@@ -7,6 +7,11 @@
 //! The rule for the directory: it is created if it does not exist, and used only if it is
 //! empty, so that a handout never mixes with the files of another run (and no file is ever
 //! replaced: each is created new).
+//!
+//! The rule for the size: before anything is written, the handout's bytes are estimated from
+//! its steps and frame size ([`estimate`]) and a handout beyond [`MAX_HANDOUT_BYTES`] is
+//! refused; while it is written, the bytes are counted against the same limit (a graded step's
+//! chart has more points than its level's, which the estimate counts).
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -43,6 +48,43 @@ pub enum HandoutError {
         /// What went wrong.
         source: StepError,
     },
+    /// The handout would write more than [`MAX_HANDOUT_BYTES`] (bad input).
+    #[error(
+        "{steps} steps at {width}×{height} would write up to {} (each step's screen at up to 4 bytes a cell, its chart and its lines of the index), beyond the {} a handout may write; choose a smaller --size or a tour of fewer steps",
+        mib(*estimate),
+        mib(MAX_HANDOUT_BYTES)
+    )]
+    TooLarge {
+        /// The tour's steps.
+        steps: usize,
+        /// The frame's columns.
+        width: u16,
+        /// The frame's rows.
+        height: u16,
+        /// The estimate, bytes.
+        estimate: u64,
+    },
+    /// A step's files would take the handout past [`MAX_HANDOUT_BYTES`] (its chart larger
+    /// than estimated): nothing more is written.
+    #[error(
+        "step {step}: its files would take the handout past the {} it may write ({} written so far); stopped",
+        mib(MAX_HANDOUT_BYTES),
+        mib(*written)
+    )]
+    Limit {
+        /// The step's number (1-based).
+        step: usize,
+        /// The bytes written before it.
+        written: u64,
+    },
+    /// A file or link appeared at a file's name while the handout was written.
+    #[error(
+        "{path}: a file or link appeared there while the handout was written; a handout never replaces a file"
+    )]
+    Taken {
+        /// The file (sanitised).
+        path: String,
+    },
     /// A file could not be written.
     #[error("{path}: {source}")]
     Write {
@@ -63,9 +105,19 @@ pub fn write_handout(
     height: u16,
     mut progress: impl FnMut(usize, usize),
 ) -> Result<Vec<PathBuf>, HandoutError> {
+    let estimate = estimate(tour, width, height);
+    if estimate > MAX_HANDOUT_BYTES {
+        return Err(HandoutError::TooLarge {
+            steps: tour.steps.len(),
+            width,
+            height,
+            estimate,
+        });
+    }
     prepare(dir)?;
     let mut files = Vec::new();
     let mut index = intro(tour, width, height);
+    let mut written = 0;
     for (i, step) in tour.steps.iter().enumerate() {
         let fail = |source: StepError| HandoutError::Step { step: i + 1, source };
         // A fresh engine per step, as `render_step`'s: a warm start from the step before
@@ -73,6 +125,14 @@ pub fn write_handout(
         let mut engine = Engine::new(tour.scenario_of(i).clone());
         let (text, app) = step_frame(tour, i, width, height, &mut engine).map_err(fail)?;
         let svg = chart(app, &mut engine).map_err(fail)?;
+        written += (text.len() + svg.len()) as u64;
+        // The index, written last, is counted in as it will be.
+        if written + (index.len() as u64) + INDEX_STEP_BYTES > MAX_HANDOUT_BYTES {
+            return Err(HandoutError::Limit {
+                step: i + 1,
+                written: written - (text.len() + svg.len()) as u64,
+            });
+        }
         let stem = format!("step-{:02}", i + 1);
         for (ext, bytes) in [("txt", text.as_bytes()), ("svg", svg.as_bytes())] {
             let path = dir.join(format!("{stem}.{ext}"));
@@ -118,11 +178,51 @@ fn prepare(dir: &Path) -> Result<(), HandoutError> {
     }
 }
 
+/// Write `bytes` to the new file `path`; a name taken meanwhile (a file or a link planted
+/// there) is refused, never replaced or removed.
 fn save(path: &Path, bytes: &[u8]) -> Result<(), HandoutError> {
-    write_file(path, bytes, false).map_err(|source| HandoutError::Write {
-        path: crate::text::sanitize(&path.display().to_string()).into_owned(),
-        source,
+    let shown = || crate::text::sanitize(&path.display().to_string()).into_owned();
+    write_file(path, bytes, false).map_err(|source| match source.kind() {
+        std::io::ErrorKind::AlreadyExists | std::io::ErrorKind::InvalidInput => {
+            HandoutError::Taken { path: shown() }
+        }
+        _ => HandoutError::Write {
+            path: shown(),
+            source,
+        },
     })
+}
+
+/// The most bytes a handout writes: its steps' screens, charts and index together.
+pub const MAX_HANDOUT_BYTES: u64 = 256 << 20;
+/// An SVG pressure chart's bytes besides its points (axes, labels, legend), at most.
+const CHART_BYTES: u64 = 64 << 10;
+/// An SVG pressure chart's bytes per contact point at most (its mark, and its vertices in the
+/// lines of p and p̄), each drawn twice on a half model (mirrored).
+const CHART_POINT_BYTES: u64 = 512;
+/// The index's bytes per step at most: its title, caption, settings and links.
+const INDEX_STEP_BYTES: u64 = 4 << 10;
+
+/// `bytes` in MiB, for messages.
+fn mib(bytes: u64) -> String {
+    format!("{:.1} MiB", bytes as f64 / f64::from(1u32 << 20))
+}
+
+/// The bytes the handout of `tour` at `width`×`height` writes at most, before any step is
+/// solved: each step's screen at 4 bytes a cell (UTF-8's longest) with a line break a row, its
+/// chart by the contact points of its level and rule on the uniform mesh, and its lines of the
+/// index.
+pub fn estimate(tour: &Tour, width: u16, height: u16) -> u64 {
+    let screen = u64::from(height) * (4 * u64::from(width) + 1);
+    let steps = (0..tour.steps.len()).map(|i| {
+        let app = tour.app(i);
+        let s = &app.settings;
+        let cells = (app.scenario.x_lines.len() as u64 - 1) << s.level;
+        let points = s.rule.n_points(cells as usize) as u64;
+        let mirrored = if app.scenario.half_model { 2 } else { 1 };
+        screen + CHART_BYTES + CHART_POINT_BYTES * points * mirrored + INDEX_STEP_BYTES
+    });
+    intro(tour, width, height).len() as u64 + steps.sum::<u64>()
 }
 
 /// The pressure chart of the step's settings (solved here if the step's scene shows no

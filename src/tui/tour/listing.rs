@@ -1,6 +1,7 @@
 //! `riplab tour --check FILE`: a validated tour's steps as a table, one line each: the scene,
 //! the level, the scheme and the method each step shows (a setting the step leaves out is its
-//! scenario's, as [`Tour::app`] makes it), and the title.
+//! scenario's, as [`Tour::app`] makes it), and the title; above it, how many scenario files
+//! the steps name (each read once).
 
 use std::fmt::Write as _;
 
@@ -11,12 +12,20 @@ use super::Tour;
 /// The tour's title, file and steps, as `riplab tour --check` prints them.
 pub fn listing(tour: &Tour) -> String {
     let mut out = format!(
-        "{}: a valid tour of {} step{}\ntitle: {}\n\n",
+        "{}: a valid tour of {} step{}\ntitle: {}\n",
         tour.source,
         tour.steps.len(),
         if tour.steps.len() == 1 { "" } else { "s" },
         tour.title
     );
+    if tour.scenario_reads > 0 {
+        let _ = writeln!(
+            out,
+            "scenario files: {} (each read once, however many steps name it)",
+            tour.scenario_reads
+        );
+    }
+    out.push('\n');
     let _ = writeln!(
         out,
         "{:>4}  {:<11}  {:>5}  {:<14}  {:<8}  title",

@@ -14,9 +14,11 @@ pub mod handout;
 pub mod listing;
 mod player;
 mod runtime;
+mod scenarios;
 mod view;
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
 use std::time::Duration;
 
 use serde::Deserialize;
@@ -26,8 +28,9 @@ use crate::check;
 use crate::contact::{Method, Rule};
 use crate::fem::Integration;
 use crate::input::Locator as Source;
-use crate::input::{RawGamma0, ScenarioError, read_toml};
+use crate::input::{RawGamma0, RawRefineEdges, ScenarioError, read_toml};
 use crate::mesh::Element;
+use crate::refine_edges::Grading;
 use crate::scenario::Scenario;
 use crate::scheme::Scheme;
 use crate::stress::Quantity;
@@ -35,6 +38,7 @@ use crate::text::{sanitize, sanitize_lines};
 
 use super::app::{App, Compare, MAX_APP_LEVEL, Scene};
 use errors::TextError;
+use scenarios::{StepScenarios, Unloaded};
 
 pub use errors::{AutoIntervalError, TourError};
 pub use player::{TourApp, TourMsg};
@@ -67,6 +71,9 @@ pub struct Tour {
     pub steps: Vec<Step>,
     /// The scenario of the steps that do not name their own.
     pub scenario: Scenario,
+    /// How many scenario files its steps' `scenario` keys made it read: each distinct path
+    /// once, however many steps name it.
+    pub scenario_reads: usize,
 }
 
 /// One screen of a tour.
@@ -76,14 +83,18 @@ pub struct Step {
     pub title: String,
     /// A few lines, shown as written.
     pub caption: String,
-    /// The step's own scenario (loaded from its path), if it names one.
-    pub scenario: Option<Scenario>,
+    /// The step's own scenario (loaded from its path, shared with the steps that name the
+    /// same path), if it names one.
+    pub scenario: Option<Arc<Scenario>>,
     /// The displacement element; None keeps the scenario's.
     pub element: Option<Element>,
     /// The contact rule; None keeps the scenario's.
     pub rule: Option<Rule>,
     /// The mesh level (clamped to [`MAX_APP_LEVEL`]); None keeps the scenario's.
     pub level: Option<u32>,
+    /// How the solve grades the level's mesh (`refine_edges`, `E` in the lab; docs/design.md
+    /// §6); None keeps the scenario's.
+    pub grading: Option<Grading>,
     /// The stiffness's volumetric integration (`i` in the lab); None keeps the scenario's.
     pub integration: Option<Integration>,
     /// The penalty parameter ε (0: the `exact` method); None keeps the scenario's.
@@ -127,6 +138,7 @@ struct RawStep {
     element: Option<Spanned<Element>>,
     rule: Option<Spanned<Rule>>,
     level: Option<Spanned<i64>>,
+    refine_edges: Option<Spanned<RawRefineEdges>>,
     integration: Option<Spanned<Integration>>,
     epsilon: Option<Spanned<f64>>,
     method: Option<Spanned<String>>,
@@ -152,11 +164,14 @@ impl Tour {
 
     /// Read and validate a tour file; scenario paths in it are relative to its directory.
     pub fn load(path: &Path) -> Result<Tour, ScenarioError> {
+        Tour::read(path).map(|(tour, _)| tour)
+    }
+
+    /// [`Tour::load`], with the file's size in bytes (what `T` adds to it is bounded by
+    /// [`crate::input::read::MAX_FILE_BYTES`] with it).
+    pub fn read(path: &Path) -> Result<(Tour, usize), ScenarioError> {
         let (file, text) = read_toml(path, "a tour")?;
-        let dir = path
-            .parent()
-            .map_or_else(|| Path::new(".").to_path_buf(), Path::to_path_buf);
-        Tour::parse(&text, &file, Some(&dir))
+        Tour::parse(&text, &file, Some(&directory_of(path))).map(|tour| (tour, text.len()))
     }
 
     /// Parse and validate tour text; `file` names it in errors, `dir` is where its scenario
@@ -174,27 +189,36 @@ impl Tour {
                 "is empty; allowed: at least one [[step]]".into(),
             ));
         }
+        let mut scenarios = StepScenarios::new(dir);
         let steps = raw
             .step
             .get_ref()
             .iter()
             .enumerate()
-            .map(|(i, s)| step(&src, i + 1, s, dir))
+            .map(|(i, s)| step(&src, i + 1, s, &mut scenarios))
             .collect::<Result<Vec<_>, _>>()?;
         Ok(Tour {
             title: sanitize(raw.title.get_ref()).into_owned(),
             source: file.to_string(),
             steps,
             scenario: Scenario::paper(),
+            scenario_reads: scenarios.reads(),
         })
     }
 
     /// The tour with `scenario` for the steps that do not name their own; every step's depth
-    /// is checked against its scenario, and its ε against the range of its level (as the lab
-    /// checks it when the step is played).
+    /// is checked against its scenario, its ε against the range of its level, and its
+    /// friction against its scenario's model, method and grading (as the lab refuses them
+    /// when the step is played: [`friction_step::check`]).
     pub fn with_scenario(mut self, scenario: Scenario) -> Result<Tour, TourError> {
         self.scenario = scenario;
         for (i, step) in self.steps.iter().enumerate() {
+            friction_step::check(&self.app(i)).map_err(|source| TourError::Friction {
+                file: sanitize(&self.source).into_owned(),
+                step: i + 1,
+                title: step.title.clone(),
+                source,
+            })?;
             if let Some(epsilon) = step.epsilon.filter(|e| *e > 0.0) {
                 let scenario = self.scenario_of(i);
                 let level = step.level.unwrap_or(scenario.level).min(MAX_APP_LEVEL);
@@ -228,7 +252,7 @@ impl Tour {
     pub fn scenario_of(&self, index: usize) -> &Scenario {
         self.steps
             .get(index)
-            .and_then(|s| s.scenario.as_ref())
+            .and_then(|s| s.scenario.as_deref())
             .unwrap_or(&self.scenario)
     }
 
@@ -243,6 +267,7 @@ impl Tour {
         s.element = step.element.unwrap_or(s.element);
         s.rule = step.rule.unwrap_or(s.rule);
         s.level = step.level.unwrap_or(s.level).min(MAX_APP_LEVEL);
+        s.refine_edges = step.grading.unwrap_or(s.refine_edges);
         s.integration = step.integration.unwrap_or(s.integration);
         // ε = 0 is the exact method (the lab keeps its ε for penalty and alm).
         match step.epsilon {
@@ -271,6 +296,12 @@ impl Tour {
         }
         app
     }
+}
+
+/// The directory a tour file's scenario paths are relative to.
+fn directory_of(path: &Path) -> PathBuf {
+    path.parent()
+        .map_or_else(|| Path::new(".").to_path_buf(), Path::to_path_buf)
 }
 
 /// Text on one line of at most `width` characters, not blank.
@@ -307,28 +338,19 @@ fn caption(text: &str) -> Result<(), TextError> {
 }
 
 /// Step number `n` (1-based) validated.
-fn step(src: &Source, n: usize, raw: &RawStep, dir: Option<&Path>) -> Result<Step, ScenarioError> {
+fn step(src: &Source, n: usize, raw: &RawStep, scenarios: &mut StepScenarios) -> Result<Step, ScenarioError> {
     let key = |k: &str| format!("step[{n}].{k}");
     src.check(&key("title"), &raw.title, |t| one_line(t, MAX_TITLE_WIDTH))?;
     src.check(&key("caption"), &raw.caption, |t| caption(t))?;
     let scenario = match &raw.scenario {
         None => None,
-        Some(path) => {
-            let cannot = |e: ScenarioError| {
-                src.error(
-                    Some(path.span()),
-                    Some(key("scenario")),
-                    format!("cannot load the scenario: {e}"),
-                )
+        Some(path) => Some(scenarios.get(path.get_ref()).map_err(|e| {
+            let message = match e {
+                Unloaded::Invalid(e) => format!("cannot load the scenario: {e}"),
+                Unloaded::NoDirectory => "a scenario path needs a tour file to be relative to; allowed only in a tour read from a file".into(),
             };
-            match (dir, embedded::scenario_text(path.get_ref())) {
-                (Some(dir), _) => Some(Scenario::load(&dir.join(path.get_ref())).map_err(cannot)?),
-                (None, Some(text)) => Some(Scenario::parse(text, path.get_ref()).map_err(cannot)?),
-                (None, None) => {
-                    return Err(src.error(Some(path.span()), Some(key("scenario")), "a scenario path needs a tour file to be relative to; allowed only in a tour read from a file".into()));
-                }
-            }
-        }
+            src.error(Some(path.span()), Some(key("scenario")), message)
+        })?),
     };
     let (mut element, mut rule) = (
         raw.element.as_ref().map(|e| *e.get_ref()),
@@ -357,6 +379,13 @@ fn step(src: &Source, n: usize, raw: &RawStep, dir: Option<&Path>) -> Result<Ste
                 check::integer(*v, 0, i64::from(MAX_APP_LEVEL))
             })?;
             Some(*l.get_ref() as u32)
+        }
+        None => None,
+    };
+    let grading = match &raw.refine_edges {
+        Some(r) => {
+            src.check(&key("refine_edges"), r, |v| v.parse().map(|_| ()))?;
+            r.get_ref().parse().ok()
         }
         None => None,
     };
@@ -445,6 +474,7 @@ fn step(src: &Source, n: usize, raw: &RawStep, dir: Option<&Path>) -> Result<Ste
         element,
         rule,
         level,
+        grading,
         integration: raw.integration.as_ref().map(|i| *i.get_ref()),
         epsilon: raw.epsilon.as_ref().map(|e| *e.get_ref()),
         method,
