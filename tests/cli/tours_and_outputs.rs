@@ -157,3 +157,24 @@ fn a_link_planted_at_a_predictable_temporary_is_left_alone() {
         "{links:?}"
     );
 }
+
+/// An integer beyond 64 bits in a tour step was "invalid type: integer … as i128, expected
+/// i64", with no step: now the step's key, the value and the allowed range, exit 2.
+#[test]
+fn an_oversized_level_in_a_step_is_said_in_the_users_words() {
+    let dir = scratch("oversized-level");
+    let tour = dir.join("t.toml");
+    std::fs::write(
+        &tour,
+        "title = \"t\"\n[[step]]\ntitle = \"a\"\ncaption = \"c\"\nlevel = 0\n[[step]]\ntitle = \"b\"\ncaption = \"c\"\nlevel = 99999999999999999999\n",
+    )
+    .unwrap();
+    let (code, stdout, stderr) = riplab(&["tour", "--check", tour.to_str().unwrap()]);
+    no_panic(&stderr);
+    assert_eq!(code, 2, "{stdout}{stderr}");
+    assert!(!stderr.contains("i128"), "{stderr}");
+    assert!(
+        stderr.contains("99999999999999999999") && stderr.contains("step[1].level") && stderr.contains("0 to 7"),
+        "{stderr}"
+    );
+}

@@ -179,6 +179,8 @@ impl Tour {
     pub fn parse(text: &str, file: &str, dir: Option<&Path>) -> Result<Tour, ScenarioError> {
         let src = Source { file, text };
         src.check_nesting()?;
+        // Integers beyond 64 bits said in the user's words, with the step they stand in.
+        src.check_numbers(|key| key.ends_with(".level").then_some((0, i64::from(MAX_APP_LEVEL))))?;
         let raw: RawTour =
             toml::from_str(text).map_err(|e| src.error(e.span(), None, e.message().trim().to_string()))?;
         src.check("title", &raw.title, |t| one_line(t, 200))?;
