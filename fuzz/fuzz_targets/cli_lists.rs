@@ -4,8 +4,7 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use riplab::cli::parse_levels;
-use riplab::cli::values::number;
+use riplab::fuzzing::{number, parse_levels};
 use riplab::scheme::Scheme;
 
 fuzz_target!(|data: &[u8]| {
