@@ -45,13 +45,13 @@ mod lab;
 mod solve;
 mod study;
 pub use args::{InfsupArgs, Select, SolveArgs, StudyArgs};
-#[cfg(feature = "fuzzing")]
-pub use {args::parse_levels, values::number};
 use infsup::infsup;
-pub use render_args::RenderArgs;
 use lab::{RENDER_NOTES, lab, render};
+pub use render_args::RenderArgs;
 use solve::solve;
 use study::study;
+#[cfg(feature = "fuzzing")]
+pub use {args::parse_levels, values::number};
 
 /// riplab's command line: the terminal lab on a scenario, or a command.
 #[derive(Parser, Debug)]

@@ -136,7 +136,11 @@ mod tests {
         assert!(rules.iter().all(|(name, r)| name == r.name()), "{rules:?}");
         assert_eq!(
             names::<FormatName, Format>(),
-            [("table".into(), Format::Table), ("csv".into(), Format::Csv), ("json".into(), Format::Json)]
+            [
+                ("table".into(), Format::Table),
+                ("csv".into(), Format::Csv),
+                ("json".into(), Format::Json)
+            ]
         );
         assert_eq!(
             names::<MarkerName, MarkerChoice>(),

@@ -58,7 +58,11 @@ struct Reading {
 fn read(me: &str, text: &str) -> Reading {
     let file = syn::parse_file(text).unwrap_or_else(|e| panic!("{me}: {e}"));
     let mut reading = Reading::default();
-    let module: Segments = me.split("::").filter(|s| !s.is_empty()).map(String::from).collect();
+    let module: Segments = me
+        .split("::")
+        .filter(|s| !s.is_empty())
+        .map(String::from)
+        .collect();
     reading.items(&module, &file.items);
     reading
 }
@@ -70,9 +74,9 @@ fn named(me: &str, text: &str) -> BTreeSet<String> {
 
 /// Whether the attributes make an item test code (`#[cfg(test)]`).
 fn is_test(attrs: &[Attribute]) -> bool {
-    attrs.iter().any(|a| {
-        a.path().is_ident("cfg") && a.parse_args::<syn::Ident>().is_ok_and(|cfg| cfg == "test")
-    })
+    attrs
+        .iter()
+        .any(|a| a.path().is_ident("cfg") && a.parse_args::<syn::Ident>().is_ok_and(|cfg| cfg == "test"))
 }
 
 /// An item's attributes (none for the kinds that cannot be test code here).
@@ -112,7 +116,10 @@ fn absolute(module: &[String], path: &[String]) -> Segments {
         Some("self") => [module, &path[1..]].concat(),
         Some("super") => {
             let up = path.iter().take_while(|s| *s == "super").count();
-            assert!(up <= module.len(), "{path:?} climbs above the crate from {module:?}");
+            assert!(
+                up <= module.len(),
+                "{path:?} climbs above the crate from {module:?}"
+            );
             [&module[..module.len() - up], &path[up..]].concat()
         }
         _ => [module, path].concat(),
@@ -126,7 +133,8 @@ impl Reading {
             match item {
                 Item::Mod(m) if is_test(&m.attrs) => {
                     if m.content.is_none() {
-                        self.tests.insert([module, &[m.ident.to_string()]].concat().join("::"));
+                        self.tests
+                            .insert([module, &[m.ident.to_string()]].concat().join("::"));
                     }
                 }
                 _ if is_test(attrs(item)) => {}
@@ -154,7 +162,11 @@ impl Reading {
                     }
                 }
                 Item::Trait(t) => {
-                    for member in t.items.iter().filter(|m| !matches!(m, TraitItem::Fn(f) if is_test(&f.attrs))) {
+                    for member in t
+                        .items
+                        .iter()
+                        .filter(|m| !matches!(m, TraitItem::Fn(f) if is_test(&f.attrs)))
+                    {
                         self.tokens(module, member.to_token_stream());
                     }
                     self.tokens(module, t.generics.to_token_stream());
@@ -233,7 +245,8 @@ impl Reading {
                     }
                 }
                 TokenTree::Ident(word)
-                    if (word == "crate" || word == "self" || word == "super") && separator(&tokens, at + 1) =>
+                    if (word == "crate" || word == "self" || word == "super")
+                        && separator(&tokens, at + 1) =>
                 {
                     let mut path = vec![word.to_string()];
                     at += 1;
@@ -297,10 +310,8 @@ fn resolve(
 fn uses() -> Vec<(String, String)> {
     let library = library();
     let modules: BTreeSet<String> = library.keys().cloned().collect();
-    let imports: BTreeMap<String, BTreeMap<String, Segments>> = library
-        .values()
-        .flat_map(|r| r.imports.clone())
-        .collect();
+    let imports: BTreeMap<String, BTreeMap<String, Segments>> =
+        library.values().flat_map(|r| r.imports.clone()).collect();
     library
         .iter()
         .flat_map(|(me, reading)| {
@@ -397,7 +408,10 @@ fn the_known_cycles_are_still_there() {
     let uses = uses();
     for (depth, from, to) in KNOWN {
         let g = graph(&uses, depth);
-        assert!(g[from].contains(to), "{from} → {to} is gone: remove it from KNOWN");
+        assert!(
+            g[from].contains(to),
+            "{from} → {to} is gone: remove it from KNOWN"
+        );
         // `to` leads back to `from`.
         let (mut seen, mut next) = (BTreeSet::new(), vec![to.to_string()]);
         while let Some(m) = next.pop() {
@@ -405,7 +419,10 @@ fn the_known_cycles_are_still_there() {
                 next.extend(g.get(&m).into_iter().flatten().cloned());
             }
         }
-        assert!(seen.contains(from), "{from} → {to} closes no cycle any more: remove it from KNOWN");
+        assert!(
+            seen.contains(from),
+            "{from} → {to} closes no cycle any more: remove it from KNOWN"
+        );
     }
 }
 
@@ -454,7 +471,16 @@ mod tests {
 mod more;
 ";
     let expected = [
-        "x", "y", "y::z", "a::d::E", "a::b::f", "a::b::g", "inner::I", "inner::J", "k::l", "a::b::m::n",
+        "x",
+        "y",
+        "y::z",
+        "a::d::E",
+        "a::b::f",
+        "a::b::g",
+        "inner::I",
+        "inner::J",
+        "k::l",
+        "a::b::m::n",
         "a::b::c::o::P::new",
     ];
     assert_eq!(named("a::b::c", text), expected.map(String::from).into());
@@ -473,7 +499,13 @@ fn paths_resolve_through_imports() {
     let modules: BTreeSet<String> = ["", "a", "a::b", "c"].map(String::from).into();
     let text = "pub use a::b::B;\nuse c as see;";
     let imports = read("", text).imports;
-    let resolved = |path: &str| resolve(&path.split("::").map(String::from).collect::<Vec<_>>(), &modules, &imports);
+    let resolved = |path: &str| {
+        resolve(
+            &path.split("::").map(String::from).collect::<Vec<_>>(),
+            &modules,
+            &imports,
+        )
+    };
     assert_eq!(resolved("B"), "a::b");
     assert_eq!(resolved("see::X"), "c");
     assert_eq!(resolved("a::b::X::f"), "a::b");

@@ -173,7 +173,10 @@ impl Screen {
     fn wait_for_end(&self, deadline: Instant) {
         let live = self.live.lock().unwrap();
         let timeout = deadline.saturating_duration_since(Instant::now());
-        let (live, _) = self.changed.wait_timeout_while(live, timeout, |l| !l.closed).unwrap();
+        let (live, _) = self
+            .changed
+            .wait_timeout_while(live, timeout, |l| !l.closed)
+            .unwrap();
         assert!(live.closed, "riplab did not quit");
     }
 }
@@ -221,9 +224,15 @@ fn a_recorded_tour_is_a_valid_asciicast_ending_on_the_last_frame() {
         let reads = live.reads;
         let (now, quiet) = screen
             .changed
-            .wait_timeout_while(live, Duration::from_millis(700), |l| l.reads == reads && !l.closed)
+            .wait_timeout_while(live, Duration::from_millis(700), |l| {
+                l.reads == reads && !l.closed
+            })
             .unwrap();
-        assert!(!now.closed, "riplab ended early:\n{}", rows(now.terminal.screen()).join("\n"));
+        assert!(
+            !now.closed,
+            "riplab ended early:\n{}",
+            rows(now.terminal.screen()).join("\n")
+        );
         if quiet.timed_out() {
             break;
         }

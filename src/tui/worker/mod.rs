@@ -105,11 +105,12 @@ impl Worker {
     #[cfg(test)]
     pub fn wait_for(&self, timeout: std::time::Duration, until: impl Fn(&Activity) -> bool) -> bool {
         let activity = self.watch.activity.lock().unwrap_or_else(PoisonError::into_inner);
-        let (_, waited) = self
+        let (activity, waited) = self
             .watch
             .changed
             .wait_timeout_while(activity, timeout, |a| !until(a))
             .unwrap_or_else(PoisonError::into_inner);
+        drop(activity);
         !waited.timed_out()
     }
 

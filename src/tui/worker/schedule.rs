@@ -205,7 +205,13 @@ fn follow(engine: &mut Engine, r: &Request) {
 /// built in the background, each only while the memory would hold it twice (what it leaves for the next
 /// request).
 /// Each time it waits for a request, the worker says so to `watch`.
-pub(super) fn run(mut engine: Engine, rx: &Receiver<Request>, latest: &AtomicU64, sink: &Sink, watch: &Watch) {
+pub(super) fn run(
+    mut engine: Engine,
+    rx: &Receiver<Request>,
+    latest: &AtomicU64,
+    sink: &Sink,
+    watch: &Watch,
+) {
     let mut waiting = Waiting::default();
     let mut builds = Builds::default();
     let mut estimating: Vec<Estimating> = Vec::new();

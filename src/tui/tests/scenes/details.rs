@@ -381,7 +381,10 @@ fn an_idle_worker_builds_the_next_level_before_it_is_asked_for() {
     };
     assert!(assembling(&solve(1, 2)), "level 2 is built on demand");
     // Idle again: levels 3 and 1 built in the background.
-    assert!(worker.wait_for(Duration::from_secs(120), |a| a.idle()), "the worker went idle");
+    assert!(
+        worker.wait_for(Duration::from_secs(120), |a| a.idle()),
+        "the worker went idle"
+    );
     let seen = solve(2, 3);
     assert!(!assembling(&seen), "level 3 was built while idle: {seen:?}");
 }
@@ -506,7 +509,10 @@ fn a_solve_does_not_wait_for_an_estimate() {
         },
     }));
     // Once the worker has started the estimate and waits, a solve of the same generation.
-    assert!(worker.wait_for(Duration::from_secs(120), |a| a.waits()), "the worker waits");
+    assert!(
+        worker.wait_for(Duration::from_secs(120), |a| a.waits()),
+        "the worker waits"
+    );
     solve(2, 1);
     loop {
         match next() {

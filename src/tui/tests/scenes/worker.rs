@@ -33,7 +33,10 @@ fn a_solve_waits_for_no_displacement_stresses_or_study() {
     // Once the worker has handed the work on level 6 to its thread and waits for the next
     // request, a solve of level 1 is answered before the work, and the work's reply still comes.
     let answered_first = |generation, work: &str, of_work: &dyn Fn(&Response) -> bool| {
-        assert!(worker.wait_for(Duration::from_secs(120), |a| a.waits()), "the worker waits");
+        assert!(
+            worker.wait_for(Duration::from_secs(120), |a| a.waits()),
+            "the worker waits"
+        );
         solve(generation, 1);
         loop {
             match next() {
@@ -144,7 +147,9 @@ fn a_nitsche_solve_is_told_of_the_build_then_of_its_preparation() {
     while !matches!(paper.next(), Response::Solved { generation: 1, .. }) {}
     // Waiting for the next request, the worker has begun building level 6 for the penalty
     // (about a second) in the background.
-    let waits = paper.worker.wait_for(std::time::Duration::from_secs(120), |a| a.waits());
+    let waits = paper
+        .worker
+        .wait_for(std::time::Duration::from_secs(120), |a| a.waits());
     assert!(waits, "the worker waits");
     paper.solve_by_nitsche(2, 6);
     let mut told = Vec::new();
