@@ -9,8 +9,10 @@ use clap::{Parser, Subcommand};
 use crate::error::SolveError;
 use crate::input::ScenarioError;
 use crate::tui::{MarkerChoice, TuiOptions};
+use choices::{MarkerName, choice};
 
 mod checks;
+mod choices;
 mod friction_args;
 mod friction_solve;
 mod grading;
@@ -44,10 +46,12 @@ mod solve;
 mod study;
 pub use args::{InfsupArgs, Select, SolveArgs, StudyArgs};
 use infsup::infsup;
-pub use lab::RenderArgs;
 use lab::{RENDER_NOTES, lab, render};
+pub use render_args::RenderArgs;
 use solve::solve;
 use study::study;
+#[cfg(feature = "fuzzing")]
+pub use {args::parse_levels, values::number};
 
 /// riplab's command line: the terminal lab on a scenario, or a command.
 #[derive(Parser, Debug)]
@@ -56,7 +60,7 @@ pub struct Cli {
     /// Scenario file (TOML) to open in the terminal lab; the paper's problem when omitted.
     pub scenario: Option<PathBuf>,
     /// Chart marker, for fonts without braille (the lab and the tour).
-    #[arg(long, value_enum, default_value_t = MarkerChoice::Braille, global = true)]
+    #[arg(long, value_parser = choice::<MarkerName, MarkerChoice>(), default_value = "braille", global = true)]
     pub marker: MarkerChoice,
     /// Monochrome display (also when the NO_COLOR environment variable is set).
     #[arg(long, global = true)]

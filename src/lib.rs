@@ -26,8 +26,9 @@
 //! estimate [`inf_sup`], the refinement [`study()`], the stresses [`quadrature_stresses`] and the
 //! [`vtu`] files; [`SolveError`] is every way a solve fails. The modules hold the rest of each
 //! concept's vocabulary. The terminal lab and the command line are private: the binary runs
-//! them through [`run_command_line`], and without default features (`cargo build
-//! --no-default-features`) the library builds without them.
+//! them through `run_command_line` (the `cli` feature, on by default), a program with the
+//! `tui` feature alone opens the lab with `run_lab`, and without default features (`cargo
+//! build --no-default-features`) the library builds without either.
 
 // Every public item is documented; CI's clippy makes a missing doc an error.
 #![warn(missing_docs)]
@@ -59,6 +60,9 @@ pub mod discretization;
 pub mod error;
 pub mod fem;
 pub mod friction;
+#[cfg(feature = "fuzzing")]
+#[doc(hidden)]
+pub mod fuzzing;
 pub mod grading;
 pub mod huge_pages;
 pub mod infsup;
@@ -77,11 +81,30 @@ pub mod solve;
 pub mod stress;
 pub mod study;
 pub(crate) mod text;
+// Without the command line, the lab's tour, `render` and recording are built but reached by
+// nothing: only [`run_lab`] is.
 #[cfg(feature = "tui")]
+#[cfg_attr(not(feature = "cli"), allow(dead_code, unused_imports))]
 mod tui;
 pub mod verify;
 pub mod vtu;
 pub mod warning;
+
+/// The terminal lab on `scenario` until the user quits, as `riplab [SCENARIO]` opens it
+/// (docs/design.md §9, `tui/`); with the `tui` feature, a program needs no argument parser
+/// to embed it.
+///
+/// # Errors
+///
+/// The terminal could not be set up, read or written.
+#[cfg(feature = "tui")]
+pub fn run_lab(scenario: Scenario) -> std::io::Result<()> {
+    tui::run(scenario, None, &tui::TuiOptions::default(), None).map_err(|e| match e {
+        tui::RunError::Terminal(e) => e,
+        // Nothing is recorded here.
+        e @ tui::RunError::Recording(_) => std::io::Error::other(e.to_string()),
+    })
+}
 
 /// The `riplab` binary's command line (`riplab --help`): parse the arguments, run the command,
 /// and return its exit code (docs/design.md §8). The terminal lab and the command line are

@@ -12,7 +12,6 @@ pub const MAX_LEVEL: u32 = 8;
 
 /// The finite element used for the displacement (docs/design.md §2).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 pub enum Element {
     /// Bilinear 4-node quadrilateral, the paper's element.

@@ -4,12 +4,13 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use riplab::cli::parse_levels;
-use riplab::cli::values::number;
+use riplab::fuzzing::{number, parse_levels};
 use riplab::scheme::Scheme;
 
 fuzz_target!(|data: &[u8]| {
-    let Ok(text) = std::str::from_utf8(data) else { return };
+    let Ok(text) = std::str::from_utf8(data) else {
+        return;
+    };
     match parse_levels(text) {
         Ok(levels) => {
             assert!(!levels.is_empty() && levels.len() <= 9);
@@ -23,9 +24,14 @@ fuzz_target!(|data: &[u8]| {
     match number(text) {
         Ok(v) if v == 0.0 => {
             let mantissa = text.trim().split(['e', 'E']).next().unwrap_or("");
-            assert!(!mantissa.bytes().any(|b| (b'1'..=b'9').contains(&b)), "{text:?} read as 0");
+            assert!(
+                !mantissa.bytes().any(|b| (b'1'..=b'9').contains(&b)),
+                "{text:?} read as 0"
+            );
         }
         Ok(_) => {}
-        Err(m) => assert!(m.to_string().contains("not a number") || m.to_string().contains("underflows to 0")),
+        Err(m) => {
+            assert!(m.to_string().contains("not a number") || m.to_string().contains("underflows to 0"))
+        }
     }
 });

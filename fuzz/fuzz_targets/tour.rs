@@ -4,15 +4,22 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use riplab::tui::tour::Tour;
+use riplab::Scenario;
+use riplab::fuzzing::Tour;
 
 fuzz_target!(|data: &[u8]| {
-    let Ok(text) = std::str::from_utf8(data) else { return };
+    let Ok(text) = std::str::from_utf8(data) else {
+        return;
+    };
     match Tour::parse(text, "fuzz.toml", None) {
         // Every step checked against the scenario it is played with (depth, ε at its level).
         Ok(tour) => {
-            if let Err(m) = tour.with_scenario(riplab::scenario::Scenario::paper()) {
-                assert!(m.starts_with("fuzz.toml") && !m.chars().any(char::is_control), "{m:?}");
+            if let Err(e) = tour.with_scenario(Scenario::paper()) {
+                let m = e.to_string();
+                assert!(
+                    m.starts_with("fuzz.toml") && !m.chars().any(char::is_control),
+                    "{m:?}"
+                );
             }
         }
         Err(e) => {

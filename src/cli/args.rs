@@ -5,6 +5,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 
+use super::choices::{ElementName, FormatName, RuleName, choice};
 use super::{CliError, usage, values};
 use crate::check::{self, CheckError};
 use crate::contact::method::Gamma0;
@@ -25,10 +26,10 @@ pub struct Select {
     #[arg(long, short)]
     pub level: Option<i64>,
     /// Displacement element.
-    #[arg(long, short)]
+    #[arg(long, short, value_parser = choice::<ElementName, Element>())]
     pub element: Option<Element>,
     /// Quadrature rule of the penalty term.
-    #[arg(long, short)]
+    #[arg(long, short, value_parser = choice::<RuleName, Rule>())]
     pub rule: Option<Rule>,
     /// One of the paper's schemes M1–M4, or a pair like q2+gauss1 (sets element and rule).
     #[arg(long, short, conflicts_with_all = ["element", "rule"])]
@@ -122,7 +123,7 @@ pub struct SolveArgs {
     #[arg(long, value_delimiter = ',', allow_hyphen_values = true, value_parser = values::number)]
     pub depth: Vec<f64>,
     /// Output format (docs/design.md §7).
-    #[arg(long, short, value_enum, default_value_t = Format::Table)]
+    #[arg(long, short, value_parser = choice::<FormatName, Format>(), default_value = "table")]
     pub format: Format,
     /// Also write the pressure chart (p and p̄ along Γ_C) as an SVG file.
     #[arg(long, value_name = "FILE")]
@@ -160,7 +161,7 @@ pub struct InfsupArgs {
     #[arg(long, value_name = "N|Nz|auto")]
     pub refine_edges: Option<String>,
     /// Output format (docs/design.md §7).
-    #[arg(long, short, value_enum, default_value_t = Format::Table)]
+    #[arg(long, short, value_parser = choice::<FormatName, Format>(), default_value = "table")]
     pub format: Format,
 }
 
@@ -210,7 +211,7 @@ pub struct StudyArgs {
     #[arg(long)]
     pub no_cache: bool,
     /// Output format (docs/design.md §7).
-    #[arg(long, short, value_enum, default_value_t = Format::Table)]
+    #[arg(long, short, value_parser = choice::<FormatName, Format>(), default_value = "table")]
     pub format: Format,
     /// Gradings to study beside the levels, comma-separated (each 0 to 8 or `auto` at the
     /// contact edges, or 1z to 8z over the contact zone, as `solve --refine-edges`): a series

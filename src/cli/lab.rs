@@ -3,10 +3,9 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use clap::Args;
-
-use super::args::{MethodArgs, Select};
-use super::{CliError, checks, print, render_args, tour, usage, values};
+use super::args::Select;
+use super::render_args::{self, RenderArgs};
+use super::{CliError, checks, print, tour, usage};
 use crate::check;
 use crate::tui::lab_error::LabError;
 use crate::tui::{MarkerChoice, RenderExtras, TuiOptions, render_with};
@@ -19,38 +18,6 @@ seconds and gigabytes, BENCHMARKS.md: too slow for the lab; `riplab solve` goes 
 ",
     exit_codes!()
 );
-
-/// The arguments of `riplab render`.
-#[derive(Args, Debug)]
-#[command(mut_arg("level", |a| a.help("Mesh level 0 to 7, the lab's levels (h halves with each level)")))]
-pub struct RenderArgs {
-    /// The scenario, level, element and rule.
-    #[command(flatten)]
-    pub select: Select,
-    /// The contact method and its parameters.
-    #[command(flatten)]
-    pub method: MethodArgs,
-    /// Scene: explore, infsup, mesh, convergence (the study takes seconds) or stress.
-    #[arg(long, default_value = "explore", value_parser = ["explore", "infsup", "mesh", "convergence", "stress"])]
-    pub scene: String,
-    /// Frame size, COLUMNSxROWS (or COLUMNS×ROWS), from 80x24 to 1000x500.
-    #[arg(long, default_value = "120x40")]
-    pub size: String,
-    /// Penalty parameter ε > 0 (the scenario's when omitted); 0 with no --method named is the
-    /// exact constraint
-    #[arg(long, value_parser = values::number)]
-    pub epsilon: Option<f64>,
-    /// Keys applied to the lab before the frame is printed, e.g. `]]]x..` (each character a
-    /// key; `<tab>` `<backtab>` `<esc>` `<enter>` `<space>` `<left>` `<right>` `<up>` `<down>`
-    /// `<pageup>` `<pagedown>` `<lt>` name the others; at most 200)
-    #[arg(long, default_value = "")]
-    pub keys: String,
-    /// Grading: the solve graded N times at the contact edges (or `auto`), or `Nz` (1z to 8z)
-    /// over the contact zone, as the lab's `E` sets it [default: the scenario's `[mesh]
-    /// refine_edges`, else 0]
-    #[arg(long, value_name = "N|auto|Nz")]
-    pub refine_edges: Option<String>,
-}
 
 /// The terminal lab.
 pub(super) fn lab(

@@ -1,14 +1,49 @@
-//! What `riplab render` reads beyond the shared arguments: its level range (the lab's, 0 to
-//! [`MAX_APP_LEVEL`], for every level above it alike), `--epsilon 0` as the exact constraint
-//! (as `--method`'s help says) and `--keys` ([`crate::tui::render_keys`]).
+//! The arguments of `riplab render` ([`RenderArgs`]) and what it reads beyond the shared
+//! ones: its level range (the lab's, 0 to [`MAX_APP_LEVEL`], for every level above it
+//! alike), `--epsilon 0` as the exact constraint (as `--method`'s help says) and `--keys`
+//! ([`crate::tui::render_keys`]).
 
+use clap::Args;
 use crossterm::event::KeyEvent;
 
 use crate::contact::Method;
 use crate::tui::app::{LEVEL_LIMIT_WHY, MAX_APP_LEVEL};
 use crate::tui::render_keys::parse_keys;
 
-use super::{CliError, RenderArgs, usage};
+use super::args::{MethodArgs, Select};
+use super::{CliError, usage, values};
+
+/// The arguments of `riplab render`.
+#[derive(Args, Debug)]
+#[command(mut_arg("level", |a| a.help("Mesh level 0 to 7, the lab's levels (h halves with each level)")))]
+pub struct RenderArgs {
+    /// The scenario, level, element and rule.
+    #[command(flatten)]
+    pub select: Select,
+    /// The contact method and its parameters.
+    #[command(flatten)]
+    pub method: MethodArgs,
+    /// Scene: explore, infsup, mesh, convergence (the study takes seconds) or stress.
+    #[arg(long, default_value = "explore", value_parser = ["explore", "infsup", "mesh", "convergence", "stress"])]
+    pub scene: String,
+    /// Frame size, COLUMNSxROWS (or COLUMNS×ROWS), from 80x24 to 1000x500.
+    #[arg(long, default_value = "120x40")]
+    pub size: String,
+    /// Penalty parameter ε > 0 (the scenario's when omitted); 0 with no --method named is the
+    /// exact constraint
+    #[arg(long, value_parser = values::number)]
+    pub epsilon: Option<f64>,
+    /// Keys applied to the lab before the frame is printed, e.g. `]]]x..` (each character a
+    /// key; `<tab>` `<backtab>` `<esc>` `<enter>` `<space>` `<left>` `<right>` `<up>` `<down>`
+    /// `<pageup>` `<pagedown>` `<lt>` name the others; at most 200)
+    #[arg(long, default_value = "")]
+    pub keys: String,
+    /// Grading: the solve graded N times at the contact edges (or `auto`), or `Nz` (1z to 8z)
+    /// over the contact zone, as the lab's `E` sets it [default: the scenario's `[mesh]
+    /// refine_edges`, else 0]
+    #[arg(long, value_name = "N|auto|Nz")]
+    pub refine_edges: Option<String>,
+}
 
 /// What `render` takes from its arguments before the scenario is read: the keys, and the ε
 /// and method `--epsilon` implies (`--epsilon 0` with no method named: `exact`, no ε).

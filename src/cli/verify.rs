@@ -7,6 +7,7 @@ use clap::Args;
 
 use crate::output::{Format, output};
 
+use super::choices::{FormatName, choice};
 use super::{CliError, print, usage};
 
 /// The arguments of `riplab verify`.
@@ -26,7 +27,7 @@ pub struct VerifyArgs {
     #[arg(long, conflicts_with_all = ["case", "level", "format"])]
     pub print_stored: bool,
     /// Output format (docs/design.md §7).
-    #[arg(long, short, value_enum, default_value_t = Format::Table)]
+    #[arg(long, short, value_parser = choice::<FormatName, Format>(), default_value = "table")]
     pub format: Format,
 }
 

@@ -12,7 +12,6 @@ use crate::fem::basis::lagrange_1d;
 
 /// A quadrature rule for the penalty term.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 pub enum Rule {
     /// One-point Gauss: piecewise-constant pressure (M1).

@@ -18,7 +18,6 @@ use crate::mesh::{Diagonal, Mesh};
 
 /// How the elastic stiffness is integrated.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Deserialize, serde::Serialize)]
-#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 pub enum Integration {
     /// Exactly (2×2 Gauss for Q1, 3×3 for Q2).

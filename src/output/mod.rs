@@ -20,7 +20,6 @@ pub use sweep::{SWEEP_COLUMNS, Sweep, SweepFailure, SweepRow};
 
 /// Output format of the CLI.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Format {
     /// The human table.
     Table,

@@ -323,7 +323,7 @@ impl Report for SolveReport {
     /// `nodes` and `points`.
     fn csv(&self) -> String {
         if self.friction.law != "none" {
-            return super::friction::csv(&self.nodes, &self.points);
+            return friction_csv(&self.nodes, &self.points);
         }
         let mut s = String::from("kind,x,uy,pbar,p\n");
         for i in 0..self.nodes.x.len() {
@@ -338,4 +338,45 @@ impl Report for SolveReport {
         }
         s
     }
+}
+
+/// A friction solve's CSV: one row per Γ_C vertex (`node`: x, u_y, p̄, u_x, t̄) and per rule
+/// point (`point`: x, p, t, state).
+fn friction_csv(nodes: &Nodes, points: &Points) -> String {
+    let mut s = String::from("kind,x,uy,pbar,p,ux,tbar,t,state\n");
+    let (ux, tbar) = (
+        nodes.ux.as_deref().unwrap_or(&[]),
+        nodes.tbar.as_deref().unwrap_or(&[]),
+    );
+    for i in 0..nodes.x.len() {
+        let _ = writeln!(
+            s,
+            "node,{},{},{},,{},{},,",
+            nodes.x[i],
+            nodes.uy[i],
+            nodes.pbar[i],
+            cell(ux.get(i)),
+            cell(tbar.get(i))
+        );
+    }
+    let (t, state) = (
+        points.t.as_deref().unwrap_or(&[]),
+        points.state.as_deref().unwrap_or(&[]),
+    );
+    for i in 0..points.x.len() {
+        let _ = writeln!(
+            s,
+            "point,{},,,{},,,{},{}",
+            points.x[i],
+            points.p[i],
+            cell(t.get(i)),
+            state.get(i).map_or("", |s| s.name())
+        );
+    }
+    s
+}
+
+/// A number's CSV cell, empty where there is none.
+fn cell(v: Option<&f64>) -> String {
+    v.map_or(String::new(), f64::to_string)
 }

@@ -67,13 +67,11 @@ use view::Look;
 
 /// The glyphs of charts and canvases.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum MarkerChoice {
     /// Unicode braille: 2×4 dots per cell (the sharpest).
     #[default]
     Braille,
     /// Half blocks: 1×2 per cell, for fonts without braille.
-    #[value(name = "halfblock")]
     HalfBlock,
     /// One dot per cell.
     Dot,

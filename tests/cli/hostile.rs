@@ -22,20 +22,34 @@ fn riplab_within(args: &[&str], limit: Duration) -> (i32, String, String) {
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();
-    let start = Instant::now();
-    loop {
-        if let Some(status) = child.try_wait().unwrap() {
-            let (mut out, mut err) = (String::new(), String::new());
-            child.stdout.take().unwrap().read_to_string(&mut out).unwrap();
-            child.stderr.take().unwrap().read_to_string(&mut err).unwrap();
-            return (status.code().unwrap_or(-1), out, err);
-        }
-        if start.elapsed() > limit {
-            let _ = child.kill();
-            panic!("riplab {args:?} still running after {limit:?}");
-        }
-        std::thread::sleep(Duration::from_millis(20));
+    // Each output read to its end on a thread of its own (riplab's end closes both; a full
+    // pipe would block it), the test waiting for both at most `limit`.
+    let (done, ended) = std::sync::mpsc::channel();
+    let pipes: [Box<dyn std::io::Read + Send>; 2] = [
+        Box::new(child.stdout.take().unwrap()),
+        Box::new(child.stderr.take().unwrap()),
+    ];
+    for (which, mut pipe) in pipes.into_iter().enumerate() {
+        let done = done.clone();
+        std::thread::spawn(move || {
+            let mut bytes = Vec::new();
+            let read = pipe.read_to_end(&mut bytes).map(|_| bytes);
+            let _ = done.send((which, read));
+        });
     }
+    let deadline = Instant::now() + limit;
+    let mut outputs = [String::new(), String::new()];
+    for _ in 0..2 {
+        let Ok((which, read)) = ended.recv_timeout(deadline.saturating_duration_since(Instant::now())) else {
+            let _ = child.kill();
+            let _ = child.wait();
+            panic!("riplab {args:?} still running after {limit:?}");
+        };
+        outputs[which] = String::from_utf8(read.unwrap()).unwrap();
+    }
+    let status = child.wait().unwrap();
+    let [out, err] = outputs;
+    (status.code().unwrap_or(-1), out, err)
 }
 
 // 1. Wrong answers reported as success.

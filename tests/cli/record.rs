@@ -8,7 +8,8 @@ use std::io::{Read, Write};
 use std::os::fd::OwnedFd;
 use std::path::PathBuf;
 use std::process::{Child, Stdio};
-use std::sync::{Arc, Mutex};
+use std::sync::{Arc, Condvar, Mutex, MutexGuard};
+use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
 const SIZE: (u16, u16) = (100, 30);
@@ -96,6 +97,90 @@ fn comparable(line: &str) -> String {
     kept.join(" · ").split_whitespace().collect::<Vec<_>>().join(" ")
 }
 
+/// What the terminal shows, as read from the controller so far.
+struct Live {
+    terminal: vt100::Parser,
+    /// The reads so far.
+    reads: u64,
+    /// Whether riplab's side has closed (riplab ended).
+    closed: bool,
+}
+
+/// The terminal kept up to date by a thread that reads the controller, each read signalled:
+/// the tests wait on it for what they expect, never for a fixed time.
+struct Screen {
+    live: Mutex<Live>,
+    changed: Condvar,
+}
+
+impl Screen {
+    /// Read `controller` on a thread of its own (the child blocks if nobody reads) until
+    /// riplab's side closes.
+    fn read(controller: &OwnedFd) -> (Arc<Screen>, JoinHandle<()>) {
+        let screen = Arc::new(Screen {
+            live: Mutex::new(Live {
+                terminal: parser(),
+                reads: 0,
+                closed: false,
+            }),
+            changed: Condvar::new(),
+        });
+        let mut from = std::fs::File::from(controller.try_clone().unwrap());
+        let reading = screen.clone();
+        let reader = std::thread::spawn(move || {
+            let mut buf = [0u8; 65536];
+            loop {
+                let n = from.read(&mut buf).unwrap_or(0);
+                let mut live = reading.live.lock().unwrap();
+                if n == 0 {
+                    live.closed = true;
+                } else {
+                    live.terminal.process(&buf[..n]);
+                    live.reads += 1;
+                }
+                reading.changed.notify_all();
+                if n == 0 {
+                    break;
+                }
+            }
+        });
+        (screen, reader)
+    }
+
+    /// Wait until the screen's text holds all of `what` or riplab ended, at most until
+    /// `deadline`.
+    fn wait_for(&self, what: &[&str], deadline: Instant) -> MutexGuard<'_, Live> {
+        let shows = |live: &Live| {
+            let text = live.terminal.screen().contents();
+            what.iter().all(|w| text.contains(w))
+        };
+        let live = self.live.lock().unwrap();
+        let timeout = deadline.saturating_duration_since(Instant::now());
+        let (live, _) = self
+            .changed
+            .wait_timeout_while(live, timeout, |l| !l.closed && !shows(l))
+            .unwrap();
+        assert!(
+            shows(&live),
+            "waiting for {what:?} (riplab ended: {}):\n{}",
+            live.closed,
+            rows(live.terminal.screen()).join("\n")
+        );
+        live
+    }
+
+    /// Wait until riplab has ended, at most until `deadline`.
+    fn wait_for_end(&self, deadline: Instant) {
+        let live = self.live.lock().unwrap();
+        let timeout = deadline.saturating_duration_since(Instant::now());
+        let (live, _) = self
+            .changed
+            .wait_timeout_while(live, timeout, |l| !l.closed)
+            .unwrap();
+        assert!(live.closed, "riplab did not quit");
+    }
+}
+
 /// Kill the child if the test fails before it ends.
 struct Reap(Child);
 
@@ -130,53 +215,33 @@ fn a_recorded_tour_is_a_valid_asciicast_ending_on_the_last_frame() {
         .spawn()
         .unwrap();
     let mut child = Reap(child);
-    // What the terminal shows, read on a thread (the child blocks if nobody reads).
-    let live = Arc::new(Mutex::new((parser(), Instant::now())));
-    let reader = {
-        let live = live.clone();
-        let mut from = std::fs::File::from(controller.try_clone().unwrap());
-        std::thread::spawn(move || {
-            let mut buf = [0u8; 65536];
-            while let Ok(n) = from.read(&mut buf) {
-                if n == 0 {
-                    break;
-                }
-                let mut live = live.lock().unwrap();
-                live.0.process(&buf[..n]);
-                live.1 = Instant::now();
-            }
-        })
-    };
-    // Wait for the last step solved and the screen quiet for a while, then quit.
+    let (screen, reader) = Screen::read(&controller);
+    // Wait for the last step solved and the screen quiet for a while (its last frame drawn),
+    // then quit.
     let deadline = Instant::now() + Duration::from_secs(120);
+    let mut live = screen.wait_for(&["tour 3/3", "✓ converged"], deadline);
     loop {
-        assert!(Instant::now() < deadline, "the tour did not reach its last step");
-        if let Some(status) = child.0.try_wait().unwrap() {
-            panic!(
-                "riplab ended early: {status}\n{}",
-                rows(live.lock().unwrap().0.screen()).join("\n")
-            );
+        let reads = live.reads;
+        let (now, quiet) = screen
+            .changed
+            .wait_timeout_while(live, Duration::from_millis(700), |l| {
+                l.reads == reads && !l.closed
+            })
+            .unwrap();
+        assert!(
+            !now.closed,
+            "riplab ended early:\n{}",
+            rows(now.terminal.screen()).join("\n")
+        );
+        if quiet.timed_out() {
+            break;
         }
-        {
-            let live = live.lock().unwrap();
-            let text = live.0.screen().contents();
-            if text.contains("tour 3/3")
-                && text.contains("✓ converged")
-                && live.1.elapsed() > Duration::from_millis(700)
-            {
-                break;
-            }
-        }
-        std::thread::sleep(Duration::from_millis(50));
+        assert!(Instant::now() < deadline, "the screen never stays quiet");
+        live = now;
     }
     std::fs::File::from(controller).write_all(b"q").unwrap();
-    let status = loop {
-        if let Some(status) = child.0.try_wait().unwrap() {
-            break status;
-        }
-        assert!(Instant::now() < deadline, "riplab did not quit");
-        std::thread::sleep(Duration::from_millis(20));
-    };
+    screen.wait_for_end(deadline);
+    let status = child.0.wait().unwrap();
     assert!(status.success(), "{status}");
     drop(child);
     let _ = reader.join();
@@ -274,30 +339,10 @@ fn the_lab_records_and_writes_a_tour_step_on_t() {
         .spawn()
         .unwrap();
     let mut child = Reap(child);
-    let live = Arc::new(Mutex::new(parser()));
-    let reader = {
-        let live = live.clone();
-        let mut from = std::fs::File::from(controller.try_clone().unwrap());
-        std::thread::spawn(move || {
-            let mut buf = [0u8; 65536];
-            while let Ok(n) = from.read(&mut buf) {
-                if n == 0 {
-                    break;
-                }
-                live.lock().unwrap().process(&buf[..n]);
-            }
-        })
-    };
+    let (screen, reader) = Screen::read(&controller);
     let mut keys = std::fs::File::from(controller);
     let deadline = Instant::now() + Duration::from_secs(120);
-    let wait_for = |what: &[&str]| loop {
-        let text = live.lock().unwrap().screen().contents();
-        if what.iter().all(|w| text.contains(w)) {
-            return;
-        }
-        assert!(Instant::now() < deadline, "waiting for {what:?}:\n{text}");
-        std::thread::sleep(Duration::from_millis(20));
-    };
+    let wait_for = |what: &[&str]| drop(screen.wait_for(what, deadline));
     wait_for(&["✓ converged"]);
     keys.write_all(b"]]2").unwrap();
     wait_for(&["M2 q1+gauss2", "level 2", "✓ converged"]);
@@ -306,13 +351,8 @@ fn the_lab_records_and_writes_a_tour_step_on_t() {
     keys.write_all(b"\t").unwrap();
     wait_for(&["β_h/√h against h"]);
     keys.write_all(b"q").unwrap();
-    let status = loop {
-        if let Some(status) = child.0.try_wait().unwrap() {
-            break status;
-        }
-        assert!(Instant::now() < deadline, "riplab did not quit");
-        std::thread::sleep(Duration::from_millis(20));
-    };
+    screen.wait_for_end(deadline);
+    let status = child.0.wait().unwrap();
     assert!(status.success(), "{status}");
     drop(child);
     let _ = reader.join();

@@ -24,7 +24,7 @@ fn scratch(name: &str) -> PathBuf {
 fn solve(element: Element, rule: &str, level: u32) -> (Scenario, Discretization, Solution) {
     let mut s = Scenario::paper();
     s.element = element;
-    s.rule = <riplab::contact::Rule as clap::ValueEnum>::from_str(rule, true).unwrap();
+    s.rule = riplab::Rule::ALL.into_iter().find(|r| r.name() == rule).unwrap();
     s.level = level;
     let (d, sol) = solve_scenario(&s).unwrap();
     (s, d, sol)

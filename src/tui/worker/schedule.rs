@@ -22,7 +22,7 @@ use super::super::lab_error::LabError;
 use super::super::protocol::{
     InfSupRequest, Progress, Response, SolveRequest, Solved, StressRequest, StudyRequest,
 };
-use super::Request;
+use super::{Request, Watch};
 
 /// The requests waiting for the worker: the newest solve, stress field and study, and the
 /// inf-sup estimates in order.
@@ -34,6 +34,8 @@ struct Waiting {
     stresses: Option<StressRequest>,
     study: Option<StudyRequest>,
     queue: VecDeque<InfSupRequest>,
+    /// The requests taken so far.
+    taken: u64,
 }
 
 impl Waiting {
@@ -48,6 +50,7 @@ impl Waiting {
     /// File a request: a solve, a stress field or a study replaces any waiting one, an
     /// estimate joins the queue.
     fn take(&mut self, r: Request) {
+        self.taken += 1;
         match r {
             Request::Solve(r) => self.solve = Some(r),
             Request::Stresses(r) => self.stresses = Some(r),
@@ -201,7 +204,14 @@ fn follow(engine: &mut Engine, r: &Request) {
 /// When nothing is waiting and no study runs, the neighbouring levels of the mesh in use are
 /// built in the background, each only while the memory would hold it twice (what it leaves for the next
 /// request).
-pub(super) fn run(mut engine: Engine, rx: &Receiver<Request>, latest: &AtomicU64, sink: &Sink) {
+/// Each time it waits for a request, the worker says so to `watch`.
+pub(super) fn run(
+    mut engine: Engine,
+    rx: &Receiver<Request>,
+    latest: &AtomicU64,
+    sink: &Sink,
+    watch: &Watch,
+) {
     let mut waiting = Waiting::default();
     let mut builds = Builds::default();
     let mut estimating: Vec<Estimating> = Vec::new();
@@ -233,7 +243,9 @@ pub(super) fn run(mut engine: Engine, rx: &Receiver<Request>, latest: &AtomicU64
                 let plan = engine.plan(level, element);
                 builds.start(&engine.scenario, plan, plan.peak, engine.peek(level, element));
             }
-            let next = if builds.0.is_empty() && estimating.is_empty() && !studies.busy() {
+            let background = !builds.0.is_empty() || !estimating.is_empty() || studies.busy();
+            watch.waits(waiting.taken, background);
+            let next = if !background {
                 match rx.recv() {
                     Ok(r) => Some(r),
                     Err(_) => return,

@@ -380,8 +380,11 @@ fn an_idle_worker_builds_the_next_level_before_it_is_asked_for() {
         })
     };
     assert!(assembling(&solve(1, 2)), "level 2 is built on demand");
-    // Levels 3 and 1 take milliseconds each; two seconds leave room for a loaded machine.
-    std::thread::sleep(Duration::from_secs(2));
+    // Idle again: levels 3 and 1 built in the background.
+    assert!(
+        worker.wait_for(Duration::from_secs(120), |a| a.idle()),
+        "the worker went idle"
+    );
     let seen = solve(2, 3);
     assert!(!assembling(&seen), "level 3 was built while idle: {seen:?}");
 }
@@ -505,8 +508,11 @@ fn a_solve_does_not_wait_for_an_estimate() {
             rule: settings.rule,
         },
     }));
-    // Let the worker start the estimate, then ask for a solve of the same generation.
-    std::thread::sleep(Duration::from_millis(20));
+    // Once the worker has started the estimate and waits, a solve of the same generation.
+    assert!(
+        worker.wait_for(Duration::from_secs(120), |a| a.waits()),
+        "the worker waits"
+    );
     solve(2, 1);
     loop {
         match next() {

@@ -30,10 +30,13 @@ fn a_solve_waits_for_no_displacement_stresses_or_study() {
     solved(1);
     solve(2, 6);
     let fine = solved(2);
-    // 20 ms into the work on level 6, a solve of level 1 is answered before it, and the work's
-    // reply still comes.
+    // Once the worker has handed the work on level 6 to its thread and waits for the next
+    // request, a solve of level 1 is answered before the work, and the work's reply still comes.
     let answered_first = |generation, work: &str, of_work: &dyn Fn(&Response) -> bool| {
-        std::thread::sleep(Duration::from_millis(20));
+        assert!(
+            worker.wait_for(Duration::from_secs(120), |a| a.waits()),
+            "the worker waits"
+        );
         solve(generation, 1);
         loop {
             match next() {
@@ -142,8 +145,12 @@ fn a_nitsche_solve_is_told_of_the_build_then_of_its_preparation() {
     let paper = PaperWorker::spawn();
     paper.solve(1, 5);
     while !matches!(paper.next(), Response::Solved { generation: 1, .. }) {}
-    // Idle, the worker builds level 6 for the penalty (about a second).
-    std::thread::sleep(std::time::Duration::from_millis(200));
+    // Waiting for the next request, the worker has begun building level 6 for the penalty
+    // (about a second) in the background.
+    let waits = paper
+        .worker
+        .wait_for(std::time::Duration::from_secs(120), |a| a.waits());
+    assert!(waits, "the worker waits");
     paper.solve_by_nitsche(2, 6);
     let mut told = Vec::new();
     loop {
@@ -162,8 +169,8 @@ fn a_nitsche_solve_is_told_of_the_build_then_of_its_preparation() {
             _ => {}
         }
     }
-    // The preparation is announced last; when the background build had begun (it has, but
-    // for a scheduler that held the worker back 200 ms), the build first.
+    // The preparation is announced last; when the background build had begun (it has, unless
+    // the memory could not hold level 6 beside level 5) and not yet ended, the build first.
     assert_eq!(told.last(), Some(&(6, Some("nitsche"))), "{told:?}");
     assert!(
         told.len() == 1 || told == [(6, None), (6, Some("nitsche"))],
