@@ -135,7 +135,14 @@ pub fn solve_contact(
         newton.converged = false;
         newton.diagnosis = Some(Diagnosis::Overflow);
     }
-    let mut warnings: Vec<Warning> = disc.stiffness_warning().into_iter().collect();
+    // A penalty too soft for the depth first: its answer is wrong, not merely poor.
+    let mut warnings: Vec<Warning> = match params.method {
+        Method::Penalty => warning::of_soft_penalty(params.obstacle.depth(), params.epsilon, &p),
+        _ => None,
+    }
+    .into_iter()
+    .chain(disc.stiffness_warning())
+    .collect();
     warnings.extend(warning::of_contact(&params.obstacle, &points, &p, disc.mesh.h()));
     if params.method == Method::Penalty {
         warnings.extend(warning::of_round_off(

@@ -151,7 +151,13 @@ pub fn solve_with(
         converged = false;
         diagnosis = Some(Diagnosis::Overflow);
     }
-    let mut warnings: Vec<Warning> = disc.stiffness_warning().into_iter().collect();
+    let mut warnings: Vec<Warning> = match params.method {
+        Method::Penalty => warning::of_soft_penalty(params.obstacle.depth(), params.epsilon, &p),
+        _ => None,
+    }
+    .into_iter()
+    .chain(disc.stiffness_warning())
+    .collect();
     warnings.extend(warning::of_contact(&params.obstacle, &points, &p, disc.mesh.h()));
     let newton_ms = ms_since(t);
     Ok(Solution {
