@@ -137,7 +137,7 @@ pub fn solve_contact(
     }
     // A penalty too soft for the depth first: its answer is wrong, not merely poor.
     let mut warnings: Vec<Warning> = match params.method {
-        Method::Penalty => warning::of_soft_penalty(params.obstacle.depth(), params.epsilon, &p),
+        Method::Penalty => warning::of_soft_penalty(&params.obstacle, &points, params.epsilon, &p),
         _ => None,
     }
     .into_iter()

@@ -77,7 +77,7 @@ pub enum Warning {
         depth: f64,
         /// The penalty parameter ε.
         epsilon: f64,
-        /// An ε that brings the penetration to half the limit ([`sufficient_epsilon`]).
+        /// An ε that brings the penetration to half the limit ([`of_soft_penalty`]).
         sufficient: f64,
     },
     /// `--refine-edges auto` made its [`crate::grading::MAX_PASSES`] passes, every one
@@ -210,33 +210,36 @@ pub fn of_round_off(depth: f64, epsilon: f64, p: &[f64], h: f64, young: f64) -> 
     })
 }
 
-/// The warning that the penalty at `epsilon` is too soft: its pressure `p` = (u_n − g)⁺/ε
-/// means a largest penetration δ = ε max p, and above [`SOFT_PENETRATION_LIMIT`] of the depth
-/// `depth` the load and pressure are low by about δ/d. None without contact, at ε = 0, or
-/// within the limit.
-pub fn of_soft_penalty(depth: f64, epsilon: f64, p: &[f64]) -> Option<Warning> {
-    let top = p.iter().copied().fold(0.0, f64::max);
-    let (depth, penetration) = (depth.abs(), epsilon * top);
-    (top > 0.0 && epsilon > 0.0 && depth > 0.0 && penetration > SOFT_PENETRATION_LIMIT * depth).then(|| {
-        Warning::SoftPenalty {
-            penetration,
-            depth,
-            epsilon,
-            sufficient: sufficient_epsilon(epsilon, penetration / depth),
-        }
+/// The warning that the penalty at `epsilon` is too soft: its pressure `p` at `points` is
+/// (u_n − g)⁺/ε, so the largest penetration is δ = ε max p, and above
+/// [`SOFT_PENETRATION_LIMIT`] of the obstacle's depth d its load and pressure are low by about
+/// δ/d. The ε it names brings δ to half the limit: at the point of max p the body and the
+/// penalty are two springs in series against the overlap −g there, the body's of compliance
+/// ε_c = (its deflection −g − δ)/p, so a penetration share φ* needs ε* = ε_c φ*/(1 − φ*). None
+/// without contact, at ε = 0, or within the limit.
+pub fn of_soft_penalty(
+    obstacle: &Obstacle,
+    points: &ContactPoints,
+    epsilon: f64,
+    p: &[f64],
+) -> Option<Warning> {
+    let (at, top) = p
+        .iter()
+        .copied()
+        .enumerate()
+        .fold((0, 0.0), |best, (k, v)| if v > best.1 { (k, v) } else { best });
+    let (depth, penetration) = (obstacle.depth().abs(), epsilon * top);
+    if !(top > 0.0 && epsilon > 0.0 && depth > 0.0 && penetration > SOFT_PENETRATION_LIMIT * depth) {
+        return None;
+    }
+    let deflection = (-obstacle.gap(points.points[at].x) - penetration).max(f64::EPSILON * depth);
+    let share = SOFT_PENETRATION_LIMIT / 2.0;
+    Some(Warning::SoftPenalty {
+        penetration,
+        depth,
+        epsilon,
+        sufficient: deflection / top * share / (1.0 - share),
     })
-}
-
-/// An ε whose penetration is half [`SOFT_PENETRATION_LIMIT`] of the depth, from a solve at
-/// `epsilon` that penetrated `share` of it: the body as one spring of compliance ε_c against
-/// the penalty's ε penetrates ε/(ε + ε_c) of the depth, so ε_c = ε(1 − φ)/φ and the target
-/// share φ* needs ε* = ε_c φ*/(1 − φ*) (about ε φ*/φ for a small share; far smaller when
-/// the body hardly deforms and φ is near 1).
-pub fn sufficient_epsilon(epsilon: f64, share: f64) -> f64 {
-    let target = SOFT_PENETRATION_LIMIT / 2.0;
-    let share = share.clamp(f64::MIN_POSITIVE, 1.0);
-    let compliance = epsilon * (1.0 - share).max(f64::EPSILON) / share;
-    compliance * target / (1.0 - target)
 }
 
 /// The warnings about a contact solution: `p` the raw pressure at `points`, `h` the
@@ -282,46 +285,52 @@ mod tests {
     }
 
     /// ε = 1 on the paper's problem leaves the load a few per mille of the exact one's, the body
-    /// through the obstacle by nearly the depth: warned, first, with an ε whose solve is within
-    /// the limit (and not warned); the scenario's ε = 1e-6 is not warned.
+    /// through the obstacle by nearly the depth, ε = 1e3 a millionth: warned, first, with an ε
+    /// whose solve is within the limit (and not warned); the scenario's ε = 1e-6 is not warned.
     #[test]
     fn a_soft_penalty_is_warned_with_an_epsilon_that_fixes_it() {
         let scenario = Scenario::paper();
         let disc = Discretization::of(&scenario, 2, scenario.element).unwrap();
-        let soft = solved(&disc, &scenario, 1.0);
-        let Some(Warning::SoftPenalty {
-            penetration,
-            depth,
-            sufficient,
-            ..
-        }) = soft.warnings.first().cloned()
-        else {
-            panic!("{:?}", soft.warnings)
-        };
-        assert!(penetration > 0.9 * depth, "{penetration}");
-        let text = soft.warnings[0].to_string();
-        assert!(
-            text.contains("penetrates") && text.contains(&format!("{sufficient:.1e}")),
-            "{text}"
-        );
-        let fixed = solved(&disc, &scenario, sufficient);
         let exact = solved(&disc, &scenario, 1e-9);
-        assert!(
-            !fixed
-                .warnings
-                .iter()
-                .any(|w| matches!(w, Warning::SoftPenalty { .. })),
-            "ε = {sufficient:e}: {:?}",
-            fixed.warnings
-        );
-        assert!(
-            (fixed.load - exact.load).abs() < 0.02 * exact.load,
-            "{} vs {}",
-            fixed.load,
-            exact.load
-        );
+        for epsilon in [1.0, 1e3] {
+            let soft = solved(&disc, &scenario, epsilon);
+            let Some(Warning::SoftPenalty {
+                penetration,
+                depth,
+                sufficient,
+                ..
+            }) = soft.warnings.first().cloned()
+            else {
+                panic!("{:?}", soft.warnings)
+            };
+            assert!(penetration > 0.9 * depth, "{penetration}");
+            let text = soft.warnings[0].to_string();
+            assert!(
+                text.contains("penetrates") && text.contains(&format!("{sufficient:.1e}")),
+                "{text}"
+            );
+            let fixed = solved(&disc, &scenario, sufficient);
+            assert!(
+                !fixed
+                    .warnings
+                    .iter()
+                    .any(|w| matches!(w, Warning::SoftPenalty { .. })),
+                "ε = {epsilon:e} → {sufficient:e}: {:?}",
+                fixed.warnings
+            );
+            assert!(
+                (fixed.load - exact.load).abs() < 0.02 * exact.load,
+                "{} vs {}",
+                fixed.load,
+                exact.load
+            );
+        }
         let default = solved(&disc, &scenario, scenario.epsilon);
         assert!(default.warnings.is_empty(), "{:?}", default.warnings);
-        assert!(of_soft_penalty(0.8, 0.0, &[1.0]).is_none() && of_soft_penalty(0.8, 1.0, &[]).is_none());
+        let points = disc.contact_points(scenario.rule);
+        let none = vec![0.0; points.len()];
+        assert!(of_soft_penalty(&scenario.obstacle, &points, 1.0, &none).is_none());
+        let soft = solved(&disc, &scenario, 1.0);
+        assert!(of_soft_penalty(&scenario.obstacle, &points, 0.0, &soft.p).is_none());
     }
 }

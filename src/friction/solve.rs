@@ -152,7 +152,7 @@ pub fn solve_with(
         diagnosis = Some(Diagnosis::Overflow);
     }
     let mut warnings: Vec<Warning> = match params.method {
-        Method::Penalty => warning::of_soft_penalty(params.obstacle.depth(), params.epsilon, &p),
+        Method::Penalty => warning::of_soft_penalty(&params.obstacle, &points, params.epsilon, &p),
         _ => None,
     }
     .into_iter()

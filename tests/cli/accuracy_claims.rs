@@ -101,7 +101,7 @@ fn a_soft_penalty_is_warned_in_the_study_rows() {
 /// and the lab.
 #[test]
 fn no_output_prints_a_non_finite_number() {
-    let runs: [&[&str]; 7] = [
+    let runs: [&[&str]; 8] = [
         &["solve", "-l", "4", "--kappa", "1e9"],
         &["solve", "-l", "4", "--kappa", "1e9", "-f", "json"],
         &["solve", "-l", "4", "--kappa", "1e9", "-f", "csv"],
@@ -109,6 +109,17 @@ fn no_output_prints_a_non_finite_number() {
         &["solve", "-l", "2", "--kappa", "1e9,1,1e-6"],
         &["study", "--levels", "0..1", "--schemes", "M1", "--epsilon", "1e3"],
         &["render", "--level", "2", "--epsilon", "1e3", "--size", "200x40"],
+        &[
+            "render",
+            "--level",
+            "4",
+            "--epsilon",
+            "6.25e4",
+            "--keys",
+            "h",
+            "--size",
+            "200x40",
+        ],
     ];
     for args in runs {
         let (code, out, err) = riplab(args);
@@ -153,7 +164,7 @@ fn auto_grading_ends_no_worse_than_the_best_pass_count() {
     let best = fixed.iter().copied().fold(f64::INFINITY, f64::min);
     assert!(
         auto <= best + resolution && auto <= fixed[2] && auto <= fixed[8],
-        "auto {auto:.3e}, fixed {fixed:.3e?}, reference ±{resolution:.1e}"
+        "auto {auto:.3e}, fixed {fixed:?}, reference ±{resolution:.1e}"
     );
 }
 
