@@ -129,17 +129,16 @@ mod tests {
     /// ∫ₗʳ f by adaptive Simpson with Richardson's correction to `tol` (absolute), written
     /// independently of the module's splitting: it finds the ends and kinks by bisection.
     fn adaptive(f: &dyn Fn(f64) -> f64, l: f64, r: f64, tol: f64) -> f64 {
+        /// One interval (its ends `lr`, f at its ends and middle `fs`, its Simpson value).
         fn step(
             f: &dyn Fn(f64) -> f64,
-            l: f64,
-            r: f64,
-            fl: f64,
-            fm: f64,
-            fr: f64,
+            lr: (f64, f64),
+            fs: (f64, f64, f64),
             whole: f64,
             tol: f64,
             depth: u32,
         ) -> f64 {
+            let ((l, r), (fl, fm, fr)) = (lr, fs);
             let m = (l + r) / 2.0;
             let (lm, rm) = ((l + m) / 2.0, (m + r) / 2.0);
             let (flm, frm) = (f(lm), f(rm));
@@ -149,12 +148,12 @@ mod tests {
             if depth == 0 || delta.abs() <= 15.0 * tol {
                 return left + right + delta / 15.0;
             }
-            step(f, l, m, fl, flm, fm, left, tol / 2.0, depth - 1)
-                + step(f, m, r, fm, frm, fr, right, tol / 2.0, depth - 1)
+            step(f, (l, m), (fl, flm, fm), left, tol / 2.0, depth - 1)
+                + step(f, (m, r), (fm, frm, fr), right, tol / 2.0, depth - 1)
         }
         let (fl, fm, fr) = (f(l), f((l + r) / 2.0), f(r));
         let whole = (r - l) / 6.0 * (fl + 4.0 * fm + fr);
-        step(f, l, r, fl, fm, fr, whole, tol, 60)
+        step(f, (l, r), (fl, fm, fr), whole, tol, 60)
     }
 
     /// The relative distance by [`adaptive`] on every edge.
