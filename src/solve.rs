@@ -135,7 +135,17 @@ pub fn solve_contact(
         newton.converged = false;
         newton.diagnosis = Some(Diagnosis::Overflow);
     }
+    // The stiffness's warning first (a locked body makes any penalty soft), then a penalty
+    // too soft for the depth: its answer is wrong, not merely poor.
     let mut warnings: Vec<Warning> = disc.stiffness_warning().into_iter().collect();
+    if params.method == Method::Penalty {
+        warnings.extend(warning::of_soft_penalty(
+            &params.obstacle,
+            &points,
+            params.epsilon,
+            &p,
+        ));
+    }
     warnings.extend(warning::of_contact(&params.obstacle, &points, &p, disc.mesh.h()));
     if params.method == Method::Penalty {
         warnings.extend(warning::of_round_off(

@@ -47,6 +47,17 @@ pub fn num(value: f64) -> String {
     }
 }
 
+/// A result in scientific notation with `digits` decimals (`{:.3e}`), or, when it is not a
+/// finite number, `n/a: ` and `why` (what makes it undefined): a table never shows `inf` or
+/// `NaN` as a value.
+pub fn sci(value: f64, digits: usize, why: &str) -> String {
+    if value.is_finite() {
+        format!("{value:.digits$e}")
+    } else {
+        format!("n/a: {why}")
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

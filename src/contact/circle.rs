@@ -6,7 +6,7 @@
 //! Hertz's a² = 4PR/(πE*) and p₀ = 2P/(πa); at a/R = 0.11 (scenarios/hertz-block.toml) the
 //! parabola's pressure is 4.7e-3 off in L², more than the finite element error from level 4 on.
 
-use super::hertz::relative_l2_error;
+use super::distance::relative_l2_error;
 use super::{ContactPoints, Obstacle, half_plane};
 use crate::material::Material;
 
@@ -72,9 +72,15 @@ impl CircleContact {
         )
     }
 
-    /// ‖p̄ − p‖₀ / ‖p‖₀ over Γ_C for nodal values `pbar` at `cp`'s vertices.
+    /// ‖p̄ − p‖₀ / ‖p‖₀ over Γ_C for nodal values `pbar` at `cp`'s vertices, integrated to
+    /// round-off across the square-root ends c ± a ([`relative_l2_error`]).
     pub fn relative_error(&self, cp: &ContactPoints, pbar: &[f64]) -> f64 {
-        relative_l2_error(cp, pbar, |x| self.pressure(x))
+        relative_l2_error(
+            cp,
+            pbar,
+            |x| self.pressure(x),
+            &[self.center - self.a, self.center + self.a],
+        )
     }
 }
 

@@ -11,8 +11,9 @@
 
 use serde::Serialize;
 
+use super::distance::relative_l2_error;
 use super::friction::State;
-use super::hertz::{Hertz, relative_l2_error};
+use super::hertz::Hertz;
 use super::{ContactPoints, Obstacle};
 use crate::material::Material;
 
@@ -65,9 +66,12 @@ impl Mindlin {
         self.sign * (slide - stick)
     }
 
-    /// ‖t̄ − q‖₀ / ‖q‖₀ over Γ_C for nodal values `tbar` at `cp`'s vertices.
+    /// ‖t̄ − q‖₀ / ‖q‖₀ over Γ_C for nodal values `tbar` at `cp`'s vertices, integrated to
+    /// round-off across the square-root ends ±a and the stick zone's ends ±c
+    /// ([`relative_l2_error`]).
     pub fn relative_error(&self, cp: &ContactPoints, tbar: &[f64]) -> f64 {
-        relative_l2_error(cp, tbar, |x| self.traction(x))
+        let (x0, a, c) = (self.hertz.center, self.hertz.a, self.c);
+        relative_l2_error(cp, tbar, |x| self.traction(x), &[x0 - a, x0 - c, x0 + c, x0 + a])
     }
 }
 

@@ -4,6 +4,7 @@
 
 pub mod alm;
 pub mod circle;
+pub mod distance;
 pub mod friction;
 pub mod gap;
 pub mod half_plane;

@@ -12,7 +12,7 @@
 //! circular corners: their parabola is exact to (a − b)²/4R² in h″, 2e-4 for
 //! scenarios/rounded-punch.toml.
 
-use super::hertz::relative_l2_error;
+use super::distance::relative_l2_error;
 use super::{ContactPoints, Obstacle, half_plane};
 use crate::material::Material;
 
@@ -128,9 +128,12 @@ impl RoundedPunch {
         self.pressure(self.center + (lo + hi) / 2.0)
     }
 
-    /// ‖p̄ − p‖₀ / ‖p‖₀ over Γ_C for nodal values `pbar` at `cp`'s vertices.
+    /// ‖p̄ − p‖₀ / ‖p‖₀ over Γ_C for nodal values `pbar` at `cp`'s vertices, integrated to
+    /// round-off across the square-root ends c ± a and the corners' starts c ± b, where p′ is
+    /// infinite ([`relative_l2_error`]).
     pub fn relative_error(&self, cp: &ContactPoints, pbar: &[f64]) -> f64 {
-        relative_l2_error(cp, pbar, |x| self.pressure(x))
+        let (c, a, b) = (self.center, self.a, self.face);
+        relative_l2_error(cp, pbar, |x| self.pressure(x), &[c - a, c - b, c + b, c + a])
     }
 }
 

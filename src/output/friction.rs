@@ -153,8 +153,10 @@ impl MindlinReport {
     pub fn line(&self) -> String {
         let width = self.stick_half_width.map_or("none".into(), |w| format!("{w:.5}"));
         format!(
-            "Cattaneo–Mindlin (β = 0; this body's β = {:.3}, for this P and Q): c = {:.5} (computed stick half-width {width}); ‖t̄ − q‖₀/‖q‖₀ = {:.3e}",
-            self.beta, self.c, self.relative_error
+            "Cattaneo–Mindlin (β = 0; this body's β = {:.3}, for this P and Q): c = {:.5} (computed stick half-width {width}); ‖t̄ − q‖₀/‖q‖₀ = {}",
+            self.beta,
+            self.c,
+            crate::text::sci(self.relative_error, 3, super::solve::NO_NORM)
         )
     }
 }

@@ -15,7 +15,12 @@ use crate::scenario::Scenario;
 use crate::scheme::Scheme;
 use crate::solution::{Solution, Timing};
 use crate::study::Status;
+use crate::text::sci;
 use crate::warning::Warning;
+
+/// Why a relative distance from a closed form is undefined: the closed form vanishes on Γ_C
+/// (a contact narrower than round-off), and a distance relative to 0 is no number.
+pub(super) const NO_NORM: &str = "the closed form's L² norm on Γ_C is 0";
 
 /// The `nodes` object of docs/design.md §7: Γ_C's vertices, ascending x.
 #[derive(Serialize)]
@@ -277,14 +282,18 @@ impl Report for SolveReport {
         if let Some(h) = &self.hertz {
             let _ = writeln!(
                 s,
-                "Hertz (plane, for this load): a = {:.5}, p₀ = {:.5}; ‖p̄ − p_Hertz‖₀/‖p_Hertz‖₀ = {:.3e} (Hertz's parabola x²/2R: off the circle by O(a²/R²); meaningful when the body is much larger than a)",
-                h.a, h.p0, h.relative_error
+                "Hertz (plane, for this load): a = {:.5}, p₀ = {:.5}; ‖p̄ − p_Hertz‖₀/‖p_Hertz‖₀ = {} (Hertz's parabola x²/2R: off the circle by O(a²/R²); meaningful when the body is much larger than a)",
+                h.a,
+                h.p0,
+                sci(h.relative_error, 3, NO_NORM)
             );
             if let Some(c) = &h.circle {
                 let _ = writeln!(
                     s,
-                    "exact circle (half-plane, for this load): a = {:.5}, p₀ = {:.5}; ‖p̄ − p_circle‖₀/‖p_circle‖₀ = {:.3e}",
-                    c.a, c.p0, c.relative_error
+                    "exact circle (half-plane, for this load): a = {:.5}, p₀ = {:.5}; ‖p̄ − p_circle‖₀/‖p_circle‖₀ = {}",
+                    c.a,
+                    c.p0,
+                    sci(c.relative_error, 3, NO_NORM)
                 );
             }
         }

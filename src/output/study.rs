@@ -296,6 +296,20 @@ impl Report for StudyReport<'_> {
                 let _ = writeln!(s, "  {why}");
             }
         }
+        let warned: Vec<String> = rows
+            .iter()
+            .flat_map(|r| {
+                r.warnings
+                    .iter()
+                    .map(move |w| format!("{} level {}: {w}", r.scheme, r.level_label()))
+            })
+            .collect();
+        if !warned.is_empty() {
+            let _ = writeln!(s, "\nwarnings:");
+            for w in warned {
+                let _ = writeln!(s, "  {w}");
+            }
+        }
         s
     }
 }

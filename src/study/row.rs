@@ -14,6 +14,7 @@ use crate::mesh::Element;
 use crate::scenario::Scenario;
 use crate::scheme::Scheme;
 use crate::solution::Solution;
+use crate::warning::Warning;
 
 /// Whether a row of a study or a sweep has a result, and if not, why.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -114,6 +115,9 @@ pub struct StudyRow {
     pub errors: Option<Errors>,
     /// Observed rates against h (or, in an ε sweep, against ε) from the previous row.
     pub rates: Option<Errors>,
+    /// A penalty too soft for the depth ([`Warning::SoftPenalty`]): the row's numbers are the
+    /// penalty's, far from the problem's (the study's other weaknesses are in its errors).
+    pub warnings: Vec<Warning>,
 }
 
 impl StudyRow {
@@ -149,6 +153,7 @@ impl StudyRow {
             load: None,
             errors: None,
             rates: None,
+            warnings: Vec::new(),
         };
         match outcome {
             Ok((disc, sol)) => {
@@ -158,6 +163,12 @@ impl StudyRow {
                 row.converged = sol.newton.converged;
                 row.solve_ms = Some(sol.timing.total);
                 row.load = Some(sol.load);
+                row.warnings = sol
+                    .warnings
+                    .iter()
+                    .filter(|w| matches!(w, Warning::SoftPenalty { .. }))
+                    .cloned()
+                    .collect();
                 let k = Kept::of(disc, sol);
                 row.errors = Some(k.errors(reference));
                 kept = Some(k);

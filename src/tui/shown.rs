@@ -72,7 +72,10 @@ impl Shown {
                 .fold(0.0f64, |m, &v| m.max(v)),
             full_load,
             hertz,
-            hertz_error: hertz.map(|h| h.relative_error(&solution.points, &solution.pbar)),
+            // Not a number for a contact too small to have a norm: then none shown.
+            hertz_error: hertz
+                .map(|h| h.relative_error(&solution.points, &solution.pbar))
+                .filter(|e| e.is_finite()),
             circle: CircleContact::for_load(&solution.params.obstacle, &scenario.material, full_load),
             zone: zoom_range(solution, half, (x_range[0], x_range[1])),
             friction: FrictionShown::new(scenario, solution),

@@ -81,7 +81,7 @@ impl FrictionShown {
             stick: stick_extent(points, &f.states),
             stick_half_width: report.stick_half_width,
             mindlin,
-            mindlin_error: mindlin_report.map(|m| m.relative_error),
+            mindlin_error: mindlin_report.map(|m| m.relative_error).filter(|e| e.is_finite()),
             beta: dundurs_beta(&scenario.material),
         })
     }

@@ -5,6 +5,7 @@
 #[path = "../common/mod.rs"]
 mod common;
 
+mod accuracy_claims;
 mod bad_input;
 mod design_map;
 mod docs_tables;

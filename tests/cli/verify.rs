@@ -67,7 +67,7 @@ fn solve_reports_the_exact_circle_beside_hertz() {
         "solve",
         "scenarios/hertz-block.toml",
         "--level",
-        "3",
+        "4",
         "--epsilon",
         "0",
         "--format",
@@ -92,9 +92,10 @@ fn solve_reports_the_exact_circle_beside_hertz() {
         circle["relative_error"].as_f64().unwrap(),
         hertz["relative_error"].as_f64().unwrap(),
     );
-    // Measured at level 3: 7.5e-3 and 8.3e-3.
+    // Measured at level 4: 2.92e-3 and 5.5e-3 (at level 3 the two are within 0.4%: 8.16e-3
+    // and 8.13e-3, the mesh's error above the parabola's).
     assert!(
-        to_circle < to_hertz && to_circle < 8e-3,
+        to_circle < to_hertz && to_circle < 3.5e-3,
         "{to_circle} vs {to_hertz}"
     );
     // The table says it too, and names the parabola.

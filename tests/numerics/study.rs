@@ -155,6 +155,7 @@ fn made_row(level: u32, h: f64, errors: Option<Errors>, status: Status) -> Study
         load: Some(1.0),
         errors,
         rates: None,
+        warnings: Vec::new(),
     }
 }
 

@@ -179,6 +179,7 @@ mod tests {
             load: Some(1.0),
             errors: None,
             rates: None,
+            warnings: Vec::new(),
         }
     }
 

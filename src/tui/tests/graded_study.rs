@@ -245,6 +245,7 @@ fn row(
             tangential_load: None,
         }),
         rates: None,
+        warnings: Vec::new(),
     }
 }
 

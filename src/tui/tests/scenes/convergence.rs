@@ -36,6 +36,7 @@ fn row(scheme: &str, level: u32, n_dofs: usize, ms: f64, p: f64, pbar: f64, u: f
             tangential_load: None,
         }),
         rates: None,
+        warnings: Vec::new(),
     }
 }
 
