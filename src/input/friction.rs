@@ -1,6 +1,6 @@
 //! `[friction]` validated (docs/design.md §11): the law among [`Law::NAMES`], μ ≥ 0 or g ≥ 0
 //! finite and only with its law, the shift finite with the obstacle's shifted centre inside
-//! the body, the steps 1 to [`MAX_STEPS`], ε_t > 0; friction on a half model refused at
+//! the body, the steps 1 to [`MAX_STEPS`], ε_t > 0, the press among [`Press::NAMES`]; friction on a half model refused at
 //! `friction.law`, naming `body.model`. Every error: file, line, column, key, value, range.
 
 use std::ops::Range;
@@ -10,7 +10,7 @@ use toml::Spanned;
 use super::locate::{Locator, ScenarioError};
 use super::schema::{Model, RawBody, RawFriction};
 use crate::contact::Obstacle;
-use crate::contact::friction::{DEFAULT_STEPS, Friction, Law, MAX_STEPS};
+use crate::contact::friction::{DEFAULT_STEPS, Friction, Law, MAX_STEPS, Press};
 use crate::error::FrictionError;
 use crate::text::num;
 
@@ -34,6 +34,7 @@ impl Locator<'_> {
                 "shift" => raw.shift.as_ref().map(Spanned::span),
                 "steps" => raw.steps.as_ref().map(Spanned::span),
                 "epsilon_t" => raw.epsilon_t.as_ref().map(Spanned::span),
+                "press" => raw.press.as_ref().map(Spanned::span),
                 _ => None,
             };
             span.unwrap_or_else(|| raw.law.span())
@@ -49,6 +50,7 @@ impl Locator<'_> {
                 ("shift", raw.shift.is_some()),
                 ("steps", raw.steps.is_some()),
                 ("epsilon_t", raw.epsilon_t.is_some()),
+                ("press", raw.press.is_some()),
             ];
             if let Some((key, _)) = given.iter().find(|(_, g)| *g) {
                 return Err(self.error(
@@ -80,11 +82,16 @@ impl Locator<'_> {
             }
             None => DEFAULT_STEPS,
         };
+        let press = match &raw.press {
+            Some(name) => Press::parse(name.get_ref()).map_err(fail)?,
+            None => Press::WithFriction,
+        };
         let friction = Friction {
             law,
             shift: get(&raw.shift).unwrap_or(0.0),
             steps,
             epsilon_t: get(&raw.epsilon_t),
+            press,
         };
         friction.check().map_err(fail)?;
         let moved = obstacle.center() + friction.shift;
