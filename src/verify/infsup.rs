@@ -40,7 +40,12 @@ fn run(level: u32) -> Result<Vec<Measured>, SolveError> {
     };
     Ok(vec![
         Measured::relative("M1: order of β_h", order(|r| r.beta, 0), 1.5, tolerance(level)),
-        Measured::relative("M1: order of β̄_h", order(|r| r.beta_bar, 0), 0.5, tolerance(level)),
+        Measured::relative(
+            "M1: order of β̄_h",
+            order(|r| r.beta_bar, 0),
+            0.5,
+            tolerance(level),
+        ),
         Measured::relative("M3: order of β_h", order(|r| r.beta, 1), 0.5, tolerance(level)),
         Measured::relative("M4: order of β_h", order(|r| r.beta, 2), 0.5, tolerance(level)),
     ])

@@ -50,11 +50,7 @@ pub fn graded(level: u32, solved_mu: Option<f64>) -> Result<Vec<Measured>, Solve
     let mut scenario = Scenario::parse(CATTANEO_MINDLIN, "cattaneo-mindlin.toml")
         .expect("riplab's own scenario files parse");
     scenario.level = level;
-    let mu = scenario
-        .friction
-        .law
-        .mu()
-        .expect("the scenario's law is Coulomb");
+    let mu = scenario.friction.law.mu().expect("the scenario's law is Coulomb");
     if let Some(solved) = solved_mu {
         scenario.friction.law = Law::Coulomb { mu: solved };
     }

@@ -268,7 +268,8 @@ pub const CHANGE_RELATIVE: f64 = 1e-6;
 pub const CHANGE_FLOOR: f64 = 1e-10;
 
 /// The source of the unchanged rows.
-const STORED_SOURCE: &str = "src/verify/stored.toml (riplab verify --print-stored), at the case's default level";
+const STORED_SOURCE: &str =
+    "src/verify/stored.toml (riplab verify --print-stored), at the case's default level";
 
 /// Run `case` at `level` (its default when None): a row per quantity against its reference
 /// and, at the default level, one against its stored value.
@@ -318,7 +319,14 @@ pub fn run(case: &Case, level: Option<u32>) -> Vec<Check> {
         if let Some(&s) = stored.as_ref().and_then(|s| s.get(&m.quantity)) {
             let tolerance = (CHANGE_RELATIVE * s.abs()).max(CHANGE_FLOOR);
             let change = (m.computed - s).abs();
-            unchanged.push(row(Kind::Unchanged, s, Measure::Absolute, change, tolerance, STORED_SOURCE));
+            unchanged.push(row(
+                Kind::Unchanged,
+                s,
+                Measure::Absolute,
+                change,
+                tolerance,
+                STORED_SOURCE,
+            ));
         }
     }
     against.extend(unchanged);

@@ -132,7 +132,11 @@ impl Report for Verification {
             if rows.is_empty() {
                 continue;
             }
-            let _ = write!(s, "\n{}", wrap(&format!("{}: {}", kind.name().to_uppercase(), kind.meaning()), ""));
+            let _ = write!(
+                s,
+                "\n{}",
+                wrap(&format!("{}: {}", kind.name().to_uppercase(), kind.meaning()), "")
+            );
             let mut last: Option<(&str, u32)> = None;
             for c in rows {
                 if last != Some((c.case, c.level)) {
@@ -214,7 +218,15 @@ impl Report for CaseList {
     fn table(&self) -> String {
         let mut s = String::new();
         for c in &self.cases {
-            let _ = writeln!(s, "{} ({}, level {} by default, {} to {})", c.name, c.kind.name(), c.default_level, super::MIN_VERIFY_LEVEL, c.max_level);
+            let _ = writeln!(
+                s,
+                "{} ({}, level {} by default, {} to {})",
+                c.name,
+                c.kind.name(),
+                c.default_level,
+                super::MIN_VERIFY_LEVEL,
+                c.max_level
+            );
             s.push_str(&wrap(c.description, "    "));
             s.push_str(&wrap(&format!("source: {}", c.source), "    "));
         }
