@@ -11,7 +11,8 @@ fn verify_runs_a_case_and_lists_the_pack() {
         out.contains("M4: max |p − p_exact|/p_exact") && out.contains("source: "),
         "{out}"
     );
-    assert!(out.contains("8 of 8 checks OK"), "{out}");
+    // Eight quantities, each against its closed form and its stored value.
+    assert!(out.contains("16 of 16 checks OK"), "{out}");
     let (code, out, _) = riplab(&["verify", "--list", "--format", "csv"]);
     assert_eq!(code, 0);
     // A header and at least eight cases, each with its source.
