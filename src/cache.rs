@@ -178,7 +178,7 @@ mod tests {
     /// back as stored (t with friction, none without).
     #[test]
     fn friction_and_frictionless_references_are_kept_apart() {
-        use crate::contact::friction::{Friction, Law};
+        use crate::contact::friction::{Friction, Law, Press};
         let dir = std::env::temp_dir().join(format!("riplab-cache-friction-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&dir);
         let path = concat!(env!("CARGO_MANIFEST_DIR"), "/scenarios/hertz-paper-full.toml");
@@ -190,6 +190,7 @@ mod tests {
                 shift: 0.05,
                 steps: 2,
                 epsilon_t,
+                press: Press::WithFriction,
             };
             s
         };

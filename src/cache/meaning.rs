@@ -262,6 +262,7 @@ mod tests {
             shift: 0.05,
             steps: 2,
             epsilon_t: None,
+            press: crate::contact::friction::Press::WithFriction,
         };
         let grid = ReferenceMesh::uniform(&s, 0);
         let good = ReferenceFields::solve_on(&s, &grid).unwrap();

@@ -150,6 +150,7 @@ impl FrictionArgs {
                     shift: self.shift.unwrap_or(base.shift),
                     steps,
                     epsilon_t: self.epsilon_t.or(base.epsilon_t),
+                    press: base.press,
                 };
                 f.check().map_err(fail)?;
                 let moved = scenario.obstacle.center() + f.shift;

@@ -7,6 +7,9 @@ pub enum FrictionError {
     /// A law not known.
     #[error("unknown friction law `{0}`; allowed: none, coulomb, tresca")]
     UnknownLaw(String),
+    /// A press not known.
+    #[error("unknown press `{0}`; allowed: with-friction, frictionless")]
+    UnknownPress(String),
     /// The law's parameter is missing.
     #[error("`{key}` is required by law {law}")]
     Missing {
@@ -56,6 +59,7 @@ impl FrictionError {
     pub fn key(&self) -> &'static str {
         match self {
             FrictionError::UnknownLaw(_) => "law",
+            FrictionError::UnknownPress(_) => "press",
             FrictionError::Missing { key, .. }
             | FrictionError::NotOf { key, .. }
             | FrictionError::Range { key, .. } => key,

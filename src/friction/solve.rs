@@ -9,7 +9,7 @@ use std::time::Instant;
 use super::trace::{FrictionTrace, apply, nodal};
 use crate::contact::friction::law::{Bound, Imposition};
 use crate::contact::friction::path::{FrictionSolution, PathProblem};
-use crate::contact::friction::{Friction, Law};
+use crate::contact::friction::{Friction, Law, Press};
 use crate::contact::newton::{Iteration, NewtonOptions, NewtonResult};
 use crate::contact::{ContactParams, Method, load, raw_pressure, smoothed_pressure};
 use crate::discretization::{Discretization, ms_since};
@@ -96,6 +96,10 @@ pub fn solve_with(
         Law::Tresca { .. } => Bound::Tresca(&thresholds),
         Law::None => Bound::Coulomb(0.0),
     };
+    let press_bound = match friction.press {
+        Press::WithFriction => bound,
+        Press::Frictionless => Bound::Coulomb(0.0),
+    };
     let penalised = Imposition::Penalty {
         epsilon: params.epsilon,
         epsilon_t: friction.epsilon_t.unwrap_or(params.epsilon),
@@ -114,6 +118,7 @@ pub fn solve_with(
         e: free.e,
         weight: &weight,
         bound,
+        press_bound,
         imposition,
         alm,
         shift: friction.shift,

@@ -1,9 +1,9 @@
 //! `[friction]` validated (docs/design.md §11): the law among [`Law::NAMES`], μ ≥ 0 or g ≥ 0
 //! finite and only with its law, the shift finite with the obstacle's shifted centre inside
-//! the body, the steps 1 to [`MAX_STEPS`], ε_t > 0; friction on a half model refused at
-//! `friction.law`, naming `body.model`; friction with what the rest of the file asks and it
-//! cannot take (Nitsche's method, ε_t with the exact method, a grading) refused at the key
-//! that asks it. Every error: file, line, column, key, value, range.
+//! the body, the steps 1 to [`MAX_STEPS`], ε_t > 0, the press among [`Press::NAMES`];
+//! friction on a half model refused at `friction.law`, naming `body.model`; friction with what
+//! the rest of the file asks and it cannot take (Nitsche's method, ε_t with the exact method, a
+//! grading) refused at the key that asks it. Every error: file, line, column, key, value, range.
 
 use std::ops::Range;
 
@@ -11,7 +11,7 @@ use toml::Spanned;
 
 use super::locate::{Locator, ScenarioError};
 use super::schema::{Model, RawBody, RawFriction, RawScenario};
-use crate::contact::friction::{DEFAULT_STEPS, Friction, Law, MAX_STEPS};
+use crate::contact::friction::{DEFAULT_STEPS, Friction, Law, MAX_STEPS, Press};
 use crate::contact::{Method, Obstacle};
 use crate::error::FrictionError;
 use crate::refine_edges::Grading;
@@ -37,6 +37,7 @@ impl Locator<'_> {
                 "shift" => raw.shift.as_ref().map(Spanned::span),
                 "steps" => raw.steps.as_ref().map(Spanned::span),
                 "epsilon_t" => raw.epsilon_t.as_ref().map(Spanned::span),
+                "press" => raw.press.as_ref().map(Spanned::span),
                 _ => None,
             };
             span.unwrap_or_else(|| raw.law.span())
@@ -52,6 +53,7 @@ impl Locator<'_> {
                 ("shift", raw.shift.is_some()),
                 ("steps", raw.steps.is_some()),
                 ("epsilon_t", raw.epsilon_t.is_some()),
+                ("press", raw.press.is_some()),
             ];
             if let Some((key, _)) = given.iter().find(|(_, g)| *g) {
                 return Err(self.error(
@@ -83,11 +85,16 @@ impl Locator<'_> {
             }
             None => DEFAULT_STEPS,
         };
+        let press = match &raw.press {
+            Some(name) => Press::parse(name.get_ref()).map_err(fail)?,
+            None => Press::WithFriction,
+        };
         let friction = Friction {
             law,
             shift: get(&raw.shift).unwrap_or(0.0),
             steps,
             epsilon_t: get(&raw.epsilon_t),
+            press,
         };
         friction.check().map_err(fail)?;
         let moved = obstacle.center() + friction.shift;

@@ -28,7 +28,7 @@ pub(super) struct RawScenario {
     pub(super) friction: Option<Spanned<RawFriction>>,
 }
 
-/// `[friction]` as written: the law and its parameters, the shift and its steps.
+/// `[friction]` as written: the law and its parameters, the shift and its steps, the press.
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct RawFriction {
@@ -38,6 +38,7 @@ pub(super) struct RawFriction {
     pub(super) shift: Option<Spanned<f64>>,
     pub(super) steps: Option<Spanned<i64>>,
     pub(super) epsilon_t: Option<Spanned<f64>>,
+    pub(super) press: Option<Spanned<String>>,
 }
 
 #[derive(Deserialize, Clone, Copy, PartialEq, Eq)]

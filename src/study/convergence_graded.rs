@@ -53,7 +53,7 @@ pub fn convergence_graded(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::contact::friction::{Friction, Law};
+    use crate::contact::friction::{Friction, Law, Press};
     use crate::refine_edges::RefineEdges;
     use crate::study::{ReferenceFields, ReferenceMesh, Status, uniform_reference};
 
@@ -69,6 +69,7 @@ mod tests {
             shift: 0.05,
             steps: 2,
             epsilon_t: None,
+            press: Press::WithFriction,
         };
         let mut fetch = |grid: &ReferenceMesh| ReferenceFields::solve_on(&s, grid);
         let (reference, _) = uniform_reference(&s, 1, &mut fetch).unwrap();

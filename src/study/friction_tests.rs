@@ -3,7 +3,7 @@
 //! frictionless study's numbers, and a row whose friction solve is refused reported per row.
 
 use super::*;
-use crate::contact::friction::{Friction, Law};
+use crate::contact::friction::{Friction, Law, Press};
 use crate::error::InputFault;
 use crate::grading::RefineEdges;
 
@@ -20,6 +20,7 @@ fn coulomb(mu: f64) -> Friction {
         shift: 0.05,
         steps: 4,
         epsilon_t: None,
+        press: Press::WithFriction,
     }
 }
 

@@ -1,9 +1,12 @@
-//! `riplab verify`: a pack of verification cases, each graded against a closed-form or
-//! published answer (docs/design.md §7). Two tiers, as finite element regression suites have
-//! them: "is it right" — the error against the reference within a tolerance that the
-//! discretisation at the case's level allows — and "did it change" — the value against the one
-//! stored in `src/verify/stored.toml` at the default levels, within a tolerance tight enough to
-//! catch any change of the numerics (`riplab verify --print-stored` writes that file anew).
+//! `riplab verify`: a pack of verification cases (docs/design.md §7). Every check is one
+//! comparison of one of three kinds ([`Kind`]): **closed form** — riplab against a published
+//! formula, within a tolerance that the discretisation at the case's level allows;
+//! **consistency** — riplab against riplab (the ALM against the exact constraint, the
+//! penalty's approach to it, the finite block against a larger one), which shows the numerics
+//! agree with themselves but not that they are right; and **unchanged** — the value against
+//! the one stored in `src/verify/stored.toml` at the default levels, within a tolerance tight
+//! enough to catch any change of the numerics (`riplab verify --print-stored` writes that file
+//! anew).
 //!
 //! Each case names its reference's source. The cases live one family per module:
 //! [`half_space`] (Hertz, the exact circle, the rounded punch), [`patch`] (the contact patch
@@ -23,11 +26,49 @@ use serde::Serialize;
 
 use crate::error::SolveError;
 
-/// The finest level `riplab verify --level` accepts (the manufactured solution's grid at
-/// level L has 2^(L+1) cells across, the infsup case's finest mesh the scenario's level L).
+/// The finest level `riplab verify --level` accepts for the whole pack (the manufactured
+/// solution's grid at level L has 2^(L+1) cells across, the infsup case's finest mesh the
+/// scenario's level L); a case may accept more ([`Case::max_level`]).
 pub const MAX_VERIFY_LEVEL: u32 = 5;
 /// The coarsest level `riplab verify --level` accepts (the infsup case needs two levels below).
 pub const MIN_VERIFY_LEVEL: u32 = 2;
+
+/// What a check compares.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub enum Kind {
+    /// riplab against a published formula.
+    #[serde(rename = "closed form")]
+    ClosedForm,
+    /// riplab against riplab: agreement of the numerics with themselves, not correctness.
+    #[serde(rename = "consistency")]
+    Consistency,
+    /// The value against the one stored at the case's default level.
+    #[serde(rename = "unchanged")]
+    Unchanged,
+}
+
+impl Kind {
+    /// The kinds, in the order the table shows them.
+    pub const ALL: [Kind; 3] = [Kind::ClosedForm, Kind::Consistency, Kind::Unchanged];
+
+    /// `closed form`, `consistency` or `unchanged` (as the JSON and CSV say it).
+    pub fn name(self) -> &'static str {
+        match self {
+            Kind::ClosedForm => "closed form",
+            Kind::Consistency => "consistency",
+            Kind::Unchanged => "unchanged",
+        }
+    }
+
+    /// What the kind compares, in a line.
+    pub fn meaning(self) -> &'static str {
+        match self {
+            Kind::ClosedForm => "riplab against a published formula",
+            Kind::Consistency => "riplab against riplab (agreement, not correctness)",
+            Kind::Unchanged => "the value against src/verify/stored.toml's",
+        }
+    }
+}
 
 /// How a check's error is measured.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -52,6 +93,9 @@ pub struct Measured {
     pub measure: Measure,
     /// The largest error that passes.
     pub tolerance: f64,
+    /// A kind and source other than its case's (e.g. a consistency check in a closed-form
+    /// case).
+    pub against: Option<(Kind, &'static str)>,
 }
 
 impl Measured {
@@ -63,6 +107,7 @@ impl Measured {
             reference,
             measure: Measure::Relative,
             tolerance,
+            against: None,
         }
     }
 
@@ -74,6 +119,15 @@ impl Measured {
             reference,
             measure: Measure::Absolute,
             tolerance,
+            against: None,
+        }
+    }
+
+    /// This quantity compared as `kind` with the reference from `source`.
+    pub fn against(self, kind: Kind, source: &'static str) -> Self {
+        Measured {
+            against: Some((kind, source)),
+            ..self
         }
     }
 
@@ -95,8 +149,12 @@ pub struct Case {
     pub description: &'static str,
     /// Where the reference comes from.
     pub source: &'static str,
+    /// What its quantities compare (each may say otherwise, [`Measured::against`]).
+    pub kind: Kind,
     /// The level it runs at by default (the stored values' level).
     pub default_level: u32,
+    /// The finest level it accepts.
+    pub max_level: u32,
     /// The case itself at a level.
     pub run: fn(u32) -> Result<Vec<Measured>, SolveError>,
 }
@@ -172,36 +230,28 @@ impl Verdict {
     }
 }
 
-/// One row of `riplab verify`: a quantity of a case, graded in both tiers.
+/// One row of `riplab verify`: one comparison of a quantity of a case.
 #[derive(Clone, Debug, Serialize)]
 pub struct Check {
     /// The case's name.
     pub case: &'static str,
+    /// What the row compares.
+    pub kind: Kind,
     /// The quantity; for a case that failed to run, `run`.
     pub quantity: String,
     /// The level the case ran at.
     pub level: u32,
     /// The computed value (null where the case failed or the value is not finite).
     pub computed: Option<f64>,
-    /// The reference value.
+    /// The reference value: a closed form's, riplab's own, or the stored one.
     pub reference: Option<f64>,
     /// How the error is measured.
     pub measure: Measure,
     /// The error against the reference (null without a computed value).
     pub error: Option<f64>,
-    /// The largest error that passes ("is it right").
+    /// The largest error that passes.
     pub tolerance: Option<f64>,
-    /// "Is it right": the error within the tolerance.
-    pub right: Verdict,
-    /// The stored value at the default level (null at other levels or for a new quantity).
-    pub stored: Option<f64>,
-    /// |computed − stored|.
-    pub change: Option<f64>,
-    /// The largest change that passes ("did it change").
-    pub change_tolerance: Option<f64>,
-    /// "Did it change": null where nothing is stored.
-    pub unchanged: Option<Verdict>,
-    /// Both tiers: `OK` when the value is right and, where stored, unchanged.
+    /// `OK` when the error is within the tolerance.
     pub verdict: Verdict,
     /// Why the case has no value, when it failed to run.
     pub reason: Option<String>,
@@ -217,62 +267,70 @@ pub const CHANGE_RELATIVE: f64 = 1e-6;
 /// round-off may move them by their own size on another machine.
 pub const CHANGE_FLOOR: f64 = 1e-10;
 
-/// Run `case` at `level` (its default when None) and grade each quantity against its
-/// reference and, at the default level, its stored value.
+/// The source of the unchanged rows.
+const STORED_SOURCE: &str =
+    "src/verify/stored.toml (riplab verify --print-stored), at the case's default level";
+
+/// Run `case` at `level` (its default when None): a row per quantity against its reference
+/// and, at the default level, one against its stored value.
 pub fn run(case: &Case, level: Option<u32>) -> Vec<Check> {
     let level = level.unwrap_or(case.default_level);
     let stored = (level == case.default_level).then(|| stored::values(case.name));
-    match (case.run)(level) {
-        Ok(measured) => measured
-            .into_iter()
-            .map(|m| {
-                let finite = m.computed.is_finite();
-                let error = m.error();
-                let right = Verdict::of(finite && error <= m.tolerance);
-                let stored_value = stored.as_ref().and_then(|s| s.get(&m.quantity).copied());
-                let change_tolerance = stored_value.map(|s| (CHANGE_RELATIVE * s.abs()).max(CHANGE_FLOOR));
-                let change = stored_value.filter(|_| finite).map(|s| (m.computed - s).abs());
-                let unchanged = stored_value
-                    .map(|_| Verdict::of(matches!((change, change_tolerance), (Some(c), Some(t)) if c <= t)));
-                Check {
-                    case: case.name,
-                    level,
-                    computed: finite.then_some(m.computed),
-                    reference: Some(m.reference),
-                    measure: m.measure,
-                    error: error.is_finite().then_some(error),
-                    tolerance: Some(m.tolerance),
-                    right,
-                    stored: stored_value,
-                    change,
-                    change_tolerance,
-                    verdict: Verdict::of(right == Verdict::Ok && unchanged != Some(Verdict::Nook)),
-                    unchanged,
-                    reason: None,
-                    source: case.source,
-                    quantity: m.quantity,
-                }
-            })
-            .collect(),
-        Err(e) => vec![Check {
+    let measured = match (case.run)(level) {
+        Ok(measured) => measured,
+        Err(e) => {
+            return vec![Check {
+                case: case.name,
+                kind: case.kind,
+                quantity: "run".into(),
+                level,
+                computed: None,
+                reference: None,
+                measure: Measure::Absolute,
+                error: None,
+                tolerance: None,
+                verdict: Verdict::Nook,
+                reason: Some(e.to_string()),
+                source: case.source,
+            }];
+        }
+    };
+    let mut against = Vec::new();
+    let mut unchanged = Vec::new();
+    for m in measured {
+        let finite = m.computed.is_finite();
+        let error = m.error();
+        let (kind, source) = m.against.unwrap_or((case.kind, case.source));
+        let row = |kind, reference: f64, measure, error: f64, tolerance: f64, source| Check {
             case: case.name,
-            quantity: "run".into(),
+            kind,
+            quantity: m.quantity.clone(),
             level,
-            computed: None,
-            reference: None,
-            measure: Measure::Absolute,
-            error: None,
-            tolerance: None,
-            right: Verdict::Nook,
-            stored: None,
-            change: None,
-            change_tolerance: None,
-            unchanged: None,
-            verdict: Verdict::Nook,
-            reason: Some(e.to_string()),
-            source: case.source,
-        }],
+            computed: finite.then_some(m.computed),
+            reference: Some(reference),
+            measure,
+            error: (finite && error.is_finite()).then_some(error),
+            tolerance: Some(tolerance),
+            verdict: Verdict::of(finite && error <= tolerance),
+            reason: None,
+            source,
+        };
+        against.push(row(kind, m.reference, m.measure, error, m.tolerance, source));
+        if let Some(&s) = stored.as_ref().and_then(|s| s.get(&m.quantity)) {
+            let tolerance = (CHANGE_RELATIVE * s.abs()).max(CHANGE_FLOOR);
+            let change = (m.computed - s).abs();
+            unchanged.push(row(
+                Kind::Unchanged,
+                s,
+                Measure::Absolute,
+                change,
+                tolerance,
+                STORED_SOURCE,
+            ));
+        }
     }
+    against.extend(unchanged);
+    against
 }
 
 /// The checks of a run of the pack, and whether all passed.
@@ -311,31 +369,36 @@ mod tests {
     }
 
     /// A value off its reference, one that is not finite, one that changed from its stored
-    /// value (the circle's stored L² error is 7.52e-3), and a case that fails are all NOOK.
+    /// value (the circle's stored L² error is not 7.6e-3), and a case that fails are all NOOK.
     #[test]
     fn a_wrong_changed_or_failed_value_is_nook() {
         let case = Case {
             name: "circle",
             description: "",
             source: "test",
+            kind: Kind::ClosedForm,
             default_level: 3,
+            max_level: MAX_VERIFY_LEVEL,
             run: wrong,
         };
         let checks = run(&case, None);
-        assert_eq!(
-            (checks[0].right, checks[0].verdict),
-            (Verdict::Nook, Verdict::Nook)
-        );
+        assert_eq!(checks[0].verdict, Verdict::Nook);
         assert!((checks[0].error.unwrap() - 0.1).abs() < 1e-12);
-        assert_eq!((checks[1].computed, checks[1].right), (None, Verdict::Nook));
-        assert_eq!(checks[2].right, Verdict::Ok);
+        assert_eq!((checks[1].computed, checks[1].verdict), (None, Verdict::Nook));
         assert_eq!(
-            (checks[2].unchanged, checks[2].verdict),
-            (Some(Verdict::Nook), Verdict::Nook)
+            (checks[2].kind, checks[2].verdict),
+            (Kind::ClosedForm, Verdict::Ok)
         );
-        // At another level nothing is stored: only the first tier grades.
+        // The L² error's stored row: changed, NOOK.
+        let stored = checks
+            .iter()
+            .find(|c| c.kind == Kind::Unchanged && c.quantity == checks[2].quantity)
+            .unwrap();
+        assert_eq!(stored.verdict, Verdict::Nook);
+        // At another level nothing is stored: no unchanged row.
         let other = run(&case, Some(4));
-        assert_eq!((other[2].unchanged, other[2].verdict), (None, Verdict::Ok));
+        assert_eq!(other.len(), 3);
+        assert_eq!(other[2].verdict, Verdict::Ok);
         assert!(!Verification::new(checks).passed);
         let failed = run(&Case { run: failing, ..case }, None);
         assert_eq!(failed.len(), 1);

@@ -7,7 +7,7 @@
 
 use std::ops::ControlFlow;
 
-use super::{Case, Measured, converged};
+use super::{Case, Kind, MAX_VERIFY_LEVEL, Measured, converged};
 use crate::contact::newton::NewtonOptions;
 use crate::contact::{ContactParams, Obstacle};
 use crate::discretization::Discretization;
@@ -21,7 +21,9 @@ pub const CASE: Case = Case {
     name: "patch",
     description: "flat rigid plane on the paper's block, ν = 0, penalty ε = 1e-6: uniform p and p̄ for M1–M4",
     source: "the uniform compression u = (0, −δy/H) is exact for ν = 0 and reproduced by every element (patch test, Taylor & Papadopoulos 1991): p = E d/(H + εE)",
+    kind: Kind::ClosedForm,
     default_level: 3,
+    max_level: MAX_VERIFY_LEVEL,
     run,
 };
 

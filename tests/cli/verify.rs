@@ -11,7 +11,8 @@ fn verify_runs_a_case_and_lists_the_pack() {
         out.contains("M4: max |p − p_exact|/p_exact") && out.contains("source: "),
         "{out}"
     );
-    assert!(out.contains("8 of 8 checks OK"), "{out}");
+    // Eight quantities, each against its closed form and its stored value.
+    assert!(out.contains("16 of 16 checks OK"), "{out}");
     let (code, out, _) = riplab(&["verify", "--list", "--format", "csv"]);
     assert_eq!(code, 0);
     // A header and at least eight cases, each with its source.
@@ -22,7 +23,62 @@ fn verify_runs_a_case_and_lists_the_pack() {
     assert_eq!(code, 0);
     let json: serde_json::Value = serde_json::from_str(&out).unwrap();
     assert_eq!(json["passed"], true);
-    assert_eq!(json["checks"][2]["right"], "OK");
+    assert_eq!(json["checks"][2]["verdict"], "OK");
+}
+
+/// Columns `line` takes on a terminal (combining marks, the bar of p̄, take none).
+fn columns(line: &str) -> usize {
+    line.chars()
+        .filter(|c| !('\u{300}'..='\u{36f}').contains(c))
+        .count()
+}
+
+/// Every check of the pack says what it compares (a published formula, riplab itself, or the
+/// stored value: the ALM and the penalty against the exact constraint and the circle's
+/// finite block are riplab against riplab), in the JSON, the CSV and the table's sections;
+/// and the table fits 80 columns (it was 197 wide).
+#[test]
+fn verify_says_what_each_check_compares_within_80_columns() {
+    let (code, out, err) = riplab(&["verify", "--format", "json"]);
+    assert_eq!(code, 0, "{err}");
+    let json: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let checks = json["checks"].as_array().unwrap();
+    let kind = |c: &serde_json::Value| c["kind"].as_str().unwrap_or("none").to_string();
+    for c in checks {
+        assert!(
+            ["closed form", "consistency", "unchanged"].contains(&kind(c).as_str()),
+            "{c}"
+        );
+    }
+    for want in ["closed form", "consistency", "unchanged"] {
+        assert!(checks.iter().any(|c| kind(c) == want), "no {want} check");
+    }
+    let of = |case: &str, quantity: &str| {
+        checks
+            .iter()
+            .filter(|c| c["case"] == case && c["quantity"].as_str().unwrap().contains(quantity))
+            .map(kind)
+            .filter(|k| k != "unchanged")
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(of("alm", ""), ["consistency", "consistency"]);
+    assert_eq!(of("penalty", ""), ["consistency"]);
+    assert_eq!(of("circle", "finite block"), ["consistency"]);
+    assert_eq!(of("circle", "‖"), ["closed form"]);
+    assert_eq!(of("cattaneo-mindlin", "‖"), ["closed form"]);
+    let (code, table, _) = riplab(&["verify"]);
+    assert_eq!(code, 0);
+    for line in table.lines() {
+        assert!(columns(line) <= 80, "{} columns: {line}", columns(line));
+    }
+    for heading in ["CLOSED FORM:", "CONSISTENCY:", "UNCHANGED:"] {
+        assert!(table.contains(heading), "{table}");
+    }
+    let (_, csv, _) = riplab(&["verify", "--case", "alm", "--format", "csv"]);
+    assert!(
+        csv.starts_with("case,kind,quantity,") && csv.contains(",consistency,"),
+        "{csv}"
+    );
 }
 
 #[test]
@@ -36,6 +92,13 @@ fn verify_refuses_bad_values() {
     let (code, _, err) = riplab(&["verify", "--level", "9"]);
     assert_eq!(code, 2);
     assert!(err.contains("--level") && err.contains("2 to 5"), "{err}");
+    // Level 6 is cattaneo-mindlin's alone.
+    let (code, _, err) = riplab(&["verify", "--level", "6"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("--level") && err.contains("2 to 5"), "{err}");
+    let (code, _, err) = riplab(&["verify", "--case", "cattaneo-mindlin", "--level", "7"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("2 to 6"), "{err}");
 }
 
 /// Simpson's rule for ∫₀^{π/2} f (2000 intervals).

@@ -4,7 +4,7 @@
 use std::ops::ControlFlow;
 use std::path::Path;
 
-use riplab::contact::friction::{Friction, Law, State};
+use riplab::contact::friction::{Friction, Law, Press, State};
 use riplab::contact::newton::NewtonOptions;
 use riplab::contact::{ContactParams, Method, Rule};
 use riplab::discretization::{Discretization, Trace};
@@ -74,6 +74,7 @@ fn mu_zero_is_frictionless() {
                     shift: 0.05,
                     steps: 4,
                     epsilon_t: None,
+                    press: Press::WithFriction,
                 };
                 let sol = with(&disc, &p, &f);
                 assert!(
@@ -116,6 +117,7 @@ fn coulomb(mu: f64, shift: f64, steps: usize) -> Friction {
         shift,
         steps,
         epsilon_t: None,
+        press: Press::WithFriction,
     }
 }
 

@@ -8,7 +8,7 @@
 use std::ops::ControlFlow;
 use std::sync::Arc;
 
-use riplab::contact::friction::{Friction, Law, State};
+use riplab::contact::friction::{Friction, Law, Press, State};
 use riplab::contact::newton::NewtonOptions;
 use riplab::contact::{ContactParams, Method, Obstacle, Outline, Rule};
 use riplab::discretization::{Discretization, Trace};
@@ -151,6 +151,7 @@ fn a_plane_slid_over_a_block_gives_uniform_p_and_t_equal_mu_p() {
                     shift: SHIFT,
                     steps: 1,
                     epsilon_t: None,
+                    press: Press::WithFriction,
                 };
                 let sol = solve_with(
                     &disc,

@@ -126,6 +126,42 @@ impl Law {
     }
 }
 
+/// How the obstacle is pressed to its depth before the shift (docs/design.md §11, "The press").
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Press {
+    /// With the law on: a point that touches sticks where it touched, so that the press
+    /// itself may lock in a tangential traction (Dundurs' β ≠ 0, a finite body).
+    WithFriction,
+    /// Without friction: the points slide freely while the obstacle goes down and stick from
+    /// the shift on where the press left them (the anchors r̂ = r after the press) —
+    /// Cattaneo and Mindlin's loading, the normal load first with no tangential traction.
+    Frictionless,
+}
+
+impl Press {
+    /// The presses' names, as `[friction] press` takes them.
+    pub const NAMES: [&'static str; 2] = ["with-friction", "frictionless"];
+
+    /// The press's name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Press::WithFriction => "with-friction",
+            Press::Frictionless => "frictionless",
+        }
+    }
+
+    /// The press named `name`.
+    pub fn parse(name: &str) -> Result<Self, FrictionError> {
+        match name {
+            "with-friction" => Ok(Press::WithFriction),
+            "frictionless" => Ok(Press::Frictionless),
+            other => Err(FrictionError::UnknownPress(
+                crate::text::sanitize(other).into_owned(),
+            )),
+        }
+    }
+}
+
 /// What a solve with friction depends on beyond [`crate::contact::ContactParams`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Friction {
@@ -137,6 +173,8 @@ pub struct Friction {
     pub steps: usize,
     /// The tangential penalty ε_t (penalty and alm); None: ε.
     pub epsilon_t: Option<f64>,
+    /// How the obstacle is pressed before the shift.
+    pub press: Press,
 }
 
 impl Friction {
@@ -146,6 +184,7 @@ impl Friction {
         shift: 0.0,
         steps: DEFAULT_STEPS,
         epsilon_t: None,
+        press: Press::WithFriction,
     };
 
     /// Whether a law other than `none` is on.

@@ -1,5 +1,5 @@
 //! The loading path (docs/design.md §11): the press to depth d at ξ = 0 from rest (anchors
-//! r̂ = 0), then the shift in `steps` equal quasi-static steps ξ_k = kξ/m, each warm-started
+//! r̂ = 0; with the law's bound, or frictionless when [`super::Press::Frictionless`]), then the shift in `steps` equal quasi-static steps ξ_k = kξ/m, each warm-started
 //! from the last and followed by the anchors' update (exact and ALM: r̂ ← r; penalty:
 //! r̂ ← r + (ε_t/w) z at contact points, so that a stuck point keeps its spring's rest
 //! position). A step that does not converge is bisected, up to [`MAX_BISECTIONS`] levels;
@@ -49,6 +49,9 @@ pub struct PathProblem<'a> {
     pub weight: &'a [f64],
     /// The law's bound.
     pub bound: Bound<'a>,
+    /// The bound during the press: the law's, or Coulomb's with μ = 0 for a frictionless
+    /// press.
+    pub press_bound: Bound<'a>,
     /// Exact or penalised (ALM: penalised, with `alm`).
     pub imposition: Imposition,
     /// The ALM's tolerance on the multipliers' relative change, when the ALM.
@@ -81,9 +84,9 @@ struct Carried {
 }
 
 impl<'a> PathProblem<'a> {
-    /// The step problem at `shift` with the normal data `d` and the anchors `anchor` (the
-    /// ALM's inner problems shift both by its multipliers).
-    fn at<'b>(&self, d: &'b [f64], shift: f64, anchor: &'b [f64]) -> StepProblem<'b>
+    /// The step problem at `shift` with the normal data `d`, the anchors `anchor` (the
+    /// ALM's inner problems shift both by its multipliers) and the bound `bound`.
+    fn at<'b>(&self, d: &'b [f64], shift: f64, anchor: &'b [f64], bound: Bound<'b>) -> StepProblem<'b>
     where
         'a: 'b,
     {
@@ -92,24 +95,25 @@ impl<'a> PathProblem<'a> {
             d,
             e: self.e,
             weight: self.weight,
-            bound: self.bound,
+            bound,
             imposition: self.imposition,
             shift,
             anchor,
         }
     }
 
-    /// The step at `shift` from `from` (forces warm, anchors fixed).
+    /// The step at `shift` from `from` (forces warm, anchors fixed) under `bound`.
     fn step(
         &self,
         from: &Carried,
         shift: f64,
+        bound: Bound<'a>,
         opts: &NewtonOptions,
         outer: &mut usize,
         on_iteration: &mut dyn FnMut(&Iteration) -> ControlFlow<()>,
     ) -> Result<StepResult, SolveError> {
         let Some(tolerance) = self.alm else {
-            let pb = self.at(self.d, shift, &from.anchor);
+            let pb = self.at(self.d, shift, &from.anchor, bound);
             return solve_step(&pb, from.y.clone(), from.z.clone(), opts, on_iteration);
         };
         let Imposition::Penalty { epsilon, epsilon_t } = self.imposition else {
@@ -127,7 +131,7 @@ impl<'a> PathProblem<'a> {
         for k in 1..=MAX_OUTER {
             let d: Vec<f64> = (0..n).map(|q| self.d[q] + epsilon * y[q] / w[q]).collect();
             let anchor: Vec<f64> = (0..n).map(|q| from.anchor[q] + epsilon_t * z[q] / w[q]).collect();
-            let pb = self.at(&d, shift, &anchor);
+            let pb = self.at(&d, shift, &anchor, bound);
             let mut r = solve_step(&pb, y.clone(), z.clone(), &inner, on_iteration)?;
             iterations += r.iterations;
             history.append(&mut r.history);
@@ -195,7 +199,7 @@ impl<'a> PathProblem<'a> {
         let mut outer = 0;
         let mut reports = Vec::new();
         let mut history = Vec::new();
-        let press = self.step(&carried, 0.0, opts, &mut outer, on_iteration)?;
+        let press = self.step(&carried, 0.0, self.press_bound, opts, &mut outer, on_iteration)?;
         history.extend_from_slice(&press.history);
         reports.push(StepReport {
             shift: 0.0,
@@ -264,7 +268,7 @@ impl<'a> PathProblem<'a> {
         opts: &NewtonOptions,
         on_iteration: &mut dyn FnMut(&Iteration) -> ControlFlow<()>,
     ) -> Result<(StepResult, bool), SolveError> {
-        let r = self.step(carried, to, opts, outer, on_iteration)?;
+        let r = self.step(carried, to, self.bound, opts, outer, on_iteration)?;
         report.iterations += r.iterations;
         history.extend_from_slice(&r.history);
         if r.converged() {
