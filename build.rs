@@ -1,4 +1,4 @@
-//! The numerics' build identity (issue 37), for the study's reference cache (src/cache.rs): an
+//! The numerics' build identity, for the study's reference cache (src/cache.rs): an
 //! entry is read back only by a build whose numerics are the same bits. The identity hashes
 //! (FNV-1a, 64 bits) every source file under src/, Cargo.lock (the versions of faer and every
 //! other dependency), the compiler's version and the target, so that a rebuilt riplab of the

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Stress study for STABILITY.md (issue 6): run after `cargo build --release`.
+"""Stress study for STABILITY.md: run after `cargo build --release`.
 
 Usage: python3 benches/extremes.py > /tmp/stability-tables.md
 Each section prints a Markdown table and the commands behind it.

@@ -1,4 +1,4 @@
-//! Friction's cost against the frictionless solve (issue 34, BENCHMARKS.md "Friction"):
+//! Friction's cost against the frictionless solve (BENCHMARKS.md "Friction"):
 //! `cargo bench --bench friction`. A fresh frictionless solve of `hertz-paper-full` at level 5
 //! (M1, the scenario's method) against a fresh Coulomb solve (μ = 0.3, shift 0.2: Q/(μP) ≈
 //! 0.47, the default steps) on a full-trace discretisation, and the Coulomb path alone on a

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Per-level cost of a fresh solve of the default scenario (issue 2's table in BENCHMARKS.md):
+# Per-level cost of a fresh solve of the default scenario (the table in BENCHMARKS.md):
 # dofs, Newton iterations, assembly, symbolic and numeric factorisation, total, peak memory.
 # Usage: bash benches/levels.sh [max_level]   (after `cargo build --release`)
 set -euo pipefail

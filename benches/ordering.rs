@@ -1,4 +1,4 @@
-//! The ordering of K against faer's own Cholesky (issue 13): `cargo bench --bench ordering`.
+//! The ordering of K against faer's own Cholesky: `cargo bench --bench ordering`.
 //!
 //! In one run, on the paper's problem (Q1, M1) at `RIPLAB_LEVELS` (default 6 and 7):
 //! - `fresh_m1`: the whole fresh solve (assembly, the grid's nested dissection with Γ_C last,

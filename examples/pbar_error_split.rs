@@ -1,4 +1,4 @@
-//! Where M1's p̄ error lies on the paper's problem (issue 35, BENCHMARKS.md "Grading over the
+//! Where M1's p̄ error lies on the paper's problem (BENCHMARKS.md "Grading over the
 //! contact zone"): p̄'s relative L²(Γ_C) error against the study's certified reference (level
 //! 7 + 4 edge refinements, from the user's cache as `riplab study --levels 3..6` leaves it),
 //! split into the contact zone's inside (x < a − 0.1), the band |x − a| ≤ 0.1 around the

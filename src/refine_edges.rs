@@ -1,4 +1,4 @@
-//! How a solve grades its mesh (issue 35): the value of `--refine-edges N|Nz|auto` and of a
+//! How a solve grades its mesh: the value of `--refine-edges N|Nz|auto` and of a
 //! scenario's `[mesh] refine_edges`, at the contact edges ([`RefineEdges`]) or over the contact
 //! zone ([`Grading::Zone`]), the grading itself being [`crate::grading`]'s.
 

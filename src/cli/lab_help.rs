@@ -18,7 +18,7 @@ fn long_help(sub: Option<&str>) -> String {
     .to_string()
 }
 
-/// Done when, item 4: `render --help` lists every key of the lab's table (the help overlay
+/// `render --help` lists every key of the lab's table (the help overlay
 /// and the README's table are read from the same table, `riplab::tui::keys::LAB`).
 #[test]
 fn render_help_lists_the_labs_keys() {

@@ -1,4 +1,4 @@
-//! Whether a solve's contact edges still lie in a graded grid's refined band (issue 35): the
+//! Whether a solve's contact edges still lie in a graded grid's refined band: the
 //! lab keeps a graded grid across ε and depth changes while they do, and grades again from the
 //! uniform level when they left it (docs/design.md §6, edge grading).
 

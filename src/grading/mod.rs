@@ -1,4 +1,4 @@
-//! Meshes graded at the contact edges (issue 35, docs/design.md §6): a uniform level's vertex
+//! Meshes graded at the contact edges (docs/design.md §6): a uniform level's vertex
 //! lines with the intervals around each contact edge, and the rows of cells next to Γ_C,
 //! bisected once per pass; or over the whole contact zone ([`zone`]). Where the pressure has
 //! its square-root profile (the edges of the contact zone), a uniform mesh's error of p and p̄

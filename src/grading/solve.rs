@@ -1,4 +1,4 @@
-//! A solve graded at its contact edges (issue 35): solve on the uniform level, find where the
+//! A solve graded at its contact edges: solve on the uniform level, find where the
 //! pressure's contact edges are, bisect the lines around them ([`GradedGrid::refined`]; over
 //! the contact zone: [`GradedGrid::zoned`]) and solve again, pass after pass. Each pass
 //! starts Newton from the last pass's pressure carried to the new points (forces = p(x)·w);

@@ -1,4 +1,4 @@
-//! The tests issue 35 lists that need no reference, for both gradings (at the edges, over the
+//! The grading's tests that need no reference, for both gradings (at the edges, over the
 //! zone): a graded solve is a solve on its lines; the lines nest and hold the contact edges;
 //! the inf-sup estimate runs on graded meshes (M1's p̄ error falling with every pass is
 //! tests/numerics/grading.rs).

@@ -1,4 +1,4 @@
-//! Meshes graded over the contact zone (`--refine-edges Nz`, issue 35; docs/design.md §6).
+//! Meshes graded over the contact zone (`--refine-edges Nz`; docs/design.md §6).
 //!
 //! Grading at the edges alone stalls: (17) averages the pressures of two neighbouring edges
 //! of Γ_C with their lengths as weights, so where the edge length changes inside the contact

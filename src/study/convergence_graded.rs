@@ -1,6 +1,6 @@
 //! A convergence study's rows graded at the contact edges, on their own: what the lab's
-//! convergence scene computes level by level beside [`super::convergence`]'s uniform rows
-//! (issue 35), the same rows `riplab study --refine-edges 0,N` prints in its graded series.
+//! convergence scene computes level by level beside [`super::convergence`]'s uniform rows,
+//! the same rows `riplab study --refine-edges 0,N` prints in its graded series.
 
 use super::{Reference, StudyRow, graded, strip, with_rates};
 use crate::contact::{Method, Rule};

@@ -1,4 +1,4 @@
-//! A study with friction (issue 34, docs/design.md §11): every row and the reference solved
+//! A study with friction (docs/design.md §11): every row and the reference solved
 //! with the scenario's friction, t̄'s and Q's errors beside p̄'s and P's, μ = 0 the
 //! frictionless study's numbers, and a row whose friction solve is refused reported per row.
 

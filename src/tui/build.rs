@@ -1,4 +1,4 @@
-//! Building a discretisation on a thread of its own (issue 13, item 4), so that the worker
+//! Building a discretisation on a thread of its own, so that the worker
 //! never waits on a factorisation: a level the user asks for shows its progress and the time
 //! left while the worker keeps answering (a step back to a built level is served at once),
 //! and a neighbouring level is built while the lab is idle, so that `]` and `[` find it ready.

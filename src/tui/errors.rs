@@ -1,4 +1,4 @@
-//! The lab's typed errors for what a user gives it (issue 33, item 3): a terminal size and a
+//! The lab's typed errors for what a user gives it: a terminal size and a
 //! `riplab render` request. Their messages are the ones users saw as text before.
 
 use crate::check::CheckError;

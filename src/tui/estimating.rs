@@ -1,4 +1,4 @@
-//! Inf-sup estimates on a thread of their own (issue 13, item 4): at level 7 one takes
+//! Inf-sup estimates on a thread of their own: at level 7 one takes
 //! seconds (the H¹ form's factorisation and two dense eigenproblems), and the worker serves
 //! solves meanwhile.
 

@@ -1,4 +1,4 @@
-//! Work on a thread of its own whose reply goes straight to the app (issue 13, item 4): the
+//! Work on a thread of its own whose reply goes straight to the app: the
 //! displacement of a solution (a quarter of a second at level 7: the factor's solves on every
 //! unknown) and its stress field (seconds at level 7), so that the worker answers a key
 //! pressed meanwhile (a step back right after a step used to wait for the displacement).

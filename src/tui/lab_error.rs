@@ -1,4 +1,4 @@
-//! Why the worker has no result for the lab (issue 33): a solve, a mesh build, an inf-sup
+//! Why the worker has no result for the lab: a solve, a mesh build, an inf-sup
 //! estimate, a study or the stresses that failed, carried from the worker to the app in its
 //! replies ([`super::protocol::Response`]) and shown as before (the source's message).
 

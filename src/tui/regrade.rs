@@ -1,4 +1,4 @@
-//! What a graded solve of the lab did with its grid (issue 35): after an ε, depth, rule or
+//! What a graded solve of the lab did with its grid: after an ε, depth, rule or
 //! method change with edge grading on, the lab solves on the graded grid it has and keeps it
 //! while the contact edges stay inside its refined band ([`crate::grading::GradedGrid::holds_edges`]);
 //! otherwise it grades again from the level's uniform solve. The status line says which.

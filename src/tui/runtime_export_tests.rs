@@ -1,5 +1,5 @@
 //! The lab's exports say what they wrote: `S` names the pressure chart where another scene is
-//! shown, `v` names both VTU files (issue 31).
+//! shown, `v` names both VTU files.
 
 use super::app::{App, ExportKind, Msg, Scene};
 use super::engine::Engine;

@@ -1,4 +1,4 @@
-//! A study's grading (issue 35): with the lab's `E` on, the convergence scene's study solves
+//! A study's grading: with the lab's `E` on, the convergence scene's study solves
 //! each scheme and method at every level twice, on the uniform level and graded at the
 //! contact edges or over the contact zone ([`crate::grading`]), the two series drawn side by
 //! side.

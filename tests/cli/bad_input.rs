@@ -200,7 +200,7 @@ fn a_huge_file_is_refused_unread() {
     );
 }
 
-/// Issue 14: a method and its parameters on the command line. A bad `--method`, `--theta`,
+/// A method and its parameters on the command line. A bad `--method`, `--theta`,
 /// `--gamma0` or `--alm-tol`, a parameter the method does not take, and `--method penalty`
 /// or `alm` at ε = 0 exit 2 with the allowed values, before any solve.
 #[test]
@@ -280,7 +280,7 @@ fn bad_methods_on_the_command_line_exit_2_with_the_allowed_values() {
     assert!(stdout.contains("nitsche"), "{stdout}");
 }
 
-/// Issue 14: a scenario's `[contact] method` and parameters: bad values give the file, line,
+/// A scenario's `[contact] method` and parameters: bad values give the file, line,
 /// key and allowed values, like every other key.
 #[test]
 fn bad_methods_in_a_scenario_are_located() {
@@ -362,7 +362,7 @@ fn bad_methods_in_a_scenario_are_located() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
-/// Issue 14: `--method alm` is carried by the JSON and the CSV (whose header is the JSON's
+/// `--method alm` is carried by the JSON and the CSV (whose header is the JSON's
 /// names), with its outer iterations; `--epsilon 0` alone is still `exact`.
 #[test]
 fn the_method_is_in_every_output() {
@@ -470,7 +470,7 @@ fn nitsche_tables_print_no_epsilon() {
     assert!(rows.iter().all(|r| r.trim_start().starts_with('—')), "{out}");
 }
 
-/// Issue 14: `riplab render` takes the method and its parameters like `solve` (a frame of any
+/// `riplab render` takes the method and its parameters like `solve` (a frame of any
 /// method for logs and documents); a bad one is refused with the allowed values.
 #[test]
 fn render_takes_the_method() {
@@ -485,7 +485,7 @@ fn render_takes_the_method() {
     assert!(err.contains("allowed: penalty, exact, alm, nitsche"), "{err}");
 }
 
-/// Issue 14: Nitsche's default γ₀ is chosen from the mesh (`auto`, 10·γ₀*): the fixed default
+/// Nitsche's default γ₀ is chosen from the mesh (`auto`, 10·γ₀*): the fixed default
 /// γ₀ = 100 was refused on `hertz-block` (γ₀* ≈ 1.2·10³, tall cells) and `near-incompressible`
 /// (γ₀* ≈ 408), so `--method nitsche` failed there with its own defaults. The choice is checked
 /// against γ₀* as the refusal of a too small γ₀ reports it (computed with γ in place of E/h:

@@ -7,8 +7,7 @@ use std::path::Path;
 
 /// The rows of §9's table.
 fn map_rows() -> Vec<String> {
-    let design =
-        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/design.md")).unwrap();
+    let design = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/design.md")).unwrap();
     let start = design.find("## §9 ").expect("docs/design.md has a §9");
     let section = &design[start..];
     let heading = section.find('\n').unwrap_or(section.len());
@@ -39,7 +38,11 @@ fn sources(root: &Path, dir: &Path, out: &mut Vec<String>) {
         if path.is_dir() {
             sources(root, &path, out);
         } else if path.extension().is_some_and(|e| e == "rs") {
-            let rel = path.strip_prefix(root).unwrap().to_string_lossy().replace('\\', "/");
+            let rel = path
+                .strip_prefix(root)
+                .unwrap()
+                .to_string_lossy()
+                .replace('\\', "/");
             out.push(rel);
         }
     }
@@ -58,7 +61,8 @@ fn the_design_map_names_every_source_file() {
         let (folder, name) = file.rsplit_once('/').map_or(("", file.as_str()), |(f, n)| (f, n));
         let stem = name.trim_end_matches(".rs");
         let named = if folder.is_empty() {
-            rows.iter().any(|r| r.contains(&format!("`{name}`")) || has_word(r, name))
+            rows.iter()
+                .any(|r| r.contains(&format!("`{name}`")) || has_word(r, name))
         } else if let Some(at) = folder.find("tests") {
             let tests = &folder[..at + "tests".len()];
             rows.iter().any(|r| r.contains(&format!("{tests}/")))

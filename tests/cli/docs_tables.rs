@@ -1,4 +1,4 @@
-//! The docs' tables of numbers are generated, not copied (issue 32): every block of command output
+//! The docs' tables of numbers are generated, not copied: every block of command output
 //! in README.md and docs/*.md is introduced by a line
 //!
 //! ```text

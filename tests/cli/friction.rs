@@ -1,4 +1,4 @@
-//! Friction on the command line (issue 34): bad `[friction]` tables and flags exit 2 naming
+//! Friction on the command line: bad `[friction]` tables and flags exit 2 naming
 //! the file, line and key (or the flag) and the range; a friction solve's JSON carries the
 //! `friction`, `mindlin`, `nodes.ux/tbar` and `points.t/state` fields.
 

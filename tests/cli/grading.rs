@@ -1,4 +1,4 @@
-//! `--refine-edges` and `[mesh] refine_edges` (issue 35): bad values are refused naming the
+//! `--refine-edges` and `[mesh] refine_edges`: bad values are refused naming the
 //! key (file, line) and the allowed range, exit 2; a graded solve reports its passes and its
 //! smallest cell in JSON, CSV and the table.
 

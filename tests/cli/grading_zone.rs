@@ -1,4 +1,4 @@
-//! `--refine-edges Nz` and `[mesh] refine_edges = "Nz"` (issue 35): grading over the contact
+//! `--refine-edges Nz` and `[mesh] refine_edges = "Nz"`: grading over the contact
 //! zone. Bad values name the flag or the key and what is allowed, exit 2; a zone-graded solve
 //! and a study's zone series report `refine_edges` (passes made), `grading` (the value asked)
 //! and the smallest cell in JSON, CSV and the table (`1+2z`); `render` (the lab) draws it.

@@ -1,4 +1,4 @@
-//! Hostile and careless input (issue 10): every case a hostile test found, each refused with a
+//! Hostile and careless input: every case a hostile test found, each refused with a
 //! clear message and exit 2, or answered honestly (never a non-finite number called
 //! converged), never a panic, an unbounded read or a hang.
 

@@ -1,4 +1,4 @@
-//! The second hostile pass (issue 37): a study that has nothing to measure against, the
+//! The second hostile pass: a study that has nothing to measure against, the
 //! inf-sup estimate under a memory limit, outputs that would replace each other, global options
 //! before the subcommand, terminal text from the command line and the environment, and the
 //! smaller holes. Each case fails on the code before the issue's change.

@@ -1,4 +1,4 @@
-//! Issue 35, the lab's part, item 8: `riplab infsup --refine-edges N`, the inf-sup estimate on
+//! `riplab infsup --refine-edges N`, the inf-sup estimate on
 //! meshes graded at the contact edges. Checked against the plain estimate on a scenario whose
 //! level-0 lines are the graded grid's (the grading is only a choice of lines), against the
 //! uniform table at N = 0, and for its bad input.

@@ -15,7 +15,7 @@ fn lab_max_level() -> u32 {
     digits.parse().expect("a level")
 }
 
-/// Done when, item 2: `render --keys f`, `--keys x`, `--keys l` and `--marker halfblock` show
+/// `render --keys f`, `--keys x`, `--keys l` and `--marker halfblock` show
 /// the projector view, the cursor's readout, the message log and no braille.
 #[test]
 fn render_applies_keys_and_the_marker() {
@@ -94,7 +94,7 @@ fn the_lab_without_a_terminal_names_render() {
     assert!(err.contains("riplab render"), "{err}");
 }
 
-/// Item 12: the README's sample frame is what `riplab render` prints for the command it names.
+/// The README's sample frame is what `riplab render` prints for the command it names.
 #[test]
 fn readme_frame_is_rendered() {
     let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();

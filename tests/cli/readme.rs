@@ -1,4 +1,4 @@
-//! Every command the README and docs/*.md show runs (issue 16): each `riplab …` line of a shell
+//! Every command the README and docs/*.md show runs: each `riplab …` line of a shell
 //! code block (```sh), and each `cargo run --release -- …` or `riplab …` code span after "Command:"
 //! or "Output of" (whose output docs_tables.rs compares at the documented levels), is run
 //! against the built binary and must exit as documented and print what it promises.

@@ -1,4 +1,4 @@
-//! Issue 35, the lab's part, item 8: `riplab render --refine-edges N` draws the lab on the
+//! `riplab render --refine-edges N` draws the lab on the
 //! graded solve (`level 2+2e` in the header, the graded mesh's dofs: those of `riplab solve
 //! --refine-edges 2`), the same header as the key `E` pressed twice; a bad count exits 2.
 

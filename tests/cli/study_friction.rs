@@ -1,4 +1,4 @@
-//! `riplab study` with friction (issue 34): the friction options and `[friction]` reach every
+//! `riplab study` with friction: the friction options and `[friction]` reach every
 //! row and the reference; the JSON, CSV and table carry t̄'s and Q's errors; the cache keeps a
 //! frictionless reference and a friction one apart; a refused row is reported in its row
 //! (exit 1); a list of shift steps and edge grading are refused (exit 2).
@@ -46,7 +46,7 @@ fn json(options: &[&str], cache: &Path) -> serde_json::Value {
     serde_json::from_str(&stdout).unwrap()
 }
 
-/// A study with friction (refused before issue 34) reports t̄'s and Q's errors in every row
+/// A study with friction (once refused) reports t̄'s and Q's errors in every row
 /// and the friction it solved with; the cache serves each reference only to its own kind.
 #[test]
 fn a_friction_study_reports_tbar_and_keeps_its_reference_apart() {

@@ -1,4 +1,4 @@
-//! What a study says of its own rows (issue 32): the rows whose errors the penalty may account
+//! What a study says of its own rows: the rows whose errors the penalty may account
 //! for are marked in JSON and CSV, not only noted on stderr, and a fit of fewer than two rows
 //! (no rates) has no line in the table.
 

@@ -1,4 +1,4 @@
-//! Issue 36 on the command line: `riplab tour --check FILE` lists a tour's steps without a
+//! `riplab tour --check FILE` lists a tour's steps without a
 //! terminal (exit 2 with the file, line and key of an error); `--handout DIR` writes a frame
 //! and a chart per step and an index, refusing a directory that is not empty; `--record`
 //! refuses an existing file and a bad path before anything else, and leaves no file behind

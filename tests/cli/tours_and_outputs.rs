@@ -174,7 +174,9 @@ fn an_oversized_level_in_a_step_is_said_in_the_users_words() {
     assert_eq!(code, 2, "{stdout}{stderr}");
     assert!(!stderr.contains("i128"), "{stderr}");
     assert!(
-        stderr.contains("99999999999999999999") && stderr.contains("step[1].level") && stderr.contains("0 to 7"),
+        stderr.contains("99999999999999999999")
+            && stderr.contains("step[1].level")
+            && stderr.contains("0 to 7"),
         "{stderr}"
     );
 }

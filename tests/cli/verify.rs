@@ -1,4 +1,4 @@
-//! `riplab verify` as a user runs it (issue 32): its exit codes, `--case`, `--list`, and its
+//! `riplab verify` as a user runs it: its exit codes, `--case`, `--list`, and its
 //! refusals of bad values.
 
 use crate::common::riplab;
@@ -120,7 +120,7 @@ fn quarter(f: impl Fn(f64) -> f64) -> f64 {
     sum * h / 3.0
 }
 
-/// `solve`'s JSON carries the exact circle beside Hertz (issue 32, item 2): its a carries the
+/// `solve`'s JSON carries the exact circle beside Hertz: its a carries the
 /// computed load and its p₀ is the half-plane's (checked here by Simpson's rule on the
 /// integrals, P = E*a² ∫ sin²φ/√(R² − a² sin²φ) dφ and p₀ = (E*a/πR) K(a/R)), and p̄ is
 /// closer to it than to Hertz's parabola.
@@ -169,7 +169,7 @@ fn solve_reports_the_exact_circle_beside_hertz() {
     );
 }
 
-/// The done-when of issue 32, item 3: at level 4, `--epsilon 1e-14` carries a round-off warning
+/// At level 4, `--epsilon 1e-14` carries a round-off warning
 /// in the JSON and on stderr, `--epsilon 1e-11` none.
 #[test]
 fn solve_warns_of_round_off_below_its_onset() {
@@ -192,7 +192,7 @@ fn solve_warns_of_round_off_below_its_onset() {
     assert!(fine.is_empty() && !err.contains("round-off"), "{fine:?} {err}");
 }
 
-/// Issue 32, item 4: a penalty study's default ε is κ = 1e-6 at its finest level (said on
+/// A penalty study's default ε is κ = 1e-6 at its finest level (said on
 /// stderr), and rows whose load error the penalty's own could account for are noted.
 #[test]
 fn the_study_measures_the_mesh_not_the_penalty() {

@@ -1,4 +1,4 @@
-//! The VTU export of `riplab::vtu` (issue 15): read back with the same crate (vtkio), the
+//! The VTU export of `riplab::vtu`: read back with the same crate (vtkio), the
 //! counts, cell types, array names and values checked against the solution they came from,
 //! and the rules for existing files.
 

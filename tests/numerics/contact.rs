@@ -301,7 +301,7 @@ fn exact_constraint_refuses_a_pressure_space_with_a_kernel() {
     assert!(err.to_string().contains("not unique"), "{err}");
 }
 
-/// Issue 11 item 4: a library user's own outline ([`riplab::contact::Outline`]) that is the
+/// A library user's own outline ([`riplab::contact::Outline`]) that is the
 /// cylinder's, η(x) = R − √(R² − x²), gives the paper's cylinder's solution to round-off.
 #[test]
 fn a_custom_outline_equal_to_the_cylinder_gives_its_solution() {

@@ -177,7 +177,7 @@ fn max_abs(values: impl IntoIterator<Item = f64>) -> f64 {
 }
 
 /// The two-subdomain factor, and the whole grid as one part, give faer's single factor's
-/// trace compliance C = E K⁻¹ Eᵀ and Schur complement factor (issue 13); the one part also on
+/// trace compliance C = E K⁻¹ Eᵀ and Schur complement factor; the one part also on
 /// grids without a middle column.
 #[test]
 fn the_split_factor_has_the_single_factors_compliance() {

@@ -1,4 +1,4 @@
-//! Friction (issue 34; docs/design.md §11): Tresca and Coulomb under the reduced-integration
+//! Friction (docs/design.md §11): Tresca and Coulomb under the reduced-integration
 //! rules, each check against something independent of the friction solver.
 
 use std::ops::ControlFlow;

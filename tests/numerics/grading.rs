@@ -1,4 +1,4 @@
-//! Meshes graded at the contact edges (issue 35) against the study's certified reference.
+//! Meshes graded at the contact edges against the study's certified reference.
 
 use riplab::contact::Rule;
 use riplab::grading::{Grading, RefineEdges};

@@ -1,5 +1,5 @@
 //! Near-incompressibility (ν → 1/2): Q1 with full integration locks, selective reduced
-//! integration of the volumetric term removes the locking (issue 6).
+//! integration of the volumetric term removes the locking.
 
 use crate::common::{paper_with, rel};
 use riplab::solve::solve_scenario;

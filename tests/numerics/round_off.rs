@@ -1,4 +1,4 @@
-//! Round-off said aloud (issue 32, item 3): the penalty's pressure, formed as penetration/ε,
+//! Round-off said aloud: the penalty's pressure, formed as penetration/ε,
 //! loses digits as ε shrinks; a solve warns where the estimate of that round-off exceeds 1e-6
 //! of p, and the estimate bounds the error measured against the exact constraint.
 

@@ -1,4 +1,4 @@
-//! The sliding patch test (issue 34; docs/design.md §11): a flat rigid plane pressed into a
+//! The sliding patch test (docs/design.md §11): a flat rigid plane pressed into a
 //! block and then slid over it. With the sides loaded by the tractions of the uniform state —
 //! σ_yy = −p, σ_xx = −λp/(λ + 2μ), σ_xy = τ — the linear field u = (τy/μ, −py/(λ + 2μ)) is in
 //! every element's space, so it is the exact discrete solution: p uniform (by hand:

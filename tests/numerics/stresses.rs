@@ -218,7 +218,7 @@ fn hertz_block_file() -> Scenario {
     .unwrap()
 }
 
-/// Issue 15: on hertz-block.toml (320 × 160, cells of 1/16 under the contact) at its default
+/// On hertz-block.toml (320 × 160, cells of 1/16 under the contact) at its default
 /// level 2, Johnson's half-space values are met: measured τ₁ = 0.3037 p₀ (1.2%) at
 /// z = 0.785 a (0.1%).
 #[test]

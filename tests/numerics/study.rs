@@ -58,7 +58,7 @@ fn errors_rates_and_the_smoothing_claim() {
 
 /// The reference is kept in the cache directory: the second study reads it and reports the
 /// same errors; a damaged entry is recomputed; `--no-cache` neither reads nor writes; two
-/// studies at once both succeed (issue 13, item 5).
+/// studies at once both succeed.
 #[test]
 fn the_reference_is_cached_between_runs() {
     use std::process::Command;
@@ -341,7 +341,7 @@ fn the_reference_estimates_its_error_and_refines_at_the_contact_edge() {
     );
 }
 
-/// Refinement at the contact edges helps where it should (issue 14): two edge refinements of
+/// Refinement at the contact edges helps where it should: two edge refinements of
 /// the level-3 reference cut its estimated p error well below the uniform level 3's, at a
 /// fraction of level 4's unknowns, and the refined reference is truly closer to a level-5
 /// reference than the uniform level 3 is.

@@ -1,4 +1,4 @@
-//! `riplab verify`'s pack (issue 32): at its default levels every case is right against its
+//! `riplab verify`'s pack: at its default levels every case is right against its
 //! closed-form or published reference and unchanged from its stored values, so that CI fails on
 //! a NOOK; and the circle's exact solution makes the finite element error visible where Hertz's
 //! parabola hides it.
@@ -51,7 +51,7 @@ fn the_verification_pack_passes() {
     }
 }
 
-/// Hertz's parabola floors the comparison (issue 32): at level 4 p̄ is closer to the exact
+/// Hertz's parabola floors the comparison: at level 4 p̄ is closer to the exact
 /// circle than to Hertz, by more than the discretisation's own error.
 #[test]
 fn the_circle_sees_below_hertzs_floor() {

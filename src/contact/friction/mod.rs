@@ -1,4 +1,4 @@
-//! Friction on Γ_C (docs/design.md §11; issue 34): Tresca's and Coulomb's laws imposed at the
+//! Friction on Γ_C (docs/design.md §11): Tresca's and Coulomb's laws imposed at the
 //! contact rule's points with the same rule as the normal constraint (the penalty (11), the
 //! exact multipliers, the augmented Lagrangian), solved by a semismooth Newton (the
 //! primal–dual active-set form) on the normal and tangential forces together, condensed onto

@@ -1,4 +1,4 @@
-//! The lab's solve with friction (docs/design.md §11; issue 34): the press and the shift of
+//! The lab's solve with friction (docs/design.md §11): the press and the shift of
 //! [`solve_friction`], the library's entry that `riplab solve` calls, on the cached mesh (its
 //! full trace made once per mesh and kept with it), warm-started from the last friction
 //! solve on the same points. Edge grading does not take friction (as `riplab solve` refuses

@@ -1,4 +1,4 @@
-//! The lab's graded solve (`E`; issue 35), at the contact edges or over the contact zone: [`solve_graded`] from the
+//! The lab's graded solve (`E`), at the contact edges or over the contact zone: [`solve_graded`] from the
 //! uniform level's discretisation, its final grid's discretisation kept with the solution so
 //! that every view (the mesh scene's lines, the pressures, the stresses) shows the graded
 //! mesh. Each pass builds its own mesh and factor (nothing of the cache's work carries over:

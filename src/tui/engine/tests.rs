@@ -6,7 +6,7 @@ use std::time::Duration;
 
 use crate::tui::build::Build;
 
-/// Issue 13 item 4 for Nitsche's method: after a Nitsche solve, the background build of
+/// After a Nitsche solve, the background build of
 /// the next level prepares Nitsche's layer with the mesh, and a neighbour built before
 /// (for another method) is prepared alone; either way the step finds it ready.
 #[test]
@@ -153,7 +153,7 @@ fn a_carried_start_that_fails_is_solved_again_from_rest() {
     assert_eq!(again.solution.load, rest.solution.load);
 }
 
-/// Issue 31, item 5: a background build started before the lab's `i` switched the
+/// A background build started before the lab's `i` switched the
 /// integration is not kept (it would be served as the mesh of the other integration), and the
 /// next prefetch builds the mesh of the new one.
 #[test]

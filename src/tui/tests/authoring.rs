@@ -1,4 +1,4 @@
-//! Issue 36: tour steps written by the lab's `T` play back to the screens the lab showed, a
+//! Tour steps written by the lab's `T` play back to the screens the lab showed, a
 //! file that is not a tour is never added to, and a handout has each step's screen (equal to
 //! `render_step`), its pressure chart and an index.
 
@@ -52,10 +52,10 @@ fn lab_frame(app: &mut App, commands: Vec<Command>) -> String {
     let mut engine = Engine::new(app.scenario.clone());
     carry_out(app, &mut engine, commands);
     // The estimates computed so far are the lab's history, which a step does not carry (the
-    // inf-sup scene computes levels 0 to 4, issue 31): only those this screen asks for.
+    // inf-sup scene computes levels 0 to 4): only those this screen asks for.
     app.infsup.clear();
     settle(app, &mut engine);
-    // What the last key said (issue 31: every key says what it did) is the lab's, not the
+    // What the last key said (every key says what it did) is the lab's, not the
     // step's.
     app.notice = None;
     render_app(app, &LOOK, 100, 28)

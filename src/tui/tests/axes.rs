@@ -1,4 +1,4 @@
-//! Issue 31, items 2 and 3, read off the frame as a user reads it: the y ticks of a chart sit
+//! Read off the frame as a user reads it: the y ticks of a chart sit
 //! on evenly spaced rows at their values (the data's top lies in the row its value names), and
 //! every series' mark appears near each of its values, placed by the chart's own tick labels
 //! (not by the code that drew it), at every size a class meets.
@@ -130,7 +130,7 @@ impl Chart {
     }
 }
 
-/// Item 2: at 80×24 (and larger) the pressure chart's y ticks sit on evenly spaced rows, and
+/// At 80×24 (and larger) the pressure chart's y ticks sit on evenly spaced rows, and
 /// the largest pressure is drawn in the row its value names by the ticks — on the paper's
 /// levels and on the soft penalty of the tour's step 10 (its ticks were 200, 100, 0 on rows
 /// 1, 2 and 4).
@@ -248,7 +248,7 @@ fn every_convergence_series_is_marked_near_each_of_its_values() {
     }
 }
 
-/// Item 4: the mesh scene has axes: y from 0 to the block's height, x across its width, each
+/// The mesh scene has axes: y from 0 to the block's height, x across its width, each
 /// label where the body's own lines are drawn (the bottom on the 0 row, the top at the far
 /// edge on the height's row, the left side in the column of its x), at 80×24 and 120×40.
 #[test]

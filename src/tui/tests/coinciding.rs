@@ -1,4 +1,4 @@
-//! Issue 31, "no series hidden under another": a line that lies on an earlier one says so in
+//! A line that lies on an earlier one says so in
 //! the legend. M3's raw p (trapezoid: linear between the vertices, where p̄ = p) is drawn along
 //! p̄'s own path, so its dotted line cannot be seen apart; M1's (gauss1: a step per edge) can.
 

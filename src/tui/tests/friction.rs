@@ -1,4 +1,4 @@
-//! Issue 34, the lab's part: the lab solves with the scenario's `[friction]` and shows the
+//! The lab solves with the scenario's `[friction]` and shows the
 //! numbers `riplab solve` prints (checked against the library's own entry on the command
 //! line's full-trace discretisation); every key that names a solve carries the friction; the
 //! refusals (Nitsche, a half model, edge grading) are said, never silent; the friction keys.
@@ -135,7 +135,7 @@ fn the_lab_solves_with_the_scenarios_friction_as_riplab_solve_does() {
     assert!((m.c - m.hertz.a * (1.0 - ratio).sqrt()).abs() <= 1e-12 * m.hertz.a);
 }
 
-/// Item 1: the friction is part of every key that names a solve or a study — switched off,
+/// The friction is part of every key that names a solve or a study — switched off,
 /// the frictionless result is another solve (never the friction one shown for it), and a
 /// study's key changes with it; the warm start of the next friction solve gives its answer.
 #[test]
@@ -172,7 +172,7 @@ fn the_friction_is_part_of_every_key() {
     assert!(close(again.solution.load, with.solution.load));
 }
 
-/// Item 1: Nitsche with friction and an edge-graded solve with friction are refused with the
+/// Nitsche with friction and an edge-graded solve with friction are refused with the
 /// library's (the lab's) reason in the banner and the status line, the last good frame kept.
 #[test]
 fn refused_friction_solves_say_why_and_keep_the_last_frame() {
@@ -203,7 +203,7 @@ fn refused_friction_solves_say_why_and_keep_the_last_frame() {
     );
 }
 
-/// Item 2: on a half model `F` does nothing and says why, naming `body.model` and the full
+/// On a half model `F` does nothing and says why, naming `body.model` and the full
 /// scenarios; the friction keys say what they did, or why not (off, at a bound).
 #[test]
 fn the_friction_keys_say_what_they_did() {
@@ -317,7 +317,7 @@ fn the_friction_keys_are_documented_everywhere() {
     assert_eq!(solved.solution.friction.as_ref().unwrap().friction.shift, 0.0652);
 }
 
-/// Item 1: an export's name carries the friction (a friction solve's file never takes a
+/// An export's name carries the friction (a friction solve's file never takes a
 /// frictionless one's name), and its CSV the tangential columns.
 #[test]
 fn an_export_names_the_friction() {

@@ -1,4 +1,4 @@
-//! Issue 34, the lab's drawing of friction: every friction series visible near each of its
+//! The lab's drawing of friction: every friction series visible near each of its
 //! values at every size a class meets (80×24 to 200×60, monochrome), the stick zone marked on
 //! the x axis between its ends and nowhere else, the status area with P, Q, Q/(μP), the
 //! stick half-width, Mindlin's c and t̄'s distance from q whole (wrapped, never cut), the
@@ -40,7 +40,7 @@ fn graph(frame: &str, title: &str) -> (Vec<Vec<char>>, Vec<char>) {
     panic!("no x axis in\n{frame}");
 }
 
-/// Items 3 and 4: on cattaneo-mindlin with M1 (t zigzags) zoomed, with `h`: t (`×`), t̄ (`~`)
+/// On cattaneo-mindlin with M1 (t zigzags) zoomed, with `h`: t (`×`), t̄ (`~`)
 /// and q (`*`) each have a mark within three columns of each of their points' x (a glyph that
 /// lands on another series' moves up to three cells), on at least two rows (t/μ and q/μ span
 /// the chart), the stick zone's `═` covers exactly the axis columns of its ends, the legend
@@ -139,7 +139,7 @@ fn every_friction_series_is_visible_at_every_size() {
     }
 }
 
-/// Item 4: the cursor's readout gains t (one-sided where M1's raw t steps) and t̄ — the
+/// The cursor's readout gains t (one-sided where M1's raw t steps) and t̄ — the
 /// solution's own values at the cursor's vertex.
 #[test]
 fn the_cursor_reads_t_and_tbar() {

@@ -1,4 +1,4 @@
-//! Issue 35, the lab's part, item 1: with edge grading on (`E`), the convergence scene's study
+//! With edge grading on (`E`), the convergence scene's study
 //! computes each scheme's graded series beside its uniform one — the numbers `riplab study
 //! --refine-edges 0,N` gives — level by level as the uniform rows, and the chart draws every
 //! series (the graded ones marked `a`–`d`) near each of its values at every size.
@@ -169,7 +169,7 @@ fn settled_graded() -> App {
     app
 }
 
-/// Item 1: every series the legend names — M1–M4 uniform (`1`–`4`) and graded (`a`–`d`) —
+/// Every series the legend names — M1–M4 uniform (`1`–`4`) and graded (`a`–`d`) —
 /// has a mark near each of its five levels at every size from 80×24 to 200×60, without colour;
 /// the legend names the graded ones `M1+1e p̄` …, and the table pairs each uniform row with
 /// its graded row (`4` beside `4+1e`).
@@ -321,7 +321,7 @@ fn graded_convergence_80x24() {
 }
 
 /// With zone grading (`3z`) the graded series read `M1+3z p̄` in the legend and `2+3z` in the
-/// table (issue 35, zone grading in the lab).
+/// table.
 #[test]
 fn zone_graded_convergence_80x24() {
     let app = made_up(Compare::Schemes, Grading::Zone(3), None);

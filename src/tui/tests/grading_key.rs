@@ -1,4 +1,4 @@
-//! Issue 35, the lab's part, item 6: `E` cycles the edge grading (0, 1, 2, 3 passes, auto),
+//! `E` cycles the edge grading (0, 1, 2, 3 passes, auto),
 //! says what it set, the header shows it (`level 1+2e`) and the solve shown is the graded one:
 //! the same as the library's graded solve of the same settings, on its graded mesh.
 

@@ -1,4 +1,4 @@
-//! Issue 31, item 5, for hertz-block: the lab opens zoomed in on a contact zone too narrow to
+//! The lab opens zoomed in on a contact zone too narrow to
 //! see on the whole of Γ_C (it opened on a spike at x = 0) and says so; the Hertz overlay reads
 //! out a, p₀ and p̄'s relative L² distance from Hertz, a and p₀ checked against Hertz's
 //! formulas for the computed load.

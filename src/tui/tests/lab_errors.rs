@@ -1,4 +1,4 @@
-//! Issue 33, its last item in src/tui: the worker's failures, the tour's refusals and a
+//! The worker's failures, the tour's refusals and a
 //! recording's end are typed errors that keep their sources, and say what users read before
 //! (each message checked against the text the code wrote before it was typed).
 

@@ -1,4 +1,4 @@
-//! Issue 31, item 5, for near-incompressible: the header shows ν and the volumetric
+//! The header shows ν and the volumetric
 //! integration where locking is the lesson (a selective integration, or ν from 0.495 with the
 //! full one), at 80 and 120 columns; the paper's ν = 0.3 with full integration does not.
 
@@ -54,7 +54,7 @@ fn library_load(scenario: &Scenario, integration: Integration) -> f64 {
     riplab::solve::solve_scenario(&scenario).unwrap().1.load
 }
 
-/// Issue 31, item 5, the key: `i` switches near-incompressible's volumetric integration, says
+/// The key: `i` switches near-incompressible's volumetric integration, says
 /// what it set, the header shows it, the load shown is the library's solve with that
 /// integration (the scenario file's own numbers: 1289.7 selective, 1311.8 full at level 2),
 /// and switching back serves the first solve's mesh from the cache (a stale mesh was served

@@ -1,4 +1,4 @@
-//! Issue 35, the lab's part, item 2: with edge grading on, a re-solve after an ε or depth
+//! With edge grading on, a re-solve after an ε or depth
 //! change solves on the graded grid it has first, and keeps it (no new grid, no new factor)
 //! while the contact edges found there lie inside its refined band; when they left it, the lab
 //! grades again from the level's uniform solve. The status line says which.

@@ -56,7 +56,7 @@ fn frame(app: &App, w: u16, h: u16) -> String {
     render_app(app, &LOOK, w, h)
 }
 
-/// The status area of a frame (issue 31: wrapped, never cut): its rows from the one with the
+/// The status area of a frame (wrapped, never cut): its rows from the one with the
 /// key hints down, joined with single spaces.
 pub(super) fn status_of(text: &str) -> String {
     let lines: Vec<&str> = text.lines().collect();

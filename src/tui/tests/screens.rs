@@ -1,4 +1,4 @@
-//! Issue 31: the screens a class meets first. Every series visible at every size, the first
+//! The screens a class meets first. Every series visible at every size, the first
 //! look at the inf-sup and convergence scenes showing levels 0 to 4, no message cut, every key
 //! saying what it did, the cursor, the projector view, the log and `render --keys/--marker`.
 
@@ -68,7 +68,7 @@ fn count(rows: &[String], glyph: char) -> usize {
         .count()
 }
 
-/// Done when, items 1 and 3: the inf-sup scene at level 0 shows levels 0 to 4 (five rows of
+/// The inf-sup scene at level 0 shows levels 0 to 4 (five rows of
 /// its table, a slope for each stable scheme), and every series its legend names has a mark
 /// at each of its five values at every size from 80×24 to 200×60 — M3's equal to M1's p̄
 /// (the legend says `(= 3)`) and M4's near 0.52 included. M2 has a kernel: its legend says so.
@@ -115,7 +115,7 @@ fn the_convergence_scene_shows_five_levels_and_every_scheme_at_every_size() {
     }
 }
 
-/// Done when, item 3: no status or help line ends cut at 80×24, in any scene, with the
+/// No status or help line ends cut at 80×24, in any scene, with the
 /// longest warnings (a locking material on a shallow indentation) active; the message wraps
 /// to a second row and the key hints keep their place at the right of the first.
 #[test]
@@ -155,7 +155,7 @@ fn no_status_or_help_line_is_cut_at_80x24() {
     }
 }
 
-/// Item 4: the cursor (`x`) shows a line and a readout of x, p, p̄ and the gap, moved with
+/// The cursor (`x`) shows a line and a readout of x, p, p̄ and the gap, moved with
 /// `,` and `.` one contact point (a vertex of Γ_C) at a time; the readout's p̄ is the
 /// solution's own value at that vertex.
 #[test]
@@ -194,7 +194,7 @@ fn the_cursor_reads_out_the_pressures_at_a_contact_point() {
     assert!(app.cursor_point().is_none());
 }
 
-/// Items 4 and 5: every key says what it did or why it did nothing (`c` outside the stress
+/// Every key says what it did or why it did nothing (`c` outside the stress
 /// scene, `g` in the stress scene, `a` with nothing left, a key with no action), and while
 /// the terminal is too small, keys other than `q` are ignored and say so.
 #[test]

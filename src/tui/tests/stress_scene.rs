@@ -1,4 +1,4 @@
-//! The lab's stress scene (issue 15): frames at 80×24 and 120×40, the monochrome rendering,
+//! The lab's stress scene: frames at 80×24 and 120×40, the monochrome rendering,
 //! the quantity key, computing the stresses only when shown, and the VTU export key.
 
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};

@@ -138,7 +138,7 @@ fn every_step_of_the_paper_tour_100x30() {
     }
 }
 
-/// Issue 14: the tour compares the methods on one chart, each method's error of p̄ against
+/// The tour compares the methods on one chart, each method's error of p̄ against
 /// its run time, on the same scheme and levels; the ALM's errors are the exact method's and
 /// the penalty's (at ε = 1e-3) stay at its ε term, as the caption says.
 #[test]
@@ -242,7 +242,7 @@ fn keys_advance_go_back_and_stay_in_bounds() {
     let back = player.update(key(KeyCode::Left));
     assert!(!back.step_changed, "no step before the first");
     assert_eq!(player.index(), 0);
-    // Issue 31: and says so.
+    // And says so.
     let said = |p: &TourApp| p.app.notice.as_ref().map(|n| n.text.clone()).unwrap_or_default();
     assert!(said(&player).contains("is the first"), "{}", said(&player));
     let next = player.update(ch(' '));
@@ -482,9 +482,9 @@ fn scenario_paths_are_relative_to_the_tour_file() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
-// ---- issue 12: the tour at 80×24 ---------------------------------------------------------
+// ---- the tour at 80×24 ---------------------------------------------------------
 
-/// Item 3: every step runs at 80×24: the lab above, the caption wrapped below in the rows
+/// Every step runs at 80×24: the lab above, the caption wrapped below in the rows
 /// left, with what does not fit a ↓ away.
 #[test]
 fn every_step_runs_at_80x24() {
@@ -511,7 +511,7 @@ fn every_step_runs_at_80x24() {
     }
 }
 
-/// Item 3: a long caption scrolls with ↓ and ↑, and the panel says there is more.
+/// A long caption scrolls with ↓ and ↑, and the panel says there is more.
 #[test]
 fn long_captions_scroll() {
     let tour = Tour::paper();
@@ -549,7 +549,7 @@ fn long_captions_scroll() {
     assert_eq!(player.caption_scroll, 0);
 }
 
-/// Item 3: `--auto` pauses while the window is too small.
+/// `--auto` pauses while the window is too small.
 #[test]
 fn auto_pauses_while_the_window_is_too_small() {
     let tour = Tour::paper();
@@ -566,7 +566,7 @@ fn auto_pauses_while_the_window_is_too_small() {
     assert!(player.auto_due(every));
 }
 
-/// Issue 14: the tour compares the penalty and the ALM at the same large ε on the same mesh,
+/// The tour compares the penalty and the ALM at the same large ε on the same mesh,
 /// and its ε = 0 step is the exact method.
 #[test]
 fn the_tour_compares_the_penalty_and_the_alm() {

@@ -1,4 +1,4 @@
-//! Issue 31, item 1: the tour shows every number its captions quote. For every step of the
+//! The tour shows every number its captions quote. For every step of the
 //! embedded tour at 80×24 and 100×30, each number of the caption (equation references such as
 //! "(17)" and the digits of names such as M1, Q1 or γ₀ aside) appears in the lab's part of the
 //! frame, above the caption panel, to the digits it is quoted with: "479" is met by a shown

@@ -1,4 +1,4 @@
-//! Issue 33, item 3, in src/tui: the lab's errors are typed and keep their sources; their
+//! The lab's errors are typed and keep their sources; their
 //! messages are the ones users saw before (the CLI tests check the texts).
 
 use std::error::Error as _;

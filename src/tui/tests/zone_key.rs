@@ -1,4 +1,4 @@
-//! Issue 35, zone grading in the lab: `E` goes on from the edge gradings to 1z, 2z, 3z (passes
+//! `E` goes on from the edge gradings to 1z, 2z, 3z (passes
 //! over the contact zone), says so, the header shows `level 2+3z`, and the solve shown is the
 //! library's zone-graded solve of the same settings (the engine calls the same
 //! `riplab::grading::solve_graded`); an ε change keeps the zone grid while the contact zone

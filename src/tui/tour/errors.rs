@@ -1,4 +1,4 @@
-//! The tour's typed errors (issue 33): a step's settings its scenario refuses (its friction
+//! The tour's typed errors: a step's settings its scenario refuses (its friction
 //! among them), a title or caption that does not fit, an `--auto` interval out of range, a
 //! step that cannot be drawn and a step `T` could not add. Their messages are the ones users saw as text before.
 

@@ -1,4 +1,4 @@
-//! A tour step's friction (issue 34; docs/design.md §11): `friction = "none" | "coulomb" |
+//! A tour step's friction (docs/design.md §11): `friction = "none" | "coulomb" |
 //! "tresca"` with `mu` or `threshold`, and `shift`, validated as the scenario's `[friction]`
 //! is (each error names the file, line, key and range), applied over the scenario's own by
 //! [`super::Tour::app`], and written by the lab's `T` when the lab's differs from the

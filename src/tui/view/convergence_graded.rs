@@ -1,4 +1,4 @@
-//! The convergence scene with the lab's edge grading on (issue 35): each scheme's (or
+//! The convergence scene with the lab's edge grading on: each scheme's (or
 //! method's) graded series beside its uniform one, its points marked by a letter, and a table that pairs each uniform row with its graded row at the same level
 //! (`4` beside `4+2e`: the graded row's unknowns, time and error of p̄).
 

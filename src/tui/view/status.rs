@@ -271,7 +271,7 @@ fn state(app: &App, theme: Theme) -> Vec<Span<'static>> {
     if app.show_timing {
         spans.push(Span::raw(format!(" · {} ms", sig(solved.total_ms, 3))));
     }
-    // With edge grading: graded, the graded grid kept, or graded again (issue 35).
+    // With edge grading: graded, the graded grid kept, or graded again.
     if let Some(regrade) = solved.regrade {
         spans.push(Span::raw(format!(" · {}", regrade.text())));
     }

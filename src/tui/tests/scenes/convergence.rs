@@ -47,7 +47,7 @@ pub(super) fn convergence_app() -> App {
     app.scene = Scene::Convergence;
     app.settings.level = 2;
     let key = app.study_key();
-    // Issue 31: levels 0 to 4 from the first look (this made-up study holds 0 to 2).
+    // Levels 0 to 4 from the first look (this made-up study holds 0 to 2).
     assert_eq!(key.max_level, 4);
     let rows = vec![
         row("M1", 0, 90, 2.0, 0.42, 0.12, 0.05),
@@ -105,7 +105,7 @@ fn convergence_asks_for_one_study_and_caches_it() {
     assert_eq!(asked.len(), 1);
     let req = asked[0].clone();
     assert_eq!(req.key.scenario, app.scenario.name);
-    // Issue 31: levels 0 to 4 from the first look.
+    // Levels 0 to 4 from the first look.
     assert_eq!(req.key.max_level, 4);
     assert_eq!(req.key.reference_level(), 5);
     let text = frame(&app, 80, 24);
@@ -174,7 +174,7 @@ fn newer_studies_supersede_older_ones() {
     assert_eq!(app.study_key().max_level, MAX_APP_LEVEL.min(MAX_STUDY_LEVEL));
 }
 
-// ---- issue 14: the convergence scene compares the methods -------------------------------
+// ---- the convergence scene compares the methods -------------------------------
 
 /// The methods' names in the rows of `study`, in order.
 fn methods_of(study: &Study) -> Vec<&'static str> {

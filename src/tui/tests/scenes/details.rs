@@ -2,7 +2,7 @@
 
 use super::*;
 
-/// Item 11: the too-small message wraps to fit; units on the axes; kernel spelled out; the
+/// The too-small message wraps to fit; units on the axes; kernel spelled out; the
 /// convergence scene says whose ε (render's levels and scenes: tests/cli/lab_commands.rs, help.rs).
 #[test]
 fn smaller_things() {
@@ -33,7 +33,7 @@ fn smaller_things() {
     assert!(text.contains("the scenario's ε"), "{text}");
 }
 
-/// Item 11: at level 5 the raw p is drawn over p̄ (its cells keep their colour).
+/// At level 5 the raw p is drawn over p̄ (its cells keep their colour).
 #[test]
 fn raw_pressure_stays_visible_on_fine_meshes() {
     let app = settled(5, Scene::Explore);
@@ -110,7 +110,7 @@ fn long_builds_show_the_time_left() {
     );
 }
 
-/// Issue 10, item 2: the lab's status line says what is known to be poor about the answer.
+/// The lab's status line says what is known to be poor about the answer.
 #[test]
 fn the_status_line_shows_warnings() {
     let locking = crate::tui::tests::common::paper_with(&[("poisson", "poisson = 0.4999999")]);
@@ -125,7 +125,7 @@ fn the_status_line_shows_warnings() {
     assert!(!text.lines().last().unwrap().contains("⚠"));
 }
 
-/// Issue 13 (every level step instant): a solve on another mesh or rule starts its Newton
+/// A solve on another mesh or rule starts its Newton
 /// iteration from the last solution's pressure carried to its points (shared between the edge
 /// points for Nitsche's method), so a level step at a fine level costs one to three Newton
 /// steps, not the 12 (penalty, Nitsche) or 21 (exact constraint) of a start from rest at level
@@ -205,7 +205,7 @@ fn finished(scenario: &Scenario, level: u32, element: Element) -> riplab::tui::e
     })
 }
 
-/// Issue 13 item 4: meshes built for inf-sup estimates (the explore scene's table asks for
+/// Meshes built for inf-sup estimates (the explore scene's table asks for
 /// every coarser level) do not push the prefetched neighbours of the mesh in use out of the
 /// cache: before, the fifth mesh evicted the least recently used one, a neighbour, and a step
 /// to it had to build it again.
@@ -230,7 +230,7 @@ fn meshes_built_for_estimates_do_not_evict_the_neighbours() {
     assert_eq!(engine.next_prefetch(), None);
 }
 
-/// Issue 13 item 4: when idle, the engine names the next finer, then the next coarser level
+/// When idle, the engine names the next finer, then the next coarser level
 /// of the mesh in use to build in the background, up to the lab's finest level and within its
 /// memory budget; an adopted build is used without assembling again.
 #[test]
@@ -315,7 +315,7 @@ fn the_engine_prefetches_the_neighbouring_levels() {
     assert_eq!(engine.next_prefetch(), None, "not retried");
 }
 
-/// Issue 13 item 4: the lab keeps (and builds in the background) level 7 beside level 6 with
+/// The lab keeps (and builds in the background) level 7 beside level 6 with
 /// Q1 or P1, and Q2's level 6 beside its level 5, but not Q2's level 7 (as many unknowns as
 /// Q1's level 8), whose estimate alone exceeds the budget.
 #[test]
@@ -341,7 +341,7 @@ fn the_cache_budget_holds_level_7_of_q1_not_of_q2() {
     assert!(!engine.fits(&[(7, Element::Q1), (7, Element::P1)]), "{sizes}");
 }
 
-/// Issue 13 item 4, end to end: a worker left idle after a solve builds the next level in
+/// End to end: a worker left idle after a solve builds the next level in
 /// the background, and the step to it then assembles nothing (no "assembling" progress).
 #[test]
 fn an_idle_worker_builds_the_next_level_before_it_is_asked_for() {
@@ -445,7 +445,7 @@ impl PaperWorker {
     }
 }
 
-/// Issue 13 item 4: a level that is not built is built beside the worker, which keeps
+/// A level that is not built is built beside the worker, which keeps
 /// answering: a step back to a built level during the build is served at once, and the
 /// solve left behind is neither run nor reported (before, the worker sat in the build and
 /// then reported the old solve cancelled).
@@ -485,7 +485,7 @@ fn a_step_back_during_a_build_is_served_at_once() {
     }
 }
 
-/// Issue 13 item 4: an inf-sup estimate (seconds at level 7: the H¹ form's factorisation and
+/// An inf-sup estimate (seconds at level 7: the H¹ form's factorisation and
 /// two eigenproblems) runs beside the worker, which answers a solve meanwhile (before, the
 /// solve waited for the estimate).
 #[test]

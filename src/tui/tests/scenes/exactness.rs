@@ -2,7 +2,7 @@
 
 use super::*;
 
-// ---- issue 11 item 7: views only draw ----------------------------------------------------
+// ---- views only draw ----------------------------------------------------
 
 /// What the views show of a solution is computed once with it ([`riplab::tui::shown::Shown`]),
 /// checked against the solution itself: a half model's p̄ mirrored about x = 0, the whole
@@ -43,7 +43,7 @@ fn shown_is_the_solution_mirrored_once() {
     assert_eq!(solved.shown.pbar.len(), solved.solution.pbar.len());
 }
 
-// ---- issue 12: the lab draws as exactly as it computes ------------------------------------
+// ---- the lab draws as exactly as it computes ------------------------------------
 
 /// The text of row `y` of `buf`, one char per cell (wide cells are not used by the charts).
 pub(super) fn row_text(buf: &Buffer, y: u16) -> Vec<String> {
@@ -114,7 +114,7 @@ fn glyphs(buf: &Buffer) -> Vec<(u16, u16)> {
     out
 }
 
-/// Item 1: every tick label sits within one cell of where a point of its value is drawn,
+/// Every tick label sits within one cell of where a point of its value is drawn,
 /// on linear and log axes, in x and in y.
 #[test]
 fn tick_labels_sit_at_their_values() {
@@ -232,7 +232,7 @@ pub(super) const MONO: Look = Look {
     marker: Marker::Braille,
 };
 
-/// Item 2: without colour every chart's series differ in their symbols, and the legend shows
+/// Without colour every chart's series differ in their symbols, and the legend shows
 /// each symbol.
 #[test]
 fn monochrome_series_have_distinct_symbols_in_the_legend() {
@@ -260,7 +260,7 @@ fn monochrome_series_have_distinct_symbols_in_the_legend() {
     }
 }
 
-/// Item 2: no tour caption relies on a colour's name.
+/// No tour caption relies on a colour's name.
 #[test]
 fn tour_captions_do_not_name_colours() {
     let tour = riplab::tui::tour::Tour::paper();
@@ -276,7 +276,7 @@ fn tour_captions_do_not_name_colours() {
     }
 }
 
-/// Item 4: one size rule for the lab and render, checked before anything is allocated.
+/// One size rule for the lab and render, checked before anything is allocated.
 #[test]
 fn sizes_outside_the_rule_are_refused() {
     use riplab::tui::parse_size;
@@ -304,7 +304,7 @@ fn sizes_outside_the_rule_are_refused() {
     assert!(render_to_string(&Scenario::paper(), "mesh", 5, 5, Some(0), None, None, None).is_err());
 }
 
-/// Item 5: at 80 columns the status line keeps its message whole (unit included); issue 31:
+/// At 80 columns the status line keeps its message whole (unit included);
 /// the key hints keep their place and a message too long wraps to further rows, not cut.
 #[test]
 fn status_message_wins_over_the_key_hints() {
@@ -333,7 +333,7 @@ fn status_message_wins_over_the_key_hints() {
     );
 }
 
-/// Item 6: a failed export shows in the status line with the absolute path; files are named
+/// A failed export shows in the status line with the absolute path; files are named
 /// with ε and depth.
 #[test]
 fn export_failures_show_and_names_carry_epsilon_and_depth() {
@@ -376,7 +376,7 @@ fn estimate(level: u32) -> riplab::tui::beta::InfSup {
     }
 }
 
-/// Item 7: the current level's row is always shown and marked, whatever the height.
+/// The current level's row is always shown and marked, whatever the height.
 #[test]
 fn infsup_table_shows_the_current_level() {
     let mut app = settled(0, Scene::Explore);
@@ -400,7 +400,7 @@ fn infsup_table_shows_the_current_level() {
     }
 }
 
-/// Item 7: stepping levels quickly loses no row: an estimate the worker drops as stale is
+/// Stepping levels quickly loses no row: an estimate the worker drops as stale is
 /// asked for again.
 #[test]
 fn stepping_levels_fast_loses_no_row() {
@@ -440,7 +440,7 @@ fn stepping_levels_fast_loses_no_row() {
     }
 }
 
-/// Item 8: the legend has a row of its own above the graph, at 80×24 too.
+/// The legend has a row of its own above the graph, at 80×24 too.
 #[test]
 fn legends_are_present_and_never_over_data() {
     let mut app = settled(1, Scene::Explore);
@@ -465,7 +465,7 @@ fn legends_are_present_and_never_over_data() {
     }
 }
 
-/// Item 9: `z` zooms the pressure chart and the contact zone to where p̄ > 0, and back.
+/// `z` zooms the pressure chart and the contact zone to where p̄ > 0, and back.
 #[test]
 fn zoom_narrows_to_the_contact_zone() {
     let scenario = Scenario::load(std::path::Path::new(concat!(
@@ -475,7 +475,7 @@ fn zoom_narrows_to_the_contact_zone() {
     .unwrap();
     let mut app = App::new(scenario.clone());
     app.show_timing = false;
-    // It opens zoomed in on its narrow contact (issue 31, item 5): start from the whole Γ_C.
+    // It opens zoomed in on its narrow contact: start from the whole Γ_C.
     app.zoom = false;
     settle(&mut app, &mut Engine::new(scenario));
     let x_labels = |text: &str| -> Vec<f64> {
@@ -522,7 +522,7 @@ fn zoom_narrows_to_the_contact_zone() {
     assert!(text.contains(" grid lines"), "{text}");
 }
 
-/// Item 10: the key that closes the help does nothing else; a key that does nothing says
+/// The key that closes the help does nothing else; a key that does nothing says
 /// why; ranges read "a to b"; Ctrl-Z suspends; `0` resets.
 #[test]
 fn keys_say_why_and_close_help_only() {

@@ -334,11 +334,7 @@ fn scenes_request_only_what_they_show() {
     let mut app = App::new(Scenario::paper());
     app.scene = Scene::InfSup;
     let cmds = app.update(Msg::Resize).commands;
-    assert_eq!(
-        cmds.len(),
-        4 * 5,
-        "M1–M4 at levels 0 to 4 (issue 31), no solve: {cmds:?}"
-    );
+    assert_eq!(cmds.len(), 4 * 5, "M1–M4 at levels 0 to 4, no solve: {cmds:?}");
     assert!(cmds.iter().all(|c| matches!(c, Command::InfSup(_))));
 
     let mut app = App::new(Scenario::paper());

@@ -127,7 +127,7 @@ fn a_asks_for_every_level_up_to_the_current_one() {
     let more = app.update(ch('a')).commands;
     assert!(app.all_levels);
     assert_eq!(levels(&more), [0, 1], "and with a, the levels below it");
-    // Issue 31: the inf-sup scene asks for M1–M4 at levels 0 to 4, or to the lab's level when
+    // The inf-sup scene asks for M1–M4 at levels 0 to 4, or to the lab's level when
     // finer, from the first look (less the three of M1 already asked for).
     app.scene = Scene::InfSup;
     app.settings.level = 5;

@@ -2,7 +2,7 @@
 
 use super::*;
 
-/// Issue 13 (every level step instant): the displacement of a solution (a quarter of a second
+/// The displacement of a solution (a quarter of a second
 /// at level 7), its stresses (seconds) and a work–precision study (seconds to a minute) run
 /// beside the worker, which answers a solve meanwhile: a step back right after a step was
 /// served only after the displacement (240–320 ms at level 7, BENCHMARKS.md), a key pressed in
@@ -75,7 +75,7 @@ fn a_solve_waits_for_no_displacement_stresses_or_study() {
     );
 }
 
-/// Issue 13 item 4 for Nitsche's method: its preparation on a built mesh (another
+/// Its preparation on a built mesh (another
 /// factorisation with the layer along Γ_C last, 6–7 s at level 7) runs beside the worker and
 /// says so; a solve sent meanwhile is answered at once, and the superseded Nitsche solve is
 /// neither run nor reported. Before, the worker sat in the preparation with no progress shown
@@ -178,7 +178,7 @@ fn a_nitsche_solve_is_told_of_the_build_then_of_its_preparation() {
     );
 }
 
-/// Issue 13 item 4: an estimate that waits for its mesh says so with the build's time left
+/// An estimate that waits for its mesh says so with the build's time left
 /// (M4 at level 7 builds Q2's level 7, 25–30 s), in the worker's replies and on the inf-sup
 /// scene's status line.
 #[test]
@@ -253,7 +253,7 @@ fn an_estimate_waiting_for_its_mesh_shows_the_build() {
     assert!(app.infsup_building().is_none() && !app.wants_tick());
 }
 
-/// Issue 13 item 4: a level whose build the memory guard refuses answers the solve that
+/// A level whose build the memory guard refuses answers the solve that
 /// asked for it with the guard's reason, through the build thread.
 #[test]
 fn a_refused_build_answers_its_solve_with_why() {
@@ -307,7 +307,7 @@ fn a_refused_build_answers_its_solve_with_why() {
     }
 }
 
-/// Issue 13 item 4: coming back to the solution shown while a solve of other settings is
+/// Coming back to the solution shown while a solve of other settings is
 /// under way (a level being built) shows that solution as settled, not "building", and
 /// tells the worker the solve is superseded.
 #[test]
@@ -376,7 +376,7 @@ fn coming_back_to_a_solution_without_its_displacement_asks_for_it() {
     assert!(!frame(&app, 100, 30).contains("computing the displacement"));
 }
 
-/// Issue 13 item 4: a solve's reply carries the pressures at once; the displacement (a solve
+/// A solve's reply carries the pressures at once; the displacement (a solve
 /// with the whole factor, the larger part of a step to a built level) follows, and the
 /// deformed view says so meanwhile.
 #[test]
@@ -411,7 +411,7 @@ fn the_pressures_are_shown_before_the_displacement_is_computed() {
     );
 }
 
-/// Issue 11 item 3: the key table drives the dispatch: every key it binds is handled by the
+/// The key table drives the dispatch: every key it binds is handled by the
 /// lab (the frame changes or a notice says why not), and a key it does not bind is not.
 #[test]
 fn every_key_of_the_table_is_handled_and_no_other() {
@@ -429,7 +429,7 @@ fn every_key_of_the_table_is_handled_and_no_other() {
             assert!(app.update(ctrl).redraw, "Ctrl {code:?} ({action:?}) does nothing");
         }
     }
-    // Issue 31: a key with no action says so.
+    // A key with no action says so.
     for code in [KeyCode::Char('j'), KeyCode::F(5)] {
         let mut app = App::new(Scenario::paper());
         assert!(app.update(key(code)).redraw);
@@ -437,7 +437,7 @@ fn every_key_of_the_table_is_handled_and_no_other() {
     }
 }
 
-/// Issue 14: `m` cycles the method (penalty → exact → alm → nitsche → penalty); each change
+/// `m` cycles the method (penalty → exact → alm → nitsche → penalty); each change
 /// re-solves, the line under the pressure chart names the method, what it needs and its
 /// iteration counts (the ALM's updates and inner Newton steps), at 80×24 too.
 #[test]
@@ -534,7 +534,7 @@ fn the_settings_line_drops_fields_rather_than_cutting_a_number() {
     }
 }
 
-/// Issue 31, hidden series: a series equal to an earlier one (as M1's β̄_h/√h equals M3's
+/// A series equal to an earlier one (as M1's β̄_h/√h equals M3's
 /// β_h/√h, by (18)) is said to coincide in the legend, and its glyph stands beside the
 /// other's at every point instead of under it; a series elsewhere keeps its cells.
 #[test]
