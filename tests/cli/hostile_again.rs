@@ -69,7 +69,7 @@ fn riplab_limited(mib: u64, args: &[&str]) -> (i32, String) {
 fn need_and_available(stderr: &str) -> Option<(f64, f64)> {
     let gib_after = |key: &str| -> Option<f64> {
         let rest = &stderr[stderr.find(key)? + key.len()..];
-        let number = rest.trim_start().split_whitespace().next()?;
+        let number = rest.split_whitespace().next()?;
         Some(number.parse::<f64>().ok()? * f64::from(1u32 << 30))
     };
     Some((gib_after("needs about")?, gib_after("this process has")?))
