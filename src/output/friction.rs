@@ -11,6 +11,10 @@ use crate::scenario::Scenario;
 use crate::solution::Solution;
 use crate::text::num;
 
+/// Why a relative distance from a closed form is undefined: the closed form vanishes on Γ_C
+/// (a contact narrower than round-off), and a distance relative to 0 is no number.
+pub(super) const NO_NORM: &str = "the closed form's L² norm on Γ_C is 0";
+
 /// The `friction` object: present in every solve's JSON, `law = "none"` and nulls without
 /// friction.
 #[derive(Serialize)]
@@ -156,7 +160,7 @@ impl MindlinReport {
             "Cattaneo–Mindlin (β = 0; this body's β = {:.3}, for this P and Q): c = {:.5} (computed stick half-width {width}); ‖t̄ − q‖₀/‖q‖₀ = {}",
             self.beta,
             self.c,
-            crate::text::sci(self.relative_error, 3, super::solve::NO_NORM)
+            crate::text::sci(self.relative_error, 3, NO_NORM)
         )
     }
 }

@@ -5,7 +5,7 @@ use std::fmt::Write as _;
 use serde::Serialize;
 
 use super::Report;
-use super::friction::{FrictionReport, MindlinReport};
+use super::friction::{FrictionReport, MindlinReport, NO_NORM};
 use crate::contact::circle::CircleContact;
 use crate::contact::friction::State;
 use crate::contact::hertz::Hertz;
@@ -17,10 +17,6 @@ use crate::solution::{Solution, Timing};
 use crate::study::Status;
 use crate::text::sci;
 use crate::warning::Warning;
-
-/// Why a relative distance from a closed form is undefined: the closed form vanishes on Γ_C
-/// (a contact narrower than round-off), and a distance relative to 0 is no number.
-pub(super) const NO_NORM: &str = "the closed form's L² norm on Γ_C is 0";
 
 /// The `nodes` object of docs/design.md §7: Γ_C's vertices, ascending x.
 #[derive(Serialize)]

@@ -175,7 +175,7 @@ fn an_oversized_level_in_a_step_is_said_in_the_users_words() {
     assert!(!stderr.contains("i128"), "{stderr}");
     assert!(
         stderr.contains("99999999999999999999")
-            && stderr.contains("step[1].level")
+            && stderr.contains("step[2].level")
             && stderr.contains("0 to 7"),
         "{stderr}"
     );
