@@ -6,8 +6,7 @@
 use crossterm::event::{KeyCode, MouseButton, MouseEvent, MouseEventKind};
 use ratatui::layout::{Position, Rect};
 
-use super::super::view::tab_at;
-use super::{App, Notice};
+use super::{App, Notice, Scene};
 
 /// Lines one notch of the wheel scrolls.
 const WHEEL_LINES: usize = 3;
@@ -65,4 +64,22 @@ impl App {
 /// Where column `x` stands across `graph`, from 0 (its left edge) to 1, at the cell's middle.
 fn fraction(graph: Rect, x: u16) -> f64 {
     (f64::from(x - graph.x) + 0.5) / f64::from(graph.width.max(1))
+}
+
+/// The scene whose tab is at `at`, the tabs drawn in `tabs` (right-aligned, each ` name `
+/// in [`Scene::ALL`]'s order), if any.
+fn tab_at(tabs: Rect, at: Position) -> Option<Scene> {
+    if !tabs.contains(at) {
+        return None;
+    }
+    let widths = Scene::ALL.map(|s| s.name().chars().count() as u16 + 2);
+    let total: u16 = widths.iter().sum();
+    let mut x = tabs.right().saturating_sub(total);
+    for (scene, width) in Scene::ALL.into_iter().zip(widths) {
+        if (x..x + width).contains(&at.x) {
+            return Some(scene);
+        }
+        x += width;
+    }
+    None
 }

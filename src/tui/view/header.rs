@@ -1,7 +1,7 @@
 //! The two header lines: scenario and scene tabs; then the discretisation and the parameters.
 
 use ratatui::Frame;
-use ratatui::layout::{Alignment, Constraint, Layout, Position, Rect};
+use ratatui::layout::{Alignment, Constraint, Layout, Rect};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::Paragraph;
 
@@ -54,24 +54,6 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, theme: Theme) {
         ..drawn
     });
     frame.render_widget(Paragraph::new(settings_line(app, theme, second.width)), second);
-}
-
-/// The scene whose tab is at `at`, the tabs drawn in `tabs` (right-aligned, each ` name `
-/// in [`Scene::ALL`]'s order), if any.
-pub fn tab_at(tabs: Rect, at: Position) -> Option<Scene> {
-    if !tabs.contains(at) {
-        return None;
-    }
-    let widths = Scene::ALL.map(|s| s.name().chars().count() as u16 + 2);
-    let total: u16 = widths.iter().sum();
-    let mut x = tabs.right().saturating_sub(total);
-    for (scene, width) in Scene::ALL.into_iter().zip(widths) {
-        if (x..x + width).contains(&at.x) {
-            return Some(scene);
-        }
-        x += width;
-    }
-    None
 }
 
 /// "M1 q1+gauss1 │ level 0 h=1 │ 32 el 90 dofs │ ε=1e-6 │ d=0.8" (dofs once solved; then

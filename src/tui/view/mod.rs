@@ -9,7 +9,6 @@ mod deformed;
 pub mod fmt;
 mod friction;
 mod header;
-pub use header::tab_at;
 pub mod help;
 mod infsup_chart;
 mod infsup_panel;
