@@ -23,7 +23,7 @@ pub const PIECE_POINTS: usize = 16;
 /// on each edge) and a closed form `f` that is smooth but at `ends` (its kinks and square-root
 /// ends; any order, points off Γ_C ignored). NaN when ‖f‖₀ is 0 or either integral is not a
 /// finite number: the relative distance is then undefined, and its printers say so
-/// ([`crate::text::sci`]).
+/// (`text::sci`, private to the crate).
 pub fn relative_l2_error(cp: &ContactPoints, values: &[f64], f: impl Fn(f64) -> f64, ends: &[f64]) -> f64 {
     let (err, norm) = squared_distance_and_norm(cp, values, f, ends);
     if norm > 0.0 && norm.is_finite() && err.is_finite() {
