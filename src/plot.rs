@@ -340,8 +340,9 @@ fn create_temporary(dir: &Path, name: &OsStr) -> io::Result<(fs::File, PathBuf)>
 
 /// Write `bytes` to `path` atomically: to a fresh temporary file in the same directory
 /// (`create_temporary`: an unpredictable name, created exclusively), then moved into place.
-/// Unless `overwrite`, an existing `path` is left alone and the error is of kind [`io::ErrorKind::AlreadyExists`] (a hard link is made,
-/// which fails if the name is taken even under a race; where hard links are not supported, a
+/// Unless `overwrite`, an existing `path` is left alone and the error is of kind
+/// [`io::ErrorKind::AlreadyExists`] (a hard link is made, which fails if the name is taken even
+/// under a race; where hard links are not supported, a
 /// rename onto a name that does not exist). The temporary file is gone afterwards in every
 /// case, and no other file is ever removed.
 pub fn write_file(path: &Path, bytes: &[u8], overwrite: bool) -> io::Result<()> {
