@@ -5,6 +5,7 @@ mod convergence;
 mod details;
 mod exactness;
 mod frames;
+mod keys_and_lines;
 mod look;
 mod worker;
 
