@@ -12,8 +12,9 @@ use riplab::contact::ContactParams;
 use riplab::contact::friction::{Friction, Law};
 use riplab::contact::newton::NewtonOptions;
 use riplab::discretization::{Discretization, Trace};
-use riplab::friction::{FrictionTrace, solve_friction};
 use riplab::scenario::Scenario;
+use riplab::solve::friction::FrictionTrace;
+use riplab::solve::solve_friction;
 use riplab::solve::solve_scenario;
 
 /// As the binary: huge pages for the large blocks (`riplab::huge_pages`).

@@ -13,8 +13,8 @@ use riplab::contact::Rule;
 use riplab::contact::newton::NewtonOptions;
 use riplab::discretization::Discretization;
 use riplab::mesh::Element;
-use riplab::nitsche::{self, NitscheParams};
 use riplab::scenario::Scenario;
+use riplab::solve::nitsche::{self, NitscheParams};
 use riplab::solve::solve_contact;
 use riplab::study::{Errors, Reference, errors};
 

@@ -12,7 +12,8 @@
 use riplab::contact::newton::NewtonOptions;
 use riplab::contact::{ContactParams, ContactPoints, Method, Rule};
 use riplab::fem::quadrature::gauss_legendre;
-use riplab::grading::{Grading, RefineEdges, solve_graded};
+use riplab::grading::{Grading, RefineEdges};
+use riplab::solve::solve_graded;
 use riplab::study::{
     Reference, ReferenceFields, ReferenceMesh, Target, errors, refine_reference, uniform_reference,
 };
@@ -54,7 +55,7 @@ fn main() -> Result<(), SolveError> {
         .filter(|(_, p)| **p > 1e-9 * top)
         .map(|(q, _)| q.x)
         .fold(0.0, f64::max);
-    let epsilon = riplab::penalty_error::default_epsilon(&s, 6);
+    let epsilon = riplab::study::penalty_error::default_epsilon(&s, 6);
     let params = ContactParams {
         rule: Rule::Gauss1,
         method: Method::Penalty,

@@ -14,7 +14,6 @@ use choices::{MarkerName, choice};
 mod checks;
 mod choices;
 mod friction_args;
-mod friction_solve;
 mod grading;
 #[cfg(test)]
 mod lab_help;

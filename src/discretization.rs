@@ -1,6 +1,6 @@
 //! The work that depends on the mesh alone (docs/design.md §6): K assembled, analysed and
 //! factorised once with Γ_C's normal dofs last, and its trace compliance C; every contact
-//! solve on the mesh ([`crate::solve`]) reuses it.
+//! solve on the mesh ([`crate::solve()`]) reuses it.
 
 use std::any::Any;
 use std::collections::HashMap;
@@ -9,8 +9,7 @@ use std::time::Instant;
 
 use faer::Mat;
 
-use crate::check;
-use crate::contact::{ContactParams, ContactPoints, Method, Rule};
+use crate::contact::{ContactPoints, Rule};
 use crate::error::{InputFault, SolveError, Workload};
 use crate::fem::factor::{Analysis, Factor};
 use crate::fem::memory::{Limits, Sizes};
@@ -53,7 +52,7 @@ pub struct Discretization {
     /// G = T C Tᵀ for each rule met so far.
     couplings: Mutex<HashMap<Rule, Arc<Mat<f64>>>>,
     /// What a method builds on its first solve on this mesh and keeps with it (Nitsche's layer
-    /// factor and couplings, [`crate::nitsche`]).
+    /// factor and couplings, [`crate::solve::nitsche`]).
     pub(crate) kept: Kept,
     /// The trace factorised last: Γ_C's normal dofs, or both components for friction.
     pub(crate) trace: Trace,
@@ -124,6 +123,11 @@ impl Discretization {
 
     /// The per-mesh work for `mesh` with the model's supports ([`DofMap::model`]): K assembled,
     /// analysed and factorised with Γ_C's normal dofs last, and the trace compliance C.
+    ///
+    /// # Errors
+    ///
+    /// The stiffness is not positive definite (a mesh free to move), or memory runs out
+    /// ([`SolveError`]).
     pub fn new(mesh: Mesh, material: Material, integration: Integration) -> Result<Self, SolveError> {
         let dofs = DofMap::model(&mesh);
         Self::with_dofs(mesh, dofs, material, integration)
@@ -131,6 +135,10 @@ impl Discretization {
 
     /// As [`Discretization::new`] with other supports than the model's (`dofs`), e.g. rollers
     /// on both sides for a patch test. Γ_C's normal dofs must be free.
+    ///
+    /// # Errors
+    ///
+    /// As [`Discretization::new`]'s.
     pub fn with_dofs(
         mesh: Mesh,
         dofs: DofMap,
@@ -142,6 +150,10 @@ impl Discretization {
 
     /// As [`Discretization::with_dofs`], ordering `trace` last: [`Trace::Full`] also
     /// condenses onto Γ_C's u_x (friction), refused when one of them is held.
+    ///
+    /// # Errors
+    ///
+    /// As [`Discretization::new`]'s, and [`Trace::Full`] with one of Γ_C's u_x held.
     pub fn with_trace(
         mesh: Mesh,
         dofs: DofMap,
@@ -153,7 +165,7 @@ impl Discretization {
         let contact_dofs = dofs.contact_dofs(&mesh);
         let tangential = match trace {
             Trace::Normal => None,
-            Trace::Full => Some(dofs.tangential_dofs(&mesh).ok_or_else(held_tangential)?),
+            Trace::Full => Some(dofs.tangential_dofs(&mesh).ok_or(InputFault::HeldTangential)?),
         };
         let t = Instant::now();
         let stiffness = assemble(&mesh, &dofs, Form::Elasticity(material, integration));
@@ -213,12 +225,21 @@ impl Discretization {
     /// The discretisation of `scenario` at `level` with `element`, refused before anything is
     /// allocated when its memory estimate exceeds the memory this process may use
     /// ([`crate::fem::memory`]).
+    ///
+    /// # Errors
+    ///
+    /// The estimate does not fit the memory ([`SolveError::TooLarge`]), or as
+    /// [`Discretization::new`]'s.
     pub fn of(scenario: &Scenario, level: u32, element: Element) -> Result<Self, SolveError> {
         Self::of_beside(scenario, level, element, 0)
     }
 
     /// [`Discretization::of`] with `trace` ordered last ([`Trace::Full`] for friction: one
     /// factorisation gives both the normal and the full trace compliance).
+    ///
+    /// # Errors
+    ///
+    /// As [`Discretization::of`]'s and [`Discretization::with_trace`]'s.
     pub fn of_traced(
         scenario: &Scenario,
         level: u32,
@@ -251,6 +272,10 @@ impl Discretization {
 
     /// [`Discretization::of`] beside other work under way that may still take `reserved`
     /// bytes: refused when its estimate exceeds what this process may use less `reserved`.
+    ///
+    /// # Errors
+    ///
+    /// As [`Discretization::of`]'s, with `reserved` counted.
     pub fn of_beside(
         scenario: &Scenario,
         level: u32,
@@ -268,6 +293,10 @@ impl Discretization {
     /// Whether the memory this process may use less `reserved` bytes holds the estimated peak
     /// of the mesh of `level` with `element` (its build, or another factorisation of the same
     /// size); why not otherwise.
+    ///
+    /// # Errors
+    ///
+    /// [`SolveError::TooLarge`], naming the unknowns, the memory needed and what is available.
     pub fn fits_beside(
         scenario: &Scenario,
         level: u32,
@@ -350,13 +379,6 @@ impl Discretization {
         epsilon_range(self.material.young, self.mesh.h())
     }
 
-    /// `params` checked against what this discretisation can answer ([`check_params`]).
-    pub fn check(&self, params: &ContactParams, n_points: usize) -> Result<(), SolveError> {
-        let height = self.height();
-        let (range, normals) = (self.epsilon_range(), self.contact_dofs.len());
-        check_params(params, range, height, n_points, normals)
-    }
-
     /// Nodal contact forces Tᵀy on the Γ_C nodes from the forces y at the rule's points.
     pub(crate) fn nodal_forces(points: &ContactPoints, forces: &[f64], n_nodes: usize) -> Vec<f64> {
         let mut f = vec![0.0; n_nodes];
@@ -367,11 +389,6 @@ impl Discretization {
         }
         f
     }
-}
-
-/// Friction's refusal of a mesh whose Γ_C u_x is held (a half model, a roller wall).
-pub(crate) fn held_tangential() -> SolveError {
-    InputFault::HeldTangential.into()
 }
 
 /// The solver's error for a failure of the finite element layer on `n` unknowns.
@@ -399,61 +416,6 @@ pub(crate) fn refused(e: FemError, workload: Workload, n: usize) -> SolveError {
             available,
         },
     }
-}
-
-/// A contact solve's parameters checked against what it can answer: the method's own
-/// parameters ([`Method::check`]), ε within `range` (from [`epsilon_range`]) and > 0 for the
-/// methods that use it (ε = 0 for `exact`), the depth within the body's `height`, and `exact`
-/// only for a rule with no more points (`n_points`) than Γ_C has normal displacements
-/// (`normals`).
-pub fn check_params(
-    params: &ContactParams,
-    range: (f64, f64),
-    height: f64,
-    n_points: usize,
-    normals: usize,
-) -> Result<(), SolveError> {
-    params.method.check().map_err(InputFault::from)?;
-    check::epsilon_in(params.epsilon, range).map_err(|source| SolveError::Range {
-        what: "the penalty parameter ε",
-        source,
-    })?;
-    if params.method.uses_epsilon() && params.epsilon == 0.0 {
-        return Err(InputFault::NeedsEpsilon {
-            method: params.method.name(),
-        }
-        .into());
-    }
-    check::depth(params.obstacle.depth(), height).map_err(|source| SolveError::Range {
-        what: "the indentation depth",
-        source,
-    })?;
-    if params.method == Method::Exact && n_points > normals {
-        return Err(SolveError::Kernel {
-            rule: params.rule.name(),
-            points: n_points,
-            normals,
-        });
-    }
-    Ok(())
-}
-
-/// [`check_params`] before anything is built: from the scenario's numbers at `level` with
-/// `element`, so that a request with no answer is refused without assembling a stiffness.
-pub fn check_request(
-    scenario: &Scenario,
-    level: u32,
-    element: Element,
-    params: &ContactParams,
-) -> Result<(), SolveError> {
-    let n_edges = (scenario.x_lines.len() - 1) << level;
-    check_params(
-        params,
-        scenario.epsilon_range(level),
-        scenario.height,
-        params.rule.n_points(n_edges),
-        element.order() * n_edges + 1,
-    )
 }
 
 /// Column `j` of `m` as a slice (a [`Mat`]'s columns are contiguous).

@@ -22,6 +22,7 @@ pub use method::MethodError;
 
 /// Why a discretisation or a contact solve produced no result.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum SolveError {
     /// The caller cancelled the solve (from its progress callback).
     #[error("the solve was cancelled")]
@@ -115,6 +116,7 @@ impl SolveError {
 
 /// What a refusal for memory ([`SolveError::TooLarge`]) was about.
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub enum Workload {
     /// The discretisation of `level` with `element` ([`crate::discretization::Discretization`]);
     /// `reserved`: less the memory of work under way.

@@ -57,6 +57,10 @@ impl TraceCompliance {
     /// Refused before anything is allocated when the estimate's work does not fit beside
     /// `disc` ([`fits_beside`]); a factorisation that runs out of memory says so, like the
     /// solve's.
+    ///
+    /// # Errors
+    ///
+    /// The work does not fit beside `disc` ([`fits_beside`]), or memory runs out while factorising.
     pub fn new(disc: &Discretization) -> Result<Self, SolveError> {
         fits_beside(disc)?;
         let a = assemble(&disc.mesh, &disc.dofs, Form::H1);
@@ -106,6 +110,10 @@ fn too_large(level: Option<u32>, sizes: &Sizes, need: u64, limits: &Limits) -> R
 
 /// Whether the estimate's work beside `disc`, already built, fits what this process may still
 /// use ([`Limits::of_process`] counts what `disc` holds).
+///
+/// # Errors
+///
+/// [`SolveError::TooLarge`], naming the estimate's work and the memory.
 pub fn fits_beside(disc: &Discretization) -> Result<(), SolveError> {
     let sizes = sizes(disc);
     too_large(None, &sizes, sizes.infsup_extra_bytes(), &Limits::of_process())
@@ -113,6 +121,10 @@ pub fn fits_beside(disc: &Discretization) -> Result<(), SolveError> {
 
 /// Whether the whole estimate at `level` with `element` (its discretisation and its own work)
 /// fits what this process may use, decided from the mesh's lines before anything is built.
+///
+/// # Errors
+///
+/// As [`fits_beside`]'s, before anything is built.
 pub fn fits(scenario: &Scenario, level: u32, element: Element) -> Result<(), SolveError> {
     let sizes = Discretization::sizes(scenario, level, element);
     let need = sizes.peak_bytes() + sizes.infsup_extra_bytes();
@@ -183,6 +195,10 @@ pub fn schur(cp: &ContactPoints, compliance: &Mat<f64>) -> Mat<f64> {
 
 /// λ_min(S, N) over the vectors with Nq ≠ 0 (N symmetric positive semi-definite): with
 /// N = U D Uᵀ and Z = U_+ D_+^(−1/2) over its positive eigenvalues, λ_min(Zᵀ S Z).
+///
+/// # Errors
+///
+/// The eigendecomposition did not converge ([`SolveError::Eigen`]).
 pub fn min_generalized_eigenvalue(s: &Mat<f64>, n: &Mat<f64>) -> Result<f64, SolveError> {
     let evd = n.self_adjoint_eigen(Side::Lower).map_err(SolveError::Eigen)?;
     let d = evd.S().column_vector();
@@ -198,6 +214,10 @@ pub fn min_generalized_eigenvalue(s: &Mat<f64>, n: &Mat<f64>) -> Result<f64, Sol
 }
 
 /// β_h, β̄_h and their ratios to √h for `rule` on `disc`, from its trace compliance.
+///
+/// # Errors
+///
+/// As [`min_generalized_eigenvalue`]'s, or the factorisation of the Schur complement failed.
 pub fn estimate(
     disc: &Discretization,
     compliance: &TraceCompliance,
@@ -234,6 +254,10 @@ pub fn estimate(
 
 /// The estimate for one rule (computes the trace compliance; reuse [`TraceCompliance`] and
 /// [`estimate`] for several rules on one mesh).
+///
+/// # Errors
+///
+/// As [`TraceCompliance::new`]'s and [`estimate`]'s.
 pub fn inf_sup(disc: &Discretization, rule: Rule) -> Result<InfSup, SolveError> {
     estimate(disc, &TraceCompliance::new(disc)?, rule)
 }
@@ -309,6 +333,10 @@ pub fn slope(prev: &InfSupRow, row: &InfSupRow) -> Option<f64> {
 /// grouped per pair in `pairs`' order by ascending level, each row with its slope from the one
 /// before. One mesh, factorisation and trace compliance per element and level, shared by the
 /// rules of that element (each row says what the shared work and its own cost).
+///
+/// # Errors
+///
+/// The first row that does not fit the memory or does not factorise, as [`inf_sup`]'s.
 pub fn table(
     scenario: &Scenario,
     pairs: &[(Element, Rule)],

@@ -1,7 +1,8 @@
-//! riplab: the reduced-integration penalty (RIP) method for frictionless unilateral contact
-//! in plane elasticity, after N. Kikuchi, "A smoothing technique for reduced integration
-//! penalty methods in contact problems" (1981). Equation numbers (1)–(26) are the paper's;
-//! section numbers §1–§9 are those of `docs/design.md`.
+//! riplab: the reduced-integration penalty (RIP) method for unilateral contact in plane
+//! elasticity, after N. Kikuchi, "A smoothing technique for reduced integration penalty methods
+//! in contact problems" (1981), beside the exact constraint, the augmented Lagrangian and
+//! Nitsche's method, with Tresca or Coulomb friction. Equation numbers (1)–(26) are the
+//! paper's; section numbers §1–§11 are those of `docs/design.md`.
 //!
 //! The paper's problem in a few lines (M1 at level 1, the paper's 128 elements):
 //!
@@ -21,17 +22,21 @@
 //! ```
 //!
 //! The core is re-exported here: a [`Scenario`] (the paper's, or a TOML file: [`ScenarioError`]
-//! says where it is wrong), [`solve_scenario`] or a [`Discretization`] and [`sweep`] with a
-//! [`Method`] and a [`Rule`], the [`Solution`] (p, p̄, the load, the displacement), the inf-sup
+//! says where it is wrong), [`solve_scenario`], or a [`Discretization`] and a [`Request`] (a
+//! [`Method`] and a [`Rule`], friction, grading) given to the one solve entry [`solve()`] (or
+//! [`sweep`]'s instances), the [`Solution`] (p, p̄, the load, the displacement), the inf-sup
 //! estimate [`inf_sup`], the refinement [`study()`], the stresses [`quadrature_stresses`] and the
 //! [`vtu`] files; [`SolveError`] is every way a solve fails. The modules hold the rest of each
-//! concept's vocabulary. The terminal lab and the command line are private: the binary runs
+//! concept's vocabulary; the finite element layer, the outputs, the cache, the plots and the
+//! verify pack are public for the binary's tests and benches only (hidden from these docs). The terminal lab and the command line are private: the binary runs
 //! them through `run_command_line` (the `cli` feature, on by default), a program with the
 //! `tui` feature alone opens the lab with `run_lab`, and without default features (`cargo
 //! build --no-default-features`) the library builds without either.
 
-// Every public item is documented; CI's clippy makes a missing doc an error.
+// Every public item is documented, and every public fallible function has an `# Errors`
+// section; CI's clippy makes either missing an error.
 #![warn(missing_docs)]
+#![warn(clippy::missing_errors_doc)]
 
 // The lab's unit tests share helpers with the integration tests, which name the crate.
 #[cfg(test)]
@@ -47,10 +52,11 @@ pub use input::ScenarioError;
 pub use mesh::Element;
 pub use scenario::Scenario;
 pub use solution::Solution;
-pub use solve::{solve_scenario, sweep};
+pub use solve::{Request, solve, solve_scenario, sweep};
 pub use stress::{StressField, quadrature_stresses};
 pub use study::{Study, study};
 
+#[doc(hidden)]
 pub mod cache;
 pub(crate) mod check;
 #[cfg(feature = "cli")]
@@ -58,20 +64,21 @@ mod cli;
 pub mod contact;
 pub mod discretization;
 pub mod error;
+#[doc(hidden)]
 pub mod fem;
-pub mod friction;
 #[cfg(feature = "fuzzing")]
 #[doc(hidden)]
 pub mod fuzzing;
 pub mod grading;
+#[doc(hidden)]
 pub mod huge_pages;
 pub mod infsup;
 pub(crate) mod input;
 pub mod material;
 pub mod mesh;
-pub mod nitsche;
+#[doc(hidden)]
 pub mod output;
-pub mod penalty_error;
+#[doc(hidden)]
 pub mod plot;
 pub(crate) mod refine_edges;
 pub mod scenario;
@@ -86,6 +93,7 @@ pub(crate) mod text;
 #[cfg(feature = "tui")]
 #[cfg_attr(not(feature = "cli"), allow(dead_code, unused_imports))]
 mod tui;
+#[doc(hidden)]
 pub mod verify;
 pub mod vtu;
 pub mod warning;

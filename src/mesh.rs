@@ -13,6 +13,7 @@ pub const MAX_LEVEL: u32 = 8;
 /// The finite element used for the displacement (docs/design.md §2).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
+#[non_exhaustive]
 pub enum Element {
     /// Bilinear 4-node quadrilateral, the paper's element.
     Q1,

@@ -41,6 +41,10 @@ pub struct RefineEdgesError {
 
 impl RefineEdges {
     /// `auto`, or a whole number of passes 0 ..= [`MAX_PASSES`].
+    ///
+    /// # Errors
+    ///
+    /// Text that is neither `auto` nor a whole number 0 ..= [`MAX_PASSES`].
     pub fn parse(text: &str) -> Result<Self, RefineEdgesError> {
         let text = text.trim();
         if text.eq_ignore_ascii_case("auto") {
@@ -55,6 +59,10 @@ impl RefineEdges {
     }
 
     /// `n` passes, when 0 ..= [`MAX_PASSES`].
+    ///
+    /// # Errors
+    ///
+    /// `n` below 0 or above [`MAX_PASSES`].
     pub fn of_count(n: i64) -> Result<Self, RefineEdgesError> {
         match u32::try_from(n) {
             Ok(n) if n <= MAX_PASSES => Ok(RefineEdges::Passes(n)),
@@ -91,6 +99,7 @@ impl fmt::Display for RefineEdges {
 /// over the whole contact zone (`Nz`: [`crate::grading::zone`]). Written as on the command
 /// line (`3`, `auto`, `3z`), and so in JSON and CSV.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum Grading {
     /// Passes at the contact edges (`Passes(0)`: the uniform level).
     Edges(RefineEdges),
@@ -113,6 +122,10 @@ impl From<RefineEdges> for Grading {
 
 impl Grading {
     /// `N` or `Ne` (edge passes), `auto`, or `Nz` (zone passes; `0z` is the uniform level).
+    ///
+    /// # Errors
+    ///
+    /// Text that is none of `N`, `Ne`, `auto`, `Nz`, or passes beyond [`MAX_PASSES`].
     pub fn parse(text: &str) -> Result<Self, RefineEdgesError> {
         let text = text.trim();
         let refused = || RefineEdgesError {

@@ -65,6 +65,10 @@ impl Scheme {
     }
 
     /// A scheme as written: M1–M4 or `element+rule`, any case.
+    ///
+    /// # Errors
+    ///
+    /// Text that is neither M1–M4 nor `element+rule`, with the allowed names.
     pub fn parse(text: &str) -> Result<Scheme, SchemeError> {
         let bad = || SchemeError {
             text: text.to_string(),

@@ -70,6 +70,10 @@ impl Solution {
 
     /// The stresses of this solution ([`StressField`]), with the scenario's material and
     /// integration.
+    ///
+    /// # Errors
+    ///
+    /// As [`StressField::new`]'s.
     pub fn stress_field(
         &self,
         scenario: &Scenario,
@@ -111,6 +115,26 @@ impl Solution {
 }
 
 impl Timing {
+    /// The mesh's work alone (assembly, ordering, factorisation) of `disc`.
+    pub fn mesh_work(disc: &Discretization) -> Self {
+        Timing {
+            assembly: disc.assembly_ms,
+            symbolic: disc.symbolic_ms,
+            factorization: disc.factorization_ms,
+            newton: 0.0,
+            total: disc.assembly_ms + disc.symbolic_ms + disc.factorization_ms,
+        }
+    }
+
+    /// Add `other`'s times to these.
+    pub fn add(&mut self, other: &Timing) {
+        self.assembly += other.assembly;
+        self.symbolic += other.symbolic;
+        self.factorization += other.factorization;
+        self.newton += other.newton;
+        self.total += other.total;
+    }
+
     /// Charge this solve with the mesh's work too (a fresh solve).
     pub fn include_mesh_work(&mut self, disc: &Discretization) {
         self.assembly = disc.assembly_ms;

@@ -311,6 +311,10 @@ pub fn quadrature_stresses(
 
 impl StressField {
     /// The stresses of the displacement `u` (every dof, node-major) on `mesh`.
+    ///
+    /// # Errors
+    ///
+    /// `u` does not have the mesh's dofs, or the L² projection did not converge ([`StressError`]).
     pub fn new(
         mesh: &Mesh,
         material: &Material,

@@ -26,6 +26,7 @@ mod errors;
 mod graded;
 mod grid;
 mod meaning;
+pub mod penalty_error;
 mod rates;
 mod reference;
 mod refine;
@@ -229,6 +230,11 @@ pub struct Study {
 /// With the scenario's friction on, every row and the reference are solved with it
 /// (docs/design.md §11) and the rows report t̄'s and Q's errors too; edge-graded rows do not
 /// take friction ([`InputFault::GradedFriction`]).
+///
+/// # Errors
+///
+/// The scenario has no contact, the reference does not fit the memory or does not solve, or its
+/// norms are not finite ([`SolveError`]); a row's own failure is its row's status.
 pub fn study(
     scenario: &Scenario,
     schemes: &[(Element, Rule)],

@@ -62,6 +62,11 @@ pub fn contact_path(path: &Path) -> PathBuf {
 /// Whether `path` may be written: a name ending in `.vtu`, and no file there unless
 /// `overwrite`; with `overwrite` only a regular file is replaced (never a link, a FIFO, a
 /// device or a directory). Checked before any work is done, for the body and Γ_C files.
+///
+/// # Errors
+///
+/// A name not ending in `.vtu`, a file there without `overwrite`, or one that is not a regular
+/// file.
 pub fn check_targets(path: &Path, overwrite: bool) -> Result<[PathBuf; 2], VtuError> {
     if path.extension().is_none_or(|e| e != "vtu") {
         return Err(VtuError::Extension(path.to_path_buf()));
@@ -74,6 +79,10 @@ pub fn check_targets(path: &Path, overwrite: bool) -> Result<[PathBuf; 2], VtuEr
 }
 
 /// Whether one file may be written at `path` (see [`check_targets`]).
+///
+/// # Errors
+///
+/// As [`check_targets`]'s for one file.
 pub fn check_target(path: &Path, overwrite: bool) -> Result<(), VtuError> {
     crate::plot::check_target(path, overwrite).map_err(|e| match e.kind() {
         io::ErrorKind::AlreadyExists => VtuError::Exists(path.to_path_buf()),
@@ -83,6 +92,10 @@ pub fn check_target(path: &Path, overwrite: bool) -> Result<(), VtuError> {
 }
 
 /// Write the body to `path` and Γ_C next to it ([`contact_path`]); returns both paths.
+///
+/// # Errors
+///
+/// As [`check_targets`]'s, or a file cannot be written ([`VtuError::Io`]).
 pub fn write(
     path: &Path,
     disc: &Discretization,
@@ -106,6 +119,10 @@ pub fn write(
 }
 
 /// The VTK XML text of `vtk`.
+///
+/// # Errors
+///
+/// The XML writer failed ([`VtuError`]).
 pub fn xml(vtk: Vtk) -> Result<Vec<u8>, VtuError> {
     let mut out = Vec::new();
     vtk.write_xml(&mut out).map_err(VtuError::Vtk)?;

@@ -37,6 +37,7 @@ pub const MIN_CONTACT_ELEMENTS: usize = 3;
 
 /// A known weakness of an answer.
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub enum Warning {
     /// Near-incompressible plane strain with an element that locks as integrated.
     Locking {

@@ -241,6 +241,10 @@ pub enum LevelsError {
 }
 
 /// Parse an inclusive level range `a..b`, `a..=b` or `a`.
+///
+/// # Errors
+///
+/// Text that is not a level, a range `a..b` or `a..=b`, or a level out of range.
 pub fn parse_levels(text: &str) -> Result<Vec<u32>, LevelsError> {
     let bad = || LevelsError::Malformed {
         text: text.to_string(),

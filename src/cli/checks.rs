@@ -5,8 +5,8 @@
 use super::CliError;
 use crate::contact::ContactParams;
 use crate::discretization::Discretization;
-use crate::discretization::check_request;
 use crate::scenario::Scenario;
+use crate::solve::checks::check_request;
 use crate::tui::app::{App, MAX_APP_LEVEL};
 
 /// The request of a `render` frame of `scene` checked as the command that computes it would

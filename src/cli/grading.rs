@@ -1,16 +1,19 @@
 //! `--refine-edges N|Nz|auto` of `riplab solve` and the axis `--refine-edges 0,1,2z,…` of
-//! `riplab study` ([`crate::grading`]): parsed and checked here, solved through
-//! [`solve_graded`].
+//! `riplab study` ([`crate::grading`]): parsed and checked here, solved through the library's
+//! entry ([`solve`]) with the rows' friction.
+
+use std::ops::ControlFlow;
 
 use super::{CliError, usage};
 use crate::contact::ContactParams;
+use crate::contact::friction::Friction;
 use crate::contact::newton::NewtonOptions;
 use crate::discretization::Discretization;
 use crate::error::SolveError;
-use crate::grading::{Grading, solve_graded};
+use crate::grading::Grading;
 use crate::scenario::Scenario;
 use crate::solution::Solution;
-use crate::solve::sweep;
+use crate::solve::{Request, Warm, solve};
 
 /// The grading of a solve: `--refine-edges` when given, else the scenario's
 /// `[mesh] refine_edges`.
@@ -41,33 +44,49 @@ pub(super) fn refine_axis(texts: &[String], scenario: &Scenario) -> Result<Vec<G
 /// the passes made.
 pub(super) type Outcome = (Result<Solution, SolveError>, Option<Discretization>, u32);
 
-/// Solve every instance of `params` on `uniform` (the scenario's level), graded as `refine`
-/// asks: without grading [`sweep`]'s warm-started solves on one mesh; with it each instance
-/// grades its own mesh ([`solve_graded`]). The first instance is charged with the uniform
-/// level's mesh work.
+/// Solve every instance of `params` on `uniform` (the scenario's level) through the library's
+/// entry ([`solve`]), each with its friction (the last of `frictions` for the rest; none when
+/// empty) and graded as `grading` asks. Frictionless instances on the uniform level start from
+/// the forces of the last one that solved (a sweep over ε or the depth costs a few Newton steps
+/// a value); with friction each has its own loading history, graded each its own mesh. The
+/// first instance is charged with the uniform level's mesh work; a failure is its instance's
+/// result.
 pub(super) fn solve_all(
     scenario: &Scenario,
     uniform: &Discretization,
     params: &[ContactParams],
-    refine: Grading,
+    frictions: &[Friction],
+    grading: Grading,
 ) -> Vec<Outcome> {
-    if !refine.grades() {
-        return sweep(uniform, params).into_iter().map(|r| (r, None, 0)).collect();
-    }
-    let level = scenario.level;
-    params
-        .iter()
-        .enumerate()
-        .map(
-            |(i, p)| match solve_graded(scenario, (level, uniform), p, refine, &NewtonOptions::default()) {
-                Ok(mut g) => {
-                    if i == 0 {
-                        g.charge_uniform(uniform);
-                    }
-                    (Ok(g.sol), g.graded, g.grid.passes)
+    let opts = NewtonOptions::default();
+    let mut previous: Option<Vec<f64>> = None;
+    let mut out = Vec::with_capacity(params.len());
+    for (k, p) in params.iter().enumerate() {
+        let friction = frictions.get(k.min(frictions.len().saturating_sub(1))).copied();
+        let friction = friction.unwrap_or(Friction::NONE);
+        let carries = !friction.is_on() && !grading.grades();
+        let warm = match &previous {
+            Some(y) if carries => Warm::Forces(y),
+            _ => Warm::Rest,
+        };
+        let request = Request::new(p.clone())
+            .with_friction(friction)
+            .with_grading(scenario, scenario.level, grading)
+            .warm_from(warm);
+        let solved = solve(uniform, &request, &opts, &mut |_| ControlFlow::Continue(()));
+        out.push(match solved {
+            Ok(mut solved) => {
+                if k == 0 {
+                    solved.charge_mesh_work(uniform);
                 }
-                Err(e) => (Err(e), None, 0),
-            },
-        )
-        .collect()
+                if carries {
+                    previous = Some(solved.sol.newton.forces.clone());
+                }
+                let passes = solved.passes();
+                (Ok(solved.sol), solved.graded.and_then(|g| g.disc), passes)
+            }
+            Err(e) => (Err(e), None, 0),
+        });
+    }
+    out
 }

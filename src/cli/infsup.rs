@@ -1,6 +1,7 @@
 //! `riplab infsup`: the discrete inf-sup constants of every scheme and level, on the uniform
 //! levels or (`--refine-edges`) on meshes graded at the contact edges.
 
+use std::ops::ControlFlow;
 use std::process::ExitCode;
 use std::time::Instant;
 
@@ -11,12 +12,13 @@ use crate::contact::{ContactParams, Rule};
 use crate::discretization::Discretization;
 use crate::error::SolveError;
 use crate::fem::memory::Sizes;
-use crate::grading::{Grading, solve_graded};
+use crate::grading::Grading;
 use crate::infsup::{InfSupRow, TraceCompliance, estimate, fits, fits_beside, slope};
 use crate::mesh::Element;
 use crate::output::{InfSupTable, output};
 use crate::scenario::Scenario;
 use crate::scheme::Scheme;
+use crate::solve::{Request, solve};
 
 pub(super) fn infsup(args: &InfsupArgs) -> Result<ExitCode, CliError> {
     let scenario = args.select.resolve()?;
@@ -64,7 +66,7 @@ pub(super) fn infsup(args: &InfsupArgs) -> Result<ExitCode, CliError> {
 }
 
 /// The table of [`crate::infsup::table`] on graded meshes: for each pair and level, the
-/// scheme's solve graded at its contact edges as `refine` asks ([`solve_graded`]: the edges
+/// scheme's solve graded at its contact edges as `refine` asks ([`solve`]: the edges
 /// are where its own pressure leaves contact), then β_h and β̄_h on the final mesh; grouped
 /// per pair by ascending level, each row with its slope from the one before. The mesh time
 /// of a row is its graded solve's and its trace compliance's.
@@ -81,13 +83,10 @@ fn graded_table(
             let t = Instant::now();
             let uniform = Discretization::of(scenario, level, element)?;
             let params = ContactParams::by_epsilon(rule, scenario.epsilon, scenario.obstacle.clone());
-            let graded = solve_graded(
-                scenario,
-                (level, &uniform),
-                &params,
-                refine,
-                &NewtonOptions::default(),
-            )?;
+            let request = Request::new(params).with_grading(scenario, level, refine);
+            let graded = solve(&uniform, &request, &NewtonOptions::default(), &mut |_| {
+                ControlFlow::Continue(())
+            })?;
             let disc = graded.disc(&uniform);
             fits_beside(disc)?;
             let compliance = TraceCompliance::new(disc)?;

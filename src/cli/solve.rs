@@ -6,8 +6,9 @@ use super::args::{SolveArgs, method_at};
 use super::{CliError, grading, note, outputs, print, shown, usage};
 use crate::contact::ContactParams;
 use crate::contact::Method;
-use crate::discretization::{Discretization, Trace, check_request};
+use crate::discretization::{Discretization, Trace};
 use crate::output::{SolveReport, Sweep, SweepFailure, SweepRow, output};
+use crate::solve::checks::check_request;
 use crate::{check, vtu};
 
 pub(super) fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
@@ -134,14 +135,11 @@ pub(super) fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
         .map(|(e, d)| params(e, d))
         .collect();
     let mut rows: Vec<SweepRow> = Vec::new();
-    let outcomes = if friction_on {
-        if frictions.len() > 1 {
-            instances = vec![instances[0].clone(); frictions.len()];
-        }
-        super::friction_solve::solve_all(&disc, &instances, &frictions)
-    } else {
-        grading::solve_all(&scenario, &disc, &instances, scenario.grading())
-    };
+    // A sweep over the friction's rows solves the one instance once per row.
+    if frictions.len() > 1 {
+        instances = vec![instances[0].clone(); frictions.len()];
+    }
+    let outcomes = grading::solve_all(&scenario, &disc, &instances, &frictions, scenario.grading());
     for (params, (solved, graded, passes)) in instances.iter().zip(outcomes) {
         let disc = graded.as_ref().unwrap_or(&disc);
         let sol = match solved {

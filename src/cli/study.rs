@@ -45,13 +45,13 @@ pub(super) fn study(args: &StudyArgs) -> Result<ExitCode, CliError> {
     let penalty = matches!(method, None | Some(Method::Penalty)) && args.sweep_epsilon.is_empty();
     let epsilon = match args.epsilon {
         Some(e) => e,
-        None if penalty => crate::penalty_error::default_epsilon(&scenario, levels[levels.len() - 1]),
+        None if penalty => crate::study::penalty_error::default_epsilon(&scenario, levels[levels.len() - 1]),
         None => scenario.epsilon,
     };
     if args.epsilon.is_none() && epsilon != scenario.epsilon {
         note(&format!(
             "note: ε = {epsilon:.3e} (κ = εE/h = {:e} at level {}), not the scenario's {:e}, so that the penalty's error stays well below the mesh's (--epsilon sets it)",
-            crate::penalty_error::STUDY_KAPPA,
+            crate::study::penalty_error::STUDY_KAPPA,
             levels[levels.len() - 1],
             scenario.epsilon
         ));
@@ -163,7 +163,7 @@ pub(super) fn study(args: &StudyArgs) -> Result<ExitCode, CliError> {
     let mut notes = Vec::new();
     if args.sweep_epsilon.is_empty() {
         for row in &mut study.rows {
-            if let Some(why) = crate::penalty_error::dominated(row, scenario.material.young) {
+            if let Some(why) = crate::study::penalty_error::dominated(row, scenario.material.young) {
                 row.epsilon_dominated = true;
                 notes.push(why);
             }

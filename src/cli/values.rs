@@ -26,6 +26,10 @@ pub enum NumberError {
 
 /// `text` as a finite-or-not f64 (the ranges are checked later, per option), refused when it
 /// names a non-zero number that underflows to 0.
+///
+/// # Errors
+///
+/// Text that is not a number, or a non-zero number that underflows to 0.
 pub fn number(text: &str) -> Result<f64, NumberError> {
     let trimmed = text.trim();
     let value: f64 = trimmed.parse().map_err(|_| NumberError::NotANumber {

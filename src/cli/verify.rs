@@ -35,7 +35,7 @@ pub struct VerifyArgs {
 pub(super) fn verify(args: &VerifyArgs) -> Result<ExitCode, CliError> {
     let all = crate::verify::cases();
     if args.list {
-        print(&output(&crate::verify::report::CaseList::new(&all), args.format))?;
+        print(&output(&crate::output::verify::CaseList::new(&all), args.format))?;
         return Ok(ExitCode::SUCCESS);
     }
     let chosen = crate::verify::select(&all, args.case.as_deref()).map_err(|e| usage("--case", e))?;

@@ -56,6 +56,7 @@ impl PartialEq for dyn Outline {
 
 /// A rigid obstacle above the contact side of the body.
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub enum Obstacle {
     /// A rigid cylinder of radius R with its axis at x = `center` (the paper's, docs/design.md §1).
     Cylinder {

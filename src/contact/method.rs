@@ -47,6 +47,10 @@ pub enum Gamma0 {
 
 impl Gamma0 {
     /// `auto` (any case) or a number; the range is [`Method::check`]'s.
+    ///
+    /// # Errors
+    ///
+    /// Text that is neither `auto` nor a number.
     pub fn parse(text: &str) -> Result<Gamma0, MethodError> {
         let text = text.trim();
         if text.eq_ignore_ascii_case("auto") {
@@ -73,6 +77,7 @@ pub const DEFAULT_ALM_TOL: f64 = 1e-10;
 
 /// A contact method with its parameters (the penalty parameter ε is the scenario's).
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub enum Method {
     /// The penalised problem (11) at ε > 0.
     Penalty,
@@ -126,6 +131,11 @@ impl Method {
     /// The method named `name` (any case), with `theta`, `gamma0` and `alm_tol` where it takes
     /// them (their defaults when None); a parameter given to a method that does not take it is
     /// refused, so that a typo is not silently ignored. Errors name the allowed values.
+    ///
+    /// # Errors
+    ///
+    /// An unknown name, a parameter the method does not take, or one out of its range
+    /// ([`MethodError`]).
     pub fn parse(
         name: &str,
         theta: Option<f64>,
@@ -153,6 +163,10 @@ impl Method {
     }
 
     /// This method with the parameters that are given replaced, checked.
+    ///
+    /// # Errors
+    ///
+    /// A parameter the method does not take, or one out of its range ([`Method::check`]).
     pub fn with(
         self,
         theta: Option<f64>,
@@ -213,6 +227,10 @@ impl Method {
 
     /// The parameters' ranges: θ ∈ {1, 0, −1}, a given γ₀ in [`GAMMA0_RANGE`], the ALM's
     /// tolerance in (0, 1).
+    ///
+    /// # Errors
+    ///
+    /// The first parameter out of its range, with the allowed values.
     pub fn check(self) -> Result<(), MethodError> {
         match self {
             Method::Penalty | Method::Exact => Ok(()),
@@ -251,6 +269,10 @@ impl Method {
     /// gives `method` (None: not named) and ε: ε = 0 with no method named is `exact` (riplab's
     /// convention before methods were named); `exact` reports ε = 0 whatever was given (it has
     /// no ε); `penalty` and `alm` need ε > 0.
+    ///
+    /// # Errors
+    ///
+    /// `penalty` or `alm` with ε = 0 ([`MethodError`]).
     pub fn resolve(method: Option<Method>, epsilon: f64) -> Result<(Method, f64), MethodError> {
         match (method, epsilon == 0.0) {
             (None, true) | (Some(Method::Exact), _) => Ok((Method::Exact, 0.0)),

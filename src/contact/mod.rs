@@ -2,6 +2,7 @@
 //! (the reduced-integration penalty, the exact multipliers, the augmented Lagrangian, Nitsche) and the
 //! pressures (docs/design.md §2–§4, §10).
 
+#[doc(hidden)]
 pub mod alm;
 pub mod circle;
 pub mod distance;
@@ -13,10 +14,12 @@ pub mod method;
 pub mod mindlin;
 pub mod newton;
 pub mod params;
+#[doc(hidden)]
 pub mod penalty;
 pub mod pressure;
 pub mod rounded_punch;
 pub mod rule;
+#[doc(hidden)]
 pub mod signorini;
 
 pub use gap::{Obstacle, Outline};

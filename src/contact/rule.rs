@@ -13,6 +13,7 @@ use crate::fem::basis::lagrange_1d;
 /// A quadrature rule for the penalty term.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
+#[non_exhaustive]
 pub enum Rule {
     /// One-point Gauss: piecewise-constant pressure (M1).
     Gauss1,

@@ -4,6 +4,7 @@
 
 /// The cause of a non-converged solve, with the numbers that show it.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum Diagnosis {
     /// The iteration limit was reached, or the residual is not finite.
     #[error("{}", stalled(*iterations, *residual))]

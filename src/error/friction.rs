@@ -3,6 +3,7 @@
 
 /// A friction parameter outside its range, or given to a law that does not take it.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum FrictionError {
     /// A law not known.
     #[error("unknown friction law `{0}`; allowed: none, coulomb, tresca")]

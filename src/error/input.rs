@@ -7,6 +7,7 @@ use crate::text::num;
 /// A parameter of the solve outside the range where its answer means something (or where
 /// double precision can represent it).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum InputFault {
     /// The method or one of its parameters ([`MethodError`]).
     #[error("the method: {0}")]
@@ -27,6 +28,14 @@ pub enum InputFault {
         "friction: a study's edge-graded rows (--refine-edges) do not take friction; study uniform levels"
     )]
     GradedFriction,
+    /// Friction asked of a graded mesh.
+    #[error(
+        "friction: a graded mesh (refine_edges = {grading}) does not take friction yet; solve a uniform level"
+    )]
+    FrictionGraded {
+        /// The grading asked.
+        grading: crate::refine_edges::Grading,
+    },
     /// A tangential penalty ε_t given to the exact method.
     #[error("friction: epsilon_t is the tangential penalty of penalty and alm; exact takes none")]
     TangentialPenaltyOfExact,

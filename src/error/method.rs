@@ -6,6 +6,7 @@ use crate::text::{num, sanitize};
 
 /// A method or one of its parameters that is not allowed; the message names what is.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum MethodError {
     /// Not one of the methods.
     #[error("`{}` is not a method; allowed: {}", sanitize(given), allowed.join(", "))]

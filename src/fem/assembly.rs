@@ -19,6 +19,7 @@ use crate::mesh::{Diagonal, Mesh};
 /// How the elastic stiffness is integrated.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Deserialize, serde::Serialize)]
 #[serde(rename_all = "lowercase")]
+#[non_exhaustive]
 pub enum Integration {
     /// Exactly (2×2 Gauss for Q1, 3×3 for Q2).
     #[default]

@@ -4,7 +4,7 @@
 //! contact zone (the body gives way under the obstacle: the zone it presses lies within the
 //! overlap), its ends for the contact edges; the solve's peak holds the uniform level's
 //! discretisation, the previous pass's and the last pass's being built
-//! ([`super::solve_graded`]). A request whose estimate exceeds what the process may use is
+//! ([`crate::solve::solve()`] with a grading). A request whose estimate exceeds what the process may use is
 //! refused naming the level, the element, the grading and the memory.
 
 use crate::contact::Rule;
@@ -109,6 +109,10 @@ pub fn estimate(
 /// Refuse a solve of `scenario` at `level` with `element` graded as `grading` (with `extra`,
 /// as [`estimate`]) when its estimate exceeds what this process may use; before anything is
 /// assembled. Nothing to check without a grading.
+///
+/// # Errors
+///
+/// [`SolveError::TooLarge`], naming the level, the element, the grading and the memory.
 pub fn fits(
     scenario: &Scenario,
     level: u32,
@@ -147,7 +151,7 @@ mod tests {
     use crate::contact::ContactParams;
     use crate::contact::newton::NewtonOptions;
     use crate::discretization::Discretization;
-    use crate::grading::solve_graded;
+    use crate::solve::solve_graded;
 
     /// The prediction's last grid holds at least the unknowns the paper's graded solves end on
     /// (levels 1 and 2, M1 and M3, two and three passes at the edges and over the zone), and

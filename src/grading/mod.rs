@@ -7,7 +7,7 @@
 //! ([`zone`] says why, and grades the whole zone instead).
 //!
 //! The same lines serve the study's reference ([`crate::study::ReferenceMesh::refined`]) and a
-//! graded solve ([`solve::solve_graded`]): grading is only a choice of lines, so a graded mesh
+//! graded solve ([`crate::solve::solve()`] with a grading): grading is only a choice of lines, so a graded mesh
 //! is the mesh a scenario with those `x_lines`/`y_lines` gives at level 0, and its refined
 //! lines contain the uniform level's (nesting).
 
@@ -17,10 +17,7 @@ use crate::scenario::Scenario;
 
 mod band;
 pub mod estimate;
-pub mod solve;
 pub mod zone;
-
-pub use solve::{GradedSolve, Pass, solve_graded};
 
 /// How many vertex intervals on each side of a contact edge one pass bisects (with the edge's
 /// own), and how many of Γ_C's neighbouring rows of cells.
@@ -162,6 +159,3 @@ mod tests {
         assert_eq!(h_min(&x2, &y2), 0.5);
     }
 }
-
-#[cfg(test)]
-mod solve_tests;

@@ -43,12 +43,21 @@ impl Scenario {
     }
 
     /// Read and validate a scenario file.
+    ///
+    /// # Errors
+    ///
+    /// The file cannot be read or is too large, or as [`Scenario::parse`]'s.
     pub fn load(path: &Path) -> Result<Scenario, ScenarioError> {
         let (file, text) = read_toml(path, "a scenario")?;
         Scenario::parse(&text, &file)
     }
 
     /// Parse and validate scenario text; `file` names it in errors.
+    ///
+    /// # Errors
+    ///
+    /// TOML that does not parse, an unknown key, a value of the wrong type or out of its range:
+    /// [`ScenarioError`] names the file, the line, the column and the key.
     pub fn parse(text: &str, file: &str) -> Result<Scenario, ScenarioError> {
         validate::scenario(text, file)
     }

@@ -11,6 +11,7 @@ mod infsup;
 mod solve;
 mod study;
 mod sweep;
+pub mod verify;
 pub use csv::{Cell, csv_table};
 pub use friction::{FrictionReport, MindlinReport};
 pub use infsup::{INFSUP_COLUMNS, InfSupTable};

@@ -10,13 +10,16 @@
 //! size n^(−1/2) (a uniform grid's h is proportional to it), so that they compare with a
 //! uniform series' rates against h.
 
+use std::ops::ControlFlow;
+
 use super::{Kept, Reference, StudyRow, convergence_kept, row_params};
 use crate::contact::newton::NewtonOptions;
 use crate::contact::{Method, Rule};
 use crate::discretization::Discretization;
-use crate::grading::{Grading, solve_graded};
+use crate::grading::Grading;
 use crate::mesh::Element;
 use crate::scenario::Scenario;
+use crate::solve::{Request, solve};
 
 /// Rows of one scheme and grading, each with what it keeps of its solution.
 type Series = Vec<(StudyRow, Option<Kept>)>;
@@ -69,14 +72,11 @@ fn graded_series(
             let disc = Discretization::of(scenario, level, scheme.0);
             let solved = disc.as_ref().map_err(Clone::clone).and_then(|disc| {
                 resolved?;
-                let mut g = solve_graded(
-                    scenario,
-                    (level, disc),
-                    &params,
-                    refine,
-                    &NewtonOptions::default(),
-                )?;
-                g.charge_uniform(disc);
+                let request = Request::new(params.clone()).with_grading(scenario, level, refine);
+                let mut g = solve(disc, &request, &NewtonOptions::default(), &mut |_| {
+                    ControlFlow::Continue(())
+                })?;
+                g.charge_mesh_work(disc);
                 Ok((disc, g))
             });
             let outcome = solved.as_ref().map(|(d, g)| (g.disc(d), &g.sol));
@@ -84,8 +84,10 @@ fn graded_series(
             row.grading = refine;
             if let Ok((d, g)) = &solved {
                 row.n_dofs = g.disc(d).n_dofs();
-                row.h_min = g.grid.h_min();
-                row.refine_edges = g.grid.passes;
+                if let Some(grids) = &g.graded {
+                    row.h_min = grids.grid.h_min();
+                }
+                row.refine_edges = g.passes();
             }
             (row, kept)
         })

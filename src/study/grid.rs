@@ -31,6 +31,10 @@ pub enum ReferenceLevelError {
 /// The uniform level of a study's reference (docs/design.md §6): `requested`, or one finer than
 /// the finest of `levels`; either way finer than every studied level (coarse solutions are
 /// measured on the reference's nested mesh) and at most [`MAX_LEVEL`].
+///
+/// # Errors
+///
+/// `requested` not finer than every studied level, or above [`MAX_LEVEL`].
 pub fn reference_level(levels: &[u32], requested: Option<u32>) -> Result<u32, ReferenceLevelError> {
     let finest = levels.iter().copied().max().unwrap_or(0);
     match requested {

@@ -10,6 +10,10 @@ use crate::scenario::Scenario;
 /// Refuse a study of `scenario` before anything is solved when its obstacle does not reach
 /// the body (depth ≤ 0: the lowest point of the obstacle at or above the top; the body is
 /// then free of load, u = 0 and p = 0).
+///
+/// # Errors
+///
+/// The obstacle does not reach the body ([`SolveError::Input`]).
 pub fn check_contact(scenario: &Scenario) -> Result<(), SolveError> {
     let depth = scenario.obstacle.depth();
     if depth > 0.0 {
@@ -20,6 +24,10 @@ pub fn check_contact(scenario: &Scenario) -> Result<(), SolveError> {
 
 impl Reference {
     /// The reference as a measure of the rows' errors: its norms and load finite and > 0.
+    ///
+    /// # Errors
+    ///
+    /// A norm or the load that is zero or not finite.
     pub fn check_meaningful(&self) -> Result<(), SolveError> {
         let norms = [self.p_norm, self.u_norm, self.load];
         if norms.iter().any(|v| !v.is_finite()) {

@@ -20,11 +20,10 @@ use crate::error::{SolveError, Workload};
 use crate::fem::basis::{CellRule, field_at};
 use crate::fem::memory::{Limits, Sizes};
 use crate::fem::quadrature::gauss_legendre;
-use crate::friction::solve_friction;
 use crate::mesh::Element;
 use crate::scenario::Scenario;
 use crate::solution::Solution;
-use crate::solve::solve_contact;
+use crate::solve::{Request, Warm, solve};
 
 /// The reference's estimated error: its relative difference from the next coarser reference
 /// (the previous refinement, or the uniform level − 1), p in L²(Γ_C), u in H¹ (7), the load.
@@ -104,8 +103,7 @@ pub(super) struct TangentialReference {
     pub(super) load: f64,
 }
 
-/// A fresh solve of `params` on `disc` with `friction` ([`solve_friction`] when it is on,
-/// [`solve_contact`] otherwise).
+/// A fresh solve of `params` on `disc` with `friction` (the library's entry, [`solve`]).
 pub(super) fn solve_row(
     disc: &Discretization,
     params: &ContactParams,
@@ -122,13 +120,15 @@ pub(super) fn solve_warm(
     friction: &Friction,
     initial: Option<&[f64]>,
 ) -> Result<Solution, SolveError> {
-    let mut go_on = |_: &_| ControlFlow::Continue(());
-    let opts = NewtonOptions::default();
-    if friction.is_on() {
-        solve_friction(disc, params, friction, None, &opts, &mut go_on)
-    } else {
-        solve_contact(disc, params, initial, &opts, &mut go_on)
-    }
+    let warm = match initial {
+        Some(y) if !friction.is_on() => Warm::Forces(y),
+        _ => Warm::Rest,
+    };
+    let request = Request::new(params.clone())
+        .with_friction(*friction)
+        .warm_from(warm);
+    let go_on = &mut |_: &_| ControlFlow::Continue(());
+    Ok(solve(disc, &request, &NewtonOptions::default(), go_on)?.sol)
 }
 
 impl Reference {
@@ -170,6 +170,10 @@ pub struct ReferenceFields {
 
 impl ReferenceFields {
     /// Solve Q2 + Simpson with the exact constraint at `level` (expensive: only when asked).
+    ///
+    /// # Errors
+    ///
+    /// As [`ReferenceFields::solve_on`]'s.
     pub fn solve(scenario: &Scenario, level: u32) -> Result<Self, SolveError> {
         Self::solve_on(scenario, &ReferenceMesh::uniform(scenario, level))
     }
@@ -177,6 +181,10 @@ impl ReferenceFields {
     /// Solve Q2 + Simpson with the exact constraint on `grid` (and the scenario's friction,
     /// imposed exactly too: [`reference_friction`]), refused before anything is allocated when
     /// it does not fit the memory ([`crate::fem::memory`]).
+    ///
+    /// # Errors
+    ///
+    /// The grid does not fit the memory, or the solve fails or does not converge ([`SolveError`]).
     pub fn solve_on(scenario: &Scenario, grid: &ReferenceMesh) -> Result<Self, SolveError> {
         let t = Instant::now();
         let rule = REFERENCE_SCHEME.1;
@@ -235,6 +243,11 @@ pub(super) fn fits_memory(scenario: &Scenario, grid: &ReferenceMesh) -> Result<(
 impl Reference {
     /// Q2 + Simpson with the exact constraint at `level` (expensive: compute only when asked;
     /// [`crate::cache::reference`] keeps it between runs).
+    ///
+    /// # Errors
+    ///
+    /// As [`ReferenceFields::solve_on`]'s, or the reference is not meaningful
+    /// ([`Reference::check_meaningful`]).
     pub fn compute(scenario: &Scenario, level: u32) -> Result<Self, SolveError> {
         let grid = ReferenceMesh::uniform(scenario, level);
         let fields = ReferenceFields::solve_on(scenario, &grid)?;

@@ -12,6 +12,10 @@ pub type Fetch<'a> = dyn FnMut(&ReferenceMesh) -> Result<ReferenceFields, SolveE
 
 /// The uniform reference at `level` with its estimated error against level − 1 (none at
 /// level 0), and its fields.
+///
+/// # Errors
+///
+/// As `fetch`'s, or the reference is not meaningful.
 pub fn uniform_reference(
     scenario: &Scenario,
     level: u32,

@@ -98,7 +98,7 @@ pub struct StudyRow {
     /// Why the row has no (certified) result, when it has none.
     pub reason: Option<String>,
     /// Whether the penalty's own load error may be a tenth of the row's or more, so that its
-    /// errors and rates may be ε's rather than the mesh's ([`crate::penalty_error::dominated`];
+    /// errors and rates may be ε's rather than the mesh's ([`crate::study::penalty_error::dominated`];
     /// set by the command line, false for a row without a penalty).
     pub epsilon_dominated: bool,
     /// Newton iterations (for the ALM, summed over the updates); None without a result.

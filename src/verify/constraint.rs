@@ -13,7 +13,7 @@ use crate::error::SolveError;
 use crate::scenario::Scenario;
 use crate::scheme::Scheme;
 use crate::solution::Solution;
-use crate::solve::solve_contact;
+use crate::solve::{self, Request};
 
 /// The cases of this family.
 pub fn cases() -> [Case; 2] {
@@ -59,9 +59,11 @@ fn solve(
         epsilon,
         obstacle: scenario.obstacle.clone(),
     };
-    let sol = solve_contact(disc, &params, None, &NewtonOptions::default(), &mut |_| {
+    let request = Request::new(params);
+    let sol = solve::solve(disc, &request, &NewtonOptions::default(), &mut |_| {
         ControlFlow::Continue(())
-    })?;
+    })?
+    .sol;
     converged(&sol)?;
     Ok(sol)
 }

@@ -19,7 +19,6 @@ pub mod infsup;
 pub mod manufactured;
 pub mod mindlin;
 pub mod patch;
-pub mod report;
 pub mod stored;
 
 use serde::Serialize;

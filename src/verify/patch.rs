@@ -14,7 +14,7 @@ use crate::discretization::Discretization;
 use crate::error::SolveError;
 use crate::scenario::Scenario;
 use crate::scheme::Scheme;
-use crate::solve::solve_contact;
+use crate::solve::{self, Request};
 
 /// The case.
 pub const CASE: Case = Case {
@@ -45,9 +45,11 @@ fn run(level: u32) -> Result<Vec<Measured>, SolveError> {
     for scheme in Scheme::PAPER {
         let disc = Discretization::of(&scenario, level, scheme.element)?;
         let params = ContactParams::by_epsilon(scheme.rule, epsilon, plane.clone());
-        let sol = solve_contact(&disc, &params, None, &NewtonOptions::default(), &mut |_| {
+        let request = Request::new(params);
+        let sol = solve::solve(&disc, &request, &NewtonOptions::default(), &mut |_| {
             ControlFlow::Continue(())
-        })?;
+        })?
+        .sol;
         converged(&sol)?;
         let worst = |v: &[f64]| v.iter().map(|p| (p - exact).abs()).fold(0.0, f64::max) / exact;
         let name = scheme.name().unwrap_or("-");

@@ -6,9 +6,10 @@
 use riplab::contact::newton::NewtonOptions;
 use riplab::contact::{ContactParams, Rule};
 use riplab::discretization::Discretization;
-use riplab::grading::{RefineEdges, solve_graded};
+use riplab::grading::RefineEdges;
 use riplab::mesh::Element;
 use riplab::scenario::Scenario;
+use riplab::solve::solve_graded;
 
 /// The rows of `riplab infsup ARGS --format json`: (level, β_h, β̄_h).
 fn rows(args: &[&str]) -> (Vec<(u64, f64, f64)>, String) {

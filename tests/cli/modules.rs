@@ -285,6 +285,16 @@ fn resolve(
     modules: &BTreeSet<String>,
     imports: &BTreeMap<String, BTreeMap<String, Segments>>,
 ) -> String {
+    expand(path, modules, imports).0
+}
+
+/// The module `path` names ([`resolve`]) and the whole path it stands for, its imports
+/// followed (`solve::solve` written under `use crate::solve` is `solve::solve`).
+fn expand(
+    path: &[String],
+    modules: &BTreeSet<String>,
+    imports: &BTreeMap<String, BTreeMap<String, Segments>>,
+) -> (String, Segments) {
     let mut path = path.to_vec();
     // Imports that run in a circle (which rustc refuses) end the walk.
     for _ in 0..64 {
@@ -299,7 +309,7 @@ fn resolve(
             Some(stands_for) if stands_for[..] != path[..=k] => {
                 path = [stands_for, &path[k + 1..]].concat();
             }
-            _ => return module,
+            _ => return (module, path),
         }
     }
     panic!("{path:?} does not resolve")
@@ -512,4 +522,75 @@ fn paths_resolve_through_imports() {
     assert_eq!(resolved("see::X"), "c");
     assert_eq!(resolved("a::b::X::f"), "a::b");
     assert_eq!(resolved("a::Y"), "a");
+}
+
+/// The solvers: the entry's conveniences for tests and benches, its children, and the
+/// iterations of the methods in `contact` (docs/design.md §9, "one solve entry").
+const SOLVERS: [&str; 15] = [
+    "solve::solve_contact",
+    "solve::solve_friction",
+    "solve::solve_graded",
+    "solve::sweep",
+    "solve::methods",
+    "solve::friction::solve",
+    "solve::friction::solve_with",
+    "solve::friction::solve_frictional",
+    "solve::graded",
+    "solve::nitsche",
+    "contact::penalty::solve",
+    "contact::alm::solve",
+    "contact::signorini::solve_exact",
+    "contact::friction::path::PathProblem",
+    "contact::friction::newton",
+];
+
+/// One solve entry (docs/design.md §9): outside `solve`, `contact` and `fem`, the library
+/// (the command line, the study, the verify pack, the lab) reaches a solver only through
+/// `solve::solve` (or `solve::solve_scenario`, which builds a scenario's mesh and calls it);
+/// the root's re-exports name the core, not a call.
+#[test]
+fn only_the_solve_entry_calls_the_solvers() {
+    let library = library();
+    let modules: BTreeSet<String> = library.keys().cloned().collect();
+    let imports: BTreeMap<String, BTreeMap<String, Segments>> =
+        library.values().flat_map(|r| r.imports.clone()).collect();
+    let inside = |m: &str, folder: &str| m == folder || m.starts_with(&format!("{folder}::"));
+    let mut calls = Vec::new();
+    for (me, reading) in &library {
+        if me.is_empty() || ["solve", "contact", "fem"].iter().any(|f| inside(me, f)) {
+            continue;
+        }
+        for path in &reading.named {
+            let named = expand(path, &modules, &imports).1.join("::");
+            if SOLVERS.iter().any(|s| inside(&named, s)) {
+                calls.push(format!("{me} names {named}"));
+            }
+        }
+    }
+    assert!(
+        library.len() > 100,
+        "the library was read: {} modules",
+        library.len()
+    );
+    assert!(
+        calls.is_empty(),
+        "solvers reached around the entry:\n{}",
+        calls.join("\n")
+    );
+}
+
+/// The check above sees a solver named around the entry, through an import.
+#[test]
+fn a_solver_named_around_the_entry_is_seen() {
+    let text =
+        "use crate::solve::{self, solve_contact};\nfn f() { solve_contact(); crate::solve::graded::x(); }";
+    let reading = read("cli::solve", text);
+    let modules: BTreeSet<String> = ["cli::solve", "solve"].map(String::from).into();
+    let named: BTreeSet<String> = reading
+        .named
+        .iter()
+        .map(|p| expand(p, &modules, &reading.imports).1.join("::"))
+        .collect();
+    assert!(named.contains("solve::solve_contact"), "{named:?}");
+    assert!(named.contains("solve::graded::x"), "{named:?}");
 }

@@ -15,7 +15,7 @@ fn m1_pbar_error_falls_with_every_pass() {
     let refine = [0, 1, 2, 3].map(|n| RefineEdges::Passes(n).into());
     let plan = Plan::Levels {
         levels: &[2],
-        epsilon: riplab::penalty_error::default_epsilon(&s, 2),
+        epsilon: riplab::study::penalty_error::default_epsilon(&s, 2),
         refine: &refine,
     };
     let mut fetch = |grid: &ReferenceMesh| ReferenceFields::solve_on(&s, grid);
@@ -50,7 +50,7 @@ fn m1_pbar_error_falls_with_every_zone_pass() {
     ];
     let plan = Plan::Levels {
         levels: &[2],
-        epsilon: riplab::penalty_error::default_epsilon(&s, 2),
+        epsilon: riplab::study::penalty_error::default_epsilon(&s, 2),
         refine: &refine,
     };
     let mut fetch = |grid: &ReferenceMesh| ReferenceFields::solve_on(&s, grid);

@@ -15,9 +15,9 @@ use riplab::discretization::{Discretization, Trace};
 use riplab::fem::Integration;
 use riplab::fem::basis::evaluate;
 use riplab::fem::dofs::DofMap;
-use riplab::friction::{Free, solve_with};
 use riplab::material::{Material, Plane};
 use riplab::mesh::{Element, Mesh};
+use riplab::solve::friction::{Free, solve_with};
 
 const YOUNG: f64 = 1000.0;
 const POISSON: f64 = 0.3;

@@ -2,13 +2,17 @@
 //! contact rule's points with the same rule as the normal constraint (the penalty (11), the
 //! exact multipliers, the augmented Lagrangian), solved by a semismooth Newton (the
 //! primal–dual active-set form) on the normal and tangential forces together, condensed onto
-//! Γ_C's full trace [u_x, u_y] ([`crate::friction`]). The obstacle is pressed to its depth, then moved
+//! Γ_C's full trace [u_x, u_y] ([`crate::solve::friction`]). The obstacle is pressed to its depth, then moved
 //! sideways by a shift ξ in quasi-static steps ([`path`]); the tangential traction t at the
 //! points is smoothed to t̄ at the vertices with p̄'s weights, the paper's (16)–(17).
 
+#[doc(hidden)]
 pub mod law;
+#[doc(hidden)]
 pub mod newton;
+#[doc(hidden)]
 pub mod path;
+#[doc(hidden)]
 pub mod system;
 
 use serde::Serialize;
@@ -27,6 +31,7 @@ pub const MAX_STEPS: usize = 1000;
 
 /// The friction law on Γ_C.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub enum Law {
     /// Frictionless: today's contact.
     None,
@@ -74,6 +79,10 @@ impl Law {
 
     /// The law `name` with its parameter: μ for coulomb, g for tresca, neither for none; a
     /// parameter of another law is refused, naming its key.
+    ///
+    /// # Errors
+    ///
+    /// An unknown law, or a parameter given to a law that does not take it.
     pub fn parse(name: &str, mu: Option<f64>, threshold: Option<f64>) -> Result<Self, FrictionError> {
         let law = match name {
             "none" => Law::None,
@@ -112,6 +121,10 @@ impl Law {
     }
 
     /// μ ≥ 0 and g ≥ 0, finite.
+    ///
+    /// # Errors
+    ///
+    /// μ or g negative or not finite ([`FrictionError::Range`]).
     pub fn check(&self) -> Result<(), FrictionError> {
         let (key, v) = match *self {
             Law::None => return Ok(()),
@@ -151,6 +164,10 @@ impl Press {
     }
 
     /// The press named `name`.
+    ///
+    /// # Errors
+    ///
+    /// A name that is not a press, with the allowed names.
     pub fn parse(name: &str) -> Result<Self, FrictionError> {
         match name {
             "with-friction" => Ok(Press::WithFriction),
@@ -194,6 +211,10 @@ impl Friction {
 
     /// The law's parameter, the steps and ε_t in their ranges (the shift is checked against
     /// the body by [`crate::discretization`]'s caller).
+    ///
+    /// # Errors
+    ///
+    /// The first setting out of its range, named ([`FrictionError`]).
     pub fn check(&self) -> Result<(), FrictionError> {
         self.law.check()?;
         if !self.shift.is_finite() {

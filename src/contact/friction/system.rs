@@ -160,8 +160,8 @@ mod tests {
     use super::*;
     use crate::contact::friction::law::Couplings;
     use crate::discretization::Discretization;
-    use crate::friction::FrictionTrace;
     use crate::scenario::Scenario;
+    use crate::solve::friction::FrictionTrace;
     use std::sync::Arc;
 
     fn couplings() -> (Discretization, Arc<Couplings>, Vec<f64>) {

@@ -1,5 +1,5 @@
-//! The lab's solve with friction (docs/design.md §11): the press and the shift of
-//! [`solve_friction`], the library's entry that `riplab solve` calls, on the cached mesh (its
+//! The lab's solve with friction (docs/design.md §11): the press and the shift solved by the
+//! library's entry that `riplab solve` calls ([`crate::solve::solve`]), on the cached mesh (its
 //! full trace made once per mesh and kept with it), warm-started from the last friction
 //! solve on the same points. Edge grading does not take friction (as `riplab solve` refuses
 //! it); Nitsche's method and a half model are refused by the library, and the refusal is the
@@ -11,7 +11,7 @@ use std::time::Instant;
 use crate::contact::ContactParams;
 use crate::contact::newton::NewtonOptions;
 use crate::discretization::Discretization;
-use crate::friction::solve_friction;
+use crate::solve::{self, Request};
 
 use super::super::lab_error::LabError;
 use super::super::protocol::{Response, SolveRequest};
@@ -51,14 +51,14 @@ impl Engine {
             .filter(|w| w.points == points)
             .and_then(|w| w.z.as_ref().map(|z| (w.forces.clone(), z.clone())));
         let initial = warm.as_ref().map(|(y, z)| (y.as_slice(), z.as_slice()));
-        let result = solve_friction(
-            &disc,
-            params,
-            &friction,
-            initial,
-            &NewtonOptions::default(),
-            &mut |it| super::newton_step(generation, is_current, &mut *report, it),
-        );
+        let warm = initial.map_or(solve::Warm::Rest, |(y, z)| solve::Warm::Frictional(y, z));
+        let request = Request::new(params.clone())
+            .with_friction(friction)
+            .warm_from(warm);
+        let result = solve::solve(&disc, &request, &NewtonOptions::default(), &mut |it| {
+            super::newton_step(generation, is_current, &mut *report, it)
+        })
+        .map(|solved| solved.sol);
         self.answer(generation, key, disc, points, t, result)
     }
 }

@@ -1,5 +1,5 @@
-//! The lab's graded solve (`E`), at the contact edges or over the contact zone: [`solve_graded`] from the
-//! uniform level's discretisation, its final grid's discretisation kept with the solution so
+//! The lab's graded solve (`E`), at the contact edges or over the contact zone: the library's
+//! entry ([`solve::solve`]) from the uniform level's discretisation, its final grid's discretisation kept with the solution so
 //! that every view (the mesh scene's lines, the pressures, the stresses) shows the graded
 //! mesh. Each pass builds its own mesh and factor (nothing of the cache's work carries over:
 //! the lines changed), so the graded meshes are not in the cache; the last one is kept
@@ -10,6 +10,7 @@
 //! grid, no new factor. Otherwise it grades again from the level's uniform solve, as a fresh
 //! `riplab solve --refine-edges N` does ([`Regrade`] says which in the status line).
 
+use std::ops::ControlFlow;
 use std::sync::{Arc, OnceLock};
 use std::time::Instant;
 
@@ -18,10 +19,10 @@ use crate::contact::{ContactParams, Method, Rule, carried_forces};
 use crate::discretization::Discretization;
 use crate::error::SolveError;
 use crate::fem::Integration;
-use crate::grading::{GradedGrid, Grading, solve_graded};
+use crate::grading::{GradedGrid, Grading};
 use crate::mesh::Element;
 use crate::solution::Solution;
-use crate::solve::solve_contact;
+use crate::solve::{self, Request};
 
 use super::super::protocol::{Response, SolveKey, SolveRequest, Solved};
 use super::super::regrade::Regrade;
@@ -119,9 +120,12 @@ impl Engine {
             true => carried_forces(&last.x, &last.p, &disc.contact_points(key.rule)),
         };
         let mut newton = |start: Option<&[f64]>| {
-            solve_contact(&disc, &params, start, &NewtonOptions::default(), &mut |it| {
+            let warm = start.map_or(solve::Warm::Rest, solve::Warm::Forces);
+            let request = Request::new(params.clone()).warm_from(warm);
+            solve::solve(&disc, &request, &NewtonOptions::default(), &mut |it| {
                 super::newton_step(generation, is_current, &mut *report, it)
             })
+            .map(|solved| solved.sol)
         };
         let mut result = newton(Some(&start));
         if carried && result.as_ref().is_ok_and(|s| !s.newton.converged) {
@@ -148,7 +152,7 @@ impl Engine {
         Some(self.solved(req, disc, sol, t, Regrade::Kept))
     }
 
-    /// Solve `req` on `uniform` graded as its key asks, started at `t`: [`solve_graded`] from
+    /// Solve `req` on `uniform` graded as its key asks, started at `t`: the library's entry ([`solve::solve`]) from
     /// the level's uniform solve (again, when the last graded grid of these settings no longer
     /// held the contact edges).
     pub(super) fn graded(
@@ -163,23 +167,25 @@ impl Engine {
             .last_graded
             .as_ref()
             .is_some_and(|l| l.serves == serves(&key));
-        let graded = solve_graded(
-            &self.scenario,
-            (key.level, uniform),
-            params,
-            key.refine_edges,
-            &NewtonOptions::default(),
-        );
+        let request = Request::new(params.clone()).with_grading(&self.scenario, key.level, key.refine_edges);
+        // Not cancellable between its passes: each pass's mesh is built anew.
+        let graded = solve::solve(uniform, &request, &NewtonOptions::default(), &mut |_| {
+            ControlFlow::Continue(())
+        });
         match graded {
-            Ok(g) => {
-                let disc = g.graded.map_or_else(|| uniform.clone(), Arc::new);
+            Ok(solve::Solved { sol, graded: Some(g) }) => {
+                let disc = g.disc.map_or_else(|| uniform.clone(), Arc::new);
                 let passes = g.grid.passes;
-                self.last_graded = LastGraded::of(&key, g.grid, disc.clone(), &g.sol);
+                self.last_graded = LastGraded::of(&key, g.grid, disc.clone(), &sol);
                 let regrade = match again {
                     true => Regrade::Regraded { passes },
                     false => Regrade::Graded { passes },
                 };
-                self.solved(req, disc, g.sol, t, regrade)
+                self.solved(req, disc, sol, t, regrade)
+            }
+            // A request that grades is answered with its grids.
+            Ok(solve::Solved { sol, graded: None }) => {
+                self.solved(req, uniform.clone(), sol, t, Regrade::Kept)
             }
             Err(e) => Response::Solved {
                 generation: req.generation,

@@ -17,7 +17,7 @@ use crate::error::SolveError;
 use crate::fem::Integration;
 use crate::mesh::Element;
 use crate::scenario::Scenario;
-use crate::solve::solve_contact;
+use crate::solve::{self, Request};
 
 use super::beta::{self, InfSup};
 use super::build::Plan;
@@ -87,7 +87,7 @@ struct Warm {
     /// The method (with its parameters): what a background build prepares ([`Plan::method`]).
     method: Method,
     /// The tangential forces of a solve with friction (None without): with `forces`, where
-    /// the next friction solve on the same points starts ([`crate::friction::solve_friction`]).
+    /// the next friction solve on the same points starts ([`crate::solve::solve_friction`]).
     z: Option<Vec<f64>>,
 }
 
@@ -395,9 +395,12 @@ impl Engine {
             None => (None, false),
         };
         let mut newton = |start: Option<&[f64]>| {
-            solve_contact(&disc, &params, start, &NewtonOptions::default(), &mut |it| {
+            let warm = start.map_or(solve::Warm::Rest, solve::Warm::Forces);
+            let request = Request::new(params.clone()).warm_from(warm);
+            solve::solve(&disc, &request, &NewtonOptions::default(), &mut |it| {
                 newton_step(generation, is_current, &mut *report, it)
             })
+            .map(|solved| solved.sol)
         };
         if key.friction.is_on() {
             return self.solve_friction(req, disc, &params, points, t, is_current, report);

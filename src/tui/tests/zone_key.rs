@@ -1,7 +1,7 @@
 //! `E` goes on from the edge gradings to 1z, 2z, 3z (passes
 //! over the contact zone), says so, the header shows `level 2+3z`, and the solve shown is the
 //! library's zone-graded solve of the same settings (the engine calls the same
-//! `riplab::grading::solve_graded`); an ε change keeps the zone grid while the contact zone
+//! `riplab::solve::solve_graded`); an ε change keeps the zone grid while the contact zone
 //! stays in its finest band; friction with zone grading is refused as with edge grading; a
 //! scenario's `refine_edges = "3z"` opens the lab graded so.
 
@@ -12,9 +12,10 @@ use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use riplab::contact::ContactParams;
 use riplab::contact::newton::NewtonOptions;
 use riplab::discretization::Discretization;
-use riplab::grading::{GradedGrid, Grading, solve_graded};
+use riplab::grading::{GradedGrid, Grading};
 use riplab::scenario::Scenario;
 use riplab::solve::solve_contact;
+use riplab::solve::solve_graded;
 use riplab::tui::app::{App, Msg};
 use riplab::tui::engine::Engine;
 use riplab::tui::regrade::Regrade;

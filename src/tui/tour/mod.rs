@@ -163,12 +163,20 @@ impl Tour {
     }
 
     /// Read and validate a tour file; scenario paths in it are relative to its directory.
+    ///
+    /// # Errors
+    ///
+    /// The file cannot be read or is too large, or as [`Tour::parse`]'s.
     pub fn load(path: &Path) -> Result<Tour, ScenarioError> {
         Tour::read(path).map(|(tour, _)| tour)
     }
 
     /// [`Tour::load`], with the file's size in bytes (what `T` adds to it is bounded by
     /// [`crate::input::read::MAX_FILE_BYTES`] with it).
+    ///
+    /// # Errors
+    ///
+    /// As [`Tour::load`]'s.
     pub fn read(path: &Path) -> Result<(Tour, usize), ScenarioError> {
         let (file, text) = read_toml(path, "a tour")?;
         Tour::parse(&text, &file, Some(&directory_of(path))).map(|tour| (tour, text.len()))
@@ -176,6 +184,12 @@ impl Tour {
 
     /// Parse and validate tour text; `file` names it in errors, `dir` is where its scenario
     /// paths are relative to (None: the tour may not name scenario files).
+    ///
+    /// # Errors
+    ///
+    /// TOML that does not parse, an unknown key, a value of the wrong type or out of its range, a
+    /// scenario that cannot be read: [`ScenarioError`] names the file, the line, the column and the
+    /// key (and the step).
     pub fn parse(text: &str, file: &str, dir: Option<&Path>) -> Result<Tour, ScenarioError> {
         let src = Source { file, text };
         src.check_nesting()?;
@@ -212,6 +226,11 @@ impl Tour {
     /// is checked against its scenario, its ε against the range of its level, and its
     /// friction against its scenario's model, method and grading (as the lab refuses them
     /// when the step is played: [`friction_step::check`]).
+    ///
+    /// # Errors
+    ///
+    /// The first step whose depth, ε or friction its scenario cannot take, with the step's index
+    /// ([`TourError`]).
     pub fn with_scenario(mut self, scenario: Scenario) -> Result<Tour, TourError> {
         self.scenario = scenario;
         for (i, step) in self.steps.iter().enumerate() {

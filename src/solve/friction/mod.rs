@@ -6,5 +6,6 @@
 pub mod solve;
 pub mod trace;
 
-pub use solve::{Free, check, solve_friction, solve_with};
+pub(super) use solve::solve_frictional;
+pub use solve::{Free, check, solve_with};
 pub use trace::FrictionTrace;

@@ -10,6 +10,8 @@ use crate::contact::method::Gamma0;
 use crate::contact::newton::NewtonOptions;
 use crate::contact::{ContactParams, Method, Rule};
 use crate::discretization::Discretization;
+use crate::grading::*;
+use crate::mesh::Element;
 use crate::solution::Solution;
 use crate::solve::solve_contact;
 
@@ -138,7 +140,7 @@ fn the_lines_nest_and_the_final_edges_lie_in_the_band() {
             );
         }
         if let Grading::Zone(_) = refine {
-            let zones = super::zone::contact_zones(&g.sol.points, &g.sol.p);
+            let zones = crate::grading::zone::contact_zones(&g.sol.points, &g.sol.p);
             assert_eq!(zones.len(), n_edges.div_ceil(2), "{} {zones:?}", s.name);
             for (a, b) in zones {
                 let span = &x[a.saturating_sub(1)..=(b + 2).min(x.len() - 1)];

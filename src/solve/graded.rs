@@ -3,25 +3,23 @@
 //! the contact zone: [`GradedGrid::zoned`]) and solve again, pass after pass. Each pass
 //! starts Newton from the last pass's pressure carried to the new points (forces = p(x)·w);
 //! the new grid has its own assembly, ordering and factor (nothing of the mesh's work carries
-//! over: its lines changed). Every method and element
-//! goes through [`solve_contact`], whose smoothing (17) uses the graded mesh's own weights.
+//! over: its lines changed). Every method and element goes through the entry's solve on one
+//! mesh ([`super::solve_contact`]), whose smoothing (17) uses the graded mesh's own weights.
 
 use std::ops::ControlFlow;
 
-use crate::contact::ContactParams;
+use super::{Graded, Request, solve_contact};
 use crate::contact::ContactPoints;
-use crate::contact::newton::NewtonOptions;
+use crate::contact::newton::{Iteration, NewtonOptions};
 use crate::discretization::Discretization;
 use crate::discretization::refused;
 use crate::error::{SolveError, Workload};
 use crate::fem::memory::Limits;
+use crate::grading::zone::contact_zones;
+use crate::grading::{AUTO_TOLERANCE, GradedGrid, Grading, MAX_PASSES, RefineEdges, contact_edges};
 use crate::mesh::Element;
 use crate::scenario::Scenario;
 use crate::solution::{Solution, Timing};
-use crate::solve::solve_contact;
-
-use super::zone::contact_zones;
-use super::{AUTO_TOLERANCE, GradedGrid, Grading, MAX_PASSES, RefineEdges, contact_edges};
 use crate::warning::Warning;
 
 /// One pass of a graded solve, as reported.
@@ -37,60 +35,41 @@ pub struct Pass {
     pub ms: f64,
 }
 
-/// A graded solve's result: the final grid, its discretisation and solution (whose timing is
-/// the sum of every pass's), and the passes.
-pub struct GradedSolve {
+/// A graded solve's grids: the final grid, its discretisation, and the passes (the solution is
+/// [`super::Solved`]'s).
+pub struct Grids {
     /// The final grid.
     pub grid: GradedGrid,
     /// The final grid's discretisation (None: no pass was made; the uniform level's, given).
-    pub graded: Option<Discretization>,
-    /// The final pass's solution; its [`Timing`] sums every pass.
-    pub sol: Solution,
+    pub disc: Option<Discretization>,
     /// Every pass, the uniform level first.
     pub passes: Vec<Pass>,
 }
 
-impl GradedSolve {
-    /// Charge the uniform level's mesh work (assembly, ordering, factorisation) to the result,
-    /// for a caller that built `uniform` for this solve alone.
-    pub fn charge_uniform(&mut self, uniform: &Discretization) {
-        let mesh_work = Timing {
-            assembly: uniform.assembly_ms,
-            symbolic: uniform.symbolic_ms,
-            factorization: uniform.factorization_ms,
-            newton: 0.0,
-            total: uniform.assembly_ms + uniform.symbolic_ms + uniform.factorization_ms,
-        };
-        add(&mut self.sol.timing, &mesh_work);
-        self.passes[0].ms += mesh_work.total;
-    }
-
-    /// The final grid's discretisation: the graded one, or `uniform` (the one solved on).
-    pub fn disc<'a>(&'a self, uniform: &'a Discretization) -> &'a Discretization {
-        self.graded.as_ref().unwrap_or(uniform)
-    }
-}
-
-/// Solve `params` on `uniform`, the discretisation of `scenario`'s `level`, then grade at the
-/// contact edges (or over the contact zone) as `refine` asks ([`Grading::wants_pass`]), each
-/// pass warm-started from the last. The grading stops early when the pressure has no contact
+/// Solve `request` (frictionless) on `uniform`, the discretisation of the scenario's `level`,
+/// then grade at the contact edges (or over the contact zone) as its grading asks
+/// ([`Grading::wants_pass`]), each pass warm-started from the last. The grading stops early when the pressure has no contact
 /// edge (zone), or a pass does not converge (its solution is the result, not converged). A
 /// grid that does not fit the memory is refused before it is built. The uniform level's mesh
 /// work is the caller's to charge ([`Timing`] of the result: every pass's solve and every
 /// graded mesh's work).
-pub fn solve_graded(
-    scenario: &Scenario,
-    (level, uniform): (u32, &Discretization),
-    params: &ContactParams,
-    refine: impl Into<Grading>,
+pub(super) fn solve_graded(
+    uniform: &Discretization,
+    Graded {
+        scenario,
+        level,
+        grading: refine,
+    }: Graded<'_>,
+    request: &Request<'_>,
     opts: &NewtonOptions,
-) -> Result<GradedSolve, SolveError> {
-    let refine = refine.into();
+    on_iteration: &mut dyn FnMut(&Iteration) -> ControlFlow<()>,
+) -> Result<(Solution, Grids), SolveError> {
+    let params = &request.params;
     let element = uniform.mesh.element;
     let base = GradedGrid::uniform(scenario, level);
     let mut grid = base.clone();
     let mut graded: Option<Discretization> = None;
-    let mut sol = solve_contact(uniform, params, None, opts, &mut |_| ControlFlow::Continue(()))?;
+    let mut sol = solve_contact(uniform, params, request.warm.forces(), opts, &mut *on_iteration)?;
     let mut passes = vec![Pass {
         n_dofs: uniform.n_dofs(),
         h_min: grid.h_min(),
@@ -117,9 +96,7 @@ pub fn solve_graded(
         )?;
         let points = d.contact_points(params.rule);
         let initial = carried(&sol.points, &sol.p, &points);
-        let mut s = solve_contact(&d, params, Some(&initial), opts, &mut |_| {
-            ControlFlow::Continue(())
-        })?;
+        let mut s = solve_contact(&d, params, Some(&initial), opts, &mut *on_iteration)?;
         s.timing.include_mesh_work(&d);
         let change = pbar_change(&sol, &s);
         let previous_estimate = passes[passes.len() - 1].pbar_change;
@@ -129,7 +106,7 @@ pub fn solve_graded(
             pbar_change: Some(change),
             ms: s.timing.total,
         });
-        add(&mut spent, &s.timing);
+        spent.add(&s.timing);
         let (previous, previous_sol) = (std::mem::replace(&mut grid, next), std::mem::replace(&mut sol, s));
         graded = Some(d);
         if let Some(estimate) =
@@ -157,14 +134,7 @@ pub fn solve_graded(
                     scenario.material,
                     scenario.integration,
                 )?;
-                let mesh_work = Timing {
-                    assembly: d.assembly_ms,
-                    symbolic: d.symbolic_ms,
-                    factorization: d.factorization_ms,
-                    newton: 0.0,
-                    total: d.assembly_ms + d.symbolic_ms + d.factorization_ms,
-                };
-                add(&mut spent, &mesh_work);
+                spent.add(&Timing::mesh_work(&d));
                 Some(d)
             }
         };
@@ -186,12 +156,14 @@ pub fn solve_graded(
         );
     }
     sol.timing = spent;
-    Ok(GradedSolve {
-        grid,
-        graded,
+    Ok((
         sol,
-        passes,
-    })
+        Grids {
+            grid,
+            disc: graded,
+            passes,
+        },
+    ))
 }
 
 /// An earlier grid of `auto`: its grid, its solution, and its estimated error, the change of
@@ -265,13 +237,4 @@ fn pbar_change(old: &Solution, new: &Solution) -> f64 {
     };
     let norm = l2(&new.pbar);
     if norm > 0.0 { l2(&d) / norm } else { 0.0 }
-}
-
-/// Add `b`'s times to `a`'s.
-fn add(a: &mut Timing, b: &Timing) {
-    a.assembly += b.assembly;
-    a.symbolic += b.symbolic;
-    a.factorization += b.factorization;
-    a.newton += b.newton;
-    a.total += b.total;
 }

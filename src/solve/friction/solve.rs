@@ -1,7 +1,7 @@
 //! A contact solve with friction on a discretisation (docs/design.md §11): the checks, the
 //! full trace's couplings, the loading path, and the [`Solution`] with its
-//! [`FrictionSolution`] — the library's entry for the command line, the study and the lab
-//! (warm-startable from an earlier solve's forces).
+//! [`FrictionSolution`], warm-startable from an earlier solve's forces (the warnings are the
+//! entry's, [`crate::solve::solve`]).
 
 use std::ops::ControlFlow;
 use std::time::Instant;
@@ -15,7 +15,6 @@ use crate::contact::{ContactParams, Method, load, raw_pressure, smoothed_pressur
 use crate::discretization::{Discretization, ms_since};
 use crate::error::{Diagnosis, InputFault, SolveError};
 use crate::solution::{Solution, Timing};
-use crate::warning::{self, Warning};
 
 /// The traces of u₀ = K⁻¹f on the rule's points: d = B_n u₀ − g and e = B_t u₀ (a scenario
 /// has f = 0: d = −g, e = 0; a patch test loads the body).
@@ -50,7 +49,7 @@ pub fn check(disc: &Discretization, params: &ContactParams, friction: &Friction)
 
 /// Solve the contact problem with `friction` on `disc` (no body load), from the forces
 /// (y, z) of an earlier solve with the same rule (`initial`, ignored if it does not fit).
-pub fn solve_friction(
+pub(in crate::solve) fn solve_frictional(
     disc: &Discretization,
     params: &ContactParams,
     friction: &Friction,
@@ -72,7 +71,7 @@ pub fn solve_friction(
     )
 }
 
-/// [`solve_friction`] with the body's load given by its traces `free`.
+/// The solve with friction with the body's load given by its traces `free`.
 pub fn solve_with(
     disc: &Discretization,
     params: &ContactParams,
@@ -84,7 +83,7 @@ pub fn solve_with(
 ) -> Result<Solution, SolveError> {
     let t = Instant::now();
     let points = disc.contact_points(params.rule);
-    disc.check(params, points.len())?;
+    crate::solve::checks::check_on(disc, params, points.len())?;
     check(disc, params, friction)?;
     let trace = FrictionTrace::of(disc)?;
     let couplings = trace.couplings(disc, params.rule, &points);
@@ -156,18 +155,6 @@ pub fn solve_with(
         converged = false;
         diagnosis = Some(Diagnosis::Overflow);
     }
-    // The stiffness's warning first (a locked body makes any penalty soft), then a penalty
-    // too soft for the depth: its answer is wrong, not merely poor.
-    let mut warnings: Vec<Warning> = disc.stiffness_warning().into_iter().collect();
-    if params.method == Method::Penalty {
-        warnings.extend(warning::of_soft_penalty(
-            &params.obstacle,
-            &points,
-            params.epsilon,
-            &p,
-        ));
-    }
-    warnings.extend(warning::of_contact(&params.obstacle, &points, &p, disc.mesh.h()));
     let newton_ms = ms_since(t);
     Ok(Solution {
         params: params.clone(),
@@ -190,7 +177,7 @@ pub fn solve_with(
             total: newton_ms,
             ..Timing::default()
         },
-        warnings,
+        warnings: Vec::new(),
         nodal_forces: None,
         gamma0: None,
         friction: Some(FrictionSolution {

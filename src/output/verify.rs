@@ -6,8 +6,8 @@ use std::fmt::Write as _;
 
 use serde::Serialize;
 
-use super::{Case, Check, Kind, Verdict, Verification};
 use crate::output::{Cell, Report, csv_table};
+use crate::verify::{Case, Check, Kind, Verdict, Verification};
 
 /// The CSV columns of `riplab verify`.
 const COLUMNS: [(&str, Cell); 12] = [
@@ -157,7 +157,7 @@ impl Report for Verification {
                 &format!(
                     "{ok} of {} checks OK (OK: error ≤ tolerance against the reference; unchanged: within {:e} relative of the value stored at the default level, no row at other levels)",
                     self.checks.len(),
-                    super::CHANGE_RELATIVE
+                    crate::verify::CHANGE_RELATIVE
                 ),
                 ""
             )
@@ -224,7 +224,7 @@ impl Report for CaseList {
                 c.name,
                 c.kind.name(),
                 c.default_level,
-                super::MIN_VERIFY_LEVEL,
+                crate::verify::MIN_VERIFY_LEVEL,
                 c.max_level
             );
             s.push_str(&wrap(c.description, "    "));
@@ -255,7 +255,7 @@ mod tests {
     /// Every CSV column names a field of a check's JSON.
     #[test]
     fn the_csv_columns_are_fields() {
-        let checks = super::super::run(&super::super::manufactured::CASE, Some(2));
+        let checks = crate::verify::run(&crate::verify::manufactured::CASE, Some(2));
         let json = serde_json::to_value(&checks[0]).unwrap();
         for (name, cell) in COLUMNS {
             let Cell::Field(pointer) = cell else {

@@ -12,7 +12,8 @@ use faer::{Mat, MatRef};
 
 use crate::contact::friction::law::Couplings;
 use crate::contact::{ContactPoints, Rule};
-use crate::discretization::{Discretization, Trace, held_tangential};
+use crate::discretization::{Discretization, Trace};
+use crate::error::InputFault;
 use crate::error::SolveError;
 
 /// Columns solved at once when C's tangential columns come from the mesh's factor.
@@ -34,7 +35,7 @@ impl FrictionTrace {
         let tangential = disc
             .dofs
             .tangential_dofs(&disc.mesh)
-            .ok_or_else(held_tangential)?;
+            .ok_or(InputFault::HeldTangential)?;
         Ok(disc.kept.get_or_init(|| Self::build(disc, tangential)))
     }
 
