@@ -85,6 +85,7 @@ fn handout(tour: &Tour, dir: &Path, width: u16, height: u16) -> Result<ExitCode,
     })
     .map_err(|e| match e {
         e @ (HandoutError::Directory { .. } | HandoutError::TooLarge { .. }) => usage("--handout", e),
+        e @ HandoutError::Memory { .. } => CliError::Usage(format!("handout: {e}")),
         other => CliError::Failed(format!("handout: {other}")),
     })?;
     let index = files.last().map(|p| p.display().to_string()).unwrap_or_default();

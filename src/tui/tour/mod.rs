@@ -27,6 +27,7 @@ use toml::Spanned;
 use crate::check;
 use crate::contact::{Method, Rule};
 use crate::fem::Integration;
+use crate::grading::MAX_PASSES;
 use crate::input::Locator as Source;
 use crate::input::{RawGamma0, RawRefineEdges, ScenarioError, read_toml};
 use crate::mesh::Element;
@@ -180,7 +181,12 @@ impl Tour {
         let src = Source { file, text };
         src.check_nesting()?;
         // Integers beyond 64 bits said in the user's words, with the step they stand in.
-        src.check_numbers(|key| key.ends_with(".level").then_some((0, i64::from(MAX_APP_LEVEL))))?;
+        src.check_numbers(|key| {
+            let passes = key
+                .ends_with(".refine_edges")
+                .then_some((0, i64::from(MAX_PASSES)));
+            passes.or(key.ends_with(".level").then_some((0, i64::from(MAX_APP_LEVEL))))
+        })?;
         let raw: RawTour =
             toml::from_str(text).map_err(|e| src.error(e.span(), None, e.message().trim().to_string()))?;
         src.check("title", &raw.title, |t| one_line(t, 200))?;
