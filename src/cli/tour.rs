@@ -67,6 +67,13 @@ pub(super) fn tour(args: &TourArgs, opts: TuiOptions) -> Result<ExitCode, CliErr
         .with_scenario(scenario)
         .map_err(|e| CliError::Usage(e.to_string()))?;
     if args.check.is_some() {
+        // A graded step the lab would refuse for its memory is refused here too.
+        tour.graded_fits().map_err(|(step, e)| {
+            CliError::Usage(format!(
+                "{}: step {step}: {e}",
+                crate::text::sanitize(&tour.source)
+            ))
+        })?;
         print(&listing(&tour))?;
         return Ok(ExitCode::SUCCESS);
     }

@@ -196,8 +196,9 @@ fn a_study_whose_graded_rows_cannot_fit_is_refused_before_any_assembly() {
 /// A tour step at level 7 graded `8z` made `tour --handout` solve its passes until one did not
 /// fit (300 s and 16 GB before it was stopped, nothing refused). Every graded step is
 /// estimated from its lines first, as the lab's engine does: refused, exit 2, naming the step,
-/// the level, the element, the grading and the memory, and no directory made. Under half the
-/// estimate of level 7, which the handout would build first.
+/// the level, the element, the grading and the memory, and no directory made; `tour --check`
+/// refuses it in the same words. Under half the estimate of level 7, which the handout would
+/// build first.
 #[test]
 fn a_handout_whose_graded_step_cannot_fit_is_refused_before_any_assembly() {
     let tour = scratch_file(
@@ -227,4 +228,14 @@ fn a_handout_whose_graded_step_cannot_fit_is_refused_before_any_assembly() {
         ],
     );
     assert!(!dir.exists());
+    // `tour --check` called it a valid tour of 1 step (exit 0): it says what the lab would.
+    let file = tour.to_str().unwrap();
+    refused(
+        riplab_under_half_of(&paper_sizes(7, Element::Q1), &["tour", "--check", file]),
+        &[
+            &format!("{file}: step 1: level 7 with q1 graded over the contact zone, 8 passes (8z): ")[..],
+            "GiB",
+            "available",
+        ],
+    );
 }

@@ -13,7 +13,7 @@
 //! refused; while it is written, the bytes are counted against the same limit (a graded step's
 //! chart has more points than its level's, which the estimate counts). A graded step whose
 //! memory, estimated from its lines, exceeds what the process may use is refused before
-//! anything is written, as the lab's engine refuses it (its `graded_fits`).
+//! anything is written, as the lab's engine refuses it ([`Tour::graded_fits`]).
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -128,12 +128,8 @@ pub fn write_handout(
             estimate,
         });
     }
-    // Every graded step's memory, estimated from its lines as the lab's engine does.
-    for i in 0..tour.steps.len() {
-        Engine::new(tour.scenario_of(i).clone())
-            .graded_fits(&tour.app(i).settings)
-            .map_err(|source| HandoutError::Memory { step: i + 1, source })?;
-    }
+    tour.graded_fits()
+        .map_err(|(step, source)| HandoutError::Memory { step, source })?;
     write_within(tour, dir, (width, height), MAX_HANDOUT_BYTES, progress)
 }
 

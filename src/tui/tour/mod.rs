@@ -26,6 +26,7 @@ use toml::Spanned;
 
 use crate::check;
 use crate::contact::{Method, Rule};
+use crate::error::SolveError;
 use crate::fem::Integration;
 use crate::grading::MAX_PASSES;
 use crate::input::Locator as Source;
@@ -254,6 +255,18 @@ impl Tour {
             }
         }
         Ok(self)
+    }
+
+    /// Refuse the first graded step whose memory, estimated from its lines, exceeds what this
+    /// process may use, as the lab's engine refuses its solve (docs/design.md §6): its number
+    /// (1-based) and the refusal, naming the level, the element, the grading and the memory.
+    pub fn graded_fits(&self) -> Result<(), (usize, SolveError)> {
+        for i in 0..self.steps.len() {
+            super::engine::Engine::new(self.scenario_of(i).clone())
+                .graded_fits(&self.app(i).settings)
+                .map_err(|e| (i + 1, e))?;
+        }
+        Ok(())
     }
 
     /// The scenario of step `index` (its own, else the tour's).
