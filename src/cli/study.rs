@@ -85,14 +85,6 @@ pub(super) fn study(args: &StudyArgs) -> Result<ExitCode, CliError> {
         i64::from(crate::study::MAX_REFINEMENTS),
     )
     .map_err(|m| usage("--reference-refinements", m))?;
-    let with = match scenario.friction.is_on() {
-        true => format!(", with {} friction imposed exactly", scenario.friction.law.name()),
-        false => String::new(),
-    };
-    note(&format!(
-        "the reference: q2 + simpson, ε = 0 (exact constraint){with}, level {reference_level} and, for its estimated error, level {} …",
-        reference_level - 1
-    ));
     let dir = (!args.no_cache).then(crate::cache::default_dir).flatten();
     let mut fetch = |grid: &crate::study::ReferenceMesh| {
         let (fields, provenance) = crate::cache::fields(&scenario, grid, dir.as_deref())?;
@@ -138,6 +130,25 @@ pub(super) fn study(args: &StudyArgs) -> Result<ExitCode, CliError> {
             )
         });
     }
+    // Every graded row's memory, estimated from its lines (crate::grading::estimate) before
+    // the reference or any row is assembled: one that cannot fit refuses the whole study.
+    if args.sweep_epsilon.is_empty() {
+        for &grading in &refine {
+            for &(element, _) in &schemes {
+                for &level in &levels {
+                    crate::grading::estimate::fits(&scenario, level, element, grading, |_| 0)?;
+                }
+            }
+        }
+    }
+    let with = match scenario.friction.is_on() {
+        true => format!(", with {} friction imposed exactly", scenario.friction.law.name()),
+        false => String::new(),
+    };
+    note(&format!(
+        "the reference: q2 + simpson, ε = 0 (exact constraint){with}, level {reference_level} and, for its estimated error, level {} …",
+        reference_level - 1
+    ));
     let plan = if args.sweep_epsilon.is_empty() {
         Plan::Levels {
             levels: &levels,

@@ -67,6 +67,13 @@ pub(super) fn tour(args: &TourArgs, opts: TuiOptions) -> Result<ExitCode, CliErr
         .with_scenario(scenario)
         .map_err(|e| CliError::Usage(e.to_string()))?;
     if args.check.is_some() {
+        // A graded step the lab would refuse for its memory is refused here too.
+        tour.graded_fits().map_err(|(step, e)| {
+            CliError::Usage(format!(
+                "{}: step {step}: {e}",
+                crate::text::sanitize(&tour.source)
+            ))
+        })?;
         print(&listing(&tour))?;
         return Ok(ExitCode::SUCCESS);
     }
@@ -85,6 +92,7 @@ fn handout(tour: &Tour, dir: &Path, width: u16, height: u16) -> Result<ExitCode,
     })
     .map_err(|e| match e {
         e @ (HandoutError::Directory { .. } | HandoutError::TooLarge { .. }) => usage("--handout", e),
+        e @ HandoutError::Memory { .. } => CliError::Usage(format!("handout: {e}")),
         other => CliError::Failed(format!("handout: {other}")),
     })?;
     let index = files.last().map(|p| p.display().to_string()).unwrap_or_default();

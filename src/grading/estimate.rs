@@ -124,7 +124,7 @@ pub fn fits(
 }
 
 /// [`fits`] against `limits`.
-fn fits_within(
+pub fn fits_within(
     scenario: &Scenario,
     (level, element): (u32, Element),
     grading: Grading,

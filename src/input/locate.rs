@@ -103,6 +103,10 @@ impl Locator<'_> {
             }
             None => (None, None),
         };
+        // serde names the reader's types; the user's words instead.
+        let message = message
+            .replace(", expected i64", ", expected a whole number")
+            .replace(", expected f64", ", expected a number");
         // A missing field is reported at the table that lacks it: name the field.
         let missing = message
             .strip_prefix("missing field `")
@@ -132,16 +136,29 @@ impl Locator<'_> {
     fn key_at(&self, line: usize) -> Option<String> {
         let lines: Vec<&str> = self.text.lines().collect();
         let here = lines.get(line - 1)?.trim();
-        let header = |l: &str| l.trim_matches(|c| c == '[' || c == ']').trim().to_string();
+        let name = |l: &str| l.trim_matches(|c| c == '[' || c == ']').trim().to_string();
+        // The table a header on line index `i` opens: `step[3]` for the third `[[step]]`.
+        let header = |i: usize| {
+            let l = lines[i].trim();
+            let table = name(l);
+            if !l.starts_with("[[") {
+                return table;
+            }
+            let same = lines[..=i]
+                .iter()
+                .filter(|h| h.trim().starts_with("[[") && name(h) == table)
+                .count();
+            format!("{table}[{same}]")
+        };
         if here.starts_with('[') {
-            return Some(header(here));
+            return Some(header(line - 1));
         }
         let above = &lines[..line - 1];
         let start = above
             .iter()
             .rposition(|l| l.trim().starts_with('['))
             .map_or(0, |i| i + 1);
-        let table = start.checked_sub(1).map(|i| header(above[i].trim()));
+        let table = start.checked_sub(1).map(header);
         let join = |key: &str| match &table {
             Some(t) => format!("{t}.{key}"),
             None => key.to_string(),

@@ -9,7 +9,10 @@ use riplab::discretization::Discretization;
 use riplab::mesh::Element;
 use riplab::scenario::Scenario;
 
-use crate::common::{no_panic, riplab_under_half_of, scratch_file};
+use riplab::grading::Grading;
+use riplab::grading::estimate::estimate;
+
+use crate::common::{no_panic, riplab_under, riplab_under_half_of, scratch_file};
 
 fn paper_sizes(level: u32, element: Element) -> riplab::fem::memory::Sizes {
     Discretization::sizes(&Scenario::paper(), level, element)
@@ -125,5 +128,114 @@ fn a_method_that_takes_no_friction_is_refused_before_any_assembly() {
             ],
         ),
         &["invalid value for --friction: friction is imposed by penalty, exact or alm, not by nitsche"],
+    );
+}
+
+/// `study --refine-edges 0,8z` refused its graded rows one by one, each after the reference
+/// and the rows before it were solved (exit 1 after 56 s under a 1.2 GiB limit: "4 of 12 rows
+/// have no certified result"). Every graded row is estimated from its lines first, and the
+/// whole study is refused, exit 2, naming a row's level, element and grading and the memory,
+/// with nothing computed (not even the reference's note). Under half the estimate of the
+/// largest Q1 row, and (with Q2 alone, graded at the edges) under half of its only graded row's.
+#[test]
+fn a_study_whose_graded_rows_cannot_fit_is_refused_before_any_assembly() {
+    let paper = Scenario::paper();
+    let memory = ["GiB", "available", "choose fewer passes or a coarser level"];
+    let (_, need) = estimate(&paper, 3, Element::Q1, Grading::Zone(8), |_| 0);
+    let out = riplab_under(
+        need / 2,
+        &[
+            "study",
+            "--levels",
+            "0..3",
+            "--schemes",
+            "M1,M4",
+            "--refine-edges",
+            "0,8z",
+            "--no-cache",
+        ],
+    );
+    let stderr = out.2.clone();
+    refused(
+        out,
+        &[&["graded over the contact zone, 8 passes (8z): "][..], &memory].concat(),
+    );
+    let named = (0..=3).any(|l| {
+        ["q1", "q2"]
+            .iter()
+            .any(|e| stderr.contains(&format!("level {l} with {e} graded over")))
+    });
+    assert!(named && !stderr.contains("the reference"), "{stderr}");
+    let edges = Grading::parse("8").unwrap();
+    let (_, need) = estimate(&paper, 7, Element::Q2, edges, |_| 0);
+    let out = riplab_under(
+        need / 2,
+        &[
+            "study",
+            "--levels",
+            "7",
+            "--schemes",
+            "M4",
+            "--refine-edges",
+            "0,8",
+            "--no-cache",
+        ],
+    );
+    let stderr = out.2.clone();
+    refused(
+        out,
+        &[
+            &["level 7 with q2 graded at the contact edges, 8 passes (8): "][..],
+            &memory,
+        ]
+        .concat(),
+    );
+    assert!(!stderr.contains("the reference"), "{stderr}");
+}
+
+/// A tour step at level 7 graded `8z` made `tour --handout` solve its passes until one did not
+/// fit (300 s and 16 GB before it was stopped, nothing refused). Every graded step is
+/// estimated from its lines first, as the lab's engine does: refused, exit 2, naming the step,
+/// the level, the element, the grading and the memory, and no directory made; `tour --check`
+/// refuses it in the same words. Under half the estimate of level 7, which the handout would
+/// build first.
+#[test]
+fn a_handout_whose_graded_step_cannot_fit_is_refused_before_any_assembly() {
+    let tour = scratch_file(
+        "graded-step-level-7.toml",
+        "title = \"t\"\n[[step]]\ntitle = \"s\"\ncaption = \"c\"\nlevel = 7\nrefine_edges = \"8z\"\n",
+    );
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("graded-step-handout");
+    let _ = std::fs::remove_dir_all(&dir);
+    refused(
+        riplab_under_half_of(
+            &paper_sizes(7, Element::Q1),
+            &[
+                "tour",
+                "--tour",
+                tour.to_str().unwrap(),
+                "--handout",
+                dir.to_str().unwrap(),
+                "--size",
+                "80x24",
+            ],
+        ),
+        &[
+            "step 1: level 7 with q1 graded over the contact zone, 8 passes (8z): ",
+            "GiB",
+            "available",
+            "choose fewer passes or a coarser level",
+        ],
+    );
+    assert!(!dir.exists());
+    // `tour --check` called it a valid tour of 1 step (exit 0): it says what the lab would.
+    let file = tour.to_str().unwrap();
+    refused(
+        riplab_under_half_of(&paper_sizes(7, Element::Q1), &["tour", "--check", file]),
+        &[
+            &format!("{file}: step 1: level 7 with q1 graded over the contact zone, 8 passes (8z): ")[..],
+            "GiB",
+            "available",
+        ],
     );
 }

@@ -54,7 +54,12 @@ pub fn scratch_file(name: &str, text: &str) -> std::path::PathBuf {
 /// a level of hundreds of MiB or more: half of that is far more than riplab's start takes.)
 /// Exit code, stdout and stderr.
 pub fn riplab_under_half_of(sizes: &riplab::fem::memory::Sizes, args: &[&str]) -> (i32, String, String) {
-    let kib = sizes.peak_bytes() / 2 / 1024;
+    riplab_under(sizes.peak_bytes() / 2, args)
+}
+/// Run riplab ARGS under an address-space limit of `bytes` (`ulimit -v`, the child's alone;
+/// derive it from riplab's own estimate, never a fixed number). Exit code, stdout and stderr.
+pub fn riplab_under(bytes: u64, args: &[&str]) -> (i32, String, String) {
+    let kib = bytes / 1024;
     let out = std::process::Command::new("sh")
         .arg("-c")
         .arg(format!("ulimit -v {kib} && exec \"$0\" \"$@\""))

@@ -19,6 +19,8 @@ use crate::contact::{ContactParams, Method, Rule, carried_forces};
 use crate::discretization::Discretization;
 use crate::error::SolveError;
 use crate::fem::Integration;
+use crate::fem::memory::Limits;
+use crate::grading::estimate::fits_within;
 use crate::grading::{GradedGrid, Grading};
 use crate::mesh::Element;
 use crate::solution::Solution;
@@ -150,6 +152,27 @@ impl Engine {
         let grid = last.grid.clone();
         self.last_graded = LastGraded::of(&key, grid, disc.clone(), &sol);
         Some(self.solved(req, disc, sol, t, Regrade::Kept))
+    }
+
+    /// Refuse a graded solve of `key` whose estimate from its lines
+    /// ([`crate::grading::estimate`]) exceeds what [`Engine::limits`] leave, before its
+    /// uniform level or any pass is assembled, naming the level, the element, the grading
+    /// and the memory (the status line shows it). Nothing to check without a grading, nor
+    /// with friction (which grading does not take: [`super::super::lab_error::LabError::GradedFriction`]).
+    pub(in crate::tui) fn graded_fits(&self, key: &SolveKey) -> Result<(), SolveError> {
+        if !key.refine_edges.grades() || key.friction.is_on() {
+            return Ok(());
+        }
+        let mut scenario = self.scenario.clone();
+        scenario.obstacle = scenario.obstacle.with_depth(key.depth);
+        let limits = self.limits.clone().unwrap_or_else(Limits::of_process);
+        fits_within(
+            &scenario,
+            (key.level, key.element),
+            key.refine_edges,
+            |_| 0,
+            &limits,
+        )
     }
 
     /// Solve `req` on `uniform` graded as its key asks, started at `t`: the library's entry ([`solve::solve`]) from

@@ -15,6 +15,7 @@ use crate::contact::{Method, Rule, carried_forces};
 use crate::discretization::Discretization;
 use crate::error::SolveError;
 use crate::fem::Integration;
+use crate::fem::memory::Limits;
 use crate::mesh::Element;
 use crate::scenario::Scenario;
 use crate::solve::{self, Request};
@@ -114,6 +115,10 @@ pub struct Engine {
     /// The estimated peak of each mesh asked about (computed once: it lays out the mesh's
     /// lines and contact points, megabytes on a fine grid).
     peaks: RefCell<HashMap<(u32, Element), u64>>,
+    /// What a graded solve's estimate is checked against before anything is assembled: None, the
+    /// memory this process may use when it is asked ([`Limits::of_process`]); a test sets
+    /// limits of its own, derived from the estimate.
+    pub limits: Option<Limits>,
 }
 
 impl Engine {
@@ -129,6 +134,7 @@ impl Engine {
             prepare_eta: Eta::preparing(),
             unfit: Vec::new(),
             peaks: RefCell::default(),
+            limits: None,
         }
     }
 
@@ -352,6 +358,13 @@ impl Engine {
         // Graded: on the last graded grid first, kept while the contact edges stay in its band.
         if let Some(kept) = self.on_graded_grid(req, is_current, report, t) {
             return kept;
+        }
+        // A graded solve's memory, estimated from its lines before anything is assembled.
+        if let Err(e) = self.graded_fits(&key) {
+            return Response::Solved {
+                generation,
+                result: Err(e.into()),
+            };
         }
         if self.cached(key.level, key.element).is_none() {
             let unknowns = self.unknowns(key.level, key.element);

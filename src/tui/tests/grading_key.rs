@@ -11,6 +11,7 @@ use riplab::scenario::Scenario;
 use riplab::solve::solve_graded;
 use riplab::tui::app::{App, Msg, Scene};
 use riplab::tui::engine::Engine;
+use riplab::tui::regrade::Regrade;
 use riplab::tui::render_app;
 use riplab::tui::settle::{carry_out, settle};
 
@@ -109,4 +110,44 @@ fn a_graded_mesh_reads_as_lines_not_blocks() {
         assert!(frame.contains("level 2+2e"), "{frame}");
         assert!(!frame.contains('⣿'), "a solid block at {w}×{h}\n{frame}");
     }
+}
+
+/// `E` onto a grading whose estimate from its lines exceeds the memory the engine may use
+/// (here one byte short of the estimate of 2 passes at level 1: the limit derived from it) is
+/// refused before any pass is assembled, in the status line's words: the level, the element,
+/// the grading, the unknowns and the memory; the pass before, which fits, is solved.
+#[test]
+fn e_onto_a_grading_beyond_the_memory_is_refused_before_its_assembly() {
+    use riplab::fem::memory::Limits;
+    use riplab::grading::estimate::estimate;
+    let mut app = settled(1, Scene::Explore);
+    let mut engine = Engine::new(Scenario::paper());
+    let (element, s) = (app.settings.element, Scenario::paper());
+    let (_, one) = estimate(&s, 1, element, RefineEdges::Passes(1).into(), |_| 0);
+    let (last, two) = estimate(&s, 1, element, RefineEdges::Passes(2).into(), |_| 0);
+    assert!(one < two, "{one} {two}");
+    engine.limits = Some(Limits {
+        machine: Some(two - 1),
+        ..Limits::default()
+    });
+    press(&mut app, &mut engine, 'E');
+    settle(&mut app, &mut engine);
+    assert!(app.error.is_none(), "{:?}", app.error);
+    assert_eq!(
+        app.current().and_then(|c| c.regrade),
+        Some(Regrade::Graded { passes: 1 })
+    );
+    press(&mut app, &mut engine, 'E');
+    settle(&mut app, &mut engine);
+    let said = app.error.as_ref().expect("refused").to_string();
+    for words in [
+        "level 1 with q1 graded at the contact edges, 2 passes (2): ",
+        &format!("{} unknowns", last.unknowns),
+        "GiB",
+        "available",
+    ] {
+        assert!(said.contains(words), "lacks {words:?}: {said}");
+    }
+    let frame = render_app(&app, &LOOK, 120, 30);
+    assert!(frame.contains("graded at the contact edges, 2 passes"), "{frame}");
 }

@@ -266,3 +266,46 @@ fn the_handout_estimate_bounds_what_it_writes() {
     assert!(!refused.exists());
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// An integer beyond 64 bits as a step's `refine_edges` is refused at the step's key with the
+/// passes allowed (0 to 8), as `mesh.refine_edges` is in a scenario; it named i64's range.
+#[test]
+fn an_oversized_step_grading_names_the_passes_allowed() {
+    let e = Tour::parse(&one_step("refine_edges = 99999999999999999999"), "t.toml", None).unwrap_err();
+    let said = e.to_string();
+    assert!(
+        said.contains("`step[1].refine_edges`: 99999999999999999999 is out of range; allowed: 0 to 8"),
+        "{said}"
+    );
+}
+
+/// A value of the wrong type in a step is refused at the step's own key (`step[2].level`,
+/// the second `[[step]]`), in the user's words: it said `step.level` and "expected i64".
+#[test]
+fn a_wrong_type_in_a_step_names_the_step_in_the_users_words() {
+    let two = |setting: &str| {
+        format!(
+            "{}\n[[step]]\ntitle = \"u\"\ncaption = \"d\"\n{setting}\n",
+            one_step("level = 0")
+        )
+    };
+    for (setting, said) in [
+        (
+            "level = \"x\"",
+            "`step[2].level`: invalid type: string \"x\", expected a whole number",
+        ),
+        (
+            "depth = true",
+            "`step[2].depth`: invalid type: boolean `true`, expected a number",
+        ),
+        (
+            "refine_edges = 1.5",
+            "`step[2].refine_edges`: invalid type: floating point `1.5`",
+        ),
+    ] {
+        let e = Tour::parse(&two(setting), "t.toml", None)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains(said), "{setting}: {e}");
+    }
+}

@@ -172,3 +172,43 @@ fn friction_with_zone_grading_is_refused() {
     assert!(said.contains("over the zone"), "{said}");
     assert!(app.solved.as_ref().is_some_and(|s| !s.key.friction.is_on()));
 }
+
+/// `E` from 1z onto 2z when 2z's estimate from its lines exceeds the memory the engine may
+/// use (one byte short of it, derived from the estimate) is refused before its passes are
+/// assembled, naming the level, the element, the zone grading and the memory.
+#[test]
+fn e_onto_a_zone_grading_beyond_the_memory_is_refused_before_its_assembly() {
+    use riplab::fem::memory::Limits;
+    use riplab::grading::estimate::estimate;
+    let mut scenario = Scenario::paper();
+    scenario.set_grading(Grading::Zone(1));
+    let mut engine = Engine::new(scenario.clone());
+    let mut app = App::new(scenario.clone());
+    app.show_timing = false;
+    app.settings.level = 2;
+    settle(&mut app, &mut engine);
+    assert_eq!(
+        app.current().and_then(|c| c.regrade),
+        Some(Regrade::Graded { passes: 1 })
+    );
+    let (_, need) = estimate(&scenario, 2, app.settings.element, Grading::Zone(2), |_| 0);
+    engine.limits = Some(Limits {
+        machine: Some(need - 1),
+        ..Limits::default()
+    });
+    press(&mut app, &mut engine, 'E');
+    assert_eq!(app.settings.refine_edges, Grading::Zone(2));
+    let said = app.error.as_ref().expect("refused").to_string();
+    for words in [
+        "level 2 with q1 graded over the contact zone, 2 passes (2z): ",
+        "GiB",
+        "available",
+    ] {
+        assert!(said.contains(words), "lacks {words:?}: {said}");
+    }
+    let frame = render_app(&app, &LOOK, 120, 30);
+    assert!(
+        frame.contains("graded over the contact zone, 2 passes"),
+        "{frame}"
+    );
+}

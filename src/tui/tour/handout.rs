@@ -11,11 +11,14 @@
 //! The rule for the size: before anything is written, the handout's bytes are estimated from
 //! its steps and frame size ([`estimate`]) and a handout beyond [`MAX_HANDOUT_BYTES`] is
 //! refused; while it is written, the bytes are counted against the same limit (a graded step's
-//! chart has more points than its level's, which the estimate counts).
+//! chart has more points than its level's, which the estimate counts). A graded step whose
+//! memory, estimated from its lines, exceeds what the process may use is refused before
+//! anything is written, as the lab's engine refuses it ([`Tour::graded_fits`]).
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
+use crate::error::SolveError;
 use crate::plot::{chart_title, pressure_svg_string, write_file};
 use crate::scheme::Scheme;
 use crate::text::num;
@@ -64,11 +67,11 @@ pub enum HandoutError {
         /// The estimate, bytes.
         estimate: u64,
     },
-    /// A step's files would take the handout past [`MAX_HANDOUT_BYTES`] (its chart larger
-    /// than estimated): nothing more is written.
+    /// A step's files would take the handout past the bytes it may write,
+    /// [`MAX_HANDOUT_BYTES`] (its chart larger than estimated): nothing more is written.
     #[error(
         "step {step}: its files would take the handout past the {} it may write ({} written so far); stopped",
-        mib(MAX_HANDOUT_BYTES),
+        mib(*limit),
         mib(*written)
     )]
     Limit {
@@ -76,6 +79,17 @@ pub enum HandoutError {
         step: usize,
         /// The bytes written before it.
         written: u64,
+        /// The bytes the handout may write.
+        limit: u64,
+    },
+    /// A graded step whose estimate from its lines exceeds the memory this process may use
+    /// (bad input): refused before anything is written.
+    #[error("step {step}: {source}")]
+    Memory {
+        /// The step's number (1-based).
+        step: usize,
+        /// The refusal, naming the level, the element, the grading and the memory.
+        source: SolveError,
     },
     /// A file or link appeared at a file's name while the handout was written.
     #[error(
@@ -103,7 +117,7 @@ pub fn write_handout(
     dir: &Path,
     width: u16,
     height: u16,
-    mut progress: impl FnMut(usize, usize),
+    progress: impl FnMut(usize, usize),
 ) -> Result<Vec<PathBuf>, HandoutError> {
     let estimate = estimate(tour, width, height);
     if estimate > MAX_HANDOUT_BYTES {
@@ -114,6 +128,22 @@ pub fn write_handout(
             estimate,
         });
     }
+    tour.graded_fits()
+        .map_err(|(step, source)| HandoutError::Memory { step, source })?;
+    write_within(tour, dir, (width, height), MAX_HANDOUT_BYTES, progress)
+}
+
+/// Write the handout of `tour` at `width`×`height` into `dir` as [`write_handout`] does once
+/// its estimate passed, the bytes counted against `limit` while they are written: the step
+/// whose files (with the index, written last) would pass it is refused, and nothing more is
+/// written.
+fn write_within(
+    tour: &Tour,
+    dir: &Path,
+    (width, height): (u16, u16),
+    limit: u64,
+    mut progress: impl FnMut(usize, usize),
+) -> Result<Vec<PathBuf>, HandoutError> {
     prepare(dir)?;
     let mut files = Vec::new();
     let mut index = intro(tour, width, height);
@@ -127,10 +157,11 @@ pub fn write_handout(
         let svg = chart(app, &mut engine).map_err(fail)?;
         written += (text.len() + svg.len()) as u64;
         // The index, written last, is counted in as it will be.
-        if written + (index.len() as u64) + INDEX_STEP_BYTES > MAX_HANDOUT_BYTES {
+        if written + (index.len() as u64) + INDEX_STEP_BYTES > limit {
             return Err(HandoutError::Limit {
                 step: i + 1,
                 written: written - (text.len() + svg.len()) as u64,
+                limit,
             });
         }
         let stem = format!("step-{:02}", i + 1);
@@ -278,4 +309,51 @@ fn settings(app: &App) -> String {
         s.method.label(),
         num(s.depth)
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The count while writing (the backstop behind the estimate, for a chart larger than
+    /// estimated) stops a handout at the step whose files would pass its limit: under a
+    /// limit that admits step 1 with its index lines and no more, step 1's files are written,
+    /// step 2 is refused in its own words, and neither its files nor the index are.
+    #[test]
+    fn the_count_while_writing_stops_at_the_step_past_the_limit() {
+        let dir = std::env::temp_dir().join(format!("riplab-handout-count-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        let step = |t: &str| format!("\n[[step]]\ntitle = \"{t}\"\ncaption = \"c\"\nlevel = 0\n");
+        let text = format!("title = \"two\"\n{}{}", step("a"), step("b"));
+        let tour = Tour::parse(&text, "t.toml", None).unwrap();
+        let size = (80, 24);
+        let whole = write_within(&tour, &dir.join("whole"), size, MAX_HANDOUT_BYTES, |_, _| {}).unwrap();
+        let bytes = |name: &str| std::fs::metadata(dir.join("whole").join(name)).unwrap().len();
+        assert_eq!(whole.len(), 5, "{whole:?}");
+        let first = bytes("step-01.txt") + bytes("step-01.svg");
+        let limit = first + intro(&tour, size.0, size.1).len() as u64 + INDEX_STEP_BYTES;
+        let out = dir.join("limited");
+        let mut done = Vec::new();
+        let e = write_within(&tour, &out, size, limit, |d, _| done.push(d)).unwrap_err();
+        assert!(
+            matches!(e, HandoutError::Limit { step: 2, written, limit: l } if written == first && l == limit),
+            "{e:?}"
+        );
+        assert!(
+            e.to_string()
+                .starts_with("step 2: its files would take the handout past"),
+            "{e}"
+        );
+        assert_eq!(done, [1]);
+        for (name, kept) in [
+            ("step-01.txt", true),
+            ("step-01.svg", true),
+            ("step-02.txt", false),
+            ("step-02.svg", false),
+            ("index.md", false),
+        ] {
+            assert_eq!(out.join(name).exists(), kept, "{name}");
+        }
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 }

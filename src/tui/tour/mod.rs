@@ -26,7 +26,9 @@ use toml::Spanned;
 
 use crate::check;
 use crate::contact::{Method, Rule};
+use crate::error::SolveError;
 use crate::fem::Integration;
+use crate::grading::MAX_PASSES;
 use crate::input::Locator as Source;
 use crate::input::{RawGamma0, RawRefineEdges, ScenarioError, read_toml};
 use crate::mesh::Element;
@@ -194,7 +196,12 @@ impl Tour {
         let src = Source { file, text };
         src.check_nesting()?;
         // Integers beyond 64 bits said in the user's words, with the step they stand in.
-        src.check_numbers(|key| key.ends_with(".level").then_some((0, i64::from(MAX_APP_LEVEL))))?;
+        src.check_numbers(|key| {
+            let passes = key
+                .ends_with(".refine_edges")
+                .then_some((0, i64::from(MAX_PASSES)));
+            passes.or(key.ends_with(".level").then_some((0, i64::from(MAX_APP_LEVEL))))
+        })?;
         let raw: RawTour =
             toml::from_str(text).map_err(|e| src.error(e.span(), None, e.message().trim().to_string()))?;
         src.check("title", &raw.title, |t| one_line(t, 200))?;
@@ -267,6 +274,18 @@ impl Tour {
             }
         }
         Ok(self)
+    }
+
+    /// Refuse the first graded step whose memory, estimated from its lines, exceeds what this
+    /// process may use, as the lab's engine refuses its solve (docs/design.md §6): its number
+    /// (1-based) and the refusal, naming the level, the element, the grading and the memory.
+    pub fn graded_fits(&self) -> Result<(), (usize, SolveError)> {
+        for i in 0..self.steps.len() {
+            super::engine::Engine::new(self.scenario_of(i).clone())
+                .graded_fits(&self.app(i).settings)
+                .map_err(|e| (i + 1, e))?;
+        }
+        Ok(())
     }
 
     /// The scenario of step `index` (its own, else the tour's).
