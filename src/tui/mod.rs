@@ -20,6 +20,7 @@ pub mod export;
 mod export_error;
 pub mod friction_settings;
 mod job;
+mod key_bar;
 pub mod keys;
 pub mod lab_error;
 pub mod protocol;

@@ -81,8 +81,9 @@ pub(super) trait Program {
     fn wait(&self) -> Option<Duration>;
     fn should_quit(&self) -> bool;
     fn draw(&self, frame: &mut Frame);
-    /// Where a recording is: the tour's step and the scene shown.
-    fn chapter(&self) -> Chapter;
+    /// Where a recording is: the tour's step and the scene shown; None while the tour's step
+    /// is still computing (its marker waits for the finished frame).
+    fn chapter(&self) -> Option<Chapter>;
     /// Show `notice` on the status line (a recording that failed).
     fn notice(&mut self, notice: Notice) -> Flow;
 }
@@ -236,11 +237,6 @@ fn event_loop<P: Program>(
             if let Some(failure) = recorder.new_failure() {
                 flow |= program.notice(Notice::failure(failure.to_string()));
             }
-            let now = program.chapter();
-            if let Some(marker) = now.marker(chapter.as_ref()) {
-                recorder.record(CastEvent::Marker(marker));
-            }
-            chapter = Some(now);
         }
         if flow.suspend {
             suspend(terminal, mouse)?;
@@ -248,6 +244,15 @@ fn event_loop<P: Program>(
         }
         if flow.redraw {
             draw_with(terminal, |frame| program.draw(frame))?;
+        }
+        // The marker after the frame it marks: replayed to a marker, a recording shows it.
+        if let Some(recorder) = recorder.as_deref_mut()
+            && let Some(now) = program.chapter()
+        {
+            if let Some(marker) = now.marker(chapter.as_ref()) {
+                recorder.record(CastEvent::Marker(marker));
+            }
+            chapter = Some(now);
         }
         // Block for one input (or until the program's wait is over), then take whatever else
         // is queued before drawing again.
@@ -372,11 +377,11 @@ impl Program for Lab {
         view(&self.app, frame, &self.look);
     }
 
-    fn chapter(&self) -> Chapter {
-        Chapter {
+    fn chapter(&self) -> Option<Chapter> {
+        Some(Chapter {
             step: None,
             scene: self.app.scene,
-        }
+        })
     }
 
     fn notice(&mut self, notice: Notice) -> Flow {

@@ -35,6 +35,9 @@ pub struct Overlays {
     pub projector: bool,
     /// The terminal is smaller than the lab's minimum (set by the runtime, and by `render`).
     pub too_small: bool,
+    /// The lab is a step of the guided tour: no key bar (the caption panel has the tour's
+    /// keys).
+    pub in_tour: bool,
     /// Where the last frame put what the mouse can click (set by the view as it draws).
     pub drawn: Cell<Drawn>,
 }

@@ -18,6 +18,7 @@ mod lab_errors;
 mod locking;
 mod mouse;
 mod record;
+mod refusals;
 mod regrade;
 mod scenes;
 mod screens;
