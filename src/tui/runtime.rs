@@ -16,7 +16,6 @@ use ratatui::backend::CrosstermBackend;
 use ratatui::layout::Size;
 use ratatui::{Frame, Terminal, TerminalOptions, Viewport};
 
-use crate::scenario::Scenario;
 
 use super::app::{App, Command, ExportKind, Msg, Notice, Response, Scene};
 use super::export::{ExportError, export_csv, export_svg, export_vtu};
@@ -114,7 +113,7 @@ pub(super) const TICK: Duration = Duration::from_millis(250);
 /// tour steps as `source` says, recording if asked, with the mouse if `mouse`; the terminal
 /// is restored in every case.
 pub fn run(
-    scenario: Scenario,
+    app: App,
     look: Look,
     dir: PathBuf,
     source: LabSource,
@@ -122,9 +121,9 @@ pub fn run(
     mouse: bool,
 ) -> Result<(), RunError> {
     run_program(recording, mouse, |tx, _| {
-        let worker = Worker::spawn(scenario.clone(), move |r| tx.send(Input::Worker(0, r)).is_ok());
+        let worker = Worker::spawn(app.scenario.clone(), move |r| tx.send(Input::Worker(0, r)).is_ok());
         Ok(Lab {
-            app: App::new(scenario),
+            app,
             worker,
             look,
             dir,

@@ -67,7 +67,7 @@ pub fn press(app: &mut App, engine: &mut Engine, keys: &str) {
 /// The last message of the status line (a friction key's "— re-solving" gives way to the
 /// solve's readout when the solve arrives; the log keeps it).
 fn said(app: &App) -> String {
-    app.overlays.log.back().map(|l| l.1.clone()).unwrap_or_default()
+    app.overlays.log.back().map(|l| l.text.clone()).unwrap_or_default()
 }
 
 fn close(a: f64, b: f64) -> bool {

@@ -17,6 +17,7 @@ mod hertz_block;
 mod lab_errors;
 mod locking;
 mod mouse;
+mod opening_and_log;
 mod record;
 mod refusals;
 mod regrade;

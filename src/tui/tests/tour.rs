@@ -497,7 +497,7 @@ fn every_step_runs_at_80x24() {
         // Columns: combining marks (the bar of p̄) take none.
         let columns = |l: &str| l.chars().filter(|c| !('\u{300}'..='\u{36f}').contains(c)).count();
         assert!(text.lines().all(|l| columns(l) <= 80), "{text}");
-        assert!(!text.contains("more "), "step {}: the caption scrolls:\n{text}", i + 1);
+        assert!(!text.contains("↓ more"), "step {}: the caption scrolls:\n{text}", i + 1);
         // The whole caption, its words in order, at the bottom of the frame.
         let caption = words(&tour.steps[i].caption);
         assert!(words(&text).ends_with(&caption), "step {} caption `{caption}`:\n{text}", i + 1);
@@ -518,9 +518,10 @@ fn every_step_runs_at_80x24() {
 /// more (at 80×24, a long title and four full lines of caption).
 #[test]
 fn long_captions_scroll() {
-    // Four lines of at most 96 characters: six rows at 78 columns, the title two.
-    let line = |n: usize, words: usize| format!("{n} {}", "word ".repeat(words).trim_end());
-    let caption = [line(1, 19), line(2, 19), line(3, 19), line(4, 17)].join("\n");
+    // Four lines of at most 96 characters whose long words wrap to eight rows at 78 columns.
+    let long = "abcdefghij".repeat(4);
+    let line = |n: usize| format!("{n} {long} {long}");
+    let caption = [line(1), line(2), line(3), line(4)].join("\n");
     let text = format!(
         "title = \"Long\"\n[[step]]\ntitle = \"A long title that wraps beside the keys of the panel\"\nlevel = 0\ncaption = \"\"\"\n{caption} the end\"\"\"\n[[step]]\ntitle = \"Two\"\nlevel = 0\ncaption = \"Short.\"\n"
     );
