@@ -79,7 +79,11 @@ pub fn bar(scene: Scene, projector: bool) -> Vec<(String, &'static str)> {
         .iter()
         .map(|(actions, word)| {
             let keys: Vec<String> = actions.iter().map(first_key).collect();
-            let joint = if matches!(actions[0], L::Scheme(_)) { "-" } else { "" };
+            let joint = if matches!(actions[0], L::Scheme(_)) {
+                "-"
+            } else {
+                ""
+            };
             (keys.join(joint), *word)
         })
         .collect();
@@ -162,13 +166,22 @@ mod tests {
             let own = bar.len() - 2;
             assert!((3..=6).contains(&own), "{scene:?}: {bar:?}");
             assert!(bar.iter().all(|(k, _)| !k.is_empty()), "{bar:?}");
-            let width: usize = bar.iter().map(|(k, w)| k.chars().count() + w.chars().count() + 3).sum();
+            let width: usize = bar
+                .iter()
+                .map(|(k, w)| k.chars().count() + w.chars().count() + 3)
+                .sum();
             assert!(width <= 80, "{scene:?}: {width}");
             let help = scene_help(scene);
             let every = help.iter().position(|l| l.1 == "every key:").unwrap();
             for action in bar_actions(scene) {
-                let row = LAB.iter().find(|r| r.bindings.iter().any(|(_, a)| *a == action)).unwrap();
-                assert!(help[..every].iter().any(|l| l.0 == row.keys), "{scene:?} {action:?}");
+                let row = LAB
+                    .iter()
+                    .find(|r| r.bindings.iter().any(|(_, a)| *a == action))
+                    .unwrap();
+                assert!(
+                    help[..every].iter().any(|l| l.0 == row.keys),
+                    "{scene:?} {action:?}"
+                );
             }
             assert!(help.iter().any(|l| l.1.contains("--no-mouse")), "{help:?}");
         }

@@ -16,7 +16,6 @@ use ratatui::backend::CrosstermBackend;
 use ratatui::layout::Size;
 use ratatui::{Frame, Terminal, TerminalOptions, Viewport};
 
-
 use super::app::{App, Command, ExportKind, Msg, Notice, Response, Scene};
 use super::export::{ExportError, export_csv, export_svg, export_vtu};
 use super::record::cast::Event as CastEvent;
@@ -121,7 +120,9 @@ pub fn run(
     mouse: bool,
 ) -> Result<(), RunError> {
     run_program(recording, mouse, |tx, _| {
-        let worker = Worker::spawn(app.scenario.clone(), move |r| tx.send(Input::Worker(0, r)).is_ok());
+        let worker = Worker::spawn(app.scenario.clone(), move |r| {
+            tx.send(Input::Worker(0, r)).is_ok()
+        });
         Ok(Lab {
             app,
             worker,

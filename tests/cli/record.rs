@@ -82,7 +82,10 @@ pub(crate) fn parser_of(size: (u16, u16)) -> vt100::Parser {
 /// The screen as vt100 shows it, one trimmed line per row.
 pub(crate) fn rows(screen: &vt100::Screen) -> Vec<String> {
     let (_, columns) = screen.size();
-    screen.rows(0, columns.get()).map(|r| r.trim_end().to_string()).collect()
+    screen
+        .rows(0, columns.get())
+        .map(|r| r.trim_end().to_string())
+        .collect()
 }
 
 /// A line as compared: the status line and the caption's title line without what the live

@@ -33,7 +33,10 @@ fn a_recorded_tour_marks_each_step_on_its_finished_frame() {
     let (screen, reader) = Screen::read_into(&controller, parser_of(SIZE));
     // The whole tour computes (the reference of step 13 too): a generous deadline.
     let deadline = Instant::now() + Duration::from_secs(900);
-    screen.wait_quiet(screen.wait_for(&["tour 15/15", "auto: done", "✓ converged"], deadline), deadline);
+    screen.wait_quiet(
+        screen.wait_for(&["tour 15/15", "auto: done", "✓ converged"], deadline),
+        deadline,
+    );
     std::fs::File::from(controller).write_all(b"q").unwrap();
     screen.wait_for_end(deadline);
     assert!(child.0.wait().unwrap().success());
@@ -53,7 +56,10 @@ fn a_recorded_tour_marks_each_step_on_its_finished_frame() {
                 for busy in ["computing", "⟳", "↓ more", "estimate(s) running"] {
                     assert!(!frame.contains(busy), "`{busy}` at the marker `{data}`:\n{frame}");
                 }
-                assert!(frame.contains(&format!("tour {}/15", markers.len() + 1)), "{data}:\n{frame}");
+                assert!(
+                    frame.contains(&format!("tour {}/15", markers.len() + 1)),
+                    "{data}:\n{frame}"
+                );
                 markers.push(data.to_string());
             }
             _ => {}

@@ -236,7 +236,9 @@ impl App {
             .is_some_and(|s| s.solution.pbar.iter().any(|&p| p > 0.0));
         if in_contact {
             self.zoom = true;
-            self.notice = Some(Notice::info("zoomed to the contact zone, p̄ > 0 (z shows all of Γ_C)"));
+            self.notice = Some(Notice::info(
+                "zoomed to the contact zone, p̄ > 0 (z shows all of Γ_C)",
+            ));
         } else {
             self.notice = Some(Notice::info("nothing to zoom to: no contact (p̄ = 0)"));
         }

@@ -55,7 +55,10 @@ impl Log {
     }
 
     fn now(&mut self) -> f64 {
-        self.opened.get_or_insert_with(Instant::now).elapsed().as_secs_f64()
+        self.opened
+            .get_or_insert_with(Instant::now)
+            .elapsed()
+            .as_secs_f64()
     }
 
     /// Log a message; the same message among the last lines is counted there instead.

@@ -262,13 +262,15 @@ impl App {
 
     /// Whether the scene on screen still waits for work it asked for: a solve, an inf-sup
     /// estimate, the study (and its reference) of the convergence scene, the stresses of the
-    /// stress scene. The tour's auto-advance counts a step's time from the moment this turns
+    /// stress scene, the displacement of the deformed body. The tour's auto-advance counts a step's time from the moment this turns
     /// false, and a recording marks the step then.
     pub fn is_computing(&self) -> bool {
         let scene_work = match self.scene {
             Scene::Convergence => self.study_pending.is_some(),
             Scene::Stress => self.current().is_some_and(|s| s.stresses.get().is_none()),
-            Scene::Explore | Scene::InfSup | Scene::Mesh => false,
+            // The deformed body (explore's contact zone, the mesh scene).
+            Scene::Explore | Scene::Mesh => self.current().is_some_and(|s| s.displacement.get().is_none()),
+            Scene::InfSup => false,
         };
         self.is_solving() || !self.infsup_pending.is_empty() || scene_work
     }

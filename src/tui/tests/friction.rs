@@ -67,7 +67,11 @@ pub fn press(app: &mut App, engine: &mut Engine, keys: &str) {
 /// The last message of the status line (a friction key's "— re-solving" gives way to the
 /// solve's readout when the solve arrives; the log keeps it).
 fn said(app: &App) -> String {
-    app.overlays.log.back().map(|l| l.text.clone()).unwrap_or_default()
+    app.overlays
+        .log
+        .back()
+        .map(|l| l.text.clone())
+        .unwrap_or_default()
 }
 
 fn close(a: f64, b: f64) -> bool {
@@ -203,7 +207,9 @@ fn refused_friction_solves_say_why_and_keep_the_last_frame() {
     let notice = app.notice.clone().expect("refused");
     assert!(notice.failure, "{notice:?}");
     assert!(
-        notice.text.contains("grading (at the edges or over the zone) does not take friction"),
+        notice
+            .text
+            .contains("grading (at the edges or over the zone) does not take friction"),
         "{notice:?}"
     );
 }

@@ -44,10 +44,18 @@ fn the_log_has_every_change_with_its_time_and_folds_repeats() {
             .commands;
         carry_out(&mut app, &mut engine, commands);
     }
-    let log: Vec<(String, u32)> = app.overlays.log.iter().map(|e| (e.text.clone(), e.count)).collect();
+    let log: Vec<(String, u32)> = app
+        .overlays
+        .log
+        .iter()
+        .map(|e| (e.text.clone(), e.count))
+        .collect();
     let has = |text: &str, count: u32| log.iter().any(|(t, n)| t == text && *n == count);
     assert!(has("level 0 → 1", 1), "{log:?}");
-    assert!(has("rule gauss1 → gauss2", 1) || log.iter().any(|(t, _)| t.starts_with("rule M1")), "{log:?}");
+    assert!(
+        has("rule gauss1 → gauss2", 1) || log.iter().any(|(t, _)| t.starts_with("rule M1")),
+        "{log:?}"
+    );
     assert!(has("depth 0.8 → 0.2", 6), "{log:?}");
     assert!(has("scene explore → infsup", 1), "{log:?}");
     app.update(Msg::Key(KeyEvent::new(KeyCode::Char('l'), KeyModifiers::NONE)));

@@ -36,13 +36,22 @@ fn z_and_the_cursor_say_where_they_act() {
         app.update(ch(key));
         assert!(app.overlays.cursor.is_none());
         let said = app.notice.clone().expect("says why").text;
-        assert!(said.starts_with(&format!("{name} does nothing in the infsup scene")), "{said}");
+        assert!(
+            said.starts_with(&format!("{name} does nothing in the infsup scene")),
+            "{said}"
+        );
     }
     // In explore `z` acts and says what it did, both ways.
     let mut app = settled(1, Scene::Explore);
     app.update(ch('z'));
     assert!(app.zoom);
-    assert!(app.notice.clone().unwrap().text.starts_with("zoomed to the contact zone"));
+    assert!(
+        app.notice
+            .clone()
+            .unwrap()
+            .text
+            .starts_with("zoomed to the contact zone")
+    );
     app.update(ch('z'));
     assert!(!app.zoom);
     assert!(app.notice.clone().unwrap().text.starts_with("zoom off"));
@@ -74,10 +83,16 @@ fn wrapped_rows_are_indented() {
     app.update(Msg::Notice(Notice::failure(long.trim_end().to_string())));
     let frame = render_app(&app, &LOOK, 80, 24);
     let lines: Vec<&str> = frame.lines().collect();
-    let first = lines.iter().position(|l| l.starts_with(" ✗ a failure")).expect(&frame);
+    let first = lines
+        .iter()
+        .position(|l| l.starts_with(" ✗ a failure"))
+        .expect(&frame);
     let next = lines[first + 1];
     assert!(next.starts_with("   ") && !next.starts_with("    "), "{frame}");
-    assert!(next.trim_start().starts_with(|c: char| c.is_alphabetic()), "{frame}");
+    assert!(
+        next.trim_start().starts_with(|c: char| c.is_alphabetic()),
+        "{frame}"
+    );
 }
 
 /// Under every scene a key bar of its own keys, `? help` and `q quit`; `?` shows the scene's

@@ -497,10 +497,18 @@ fn every_step_runs_at_80x24() {
         // Columns: combining marks (the bar of p̄) take none.
         let columns = |l: &str| l.chars().filter(|c| !('\u{300}'..='\u{36f}').contains(c)).count();
         assert!(text.lines().all(|l| columns(l) <= 80), "{text}");
-        assert!(!text.contains("↓ more"), "step {}: the caption scrolls:\n{text}", i + 1);
+        assert!(
+            !text.contains("↓ more"),
+            "step {}: the caption scrolls:\n{text}",
+            i + 1
+        );
         // The whole caption, its words in order, at the bottom of the frame.
         let caption = words(&tour.steps[i].caption);
-        assert!(words(&text).ends_with(&caption), "step {} caption `{caption}`:\n{text}", i + 1);
+        assert!(
+            words(&text).ends_with(&caption),
+            "step {} caption `{caption}`:\n{text}",
+            i + 1
+        );
         // The title: every word on screen, none cut.
         let head = text.lines().find(|l| l.contains(" tour ")).unwrap();
         assert!(!head.contains('…'), "step {}: {head}", i + 1);
@@ -515,10 +523,9 @@ fn every_step_runs_at_80x24() {
 }
 
 /// A caption longer than the rows left scrolls with ↓ and ↑, and the panel says there is
-/// more (at 80×24, a long title and four full lines of caption).
+/// more (at 80×24: four lines of at most 96 characters whose long words wrap to 8 rows).
 #[test]
 fn long_captions_scroll() {
-    // Four lines of at most 96 characters whose long words wrap to eight rows at 78 columns.
     let long = "abcdefghij".repeat(4);
     let line = |n: usize| format!("{n} {long} {long}");
     let caption = [line(1), line(2), line(3), line(4)].join("\n");

@@ -164,6 +164,9 @@ fn friction_with_zone_grading_is_refused() {
     assert!(!app.settings.friction.is_on());
     assert!(app.error.is_none());
     let said = app.notice.clone().expect("refused");
-    assert!(said.failure && said.text.contains("does not take a graded mesh"), "{said:?}");
+    assert!(
+        said.failure && said.text.contains("does not take a graded mesh"),
+        "{said:?}"
+    );
     assert!(app.solved.as_ref().is_some_and(|s| !s.key.friction.is_on()));
 }

@@ -131,7 +131,14 @@ fn title_rows(tour: &TourApp, width: u16, keys_width: u16) -> TitleRows {
 
 /// The step's number and title (wrapped, `title` from [`title_rows`]), the keys, then the
 /// caption (↑ ↓ scroll it when it is longer than the rows it has).
-fn caption_panel(tour: &TourApp, frame: &mut Frame, area: Rect, theme: Theme, title: &TitleRows, text: &[String]) {
+fn caption_panel(
+    tour: &TourApp,
+    frame: &mut Frame,
+    area: Rect,
+    theme: Theme,
+    title: &TitleRows,
+    text: &[String],
+) {
     let head_rows = title.len().min(usize::from(area.height));
     let rows = usize::from(area.height).saturating_sub(head_rows);
     let scroll = usize::from(tour.caption_scroll).min(text.len().saturating_sub(rows));

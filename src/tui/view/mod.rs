@@ -81,7 +81,10 @@ fn banner_rows(error: &str, width: u16) -> Vec<String> {
         rows.truncate(usize::from(MAX_BANNER_ROWS));
         let last = rows.last_mut().expect("a row");
         let keep = usize::from(width).saturating_sub(10);
-        *last = format!("{} … l: log", last.chars().take(keep).collect::<String>().trim_end());
+        *last = format!(
+            "{} … l: log",
+            last.chars().take(keep).collect::<String>().trim_end()
+        );
     }
     rows
 }
@@ -95,7 +98,10 @@ pub fn view_in(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
         return;
     }
     // The whole message, word-wrapped (at least 2 rows, at most MAX_BANNER_ROWS).
-    let message = app.error.as_ref().map(|error| banner_rows(&error.to_string(), area.width));
+    let message = app
+        .error
+        .as_ref()
+        .map(|error| banner_rows(&error.to_string(), area.width));
     let banner_height = message
         .as_ref()
         .map_or(0, |rows| (rows.len() as u16).clamp(2, MAX_BANNER_ROWS));

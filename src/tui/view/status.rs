@@ -50,7 +50,9 @@ fn status_lines(app: &App, width: u16, theme: Theme) -> Vec<Line<'static>> {
 fn key_bar(app: &App, theme: Theme, width: u16) -> Line<'static> {
     let mut entries = key_bar::bar(app.scene, app.overlays.projector);
     let width_of = |e: &[(String, &str)]| -> usize {
-        e.iter().map(|(k, w)| 1 + k.chars().count() + 1 + w.chars().count() + 1).sum()
+        e.iter()
+            .map(|(k, w)| 1 + k.chars().count() + 1 + w.chars().count() + 1)
+            .sum()
     };
     while width_of(&entries) > usize::from(width) && entries.len() > 2 {
         entries.remove(entries.len() - 3);
