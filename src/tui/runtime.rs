@@ -242,12 +242,18 @@ fn event_loop<P: Program>(
             suspend(terminal, mouse)?;
             flow.redraw = true;
         }
+        // Where the recording is, as of the frame about to be drawn (a worker may finish
+        // more meanwhile, which the next frame shows): marked only with a frame drawn.
+        let drawn = recorder
+            .as_ref()
+            .filter(|_| flow.redraw)
+            .and_then(|_| program.chapter());
         if flow.redraw {
             draw_with(terminal, |frame| program.draw(frame))?;
         }
         // The marker after the frame it marks: replayed to a marker, a recording shows it.
         if let Some(recorder) = recorder.as_deref_mut()
-            && let Some(now) = program.chapter()
+            && let Some(now) = drawn
         {
             if let Some(marker) = now.marker(chapter.as_ref()) {
                 recorder.record(CastEvent::Marker(marker));
