@@ -9,9 +9,12 @@ use super::keys::{LAB, LabAction, Row, help_lines, lab_help};
 
 use LabAction as L;
 
+/// A bar's entry: the actions whose keys it shows, and its word.
+type Entry = (&'static [LabAction], &'static str);
+
 /// The key bar's entries of each scene ([`bar`]): the keys that act there most, each with
 /// a word; their keys are read from [`LAB`].
-const BAR: &[(Scene, &[(&[LabAction], &str)])] = &[
+const BAR: &[(Scene, &[Entry])] = &[
     (
         Scene::Explore,
         &[
@@ -65,12 +68,12 @@ const BAR: &[(Scene, &[(&[LabAction], &str)])] = &[
 ];
 
 /// The projector view's bar (`f` back, the cursor).
-const PROJECTOR: &[(&[LabAction], &str)] = &[(&[L::Projector], "back"), (&[L::Cursor], "cursor")];
+const PROJECTOR: &[Entry] = &[(&[L::Projector], "back"), (&[L::Cursor], "cursor")];
 
 /// The key bar of `scene` (or of the projector view): (keys, word) for the keys that act
 /// there, as [`LAB`] binds them (`←→`, `1-4`), then `? help` and `q quit`.
 pub fn bar(scene: Scene, projector: bool) -> Vec<(String, &'static str)> {
-    let entries: &[(&[LabAction], &str)] = if projector {
+    let entries: &[Entry] = if projector {
         PROJECTOR
     } else {
         BAR.iter().find(|(s, _)| *s == scene).map_or(&[], |(_, e)| e)

@@ -233,10 +233,10 @@ fn event_loop<P: Program>(
     let mut flow = program.start();
     let mut chapter: Option<Chapter> = None;
     while !program.should_quit() {
-        if let Some(recorder) = recorder.as_deref_mut() {
-            if let Some(failure) = recorder.new_failure() {
-                flow |= program.notice(Notice::failure(failure.to_string()));
-            }
+        if let Some(recorder) = recorder.as_deref_mut()
+            && let Some(failure) = recorder.new_failure()
+        {
+            flow |= program.notice(Notice::failure(failure.to_string()));
         }
         if flow.suspend {
             suspend(terminal, mouse)?;
