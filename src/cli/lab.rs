@@ -54,18 +54,21 @@ pub(super) fn render(args: &RenderArgs, marker: MarkerChoice) -> Result<ExitCode
             .map_err(|m| usage("--epsilon", m))?;
     }
     checks::render_request(&scenario, &args.scene, input.epsilon)?;
+    // The paper's problem with no level given opens as the lab opens it (`App::opening`).
+    let opening = args.select.scenario.is_none() && args.select.level.is_none();
     let frame = render_with(
         &scenario,
         &args.scene,
         width,
         height,
-        Some(scenario.level),
+        (!opening).then_some(scenario.level),
         Some(scenario.element),
         Some(scenario.rule),
         input.epsilon,
         &RenderExtras {
             keys: input.keys,
             marker,
+            opening,
         },
     )
     .map_err(|e| CliError::Usage(e.to_string()))?;

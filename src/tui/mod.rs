@@ -20,6 +20,7 @@ pub mod export;
 mod export_error;
 pub mod friction_settings;
 mod job;
+mod key_bar;
 pub mod keys;
 pub mod lab_error;
 pub mod protocol;
@@ -135,7 +136,12 @@ pub fn run(
     };
     let title = format!("riplab lab: {}", text::sanitize(&scenario.name));
     let recording = record.map(|r| (r, title));
-    runtime::run(scenario, look, dir, source, recording, !opts.no_mouse)
+    // The paper's problem, given by no file, opens on its phenomenon ([`App::opening`]).
+    let app = match scenario_file {
+        None => App::opening(scenario),
+        Some(_) => App::new(scenario),
+    };
+    runtime::run(app, look, dir, source, recording, !opts.no_mouse)
 }
 
 /// Why the lab or the tour ended with an error.
@@ -177,6 +183,8 @@ pub struct RenderExtras {
     pub keys: Vec<crossterm::event::KeyEvent>,
     /// The glyphs of charts and canvases.
     pub marker: MarkerChoice,
+    /// Open as the lab opens the paper's problem given by no file ([`App::opening`]).
+    pub opening: bool,
 }
 
 /// [`render_to_string`] with `extras`: the keys applied one by one to the settled lab (what
@@ -199,7 +207,11 @@ pub fn render_with(
         names: names.join(", "),
     })?;
     check_size(width, height)?;
-    let mut app = App::new(scenario.clone());
+    let mut app = if extras.opening {
+        App::opening(scenario.clone())
+    } else {
+        App::new(scenario.clone())
+    };
     app.scene = scene;
     app.show_timing = false;
     if let Some(level) = level {

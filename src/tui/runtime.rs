@@ -16,8 +16,6 @@ use ratatui::backend::CrosstermBackend;
 use ratatui::layout::Size;
 use ratatui::{Frame, Terminal, TerminalOptions, Viewport};
 
-use crate::scenario::Scenario;
-
 use super::app::{App, Command, ExportKind, Msg, Notice, Response, Scene};
 use super::export::{ExportError, export_csv, export_svg, export_vtu};
 use super::record::cast::Event as CastEvent;
@@ -81,8 +79,9 @@ pub(super) trait Program {
     fn wait(&self) -> Option<Duration>;
     fn should_quit(&self) -> bool;
     fn draw(&self, frame: &mut Frame);
-    /// Where a recording is: the tour's step and the scene shown.
-    fn chapter(&self) -> Chapter;
+    /// Where a recording is: the tour's step and the scene shown; None while the tour's step
+    /// is still computing (its marker waits for the finished frame).
+    fn chapter(&self) -> Option<Chapter>;
     /// Show `notice` on the status line (a recording that failed).
     fn notice(&mut self, notice: Notice) -> Flow;
 }
@@ -113,7 +112,7 @@ pub(super) const TICK: Duration = Duration::from_millis(250);
 /// tour steps as `source` says, recording if asked, with the mouse if `mouse`; the terminal
 /// is restored in every case.
 pub fn run(
-    scenario: Scenario,
+    app: App,
     look: Look,
     dir: PathBuf,
     source: LabSource,
@@ -121,9 +120,11 @@ pub fn run(
     mouse: bool,
 ) -> Result<(), RunError> {
     run_program(recording, mouse, |tx, _| {
-        let worker = Worker::spawn(scenario.clone(), move |r| tx.send(Input::Worker(0, r)).is_ok());
+        let worker = Worker::spawn(app.scenario.clone(), move |r| {
+            tx.send(Input::Worker(0, r)).is_ok()
+        });
         Ok(Lab {
-            app: App::new(scenario),
+            app,
             worker,
             look,
             dir,
@@ -232,22 +233,32 @@ fn event_loop<P: Program>(
     let mut flow = program.start();
     let mut chapter: Option<Chapter> = None;
     while !program.should_quit() {
-        if let Some(recorder) = recorder.as_deref_mut() {
-            if let Some(failure) = recorder.new_failure() {
-                flow |= program.notice(Notice::failure(failure.to_string()));
-            }
-            let now = program.chapter();
-            if let Some(marker) = now.marker(chapter.as_ref()) {
-                recorder.record(CastEvent::Marker(marker));
-            }
-            chapter = Some(now);
+        if let Some(recorder) = recorder.as_deref_mut()
+            && let Some(failure) = recorder.new_failure()
+        {
+            flow |= program.notice(Notice::failure(failure.to_string()));
         }
         if flow.suspend {
             suspend(terminal, mouse)?;
             flow.redraw = true;
         }
+        // Where the recording is, as of the frame about to be drawn (a worker may finish
+        // more meanwhile, which the next frame shows): marked only with a frame drawn.
+        let drawn = recorder
+            .as_ref()
+            .filter(|_| flow.redraw)
+            .and_then(|_| program.chapter());
         if flow.redraw {
             draw_with(terminal, |frame| program.draw(frame))?;
+        }
+        // The marker after the frame it marks: replayed to a marker, a recording shows it.
+        if let Some(recorder) = recorder.as_deref_mut()
+            && let Some(now) = drawn
+        {
+            if let Some(marker) = now.marker(chapter.as_ref()) {
+                recorder.record(CastEvent::Marker(marker));
+            }
+            chapter = Some(now);
         }
         // Block for one input (or until the program's wait is over), then take whatever else
         // is queued before drawing again.
@@ -372,11 +383,11 @@ impl Program for Lab {
         view(&self.app, frame, &self.look);
     }
 
-    fn chapter(&self) -> Chapter {
-        Chapter {
+    fn chapter(&self) -> Option<Chapter> {
+        Some(Chapter {
             step: None,
             scene: self.app.scene,
-        }
+        })
     }
 
     fn notice(&mut self, notice: Notice) -> Flow {

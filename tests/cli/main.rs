@@ -23,6 +23,7 @@ mod plot;
 mod pty;
 mod readme;
 mod record;
+mod record_tour;
 mod refused_early;
 mod render_graded;
 mod scenario_words;

@@ -40,6 +40,11 @@ level = 0
 
 /// A pseudo-terminal of `SIZE`: (controller, the terminal's side).
 fn pty() -> (OwnedFd, OwnedFd) {
+    pty_of(SIZE)
+}
+
+/// A pseudo-terminal of `size` (columns, rows): (controller, the terminal's side).
+pub(crate) fn pty_of(size: (u16, u16)) -> (OwnedFd, OwnedFd) {
     use rustix::pty::{OpenptFlags, grantpt, openpt, ptsname, unlockpt};
     let controller = openpt(OpenptFlags::RDWR | OpenptFlags::NOCTTY | OpenptFlags::CLOEXEC).unwrap();
     grantpt(&controller).unwrap();
@@ -53,8 +58,8 @@ fn pty() -> (OwnedFd, OwnedFd) {
     rustix::termios::tcsetwinsize(
         &user,
         rustix::termios::Winsize {
-            ws_row: SIZE.1,
-            ws_col: SIZE.0,
+            ws_row: size.1,
+            ws_col: size.0,
             ws_xpixel: 0,
             ws_ypixel: 0,
         },
@@ -65,13 +70,22 @@ fn pty() -> (OwnedFd, OwnedFd) {
 
 /// A terminal emulator of `SIZE`.
 fn parser() -> vt100::Parser {
+    parser_of(SIZE)
+}
+
+/// A terminal emulator of `size` (columns, rows).
+pub(crate) fn parser_of(size: (u16, u16)) -> vt100::Parser {
     let n = |v: u16| std::num::NonZeroU16::new(v).unwrap();
-    vt100::Parser::new(n(SIZE.1), n(SIZE.0), 0)
+    vt100::Parser::new(n(size.1), n(size.0), 0)
 }
 
 /// The screen as vt100 shows it, one trimmed line per row.
-fn rows(screen: &vt100::Screen) -> Vec<String> {
-    screen.rows(0, SIZE.0).map(|r| r.trim_end().to_string()).collect()
+pub(crate) fn rows(screen: &vt100::Screen) -> Vec<String> {
+    let (_, columns) = screen.size();
+    screen
+        .rows(0, columns.get())
+        .map(|r| r.trim_end().to_string())
+        .collect()
 }
 
 /// A line as compared: the status line and the caption's title line without what the live
@@ -98,7 +112,7 @@ fn comparable(line: &str) -> String {
 }
 
 /// What the terminal shows, as read from the controller so far.
-struct Live {
+pub(crate) struct Live {
     terminal: vt100::Parser,
     /// The reads so far.
     reads: u64,
@@ -108,7 +122,7 @@ struct Live {
 
 /// The terminal kept up to date by a thread that reads the controller, each read signalled:
 /// the tests wait on it for what they expect, never for a fixed time.
-struct Screen {
+pub(crate) struct Screen {
     live: Mutex<Live>,
     changed: Condvar,
 }
@@ -117,9 +131,14 @@ impl Screen {
     /// Read `controller` on a thread of its own (the child blocks if nobody reads) until
     /// riplab's side closes.
     fn read(controller: &OwnedFd) -> (Arc<Screen>, JoinHandle<()>) {
+        Screen::read_into(controller, parser())
+    }
+
+    /// [`Screen::read`] into `terminal` (of the pseudo-terminal's size).
+    pub(crate) fn read_into(controller: &OwnedFd, terminal: vt100::Parser) -> (Arc<Screen>, JoinHandle<()>) {
         let screen = Arc::new(Screen {
             live: Mutex::new(Live {
-                terminal: parser(),
+                terminal,
                 reads: 0,
                 closed: false,
             }),
@@ -149,7 +168,7 @@ impl Screen {
 
     /// Wait until the screen's text holds all of `what` or riplab ended, at most until
     /// `deadline`.
-    fn wait_for(&self, what: &[&str], deadline: Instant) -> MutexGuard<'_, Live> {
+    pub(crate) fn wait_for(&self, what: &[&str], deadline: Instant) -> MutexGuard<'_, Live> {
         let shows = |live: &Live| {
             let text = live.terminal.screen().contents();
             what.iter().all(|w| text.contains(w))
@@ -169,8 +188,32 @@ impl Screen {
         live
     }
 
+    /// From `live` on, wait until the screen has not changed for 700 ms (its last frame
+    /// drawn), riplab still running, at most until `deadline`.
+    pub(crate) fn wait_quiet(&self, mut live: MutexGuard<'_, Live>, deadline: Instant) {
+        loop {
+            let reads = live.reads;
+            let (now, quiet) = self
+                .changed
+                .wait_timeout_while(live, Duration::from_millis(700), |l| {
+                    l.reads == reads && !l.closed
+                })
+                .unwrap();
+            assert!(
+                !now.closed,
+                "riplab ended early:\n{}",
+                rows(now.terminal.screen()).join("\n")
+            );
+            if quiet.timed_out() {
+                return;
+            }
+            assert!(Instant::now() < deadline, "the screen never stays quiet");
+            live = now;
+        }
+    }
+
     /// Wait until riplab has ended, at most until `deadline`.
-    fn wait_for_end(&self, deadline: Instant) {
+    pub(crate) fn wait_for_end(&self, deadline: Instant) {
         let live = self.live.lock().unwrap();
         let timeout = deadline.saturating_duration_since(Instant::now());
         let (live, _) = self
@@ -182,7 +225,7 @@ impl Screen {
 }
 
 /// Kill the child if the test fails before it ends.
-struct Reap(Child);
+pub(crate) struct Reap(pub(crate) Child);
 
 impl Drop for Reap {
     fn drop(&mut self) {
@@ -219,26 +262,7 @@ fn a_recorded_tour_is_a_valid_asciicast_ending_on_the_last_frame() {
     // Wait for the last step solved and the screen quiet for a while (its last frame drawn),
     // then quit.
     let deadline = Instant::now() + Duration::from_secs(120);
-    let mut live = screen.wait_for(&["tour 3/3", "✓ converged"], deadline);
-    loop {
-        let reads = live.reads;
-        let (now, quiet) = screen
-            .changed
-            .wait_timeout_while(live, Duration::from_millis(700), |l| {
-                l.reads == reads && !l.closed
-            })
-            .unwrap();
-        assert!(
-            !now.closed,
-            "riplab ended early:\n{}",
-            rows(now.terminal.screen()).join("\n")
-        );
-        if quiet.timed_out() {
-            break;
-        }
-        assert!(Instant::now() < deadline, "the screen never stays quiet");
-        live = now;
-    }
+    screen.wait_quiet(screen.wait_for(&["tour 3/3", "✓ converged"], deadline), deadline);
     std::fs::File::from(controller).write_all(b"q").unwrap();
     screen.wait_for_end(deadline);
     let status = child.0.wait().unwrap();

@@ -66,6 +66,15 @@ impl App {
                 self.overlays.show_log = true;
                 self.overlays.log_scroll = 0;
             }
+            LabAction::Cursor | LabAction::CursorLeft | LabAction::CursorRight
+                if !matches!(self.scene, Scene::Explore | Scene::Stress) =>
+            {
+                self.notice = Some(Notice::info(format!(
+                    "{} does nothing in the {} scene: the cursor is on explore's pressure chart and the stress map",
+                    key_name(key.code),
+                    self.scene.name()
+                )));
+            }
             LabAction::Cursor => self.toggle_cursor(),
             LabAction::CursorLeft => self.move_cursor(-1),
             LabAction::CursorRight => self.move_cursor(1),
@@ -157,8 +166,16 @@ impl App {
             LabAction::ShiftUp => self.step_shift(true),
             LabAction::ShiftDown => self.step_shift(false),
             LabAction::Grade => {
-                self.settings.refine_edges = next_grading(self.settings.refine_edges);
-                self.notice = Some(Notice::info(grading_notice(self.settings.refine_edges)));
+                let next = next_grading(self.settings.refine_edges);
+                if next.grades() && self.settings.friction.is_on() {
+                    // Refused before anything changes: the header keeps the grading it shows.
+                    self.notice = Some(Notice::failure(
+                        "E: grading (at the edges or over the zone) does not take friction yet; F to friction none first",
+                    ));
+                } else {
+                    self.settings.refine_edges = next;
+                    self.notice = Some(Notice::info(grading_notice(next)));
+                }
             }
             LabAction::Integration => self.switch_integration(),
             LabAction::AllLevels => self.all_levels_key(),
@@ -198,16 +215,20 @@ impl App {
         true
     }
 
-    /// `z`: zoom to the contact zone and back (only where there is one to zoom to).
+    /// `z`: zoom to the contact zone and back (only where there is one to zoom to), in the
+    /// scenes that draw Γ_C's zone (explore's pressure chart and contact zone, the stress
+    /// map); elsewhere it says so.
     fn toggle_zoom(&mut self) {
-        if self.zoom {
-            self.zoom = false;
+        if !matches!(self.scene, Scene::Explore | Scene::Stress) {
+            self.notice = Some(Notice::info(format!(
+                "z does nothing in the {} scene: it zooms explore's pressure chart and contact zone, and the stress map",
+                self.scene.name()
+            )));
             return;
         }
-        if !matches!(self.scene, Scene::Explore | Scene::Mesh | Scene::Stress) {
-            self.notice = Some(Notice::info(
-                "z zooms the pressure chart, the contact zone and the stress map: explore, mesh and stress scenes",
-            ));
+        if self.zoom {
+            self.zoom = false;
+            self.notice = Some(Notice::info("zoom off: all of Γ_C (z zooms in again)"));
             return;
         }
         let in_contact = self
@@ -215,6 +236,9 @@ impl App {
             .is_some_and(|s| s.solution.pbar.iter().any(|&p| p > 0.0));
         if in_contact {
             self.zoom = true;
+            self.notice = Some(Notice::info(
+                "zoomed to the contact zone, p̄ > 0 (z shows all of Γ_C)",
+            ));
         } else {
             self.notice = Some(Notice::info("nothing to zoom to: no contact (p̄ = 0)"));
         }

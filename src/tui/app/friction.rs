@@ -44,6 +44,13 @@ impl App {
             }
             Law::Tresca { .. } => Law::None,
         };
+        if law != Law::None && self.settings.refine_edges.grades() {
+            // Refused before anything changes (the solve would refuse it).
+            self.notice = Some(Notice::failure(
+                "F: friction does not take a graded mesh yet; E back to 0 passes first",
+            ));
+            return;
+        }
         self.settings.friction.law = law;
         if law != Law::None && self.settings.friction.shift == 0.0 {
             let own = self.scenario.friction.shift;

@@ -16,6 +16,7 @@ use super::lab_error::LabError;
 mod dispatch;
 mod friction;
 mod integration;
+pub mod log;
 mod mouse;
 mod overlays;
 mod replies;
@@ -88,6 +89,11 @@ impl Scene {
         matches!(self, Scene::Explore | Scene::Mesh | Scene::Stress)
     }
 }
+
+/// The level [`App::opening`] opens the paper's problem at: 128 elements (h = 0.5), the first
+/// level where M1's raw p alternates from edge to edge (at level 0's 32 elements it does not
+/// yet), solved in milliseconds.
+pub const OPENING_LEVEL: u32 = 1;
 
 /// The finest level the convergence scene studies (the reference is one level finer).
 pub const MAX_STUDY_LEVEL: u32 = 4;
@@ -207,6 +213,16 @@ impl App {
         }
     }
 
+    /// The lab as it opens on a scenario given by no file (the paper's problem): at
+    /// [`OPENING_LEVEL`] when the scenario's level is coarser, with the inf-sup panel at every
+    /// level up to it, so that the first screen shows p's zigzag and the panel's trend.
+    pub fn opening(scenario: Scenario) -> Self {
+        let mut app = App::new(scenario);
+        app.settings.level = app.settings.level.max(OPENING_LEVEL);
+        app.all_levels = true;
+        app
+    }
+
     /// The scenario's own settings (what `0` returns to).
     pub fn defaults(scenario: &Scenario) -> SolveKey {
         SolveKey {
@@ -242,6 +258,21 @@ impl App {
     /// Whether a solve is in flight.
     pub fn is_solving(&self) -> bool {
         self.pending_solve.is_some()
+    }
+
+    /// Whether the scene on screen still waits for work it asked for: a solve, an inf-sup
+    /// estimate, the study (and its reference) of the convergence scene, the stresses of the
+    /// stress scene, the displacement of the deformed body. The tour's auto-advance counts a step's time from the moment this turns
+    /// false, and a recording marks the step then.
+    pub fn is_computing(&self) -> bool {
+        let scene_work = match self.scene {
+            Scene::Convergence => self.study_pending.is_some(),
+            Scene::Stress => self.current().is_some_and(|s| s.stresses.get().is_none()),
+            // The deformed body (explore's contact zone, the mesh scene).
+            Scene::Explore | Scene::Mesh => self.current().is_some_and(|s| s.displacement.get().is_none()),
+            Scene::InfSup => false,
+        };
+        self.is_solving() || !self.infsup_pending.is_empty() || scene_work
     }
 
     /// The estimate in flight whose mesh is being built, and where that build is.
@@ -314,6 +345,7 @@ impl App {
     /// Handle one input; returns whether to redraw and the work still needed.
     pub fn update(&mut self, msg: Msg) -> Effect {
         let before = (self.notice.clone(), self.error.clone());
+        let (settings, scene) = (self.settings, self.scene);
         let solved_before = self.solved.clone();
         let cursor_x = self.cursor_point().map(|(x, _)| x);
         let effect = self.update_inner(msg);
@@ -321,6 +353,10 @@ impl App {
         if !same {
             self.follow_cursor(cursor_x);
         }
+        // The change first, then what the key said of it.
+        self.overlays
+            .log
+            .changes((&settings, scene), (&self.settings, self.scene));
         self.log_new_messages(before, same);
         effect
     }

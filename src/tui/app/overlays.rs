@@ -5,16 +5,13 @@
 //! `q` ignored then, each saying so).
 
 use std::cell::Cell;
-use std::collections::VecDeque;
 use std::sync::Arc;
 
 use ratatui::layout::Rect;
 
 use super::super::lab_error::LabError;
+use super::log::Log;
 use super::{App, Notice};
-
-/// The most messages the log keeps (the oldest go first).
-pub const LOG_LEN: usize = 500;
 
 /// The overlays' state ([`App::overlays`]).
 #[derive(Clone, Debug, Default)]
@@ -23,9 +20,9 @@ pub struct Overlays {
     pub help_scroll: u16,
     /// The message log is open (`l`).
     pub show_log: bool,
-    /// Every message since the lab started, oldest first, at most [`LOG_LEN`]: (is it a
-    /// failure, the text).
-    pub log: VecDeque<(bool, String)>,
+    /// Every message and change of state since the lab started, oldest first, repeats
+    /// folded ([`Log`]).
+    pub log: Log,
     /// How many lines the log is scrolled up from its newest line.
     pub log_scroll: u16,
     /// The contact point (a vertex of Γ_C, mirrored for a half model: an index into
@@ -35,6 +32,9 @@ pub struct Overlays {
     pub projector: bool,
     /// The terminal is smaller than the lab's minimum (set by the runtime, and by `render`).
     pub too_small: bool,
+    /// The lab is a step of the guided tour: no key bar (the caption panel has the tour's
+    /// keys).
+    pub in_tour: bool,
     /// Where the last frame put what the mouse can click (set by the view as it draws).
     pub drawn: Cell<Drawn>,
 }
@@ -78,12 +78,8 @@ impl App {
                 )
             }));
         }
-        let log = &mut self.overlays.log;
-        for entry in new {
-            if log.len() == LOG_LEN {
-                log.pop_front();
-            }
-            log.push_back(entry);
+        for (failure, text) in new {
+            self.overlays.log.message(failure, text);
         }
     }
 

@@ -58,7 +58,11 @@ fn lab_frame(app: &mut App, commands: Vec<Command>) -> String {
     // What the last key said (every key says what it did) is the lab's, not the
     // step's.
     app.notice = None;
-    render_app(app, &LOOK, 100, 28)
+    // Drawn as a step's lab is: without the key bar (the tour's panel has its keys).
+    app.overlays.in_tour = true;
+    let frame = render_app(app, &LOOK, 100, 28);
+    app.overlays.in_tour = false;
+    frame
 }
 
 /// `T` asks for the tour step whether or not a solution is on screen.

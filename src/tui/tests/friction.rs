@@ -67,7 +67,11 @@ pub fn press(app: &mut App, engine: &mut Engine, keys: &str) {
 /// The last message of the status line (a friction key's "— re-solving" gives way to the
 /// solve's readout when the solve arrives; the log keeps it).
 fn said(app: &App) -> String {
-    app.overlays.log.back().map(|l| l.1.clone()).unwrap_or_default()
+    app.overlays
+        .log
+        .back()
+        .map(|l| l.text.clone())
+        .unwrap_or_default()
 }
 
 fn close(a: f64, b: f64) -> bool {
@@ -195,11 +199,18 @@ fn refused_friction_solves_say_why_and_keep_the_last_frame() {
     press(&mut app, &mut engine, "mm");
     assert_eq!(app.settings.method.name(), "exact");
     assert!(app.error.is_none());
+    // Edge grading: refused before anything changes (the refusal alone, the settings kept).
+    let before = app.settings;
     press(&mut app, &mut engine, "E");
-    let error = app.error.as_ref().expect("refused").to_string();
+    assert_eq!(app.settings, before);
+    assert!(app.error.is_none());
+    let notice = app.notice.clone().expect("refused");
+    assert!(notice.failure, "{notice:?}");
     assert!(
-        error.contains("grading (E, at the edges or over the zone) does not take friction"),
-        "{error}"
+        notice
+            .text
+            .contains("grading (at the edges or over the zone) does not take friction"),
+        "{notice:?}"
     );
 }
 

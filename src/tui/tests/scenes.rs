@@ -57,21 +57,18 @@ fn frame(app: &App, w: u16, h: u16) -> String {
     render_app(app, &LOOK, w, h)
 }
 
-/// The status area of a frame (wrapped, never cut): its rows from the one with the
-/// key hints down, joined with single spaces.
+/// The status area of a frame (wrapped, never cut): its rows between the scene's last
+/// border and the key bar (the last row, ending `? help  q quit`), joined with single spaces.
 pub(super) fn status_of(text: &str) -> String {
     let lines: Vec<&str> = text.lines().collect();
-    let first = lines
+    let bar = lines
         .iter()
-        .rposition(|l| l.contains("q quit"))
-        .expect("the key hints");
-    let mut head = lines[first]
-        .trim_end()
-        .strip_suffix("? help  q quit")
-        .expect("hints last");
-    for scene_keys in ["a levels", "w compare", "c quantity", "f back"] {
-        head = head.trim_end().strip_suffix(scene_keys).unwrap_or(head);
-    }
-    let rows = std::iter::once(head).chain(lines[first + 1..].iter().copied());
+        .rposition(|l| l.trim_end().ends_with("? help  q quit"))
+        .expect("the key bar");
+    let first = lines[..bar]
+        .iter()
+        .rposition(|l| l.contains('┘') || l.contains('└'))
+        .map_or(0, |i| i + 1);
+    let rows = lines[first..bar].iter().copied();
     rows.flat_map(str::split_whitespace).collect::<Vec<_>>().join(" ")
 }

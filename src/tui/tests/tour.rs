@@ -484,11 +484,12 @@ fn scenario_paths_are_relative_to_the_tour_file() {
 
 // ---- the tour at 80×24 ---------------------------------------------------------
 
-/// Every step runs at 80×24: the lab above, the caption wrapped below in the rows
-/// left, with what does not fit a ↓ away.
+/// Every step runs at 80×24: the lab above, below it the step's title wrapped (never cut)
+/// and its whole caption — the lab yields the rows, nothing is a `↓` away.
 #[test]
 fn every_step_runs_at_80x24() {
     let tour = Tour::paper();
+    let words = |text: &str| text.split_whitespace().collect::<Vec<_>>().join(" ");
     for i in 0..tour.steps.len() {
         let text = render_step(&tour, i, 80, 24).unwrap();
         assert!(!text.contains("bigger terminal"), "step {}:\n{text}", i + 1);
@@ -496,14 +497,24 @@ fn every_step_runs_at_80x24() {
         // Columns: combining marks (the bar of p̄) take none.
         let columns = |l: &str| l.chars().filter(|c| !('\u{300}'..='\u{36f}').contains(c)).count();
         assert!(text.lines().all(|l| columns(l) <= 80), "{text}");
-        // The caption's first words are on screen; the lab's header and status are too.
-        let first: String = tour.steps[i]
-            .caption
-            .split_whitespace()
-            .take(3)
-            .collect::<Vec<_>>()
-            .join(" ");
-        assert!(text.contains(&first), "step {} caption `{first}`:\n{text}", i + 1);
+        assert!(
+            !text.contains("↓ more"),
+            "step {}: the caption scrolls:\n{text}",
+            i + 1
+        );
+        // The whole caption, its words in order, at the bottom of the frame.
+        let caption = words(&tour.steps[i].caption);
+        assert!(
+            words(&text).ends_with(&caption),
+            "step {} caption `{caption}`:\n{text}",
+            i + 1
+        );
+        // The title: every word on screen, none cut.
+        let head = text.lines().find(|l| l.contains(" tour ")).unwrap();
+        assert!(!head.contains('…'), "step {}: {head}", i + 1);
+        for word in tour.steps[i].title.split_whitespace() {
+            assert!(text.contains(word), "step {} title word `{word}`:\n{text}", i + 1);
+        }
         assert!(text.contains("riplab"), "{text}");
         if i == 2 {
             snap!("tour__paper_step03_80x24", text);
@@ -511,38 +522,35 @@ fn every_step_runs_at_80x24() {
     }
 }
 
-/// A long caption scrolls with ↓ and ↑, and the panel says there is more.
+/// A caption longer than the rows left scrolls with ↓ and ↑, and the panel says there is
+/// more (at 80×24: four lines of at most 96 characters whose long words wrap to 8 rows).
 #[test]
 fn long_captions_scroll() {
-    let tour = Tour::paper();
+    let long = "abcdefghij".repeat(4);
+    let line = |n: usize| format!("{n} {long} {long}");
+    let caption = [line(1), line(2), line(3), line(4)].join("\n");
+    let text = format!(
+        "title = \"Long\"\n[[step]]\ntitle = \"A long title that wraps beside the keys of the panel\"\nlevel = 0\ncaption = \"\"\"\n{caption} the end\"\"\"\n[[step]]\ntitle = \"Two\"\nlevel = 0\ncaption = \"Short.\"\n"
+    );
+    let tour = Tour::parse(&text, "long.toml", None).unwrap();
     let mut player = TourApp::new(tour.clone(), None);
     player.show_timing = false;
-    let commands = player.go_to(4);
+    let commands = player.go_to(0);
     carry_out(
         &mut player.app,
-        &mut Engine::new(tour.scenario_of(4).clone()),
+        &mut Engine::new(tour.scenario_of(0).clone()),
         commands,
     );
     let draw =
         |player: &TourApp| riplab::tui::render_frame(80, 24, |f| riplab::tui::tour::view(player, f, &LOOK));
-    let last_line = tour.steps[4].caption.lines().last().unwrap();
-    let tail: String = last_line
-        .split_whitespace()
-        .rev()
-        .take(2)
-        .collect::<Vec<_>>()
-        .into_iter()
-        .rev()
-        .collect::<Vec<_>>()
-        .join(" ");
     let text = draw(&player);
     assert!(text.contains("↓ more"), "{text}");
-    assert!(!text.contains(&tail), "`{tail}` not yet shown:\n{text}");
+    assert!(!text.contains("the end"), "`the end` not yet shown:\n{text}");
     for _ in 0..10 {
         player.update(key(KeyCode::Down));
     }
     let text = draw(&player);
-    assert!(text.contains(&tail), "`{tail}` shown after ↓:\n{text}");
+    assert!(text.contains("the end"), "`the end` shown after ↓:\n{text}");
     assert!(text.contains("↑ more"), "{text}");
     // Leaving the step starts the next caption at its top.
     player.update(ch(' '));

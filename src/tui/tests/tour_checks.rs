@@ -121,7 +121,8 @@ fn t_writes_no_step_the_tour_would_refuse() {
         scenario_file: None,
     };
     let mut app = App::new(cattaneo());
-    press(&mut app, "E");
+    // The keys refuse it (`E` with friction on): set as it would stand.
+    app.settings.refine_edges = Grading::Edges(RefineEdges::Passes(1));
     let notice = save_step(&app, &source);
     assert!(notice.failure, "{}", notice.text);
     assert!(notice.text.contains("does not take friction"), "{}", notice.text);

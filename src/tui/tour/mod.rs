@@ -320,6 +320,7 @@ impl Tour {
         let s = &mut app.settings;
         s.depth = step.depth.unwrap_or(s.depth).clamp(0.0, max.max(0.0));
         app.scene = step.scene.unwrap_or(Scene::Explore);
+        app.overlays.in_tour = true;
         app.compare = step.compare;
         app.show_gap = step.gap;
         app.show_hertz = step.hertz;

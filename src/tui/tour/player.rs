@@ -106,14 +106,16 @@ impl TourApp {
         self.quit
     }
 
-    /// Whether the lab still computes what the step shows.
+    /// Whether the lab still computes what the step shows ([`App::is_computing`]: the solve,
+    /// the inf-sup rows, the study and its reference, the stresses).
     pub fn is_busy(&self) -> bool {
-        self.app.is_solving() || self.app.infsup_pending() > 0
+        self.app.is_computing()
     }
 
-    /// Whether to advance by itself, the step having been shown for `elapsed`: in auto mode,
-    /// once the interval has passed and the step's numbers are on screen, except at the end
-    /// and while the terminal is too small to show the step.
+    /// Whether to advance by itself, the step's computations having finished `elapsed` ago
+    /// (the runtime counts from that moment): in auto mode, once the interval has passed and
+    /// nothing is computing, except at the end and while the terminal is too small to show
+    /// the step.
     pub fn auto_due(&self, elapsed: Duration) -> bool {
         self.auto.is_some_and(|a| elapsed >= a) && !self.at_end() && !self.is_busy() && self.fits
     }

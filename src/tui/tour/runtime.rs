@@ -21,9 +21,10 @@ use super::super::{RunError, TuiOptions};
 use super::{Tour, TourApp, TourMsg, auto_interval, view};
 
 /// Run `tour` in the terminal until the user quits; with `auto` (seconds, 0.5..=3600) each
-/// step advances by itself that long after its numbers are on screen, stopping at the last.
-/// The terminal is restored in every case. With `record`, the tour is recorded (see
-/// [`super::super::record`]), a marker at each step.
+/// step advances by itself that long after its computations have finished (its numbers on
+/// screen), stopping at the last. The terminal is restored in every case. With `record`, the
+/// tour is recorded (see [`super::super::record`]), a marker at each step once it is
+/// computed.
 pub fn run_tour(
     tour: Tour,
     opts: &TuiOptions,
@@ -50,7 +51,7 @@ pub fn run_tour(
             scenario,
             epoch: 0,
             tx,
-            shown: Instant::now(),
+            ready: None,
             dir,
             look,
             recording_failed: None,
@@ -66,8 +67,9 @@ struct Session {
     scenario: Scenario,
     epoch: u64,
     tx: Sender<Input>,
-    /// When the current step was shown.
-    shown: Instant,
+    /// When the current step's computations finished (None while they run, or while the
+    /// terminal is too small for the tour): the auto-advance counts from then.
+    ready: Option<Instant>,
     /// Where exports go (absolute).
     dir: PathBuf,
     look: Look,
@@ -85,7 +87,7 @@ impl Session {
             suspend: false,
         };
         if effect.step_changed {
-            self.shown = Instant::now();
+            self.ready = None;
             if let Some(failure) = &self.recording_failed {
                 self.player.app.notice = Some(failure.clone());
             }
@@ -105,6 +107,11 @@ impl Session {
                 other => self.worker.send(&other),
             }
         }
+        if !self.player.fits {
+            self.ready = None;
+        } else if self.ready.is_none() && !self.player.is_busy() {
+            self.ready = Some(Instant::now());
+        }
         flow
     }
 }
@@ -123,12 +130,8 @@ impl Program for Session {
             Input::Terminal(Event::Key(key)) => Msg::Key(key),
             Input::Terminal(Event::Mouse(event)) => Msg::Mouse(event),
             Input::Terminal(Event::Resize(width, height)) => {
-                let fitted = self.player.fits;
+                // Paused while too small: the step's time starts again once it fits ([`Session::apply`]).
                 self.player.set_size(width, height);
-                if self.player.fits && !fitted {
-                    // Paused while too small: the step's time starts again.
-                    self.shown = Instant::now();
-                }
                 Msg::Resize
             }
             Input::Worker(epoch, r) if epoch == self.epoch => Msg::Worker(r),
@@ -149,22 +152,24 @@ impl Program for Session {
     }
 
     fn after_inputs(&mut self) -> Flow {
-        if self.player.auto_due(self.shown.elapsed()) {
+        if self.ready.is_some_and(|t| self.player.auto_due(t.elapsed())) {
             self.apply(TourMsg::Auto)
         } else {
             Flow::default()
         }
     }
 
-    /// Until the auto-advance is due, a tick while a long job shows its time left, or for
-    /// ever.
+    /// Until the auto-advance is due (counted from the step's computations' end), a tick
+    /// while a long job shows its time left, or for ever.
     fn wait(&self) -> Option<Duration> {
         let tick = self.player.app.wants_tick().then_some(TICK);
         let auto = self
             .player
             .auto
             .filter(|_| !self.player.at_end() && !self.player.is_busy() && self.player.fits);
-        let due = auto.map(|a| a.saturating_sub(self.shown.elapsed()));
+        let due = auto
+            .zip(self.ready)
+            .map(|(a, ready)| a.saturating_sub(ready.elapsed()));
         match (tick, due) {
             (Some(t), Some(d)) => Some(t.min(d)),
             (t, d) => t.or(d),
@@ -179,12 +184,17 @@ impl Program for Session {
         view(&self.player, frame, &self.look);
     }
 
-    fn chapter(&self) -> Chapter {
+    /// The step once its computations have finished (so that a marker's frame is the
+    /// step's finished frame); None while they run.
+    fn chapter(&self) -> Option<Chapter> {
+        if self.player.is_busy() {
+            return None;
+        }
         let i = self.player.index();
-        Chapter {
+        Some(Chapter {
             step: Some((i, self.player.tour.steps[i].title.clone())),
             scene: self.player.app.scene,
-        }
+        })
     }
 
     fn notice(&mut self, notice: Notice) -> Flow {

@@ -12,7 +12,7 @@ use super::super::engine::Engine;
 use super::super::keys;
 use super::super::settle::carry_out;
 use super::super::theme::Theme;
-use super::super::view::fmt::{title_fit, wrap_words};
+use super::super::view::fmt::wrap_words;
 use super::super::view::help::key_popup;
 use super::super::view::{Look, view_in};
 use super::super::view::{MIN_AREA as LAB_MIN, centred_message};
@@ -34,13 +34,23 @@ pub fn view(tour: &TourApp, frame: &mut Frame, look: &Look) {
         too_small(frame, area, tour, look.theme);
         return;
     }
-    // The caption's rows: all of it if the lab keeps its minimum, else what is left.
+    // The title's and the caption's rows: all of them while the lab keeps its minimum (the
+    // lab's charts yield their rows first), else what is left, the caption scrolling.
     let text = caption_rows(&step.caption, area.width - 2);
-    let room = area.height - LAB_MIN.1 - 1;
-    let rows = (text.len() as u16).min(room).max(1);
-    let [lab, panel] = Layout::vertical([Constraint::Fill(1), Constraint::Length(rows + 1)]).areas(area);
+    let room = usize::from(area.height - LAB_MIN.1);
+    let title_beside = |more| {
+        let keys = key_spans(tour, look.theme, more);
+        title_rows(tour, area.width, Line::from(keys).width() as u16)
+    };
+    let mut title = title_beside(None);
+    if title.len() + text.len() > room {
+        // The caption scrolls: the title wraps beside the keys with `↑↓ more`.
+        title = title_beside(Some("↑↓"));
+    }
+    let rows = (title.len() + text.len()).min(room).max(title.len() + 1) as u16;
+    let [lab, panel] = Layout::vertical([Constraint::Fill(1), Constraint::Length(rows)]).areas(area);
     view_in(&tour.app, frame, lab, look);
-    caption_panel(tour, frame, panel, look.theme, &text);
+    caption_panel(tour, frame, panel, look.theme, &title, &text);
     if tour.show_help {
         help(frame, area, look.theme);
     }
@@ -66,25 +76,11 @@ pub(super) fn caption_rows(caption: &str, width: u16) -> Vec<String> {
     wrap_words(&paragraphs.join("\n"), width)
 }
 
-/// The step's number and title, the keys, then the caption (wrapped; ↑ ↓ scroll it when it
-/// is longer than the rows it has).
-fn caption_panel(tour: &TourApp, frame: &mut Frame, area: Rect, theme: Theme, text: &[String]) {
-    let n = tour.tour.steps.len();
-    let i = tour.index();
-    let Some(step) = tour.tour.steps.get(i) else {
-        return;
-    };
-    let rows = usize::from(area.height.saturating_sub(1));
-    let scroll = usize::from(tour.caption_scroll).min(text.len().saturating_sub(rows));
-    let more_above = scroll > 0;
-    let more_below = scroll + rows < text.len();
+/// The keys of the caption panel's first row: `↑↓ more` when the caption scrolls (`more`),
+/// the auto-advance's state, `Space next` (or `end`) and `? keys`.
+fn key_spans(tour: &TourApp, theme: Theme, more: Option<&str>) -> Vec<Span<'static>> {
     let mut keys: Vec<Span> = Vec::new();
-    if more_above || more_below {
-        let arrows = match (more_above, more_below) {
-            (true, true) => "↑↓",
-            (true, false) => "↑",
-            _ => "↓",
-        };
+    if let Some(arrows) = more {
         keys.push(Span::styled(format!(" {arrows}"), theme.key()));
         keys.push(Span::raw(" more "));
     }
@@ -104,20 +100,72 @@ fn caption_panel(tour: &TourApp, frame: &mut Frame, area: Rect, theme: Theme, te
     }
     keys.push(Span::styled(" ?", theme.key()));
     keys.push(Span::raw(" keys "));
-    let keys_width = Line::from(keys.clone()).width() as u16;
+    keys
+}
+
+/// The caption panel's head: ` tour 3/15 ` (with ` (changed)` once the user changed the
+/// step's settings) and the step's title wrapped at words, never cut, beside keys
+/// `keys_width` columns wide.
+struct TitleRows {
+    head: String,
+    rows: Vec<String>,
+}
+
+impl TitleRows {
+    fn len(&self) -> usize {
+        self.rows.len().max(1)
+    }
+}
+
+fn title_rows(tour: &TourApp, width: u16, keys_width: u16) -> TitleRows {
+    let (i, n) = (tour.index(), tour.tour.steps.len());
     let changed = if tour.is_pristine() { "" } else { " (changed)" };
     let head = format!(" tour {}/{n}{changed} ", i + 1);
-    let head_width = head.chars().count() as u16;
-    let title_room = area.width.saturating_sub(head_width + keys_width + 1);
-    let [top, body] = Layout::vertical([Constraint::Length(1), Constraint::Fill(1)]).areas(area);
+    let title = tour.tour.steps.get(i).map_or("", |s| s.title.as_str());
+    let room = usize::from(width.saturating_sub(keys_width + 2)).saturating_sub(head.chars().count());
+    TitleRows {
+        head,
+        rows: wrap_words(title, room.max(8)),
+    }
+}
+
+/// The step's number and title (wrapped, `title` from [`title_rows`]), the keys, then the
+/// caption (↑ ↓ scroll it when it is longer than the rows it has).
+fn caption_panel(
+    tour: &TourApp,
+    frame: &mut Frame,
+    area: Rect,
+    theme: Theme,
+    title: &TitleRows,
+    text: &[String],
+) {
+    let head_rows = title.len().min(usize::from(area.height));
+    let rows = usize::from(area.height).saturating_sub(head_rows);
+    let scroll = usize::from(tour.caption_scroll).min(text.len().saturating_sub(rows));
+    let more = match (scroll > 0, scroll + rows < text.len()) {
+        (true, true) => Some("↑↓"),
+        (true, false) => Some("↑"),
+        (false, true) => Some("↓"),
+        (false, false) => None,
+    };
+    let keys = key_spans(tour, theme, more);
+    let keys_width = Line::from(keys.clone()).width() as u16;
+    let [top, body] =
+        Layout::vertical([Constraint::Length(head_rows as u16), Constraint::Fill(1)]).areas(area);
     let [left, right] = Layout::horizontal([Constraint::Fill(1), Constraint::Length(keys_width)]).areas(top);
-    frame.render_widget(
-        Paragraph::new(Line::from(vec![
-            Span::styled(head, theme.selected()),
-            Span::styled(title_fit(&format!(" {} ", step.title), title_room), theme.title()),
-        ])),
-        left,
-    );
+    let indent = " ".repeat(title.head.chars().count());
+    let lines: Vec<Line> = (0..head_rows)
+        .map(|k| {
+            let row = title.rows.get(k).map_or("", String::as_str);
+            let lead = if k == 0 {
+                Span::styled(title.head.clone(), theme.selected())
+            } else {
+                Span::raw(indent.clone())
+            };
+            Line::from(vec![lead, Span::styled(format!(" {row}"), theme.title())])
+        })
+        .collect();
+    frame.render_widget(Paragraph::new(lines), left);
     frame.render_widget(Paragraph::new(Line::from(keys)), right);
     let lines: Vec<Line> = text
         .iter()

@@ -1,18 +1,19 @@
-//! The help overlay listing every key ([`super::super::keys`]).
+//! The help overlay: the keys of the scene shown, then every key ([`super::super::keys`]).
 
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Flex, Layout, Rect};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Clear, Paragraph};
 
-use super::super::keys;
+use super::super::app::Scene;
+use super::super::key_bar;
 use super::super::theme::Theme;
 
-/// The lab's help overlay ([`keys::lab_help`]: its keys, the Ctrl keys, a note on units),
-/// centred over `area`, from line `scroll` on (kept within the list); the title says when
-/// lines are above or below.
-pub fn render(frame: &mut Frame, area: Rect, theme: Theme, scroll: u16) {
-    let all = keys::lab_help();
+/// The lab's help overlay ([`key_bar::scene_help`]: the keys that act in `scene` first, then
+/// every key, the Ctrl keys, a note on units and the mouse), centred over `area`, from line
+/// `scroll` on (kept within the list); the title says when lines are above or below.
+pub fn render(frame: &mut Frame, area: Rect, theme: Theme, scroll: u16, scene: Scene) {
+    let all = key_bar::scene_help(scene);
     let rows = usize::from(area.height.saturating_sub(2)).max(1);
     let first = usize::from(scroll).min(all.len().saturating_sub(rows));
     let shown = &all[first..(first + rows).min(all.len())];

@@ -1,5 +1,6 @@
-//! The message log (`l`): every notice, failure and solver warning since the lab started
-//! ([`super::super::app::Overlays::log`]), newest last, wrapped whole, scrolled with ↑ ↓.
+//! The message log (`l`): every notice, failure, solver warning and change of state since
+//! the lab started ([`super::super::app::Overlays::log`]), each with its time, repeats
+//! folded (`× 6`), newest last, wrapped whole, scrolled with ↑ ↓.
 
 use ratatui::Frame;
 use ratatui::layout::Rect;
@@ -7,6 +8,7 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Clear, Paragraph};
 
 use super::super::app::App;
+use super::super::app::log::clock;
 use super::super::theme::Theme;
 use super::fmt::wrap_words;
 
@@ -15,18 +17,31 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, theme: Theme) {
     let log = &app.overlays.log;
     let inner_width = usize::from(area.width.saturating_sub(4)).max(1);
     let mut lines: Vec<Line> = Vec::new();
-    for (failure, text) in log {
-        let style = if *failure {
+    for entry in log.iter() {
+        let style = if entry.failure {
             theme.bad()
         } else {
             ratatui::style::Style::new()
         };
-        let mark = if *failure { "✗ " } else { "· " };
-        for (i, row) in wrap_words(text, inner_width.saturating_sub(2))
+        // `m:ss ✗ text × n`, the further rows indented under the text.
+        let time = format!("{:>5} ", clock(entry.at));
+        let mark = if entry.failure { "✗ " } else { "· " };
+        let times = if entry.count > 1 {
+            format!(" × {}", entry.count)
+        } else {
+            String::new()
+        };
+        let lead_width = time.chars().count() + 2;
+        let text = format!("{}{times}", entry.text);
+        for (i, row) in wrap_words(&text, inner_width.saturating_sub(lead_width))
             .into_iter()
             .enumerate()
         {
-            let lead = if i == 0 { mark } else { "  " };
+            let lead = if i == 0 {
+                format!("{time}{mark}")
+            } else {
+                " ".repeat(lead_width)
+            };
             lines.push(Line::from(vec![Span::raw(lead), Span::styled(row, style)]));
         }
     }

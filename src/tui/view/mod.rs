@@ -24,8 +24,8 @@ mod yfit;
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::symbols::Marker;
-use ratatui::text::{Line, Span};
-use ratatui::widgets::{Paragraph, Wrap};
+use ratatui::text::Line;
+use ratatui::widgets::Paragraph;
 
 use super::app::{App, Drawn, Scene};
 use super::theme::Theme;
@@ -42,9 +42,10 @@ pub struct Look {
     pub marker: Marker,
 }
 
-/// The smallest area the lab is drawn in inside the guided tour (its caption takes the rest
-/// of an 80×24 terminal).
-pub const MIN_AREA: (u16, u16) = (80, 20);
+/// The smallest area the lab is drawn in inside the guided tour: the lab yields the rest of
+/// an 80×24 terminal to the step's title and caption, whose words are read before any chart
+/// is (every caption of the paper's tour whole at 80×24).
+pub const MIN_AREA: (u16, u16) = (80, 17);
 
 /// Draw `app` into the whole frame (at least [`MIN_SIZE`]).
 pub fn view(app: &App, frame: &mut Frame, look: &Look) {
@@ -66,22 +67,26 @@ pub fn view(app: &App, frame: &mut Frame, look: &Look) {
 /// The most rows the error banner takes from the scene.
 const MAX_BANNER_ROWS: u16 = 5;
 
-/// The rows `text` takes when wrapped at word boundaries to `width` columns (a word longer
-/// than the line is broken).
-fn wrapped_rows(text: &str, width: u16) -> u16 {
-    let width = usize::from(width.max(1));
-    let (mut rows, mut used) = (1usize, 0usize);
-    for word in text.split(' ') {
-        let w = Span::raw(word).width();
-        let need = if used == 0 { w } else { used + 1 + w };
-        if need <= width {
-            used = need;
-        } else {
-            rows += 1 + w.saturating_sub(1) / width;
-            used = w % width;
-        }
+/// The banner's rows: ` ✗ ` and the failure wrapped at words to `width` columns, the further
+/// rows indented under its first word (at most [`MAX_BANNER_ROWS`], the last ending
+/// "… l: log" when it is longer still: the log keeps it whole).
+fn banner_rows(error: &str, width: u16) -> Vec<String> {
+    const LEAD: &str = " ✗ ";
+    let mut rows: Vec<String> = fmt::wrap_words(error, usize::from(width.saturating_sub(3)).max(1))
+        .into_iter()
+        .enumerate()
+        .map(|(i, row)| format!("{}{row}", if i == 0 { LEAD } else { "   " }))
+        .collect();
+    if rows.len() > usize::from(MAX_BANNER_ROWS) {
+        rows.truncate(usize::from(MAX_BANNER_ROWS));
+        let last = rows.last_mut().expect("a row");
+        let keep = usize::from(width).saturating_sub(10);
+        *last = format!(
+            "{} … l: log",
+            last.chars().take(keep).collect::<String>().trim_end()
+        );
     }
-    u16::try_from(rows).unwrap_or(u16::MAX)
+    rows
 }
 
 /// Draw `app` into `area` of the frame (at least [`MIN_AREA`]; the guided tour puts its
@@ -92,11 +97,14 @@ pub fn view_in(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
         too_small(frame, area, look.theme, "");
         return;
     }
-    let message = app.error.as_ref().map(|error| format!(" ✗ {error}"));
     // The whole message, word-wrapped (at least 2 rows, at most MAX_BANNER_ROWS).
+    let message = app
+        .error
+        .as_ref()
+        .map(|error| banner_rows(&error.to_string(), area.width));
     let banner_height = message
-        .as_deref()
-        .map_or(0, |text| wrapped_rows(text, area.width).clamp(2, MAX_BANNER_ROWS));
+        .as_ref()
+        .map_or(0, |rows| (rows.len() as u16).clamp(2, MAX_BANNER_ROWS));
     let status_rows = status::rows(app, area.width, look.theme);
     if app.overlays.projector {
         // The scene's main chart on the whole screen, the status (and its keys) below.
@@ -122,13 +130,9 @@ pub fn view_in(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
         Scene::Convergence => convergence::render(app, frame, body, look),
         Scene::Stress => stress_map::render(app, frame, body, look),
     }
-    if let Some(text) = message {
-        frame.render_widget(
-            Paragraph::new(text)
-                .style(look.theme.banner())
-                .wrap(Wrap { trim: false }),
-            banner,
-        );
+    if let Some(rows) = message {
+        let lines: Vec<Line> = rows.into_iter().map(Line::raw).collect();
+        frame.render_widget(Paragraph::new(lines).style(look.theme.banner()), banner);
     }
     status::render(app, frame, bottom, look.theme);
     let [above, _] = Layout::vertical([Constraint::Fill(1), Constraint::Length(status_rows)]).areas(area);
@@ -139,7 +143,7 @@ pub fn view_in(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
 /// too), scrolled where the user scrolled it.
 fn overlays(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
     if app.show_help {
-        help::render(frame, area, look.theme, app.overlays.help_scroll);
+        help::render(frame, area, look.theme, app.overlays.help_scroll, app.scene);
     } else if app.overlays.show_log {
         log::render(app, frame, area, look.theme);
     }
@@ -162,19 +166,24 @@ fn projector(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
 fn explore(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
     // The lower panels keep at least 6 rows (the inf-sup panel's borders, header, current
     // row and verdict) below the method line; in a short area (the tour at 80×24) the chart
-    // takes the rest.
-    let chart_rows = if area.height < 21 {
-        area.height.saturating_sub(7)
+    // takes the rest; shorter still (the tour's caption taking more rows), the method line
+    // goes and the panels keep 5 rows, so that the chart keeps its data rows.
+    let (chart_rows, method_rows) = if area.height < 16 {
+        (area.height.saturating_sub(5), 0)
+    } else if area.height < 21 {
+        (area.height.saturating_sub(7), 1)
     } else {
-        ((area.height - 1) * 57 + 50) / 100
+        (((area.height - 1) * 57 + 50) / 100, 1)
     };
     let [chart, method_row, lower] = Layout::vertical([
         Constraint::Length(chart_rows),
-        Constraint::Length(1),
+        Constraint::Length(method_rows),
         Constraint::Fill(1),
     ])
     .areas(area);
-    method::render(app, frame, method_row, look.theme);
+    if method_rows > 0 {
+        method::render(app, frame, method_row, look.theme);
+    }
     let [panel, contact] = Layout::horizontal([Constraint::Length(42), Constraint::Fill(1)]).areas(lower);
     pressure::render(app, frame, chart, look);
     infsup_panel::render(app, frame, panel, look.theme);

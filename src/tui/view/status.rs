@@ -1,6 +1,6 @@
 //! The status area: the state of the solve (or of the estimates, or the study), or a notice,
-//! and the key hints. The hints keep their place at the right of the first row; the message
-//! wraps at words to further rows (at most [`MAX_ROWS`]) rather than being cut, and every message is
+//! then the scene's key bar. The message wraps at words to further rows (at most
+//! [`MAX_ROWS`], indented under its first word) rather than being cut, and every message is
 //! kept whole in the log (`l`).
 
 use ratatui::Frame;
@@ -11,6 +11,7 @@ use ratatui::widgets::Paragraph;
 
 use super::super::app::{App, Compare, Progress, Scene};
 use super::super::eta::time_left;
+use super::super::key_bar;
 use super::super::theme::Theme;
 use super::convergence::study_epsilon;
 use super::fmt::sig;
@@ -19,8 +20,13 @@ use crate::mesh::Element;
 /// The most rows the status area takes (a longer message ends "… l: log", whole in the log).
 pub const MAX_ROWS: u16 = 5;
 
+/// What a message's further rows start with, after the row's own space: they line up with
+/// the first row's words past its ` ✗ ` mark.
+const INDENT: &str = "  ";
+
 /// Draw the status area: the message, wrapped at words to as many rows as it needs (at most
-/// [`MAX_ROWS`]), with the key hints always at the right of its first row.
+/// [`MAX_ROWS`]), and below it the scene's key bar (not in the guided tour, whose caption
+/// panel has its own keys).
 pub fn render(app: &App, frame: &mut Frame, area: Rect, theme: Theme) {
     frame.render_widget(Paragraph::new(status_lines(app, area.width, theme)), area);
 }
@@ -30,42 +36,34 @@ pub fn rows(app: &App, width: u16, theme: Theme) -> u16 {
     status_lines(app, width, theme).len() as u16
 }
 
-/// The status area's lines at `width` columns.
+/// The status area's lines at `width` columns: the message, then the key bar.
 fn status_lines(app: &App, width: u16, theme: Theme) -> Vec<Line<'static>> {
-    let message = state(app, theme);
-    let lines = wrap_with_hints(&message, &hints(app, theme, true), width);
-    if lines.len() == 1 {
-        return lines;
+    let mut lines = wrap_with_hints(&state(app, theme), &[], width);
+    if !app.overlays.in_tour {
+        lines.push(key_bar(app, theme, width));
     }
-    // The scene's own keys only where they cost no row: `? help  q quit` keeps its place.
-    wrap_with_hints(&message, &hints(app, theme, false), width)
+    lines
 }
 
-/// The key hints: the scene's own keys (with `scene_keys`), then `? help  q quit`.
-fn hints(app: &App, theme: Theme, scene_keys: bool) -> Vec<Span<'static>> {
-    let own: &[(&str, &str)] = if !scene_keys {
-        &[]
-    } else if app.overlays.projector {
-        &[("f", "back")]
-    } else {
-        match app.scene {
-            // Explore's keys are the help's (its status line is the longest).
-            Scene::Explore => &[],
-            Scene::InfSup => &[("a", "levels")],
-            Scene::Convergence => &[("w", "compare")],
-            Scene::Stress => &[("c", "quantity")],
-            Scene::Mesh => &[],
-        }
+/// The scene's key bar ([`key_bar::bar`]): its keys, `? help` and `q quit`; the scene's own
+/// keys dropped from the last while the bar is wider than `width`.
+fn key_bar(app: &App, theme: Theme, width: u16) -> Line<'static> {
+    let mut entries = key_bar::bar(app.scene, app.overlays.projector);
+    let width_of = |e: &[(String, &str)]| -> usize {
+        e.iter()
+            .map(|(k, w)| 1 + k.chars().count() + 1 + w.chars().count() + 1)
+            .sum()
     };
+    while width_of(&entries) > usize::from(width) && entries.len() > 2 {
+        entries.remove(entries.len() - 3);
+    }
     let mut spans = Vec::new();
-    for (key, what) in own.iter().chain(&[("?", "help"), ("q", "quit")]) {
-        spans.push(Span::styled(*key, theme.key()));
-        spans.push(Span::raw(format!(" {what}  ")));
+    for (key, what) in entries {
+        spans.push(Span::raw(" "));
+        spans.push(Span::styled(key, theme.key()));
+        spans.push(Span::raw(format!(" {what} ")));
     }
-    if let Some(last) = spans.last_mut() {
-        *last = Span::raw(last.content.trim_end().to_string() + " ");
-    }
-    spans
+    Line::from(spans)
 }
 
 /// `message` wrapped at words into rows of `width` columns, the first row leaving room for
@@ -81,11 +79,12 @@ pub fn wrap_with_hints(message: &[Span<'static>], hints: &[Span<'static>], width
             words.push(Span::styled(word.to_string(), span.style));
         }
     }
+    // Further rows indented under the message's first word (past ` ✗ `).
     let room = |row: usize| {
         if row == 0 {
             width.saturating_sub(hints_width + 2)
         } else {
-            width.saturating_sub(1)
+            width.saturating_sub(1 + INDENT.len())
         }
     };
     let mut rows: Vec<Vec<Span<'static>>> = vec![Vec::new()];
@@ -93,7 +92,7 @@ pub fn wrap_with_hints(message: &[Span<'static>], hints: &[Span<'static>], width
     for word in words {
         let w = word.width();
         if used > 0 && used + 1 + w > room(rows.len() - 1) {
-            rows.push(Vec::new());
+            rows.push(vec![Span::raw(INDENT)]);
             used = 0;
         }
         let row = rows.last_mut().expect("a row");

@@ -328,8 +328,8 @@ fn status_message_wins_over_the_key_hints() {
     assert_eq!(status_of(&text), long, "whole:\n{text}");
     let rows: Vec<&str> = text.lines().collect();
     assert!(
-        rows[rows.len() - 2].ends_with("? help  q quit"),
-        "the hints in place:\n{text}"
+        rows[rows.len() - 1].ends_with("? help  q quit"),
+        "the key bar in place:\n{text}"
     );
 }
 
@@ -354,11 +354,11 @@ fn export_failures_show_and_names_carry_epsilon_and_depth() {
     assert!(err.to_string().contains(&file.display().to_string()), "{err}");
     app.update(Msg::Exported(Err(err.into())));
     let text = frame(&app, 120, 40);
-    let last = text.lines().last().unwrap();
+    let status = status_of(&text);
     // The absolute directory, then why.
     assert!(
-        last.contains(&format!("✗ export failed: {}: Not a directory", file.display())),
-        "{last}"
+        status.contains(&format!("✗ export failed: {}: Not a directory", file.display())),
+        "{status}"
     );
     std::fs::remove_file(&file).unwrap();
 }

@@ -1,0 +1,81 @@
+//! The paper's tour recorded at 80×24 with `--auto 0.5`: each step's marker is written once
+//! the step's computations (the solve, the inf-sup rows, the study and its reference) have
+//! finished, so that the recording replayed to any marker shows a finished frame — nothing
+//! `computing`, no `⟳` — with the step's whole caption on screen (no `↓ more`).
+
+use std::io::Write;
+use std::process::Stdio;
+use std::time::{Duration, Instant};
+
+use super::record::{Reap, Screen, parser_of, pty_of, rows};
+
+const SIZE: (u16, u16) = (80, 24);
+
+#[test]
+fn a_recorded_tour_marks_each_step_on_its_finished_frame() {
+    let dir = std::env::temp_dir().join(format!("riplab-record-tour-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let cast = dir.join("t.cast");
+    let (controller, user) = pty_of(SIZE);
+    let child = std::process::Command::new(env!("CARGO_BIN_EXE_riplab"))
+        .args(["tour", "--auto", "0.5", "--record"])
+        .arg(&cast)
+        .env("TERM", "xterm-256color")
+        .env("NO_COLOR", "1")
+        .env("XDG_CACHE_HOME", crate::common::test_cache())
+        .stdin(Stdio::from(user.try_clone().unwrap()))
+        .stdout(Stdio::from(user.try_clone().unwrap()))
+        .stderr(Stdio::from(user))
+        .spawn()
+        .unwrap();
+    let mut child = Reap(child);
+    let (screen, reader) = Screen::read_into(&controller, parser_of(SIZE));
+    // The whole tour computes (the reference of step 13 too): a generous deadline.
+    let deadline = Instant::now() + Duration::from_secs(900);
+    screen.wait_quiet(
+        screen.wait_for(&["tour 15/15", "auto: done", "✓ converged"], deadline),
+        deadline,
+    );
+    std::fs::File::from(controller).write_all(b"q").unwrap();
+    screen.wait_for_end(deadline);
+    assert!(child.0.wait().unwrap().success());
+    drop(child);
+    let _ = reader.join();
+
+    let text = std::fs::read_to_string(&cast).unwrap();
+    let mut replay = parser_of(SIZE);
+    let mut markers = Vec::new();
+    for line in text.lines().skip(1) {
+        let event: serde_json::Value = serde_json::from_str(line).unwrap();
+        let data = event[2].as_str().unwrap();
+        match event[1].as_str().unwrap() {
+            "o" => replay.process(data.as_bytes()),
+            "m" => {
+                let frame = rows(replay.screen()).join("\n");
+                for busy in ["computing", "⟳", "↓ more", "estimate(s) running"] {
+                    assert!(!frame.contains(busy), "`{busy}` at the marker `{data}`:\n{frame}");
+                }
+                assert!(
+                    frame.contains(&format!("tour {}/15", markers.len() + 1)),
+                    "{data}:\n{frame}"
+                );
+                markers.push(data.to_string());
+            }
+            _ => {}
+        }
+    }
+    assert_eq!(markers.len(), 15, "{markers:?}");
+    assert_eq!(markers[0], "The problem");
+    assert_eq!(markers[14], "Beyond the paper: friction, Cattaneo–Mindlin");
+    // Each step was shown at least the interval after its marker (counted from then).
+    let times: Vec<f64> = text
+        .lines()
+        .skip(1)
+        .map(|l| serde_json::from_str::<serde_json::Value>(l).unwrap())
+        .filter(|e| e[1] == "m")
+        .map(|e| e[0].as_f64().unwrap())
+        .collect();
+    assert!(times.windows(2).all(|w| w[1] - w[0] >= 0.45), "{times:?}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
