@@ -283,6 +283,34 @@ fn chart(frame: &mut Frame, area: Rect, look: &Look, app: &App, study: &Study) {
     .render(frame, area);
 }
 
+/// The work–precision chart's curves in values (solve ms, relative error of p̄; M1's raw p
+/// beside the schemes) for the tour's handout ([`crate::plot::LogCurve`]); None until the
+/// study of the lab's settings is done.
+pub fn svg_curves(app: &App) -> Option<Vec<crate::plot::LogCurve>> {
+    let Some(Ok(study)) = app.studies.get(&app.study_key()) else {
+        return None;
+    };
+    let values = |pts: Vec<(f64, f64)>| pts.into_iter().map(|(x, y)| (10f64.powf(x), 10f64.powf(y))).collect();
+    let curves = curves(study);
+    let mut out: Vec<crate::plot::LogCurve> = curves
+        .iter()
+        .map(|c| crate::plot::LogCurve {
+            name: legend(c),
+            points: values(points(&c.rows, |e| e.pbar)),
+        })
+        .collect();
+    if let Some(m1) = curves
+        .iter()
+        .find(|c| study.key.compare == Compare::Schemes && c.name == "M1")
+    {
+        out.push(crate::plot::LogCurve {
+            name: "M1 p (raw)".into(),
+            points: values(points(&m1.rows, |e| e.p)),
+        });
+    }
+    Some(out)
+}
+
 fn table(frame: &mut Frame, area: Rect, theme: Theme, study: &Study, levels: &[u32]) {
     let methods = study.key.compare == Compare::Methods;
     // The methods' rows add their Newton steps and the ALM's multiplier updates.
