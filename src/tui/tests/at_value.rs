@@ -62,10 +62,12 @@ fn check(frame: &str, charted: &Charted, what: &str) {
     let prefix: String = charted.title.chars().take(12).collect();
     let c = chart(frame, &prefix);
     let (log_x, log_y) = charted.log;
-    let [x0, x1] = charted.x_bounds;
+    let ([x0, x1], [y0, y1]) = (charted.x_bounds, charted.y_bounds);
     for (glyph, points) in &charted.series {
         for &(x, y) in points {
-            if !(x >= x0.min(x1) && x <= x0.max(x1)) || !y.is_finite() {
+            // A point outside the chart's bounds (the zoomed x range, a gap below 0) is not
+            // drawn.
+            if !(x >= x0.min(x1) && x <= x0.max(x1) && y >= y0.min(y1) && y <= y0.max(y1)) {
                 continue;
             }
             let v = if log_y { y.log10() } else { y };

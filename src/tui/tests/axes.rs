@@ -60,7 +60,8 @@ pub(super) fn chart(frame: &str, title: &str) -> Chart {
         .filter(|&i| lines[i][axis] == '┤')
         .map(|i| (i, number(&lines[i][1..axis].iter().collect::<String>()).unwrap()))
         .collect();
-    // Each x label is centred on its ┬ (or pushed inside the box at the ends).
+    // Each x label is centred on its ┬ (╤ in a stick zone; or pushed inside the box at the
+    // ends).
     let label_line = &lines[x_axis + 1];
     let mut x_ticks = Vec::new();
     let mut col = 1;
@@ -75,7 +76,7 @@ pub(super) fn chart(frame: &str, title: &str) -> Chart {
         }
         let value = number(&label_line[start..col].iter().collect::<String>()).unwrap();
         let tick = (start..col)
-            .filter(|&c| lines[x_axis][c] == '┬')
+            .filter(|&c| matches!(lines[x_axis][c], '┬' | '╤'))
             .min_by_key(|&c| c.abs_diff((start + col - 1) / 2))
             .unwrap_or_else(|| panic!("label at {start} without a tick in\n{frame}"));
         x_ticks.push((tick, value));

@@ -42,11 +42,19 @@ fn each_steps_svg_is_the_chart_of_its_scene() {
         infsup.contains("β_h/√h against h") && !infsup.contains("smoothed p̄"),
         "{infsup}"
     );
+    // Each curve's name in the legend (a text element of its own line).
+    let texts: Vec<&str> = infsup.lines().map(str::trim).collect();
     for scheme in ["M1", "M2: β = 0, kernel", "M3", "M4", "M1 p̄"] {
-        assert!(infsup.contains(&format!(">{scheme}<")), "{scheme}: {infsup}");
+        assert!(texts.contains(&scheme), "{scheme}: {infsup}");
     }
     assert!(
         convergence.contains("work–precision") && convergence.contains("relative error of p̄"),
+        "{convergence}"
+    );
+    assert!(
+        ["M1 p̄", "M3 p̄", "M4 p̄", "M1 p (raw)"]
+            .iter()
+            .all(|name| convergence.lines().any(|l| l.trim() == *name)),
         "{convergence}"
     );
     assert!(!convergence.contains("smoothed p̄"), "{convergence}");

@@ -66,12 +66,6 @@ fn series() -> Vec<Series> {
     out
 }
 
-/// The chart's rows below which the table yields (eight data rows, the borders and the x
-/// axis).
-const CHART_MIN_ROWS: u16 = 12;
-/// The table's least rows: borders, header, the current level, the trend and the note.
-const TABLE_MIN_ROWS: u16 = 6;
-
 pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
     let all = series();
     let levels: Vec<u32> = (0..=MAX_APP_LEVEL)
@@ -86,14 +80,11 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
             })
         })
         .collect();
-    // The projector view is the chart alone; else the table takes what the chart leaves
-    // above its eight data rows, none when that is too little to read.
-    let wanted = levels.len() as u16 + 5;
-    let left = area.height.saturating_sub(CHART_MIN_ROWS);
-    let table_height = match wanted.min(area.height / 2).max(TABLE_MIN_ROWS).min(left) {
-        _ if app.overlays.projector => 0,
-        rows if rows < TABLE_MIN_ROWS => 0,
-        rows => rows,
+    // The projector view is the chart alone; else the table takes up to half the height.
+    let table_height = if app.overlays.projector {
+        0
+    } else {
+        (levels.len() as u16 + 5).min(area.height / 2)
     };
     let [top, bottom] = Layout::vertical([Constraint::Fill(1), Constraint::Length(table_height)]).areas(area);
     chart(app, frame, top, look, &all, &levels);

@@ -538,6 +538,8 @@ pub mod drawn {
         pub title: String,
         /// The x axis's bounds, in values.
         pub x_bounds: [f64; 2],
+        /// The y bounds the chart was given (its data's), in values.
+        pub y_bounds: [f64; 2],
         /// Whether x and y are on log axes.
         pub log: (bool, bool),
         /// Each glyph series' glyph and points.
@@ -555,6 +557,7 @@ pub mod drawn {
         let charted = Charted {
             title: plot.title.trim().to_string(),
             x_bounds: plot.x.bounds.map(|v| value(v, lx)),
+            y_bounds: plot.y.bounds.map(|v| value(v, ly)),
             log: (lx, ly),
             series: plot
                 .series
