@@ -1,8 +1,9 @@
 //! Every glyph of every chart stands on the row of its value, as a reader reads the row off
 //! the chart's own tick labels (within half a row): on every scene, at 80×24, 100×30 and
 //! 120×40, in the lab and in the projector view, on every bundled scenario with every
-//! overlay on. Two values more than a row apart so never share a row, and none reads as
-//! another (the inf-sup chart drew M4's 0.52 on M3's row of 1.07).
+//! overlay on. So no glyph reads as a value its series does not have (the inf-sup chart drew
+//! M4's 0.52 on M3's row of 1.07: `*34` read "M4 = M3 ≈ 1"). That each value has its glyph
+//! near it is `axes.rs`'s test.
 
 use riplab::scenario::Scenario;
 use riplab::tui::app::{App, Scene};
@@ -57,30 +58,41 @@ fn rows_with(c: &Chart, glyph: char, x: f64, log: bool) -> Vec<usize> {
         .collect()
 }
 
-/// Each glyph of `charted` on a row that reads its value within half a row, in `frame`.
+/// Every glyph drawn in the graph of `charted` in `frame` stands where its series has a
+/// value: within four columns of the value's x (a glyph landing on another's moves up to
+/// three cells along its row) and on a row that reads the value within half a row.
 fn check(frame: &str, charted: &Charted, what: &str) {
     let prefix: String = charted.title.chars().take(12).collect();
     let c = chart(frame, &prefix);
     let (log_x, log_y) = charted.log;
     let ([x0, x1], [y0, y1]) = (charted.x_bounds, charted.y_bounds);
     for (glyph, points) in &charted.series {
-        for &(x, y) in points {
-            // A point outside the chart's bounds (the zoomed x range, a gap below 0) is not
-            // drawn.
-            if !(x >= x0.min(x1) && x <= x0.max(x1) && y >= y0.min(y1) && y <= y0.max(y1)) {
-                continue;
-            }
-            let v = if log_y { y.log10() } else { y };
-            let rows = rows_with(&c, *glyph, x, log_x);
-            let at = rows.iter().any(|&r| {
+        // The points drawn: inside the chart's bounds (the zoomed x range; a gap below 0 is
+        // not drawn), as (column, value on the y axis).
+        let drawn: Vec<(f64, f64, f64)> = points
+            .iter()
+            .filter(|&&(x, y)| x >= x0.min(x1) && x <= x0.max(x1) && y >= y0.min(y1) && y <= y0.max(y1))
+            .map(|&(x, y)| (place(&c.x_ticks, x, log_x), if log_y { y.log10() } else { y }, y))
+            .collect();
+        for r in c.graph.clone() {
+            for (k, &ch) in c.lines[r].iter().enumerate() {
+                if k <= c.axis || k + 1 >= c.lines[r].len() || ch != *glyph {
+                    continue;
+                }
                 let (read, half) = read(&c, r, log_y);
-                (read - v).abs() <= half * (1.0 + 1e-6)
-            });
-            assert!(
-                at,
-                "{what}: `{glyph}` of ({x}, {y}) on rows {rows:?}, which read {:?}\n{frame}",
-                rows.iter().map(|&r| read(&c, r, log_y).0).collect::<Vec<_>>()
-            );
+                let at = drawn
+                    .iter()
+                    .any(|&(col, v, _)| (col - k as f64).abs() <= 4.5 && (read - v).abs() <= half * (1.0 + 1e-6));
+                let near: Vec<f64> = drawn
+                    .iter()
+                    .filter(|p| (p.0 - k as f64).abs() <= 4.5)
+                    .map(|p| p.2)
+                    .collect();
+                assert!(
+                    at,
+                    "{what}: `{glyph}` at line {r}, column {k} reads {read} (±{half}); its values there: {near:?}\n{frame}"
+                );
+            }
         }
     }
 }
