@@ -410,7 +410,12 @@ const CURVE_COLORS: [RGBColor; 6] = [
 /// A log-log chart as SVG text, titled `title`, its axes described by `x_desc` and `y_desc`:
 /// each curve a line with a dot at every point (the inf-sup chart's β_h/√h against h, the
 /// work–precision chart's error against solve time). The axes span the decades of the data.
-pub fn loglog_svg_string(title: &str, x_desc: &str, y_desc: &str, curves: &[LogCurve]) -> Result<String, PlotError> {
+pub fn loglog_svg_string(
+    title: &str,
+    x_desc: &str,
+    y_desc: &str,
+    curves: &[LogCurve],
+) -> Result<String, PlotError> {
     let shown: Vec<Vec<(f64, f64)>> = curves
         .iter()
         .map(|c| {
@@ -426,7 +431,9 @@ pub fn loglog_svg_string(title: &str, x_desc: &str, y_desc: &str, curves: &[LogC
             .iter()
             .flatten()
             .map(pick)
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)));
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+                (lo.min(v), hi.max(v))
+            });
         if lo.is_finite() && hi > lo {
             // A twentieth of the span in log10 either side.
             let pad = 10f64.powf((hi / lo).log10() / 20.0);

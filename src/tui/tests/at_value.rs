@@ -51,9 +51,8 @@ fn rows_with(c: &Chart, glyph: char, x: f64, log: bool) -> Vec<usize> {
     c.graph
         .clone()
         .filter(|&r| {
-            (col - 4..=col + 4).any(|k| {
-                usize::try_from(k).is_ok_and(|k| k > c.axis && c.lines[r].get(k) == Some(&glyph))
-            })
+            (col - 4..=col + 4)
+                .any(|k| usize::try_from(k).is_ok_and(|k| k > c.axis && c.lines[r].get(k) == Some(&glyph)))
         })
         .collect()
 }
@@ -65,13 +64,13 @@ fn check(frame: &str, charted: &Charted, what: &str) {
     let prefix: String = charted.title.chars().take(12).collect();
     let c = chart(frame, &prefix);
     let (log_x, log_y) = charted.log;
-    let ([x0, x1], [y0, y1]) = (charted.x_bounds, charted.y_bounds);
+    let [x0, x1] = charted.x_bounds;
     for (glyph, points) in &charted.series {
-        // The points drawn: inside the chart's bounds (the zoomed x range; a gap below 0 is
-        // not drawn), as (column, value on the y axis).
+        // The points inside the chart's x range (the zoomed one), as (column, value on the y
+        // axis, value): a glyph drawn is one of them.
         let drawn: Vec<(f64, f64, f64)> = points
             .iter()
-            .filter(|&&(x, y)| x >= x0.min(x1) && x <= x0.max(x1) && y >= y0.min(y1) && y <= y0.max(y1))
+            .filter(|&&(x, _)| x >= x0.min(x1) && x <= x0.max(x1))
             .map(|&(x, y)| (place(&c.x_ticks, x, log_x), if log_y { y.log10() } else { y }, y))
             .collect();
         for r in c.graph.clone() {
@@ -80,9 +79,9 @@ fn check(frame: &str, charted: &Charted, what: &str) {
                     continue;
                 }
                 let (read, half) = read(&c, r, log_y);
-                let at = drawn
-                    .iter()
-                    .any(|&(col, v, _)| (col - k as f64).abs() <= 4.5 && (read - v).abs() <= half * (1.0 + 1e-6));
+                let at = drawn.iter().any(|&(col, v, _)| {
+                    (col - k as f64).abs() <= 4.5 && (read - v).abs() <= half * (1.0 + 1e-6)
+                });
                 let near: Vec<f64> = drawn
                     .iter()
                     .filter(|p| (p.0 - k as f64).abs() <= 4.5)
@@ -103,7 +102,13 @@ fn every_glyph_stands_on_the_row_of_its_value() {
         // The work–precision chart on the paper's scenario (its study computes a reference at
         // level 5 for every scheme: minutes on the bigger scenarios).
         let paper = name == "hertz-paper.toml";
-        for scene in [Scene::Explore, Scene::InfSup, Scene::Mesh, Scene::Convergence, Scene::Stress] {
+        for scene in [
+            Scene::Explore,
+            Scene::InfSup,
+            Scene::Mesh,
+            Scene::Convergence,
+            Scene::Stress,
+        ] {
             if scene == Scene::Convergence && !paper {
                 continue;
             }

@@ -235,12 +235,22 @@ fn chart(mut app: App, engine: &mut Engine) -> Result<String, StepError> {
     match app.scene {
         Scene::InfSup => {
             let title = format!("{name}: β_h/√h against h");
-            return Ok(loglog_svg_string(&title, "h (length)", "β_h/√h", &infsup_chart::svg_curves(&app))?);
+            return Ok(loglog_svg_string(
+                &title,
+                "h (length)",
+                "β_h/√h",
+                &infsup_chart::svg_curves(&app),
+            )?);
         }
         Scene::Convergence => {
             if let Some(curves) = convergence::svg_curves(&app) {
                 let title = format!("{name}: work–precision, {}", app.study_key().label());
-                return Ok(loglog_svg_string(&title, "solve ms", "relative error of p̄", &curves)?);
+                return Ok(loglog_svg_string(
+                    &title,
+                    "solve ms",
+                    "relative error of p̄",
+                    &curves,
+                )?);
             }
         }
         _ => {}

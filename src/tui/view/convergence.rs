@@ -292,7 +292,11 @@ pub fn svg_curves(app: &App) -> Option<Vec<crate::plot::LogCurve>> {
     let Some(Ok(study)) = app.studies.get(&app.study_key()) else {
         return None;
     };
-    let values = |pts: Vec<(f64, f64)>| pts.into_iter().map(|(x, y)| (10f64.powf(x), 10f64.powf(y))).collect();
+    let values = |pts: Vec<(f64, f64)>| {
+        pts.into_iter()
+            .map(|(x, y)| (10f64.powf(x), 10f64.powf(y)))
+            .collect()
+    };
     let curves = curves(study);
     let mut out: Vec<crate::plot::LogCurve> = curves
         .iter()

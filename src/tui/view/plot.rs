@@ -236,9 +236,7 @@ impl Plot<'_> {
         let short = inner.height.saturating_sub(legend.len() as u16 + 2) < ROOMY;
         if short && one_row.len() == 1 && one_row[0].width() <= usize::from(beside) {
             let at = area.x + 1 + title_width;
-            frame
-                .buffer_mut()
-                .set_line(at, area.y, &one_row[0], beside);
+            frame.buffer_mut().set_line(at, area.y, &one_row[0], beside);
             legend.clear();
         }
         let legend_rows = legend.len() as u16;
@@ -538,8 +536,6 @@ pub mod drawn {
         pub title: String,
         /// The x axis's bounds, in values.
         pub x_bounds: [f64; 2],
-        /// The y bounds the chart was given (its data's), in values.
-        pub y_bounds: [f64; 2],
         /// Whether x and y are on log axes.
         pub log: (bool, bool),
         /// Each glyph series' glyph and points.
@@ -557,7 +553,6 @@ pub mod drawn {
         let charted = Charted {
             title: plot.title.trim().to_string(),
             x_bounds: plot.x.bounds.map(|v| value(v, lx)),
-            y_bounds: plot.y.bounds.map(|v| value(v, ly)),
             log: (lx, ly),
             series: plot
                 .series

@@ -17,8 +17,8 @@ use crate::stress::{Peak, Quantity, StressField};
 use super::super::app::App;
 use super::super::protocol::Solved;
 use super::super::theme::Theme;
-use super::fmt::sig;
 use super::Look;
+use super::fmt::sig;
 
 /// The shading of the levels, lowest first, and their colours.
 const GLYPHS: [&str; 5] = ["·", "░", "▒", "▓", "█"];

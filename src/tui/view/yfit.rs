@@ -92,7 +92,14 @@ pub fn fit(bounds: [f64; 2], log: bool, rows: u16, per: u16, max: usize) -> Opti
 }
 
 /// The axis of [`fit`], or `bounds` and `ticks` as they are when it finds none.
-pub fn fit_or(bounds: [f64; 2], ticks: Vec<f64>, log: bool, rows: u16, per: u16, max: usize) -> ([f64; 2], Vec<f64>) {
+pub fn fit_or(
+    bounds: [f64; 2],
+    ticks: Vec<f64>,
+    log: bool,
+    rows: u16,
+    per: u16,
+    max: usize,
+) -> ([f64; 2], Vec<f64>) {
     fit(bounds, log, rows, per, max).unwrap_or((bounds, ticks))
 }
 
@@ -127,14 +134,21 @@ mod tests {
                         };
                         assert!(b[0] <= lo && b[1] >= hi, "{b:?} holds {lo} {hi}");
                         let r: Vec<u16> = ticks.iter().map(|&v| cell_of(v, b, rows, per).unwrap()).collect();
-                        let gaps: Vec<i32> = r.windows(2).map(|w| i32::from(w[1]) - i32::from(w[0])).collect();
-                        assert!(gaps.iter().all(|&g| g == gaps[0] && g > 0), "{lo} {hi} {rows} {per}: {r:?}");
+                        let gaps: Vec<i32> =
+                            r.windows(2).map(|w| i32::from(w[1]) - i32::from(w[0])).collect();
+                        assert!(
+                            gaps.iter().all(|&g| g == gaps[0] && g > 0),
+                            "{lo} {hi} {rows} {per}: {r:?}"
+                        );
                         let per_row = (ticks[1] - ticks[0]) / f64::from(gaps[0]);
                         for i in 0..=100 {
                             let v = lo + (hi - lo) * f64::from(i) / 100.0;
                             let row = cell_of(v, b, rows, per).unwrap();
                             let off = (read(b, &ticks, rows, per, row) - v).abs();
-                            assert!(off <= per_row * (0.5 + 1e-9), "{v} on row {row}, reads {off} off, {lo} {hi} {rows} {per} {log}");
+                            assert!(
+                                off <= per_row * (0.5 + 1e-9),
+                                "{v} on row {row}, reads {off} off, {lo} {hi} {rows} {per} {log}"
+                            );
                         }
                     }
                 }
