@@ -1,4 +1,6 @@
-//! Charts as SVG files (plotters): the pressure chart of a solution, for slides and papers.
+//! Charts as SVG files (plotters): the pressure chart of a solution, for slides and papers,
+//! and log-log charts of curves (the tour's handout draws its inf-sup and work–precision steps
+//! with them).
 //!
 //! The chart is the terminal lab's main chart drawn with a pen: the raw pressure p of (12) as
 //! the function of Q_h through the rule's points (steps for gauss1, segments and the points
@@ -130,6 +132,12 @@ fn label(v: f64) -> String {
     let s = format!("{:.4}", (v * 1e4).round() / 1e4);
     let s = s.trim_end_matches('0').trim_end_matches('.');
     if s == "-0" { "0".into() } else { s.to_string() }
+}
+
+/// A log axis's tick label: three significant digits, plain or scientific as
+/// [`crate::text::num`] writes it ("0.02", "1e-5").
+fn log_label(v: f64) -> String {
+    crate::text::num(format!("{v:.2e}").parse().unwrap_or(v))
 }
 
 /// Why a chart was not drawn or not written.
@@ -378,4 +386,108 @@ pub fn write_file(path: &Path, bytes: &[u8], overwrite: bool) -> io::Result<()> 
         let _ = fs::remove_file(&tmp);
     }
     result
+}
+
+/// One curve of a log-log chart: its name in the legend and its points (x, y), positive.
+pub struct LogCurve {
+    /// The name in the legend.
+    pub name: String,
+    /// The points, in values (not log10 values); those not positive and finite are left out.
+    pub points: Vec<(f64, f64)>,
+}
+
+/// The colours of a log-log chart's curves, in order (the terminal's red, yellow, green, blue,
+/// cyan and magenta, darkened for white paper).
+const CURVE_COLORS: [RGBColor; 6] = [
+    RGBColor(200, 30, 30),
+    RGBColor(190, 140, 0),
+    RGBColor(0, 140, 60),
+    RGBColor(30, 70, 200),
+    SMOOTH,
+    RGBColor(160, 40, 160),
+];
+
+/// A log-log chart as SVG text, titled `title`, its axes described by `x_desc` and `y_desc`:
+/// each curve a line with a dot at every point (the inf-sup chart's β_h/√h against h, the
+/// work–precision chart's error against solve time). The axes span the decades of the data.
+pub fn loglog_svg_string(
+    title: &str,
+    x_desc: &str,
+    y_desc: &str,
+    curves: &[LogCurve],
+) -> Result<String, PlotError> {
+    let shown: Vec<Vec<(f64, f64)>> = curves
+        .iter()
+        .map(|c| {
+            c.points
+                .iter()
+                .copied()
+                .filter(|&(x, y)| x > 0.0 && y > 0.0 && x.is_finite() && y.is_finite())
+                .collect()
+        })
+        .collect();
+    let range = |pick: fn(&(f64, f64)) -> f64| {
+        let (lo, hi) = shown
+            .iter()
+            .flatten()
+            .map(pick)
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+                (lo.min(v), hi.max(v))
+            });
+        if lo.is_finite() && hi > lo {
+            // A twentieth of the span in log10 either side.
+            let pad = 10f64.powf((hi / lo).log10() / 20.0);
+            (lo / pad)..(hi * pad)
+        } else if lo.is_finite() {
+            (lo / 2.0)..(lo * 2.0)
+        } else {
+            0.1..1.0
+        }
+    };
+    let (xr, yr) = (range(|p| p.0), range(|p| p.1));
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
+        root.fill(&WHITE)?;
+        let mut chart = ChartBuilder::on(&root)
+            .caption(title, ("sans-serif", 24))
+            .margin(18)
+            .x_label_area_size(56)
+            .y_label_area_size(84)
+            .build_cartesian_2d(xr.log_scale(), yr.log_scale())?;
+        chart
+            .configure_mesh()
+            .x_desc(x_desc)
+            .y_desc(y_desc)
+            .x_label_formatter(&|v| log_label(*v))
+            .y_label_formatter(&|v| log_label(*v))
+            .axis_desc_style(("sans-serif", 18))
+            .label_style(("sans-serif", 15))
+            .light_line_style(RGBColor(246, 246, 246))
+            .bold_line_style(RGBColor(210, 210, 210))
+            .draw()?;
+        for (i, (curve, points)) in curves.iter().zip(&shown).enumerate() {
+            let color = CURVE_COLORS[i % CURVE_COLORS.len()];
+            let style = color.stroke_width(2);
+            chart
+                .draw_series(LineSeries::new(points.iter().copied(), style))?
+                .label(curve.name.as_str())
+                .legend(move |(x, y)| {
+                    EmptyElement::at((x, y))
+                        + PathElement::new(vec![(0, 0), (24, 0)], style)
+                        + Circle::new((12, 0), 4, color.filled())
+                });
+            chart.draw_series(points.iter().map(|&p| Circle::new(p, 4, color.filled())))?;
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::LowerRight)
+            .margin(12)
+            .label_font(("sans-serif", 16))
+            .background_style(WHITE.mix(0.9))
+            .border_style(RGBColor(160, 160, 160))
+            .draw()?;
+        root.present()?;
+    }
+    Ok(svg)
 }

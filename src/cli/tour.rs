@@ -31,7 +31,7 @@ pub struct TourArgs {
     #[arg(long, value_name = "FILE.cast", conflicts_with_all = ["handout", "check"])]
     pub record: Option<PathBuf>,
     /// Write a handout instead of running the tour: each step's screen as text
-    /// (step-01.txt…), its pressure chart as SVG (step-01.svg…) and an index.md, into DIR
+    /// (step-01.txt…), its scene's chart as SVG (step-01.svg…) and an index.md, into DIR
     /// (created if missing; it must be empty). No terminal needed.
     #[arg(long, value_name = "DIR", conflicts_with_all = ["auto", "check"])]
     pub handout: Option<PathBuf>,

@@ -270,7 +270,11 @@ fn a_handout_has_each_steps_frame_chart_and_index() {
             svg.contains("<svg") && svg.trim_end().ends_with("</svg>"),
             "{stem}"
         );
-        let title = format!("hertz-paper: {scheme}, level 0");
+        // The second step shows the inf-sup scene: its SVG is the inf-sup chart.
+        let title = match i {
+            0 => format!("hertz-paper: {scheme}, level 0"),
+            _ => "hertz-paper: β_h/√h against h".into(),
+        };
         assert!(svg.contains(&title), "{stem}: {title}");
     }
     let index = std::fs::read_to_string(out.join("index.md")).unwrap();

@@ -20,14 +20,14 @@ const LOOK: riplab::tui::view::Look = riplab::tui::view::Look {
 const SIZES: [(u16, u16); 4] = [(80, 24), (100, 30), (120, 40), (200, 60)];
 
 /// A chart as drawn: its cells, the y ticks (line, value) and the x ticks (column, value).
-struct Chart {
-    lines: Vec<Vec<char>>,
+pub(super) struct Chart {
+    pub(super) lines: Vec<Vec<char>>,
     /// The lines of the graph (between the legend and the x axis).
-    graph: std::ops::Range<usize>,
+    pub(super) graph: std::ops::Range<usize>,
     /// The column of the y axis; the graph starts right of it.
-    axis: usize,
-    y_ticks: Vec<(usize, f64)>,
-    x_ticks: Vec<(usize, f64)>,
+    pub(super) axis: usize,
+    pub(super) y_ticks: Vec<(usize, f64)>,
+    pub(super) x_ticks: Vec<(usize, f64)>,
 }
 
 fn number(text: &str) -> Option<f64> {
@@ -35,7 +35,7 @@ fn number(text: &str) -> Option<f64> {
 }
 
 /// The chart whose box title starts with `title` in `frame`.
-fn chart(frame: &str, title: &str) -> Chart {
+pub(super) fn chart(frame: &str, title: &str) -> Chart {
     let lines: Vec<Vec<char>> = frame.lines().map(|l| l.chars().collect()).collect();
     let top = lines
         .iter()
@@ -60,7 +60,8 @@ fn chart(frame: &str, title: &str) -> Chart {
         .filter(|&i| lines[i][axis] == '┤')
         .map(|i| (i, number(&lines[i][1..axis].iter().collect::<String>()).unwrap()))
         .collect();
-    // Each x label is centred on its ┬ (or pushed inside the box at the ends).
+    // Each x label is centred on its ┬ (╤ in a stick zone; or pushed inside the box at the
+    // ends).
     let label_line = &lines[x_axis + 1];
     let mut x_ticks = Vec::new();
     let mut col = 1;
@@ -75,7 +76,7 @@ fn chart(frame: &str, title: &str) -> Chart {
         }
         let value = number(&label_line[start..col].iter().collect::<String>()).unwrap();
         let tick = (start..col)
-            .filter(|&c| lines[x_axis][c] == '┬')
+            .filter(|&c| matches!(lines[x_axis][c], '┬' | '╤'))
             .min_by_key(|&c| c.abs_diff((start + col - 1) / 2))
             .unwrap_or_else(|| panic!("label at {start} without a tick in\n{frame}"));
         x_ticks.push((tick, value));
@@ -90,7 +91,7 @@ fn chart(frame: &str, title: &str) -> Chart {
 }
 
 /// Where `v` falls between the first and the last tick (a fractional line or column).
-fn place(ticks: &[(usize, f64)], v: f64, log: bool) -> f64 {
+pub(super) fn place(ticks: &[(usize, f64)], v: f64, log: bool) -> f64 {
     assert!(ticks.len() >= 2, "two ticks at least: {ticks:?}");
     let f = |x: f64| if log { x.log10() } else { x };
     let ((p0, v0), (p1, v1)) = (ticks[0], ticks[ticks.len() - 1]);

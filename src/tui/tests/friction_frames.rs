@@ -139,14 +139,16 @@ fn every_friction_series_is_visible_at_every_size() {
     }
 }
 
-/// The cursor's readout gains t (one-sided where M1's raw t steps) and t̄ — the
-/// solution's own values at the cursor's vertex.
+/// The cursor's readout reads what the chart plots: t/μ (one-sided where M1's raw t steps)
+/// and t̄/μ — the solution's own values at the cursor's vertex divided by cattaneo-mindlin's
+/// μ = 0.3 — and then t itself (it read `t 8.28` where the chart plotted t/μ ≈ 27.6).
 #[test]
-fn the_cursor_reads_t_and_tbar() {
+fn the_cursor_reads_t_over_mu_and_t() {
     let (mut app, mut engine) = lab(&cattaneo(), 2);
     press(&mut app, &mut engine, "1x..");
     let solved = app.current().unwrap().clone();
     let f = solved.solution.friction.as_ref().unwrap();
+    let mu = 0.3;
     let (x, _) = app.cursor_point().unwrap();
     let i = solved
         .solution
@@ -157,7 +159,6 @@ fn the_cursor_reads_t_and_tbar() {
         .unwrap();
     let frame = render_app(&app, &LOOK, 120, 40);
     let sig = |v: f64| riplab::tui::view::fmt::sig(v, 4);
-    assert!(frame.contains(&format!(" · t̄ {}", sig(f.tbar[i]))), "{frame}");
     // M1: the vertex lies between two points; t steps there, read from each side.
     let q = solved
         .solution
@@ -167,10 +168,15 @@ fn the_cursor_reads_t_and_tbar() {
         .position(|p| p.x > x)
         .unwrap();
     let (tl, tr) = (f.t[q - 1], f.t[q]);
-    assert!(
-        frame.contains(&format!(" · t {} | {} ·", sig(tl), sig(tr))),
-        "{frame}"
+    let readout = format!(
+        " · t/μ {} | {} · t̄/μ {} (t {} | {})",
+        sig(tl / mu),
+        sig(tr / mu),
+        sig(f.tbar[i] / mu),
+        sig(tl),
+        sig(tr)
     );
+    assert!(frame.contains(&readout), "{readout}\n{frame}");
 }
 
 /// Item 3's claim as snapshots: M3 (the scenario's) at level 2 with `h`, 80×24 and 120×40,

@@ -6,6 +6,7 @@
 #[path = "../../../tests/common/shared.rs"]
 mod common;
 
+mod at_value;
 mod authoring;
 mod axes;
 mod coinciding;
@@ -13,6 +14,7 @@ mod friction;
 mod friction_frames;
 mod graded_study;
 mod grading_key;
+mod handout_charts;
 mod hertz_block;
 mod lab_errors;
 mod locking;

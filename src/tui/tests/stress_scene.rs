@@ -37,6 +37,26 @@ fn stress_80x24() {
     snap!("tui__stress_80x24", render_app(&app, &look(true), 80, 24));
 }
 
+/// The cursor in the stress scene reads the stress under it (the quantity shown, at Γ_C and
+/// its largest in the column), not p, p̄ and the gap of the pressure chart.
+#[test]
+fn the_stress_cursor_reads_the_stress_under_it() {
+    let mut app = settled(1, Scene::Stress);
+    app.update(ch('x'));
+    let (x, _) = app.cursor_point().unwrap();
+    let frame = render_app(&app, &look(false), 100, 30);
+    let caption = frame
+        .lines()
+        .find(|l| l.contains("cursor x"))
+        .unwrap_or_else(|| panic!("no readout\n{frame}"));
+    let head = format!("cursor x {} · τ₁ under it ", riplab::tui::view::fmt::sig(x, 4));
+    assert!(
+        caption.contains(&head) && caption.contains("at Γ_C, largest") && caption.contains("at depth"),
+        "{caption}"
+    );
+    assert!(!caption.contains("p̄") && !caption.contains("gap"), "{caption}");
+}
+
 #[test]
 fn stress_120x40_von_mises() {
     let mut app = settled(2, Scene::Stress);

@@ -1,7 +1,8 @@
 //! `riplab tour --handout DIR`: a printable lesson from the same data as the live tour. For
 //! every step, its screen as text (`step-01.txt`, equal to [`super::render_step`], the caption
-//! panel included) and its pressure chart as SVG (`step-01.svg`: p and p̄ along Γ_C at the
-//! step's settings, as the lab's `S` writes it, whatever scene the step shows); and `index.md`,
+//! panel included) and its scene's chart as SVG (`step-01.svg`: the inf-sup chart on an inf-sup
+//! step, the work–precision chart on a convergence step, else p and p̄ along Γ_C at the step's
+//! settings, as the lab's `S` writes it); and `index.md`,
 //! which lists the steps with their captions, settings and files.
 //!
 //! The rule for the directory: it is created if it does not exist, and used only if it is
@@ -19,13 +20,14 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use crate::error::SolveError;
-use crate::plot::{chart_title, pressure_svg_string, write_file};
+use crate::plot::{chart_title, loglog_svg_string, pressure_svg_string, write_file};
 use crate::scheme::Scheme;
 use crate::text::num;
 
 use super::super::app::{App, Msg, Scene};
 use super::super::engine::Engine;
 use super::super::settle::carry_out;
+use super::super::view::{convergence, infsup_chart};
 use super::Tour;
 use super::errors::{DirectoryFault, StepError};
 use super::view::step_frame;
@@ -177,7 +179,7 @@ fn write_within(
         let settings = settings(&tour.app(i));
         let _ = write!(
             index,
-            "\n{settings}\n\n- screen: [{stem}.txt]({stem}.txt)\n- pressure chart: [{stem}.svg]({stem}.svg)\n\n"
+            "\n{settings}\n\n- screen: [{stem}.txt]({stem}.txt)\n- chart: [{stem}.svg]({stem}.svg)\n\n"
         );
         progress(i + 1, tour.steps.len());
     }
@@ -256,9 +258,34 @@ pub fn estimate(tour: &Tour, width: u16, height: u16) -> u64 {
     intro(tour, width, height).len() as u64 + steps.sum::<u64>()
 }
 
-/// The pressure chart of the step's settings (solved here if the step's scene shows no
-/// solution).
+/// The chart of the step's scene: the inf-sup chart, the work–precision chart (its study
+/// done), else the pressure chart of the step's settings (solved here if the step's scene
+/// shows no solution).
 fn chart(mut app: App, engine: &mut Engine) -> Result<String, StepError> {
+    let name = &app.scenario.name;
+    match app.scene {
+        Scene::InfSup => {
+            let title = format!("{name}: β_h/√h against h");
+            return Ok(loglog_svg_string(
+                &title,
+                "h (length)",
+                "β_h/√h",
+                &infsup_chart::svg_curves(&app),
+            )?);
+        }
+        Scene::Convergence => {
+            if let Some(curves) = convergence::svg_curves(&app) {
+                let title = format!("{name}: work–precision, {}", app.study_key().label());
+                return Ok(loglog_svg_string(
+                    &title,
+                    "solve ms",
+                    "relative error of p̄",
+                    &curves,
+                )?);
+            }
+        }
+        _ => {}
+    }
     if app.current().is_none() {
         // The mesh scene needs the solve alone (no inf-sup estimate, no study).
         app.scene = Scene::Mesh;
@@ -285,7 +312,7 @@ fn chart(mut app: App, engine: &mut Engine) -> Result<String, StepError> {
 fn intro(tour: &Tour, width: u16, height: u16) -> String {
     format!(
         "# {}\n\nA handout of riplab's tour `{}`: {} steps, each step's screen as text ({width}×{height}, \
-         as `riplab tour` shows it, without timings) and its pressure chart (p and p̄ along Γ_C) as SVG.\n\n",
+         as `riplab tour` shows it, without timings) and its scene's chart as SVG.\n\n",
         tour.title,
         tour.source,
         tour.steps.len()

@@ -135,20 +135,21 @@ fn points(rows: &[&StudyRow], error: fn(&Errors) -> f64) -> Vec<(f64, f64)> {
         .collect()
 }
 
-/// Bounds on half decades around `values`, at least a decade wide.
-fn bounds(values: impl Iterator<Item = f64>) -> [f64; 2] {
+/// The range of `values` (log10), widened by `pad` either side, `least` wide at least (around
+/// its middle; [-1, 1] without values): the axes span the data (the y axis's rows are fitted
+/// to it, [`super::yfit`]).
+fn bounds(values: impl Iterator<Item = f64>, pad: f64, least: f64) -> [f64; 2] {
     let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
         (lo.min(v), hi.max(v))
     });
     if !lo.is_finite() {
         return [-1.0, 1.0];
     }
-    let (lo, hi) = ((lo * 2.0).floor() / 2.0, (hi * 2.0).ceil() / 2.0);
-    if hi - lo < 1.0 {
-        [lo - 0.5, hi + 0.5]
-    } else {
-        [lo, hi]
+    if hi - lo + 2.0 * pad < least {
+        let mid = (lo + hi) / 2.0;
+        return [mid - least / 2.0, mid + least / 2.0];
     }
+    [lo - pad, hi + pad]
 }
 
 /// The ε of the study's penalty and ALM rows, said as whose it is: the scenario's (the paper's
@@ -239,8 +240,9 @@ fn chart(frame: &mut Frame, area: Rect, look: &Look, app: &App, study: &Study) {
         .find(|c| study.key.compare == Compare::Schemes && c.name == "M1")
         .map(|c| points(&c.rows, raw));
     let all = || points_of.iter().flatten().chain(m1_raw.iter().flatten());
-    let xb = bounds(all().map(|p| p.0));
-    let yb = bounds(all().map(|p| p.1));
+    // x: a decade at least, for its labels; y: the data's own range.
+    let xb = bounds(all().map(|p| p.0), 0.05, 1.0);
+    let yb = bounds(all().map(|p| p.1), 0.0, 0.0);
     let mut series = Vec::new();
     if let Some(data) = &m1_raw {
         series.push(Series {
@@ -281,6 +283,38 @@ fn chart(frame: &mut Frame, area: Rect, look: &Look, app: &App, study: &Study) {
         theme: look.theme,
     }
     .render(frame, area);
+}
+
+/// The work–precision chart's curves in values (solve ms, relative error of p̄; M1's raw p
+/// beside the schemes) for the tour's handout ([`crate::plot::LogCurve`]); None until the
+/// study of the lab's settings is done.
+pub fn svg_curves(app: &App) -> Option<Vec<crate::plot::LogCurve>> {
+    let Some(Ok(study)) = app.studies.get(&app.study_key()) else {
+        return None;
+    };
+    let values = |pts: Vec<(f64, f64)>| {
+        pts.into_iter()
+            .map(|(x, y)| (10f64.powf(x), 10f64.powf(y)))
+            .collect()
+    };
+    let curves = curves(study);
+    let mut out: Vec<crate::plot::LogCurve> = curves
+        .iter()
+        .map(|c| crate::plot::LogCurve {
+            name: legend(c),
+            points: values(points(&c.rows, |e| e.pbar)),
+        })
+        .collect();
+    if let Some(m1) = curves
+        .iter()
+        .find(|c| study.key.compare == Compare::Schemes && c.name == "M1")
+    {
+        out.push(crate::plot::LogCurve {
+            name: "M1 p (raw)".into(),
+            points: values(points(&m1.rows, |e| e.p)),
+        });
+    }
+    Some(out)
 }
 
 fn table(frame: &mut Frame, area: Rect, theme: Theme, study: &Study, levels: &[u32]) {

@@ -1,7 +1,9 @@
 //! The cursor on the pressure chart and the stress map (`x`, moved with `,` and `.`): a vertical line at a contact
 //! point of Γ_C (a vertex, where p̄ is defined) and a readout of x, p (both one-sided values
-//! where the raw pressure steps there), p̄, the gap g, with friction t and t̄ (t one-sided
-//! like p) and, when overlaid, Hertz's pressure.
+//! where the raw pressure steps there), p̄, the gap g, with friction t and t̄ as the chart
+//! plots them (t/μ and t̄/μ with Coulomb's law, then t; t one-sided like p) and, when
+//! overlaid, Hertz's pressure. The stress map reads its own quantity instead
+//! ([`super::stress_map`]).
 
 use ratatui::Frame;
 use ratatui::layout::Rect;
@@ -70,16 +72,27 @@ pub fn readout(app: &App) -> Option<String> {
         }
     );
     if let Some(f) = &solved.shown.friction {
-        let t: Vec<String> = raw_at(&f.t_edges, x).iter().map(|&v| sig(v, 4)).collect();
-        let tbar = f
-            .tbar
-            .iter()
-            .find(|v| v.0 == x)
-            .map_or("–".into(), |v| sig(v.1, 4));
-        text.push_str(&format!(
-            " · t {} · t̄ {tbar}",
-            if t.is_empty() { "–".into() } else { t.join(" | ") }
-        ));
+        // What the chart plots (t/μ with Coulomb's law), then t itself.
+        let per = super::friction::per_mu(f);
+        let list = |values: Vec<f64>, by: f64| -> String {
+            if values.is_empty() {
+                return "–".into();
+            }
+            let each: Vec<String> = values.iter().map(|&v| sig(v * by, 4)).collect();
+            each.join(" | ")
+        };
+        let t = raw_at(&f.t_edges, x);
+        let tbar: Vec<f64> = f.tbar.iter().filter(|v| v.0 == x).map(|v| v.1).take(1).collect();
+        if per == 1.0 {
+            text.push_str(&format!(" · t {} · t̄ {}", list(t, 1.0), list(tbar, 1.0)));
+        } else {
+            text.push_str(&format!(
+                " · t/μ {} · t̄/μ {} (t {})",
+                list(t.clone(), per),
+                list(tbar, per),
+                list(t, 1.0)
+            ));
+        }
     }
     if app.show_hertz
         && let Some(h) = solved.shown.hertz

@@ -98,11 +98,10 @@ pub fn wrap_words(text: &str, width: usize) -> Vec<String> {
     out
 }
 
-pub use crate::plot::nice_ceil;
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::plot::nice_ceil;
 
     #[test]
     fn a_table_row_is_the_columns_format_and_a_long_cell_borrows_padding() {

@@ -153,7 +153,7 @@ impl Layer {
 
 /// 1/μ for Coulomb with μ > 0 (t/μ reaches p where a point slips: the stick zone is where it
 /// stays below), else 1 (Tresca's t and g share p's unit).
-fn per_mu(shown: &FrictionShown) -> f64 {
+pub(super) fn per_mu(shown: &FrictionShown) -> f64 {
     match shown.law {
         Law::Coulomb { mu } if mu > 0.0 => 1.0 / mu,
         _ => 1.0,

@@ -80,20 +80,29 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
             })
         })
         .collect();
-    let table_height = (levels.len() as u16 + 5).min(area.height / 2);
+    // The projector view is the chart alone; else the table takes up to half the height.
+    let table_height = if app.overlays.projector {
+        0
+    } else {
+        (levels.len() as u16 + 5).min(area.height / 2)
+    };
     let [top, bottom] = Layout::vertical([Constraint::Fill(1), Constraint::Length(table_height)]).areas(area);
-    let finest = levels.last().map_or(CHART_FINEST, |&l| l.max(CHART_FINEST));
-    chart(app, frame, top, look, &all, finest);
-    table(app, frame, bottom, look.theme, &all, &levels);
+    chart(app, frame, top, look, &all, &levels);
+    if table_height > 0 {
+        table(app, frame, bottom, look.theme, &all, &levels);
+    }
 }
 
-/// The h axis spans levels 0 to 6 (so that curves read alike from visit to visit), or to the
-/// finest level estimated when that is finer.
-const CHART_FINEST: u32 = 6;
-
-fn chart(app: &App, frame: &mut Frame, area: Rect, look: &Look, all: &[Series], finest: u32) {
+/// The chart over the levels estimated: h from the coarsest to the finest of them (a level
+/// alone gets a tenth of a decade either side), β/√h over the decades the values span
+/// (yfit's doc).
+fn chart(app: &App, frame: &mut Frame, area: Rect, look: &Look, all: &[Series], levels: &[u32]) {
     let h_of = |level: u32| app.scenario.h(level).log10();
-    let xb = [h_of(finest), h_of(0)];
+    let xb = match (levels.first(), levels.last()) {
+        (Some(&coarse), Some(&fine)) if fine > coarse => [h_of(fine), h_of(coarse)],
+        (Some(&level), _) => [h_of(level) - 0.1, h_of(level) + 0.1],
+        _ => [h_of(MAX_APP_LEVEL), h_of(0)],
+    };
     let data: Vec<Vec<(f64, f64)>> = all
         .iter()
         .map(|s| {
@@ -111,16 +120,7 @@ fn chart(app: &App, frame: &mut Frame, area: Rect, look: &Look, all: &[Series], 
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &(_, y)| {
             (lo.min(y), hi.max(y))
         });
-    let yb = if lo.is_finite() {
-        let (lo, hi) = ((lo * 2.0).floor() / 2.0, (hi * 2.0).ceil() / 2.0);
-        if hi - lo < 0.5 {
-            [lo - 0.5, hi + 0.5]
-        } else {
-            [lo, hi]
-        }
-    } else {
-        [-1.0, 1.0]
-    };
+    let yb = if lo.is_finite() { [lo, hi] } else { [-1.0, 1.0] };
     let series = all
         .iter()
         .zip(&data)
@@ -138,14 +138,14 @@ fn chart(app: &App, frame: &mut Frame, area: Rect, look: &Look, all: &[Series], 
         })
         .collect();
     Plot {
-        title: " β_h/√h against h (log-log; 1–4: M1–M4, *: M1's p̄) ".into(),
+        title: " β_h/√h against h ".into(),
         x: Axis {
-            title: "h (length)".into(),
+            title: "h".into(),
             bounds: xb,
             scale: Scale::Log10,
         },
         y: Axis {
-            title: "β/√h".into(),
+            title: "β_h/√h".into(),
             bounds: yb,
             scale: Scale::Log10,
         },
@@ -154,6 +154,30 @@ fn chart(app: &App, frame: &mut Frame, area: Rect, look: &Look, all: &[Series], 
         theme: look.theme,
     }
     .render(frame, area);
+}
+
+/// The chart's curves in values (h, β/√h) for the tour's handout ([`crate::plot::LogCurve`]):
+/// each scheme's raw β_h/√h and M1's β̄_h/√h, a kernel named so (its β_h = 0 has no place
+/// on a log axis).
+pub fn svg_curves(app: &App) -> Vec<crate::plot::LogCurve> {
+    series()
+        .iter()
+        .map(|s| {
+            let points: Vec<(f64, f64)> = estimates(app, s.element, s.rule)
+                .into_iter()
+                .map(|(_, b)| (b.h, (s.pick)(b)))
+                .collect();
+            let kernel = !points.is_empty() && points.iter().all(|p| p.1 <= 0.0);
+            crate::plot::LogCurve {
+                name: if kernel {
+                    format!("{}: β = 0, kernel", s.label)
+                } else {
+                    s.label.to_string()
+                },
+                points,
+            }
+        })
+        .collect()
 }
 
 fn table(app: &App, frame: &mut Frame, area: Rect, theme: Theme, all: &[Series], levels: &[u32]) {

@@ -2,7 +2,7 @@
 //! and the status line, and the help overlay on top. One module per scene part.
 
 mod cells;
-mod convergence;
+pub(super) mod convergence;
 mod convergence_graded;
 mod cursor;
 mod deformed;
@@ -10,7 +10,7 @@ pub mod fmt;
 mod friction;
 mod header;
 pub mod help;
-mod infsup_chart;
+pub(super) mod infsup_chart;
 mod infsup_panel;
 mod log;
 mod mesh_axes;

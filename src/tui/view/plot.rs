@@ -22,6 +22,9 @@ pub use super::cells::{cell_of, dots_per_cell};
 use super::fmt::{sig, title_fit};
 use super::yfit;
 
+/// The graph rows under which the legend moves to the title's row (when it fits there).
+const ROOMY: u16 = 20;
+
 /// How an axis maps values.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Scale {
@@ -221,17 +224,31 @@ impl Plot<'_> {
             .border_style(theme.axis());
         let inner = block.inner(area);
         frame.render_widget(block, area);
-        let legend = self.legend_lines(inner.width);
+        if inner.height < 4 || inner.width < 20 {
+            return None;
+        }
+        // The legend on rows of its own; on the title's row when the graph would have fewer
+        // than [`ROOMY`] rows and the legend fits there beside the title.
+        let mut legend = self.legend_lines(inner.width);
+        let title_width = Line::raw(title_fit(&self.title, area.width.saturating_sub(2))).width() as u16;
+        let one_row = self.legend_lines(u16::MAX);
+        let beside = inner.width.saturating_sub(title_width);
+        let short = inner.height.saturating_sub(legend.len() as u16 + 2) < ROOMY;
+        if short && one_row.len() == 1 && one_row[0].width() <= usize::from(beside) {
+            let at = area.x + 1 + title_width;
+            frame.buffer_mut().set_line(at, area.y, &one_row[0], beside);
+            legend.clear();
+        }
         let legend_rows = legend.len() as u16;
         // Legend rows, then the graph, then the x axis line and its labels.
-        if inner.height < legend_rows + 4 || inner.width < 20 {
+        if inner.height < legend_rows + 4 {
             return None;
         }
         let graph_rows = inner.height - legend_rows - 2;
         let per = dots_per_cell(self.marker);
         let max_y_ticks = usize::from(graph_rows / 2 + 1).min(6);
-        // The y bounds raised so that the ticks sit on evenly spaced rows (yfit's doc).
-        let (y_bounds, y_values) = yfit::even_or_fit(
+        // The y axis fitted to the data and the rows, each row at its value (yfit's doc).
+        let (y_bounds, y_values) = yfit::fit_or(
             self.y.bounds,
             self.ticks(&self.y, max_y_ticks),
             self.y.scale == Scale::Log10,
@@ -302,6 +319,8 @@ impl Plot<'_> {
             free_from = start + w + 1;
         }
         self.draw_data(frame, graph, y_bounds);
+        #[cfg(test)]
+        drawn::record(self);
         Some(Placed { graph })
     }
 
@@ -313,13 +332,18 @@ impl Plot<'_> {
     }
 
     /// The axes' titles ("y against x"), then each series' sample and name, wrapped to
-    /// `width` (two rows at most).
+    /// `width` (two rows at most; one at `u16::MAX`).
     fn legend_lines(&self, width: u16) -> Vec<Line<'static>> {
         let width = usize::from(width);
-        let mut entries: Vec<Vec<Span<'static>>> = vec![vec![Span::styled(
-            format!("{} against {} ", self.y.title, self.x.title),
-            self.theme.axis().add_modifier(Modifier::BOLD),
-        )]];
+        // The axes' titles, unless the chart's title says them.
+        let axes = format!("{} against {}", self.y.title, self.x.title);
+        let mut entries: Vec<Vec<Span<'static>>> = Vec::new();
+        if !self.title.contains(&axes) {
+            entries.push(vec![Span::styled(
+                format!("{axes} "),
+                self.theme.axis().add_modifier(Modifier::BOLD),
+            )]);
+        }
         for s in &self.series {
             if s.name.is_empty() {
                 continue;
@@ -494,4 +518,56 @@ fn on_path(a: &[(f64, f64)], b: &[(f64, f64)], tx: f64, ty: f64) -> bool {
             .any(|w| on_segment(p, w))
     };
     (alo - blo).abs() <= tx && (ahi - bhi).abs() <= tx && a.iter().all(holds)
+}
+
+/// What each chart drew, for the tests that read a frame: the values of its glyphs, to find
+/// each one in the frame by the chart's own tick labels.
+#[cfg(test)]
+pub mod drawn {
+    use std::cell::RefCell;
+
+    use super::{Plot, Scale};
+
+    /// One chart: its title, its x bounds, its scales and each glyph series' glyph and points
+    /// (values, not log10 values).
+    #[derive(Clone, Debug)]
+    pub struct Charted {
+        /// The chart's title.
+        pub title: String,
+        /// The x axis's bounds, in values.
+        pub x_bounds: [f64; 2],
+        /// Whether x and y are on log axes.
+        pub log: (bool, bool),
+        /// Each glyph series' glyph and points.
+        pub series: Vec<(char, Vec<(f64, f64)>)>,
+    }
+
+    thread_local! {
+        static CHARTS: RefCell<Vec<Charted>> = const { RefCell::new(Vec::new()) };
+    }
+
+    /// Note `plot` as drawn.
+    pub(super) fn record(plot: &Plot) {
+        let (lx, ly) = (plot.x.scale == Scale::Log10, plot.y.scale == Scale::Log10);
+        let value = |v: f64, log: bool| if log { 10f64.powf(v) } else { v };
+        let charted = Charted {
+            title: plot.title.trim().to_string(),
+            x_bounds: plot.x.bounds.map(|v| value(v, lx)),
+            log: (lx, ly),
+            series: plot
+                .series
+                .iter()
+                .filter_map(|s| {
+                    let points = s.data.iter().map(|&(x, y)| (value(x, lx), value(y, ly)));
+                    Some((s.glyph?, points.collect()))
+                })
+                .collect(),
+        };
+        CHARTS.with(|c| c.borrow_mut().push(charted));
+    }
+
+    /// The charts drawn on this thread since the last call.
+    pub fn take() -> Vec<Charted> {
+        CHARTS.with(|c| std::mem::take(&mut *c.borrow_mut()))
+    }
 }

@@ -9,7 +9,7 @@ use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::widgets::{Block, Paragraph};
 
 use super::super::app::{App, Drawn};
-use super::fmt::{nice_ceil, sig};
+use super::fmt::sig;
 use super::plot::{Axis, Plot, Scale, Series, Stroke};
 use super::{Look, cursor, friction};
 
@@ -51,8 +51,9 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
     let (peak, low) = layer
         .as_ref()
         .map_or((peak, 0.0), |l| (peak.max(l.peak()), l.low()));
-    let ymax = nice_ceil(peak * 1.05);
-    let ymin = if low < 0.0 { -nice_ceil(-low * 1.05) } else { 0.0 };
+    // The data's range: the axis is fitted to it and to the rows ([`super::yfit`]).
+    let ymax = if peak > 0.0 { peak } else { 1.0 };
+    let ymin = low.min(0.0);
 
     // Inside the contact zone only: outside it both are 0, on p̄'s own line, and their marks
     // along the whole axis hid it.

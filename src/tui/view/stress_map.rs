@@ -17,8 +17,8 @@ use crate::stress::{Peak, Quantity, StressField};
 use super::super::app::App;
 use super::super::protocol::Solved;
 use super::super::theme::Theme;
+use super::Look;
 use super::fmt::sig;
-use super::{Look, cursor};
 
 /// The shading of the levels, lowest first, and their colours.
 const GLYPHS: [&str; 5] = ["·", "░", "▒", "▓", "█"];
@@ -65,9 +65,10 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
         Paragraph::new(colour_bar(map.range, bar_area.height, look.theme)),
         bar_area,
     );
-    // The cursor (`x`): a vertical line at its contact point, its readout for the caption.
-    match (app.cursor_point(), cursor::readout(app)) {
-        (Some((x, _)), Some(text)) => {
+    // The cursor (`x`): a vertical line at its contact point, the stress under it for the
+    // caption.
+    match app.cursor_point() {
+        Some((x, _)) => {
             let (a, b) = map.x;
             let col = ((x - a) / (b - a) * f64::from(map_area.width)).floor();
             if (0.0..f64::from(map_area.width)).contains(&col) {
@@ -78,9 +79,9 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
                         .set_style(look.theme.key().add_modifier(Modifier::BOLD));
                 }
             }
-            frame.render_widget(Paragraph::new(format!(" {text}")), caption);
+            frame.render_widget(Paragraph::new(format!(" {}", map.readout(x, q))), caption);
         }
-        _ => frame.render_widget(Paragraph::new(caption_line(&peak, &map, look.theme)), caption),
+        None => frame.render_widget(Paragraph::new(caption_line(&peak, &map, look.theme)), caption),
     }
 }
 
@@ -155,6 +156,35 @@ impl HeatMap {
             x: (a, b),
             z_max,
             range,
+        }
+    }
+
+    /// The cursor's readout at `x`: the quantity in the map's column under it, at Γ_C (its top
+    /// row) and its largest with the depth: "cursor x 0.125 · τ₁ under it 12.3 at Γ_C, largest
+    /// 45.6 at depth 0.21".
+    fn readout(&self, x: f64, q: Quantity) -> String {
+        let (a, b) = self.x;
+        let cols = self.values.first().map_or(0, Vec::len);
+        let rows = self.values.len();
+        let col = ((x - a) / (b - a) * cols as f64).floor();
+        let head = format!("cursor x {} · {}", sig(x, 4), q.symbol());
+        if !(0.0..cols as f64).contains(&col) {
+            return format!("{head}: the cursor is outside the map");
+        }
+        let column: Vec<f64> = self.values.iter().map(|row| row[col as usize]).collect();
+        let largest = column
+            .iter()
+            .enumerate()
+            .filter(|(_, v)| v.is_finite())
+            .max_by(|p, q| p.1.total_cmp(q.1));
+        match (column.first().filter(|v| v.is_finite()), largest) {
+            (Some(top), Some((r, v))) => format!(
+                "{head} under it {} at Γ_C, largest {} at depth {}",
+                sig(*top, 3),
+                sig(*v, 3),
+                sig(self.z_max * (r as f64 + 0.5) / rows as f64, 2)
+            ),
+            _ => format!("{head}: no value under the cursor"),
         }
     }
 

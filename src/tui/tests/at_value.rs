@@ -1,0 +1,161 @@
+//! Every glyph of every chart stands on the row of its value, as a reader reads the row off
+//! the chart's own tick labels (within half a row): on every scene, at 80×24, 100×30 and
+//! 120×40, in the lab and in the projector view, on every bundled scenario with every
+//! overlay on (the work–precision chart on the paper's). So no glyph reads as a value its series does not have (the inf-sup chart drew
+//! M4's 0.52 on M3's row of 1.07: `*34` read "M4 = M3 ≈ 1"). That each value has its glyph
+//! near it is `axes.rs`'s test.
+
+use riplab::scenario::Scenario;
+use riplab::tui::app::{App, Scene};
+use riplab::tui::engine::Engine;
+use riplab::tui::render_app;
+use riplab::tui::settle::settle;
+use riplab::tui::view::plot::drawn::{self, Charted};
+
+use super::axes::{Chart, chart, place};
+use super::friction::LOOK;
+
+const SIZES: [(u16, u16); 3] = [(80, 24), (100, 30), (120, 40)];
+
+/// The bundled scenarios, by file name.
+fn scenarios() -> Vec<(String, Scenario)> {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios");
+    let mut files: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    files.sort();
+    files
+        .into_iter()
+        .map(|p| {
+            let name = p.file_name().unwrap().to_string_lossy().into_owned();
+            (name, Scenario::load(&p).unwrap())
+        })
+        .collect()
+}
+
+/// The value a reader reads at `line` of the chart: the y ticks' values spread evenly over
+/// their rows; and half a row's worth (in the axis's units, log10 on a log axis).
+fn read(c: &Chart, line: usize, log: bool) -> (f64, f64) {
+    let f = |v: f64| if log { v.log10() } else { v };
+    let ((l0, v0), (l1, v1)) = (c.y_ticks[0], c.y_ticks[c.y_ticks.len() - 1]);
+    let per_line = (f(v0) - f(v1)) / (l1 as f64 - l0 as f64);
+    (f(v0) - (line as f64 - l0 as f64) * per_line, per_line.abs() / 2.0)
+}
+
+/// The rows of the graph holding `glyph` within four columns of `x`'s (a glyph landing on
+/// another's moves up to three cells along its row).
+fn rows_with(c: &Chart, glyph: char, x: f64, log: bool) -> Vec<usize> {
+    let col = place(&c.x_ticks, x, log).round() as i64;
+    c.graph
+        .clone()
+        .filter(|&r| {
+            (col - 4..=col + 4)
+                .any(|k| usize::try_from(k).is_ok_and(|k| k > c.axis && c.lines[r].get(k) == Some(&glyph)))
+        })
+        .collect()
+}
+
+/// Every glyph drawn in the graph of `charted` in `frame` stands where its series has a
+/// value: within four columns of the value's x (a glyph landing on another's moves up to
+/// three cells along its row) and on a row that reads the value within half a row.
+fn check(frame: &str, charted: &Charted, what: &str) {
+    let prefix: String = charted.title.chars().take(12).collect();
+    let c = chart(frame, &prefix);
+    let (log_x, log_y) = charted.log;
+    let [x0, x1] = charted.x_bounds;
+    for (glyph, points) in &charted.series {
+        // The points inside the chart's x range (the zoomed one), as (column, value on the y
+        // axis, value): a glyph drawn is one of them.
+        let drawn: Vec<(f64, f64, f64)> = points
+            .iter()
+            .filter(|&&(x, _)| x >= x0.min(x1) && x <= x0.max(x1))
+            .map(|&(x, y)| (place(&c.x_ticks, x, log_x), if log_y { y.log10() } else { y }, y))
+            .collect();
+        for r in c.graph.clone() {
+            for (k, &ch) in c.lines[r].iter().enumerate() {
+                if k <= c.axis || k + 1 >= c.lines[r].len() || ch != *glyph {
+                    continue;
+                }
+                let (read, half) = read(&c, r, log_y);
+                let at = drawn.iter().any(|&(col, v, _)| {
+                    (col - k as f64).abs() <= 4.5 && (read - v).abs() <= half * (1.0 + 1e-6)
+                });
+                let near: Vec<f64> = drawn
+                    .iter()
+                    .filter(|p| (p.0 - k as f64).abs() <= 4.5)
+                    .map(|p| p.2)
+                    .collect();
+                assert!(
+                    at,
+                    "{what}: `{glyph}` at line {r}, column {k} reads {read} (±{half}); its values there: {near:?}\n{frame}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn every_glyph_stands_on_the_row_of_its_value() {
+    for (name, scenario) in scenarios() {
+        // The work–precision chart on the paper's scenario (its study computes a reference at
+        // level 5 for every scheme: minutes on the bigger scenarios).
+        let paper = name == "hertz-paper.toml";
+        for scene in [
+            Scene::Explore,
+            Scene::InfSup,
+            Scene::Mesh,
+            Scene::Convergence,
+            Scene::Stress,
+        ] {
+            if scene == Scene::Convergence && !paper {
+                continue;
+            }
+            let mut app = App::new(scenario.clone());
+            app.show_timing = false;
+            app.settings.level = 2;
+            app.scene = scene;
+            app.show_hertz = true;
+            app.show_gap = true;
+            settle(&mut app, &mut Engine::new(scenario.clone()));
+            for projector in [false, true] {
+                app.overlays.projector = projector;
+                for (w, h) in SIZES {
+                    drawn::take();
+                    let frame = render_app(&app, &LOOK, w, h);
+                    for charted in drawn::take() {
+                        let what = format!("{name} {scene:?} {w}×{h} projector {projector}");
+                        check(&frame, &charted, &what);
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// The projector view of the inf-sup scene at 80×24 (`riplab render --scene infsup --keys f
+/// --size 80x24`): M3's 1.07 and M4's 0.52 three rows apart or more at every level.
+#[test]
+fn m3_and_m4_stand_three_rows_apart_in_the_projector_view() {
+    let mut app = super::settled(0, Scene::InfSup);
+    app.overlays.projector = true;
+    drawn::take();
+    let frame = render_app(&app, &LOOK, 80, 24);
+    let charts = drawn::take();
+    let c = chart(&frame, "β_h/√h against h");
+    let series = &charts[0].series;
+    let points = |g: char| &series.iter().find(|s| s.0 == g).unwrap().1;
+    for (&(h, m3), &(_, m4)) in points('3').iter().zip(points('4')) {
+        let row = |g: char, v: f64| {
+            *rows_with(&c, g, h, true)
+                .iter()
+                .find(|&&r| {
+                    let (read, half) = read(&c, r, true);
+                    (read - v.log10()).abs() <= half * (1.0 + 1e-6)
+                })
+                .unwrap_or_else(|| panic!("`{g}` of {v} at h = {h}\n{frame}"))
+        };
+        assert!(row('4', m4) >= row('3', m3) + 3, "h = {h}\n{frame}");
+    }
+}
