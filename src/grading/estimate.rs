@@ -124,6 +124,10 @@ pub fn fits(
 }
 
 /// [`fits`] against `limits`.
+///
+/// # Errors
+///
+/// As [`fits`]'s.
 pub fn fits_within(
     scenario: &Scenario,
     (level, element): (u32, Element),
