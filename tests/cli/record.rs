@@ -367,8 +367,9 @@ fn the_lab_records_and_writes_a_tour_step_on_t() {
     let mut keys = std::fs::File::from(controller);
     let deadline = Instant::now() + Duration::from_secs(120);
     let wait_for = |what: &[&str]| drop(screen.wait_for(what, deadline));
-    wait_for(&["✓ converged"]);
-    keys.write_all(b"]]2").unwrap();
+    // The lab opens at level 1 (the paper's mesh); one level finer and M2.
+    wait_for(&["level 1", "✓ converged"]);
+    keys.write_all(b"]2").unwrap();
     wait_for(&["M2 q1+gauss2", "level 2", "✓ converged"]);
     keys.write_all(b"T").unwrap();
     wait_for(&["added step 1 to", "lesson.toml"]);
