@@ -252,7 +252,7 @@ fn warnings(disc: &Discretization, params: &ContactParams, sol: &Solution) -> Ve
 /// that the solve costs only its iteration: the coupling G of the penalty, ALM and exact
 /// constraint ([`Discretization::coupling`]; milliseconds), or Nitsche's layer, couplings and
 /// operator ([`nitsche::prepare`]; seconds at level 7). What fails is the solve's to report.
-pub(crate) fn prepare(disc: &Discretization, rule: Rule, method: Method) {
+pub fn prepare(disc: &Discretization, rule: Rule, method: Method) {
     match method {
         Method::Nitsche { theta, gamma0 } => nitsche::prepare(disc, rule, theta, gamma0),
         _ => {
@@ -263,7 +263,7 @@ pub(crate) fn prepare(disc: &Discretization, rule: Rule, method: Method) {
 
 /// Whether a solve by `method` with `rule` on `disc` would first do long work that
 /// [`prepare`] does: Nitsche's, when not [`nitsche::prepared`].
-pub(crate) fn needs_preparing(disc: &Discretization, rule: Rule, method: Method) -> bool {
+pub fn needs_preparing(disc: &Discretization, rule: Rule, method: Method) -> bool {
     match method {
         Method::Nitsche { gamma0, .. } => !nitsche::prepared(disc, rule, gamma0),
         _ => false,
@@ -272,7 +272,7 @@ pub(crate) fn needs_preparing(disc: &Discretization, rule: Rule, method: Method)
 
 /// Whether [`prepare`] for `method` on `disc` factorises K again, needing as much memory as
 /// the mesh's own build: Nitsche's, before its layer is built.
-pub(crate) fn preparing_factorises(disc: &Discretization, method: Method) -> bool {
+pub fn preparing_factorises(disc: &Discretization, method: Method) -> bool {
     matches!(method, Method::Nitsche { .. }) && nitsche::factorises(disc)
 }
 
