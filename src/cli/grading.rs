@@ -1,19 +1,16 @@
 //! `--refine-edges N|Nz|auto` of `riplab solve` and the axis `--refine-edges 0,1,2z,…` of
 //! `riplab study` ([`crate::grading`]): parsed and checked here, solved through the library's
-//! entry ([`solve`]) with the rows' friction.
-
-use std::ops::ControlFlow;
+//! entry ([`solve_each`]) with the rows' friction.
 
 use super::{CliError, usage};
 use crate::contact::ContactParams;
 use crate::contact::friction::Friction;
-use crate::contact::newton::NewtonOptions;
 use crate::discretization::Discretization;
 use crate::error::SolveError;
 use crate::grading::Grading;
 use crate::scenario::Scenario;
 use crate::solution::Solution;
-use crate::solve::{Request, Warm, solve};
+use crate::solve::{Request, solve_each};
 
 /// The grading of a solve: `--refine-edges` when given, else the scenario's
 /// `[mesh] refine_edges`.
@@ -45,12 +42,11 @@ pub(super) fn refine_axis(texts: &[String], scenario: &Scenario) -> Result<Vec<G
 pub(super) type Outcome = (Result<Solution, SolveError>, Option<Discretization>, u32);
 
 /// Solve every instance of `params` on `uniform` (the scenario's level) through the library's
-/// entry ([`solve`]), each with its friction (the last of `frictions` for the rest; none when
-/// empty) and graded as `grading` asks. Frictionless instances on the uniform level start from
-/// the forces of the last one that solved (a sweep over ε or the depth costs a few Newton steps
-/// a value); with friction each has its own loading history, graded each its own mesh. The
-/// first instance is charged with the uniform level's mesh work; a failure is its instance's
-/// result.
+/// entry ([`solve_each`]), each with its friction (the last of `frictions` for the rest; none
+/// when empty) and graded as `grading` asks: frictionless instances on the uniform level start
+/// from the forces of the last one that solved, with friction each has its own loading
+/// history, graded each its own mesh. The first instance is charged with the uniform level's
+/// mesh work; a failure is its instance's result.
 pub(super) fn solve_all(
     scenario: &Scenario,
     uniform: &Discretization,
@@ -58,35 +54,24 @@ pub(super) fn solve_all(
     frictions: &[Friction],
     grading: Grading,
 ) -> Vec<Outcome> {
-    let opts = NewtonOptions::default();
-    let mut previous: Option<Vec<f64>> = None;
-    let mut out = Vec::with_capacity(params.len());
-    for (k, p) in params.iter().enumerate() {
-        let friction = frictions.get(k.min(frictions.len().saturating_sub(1))).copied();
-        let friction = friction.unwrap_or(Friction::NONE);
-        let carries = !friction.is_on() && !grading.grades();
-        let warm = match &previous {
-            Some(y) if carries => Warm::Forces(y),
-            _ => Warm::Rest,
-        };
-        let request = Request::new(p.clone())
-            .with_friction(friction)
-            .with_grading(scenario, scenario.level, grading)
-            .warm_from(warm);
-        let solved = solve(uniform, &request, &opts, &mut |_| ControlFlow::Continue(()));
-        out.push(match solved {
-            Ok(mut solved) => {
-                if k == 0 {
-                    solved.charge_mesh_work(uniform);
-                }
-                if carries {
-                    previous = Some(solved.sol.newton.forces.clone());
-                }
+    let requests: Vec<Request<'_>> = params
+        .iter()
+        .enumerate()
+        .map(|(k, p)| {
+            let friction = frictions.get(k.min(frictions.len().saturating_sub(1))).copied();
+            Request::new(p.clone())
+                .with_friction(friction.unwrap_or(Friction::NONE))
+                .with_grading(scenario, scenario.level, grading)
+        })
+        .collect();
+    solve_each(uniform, &requests)
+        .into_iter()
+        .map(|solved| match solved {
+            Ok(solved) => {
                 let passes = solved.passes();
                 (Ok(solved.sol), solved.graded.and_then(|g| g.disc), passes)
             }
             Err(e) => (Err(e), None, 0),
-        });
-    }
-    out
+        })
+        .collect()
 }

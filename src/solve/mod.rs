@@ -1,10 +1,3 @@
-//! From a scenario to a solution: the work that depends only on the mesh (assembly of K, its
-//! factorisation, the trace compliance) is held in a [`Discretization`] and done once; each
-//! contact solve (rule, method, ε, obstacle) reuses it and costs only dense work on Γ_C. This
-//! module chooses the method's solver ([`crate::contact::Method`]): the penalty, the exact
-//! constraint and the augmented Lagrangian on the trace compliance, Nitsche's method on its
-//! own operator ([`crate::solve::nitsche`]).
-
 //! The one solve entry (docs/design.md §9): a [`Request`] (the method and its parameters, the
 //! friction, the grading, the warm start) solved on a scenario's uniform level by [`solve`],
 //! which chooses the solver, accounts for a graded mesh's memory before it is built, and says
@@ -190,12 +183,24 @@ pub fn solve(
     if request.friction.is_on() {
         return Err(InputFault::FrictionGraded { grading: g.grading }.into());
     }
-    crate::grading::estimate::fits(g.scenario, g.level, disc.mesh.element, g.grading, |_| 0)?;
-    let (sol, graded) = graded::solve_graded(disc, g, request, opts, on_iteration)?;
+    let (sol, graded) = graded_passes(disc, g, request, opts, on_iteration)?;
     Ok(Solved {
         sol,
         graded: Some(graded),
     })
+}
+
+/// The passes of `g` from `disc`, refused before the first when the grading's memory
+/// estimate does not fit ([`crate::grading::estimate::fits`]).
+fn graded_passes(
+    disc: &Discretization,
+    g: Graded<'_>,
+    request: &Request<'_>,
+    opts: &NewtonOptions,
+    on_iteration: &mut dyn FnMut(&Iteration) -> ControlFlow<()>,
+) -> Result<(Solution, Grids), SolveError> {
+    crate::grading::estimate::fits(g.scenario, g.level, disc.mesh.element, g.grading, |_| 0)?;
+    graded::solve_graded(disc, g, request, opts, on_iteration)
 }
 
 /// Solve on `disc` alone: with friction or without, and the answer's warnings.
@@ -357,8 +362,7 @@ pub fn solve_graded(
         grading: grading.into(),
     };
     let request = Request::new(params.clone());
-    crate::grading::estimate::fits(scenario, level, uniform.mesh.element, g.grading, |_| 0)?;
-    let (sol, g) = graded::solve_graded(uniform, g, &request, opts, &mut |_| ControlFlow::Continue(()))?;
+    let (sol, g) = graded_passes(uniform, g, &request, opts, &mut |_| ControlFlow::Continue(()))?;
     Ok(GradedSolve {
         grid: g.grid,
         graded: g.disc,
@@ -401,31 +405,50 @@ pub fn solve_scenario(scenario: &Scenario) -> Result<(Discretization, Solution),
     Ok((disc, sol))
 }
 
-/// Solve every instance of `params` on `disc` in order, each warm-started from the contact
-/// forces of the last one that solved (a sweep over ε or the depth costs one mesh's work and
-/// a few Newton steps per value). The first solution is charged with the mesh's work; a
-/// failure is its instance's result, and the sweep goes on.
-pub fn sweep(disc: &Discretization, params: &[ContactParams]) -> Vec<Result<Solution, SolveError>> {
+/// Solve each of `requests` on `disc` in order. A frictionless request on `disc` itself (no
+/// grading) that starts from rest starts from the contact forces of the last such one that
+/// solved: a sweep over ε or the depth costs one mesh's work and a few Newton steps a value.
+/// The first answer is charged with the mesh's work; a failure is its request's answer, and
+/// the rest go on.
+pub fn solve_each(disc: &Discretization, requests: &[Request<'_>]) -> Vec<Result<Solved, SolveError>> {
     let mut previous: Option<Vec<f64>> = None;
-    let mut results = Vec::with_capacity(params.len());
-    for p in params {
-        let solved = solve_contact(
-            disc,
-            p,
-            previous.as_deref(),
-            &NewtonOptions::default(),
-            &mut |_| ControlFlow::Continue(()),
-        );
-        let solved = solved.map(|mut sol| {
-            if results.is_empty() {
-                sol.timing.include_mesh_work(disc);
-            }
-            previous = Some(sol.newton.forces.clone());
-            sol
+    let mut out = Vec::with_capacity(requests.len());
+    for request in requests {
+        let carries = !request.friction.is_on()
+            && request.grading.is_none_or(|g| !g.grading.grades())
+            && matches!(request.warm, Warm::Rest);
+        let warm = match &previous {
+            Some(y) if carries => Warm::Forces(y),
+            _ => request.warm,
+        };
+        let warmed = Request {
+            warm,
+            ..request.clone()
+        };
+        let solved = solve(disc, &warmed, &NewtonOptions::default(), &mut |_| {
+            ControlFlow::Continue(())
         });
-        results.push(solved);
+        let first = out.is_empty();
+        out.push(solved.map(|mut solved| {
+            if first {
+                solved.charge_mesh_work(disc);
+            }
+            if carries {
+                previous = Some(solved.sol.newton.forces.clone());
+            }
+            solved
+        }));
     }
-    results
+    out
+}
+
+/// [`solve_each`] of frictionless requests of `params` on `disc`: their solutions.
+pub fn sweep(disc: &Discretization, params: &[ContactParams]) -> Vec<Result<Solution, SolveError>> {
+    let requests: Vec<Request<'_>> = params.iter().cloned().map(Request::new).collect();
+    solve_each(disc, &requests)
+        .into_iter()
+        .map(|r| r.map(|solved| solved.sol))
+        .collect()
 }
 
 #[cfg(test)]

@@ -195,8 +195,10 @@ impl Engine {
         let graded = solve::solve(uniform, &request, &NewtonOptions::default(), &mut |_| {
             ControlFlow::Continue(())
         });
+        // A request that grades is answered with its grids.
+        let graded = graded.map(|s| (s.sol, s.graded.expect("a graded request's grids")));
         match graded {
-            Ok(solve::Solved { sol, graded: Some(g) }) => {
+            Ok((sol, g)) => {
                 let disc = g.disc.map_or_else(|| uniform.clone(), Arc::new);
                 let passes = g.grid.passes;
                 self.last_graded = LastGraded::of(&key, g.grid, disc.clone(), &sol);
@@ -205,10 +207,6 @@ impl Engine {
                     false => Regrade::Graded { passes },
                 };
                 self.solved(req, disc, sol, t, regrade)
-            }
-            // A request that grades is answered with its grids.
-            Ok(solve::Solved { sol, graded: None }) => {
-                self.solved(req, uniform.clone(), sol, t, Regrade::Kept)
             }
             Err(e) => Response::Solved {
                 generation: req.generation,
