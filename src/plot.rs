@@ -263,14 +263,7 @@ pub fn pressure_svg_string(title: &str, sol: &Solution, half_model: bool) -> Res
             .draw_series(LineSeries::new(pbar.iter().copied(), smooth_style))?
             .label("smoothed p̄ (16)–(17), at the vertices")
             .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], smooth_style));
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .margin(12)
-            .label_font(("sans-serif", 16))
-            .background_style(WHITE.mix(0.9))
-            .border_style(RGBColor(160, 160, 160))
-            .draw()?;
+        legend(&mut chart, SeriesLabelPosition::UpperRight)?;
         root.present()?;
     }
     Ok(svg)
@@ -388,6 +381,21 @@ pub fn write_file(path: &Path, bytes: &[u8], overwrite: bool) -> io::Result<()> 
     result
 }
 
+/// The legend of `chart`'s series at `position`: a light box with a grey border.
+fn legend<'a, CT: CoordTranslate>(
+    chart: &mut ChartContext<'a, SVGBackend<'a>, CT>,
+    position: SeriesLabelPosition,
+) -> Result<(), DrawingAreaErrorKind<io::Error>> {
+    chart
+        .configure_series_labels()
+        .position(position)
+        .margin(12)
+        .label_font(("sans-serif", 16))
+        .background_style(WHITE.mix(0.9))
+        .border_style(RGBColor(160, 160, 160))
+        .draw()
+}
+
 /// One curve of a log-log chart: its name in the legend and its points (x, y), positive.
 pub struct LogCurve {
     /// The name in the legend.
@@ -479,14 +487,7 @@ pub fn loglog_svg_string(
                 });
             chart.draw_series(points.iter().map(|&p| Circle::new(p, 4, color.filled())))?;
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::LowerRight)
-            .margin(12)
-            .label_font(("sans-serif", 16))
-            .background_style(WHITE.mix(0.9))
-            .border_style(RGBColor(160, 160, 160))
-            .draw()?;
+        legend(&mut chart, SeriesLabelPosition::LowerRight)?;
         root.present()?;
     }
     Ok(svg)
