@@ -460,6 +460,35 @@ mod tests {
     use crate::error::SolveError;
     use crate::scenario::Scenario;
 
+    /// Friction asked of a graded mesh is refused by the entry before any pass, naming the
+    /// grading; the same request on the uniform level solves.
+    #[test]
+    fn friction_on_a_graded_mesh_is_refused_before_any_pass() {
+        use crate::contact::friction::{Friction, Law};
+        use crate::grading::RefineEdges;
+        // Kikuchi's example modelled whole (friction needs both sides of Γ_C free).
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/scenarios/hertz-paper-full.toml");
+        let scenario = Scenario::load(std::path::Path::new(path)).unwrap();
+        let disc = Discretization::of_traced(&scenario, 1, scenario.element, Trace::Full).unwrap();
+        let params = ContactParams::by_epsilon(scenario.rule, 1e-6, scenario.obstacle.clone());
+        let friction = Friction {
+            law: Law::Coulomb { mu: 0.3 },
+            ..Friction::NONE
+        };
+        let request = Request::new(params).with_friction(friction);
+        let go_on = &mut |_: &Iteration| ControlFlow::Continue(());
+        let opts = NewtonOptions::default();
+        let grading = Grading::Edges(RefineEdges::Passes(2));
+        let graded = request.clone().with_grading(&scenario, 1, grading);
+        match solve(&disc, &graded, &opts, go_on) {
+            Err(SolveError::Input(InputFault::FrictionGraded { grading: g })) => assert_eq!(g, grading),
+            Err(e) => panic!("{e}"),
+            Ok(_) => panic!("friction on a graded mesh solved"),
+        }
+        let uniform = solve(&disc, &request, &opts, go_on).unwrap();
+        assert!(uniform.graded.is_none() && uniform.sol.friction.is_some());
+    }
+
     /// A sweep on one mesh gives each instance the solution a fresh solve
     /// gives, charges the mesh's work to the first only, and goes on past a failure.
     #[test]
