@@ -12,6 +12,7 @@ use crate::output::{Report, SolveReport};
 use crate::plot::{chart_title, pressure_svg_string, write_file};
 use crate::scenario::Scenario;
 
+use super::app::{App, ExportKind, Msg, Scene};
 pub use super::export_error::ExportError;
 use super::protocol::Solved;
 
@@ -118,4 +119,30 @@ fn sanitize(name: &str) -> String {
             }
         })
         .collect()
+}
+
+/// Carry out [`Command::Export`] into `dir`: the reply for the app (a tour step is the lab's
+/// business: see [`super::tour::author::save_step`]).
+pub(super) fn export_shown(app: &App, dir: &Path) -> Msg {
+    let result = match (app.current(), app.export_kind) {
+        (_, ExportKind::TourStep) => Err(ExportError::TourStepInTour),
+        (Some(solved), ExportKind::Csv) => {
+            export_csv(&app.scenario, solved, dir).map(|p| p.display().to_string())
+        }
+        (Some(solved), ExportKind::Svg) => export_svg(&app.scenario, solved, dir).map(|p| {
+            // The SVG is the pressure chart, whatever the scene: said where another is shown.
+            let chart = if app.scene == Scene::Explore {
+                ""
+            } else {
+                " (explore's pressure chart)"
+            };
+            format!("{}{chart}", p.display())
+        }),
+        (Some(solved), ExportKind::Vtu) => export_vtu(&app.scenario, solved, dir).map(|p| {
+            let contact = crate::vtu::contact_path(&p);
+            format!("{} and {}", p.display(), contact.display())
+        }),
+        (None, _) => Err(ExportError::NoSolution),
+    };
+    Msg::Exported(result.map_err(std::sync::Arc::new))
 }

@@ -16,8 +16,11 @@ pub mod engine;
 pub mod errors;
 mod estimating;
 pub mod eta;
+mod event_loop;
 pub mod export;
 mod export_error;
+#[cfg(test)]
+mod export_tests;
 pub mod friction_settings;
 mod job;
 mod key_bar;
@@ -28,8 +31,6 @@ pub mod record;
 pub mod regrade;
 pub mod render_keys;
 mod runtime;
-#[cfg(test)]
-mod runtime_export_tests;
 pub mod settle;
 pub mod shown;
 pub mod shown_friction;

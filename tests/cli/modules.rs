@@ -387,54 +387,15 @@ fn cycle(g: &BTreeMap<String, BTreeSet<String>>) -> Option<Vec<String>> {
     })
 }
 
-/// Uses that close a cycle, known and left for the reordering of the lab's folders (the
-/// lab's loop and its tour are being edited beside this test): (depth, from, to). Each is
-/// still there (`the_known_cycles_are_still_there`): remove it here once it is gone.
-const KNOWN: [(usize, &str, &str); 2] = [
-    // The lab's loop writes a tour step on `T` (`tui::tour::author`); the tour's loop
-    // (`tui::tour::runtime`) runs in the lab's.
-    (2, "tui::runtime", "tui::tour"),
-    // The tour's player scrolls its caption by the rows the view lays it out in.
-    (3, "tui::tour::player", "tui::tour::view"),
-];
-
 #[test]
 fn the_modules_form_no_cycle() {
     let uses = uses();
     for depth in [1, 2, 3] {
-        let mut g = graph(&uses, depth);
-        for (_, from, to) in KNOWN.iter().filter(|k| k.0 == depth) {
-            if let Some(edges) = g.get_mut(*from) {
-                edges.remove(*to);
-            }
-        }
+        let g = graph(&uses, depth);
         assert!(g.len() > 10, "the graph was read: {g:?}");
         if let Some(c) = cycle(&g) {
             panic!("module cycle at depth {depth}: {}", c.join(" → "));
         }
-    }
-}
-
-#[test]
-fn the_known_cycles_are_still_there() {
-    let uses = uses();
-    for (depth, from, to) in KNOWN {
-        let g = graph(&uses, depth);
-        assert!(
-            g[from].contains(to),
-            "{from} → {to} is gone: remove it from KNOWN"
-        );
-        // `to` leads back to `from`.
-        let (mut seen, mut next) = (BTreeSet::new(), vec![to.to_string()]);
-        while let Some(m) = next.pop() {
-            if seen.insert(m.clone()) {
-                next.extend(g.get(&m).into_iter().flatten().cloned());
-            }
-        }
-        assert!(
-            seen.contains(from),
-            "{from} → {to} closes no cycle any more: remove it from KNOWN"
-        );
     }
 }
 

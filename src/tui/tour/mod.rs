@@ -7,6 +7,7 @@
 //! tick); [`view`] draws it; [`run_tour`] runs it in the terminal.
 
 pub mod author;
+mod caption;
 mod embedded;
 pub mod errors;
 pub mod friction_step;
@@ -42,12 +43,13 @@ use super::app::{App, Compare, MAX_APP_LEVEL, Scene};
 use errors::TextError;
 use scenarios::{StepScenarios, Unloaded};
 
+pub use caption::MIN_TOUR_SIZE;
 pub use errors::{AutoIntervalError, TourError};
 pub use player::{TourApp, TourMsg};
 pub use runtime::run_tour;
 #[cfg(test)]
 pub use view::render_step;
-pub use view::{MIN_TOUR_SIZE, view};
+pub use view::view;
 
 /// The paper's tour, `tours/paper.toml`.
 pub const PAPER_TOUR: &str = include_str!("../../../tours/paper.toml");

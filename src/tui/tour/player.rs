@@ -16,7 +16,7 @@ use super::super::keys::{TourAction, tour_action};
 use super::super::lab_error::LabError;
 use super::super::protocol::Solved;
 use super::Tour;
-use super::view::caption_rows;
+use super::caption::caption_rows;
 
 /// Inf-sup estimates by key, as the lab holds them.
 type Estimates = HashMap<InfSupKey, Result<InfSup, LabError>>;

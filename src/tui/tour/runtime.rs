@@ -1,4 +1,4 @@
-//! The tour in the lab's event loop ([`super::super::runtime::run_program`]): one worker per
+//! The tour in the lab's event loop ([`super::super::event_loop::run_program`]): one worker per
 //! scenario in use, replies of a replaced worker dropped, and the auto-advance clock.
 
 use std::io;
@@ -12,8 +12,9 @@ use ratatui::Frame;
 use crate::scenario::Scenario;
 
 use super::super::app::{Command, Msg, Notice};
+use super::super::event_loop::{Flow, Input, Program, TICK, run_program};
+use super::super::export::export_shown;
 use super::super::record::{CastFile, Chapter};
-use super::super::runtime::{Flow, Input, Program, TICK, export, run_program};
 use super::super::theme::Theme;
 use super::super::view::Look;
 use super::super::worker::Worker;
@@ -100,7 +101,7 @@ impl Session {
         for command in effect.commands {
             match command {
                 Command::Export => {
-                    let reply = export(&self.player.app, &self.dir);
+                    let reply = export_shown(&self.player.app, &self.dir);
                     flow |= self.apply(TourMsg::Lab(reply));
                 }
                 Command::Suspend => flow.suspend = true,

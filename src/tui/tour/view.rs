@@ -17,12 +17,9 @@ use super::super::view::help::key_popup;
 use super::super::view::{Look, view_in};
 use super::super::view::{MIN_AREA as LAB_MIN, centred_message};
 use super::super::{check_size, render_frame};
+use super::caption::{MIN_TOUR_SIZE, caption_rows};
 use super::errors::StepError;
 use super::{Tour, TourApp};
-
-/// The smallest terminal the tour runs in: the lab's own minimum, its caption below the lab
-/// in the rows the lab leaves (scrolling when longer).
-pub const MIN_TOUR_SIZE: (u16, u16) = (80, 24);
 
 /// Draw the tour into the whole frame.
 pub fn view(tour: &TourApp, frame: &mut Frame, look: &Look) {
@@ -54,26 +51,6 @@ pub fn view(tour: &TourApp, frame: &mut Frame, look: &Look) {
     if tour.show_help {
         help(frame, area, look.theme);
     }
-}
-
-/// The caption as rows of at most `width` columns: as written when every line fits, else
-/// reflowed (a line joins the one before it unless it is indented) and wrapped at words.
-pub(super) fn caption_rows(caption: &str, width: u16) -> Vec<String> {
-    let width = usize::from(width);
-    if caption.lines().all(|l| l.chars().count() <= width) {
-        return caption.lines().map(str::to_string).collect();
-    }
-    let mut paragraphs: Vec<String> = Vec::new();
-    for line in caption.lines() {
-        match paragraphs.last_mut() {
-            Some(last) if !line.starts_with(' ') => {
-                last.push(' ');
-                last.push_str(line.trim());
-            }
-            _ => paragraphs.push(line.trim_end().to_string()),
-        }
-    }
-    wrap_words(&paragraphs.join("\n"), width)
 }
 
 /// The keys of the caption panel's first row: `↑↓ more` when the caption scrolls (`more`),

@@ -3,7 +3,7 @@
 
 use super::app::{App, ExportKind, Msg, Scene};
 use super::engine::Engine;
-use super::runtime::export;
+use super::export::export_shown;
 use super::settle::settle;
 use crate::scenario::Scenario;
 
@@ -14,7 +14,7 @@ fn exports_say_what_they_wrote() {
     let mut app = App::new(Scenario::paper());
     app.settings.level = 0;
     settle(&mut app, &mut Engine::new(Scenario::paper()));
-    let said = |app: &App| match export(app, &dir) {
+    let said = |app: &App| match export_shown(app, &dir) {
         Msg::Exported(Ok(text)) => text,
         other => panic!("{other:?}"),
     };
