@@ -37,7 +37,7 @@ fn pair(scheme: &str) -> (Element, Rule) {
 fn setup(level: u32, scheme: &str) -> (Discretization, ContactParams) {
     let s = Scenario::paper();
     let (element, rule) = pair(scheme);
-    let disc = Discretization::of(&s, level, element).unwrap();
+    let disc = s.discretize(level, element).unwrap();
     let params = ContactParams::by_epsilon(rule, 0.0, s.obstacle.clone());
     (disc, params)
 }

@@ -96,7 +96,7 @@ impl Solution {
             disc.factor.solve_in_place(&mut u, 1);
             return disc.dofs.expand(&u, |_| 0.0);
         }
-        let forces = Discretization::nodal_forces(&self.points, &self.newton.forces, disc.contact_dofs.len());
+        let forces = self.points.nodal_forces(&self.newton.forces, disc.contact_dofs.len());
         let mut u = vec![0.0; disc.n_dofs()];
         for (&d, f) in disc.contact_dofs.iter().zip(&forces) {
             u[d] = -f;
@@ -104,7 +104,7 @@ impl Solution {
         if let Some(friction) = &self.friction
             && let Some(dofs) = disc.dofs.tangential_dofs(&disc.mesh)
         {
-            let tangential = Discretization::nodal_forces(&self.points, &friction.z, dofs.len());
+            let tangential = self.points.nodal_forces(&friction.z, dofs.len());
             for (&d, f) in dofs.iter().zip(&tangential) {
                 u[d] += f;
             }

@@ -5,6 +5,7 @@
 #[doc(hidden)]
 pub mod alm;
 pub mod circle;
+pub mod coupling;
 pub mod distance;
 pub mod friction;
 pub mod gap;
@@ -21,6 +22,7 @@ pub mod rounded_punch;
 pub mod rule;
 #[doc(hidden)]
 pub mod signorini;
+pub mod warnings;
 
 pub use gap::{Obstacle, Outline};
 pub use method::Method;

@@ -94,7 +94,7 @@ pub(super) fn solve_graded(
             scenario.material,
             scenario.integration,
         )?;
-        let points = d.contact_points(params.rule);
+        let points = ContactPoints::on(&d, params.rule);
         let initial = carried(&sol.points, &sol.p, &points);
         let mut s = solve_contact(&d, params, Some(&initial), opts, &mut *on_iteration)?;
         s.timing.include_mesh_work(&d);

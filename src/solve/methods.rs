@@ -11,7 +11,7 @@ use crate::contact::ContactParams;
 use crate::contact::newton::{Iteration, NewtonOptions};
 use crate::contact::penalty::{self, Penalty};
 use crate::contact::signorini::solve_exact;
-use crate::contact::{Method, alm, load, raw_pressure, smoothed_pressure};
+use crate::contact::{ContactPoints, Method, alm, load, raw_pressure, smoothed_pressure};
 use crate::discretization::{Discretization, ms_since};
 use crate::error::{Diagnosis, SolveError};
 use crate::solution::{Solution, Timing};
@@ -26,7 +26,7 @@ pub(super) fn solve_frictionless(
     on_iteration: &mut dyn FnMut(&Iteration) -> ControlFlow<()>,
 ) -> Result<Solution, SolveError> {
     let t = Instant::now();
-    let points = disc.contact_points(params.rule);
+    let points = ContactPoints::on(&disc, params.rule);
     crate::solve::checks::check_on(disc, params, points.len())?;
     if let Method::Nitsche { theta, gamma0 } = params.method {
         // `auto`'s γ₀* is computed once per rule on this mesh; its time is the preparation's.
@@ -40,7 +40,7 @@ pub(super) fn solve_frictionless(
         sol.timing.total += chosen_ms;
         return Ok(sol);
     }
-    let coupling = disc.coupling(params.rule, &points);
+    let coupling = crate::contact::coupling::of(&disc, params.rule, &points);
     let weight: Vec<f64> = points.points.iter().map(|q| q.weight).collect();
     // No body force or traction (docs/design.md §1): u₀ = 0 and d = −g.
     let free_violation: Vec<f64> = points.points.iter().map(|q| -params.obstacle.gap(q.x)).collect();
@@ -74,7 +74,7 @@ pub(super) fn solve_frictionless(
         }
     };
     let pbar = smoothed_pressure(&points, &p);
-    let nodal = Discretization::nodal_forces(&points, &newton.forces, disc.contact_dofs.len());
+    let nodal = points.nodal_forces(&newton.forces, disc.contact_dofs.len());
     let loaded: Vec<usize> = (0..nodal.len()).filter(|&k| nodal[k] != 0.0).collect();
     let order = disc.mesh.element.order();
     let vertex_uy: Vec<f64> = (0..nodal.len())

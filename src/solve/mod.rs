@@ -20,7 +20,7 @@ use std::ops::ControlFlow;
 use crate::contact::ContactParams;
 use crate::contact::friction::Friction;
 use crate::contact::newton::{Iteration, NewtonOptions};
-use crate::contact::{Method, Rule};
+use crate::contact::{ContactPoints, Method, Rule};
 use crate::discretization::{Discretization, Trace};
 use crate::error::{InputFault, SolveError};
 use crate::grading::Grading;
@@ -228,14 +228,14 @@ fn warnings(disc: &Discretization, params: &ContactParams, sol: &Solution) -> Ve
     let penalty = params.method == Method::Penalty;
     let mut warnings: Vec<Warning> = disc.stiffness_warning().into_iter().collect();
     if penalty {
-        warnings.extend(warning::of_soft_penalty(
+        warnings.extend(crate::contact::warnings::of_soft_penalty(
             &params.obstacle,
             &sol.points,
             params.epsilon,
             &sol.p,
         ));
     }
-    warnings.extend(warning::of_contact(
+    warnings.extend(crate::contact::warnings::of_contact(
         &params.obstacle,
         &sol.points,
         &sol.p,
@@ -255,13 +255,13 @@ fn warnings(disc: &Discretization, params: &ContactParams, sol: &Solution) -> Ve
 
 /// Build on `disc` what a solve by `method` with `rule` needs beyond the mesh's own factor, so
 /// that the solve costs only its iteration: the coupling G of the penalty, ALM and exact
-/// constraint ([`Discretization::coupling`]; milliseconds), or Nitsche's layer, couplings and
+/// constraint ([`crate::contact::coupling::of`]; milliseconds), or Nitsche's layer, couplings and
 /// operator ([`nitsche::prepare`]; seconds at level 7). What fails is the solve's to report.
 pub fn prepare(disc: &Discretization, rule: Rule, method: Method) {
     match method {
         Method::Nitsche { theta, gamma0 } => nitsche::prepare(disc, rule, theta, gamma0),
         _ => {
-            disc.coupling(rule, &disc.contact_points(rule));
+            crate::contact::coupling::of(&disc, rule, &ContactPoints::on(&disc, rule));
         }
     }
 }
@@ -384,7 +384,7 @@ pub fn solve_scenario(scenario: &Scenario) -> Result<(Discretization, Solution),
     } else {
         Trace::Normal
     };
-    let disc = Discretization::of_traced(scenario, scenario.level, scenario.element, trace)?;
+    let disc = scenario.discretize_traced(scenario.level, scenario.element, trace)?;
     // A scenario whose ε was set to 0 after parsing asks for the exact constraint.
     let method = match scenario.method {
         Method::Penalty if scenario.epsilon == 0.0 => Method::Exact,
@@ -469,7 +469,7 @@ mod tests {
         // Kikuchi's example modelled whole (friction needs both sides of Γ_C free).
         let path = concat!(env!("CARGO_MANIFEST_DIR"), "/scenarios/hertz-paper-full.toml");
         let scenario = Scenario::load(std::path::Path::new(path)).unwrap();
-        let disc = Discretization::of_traced(&scenario, 1, scenario.element, Trace::Full).unwrap();
+        let disc = scenario.discretize_traced(1, scenario.element, Trace::Full).unwrap();
         let params = ContactParams::by_epsilon(scenario.rule, 1e-6, scenario.obstacle.clone());
         let friction = Friction {
             law: Law::Coulomb { mu: 0.3 },
@@ -495,7 +495,7 @@ mod tests {
     fn a_sweep_equals_fresh_solves_and_goes_on_past_a_failure() {
         let mut scenario = Scenario::paper();
         scenario.level = 1;
-        let disc = Discretization::of(&scenario, 1, scenario.element).unwrap();
+        let disc = scenario.discretize(1, scenario.element).unwrap();
         let at = |epsilon: f64, depth: f64| {
             ContactParams::by_epsilon(scenario.rule, epsilon, scenario.obstacle.with_depth(depth))
         };

@@ -43,7 +43,7 @@ pub fn cases() -> [Case; 2] {
 fn setup(level: u32) -> Result<(Scenario, Discretization), SolveError> {
     let scenario = Scenario::paper();
     let m3 = Scheme::PAPER[2];
-    let disc = Discretization::of(&scenario, level, m3.element)?;
+    let disc = scenario.discretize(level, m3.element)?;
     Ok((scenario, disc))
 }
 

@@ -10,7 +10,7 @@ use std::sync::Arc;
 
 use riplab::contact::friction::{Friction, Law, Press, State};
 use riplab::contact::newton::NewtonOptions;
-use riplab::contact::{ContactParams, Method, Obstacle, Outline, Rule};
+use riplab::contact::{ContactParams, ContactPoints, Method, Obstacle, Outline, Rule};
 use riplab::discretization::{Discretization, Trace};
 use riplab::fem::Integration;
 use riplab::fem::basis::evaluate;
@@ -104,7 +104,7 @@ fn a_plane_slid_over_a_block_gives_uniform_p_and_t_equal_mu_p() {
         let mesh = Mesh::uniform(element, (-1.0, 1.0, 4), (0.0, HEIGHT, 3), false);
         let dofs = DofMap::model(&mesh);
         let disc = Discretization::with_trace(mesh, dofs, material, Integration::Full, Trace::Full).unwrap();
-        let points = disc.contact_points(rule);
+        let points = ContactPoints::on(&disc, rule);
         let unique = points.len() <= disc.contact_dofs().len();
         for &(method, epsilon, factor) in &methods {
             if method == Method::Exact && !unique {

@@ -11,7 +11,7 @@ use crate::contact::friction::law::{Bound, Imposition};
 use crate::contact::friction::path::{FrictionSolution, PathProblem};
 use crate::contact::friction::{Friction, Law, Press};
 use crate::contact::newton::{Iteration, NewtonOptions, NewtonResult};
-use crate::contact::{ContactParams, Method, load, raw_pressure, smoothed_pressure};
+use crate::contact::{ContactParams, ContactPoints, Method, load, raw_pressure, smoothed_pressure};
 use crate::discretization::{Discretization, ms_since};
 use crate::error::{Diagnosis, InputFault, SolveError};
 use crate::solution::{Solution, Timing};
@@ -57,7 +57,7 @@ pub(in crate::solve) fn solve_frictional(
     opts: &NewtonOptions,
     on_iteration: &mut dyn FnMut(&Iteration) -> ControlFlow<()>,
 ) -> Result<Solution, SolveError> {
-    let points = disc.contact_points(params.rule);
+    let points = ContactPoints::on(&disc, params.rule);
     let d: Vec<f64> = points.points.iter().map(|q| -params.obstacle.gap(q.x)).collect();
     let e = vec![0.0; d.len()];
     solve_with(
@@ -82,7 +82,7 @@ pub fn solve_with(
     on_iteration: &mut dyn FnMut(&Iteration) -> ControlFlow<()>,
 ) -> Result<Solution, SolveError> {
     let t = Instant::now();
-    let points = disc.contact_points(params.rule);
+    let points = ContactPoints::on(&disc, params.rule);
     crate::solve::checks::check_on(disc, params, points.len())?;
     check(disc, params, friction)?;
     let trace = FrictionTrace::of(disc)?;

@@ -15,7 +15,7 @@ use std::sync::{Arc, OnceLock};
 use std::time::Instant;
 
 use crate::contact::newton::NewtonOptions;
-use crate::contact::{ContactParams, Method, Rule, carried_forces};
+use crate::contact::{ContactParams, ContactPoints, Method, Rule, carried_forces};
 use crate::discretization::Discretization;
 use crate::error::SolveError;
 use crate::fem::Integration;
@@ -119,7 +119,7 @@ impl Engine {
         let carried = last.points != (key.rule, is_nitsche(key.method));
         let start = match carried {
             false => last.forces.clone(),
-            true => carried_forces(&last.x, &last.p, &disc.contact_points(key.rule)),
+            true => carried_forces(&last.x, &last.p, &ContactPoints::on(&disc, key.rule)),
         };
         let mut newton = |start: Option<&[f64]>| {
             let warm = start.map_or(solve::Warm::Rest, solve::Warm::Forces);
