@@ -13,7 +13,7 @@ use riplab::contact::friction::{Friction, Law};
 use riplab::contact::newton::NewtonOptions;
 use riplab::discretization::Trace;
 use riplab::scenario::Scenario;
-use riplab::solve::friction::FrictionTrace;
+use riplab::contact::friction::FrictionTrace;
 use riplab::solve::solve_friction;
 use riplab::solve::solve_scenario;
 

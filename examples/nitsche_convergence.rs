@@ -13,7 +13,7 @@ use riplab::contact::Rule;
 use riplab::contact::newton::NewtonOptions;
 use riplab::mesh::Element;
 use riplab::scenario::Scenario;
-use riplab::solve::nitsche::{self, NitscheParams};
+use riplab::contact::nitsche::{self, NitscheParams};
 use riplab::solve::solve_contact;
 use riplab::study::{Errors, Reference, errors};
 

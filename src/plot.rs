@@ -19,7 +19,7 @@ use plotters::prelude::*;
 use crate::contact::{ContactPoints, Method, Rule};
 use crate::mesh::Element;
 use crate::scheme::Scheme;
-use crate::solution::Solution;
+use crate::contact::solution::Solution;
 
 /// The size of the SVG chart in pixels.
 pub const SIZE: (u32, u32) = (960, 540);

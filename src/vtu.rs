@@ -31,7 +31,7 @@ use crate::contact::ContactPoints;
 use crate::discretization::Discretization;
 use crate::mesh::{Diagonal, Element, Mesh};
 use crate::plot::write_file;
-use crate::solution::Solution;
+use crate::contact::solution::Solution;
 use crate::stress::{Stress, StressField};
 
 /// Why a VTU export failed.

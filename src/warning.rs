@@ -68,7 +68,7 @@ pub enum Warning {
         kappa: f64,
     },
     /// The penalty is so soft that the body penetrates the obstacle by more than
-    /// [`SOFT_PENETRATION_LIMIT`] of the depth ([`of_soft_penalty`]): the load and the
+    /// [`SOFT_PENETRATION_LIMIT`] of the depth ([`crate::contact::warnings::of_soft_penalty`]): the load and the
     /// pressure are too low by about as much.
     SoftPenalty {
         /// The largest penetration max(u_n − g)⁺ = ε max p.
@@ -77,7 +77,7 @@ pub enum Warning {
         depth: f64,
         /// The penalty parameter ε.
         epsilon: f64,
-        /// An ε that brings the penetration to half the limit ([`of_soft_penalty`]).
+        /// An ε that brings the penetration to half the limit ([`crate::contact::warnings::of_soft_penalty`]).
         sufficient: f64,
     },
     /// `--refine-edges auto` made its [`crate::grading::MAX_PASSES`] passes, every one

@@ -9,7 +9,7 @@ use crate::discretization::Discretization;
 use crate::error::SolveError;
 use crate::grading::Grading;
 use crate::scenario::Scenario;
-use crate::solution::Solution;
+use crate::contact::solution::Solution;
 use crate::solve::{Request, solve_each};
 
 /// The grading of a solve: `--refine-edges` when given, else the scenario's

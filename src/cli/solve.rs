@@ -172,7 +172,7 @@ pub(super) fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
         }
         if let Some(path) = &args.vtu {
             let field = sol
-                .stress_field(&scenario, disc)
+                .stress_field(disc)
                 .map_err(|e| CliError::Failed(format!("the stress field: {e}")))?;
             let [body, contact] = vtu::write(path, disc, &sol, &field, args.force)
                 .map_err(|e| CliError::Failed(format!("--vtu {e}")))?;

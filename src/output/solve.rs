@@ -13,7 +13,7 @@ use crate::contact::method::MethodFields;
 use crate::discretization::Discretization;
 use crate::scenario::Scenario;
 use crate::scheme::Scheme;
-use crate::solution::{Solution, Timing};
+use crate::contact::solution::{Solution, Timing};
 use crate::study::Status;
 use crate::text::sci;
 use crate::warning::Warning;

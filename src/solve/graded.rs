@@ -19,7 +19,7 @@ use crate::grading::zone::contact_zones;
 use crate::grading::{AUTO_TOLERANCE, GradedGrid, Grading, MAX_PASSES, RefineEdges, contact_edges};
 use crate::mesh::Element;
 use crate::scenario::Scenario;
-use crate::solution::{Solution, Timing};
+use crate::contact::solution::{Solution, Timing};
 use crate::warning::Warning;
 
 /// One pass of a graded solve, as reported.

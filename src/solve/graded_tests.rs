@@ -12,7 +12,7 @@ use crate::contact::{ContactParams, ContactPoints, Method, Rule};
 use crate::discretization::Discretization;
 use crate::grading::*;
 use crate::mesh::Element;
-use crate::solution::Solution;
+use crate::contact::solution::Solution;
 use crate::solve::solve_contact;
 
 fn params(scenario: &Scenario, rule: Rule, method: Method, epsilon: f64) -> ContactParams {

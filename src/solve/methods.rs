@@ -1,20 +1,20 @@
 //! The frictionless methods on a discretisation (docs/design.md §2–§4, §10): the penalty, the
 //! exact constraint and the augmented Lagrangian on the trace compliance's coupling G, Nitsche's
-//! method on its own operator ([`super::nitsche`]); p, p̄ (17), the load and the contact
+//! method on its own operator ([`crate::contact::nitsche`]); p, p̄ (17), the load and the contact
 //! displacement of the answer. The warnings are the entry's ([`super::solve`]).
 
 use std::ops::ControlFlow;
 use std::time::Instant;
 
-use super::nitsche::{self, NitscheParams};
 use crate::contact::ContactParams;
+use crate::contact::nitsche::{self, NitscheParams};
 use crate::contact::newton::{Iteration, NewtonOptions};
 use crate::contact::penalty::{self, Penalty};
 use crate::contact::signorini::solve_exact;
 use crate::contact::{ContactPoints, Method, alm, load, raw_pressure, smoothed_pressure};
 use crate::discretization::{Discretization, ms_since};
 use crate::error::{Diagnosis, SolveError};
-use crate::solution::{Solution, Timing};
+use crate::contact::solution::{Solution, Timing};
 
 /// Solve the frictionless contact problem on `disc`, from the contact forces of an earlier
 /// solution with the same rule (`initial`, ignored if it does not fit); no warnings yet.
@@ -27,7 +27,7 @@ pub(super) fn solve_frictionless(
 ) -> Result<Solution, SolveError> {
     let t = Instant::now();
     let points = ContactPoints::on(&disc, params.rule);
-    crate::solve::checks::check_on(disc, params, points.len())?;
+    crate::contact::params::check_on(disc, params, points.len())?;
     if let Method::Nitsche { theta, gamma0 } = params.method {
         // `auto`'s γ₀* is computed once per rule on this mesh; its time is the preparation's.
         let nitsche = NitscheParams {

@@ -3,29 +3,27 @@
 //! which chooses the solver, accounts for a graded mesh's memory before it is built, and says
 //! what is wrong with the answer ([`crate::warning`]). The work that depends only on the mesh
 //! (K, its factorisation, the trace compliance) is the [`Discretization`]'s, done once; each
-//! solve reuses it and costs only dense work on Γ_C. The solvers are this module's children:
-//! the frictionless methods on the trace compliance or Nitsche's operator ([`nitsche`]),
-//! friction on Γ_C's full trace ([`friction`]), the passes of a graded mesh ([`graded`]).
+//! solve reuses it and costs only dense work on Γ_C. The entry owns the dispatch: the
+//! frictionless methods (`methods`: the trace compliance's, or Nitsche's operator,
+//! [`crate::contact::nitsche`]), friction on Γ_C's full trace ([`crate::contact::friction`]),
+//! the passes of a graded mesh ([`graded`]); the methods themselves live in
+//! [`crate::contact`].
 
 pub mod checks;
-#[doc(hidden)]
-pub mod friction;
 pub mod graded;
 mod methods;
-#[doc(hidden)]
-pub mod nitsche;
 
 use std::ops::ControlFlow;
 
 use crate::contact::ContactParams;
-use crate::contact::friction::Friction;
+use crate::contact::friction::{self, Friction};
 use crate::contact::newton::{Iteration, NewtonOptions};
-use crate::contact::{ContactPoints, Method, Rule};
+use crate::contact::{ContactPoints, Method, Rule, nitsche};
 use crate::discretization::{Discretization, Trace};
 use crate::error::{InputFault, SolveError};
 use crate::grading::Grading;
 use crate::scenario::Scenario;
-use crate::solution::{Solution, Timing};
+use crate::contact::solution::{Solution, Timing};
 use crate::warning::{self, Warning};
 
 pub use graded::{Grids, Pass};
@@ -213,7 +211,14 @@ fn solve_on(
     on_iteration: &mut dyn FnMut(&Iteration) -> ControlFlow<()>,
 ) -> Result<Solution, SolveError> {
     let mut sol = if friction.is_on() {
-        friction::solve_frictional(disc, params, friction, warm.frictional(), opts, on_iteration)?
+        Solution::from(friction::solve_frictional(
+            disc,
+            params,
+            friction,
+            warm.frictional(),
+            opts,
+            on_iteration,
+        )?)
     } else {
         methods::solve_frictionless(disc, params, warm.forces(), opts, on_iteration)?
     };

@@ -12,7 +12,7 @@ use crate::discretization::Discretization;
 use crate::fem::basis::evaluate;
 use crate::mesh::Mesh;
 use crate::scenario::Scenario;
-use crate::solution::Solution;
+use crate::contact::solution::Solution;
 
 /// Relative errors of one solution against the reference.
 #[derive(Clone, Copy, Debug, Serialize, PartialEq)]

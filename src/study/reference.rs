@@ -22,7 +22,7 @@ use crate::fem::memory::{Limits, Sizes};
 use crate::fem::quadrature::gauss_legendre;
 use crate::mesh::Element;
 use crate::scenario::Scenario;
-use crate::solution::Solution;
+use crate::contact::solution::Solution;
 use crate::solve::{Request, Warm, solve};
 
 /// The reference's estimated error: its relative difference from the next coarser reference

@@ -13,7 +13,7 @@ use crate::grading::{GradedGrid, Grading};
 use crate::mesh::Element;
 use crate::scenario::Scenario;
 use crate::scheme::Scheme;
-use crate::solution::Solution;
+use crate::contact::solution::Solution;
 use crate::warning::Warning;
 
 /// Whether a row of a study or a sweep has a result, and if not, why.

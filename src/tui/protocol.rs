@@ -20,7 +20,7 @@ use crate::mesh::MAX_LEVEL;
 use crate::refine_edges::Grading;
 use crate::scenario::Scenario;
 use crate::scheme::Scheme;
-use crate::solution::Solution;
+use crate::contact::solution::Solution;
 use crate::stress::{StressError, StressField};
 use crate::study::StudyRow;
 

@@ -12,7 +12,7 @@ use crate::discretization::Discretization;
 use crate::error::SolveError;
 use crate::scenario::Scenario;
 use crate::scheme::Scheme;
-use crate::solution::Solution;
+use crate::contact::solution::Solution;
 use crate::solve::{self, Request};
 
 /// The cases of this family.

@@ -10,7 +10,7 @@ use crate::contact::rounded_punch::RoundedPunch;
 use crate::discretization::Discretization;
 use crate::error::SolveError;
 use crate::scenario::Scenario;
-use crate::solution::Solution;
+use crate::contact::solution::Solution;
 use crate::solve::solve_scenario;
 
 /// scenarios/hertz-block.toml, embedded.

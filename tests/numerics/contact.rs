@@ -12,7 +12,7 @@ use riplab::discretization::Discretization;
 use riplab::fem::Integration;
 use riplab::material::{Material, Plane};
 use riplab::mesh::{Element, Mesh};
-use riplab::solution::Solution;
+use riplab::contact::solution::Solution;
 use riplab::solve::{solve_contact, solve_scenario};
 
 fn solve(disc: &Discretization, rule: Rule, epsilon: f64, obstacle: Obstacle) -> Solution {

@@ -12,7 +12,7 @@ use riplab::error::{SolveError, Workload};
 use riplab::fem::DofMap;
 use riplab::mesh::Element;
 use riplab::scenario::Scenario;
-use riplab::solution::Solution;
+use riplab::contact::solution::Solution;
 use riplab::solve::{solve_contact, solve_scenario};
 
 fn solve_with(disc: &Discretization, rule: Rule, obstacle: Obstacle) -> Solution {

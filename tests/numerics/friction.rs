@@ -10,7 +10,7 @@ use riplab::contact::{ContactParams, ContactPoints, Method, Rule};
 use riplab::discretization::{Discretization, Trace};
 use riplab::mesh::Element;
 use riplab::scenario::Scenario;
-use riplab::solution::Solution;
+use riplab::contact::solution::Solution;
 use riplab::solve::solve_contact;
 use riplab::solve::solve_friction;
 
@@ -325,7 +325,7 @@ fn a_solve_that_does_not_converge_says_where_it_stopped() {
 fn tresca_at_coulombs_pressure_is_coulomb() {
     use riplab::contact::friction::law::{Bound, Imposition, StepProblem};
     use riplab::contact::friction::newton::solve_step;
-    use riplab::solve::friction::FrictionTrace;
+    use riplab::contact::friction::FrictionTrace;
     let s = full();
     let disc = s.discretize_traced(2, Element::Q1, Trace::Full).unwrap();
     for (rule, imposition) in [
@@ -395,7 +395,7 @@ fn tresca_at_coulombs_pressure_is_coulomb() {
 fn coulomb_is_the_fixed_point_of_tresca_from_the_frictionless_pressure() {
     use riplab::contact::friction::law::{Bound, Imposition, StepProblem};
     use riplab::contact::friction::newton::solve_step;
-    use riplab::solve::friction::FrictionTrace;
+    use riplab::contact::friction::FrictionTrace;
     let s = full();
     let disc = s.discretize_traced(2, Element::Q1, Trace::Full).unwrap();
     let rule = Rule::Trapezoid;

@@ -14,7 +14,7 @@ use riplab::error::Diagnosis;
 use riplab::fem::Integration;
 use riplab::material::{Material, Plane};
 use riplab::mesh::{Element, Mesh};
-use riplab::solution::Solution;
+use riplab::contact::solution::Solution;
 use riplab::solve::solve_contact;
 
 fn solve(disc: &Discretization, rule: Rule, method: Method, epsilon: f64, obstacle: &Obstacle) -> Solution {

@@ -1,4 +1,4 @@
-//! Nitsche's method for unilateral contact (`riplab::solve::nitsche`) checked by things
+//! Nitsche's method for unilateral contact (`riplab::contact::nitsche`) checked by things
 //! independent of its condensation: a contact patch test whose pressure is computed by hand,
 //! the pressure recomputed from the displacement field, global equilibrium, the symmetric
 //! method's stability threshold, and convergence against the study's reference beside the
@@ -18,8 +18,8 @@ use riplab::fem::{DofMap, Integration};
 use riplab::material::{Material, Plane};
 use riplab::mesh::{Element, Mesh};
 use riplab::scenario::Scenario;
-use riplab::solution::Solution;
-use riplab::solve::nitsche::{self, NitscheParams};
+use riplab::contact::solution::Solution;
+use riplab::contact::nitsche::{self, NitscheParams};
 use riplab::solve::solve_contact;
 use riplab::study::{Errors, Reference, errors};
 

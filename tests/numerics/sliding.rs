@@ -17,7 +17,7 @@ use riplab::fem::basis::evaluate;
 use riplab::fem::dofs::DofMap;
 use riplab::material::{Material, Plane};
 use riplab::mesh::{Element, Mesh};
-use riplab::solve::friction::{Free, solve_with};
+use riplab::contact::friction::{Free, solve_with};
 
 const YOUNG: f64 = 1000.0;
 const POISSON: f64 = 0.3;
@@ -168,7 +168,7 @@ fn a_plane_slid_over_a_block_gives_uniform_p_and_t_equal_mu_p() {
                     "{what}: {:?} {:?}",
                     sol.newton.iterations, sol.outer_iterations
                 );
-                let fr = sol.friction.as_ref().unwrap();
+                let fr = &sol.friction;
                 let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * b.abs();
                 for q in 0..points.len() {
                     assert!(close(sol.p[q], p), "{what}: p at {q} = {} against {p}", sol.p[q]);

@@ -162,7 +162,7 @@ mod tests {
     use crate::contact::friction::law::Couplings;
     use crate::discretization::Discretization;
     use crate::scenario::Scenario;
-    use crate::solve::friction::FrictionTrace;
+    use crate::contact::friction::FrictionTrace;
     use std::sync::Arc;
 
     fn couplings() -> (Discretization, Arc<Couplings>, Vec<f64>) {

@@ -23,7 +23,7 @@ use crate::fem::memory::Limits;
 use crate::grading::estimate::fits_within;
 use crate::grading::{GradedGrid, Grading};
 use crate::mesh::Element;
-use crate::solution::Solution;
+use crate::contact::solution::Solution;
 use crate::solve::{self, Request};
 
 use super::super::protocol::{Response, SolveKey, SolveRequest, Solved};

@@ -442,7 +442,7 @@ impl Engine {
         disc: Arc<Discretization>,
         points: ForcePoints,
         t: Instant,
-        result: Result<crate::solution::Solution, SolveError>,
+        result: Result<crate::contact::solution::Solution, SolveError>,
     ) -> Response {
         match result {
             Ok(solution) => {

@@ -62,7 +62,7 @@ use crate::contact::newton::{Iteration, NewtonOptions};
 use crate::contact::{ContactParams, ContactPoints, Rule, load, smoothed_pressure};
 use crate::discretization::Discretization;
 use crate::error::{Diagnosis, SolveError};
-use crate::solution::{Solution, Timing};
+use crate::contact::solution::{Solution, Timing};
 
 mod couplings;
 mod layer;
