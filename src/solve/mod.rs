@@ -6,11 +6,10 @@
 //! solve reuses it and costs only dense work on Γ_C. The entry owns the dispatch: the
 //! frictionless methods (`methods`: the trace compliance's, or Nitsche's operator,
 //! [`crate::contact::nitsche`]), friction on Γ_C's full trace ([`crate::contact::friction`]),
-//! the passes of a graded mesh ([`graded`]); the methods themselves live in
+//! the passes of a graded mesh ([`crate::grading::passes`]); the methods themselves live in
 //! [`crate::contact`].
 
 pub mod checks;
-pub mod graded;
 mod methods;
 
 use std::ops::ControlFlow;
@@ -26,7 +25,7 @@ use crate::scenario::Scenario;
 use crate::contact::solution::{Solution, Timing};
 use crate::warning::{self, Warning};
 
-pub use graded::{Grids, Pass};
+pub use crate::grading::passes::{Grids, Pass};
 
 /// What one solve asks beyond the mesh: the method and its parameters, the friction, the
 /// grading, and where Newton starts.
@@ -152,7 +151,7 @@ impl Solved {
 }
 
 /// Solve `request` on `disc`, or graded pass after pass from it
-/// ([`graded`]); a graded mesh is refused before any pass when its memory estimate does not
+/// ([`crate::grading::passes`]); a graded mesh is refused before any pass when its memory estimate does not
 /// fit ([`crate::grading::estimate`]), friction on a graded mesh is refused. The answer carries
 /// what is wrong with it ([`Solution::warnings`]). `on_iteration` sees each Newton step and may
 /// cancel the solve ([`SolveError::Cancelled`]).
@@ -198,7 +197,16 @@ fn graded_passes(
     on_iteration: &mut dyn FnMut(&Iteration) -> ControlFlow<()>,
 ) -> Result<(Solution, Grids), SolveError> {
     crate::grading::estimate::fits(g.scenario, g.level, disc.mesh.element, g.grading, |_| 0)?;
-    graded::solve_graded(disc, g, request, opts, on_iteration)
+    let params = &request.params;
+    crate::grading::passes::solve_graded(
+        disc,
+        g.scenario,
+        g.level,
+        g.grading,
+        params.rule,
+        request.warm.forces(),
+        &mut |d, initial| solve_contact(d, params, initial, opts, &mut *on_iteration),
+    )
 }
 
 /// Solve on `disc` alone: with friction or without, and the answer's warnings.

@@ -536,7 +536,7 @@ const SOLVERS: [&str; 15] = [
     "contact::friction::solve",
     "contact::friction::solve_with",
     "contact::friction::solve_frictional",
-    "solve::graded",
+    "grading::passes",
     "contact::nitsche",
     "contact::penalty::solve",
     "contact::alm::solve",
