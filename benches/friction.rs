@@ -8,12 +8,12 @@ use std::ops::ControlFlow;
 use std::path::Path;
 
 use divan::Bencher;
-use riplab::contact::{ContactParams, ContactPoints};
+use riplab::contact::friction::FrictionTrace;
 use riplab::contact::friction::{Friction, Law};
 use riplab::contact::newton::NewtonOptions;
+use riplab::contact::{ContactParams, ContactPoints};
 use riplab::discretization::Trace;
 use riplab::scenario::Scenario;
-use riplab::contact::friction::FrictionTrace;
 use riplab::solve::solve_friction;
 use riplab::solve::solve_scenario;
 

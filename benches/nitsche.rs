@@ -10,10 +10,10 @@
 use divan::Bencher;
 use riplab::contact::ContactParams;
 use riplab::contact::Rule;
+use riplab::contact::nitsche::{NitscheParams, solve_once};
 use riplab::discretization::Discretization;
 use riplab::mesh::Element;
 use riplab::scenario::Scenario;
-use riplab::contact::nitsche::{NitscheParams, solve_once};
 
 /// As the binary: huge pages for the large blocks (`riplab::huge_pages`).
 #[global_allocator]

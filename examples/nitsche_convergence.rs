@@ -11,9 +11,9 @@ use std::ops::ControlFlow;
 use riplab::contact::ContactParams;
 use riplab::contact::Rule;
 use riplab::contact::newton::NewtonOptions;
+use riplab::contact::nitsche::{self, NitscheParams};
 use riplab::mesh::Element;
 use riplab::scenario::Scenario;
-use riplab::contact::nitsche::{self, NitscheParams};
 use riplab::solve::solve_contact;
 use riplab::study::{Errors, Reference, errors};
 

@@ -229,7 +229,6 @@ impl Discretization {
     pub fn epsilon_range(&self) -> (f64, f64) {
         epsilon_range(self.material.young, self.mesh.h())
     }
-
 }
 
 /// The solver's error for a failure of the finite element layer on `n` unknowns.

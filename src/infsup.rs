@@ -85,7 +85,7 @@ fn sizes(disc: &Discretization) -> Sizes {
         trace: disc.contact_dofs.len(),
         points: Rule::ALL
             .iter()
-            .map(|&rule| ContactPoints::on(&disc, rule).len())
+            .map(|&rule| ContactPoints::on(disc, rule).len())
             .max()
             .unwrap_or(0),
     }
@@ -223,7 +223,7 @@ pub fn estimate(
     compliance: &TraceCompliance,
     rule: Rule,
 ) -> Result<InfSup, SolveError> {
-    let cp = ContactPoints::on(&disc, rule);
+    let cp = ContactPoints::on(disc, rule);
     let h = disc.mesh.h();
     let s = schur(&cp, &compliance.c);
     let n_trace = disc.contact_dofs.len();

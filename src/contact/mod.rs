@@ -28,9 +28,9 @@ pub mod penalty;
 pub mod pressure;
 pub mod rounded_punch;
 pub mod rule;
-pub mod solution;
 #[doc(hidden)]
 pub mod signorini;
+pub mod solution;
 pub mod warnings;
 
 pub use gap::{Obstacle, Outline};

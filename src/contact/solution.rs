@@ -117,7 +117,9 @@ impl Solution {
             disc.factor.solve_in_place(&mut u, 1);
             return disc.dofs.expand(&u, |_| 0.0);
         }
-        let forces = self.points.nodal_forces(&self.newton.forces, disc.contact_dofs.len());
+        let forces = self
+            .points
+            .nodal_forces(&self.newton.forces, disc.contact_dofs.len());
         let mut u = vec![0.0; disc.n_dofs()];
         for (&d, f) in disc.contact_dofs.iter().zip(&forces) {
             u[d] = -f;

@@ -71,7 +71,11 @@ mod tests {
     use crate::solve::solve_contact;
 
     /// The paper's problem at level 2 with a penalty at ε.
-    fn solved(disc: &Discretization, scenario: &Scenario, epsilon: f64) -> crate::contact::solution::Solution {
+    fn solved(
+        disc: &Discretization,
+        scenario: &Scenario,
+        epsilon: f64,
+    ) -> crate::contact::solution::Solution {
         let params = ContactParams::by_epsilon(scenario.rule, epsilon, scenario.obstacle.clone());
         solve_contact(disc, &params, None, &NewtonOptions::default(), &mut |_| {
             ControlFlow::Continue(())

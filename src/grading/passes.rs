@@ -18,6 +18,10 @@ use crate::mesh::Element;
 use crate::scenario::Scenario;
 use crate::warning::Warning;
 
+/// The entry's frictionless solve on one mesh from a warm start (the forces at the rule's
+/// points), as the passes are given it.
+pub(crate) type SolveOn<'a> = dyn FnMut(&Discretization, Option<&[f64]>) -> Result<Solution, SolveError> + 'a;
+
 /// One pass of a graded solve, as reported.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Pass {
@@ -56,7 +60,7 @@ pub(crate) fn solve_graded(
     refine: Grading,
     rule: Rule,
     warm: Option<&[f64]>,
-    solve_on: &mut dyn FnMut(&Discretization, Option<&[f64]>) -> Result<Solution, SolveError>,
+    solve_on: &mut SolveOn<'_>,
 ) -> Result<(Solution, Grids), SolveError> {
     let element = uniform.mesh.element;
     let base = GradedGrid::uniform(scenario, level);

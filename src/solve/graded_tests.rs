@@ -8,11 +8,11 @@ use std::ops::ControlFlow;
 use super::*;
 use crate::contact::method::Gamma0;
 use crate::contact::newton::NewtonOptions;
+use crate::contact::solution::Solution;
 use crate::contact::{ContactParams, ContactPoints, Method, Rule};
 use crate::discretization::Discretization;
 use crate::grading::*;
 use crate::mesh::Element;
-use crate::contact::solution::Solution;
 use crate::solve::solve_contact;
 
 fn params(scenario: &Scenario, rule: Rule, method: Method, epsilon: f64) -> ContactParams {
@@ -165,8 +165,7 @@ fn the_inf_sup_estimate_runs_on_graded_meshes() {
         let mut lines = s.clone();
         (lines.x_lines, lines.y_lines, lines.level) = (g.grid.xs.clone(), g.grid.ys.clone(), 0);
         let explicit =
-            crate::infsup::inf_sup(&lines.discretize(0, Element::Q1).unwrap(), Rule::Gauss1)
-                .unwrap();
+            crate::infsup::inf_sup(&lines.discretize(0, Element::Q1).unwrap(), Rule::Gauss1).unwrap();
         let on_uniform = crate::infsup::inf_sup(&uniform, Rule::Gauss1).unwrap();
         assert!(on_graded.beta.is_finite() && on_graded.beta > 0.0 && on_graded.beta_bar > 0.0);
         assert!((on_graded.beta - explicit.beta).abs() <= 1e-9 * explicit.beta);
@@ -219,7 +218,7 @@ fn auto_grades_until_pbar_settles() {
     assert_eq!(g.grid.passes as usize, kept, "{changes:?}");
     assert_eq!(
         g.sol.points.vertex_x.len(),
-        ContactPoints::on(&g.disc(&uniform), p.rule).vertex_x.len()
+        ContactPoints::on(g.disc(&uniform), p.rule).vertex_x.len()
     );
     assert!(
         g.passes

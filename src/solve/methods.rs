@@ -7,14 +7,14 @@ use std::ops::ControlFlow;
 use std::time::Instant;
 
 use crate::contact::ContactParams;
-use crate::contact::nitsche::{self, NitscheParams};
 use crate::contact::newton::{Iteration, NewtonOptions};
+use crate::contact::nitsche::{self, NitscheParams};
 use crate::contact::penalty::{self, Penalty};
 use crate::contact::signorini::solve_exact;
+use crate::contact::solution::{Solution, Timing};
 use crate::contact::{ContactPoints, Method, alm, load, raw_pressure, smoothed_pressure};
 use crate::discretization::{Discretization, ms_since};
 use crate::error::{Diagnosis, SolveError};
-use crate::contact::solution::{Solution, Timing};
 
 /// Solve the frictionless contact problem on `disc`, from the contact forces of an earlier
 /// solution with the same rule (`initial`, ignored if it does not fit); no warnings yet.
@@ -26,7 +26,7 @@ pub(super) fn solve_frictionless(
     on_iteration: &mut dyn FnMut(&Iteration) -> ControlFlow<()>,
 ) -> Result<Solution, SolveError> {
     let t = Instant::now();
-    let points = ContactPoints::on(&disc, params.rule);
+    let points = ContactPoints::on(disc, params.rule);
     crate::contact::params::check_on(disc, params, points.len())?;
     if let Method::Nitsche { theta, gamma0 } = params.method {
         // `auto`'s γ₀* is computed once per rule on this mesh; its time is the preparation's.
@@ -40,7 +40,7 @@ pub(super) fn solve_frictionless(
         sol.timing.total += chosen_ms;
         return Ok(sol);
     }
-    let coupling = crate::contact::coupling::of(&disc, params.rule, &points);
+    let coupling = crate::contact::coupling::of(disc, params.rule, &points);
     let weight: Vec<f64> = points.points.iter().map(|q| q.weight).collect();
     // No body force or traction (docs/design.md §1): u₀ = 0 and d = −g.
     let free_violation: Vec<f64> = points.points.iter().map(|q| -params.obstacle.gap(q.x)).collect();

@@ -17,12 +17,12 @@ use std::ops::ControlFlow;
 use crate::contact::ContactParams;
 use crate::contact::friction::{self, Friction};
 use crate::contact::newton::{Iteration, NewtonOptions};
+use crate::contact::solution::{Solution, Timing};
 use crate::contact::{ContactPoints, Method, Rule, nitsche};
 use crate::discretization::{Discretization, Trace};
 use crate::error::{InputFault, SolveError};
 use crate::grading::Grading;
 use crate::scenario::Scenario;
-use crate::contact::solution::{Solution, Timing};
 use crate::warning::{self, Warning};
 
 pub use crate::grading::passes::{Grids, Pass};
@@ -274,7 +274,7 @@ pub fn prepare(disc: &Discretization, rule: Rule, method: Method) {
     match method {
         Method::Nitsche { theta, gamma0 } => nitsche::prepare(disc, rule, theta, gamma0),
         _ => {
-            crate::contact::coupling::of(&disc, rule, &ContactPoints::on(&disc, rule));
+            crate::contact::coupling::of(disc, rule, &ContactPoints::on(disc, rule));
         }
     }
 }
@@ -482,7 +482,9 @@ mod tests {
         // Kikuchi's example modelled whole (friction needs both sides of Γ_C free).
         let path = concat!(env!("CARGO_MANIFEST_DIR"), "/scenarios/hertz-paper-full.toml");
         let scenario = Scenario::load(std::path::Path::new(path)).unwrap();
-        let disc = scenario.discretize_traced(1, scenario.element, Trace::Full).unwrap();
+        let disc = scenario
+            .discretize_traced(1, scenario.element, Trace::Full)
+            .unwrap();
         let params = ContactParams::by_epsilon(scenario.rule, 1e-6, scenario.obstacle.clone());
         let friction = Friction {
             law: Law::Coulomb { mu: 0.3 },

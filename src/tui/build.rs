@@ -109,9 +109,7 @@ impl Build {
                     // handed back unprepared (a solve then meets the refusal).
                     let factorises = solve::preparing_factorises(&disc, method);
                     let beside = reserved.saturating_add(if fresh { plan.peak } else { 0 });
-                    if factorises
-                        && let Err(e) = scenario.fits_beside(level, element, beside)
-                    {
+                    if factorises && let Err(e) = scenario.fits_beside(level, element, beside) {
                         return if fresh {
                             Ok(Finished {
                                 disc,

@@ -7,12 +7,12 @@ use std::ops::ControlFlow;
 use super::{Case, Kind, MAX_VERIFY_LEVEL, Measured, converged};
 use crate::contact::method::DEFAULT_ALM_TOL;
 use crate::contact::newton::NewtonOptions;
+use crate::contact::solution::Solution;
 use crate::contact::{ContactParams, Method};
 use crate::discretization::Discretization;
 use crate::error::SolveError;
 use crate::scenario::Scenario;
 use crate::scheme::Scheme;
-use crate::contact::solution::Solution;
 use crate::solve::{self, Request};
 
 /// The cases of this family.

@@ -5,10 +5,10 @@
 use std::path::{Path, PathBuf};
 
 use crate::common::riplab;
+use riplab::contact::solution::Solution;
 use riplab::discretization::Discretization;
 use riplab::mesh::Element;
 use riplab::scenario::Scenario;
-use riplab::contact::solution::Solution;
 use riplab::solve::solve_scenario;
 use riplab::vtu::{VtuError, check_target, check_targets, contact_path, write};
 use vtkio::model::{Attribute, CellType, DataSet, Piece, UnstructuredGridPiece, Vtk};

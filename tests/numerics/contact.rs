@@ -7,12 +7,12 @@ use crate::common::{Lcg, bottom_reaction, paper_with, rel};
 use riplab::contact::ContactParams;
 use riplab::contact::newton::NewtonOptions;
 use riplab::contact::pressure::{rule_product, smoothed_pressure, trapezoid_product};
+use riplab::contact::solution::Solution;
 use riplab::contact::{ContactPoints, Obstacle, Rule};
 use riplab::discretization::Discretization;
 use riplab::fem::Integration;
 use riplab::material::{Material, Plane};
 use riplab::mesh::{Element, Mesh};
-use riplab::contact::solution::Solution;
 use riplab::solve::{solve_contact, solve_scenario};
 
 fn solve(disc: &Discretization, rule: Rule, epsilon: f64, obstacle: Obstacle) -> Solution {

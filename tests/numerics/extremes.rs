@@ -6,13 +6,13 @@ use std::ops::ControlFlow;
 use crate::common::{paper_with, riplab_under_half_of};
 use riplab::contact::ContactParams;
 use riplab::contact::newton::NewtonOptions;
+use riplab::contact::solution::Solution;
 use riplab::contact::{Obstacle, Rule};
 use riplab::discretization::Discretization;
 use riplab::error::{SolveError, Workload};
 use riplab::fem::DofMap;
 use riplab::mesh::Element;
 use riplab::scenario::Scenario;
-use riplab::contact::solution::Solution;
 use riplab::solve::{solve_contact, solve_scenario};
 
 fn solve_with(disc: &Discretization, rule: Rule, obstacle: Obstacle) -> Solution {

@@ -6,11 +6,11 @@ use std::path::Path;
 
 use riplab::contact::friction::{Friction, Law, Press, State};
 use riplab::contact::newton::NewtonOptions;
+use riplab::contact::solution::Solution;
 use riplab::contact::{ContactParams, ContactPoints, Method, Rule};
 use riplab::discretization::{Discretization, Trace};
 use riplab::mesh::Element;
 use riplab::scenario::Scenario;
-use riplab::contact::solution::Solution;
 use riplab::solve::solve_contact;
 use riplab::solve::solve_friction;
 
@@ -323,9 +323,9 @@ fn a_solve_that_does_not_converge_says_where_it_stopped() {
 /// to 1e-10, for the exact multipliers and the penalty.
 #[test]
 fn tresca_at_coulombs_pressure_is_coulomb() {
+    use riplab::contact::friction::FrictionTrace;
     use riplab::contact::friction::law::{Bound, Imposition, StepProblem};
     use riplab::contact::friction::newton::solve_step;
-    use riplab::contact::friction::FrictionTrace;
     let s = full();
     let disc = s.discretize_traced(2, Element::Q1, Trace::Full).unwrap();
     for (rule, imposition) in [
@@ -393,9 +393,9 @@ fn tresca_at_coulombs_pressure_is_coulomb() {
 /// Coulomb's, and the iterates contract onto Coulomb's solution, found by the other solver.
 #[test]
 fn coulomb_is_the_fixed_point_of_tresca_from_the_frictionless_pressure() {
+    use riplab::contact::friction::FrictionTrace;
     use riplab::contact::friction::law::{Bound, Imposition, StepProblem};
     use riplab::contact::friction::newton::solve_step;
-    use riplab::contact::friction::FrictionTrace;
     let s = full();
     let disc = s.discretize_traced(2, Element::Q1, Trace::Full).unwrap();
     let rule = Rule::Trapezoid;

@@ -60,7 +60,7 @@ fn brute_force(disc: &Discretization, rule: Rule) -> (f64, Option<f64>) {
             dense[(c, a.row_idx[k])] = a.values[k];
         }
     }
-    let cp = ContactPoints::on(&disc, rule);
+    let cp = ContactPoints::on(disc, rule);
     // B[k, j] = I(φ_k, (ψ_j)_n) = w_k (ψ_j)_n(x_k).
     let mut b = DMatrix::<f64>::zeros(cp.len(), n);
     for (k, q) in cp.points.iter().enumerate() {

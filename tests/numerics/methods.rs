@@ -7,6 +7,7 @@ use std::ops::ControlFlow;
 use crate::common::paper_with;
 use riplab::contact::method::Gamma0;
 use riplab::contact::newton::NewtonOptions;
+use riplab::contact::solution::Solution;
 use riplab::contact::{ContactParams, alm};
 use riplab::contact::{ContactPoints, Method, Obstacle, Rule};
 use riplab::discretization::Discretization;
@@ -14,7 +15,6 @@ use riplab::error::Diagnosis;
 use riplab::fem::Integration;
 use riplab::material::{Material, Plane};
 use riplab::mesh::{Element, Mesh};
-use riplab::contact::solution::Solution;
 use riplab::solve::solve_contact;
 
 fn solve(disc: &Discretization, rule: Rule, method: Method, epsilon: f64, obstacle: &Obstacle) -> Solution {

@@ -10,6 +10,8 @@ use std::sync::OnceLock;
 use crate::common::{bottom_reaction, rel};
 use riplab::contact::ContactParams;
 use riplab::contact::newton::NewtonOptions;
+use riplab::contact::nitsche::{self, NitscheParams};
+use riplab::contact::solution::Solution;
 use riplab::contact::{Obstacle, Rule};
 use riplab::discretization::Discretization;
 use riplab::error::{Diagnosis, InputFault, SolveError};
@@ -18,8 +20,6 @@ use riplab::fem::{DofMap, Integration};
 use riplab::material::{Material, Plane};
 use riplab::mesh::{Element, Mesh};
 use riplab::scenario::Scenario;
-use riplab::contact::solution::Solution;
-use riplab::contact::nitsche::{self, NitscheParams};
 use riplab::solve::solve_contact;
 use riplab::study::{Errors, Reference, errors};
 

@@ -8,6 +8,7 @@
 use std::ops::ControlFlow;
 use std::sync::Arc;
 
+use riplab::contact::friction::{Free, solve_with};
 use riplab::contact::friction::{Friction, Law, Press, State};
 use riplab::contact::newton::NewtonOptions;
 use riplab::contact::{ContactParams, ContactPoints, Method, Obstacle, Outline, Rule};
@@ -17,7 +18,6 @@ use riplab::fem::basis::evaluate;
 use riplab::fem::dofs::DofMap;
 use riplab::material::{Material, Plane};
 use riplab::mesh::{Element, Mesh};
-use riplab::contact::friction::{Free, solve_with};
 
 const YOUNG: f64 = 1000.0;
 const POISSON: f64 = 0.3;

@@ -3,6 +3,7 @@
 //! contact pressure p̄ on Γ_C, and the load carried across every horizontal line.
 
 use riplab::contact::hertz::Hertz;
+use riplab::contact::solution::Solution;
 use riplab::discretization::Discretization;
 use riplab::fem::Integration;
 use riplab::fem::quadrature::gauss_legendre;
@@ -10,7 +11,6 @@ use riplab::material::{Material, Plane};
 use riplab::mesh::{Element, Mesh};
 use riplab::scenario::Scenario;
 use riplab::scheme::Scheme;
-use riplab::contact::solution::Solution;
 use riplab::solve::solve_scenario;
 use riplab::stress::{Quantity, Stress, StressField};
 

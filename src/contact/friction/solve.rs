@@ -83,7 +83,7 @@ pub(crate) fn solve_frictional(
     opts: &NewtonOptions,
     on_iteration: &mut dyn FnMut(&Iteration) -> ControlFlow<()>,
 ) -> Result<Frictional, SolveError> {
-    let points = ContactPoints::on(&disc, params.rule);
+    let points = ContactPoints::on(disc, params.rule);
     let d: Vec<f64> = points.points.iter().map(|q| -params.obstacle.gap(q.x)).collect();
     let e = vec![0.0; d.len()];
     solve_with(
@@ -108,7 +108,7 @@ pub fn solve_with(
     on_iteration: &mut dyn FnMut(&Iteration) -> ControlFlow<()>,
 ) -> Result<Frictional, SolveError> {
     let t = Instant::now();
-    let points = ContactPoints::on(&disc, params.rule);
+    let points = ContactPoints::on(disc, params.rule);
     crate::contact::params::check_on(disc, params, points.len())?;
     check(disc, params, friction)?;
     let trace = FrictionTrace::of(disc)?;

@@ -159,10 +159,10 @@ pub fn solve(
 mod tests {
     use super::*;
     use crate::contact::ContactPoints;
+    use crate::contact::friction::FrictionTrace;
     use crate::contact::friction::law::Couplings;
     use crate::discretization::Discretization;
     use crate::scenario::Scenario;
-    use crate::contact::friction::FrictionTrace;
     use std::sync::Arc;
 
     fn couplings() -> (Discretization, Arc<Couplings>, Vec<f64>) {

@@ -101,7 +101,7 @@ impl FrictionTrace {
             .entry(rule)
             .or_insert_with(|| {
                 Arc::new(Couplings {
-                    g_nn: crate::contact::coupling::of(&disc, rule, points),
+                    g_nn: crate::contact::coupling::of(disc, rule, points),
                     g_nt: t_c_t(points, self.block(1, 0)),
                     g_tt: t_c_t(points, self.block(0, 0)),
                 })

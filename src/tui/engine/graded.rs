@@ -15,6 +15,7 @@ use std::sync::{Arc, OnceLock};
 use std::time::Instant;
 
 use crate::contact::newton::NewtonOptions;
+use crate::contact::solution::Solution;
 use crate::contact::{ContactParams, ContactPoints, Method, Rule, carried_forces};
 use crate::discretization::Discretization;
 use crate::error::SolveError;
@@ -23,7 +24,6 @@ use crate::fem::memory::Limits;
 use crate::grading::estimate::fits_within;
 use crate::grading::{GradedGrid, Grading};
 use crate::mesh::Element;
-use crate::contact::solution::Solution;
 use crate::solve::{self, Request};
 
 use super::super::protocol::{Response, SolveKey, SolveRequest, Solved};
