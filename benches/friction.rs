@@ -8,12 +8,12 @@ use std::ops::ControlFlow;
 use std::path::Path;
 
 use divan::Bencher;
-use riplab::contact::ContactParams;
+use riplab::contact::friction::FrictionTrace;
 use riplab::contact::friction::{Friction, Law};
 use riplab::contact::newton::NewtonOptions;
-use riplab::discretization::{Discretization, Trace};
+use riplab::contact::{ContactParams, ContactPoints};
+use riplab::discretization::Trace;
 use riplab::scenario::Scenario;
-use riplab::solve::friction::FrictionTrace;
 use riplab::solve::solve_friction;
 use riplab::solve::solve_scenario;
 
@@ -65,14 +65,14 @@ fn fresh_coulomb(bencher: Bencher) {
 #[divan::bench(sample_count = 5)]
 fn coulomb_path(bencher: Bencher) {
     let s = scenario(true);
-    let disc = Discretization::of_traced(&s, LEVEL, s.element, Trace::Full).unwrap();
+    let disc = s.discretize_traced(LEVEL, s.element, Trace::Full).unwrap();
     let params = ContactParams {
         rule: s.rule,
         method: s.method,
         epsilon: s.epsilon,
         obstacle: s.obstacle.clone(),
     };
-    let points = disc.contact_points(s.rule);
+    let points = ContactPoints::on(&disc, s.rule);
     FrictionTrace::of(&disc)
         .unwrap()
         .couplings(&disc, s.rule, &points);

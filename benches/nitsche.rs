@@ -1,4 +1,4 @@
-//! Nitsche's method on the paper's problem (`riplab::solve::nitsche`), per level, for M3's
+//! Nitsche's method on the paper's problem (`riplab::contact::nitsche`), per level, for M3's
 //! pair (q1 + trapezoid) and M4's (q2 + simpson): `cargo bench --bench nitsche`.
 //!
 //! fresh: the first Nitsche solve on a new discretisation (the layer's factorisation, the
@@ -10,10 +10,10 @@
 use divan::Bencher;
 use riplab::contact::ContactParams;
 use riplab::contact::Rule;
+use riplab::contact::nitsche::{NitscheParams, solve_once};
 use riplab::discretization::Discretization;
 use riplab::mesh::Element;
 use riplab::scenario::Scenario;
-use riplab::solve::nitsche::{NitscheParams, solve_once};
 
 /// As the binary: huge pages for the large blocks (`riplab::huge_pages`).
 #[global_allocator]
@@ -37,7 +37,7 @@ fn pair(scheme: &str) -> (Element, Rule) {
 fn setup(level: u32, scheme: &str) -> (Discretization, ContactParams) {
     let s = Scenario::paper();
     let (element, rule) = pair(scheme);
-    let disc = Discretization::of(&s, level, element).unwrap();
+    let disc = s.discretize(level, element).unwrap();
     let params = ContactParams::by_epsilon(rule, 0.0, s.obstacle.clone());
     (disc, params)
 }

@@ -24,7 +24,6 @@ use faer::sparse::linalg::cholesky::{
 use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
 use riplab::contact::ContactParams;
 use riplab::contact::newton::NewtonOptions;
-use riplab::discretization::Discretization;
 use riplab::fem::condense::{TraceFactor, TraceOrdering, factor_flops};
 use riplab::fem::factor::Analysis;
 use riplab::fem::{DofMap, Form, SymCsc, assemble};
@@ -179,7 +178,7 @@ fn fresh_m1(bencher: Bencher, level: u32) {
     let s = Scenario::paper();
     let params = ContactParams::by_epsilon(s.rule, s.epsilon, s.obstacle.clone());
     bencher.bench(|| {
-        let disc = Discretization::of(&s, level, Element::Q1).unwrap();
+        let disc = s.discretize(level, Element::Q1).unwrap();
         solve_contact(&disc, &params, None, &NewtonOptions::default(), &mut |_| {
             ControlFlow::Continue(())
         })

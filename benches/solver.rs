@@ -55,7 +55,7 @@ fn assembly(bencher: Bencher, level: u32) {
 /// The paper's mesh at `level` with its stiffness assembled.
 fn stiffness(level: u32) -> (Discretization, SymCsc) {
     let s = Scenario::paper();
-    let disc = Discretization::of(&s, level, Element::Q1).unwrap();
+    let disc = s.discretize(level, Element::Q1).unwrap();
     let k = assemble(
         disc.mesh(),
         disc.dofs(),
@@ -81,7 +81,7 @@ fn factorisation(bencher: Bencher, level: u32) {
 #[divan::bench(args = LEVELS, sample_count = 10)]
 fn newton(bencher: Bencher, level: u32) {
     let s = Scenario::paper();
-    let disc = Discretization::of(&s, level, Element::Q1).unwrap();
+    let disc = s.discretize(level, Element::Q1).unwrap();
     let p = params(&s, 1e-6);
     bencher.bench(|| {
         solve_contact(&disc, &p, None, &NewtonOptions::default(), &mut |_| {
@@ -94,7 +94,7 @@ fn newton(bencher: Bencher, level: u32) {
 #[divan::bench(args = LEVELS, sample_count = 10)]
 fn resolve(bencher: Bencher, level: u32) {
     let s = Scenario::paper();
-    let disc = Discretization::of(&s, level, Element::Q1).unwrap();
+    let disc = s.discretize(level, Element::Q1).unwrap();
     let go = |eps: f64, warm: Option<&[f64]>| {
         solve_contact(
             &disc,
@@ -112,6 +112,6 @@ fn resolve(bencher: Bencher, level: u32) {
 #[divan::bench(args = LEVELS, sample_count = 10)]
 fn inf_sup(bencher: Bencher, level: u32) {
     let s = Scenario::paper();
-    let disc = Discretization::of(&s, level, Element::Q1).unwrap();
+    let disc = s.discretize(level, Element::Q1).unwrap();
     bencher.bench(|| estimate(&disc, &TraceCompliance::new(&disc).unwrap(), Rule::Gauss1).unwrap());
 }

@@ -11,10 +11,9 @@ use std::ops::ControlFlow;
 use riplab::contact::ContactParams;
 use riplab::contact::Rule;
 use riplab::contact::newton::NewtonOptions;
-use riplab::discretization::Discretization;
+use riplab::contact::nitsche::{self, NitscheParams};
 use riplab::mesh::Element;
 use riplab::scenario::Scenario;
-use riplab::solve::nitsche::{self, NitscheParams};
 use riplab::solve::solve_contact;
 use riplab::study::{Errors, Reference, errors};
 
@@ -58,7 +57,7 @@ fn main() {
         let mut rows: Vec<Vec<(u32, Errors, usize, bool)>> = vec![Vec::new(); 4];
         let mut star = 0.0;
         for level in 1..=max {
-            let disc = Discretization::of(&scenario, level, element).unwrap();
+            let disc = scenario.discretize(level, element).unwrap();
             star = nitsche::stability_threshold(&disc, rule).unwrap();
             let exact = solve_contact(&disc, &params, None, &NewtonOptions::default(), &mut |_| {
                 ControlFlow::Continue(())
@@ -111,7 +110,7 @@ fn main() {
     println!("### γ₀ sweep at level 3\n");
     println!("| pair | γ₀* | γ₀ | θ = 1: u, p | θ = 0: u, p | θ = −1: u, p |\n|---|---|---|---|---|---|");
     for (element, rule) in PAIRS {
-        let disc = Discretization::of(&scenario, 3, element).unwrap();
+        let disc = scenario.discretize(3, element).unwrap();
         let params = ContactParams::by_epsilon(rule, 0.0, scenario.obstacle.clone());
         let star = nitsche::stability_threshold(&disc, rule).unwrap();
         let mut gammas = vec![

@@ -17,7 +17,7 @@ use riplab::solve::solve_graded;
 use riplab::study::{
     Reference, ReferenceFields, ReferenceMesh, Target, errors, refine_reference, uniform_reference,
 };
-use riplab::{Discretization, Element, Scenario, SolveError};
+use riplab::{Element, Scenario, SolveError};
 
 /// `lines` bisected until each interval [x0, x1] is at most `side(x0, x1)`.
 fn bisected(mut lines: Vec<f64>, side: impl Fn(f64, f64) -> f64) -> Vec<f64> {
@@ -88,7 +88,7 @@ fn main() -> Result<(), SolveError> {
         "mesh", "unknowns", "p̄", "inside", "edge band", "beyond"
     );
     for (scenario, level, grading) in cases {
-        let uniform = Discretization::of(scenario, level, Element::Q1)?;
+        let uniform = scenario.discretize(level, Element::Q1)?;
         let g = solve_graded(
             scenario,
             (level, &uniform),

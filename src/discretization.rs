@@ -3,20 +3,16 @@
 //! solve on the mesh ([`crate::solve()`]) reuses it.
 
 use std::any::Any;
-use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
 use faer::Mat;
 
-use crate::contact::{ContactPoints, Rule};
 use crate::error::{InputFault, SolveError, Workload};
 use crate::fem::factor::{Analysis, Factor};
-use crate::fem::memory::{Limits, Sizes};
 use crate::fem::{DofMap, FemError, Form, Integration, assemble};
 use crate::material::{Material, epsilon_range};
-use crate::mesh::{Element, Mesh};
-use crate::scenario::Scenario;
+use crate::mesh::Mesh;
 use crate::warning::{self, Warning};
 
 /// Milliseconds since `t`.
@@ -49,10 +45,8 @@ pub struct Discretization {
     pub(crate) integration: Integration,
     /// What is known to be poor about this stiffness before any solve (locking).
     stiffness_warning: Option<Warning>,
-    /// G = T C Tᵀ for each rule met so far.
-    couplings: Mutex<HashMap<Rule, Arc<Mat<f64>>>>,
-    /// What a method builds on its first solve on this mesh and keeps with it (Nitsche's layer
-    /// factor and couplings, [`crate::solve::nitsche`]).
+    /// What the methods build on their first solve on this mesh and keep with it (a rule's
+    /// coupling, the full trace of friction, Nitsche's layer factor).
     pub(crate) kept: Kept,
     /// The trace factorised last: Γ_C's normal dofs, or both components for friction.
     pub(crate) trace: Trace,
@@ -72,8 +66,8 @@ pub enum Trace {
 }
 
 /// Per-mesh state of the solve methods, one value per type, made on first use and dropped
-/// with the [`Discretization`]. The discretisation does not know the methods' types (they sit
-/// above it).
+/// with the [`Discretization`]: a slot the discretisation attaches without knowing the
+/// methods' types (they sit above it, in [`crate::contact`]).
 #[derive(Default)]
 pub(crate) struct Kept(Mutex<Vec<Arc<dyn Any + Send + Sync>>>);
 
@@ -205,7 +199,6 @@ impl Discretization {
             material,
             integration,
             stiffness_warning: warning::of_material(&material, mesh_element, integration),
-            couplings: Mutex::new(HashMap::new()),
             kept: Kept::default(),
             trace,
             full_compliance,
@@ -222,151 +215,9 @@ impl Discretization {
         self.mesh.ys.last().copied().unwrap_or(0.0)
     }
 
-    /// The discretisation of `scenario` at `level` with `element`, refused before anything is
-    /// allocated when its memory estimate exceeds the memory this process may use
-    /// ([`crate::fem::memory`]).
-    ///
-    /// # Errors
-    ///
-    /// The estimate does not fit the memory ([`SolveError::TooLarge`]), or as
-    /// [`Discretization::new`]'s.
-    pub fn of(scenario: &Scenario, level: u32, element: Element) -> Result<Self, SolveError> {
-        Self::of_beside(scenario, level, element, 0)
-    }
-
-    /// [`Discretization::of`] with `trace` ordered last ([`Trace::Full`] for friction: one
-    /// factorisation gives both the normal and the full trace compliance).
-    ///
-    /// # Errors
-    ///
-    /// As [`Discretization::of`]'s and [`Discretization::with_trace`]'s.
-    pub fn of_traced(
-        scenario: &Scenario,
-        level: u32,
-        element: Element,
-        trace: Trace,
-    ) -> Result<Self, SolveError> {
-        if trace == Trace::Normal {
-            return Self::of(scenario, level, element);
-        }
-        let mut sizes = Self::sizes(scenario, level, element);
-        sizes.trace *= 2;
-        sizes.check(&Limits::of_process()).map_err(|e| {
-            let workload = Workload::Level {
-                level,
-                element,
-                trace: sizes.trace,
-                reserved: false,
-            };
-            refused(e, workload, sizes.unknowns)
-        })?;
-        let mesh = scenario.mesh(level, element);
-        let dofs = DofMap::model(&mesh);
-        Self::with_trace(mesh, dofs, scenario.material, scenario.integration, trace)
-    }
-
     /// The trace this discretisation condensed onto.
     pub fn trace(&self) -> Trace {
         self.trace
-    }
-
-    /// [`Discretization::of`] beside other work under way that may still take `reserved`
-    /// bytes: refused when its estimate exceeds what this process may use less `reserved`.
-    ///
-    /// # Errors
-    ///
-    /// As [`Discretization::of`]'s, with `reserved` counted.
-    pub fn of_beside(
-        scenario: &Scenario,
-        level: u32,
-        element: Element,
-        reserved: u64,
-    ) -> Result<Self, SolveError> {
-        Self::fits_beside(scenario, level, element, reserved)?;
-        Self::new(
-            scenario.mesh(level, element),
-            scenario.material,
-            scenario.integration,
-        )
-    }
-
-    /// Whether the memory this process may use less `reserved` bytes holds the estimated peak
-    /// of the mesh of `level` with `element` (its build, or another factorisation of the same
-    /// size); why not otherwise.
-    ///
-    /// # Errors
-    ///
-    /// [`SolveError::TooLarge`], naming the unknowns, the memory needed and what is available.
-    pub fn fits_beside(
-        scenario: &Scenario,
-        level: u32,
-        element: Element,
-        reserved: u64,
-    ) -> Result<(), SolveError> {
-        let sizes = Self::sizes(scenario, level, element);
-        sizes.check(&Limits::of_process().less(reserved)).map_err(|e| {
-            let workload = Workload::Level {
-                level,
-                element,
-                trace: sizes.trace,
-                reserved: reserved > 0,
-            };
-            refused(e, workload, sizes.unknowns)
-        })
-    }
-
-    /// The sizes that decide the memory of the discretisation of `scenario` at `level` with
-    /// `element` ([`Sizes::peak_bytes`]), counted on the mesh's lines without assembling.
-    pub fn sizes(scenario: &Scenario, level: u32, element: Element) -> Sizes {
-        let mesh = scenario.mesh(level, element);
-        let trace = mesh.nnx();
-        Sizes {
-            element,
-            unknowns: scenario.n_dofs(level, element),
-            trace,
-            points: Rule::ALL
-                .iter()
-                .map(|&rule| ContactPoints::new(rule, &mesh.node_x, element.order()).len())
-                .max()
-                .unwrap_or(trace),
-        }
-    }
-
-    /// `rule` laid on Γ_C.
-    pub fn contact_points(&self, rule: Rule) -> ContactPoints {
-        let nnx = self.mesh.nnx();
-        ContactPoints::new(rule, &self.mesh.node_x[..nnx], self.mesh.element.order())
-    }
-
-    /// G = B K⁻¹ Bᵀ = T C Tᵀ between the points of `rule` (computed once per rule).
-    pub fn coupling(&self, rule: Rule, points: &ContactPoints) -> Arc<Mat<f64>> {
-        let mut cache = self.couplings.lock().unwrap_or_else(|e| e.into_inner());
-        cache
-            .entry(rule)
-            .or_insert_with(|| {
-                let c = &self.compliance;
-                let nq = points.len();
-                // C Tᵀ, column by column (a point's column combines its nodes' columns of C),
-                // then T (C Tᵀ), column by column: contiguous slices, no index checks.
-                let mut ct = Mat::<f64>::zeros(c.nrows(), nq);
-                for (q, pt) in points.points.iter().enumerate() {
-                    let out = column_mut(&mut ct, q);
-                    for (&k, &t) in pt.nodes.iter().zip(&pt.trace) {
-                        for (o, v) in out.iter_mut().zip(column(c, k)) {
-                            *o += t * v;
-                        }
-                    }
-                }
-                let mut g = Mat::<f64>::zeros(nq, nq);
-                for q in 0..nq {
-                    let ctq = column(&ct, q);
-                    for (o, pt) in column_mut(&mut g, q).iter_mut().zip(&points.points) {
-                        *o = pt.nodes.iter().zip(&pt.trace).map(|(&k, t)| t * ctq[k]).sum();
-                    }
-                }
-                Arc::new(g)
-            })
-            .clone()
     }
 
     /// The number of free dofs.
@@ -377,17 +228,6 @@ impl Discretization {
     /// The penalty parameters this mesh and material can represent ([`epsilon_range`]).
     pub fn epsilon_range(&self) -> (f64, f64) {
         epsilon_range(self.material.young, self.mesh.h())
-    }
-
-    /// Nodal contact forces Tᵀy on the Γ_C nodes from the forces y at the rule's points.
-    pub(crate) fn nodal_forces(points: &ContactPoints, forces: &[f64], n_nodes: usize) -> Vec<f64> {
-        let mut f = vec![0.0; n_nodes];
-        for (q, &y) in points.points.iter().zip(forces) {
-            for (&k, t) in q.nodes.iter().zip(&q.trace) {
-                f[k] += t * y;
-            }
-        }
-        f
     }
 }
 
@@ -418,53 +258,9 @@ pub(crate) fn refused(e: FemError, workload: Workload, n: usize) -> SolveError {
     }
 }
 
-/// Column `j` of `m` as a slice (a [`Mat`]'s columns are contiguous).
-fn column(m: &Mat<f64>, j: usize) -> &[f64] {
-    m.col(j)
-        .try_as_col_major()
-        .expect("a Mat's column is contiguous")
-        .as_slice()
-}
-
-/// Column `j` of `m` as a mutable slice.
-fn column_mut(m: &mut Mat<f64>, j: usize) -> &mut [f64] {
-    m.col_mut(j)
-        .try_as_col_major_mut()
-        .expect("a Mat's column is contiguous")
-        .as_slice_mut()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// G = T C Tᵀ, computed column by column, is the product of the dense trace matrix T (one
-    /// row per point: its shape values at its nodes) with C, by faer's matmul: for Q1 and Q2 and
-    /// every rule (two and three nodes per point).
-    #[test]
-    fn the_coupling_is_t_c_t_transposed() {
-        let scenario = crate::scenario::Scenario::paper();
-        for element in [Element::Q1, Element::Q2] {
-            let disc = Discretization::of(&scenario, 2, element).unwrap();
-            for rule in [Rule::Gauss1, Rule::Gauss2, Rule::Trapezoid] {
-                let points = disc.contact_points(rule);
-                let c = &disc.compliance;
-                let mut t = Mat::<f64>::zeros(points.len(), c.nrows());
-                for (q, pt) in points.points.iter().enumerate() {
-                    for (&k, &v) in pt.nodes.iter().zip(&pt.trace) {
-                        t[(q, k)] += v;
-                    }
-                }
-                let expect = &t * c * t.transpose();
-                let g = disc.coupling(rule, &points);
-                let scale = expect.norm_max();
-                assert!(
-                    (&*g - &expect).norm_max() <= 1e-14 * scale,
-                    "{element:?} {rule:?}"
-                );
-            }
-        }
-    }
 
     /// An allocation failure is reported as out of memory (exit 2: an input error), and only a non-positive pivot asks about rigid motion.
     #[test]

@@ -85,7 +85,7 @@ fn sizes(disc: &Discretization) -> Sizes {
         trace: disc.contact_dofs.len(),
         points: Rule::ALL
             .iter()
-            .map(|&rule| disc.contact_points(rule).len())
+            .map(|&rule| ContactPoints::on(disc, rule).len())
             .max()
             .unwrap_or(0),
     }
@@ -126,7 +126,7 @@ pub fn fits_beside(disc: &Discretization) -> Result<(), SolveError> {
 ///
 /// As [`fits_beside`]'s, before anything is built.
 pub fn fits(scenario: &Scenario, level: u32, element: Element) -> Result<(), SolveError> {
-    let sizes = Discretization::sizes(scenario, level, element);
+    let sizes = scenario.sizes(level, element);
     let need = sizes.peak_bytes() + sizes.infsup_extra_bytes();
     too_large(Some(level), &sizes, need, &Limits::of_process())
 }
@@ -223,7 +223,7 @@ pub fn estimate(
     compliance: &TraceCompliance,
     rule: Rule,
 ) -> Result<InfSup, SolveError> {
-    let cp = disc.contact_points(rule);
+    let cp = ContactPoints::on(disc, rule);
     let h = disc.mesh.h();
     let s = schur(&cp, &compliance.c);
     let n_trace = disc.contact_dofs.len();
@@ -350,7 +350,7 @@ pub fn table(
         for &level in levels {
             fits(scenario, level, element)?;
             let t = Instant::now();
-            let disc = Discretization::of(scenario, level, element)?;
+            let disc = scenario.discretize(level, element)?;
             let compliance = TraceCompliance::new(&disc)?;
             let mesh_ms = t.elapsed().as_secs_f64() * 1e3;
             for &(_, rule) in pairs.iter().filter(|p| p.0 == element) {
@@ -386,7 +386,7 @@ mod tests {
     fn the_estimate_covers_the_measured_inf_sup_peaks() {
         let s = Scenario::paper();
         for (level, measured_kb) in [(5, 568_468 - 306_528), (6, 2_443_564 - 1_327_896)] {
-            let extra = Discretization::sizes(&s, level, Element::Q2).infsup_extra_bytes() as f64;
+            let extra = s.sizes(level, Element::Q2).infsup_extra_bytes() as f64;
             let ratio = extra / (measured_kb as f64 * 1024.0);
             assert!((1.0..1.3).contains(&ratio), "level {level}: {ratio}");
         }

@@ -44,6 +44,7 @@ extern crate self as riplab;
 
 // The core: what a program needs to pose the paper's problem, solve it and analyse the
 // result; each item's home module holds the rest of its vocabulary.
+pub use contact::solution::Solution;
 pub use contact::{Method, Rule};
 pub use discretization::Discretization;
 pub use error::SolveError;
@@ -51,7 +52,6 @@ pub use infsup::{InfSup, inf_sup};
 pub use input::ScenarioError;
 pub use mesh::Element;
 pub use scenario::Scenario;
-pub use solution::Solution;
 pub use solve::{Request, solve, solve_scenario, sweep};
 pub use stress::{StressField, quadrature_stresses};
 pub use study::{Study, study};
@@ -83,7 +83,6 @@ pub mod plot;
 pub(crate) mod refine_edges;
 pub mod scenario;
 pub mod scheme;
-pub mod solution;
 pub mod solve;
 pub mod stress;
 pub mod study;

@@ -16,10 +16,10 @@ use std::path::{Path, PathBuf};
 use plotters::drawing::DrawingAreaErrorKind;
 use plotters::prelude::*;
 
+use crate::contact::solution::Solution;
 use crate::contact::{ContactPoints, Method, Rule};
 use crate::mesh::Element;
 use crate::scheme::Scheme;
-use crate::solution::Solution;
 
 /// The size of the SVG chart in pixels.
 pub const SIZE: (u32, u32) = (960, 540);

@@ -265,7 +265,7 @@ fn reduced_volumetric(
 
 /// σ at the quadrature points of every element (the stiffness's own points: 2×2 Gauss for
 /// Q1, 3×3 for Q2, the degree-2 rule on each P1 triangle) for the displacement `u` on every
-/// dof, node-major (as [`crate::solution::Solution::displacement`] gives it).
+/// dof, node-major (as [`crate::contact::solution::Solution::displacement`] gives it).
 pub fn quadrature_stresses(
     mesh: &Mesh,
     material: &Material,

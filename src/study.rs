@@ -15,7 +15,6 @@
 use crate::contact::ContactParams;
 use crate::contact::friction::Friction;
 use crate::contact::{Method, Rule};
-use crate::discretization::Discretization;
 use crate::error::{InputFault, SolveError};
 use crate::grading::Grading;
 use crate::mesh::Element;
@@ -110,7 +109,7 @@ fn convergence_kept(
     let mut groups: Vec<Vec<(StudyRow, Option<Kept>)>> = (0..schemes.len()).map(|_| Vec::new()).collect();
     for element in elements(schemes) {
         for &level in levels {
-            let disc = Discretization::of(scenario, level, element);
+            let disc = scenario.discretize(level, element);
             for (i, &scheme) in schemes.iter().enumerate().filter(|(_, s)| s.0 == element) {
                 let (resolved, params) = row_params(scenario, scheme.1, method, epsilon);
                 let (m, e) = (params.method, params.epsilon);
@@ -154,7 +153,7 @@ fn epsilon_sweep_kept(
 ) -> Vec<Vec<(StudyRow, Option<Kept>)>> {
     let mut groups: Vec<Vec<(StudyRow, Option<Kept>)>> = (0..schemes.len()).map(|_| Vec::new()).collect();
     for element in elements(schemes) {
-        let disc = Discretization::of(scenario, level, element);
+        let disc = scenario.discretize(level, element);
         for (i, &scheme) in schemes.iter().enumerate().filter(|(_, s)| s.0 == element) {
             let mut previous: Option<Vec<f64>> = None;
             for &epsilon in epsilons {

@@ -28,10 +28,10 @@ use vtkio::model::{
 };
 
 use crate::contact::ContactPoints;
+use crate::contact::solution::Solution;
 use crate::discretization::Discretization;
 use crate::mesh::{Diagonal, Element, Mesh};
 use crate::plot::write_file;
-use crate::solution::Solution;
 use crate::stress::{Stress, StressField};
 
 /// Why a VTU export failed.

@@ -5,7 +5,6 @@
 
 use std::fmt;
 
-use crate::contact::{ContactPoints, Obstacle};
 use crate::fem::Integration;
 use crate::material::{Material, Plane};
 use crate::mesh::Element;
@@ -69,7 +68,7 @@ pub enum Warning {
         kappa: f64,
     },
     /// The penalty is so soft that the body penetrates the obstacle by more than
-    /// [`SOFT_PENETRATION_LIMIT`] of the depth ([`of_soft_penalty`]): the load and the
+    /// [`SOFT_PENETRATION_LIMIT`] of the depth ([`crate::contact::warnings::of_soft_penalty`]): the load and the
     /// pressure are too low by about as much.
     SoftPenalty {
         /// The largest penetration max(u_n − g)⁺ = ε max p.
@@ -78,7 +77,7 @@ pub enum Warning {
         depth: f64,
         /// The penalty parameter ε.
         epsilon: f64,
-        /// An ε that brings the penetration to half the limit ([`of_soft_penalty`]).
+        /// An ε that brings the penetration to half the limit ([`crate::contact::warnings::of_soft_penalty`]).
         sufficient: f64,
     },
     /// `--refine-edges auto` made its [`crate::grading::MAX_PASSES`] passes, every one
@@ -159,7 +158,7 @@ impl fmt::Display for Warning {
             Warning::GradingCap { passes, change, kept } => write!(
                 f,
                 "--refine-edges auto reached its cap of {passes} passes with p̄ still changing by {change:.1e} or more per pass (it stops below {}): the grading has not settled; kept the grid of {kept} pass{}, whose pass changed p̄ least; a finer --level resolves the contact edges better",
-                num(crate::grading::AUTO_TOLERANCE),
+                num(crate::refine_edges::AUTO_TOLERANCE),
                 if *kept == 1 { "" } else { "es" }
             ),
             Warning::NarrowContact { elements, h } => write!(
@@ -209,129 +208,4 @@ pub fn of_round_off(depth: f64, epsilon: f64, p: &[f64], h: f64, young: f64) -> 
         epsilon,
         kappa: epsilon * young / h,
     })
-}
-
-/// The warning that the penalty at `epsilon` is too soft: its pressure `p` at `points` is
-/// (u_n − g)⁺/ε, so the largest penetration is δ = ε max p, and above
-/// [`SOFT_PENETRATION_LIMIT`] of the obstacle's depth d its load and pressure are low by about
-/// δ/d. The ε it names brings δ to half the limit: at the point of max p the body and the
-/// penalty are two springs in series against the overlap −g there, the body's of compliance
-/// ε_c = (its deflection −g − δ)/p, so a penetration share φ* needs ε* = ε_c φ*/(1 − φ*). None
-/// without contact, at ε = 0, or within the limit.
-pub fn of_soft_penalty(
-    obstacle: &Obstacle,
-    points: &ContactPoints,
-    epsilon: f64,
-    p: &[f64],
-) -> Option<Warning> {
-    let (at, top) = p
-        .iter()
-        .copied()
-        .enumerate()
-        .fold((0, 0.0), |best, (k, v)| if v > best.1 { (k, v) } else { best });
-    let (depth, penetration) = (obstacle.depth().abs(), epsilon * top);
-    if !(top > 0.0 && epsilon > 0.0 && depth > 0.0 && penetration > SOFT_PENETRATION_LIMIT * depth) {
-        return None;
-    }
-    let deflection = (-obstacle.gap(points.points[at].x) - penetration).max(f64::EPSILON * depth);
-    let share = SOFT_PENETRATION_LIMIT / 2.0;
-    Some(Warning::SoftPenalty {
-        penetration,
-        depth,
-        epsilon,
-        sufficient: deflection / top * share / (1.0 - share),
-    })
-}
-
-/// The warnings about a contact solution: `p` the raw pressure at `points`, `h` the
-/// largest edge of Γ_C.
-pub fn of_contact(obstacle: &Obstacle, points: &ContactPoints, p: &[f64], h: f64) -> Vec<Warning> {
-    let vx = &points.vertex_x;
-    let (lo, hi) = (vx[0], vx[vx.len() - 1]);
-    let mut out = Vec::new();
-    let touched = (0..points.n_edges())
-        .filter(|&e| points.edge_points[e].iter().any(|&k| p[k] > 0.0))
-        .count();
-    if touched == 0 {
-        if let Some((from, to)) = obstacle.contact_extent(lo, hi) {
-            let seen = points.points.iter().any(|q| q.x >= from && q.x <= to);
-            if !seen {
-                out.push(Warning::Unresolved { from, to, h });
-            }
-        }
-    } else if touched < MIN_CONTACT_ELEMENTS {
-        out.push(Warning::NarrowContact { elements: touched, h });
-    }
-    out
-}
-
-#[cfg(test)]
-mod tests {
-    use std::ops::ControlFlow;
-
-    use super::*;
-    use crate::contact::ContactParams;
-    use crate::contact::newton::NewtonOptions;
-    use crate::discretization::Discretization;
-    use crate::scenario::Scenario;
-    use crate::solve::solve_contact;
-
-    /// The paper's problem at level 2 with a penalty at ε.
-    fn solved(disc: &Discretization, scenario: &Scenario, epsilon: f64) -> crate::solution::Solution {
-        let params = ContactParams::by_epsilon(scenario.rule, epsilon, scenario.obstacle.clone());
-        solve_contact(disc, &params, None, &NewtonOptions::default(), &mut |_| {
-            ControlFlow::Continue(())
-        })
-        .unwrap()
-    }
-
-    /// ε = 1 on the paper's problem leaves the load a few per mille of the exact one's, the body
-    /// through the obstacle by nearly the depth, ε = 1e3 a millionth: warned, first, with an ε
-    /// whose solve is within the limit (and not warned); the scenario's ε = 1e-6 is not warned.
-    #[test]
-    fn a_soft_penalty_is_warned_with_an_epsilon_that_fixes_it() {
-        let scenario = Scenario::paper();
-        let disc = Discretization::of(&scenario, 2, scenario.element).unwrap();
-        let exact = solved(&disc, &scenario, 1e-9);
-        for epsilon in [1.0, 1e3] {
-            let soft = solved(&disc, &scenario, epsilon);
-            let Some(Warning::SoftPenalty {
-                penetration,
-                depth,
-                sufficient,
-                ..
-            }) = soft.warnings.first().cloned()
-            else {
-                panic!("{:?}", soft.warnings)
-            };
-            assert!(penetration > 0.9 * depth, "{penetration}");
-            let text = soft.warnings[0].to_string();
-            assert!(
-                text.contains("penetrates") && text.contains(&format!("{sufficient:.1e}")),
-                "{text}"
-            );
-            let fixed = solved(&disc, &scenario, sufficient);
-            assert!(
-                !fixed
-                    .warnings
-                    .iter()
-                    .any(|w| matches!(w, Warning::SoftPenalty { .. })),
-                "ε = {epsilon:e} → {sufficient:e}: {:?}",
-                fixed.warnings
-            );
-            assert!(
-                (fixed.load - exact.load).abs() < 0.02 * exact.load,
-                "{} vs {}",
-                fixed.load,
-                exact.load
-            );
-        }
-        let default = solved(&disc, &scenario, scenario.epsilon);
-        assert!(default.warnings.is_empty(), "{:?}", default.warnings);
-        let points = disc.contact_points(scenario.rule);
-        let none = vec![0.0; points.len()];
-        assert!(of_soft_penalty(&scenario.obstacle, &points, 1.0, &none).is_none());
-        let soft = solved(&disc, &scenario, 1.0);
-        assert!(of_soft_penalty(&scenario.obstacle, &points, 0.0, &soft.p).is_none());
-    }
 }

@@ -4,7 +4,6 @@
 
 use super::CliError;
 use crate::contact::ContactParams;
-use crate::discretization::Discretization;
 use crate::scenario::Scenario;
 use crate::solve::checks::check_request;
 use crate::tui::app::{App, MAX_APP_LEVEL};
@@ -34,7 +33,7 @@ pub(super) fn render_request(scenario: &Scenario, scene: &str, epsilon: Option<f
     check_request(scenario, level, element, &params)?;
     // A grading's estimate holds the uniform level's: it speaks first, naming the grading.
     crate::grading::estimate::fits(scenario, level, element, scenario.grading(), |_| 0)?;
-    Discretization::fits_beside(scenario, level, element, 0)?;
+    scenario.fits_beside(level, element, 0)?;
     match scene {
         "infsup" => crate::infsup::fits(scenario, level, element)?,
         "convergence" => crate::study::check_contact(scenario)?,

@@ -39,7 +39,7 @@ pub struct FrictionArgs {
 impl FrictionArgs {
     /// Refuse `frictions` with `method` before any work, blaming the flag that asked for the
     /// conflict: friction with Nitsche's method, ε_t with the exact method (the solve's own
-    /// check, [`crate::solve::friction::solve::check`], would find them after the assembly).
+    /// check, [`crate::contact::friction::solve::check`], would find them after the assembly).
     /// `method_flag` names what chose the method (`--method`, `--epsilon`, `--kappa`); a
     /// friction the flags did not set is the scenario's.
     pub fn check_method(

@@ -5,11 +5,11 @@
 use super::{CliError, usage};
 use crate::contact::ContactParams;
 use crate::contact::friction::Friction;
+use crate::contact::solution::Solution;
 use crate::discretization::Discretization;
 use crate::error::SolveError;
 use crate::grading::Grading;
 use crate::scenario::Scenario;
-use crate::solution::Solution;
 use crate::solve::{Request, solve_each};
 
 /// The grading of a solve: `--refine-edges` when given, else the scenario's

@@ -9,7 +9,6 @@ use super::args::{InfsupArgs, parse_levels};
 use super::{CliError, grading, note, print, usage};
 use crate::contact::newton::NewtonOptions;
 use crate::contact::{ContactParams, Rule};
-use crate::discretization::Discretization;
 use crate::error::SolveError;
 use crate::fem::memory::Sizes;
 use crate::grading::Grading;
@@ -81,7 +80,7 @@ fn graded_table(
         for &level in levels {
             fits(scenario, level, element)?;
             let t = Instant::now();
-            let uniform = Discretization::of(scenario, level, element)?;
+            let uniform = scenario.discretize(level, element)?;
             let params = ContactParams::by_epsilon(rule, scenario.epsilon, scenario.obstacle.clone());
             let request = Request::new(params).with_grading(scenario, level, refine);
             let graded = solve(&uniform, &request, &NewtonOptions::default(), &mut |_| {

@@ -6,7 +6,7 @@ use super::args::{SolveArgs, method_at};
 use super::{CliError, grading, note, outputs, print, shown, usage};
 use crate::contact::ContactParams;
 use crate::contact::Method;
-use crate::discretization::{Discretization, Trace};
+use crate::discretization::Trace;
 use crate::output::{SolveReport, Sweep, SweepFailure, SweepRow, output};
 use crate::solve::checks::check_request;
 use crate::{check, vtu};
@@ -128,7 +128,7 @@ pub(super) fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
     // A graded solve's memory, from its lines, before the uniform level is built.
     crate::grading::estimate::fits(&scenario, level, scenario.element, scenario.grading(), |_| 0)?;
     let trace = if friction_on { Trace::Full } else { Trace::Normal };
-    let disc = Discretization::of_traced(&scenario, level, scenario.element, trace)?;
+    let disc = scenario.discretize_traced(level, scenario.element, trace)?;
     let mut instances: Vec<ContactParams> = epsilons
         .iter()
         .flat_map(|&e| depths.iter().map(move |&d| (e, d)))
@@ -172,7 +172,7 @@ pub(super) fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
         }
         if let Some(path) = &args.vtu {
             let field = sol
-                .stress_field(&scenario, disc)
+                .stress_field(disc)
                 .map_err(|e| CliError::Failed(format!("the stress field: {e}")))?;
             let [body, contact] = vtu::write(path, disc, &sol, &field, args.force)
                 .map_err(|e| CliError::Failed(format!("--vtu {e}")))?;

@@ -1,6 +1,6 @@
 //! The semismooth Newton driver shared by every contact method (docs/design.md §3): the
 //! penalty (11) ([`super::penalty`]), the exact multipliers ([`super::signorini`]), the
-//! augmented Lagrangian's inner solves ([`super::alm`]) and Nitsche ([`crate::solve::nitsche`]).
+//! augmented Lagrangian's inner solves ([`super::alm`]) and Nitsche ([`crate::contact::nitsche`]).
 //!
 //! A method supplies only its law (`SemismoothLaw`): the state set of an iterate (the active
 //! set u_n − g > 0 of the complementarity, or any other method-defined set of point states),

@@ -154,7 +154,6 @@ mod tests {
     use super::*;
     use crate::contact::ContactParams;
     use crate::contact::newton::NewtonOptions;
-    use crate::discretization::Discretization;
     use crate::solve::solve_graded;
 
     /// The prediction's last grid holds at least the unknowns the paper's graded solves end on
@@ -164,7 +163,7 @@ mod tests {
     fn the_predicted_grid_bounds_the_graded_solves() {
         let s = Scenario::paper();
         for (level, element, rule) in [(1, Element::Q1, Rule::Gauss1), (2, Element::Q1, Rule::Trapezoid)] {
-            let uniform = Discretization::of(&s, level, element).unwrap();
+            let uniform = s.discretize(level, element).unwrap();
             let params = ContactParams::by_epsilon(rule, s.epsilon, s.obstacle.clone());
             for grading in [
                 Grading::Edges(RefineEdges::Passes(2)),

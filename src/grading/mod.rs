@@ -7,9 +7,12 @@
 //! ([`zone`] says why, and grades the whole zone instead).
 //!
 //! The same lines serve the study's reference ([`crate::study::ReferenceMesh::refined`]) and a
-//! graded solve ([`crate::solve::solve()`] with a grading): grading is only a choice of lines, so a graded mesh
-//! is the mesh a scenario with those `x_lines`/`y_lines` gives at level 0, and its refined
-//! lines contain the uniform level's (nesting).
+//! graded solve ([`crate::solve::solve()`] with a grading, whose passes are [`passes`]): grading
+//! is only a choice of lines, so a graded mesh is the mesh a scenario with those
+//! `x_lines`/`y_lines` gives at level 0, and its refined lines contain the uniform level's
+//! (nesting). A graded request's size is predicted before any pass ([`estimate`]). The
+//! request's words (`N`, `Nz`, `auto`: [`Grading`], [`RefineEdges`]) are re-exported from a
+//! module below the errors, the warnings and the scenario that name them.
 
 use crate::contact::ContactPoints;
 use crate::mesh::{Element, Mesh};
@@ -17,6 +20,7 @@ use crate::scenario::Scenario;
 
 mod band;
 pub mod estimate;
+pub mod passes;
 pub mod zone;
 
 /// How many vertex intervals on each side of a contact edge one pass bisects (with the edge's

@@ -7,8 +7,8 @@ use serde::Serialize;
 
 use crate::contact::friction::{Law, State};
 use crate::contact::mindlin::{Mindlin, dundurs_beta, stick_half_width};
+use crate::contact::solution::Solution;
 use crate::scenario::Scenario;
-use crate::solution::Solution;
 use crate::text::num;
 
 /// Why a relative distance from a closed form is undefined: the closed form vanishes on Γ_C

@@ -170,7 +170,7 @@ mod tests {
     /// A solved and a failed sweep row of the paper's problem at level 0.
     fn rows() -> Vec<SweepRow> {
         let scenario = Scenario::paper();
-        let disc = Discretization::of(&scenario, 0, Element::Q1).unwrap();
+        let disc = scenario.discretize(0, Element::Q1).unwrap();
         let params = ContactParams {
             rule: scenario.rule,
             method: Method::Penalty,

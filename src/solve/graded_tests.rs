@@ -8,11 +8,11 @@ use std::ops::ControlFlow;
 use super::*;
 use crate::contact::method::Gamma0;
 use crate::contact::newton::NewtonOptions;
-use crate::contact::{ContactParams, Method, Rule};
+use crate::contact::solution::Solution;
+use crate::contact::{ContactParams, ContactPoints, Method, Rule};
 use crate::discretization::Discretization;
 use crate::grading::*;
 use crate::mesh::Element;
-use crate::solution::Solution;
 use crate::solve::solve_contact;
 
 fn params(scenario: &Scenario, rule: Rule, method: Method, epsilon: f64) -> ContactParams {
@@ -31,7 +31,7 @@ fn graded(
     p: &ContactParams,
     refine: Grading,
 ) -> (GradedSolve, Discretization) {
-    let uniform = Discretization::of(scenario, level, element).unwrap();
+    let uniform = scenario.discretize(level, element).unwrap();
     let g = solve_graded(scenario, (level, &uniform), p, refine, &NewtonOptions::default()).unwrap();
     (g, uniform)
 }
@@ -92,7 +92,7 @@ fn a_graded_solve_is_the_solve_on_its_lines() {
         );
         let mut lines = s.clone();
         (lines.x_lines, lines.y_lines, lines.level) = (g.grid.xs.clone(), g.grid.ys.clone(), 0);
-        let disc = Discretization::of(&lines, 0, element).unwrap();
+        let disc = lines.discretize(0, element).unwrap();
         let sol = fresh(&disc, &p);
         assert!(g.sol.newton.converged && sol.newton.converged);
         let what = format!("{element:?} {rule:?} {method:?} {refine}");
@@ -165,8 +165,7 @@ fn the_inf_sup_estimate_runs_on_graded_meshes() {
         let mut lines = s.clone();
         (lines.x_lines, lines.y_lines, lines.level) = (g.grid.xs.clone(), g.grid.ys.clone(), 0);
         let explicit =
-            crate::infsup::inf_sup(&Discretization::of(&lines, 0, Element::Q1).unwrap(), Rule::Gauss1)
-                .unwrap();
+            crate::infsup::inf_sup(&lines.discretize(0, Element::Q1).unwrap(), Rule::Gauss1).unwrap();
         let on_uniform = crate::infsup::inf_sup(&uniform, Rule::Gauss1).unwrap();
         assert!(on_graded.beta.is_finite() && on_graded.beta > 0.0 && on_graded.beta_bar > 0.0);
         assert!((on_graded.beta - explicit.beta).abs() <= 1e-9 * explicit.beta);
@@ -188,7 +187,7 @@ fn the_inf_sup_estimate_runs_on_graded_meshes() {
 fn auto_grades_until_pbar_settles() {
     let s = Scenario::paper();
     let p = params(&s, Rule::Gauss1, Method::Penalty, 1e-6);
-    let uniform = Discretization::of(&s, 2, Element::Q1).unwrap();
+    let uniform = s.discretize(2, Element::Q1).unwrap();
     let g = solve_graded(
         &s,
         (2, &uniform),
@@ -219,7 +218,7 @@ fn auto_grades_until_pbar_settles() {
     assert_eq!(g.grid.passes as usize, kept, "{changes:?}");
     assert_eq!(
         g.sol.points.vertex_x.len(),
-        g.disc(&uniform).contact_points(p.rule).vertex_x.len()
+        ContactPoints::on(g.disc(&uniform), p.rule).vertex_x.len()
     );
     assert!(
         g.passes

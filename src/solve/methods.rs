@@ -1,20 +1,20 @@
 //! The frictionless methods on a discretisation (docs/design.md §2–§4, §10): the penalty, the
 //! exact constraint and the augmented Lagrangian on the trace compliance's coupling G, Nitsche's
-//! method on its own operator ([`super::nitsche`]); p, p̄ (17), the load and the contact
+//! method on its own operator ([`crate::contact::nitsche`]); p, p̄ (17), the load and the contact
 //! displacement of the answer. The warnings are the entry's ([`super::solve`]).
 
 use std::ops::ControlFlow;
 use std::time::Instant;
 
-use super::nitsche::{self, NitscheParams};
 use crate::contact::ContactParams;
 use crate::contact::newton::{Iteration, NewtonOptions};
+use crate::contact::nitsche::{self, NitscheParams};
 use crate::contact::penalty::{self, Penalty};
 use crate::contact::signorini::solve_exact;
-use crate::contact::{Method, alm, load, raw_pressure, smoothed_pressure};
+use crate::contact::solution::{Solution, Timing};
+use crate::contact::{ContactPoints, Method, alm, load, raw_pressure, smoothed_pressure};
 use crate::discretization::{Discretization, ms_since};
 use crate::error::{Diagnosis, SolveError};
-use crate::solution::{Solution, Timing};
 
 /// Solve the frictionless contact problem on `disc`, from the contact forces of an earlier
 /// solution with the same rule (`initial`, ignored if it does not fit); no warnings yet.
@@ -26,8 +26,8 @@ pub(super) fn solve_frictionless(
     on_iteration: &mut dyn FnMut(&Iteration) -> ControlFlow<()>,
 ) -> Result<Solution, SolveError> {
     let t = Instant::now();
-    let points = disc.contact_points(params.rule);
-    crate::solve::checks::check_on(disc, params, points.len())?;
+    let points = ContactPoints::on(disc, params.rule);
+    crate::contact::params::check_on(disc, params, points.len())?;
     if let Method::Nitsche { theta, gamma0 } = params.method {
         // `auto`'s γ₀* is computed once per rule on this mesh; its time is the preparation's.
         let nitsche = NitscheParams {
@@ -40,7 +40,7 @@ pub(super) fn solve_frictionless(
         sol.timing.total += chosen_ms;
         return Ok(sol);
     }
-    let coupling = disc.coupling(params.rule, &points);
+    let coupling = crate::contact::coupling::of(disc, params.rule, &points);
     let weight: Vec<f64> = points.points.iter().map(|q| q.weight).collect();
     // No body force or traction (docs/design.md §1): u₀ = 0 and d = −g.
     let free_violation: Vec<f64> = points.points.iter().map(|q| -params.obstacle.gap(q.x)).collect();
@@ -74,7 +74,7 @@ pub(super) fn solve_frictionless(
         }
     };
     let pbar = smoothed_pressure(&points, &p);
-    let nodal = Discretization::nodal_forces(&points, &newton.forces, disc.contact_dofs.len());
+    let nodal = points.nodal_forces(&newton.forces, disc.contact_dofs.len());
     let loaded: Vec<usize> = (0..nodal.len()).filter(|&k| nodal[k] != 0.0).collect();
     let order = disc.mesh.element.order();
     let vertex_uy: Vec<f64> = (0..nodal.len())

@@ -3,32 +3,29 @@
 //! which chooses the solver, accounts for a graded mesh's memory before it is built, and says
 //! what is wrong with the answer ([`crate::warning`]). The work that depends only on the mesh
 //! (K, its factorisation, the trace compliance) is the [`Discretization`]'s, done once; each
-//! solve reuses it and costs only dense work on Γ_C. The solvers are this module's children:
-//! the frictionless methods on the trace compliance or Nitsche's operator ([`nitsche`]),
-//! friction on Γ_C's full trace ([`friction`]), the passes of a graded mesh ([`graded`]).
+//! solve reuses it and costs only dense work on Γ_C. The entry owns the dispatch: the
+//! frictionless methods (`methods`: the trace compliance's, or Nitsche's operator,
+//! [`crate::contact::nitsche`]), friction on Γ_C's full trace ([`crate::contact::friction`]),
+//! the passes of a graded mesh ([`crate::grading::passes`]); the methods themselves live in
+//! [`crate::contact`].
 
 pub mod checks;
-#[doc(hidden)]
-pub mod friction;
-pub mod graded;
 mod methods;
-#[doc(hidden)]
-pub mod nitsche;
 
 use std::ops::ControlFlow;
 
 use crate::contact::ContactParams;
-use crate::contact::friction::Friction;
+use crate::contact::friction::{self, Friction};
 use crate::contact::newton::{Iteration, NewtonOptions};
-use crate::contact::{Method, Rule};
+use crate::contact::solution::{Solution, Timing};
+use crate::contact::{ContactPoints, Method, Rule, nitsche};
 use crate::discretization::{Discretization, Trace};
 use crate::error::{InputFault, SolveError};
 use crate::grading::Grading;
 use crate::scenario::Scenario;
-use crate::solution::{Solution, Timing};
 use crate::warning::{self, Warning};
 
-pub use graded::{Grids, Pass};
+pub use crate::grading::passes::{Grids, Pass};
 
 /// What one solve asks beyond the mesh: the method and its parameters, the friction, the
 /// grading, and where Newton starts.
@@ -154,7 +151,7 @@ impl Solved {
 }
 
 /// Solve `request` on `disc`, or graded pass after pass from it
-/// ([`graded`]); a graded mesh is refused before any pass when its memory estimate does not
+/// ([`crate::grading::passes`]); a graded mesh is refused before any pass when its memory estimate does not
 /// fit ([`crate::grading::estimate`]), friction on a graded mesh is refused. The answer carries
 /// what is wrong with it ([`Solution::warnings`]). `on_iteration` sees each Newton step and may
 /// cancel the solve ([`SolveError::Cancelled`]).
@@ -200,7 +197,16 @@ fn graded_passes(
     on_iteration: &mut dyn FnMut(&Iteration) -> ControlFlow<()>,
 ) -> Result<(Solution, Grids), SolveError> {
     crate::grading::estimate::fits(g.scenario, g.level, disc.mesh.element, g.grading, |_| 0)?;
-    graded::solve_graded(disc, g, request, opts, on_iteration)
+    let params = &request.params;
+    crate::grading::passes::solve_graded(
+        disc,
+        g.scenario,
+        g.level,
+        g.grading,
+        params.rule,
+        request.warm.forces(),
+        &mut |d, initial| solve_contact(d, params, initial, opts, &mut *on_iteration),
+    )
 }
 
 /// Solve on `disc` alone: with friction or without, and the answer's warnings.
@@ -213,7 +219,14 @@ fn solve_on(
     on_iteration: &mut dyn FnMut(&Iteration) -> ControlFlow<()>,
 ) -> Result<Solution, SolveError> {
     let mut sol = if friction.is_on() {
-        friction::solve_frictional(disc, params, friction, warm.frictional(), opts, on_iteration)?
+        Solution::from(friction::solve_frictional(
+            disc,
+            params,
+            friction,
+            warm.frictional(),
+            opts,
+            on_iteration,
+        )?)
     } else {
         methods::solve_frictionless(disc, params, warm.forces(), opts, on_iteration)?
     };
@@ -228,14 +241,14 @@ fn warnings(disc: &Discretization, params: &ContactParams, sol: &Solution) -> Ve
     let penalty = params.method == Method::Penalty;
     let mut warnings: Vec<Warning> = disc.stiffness_warning().into_iter().collect();
     if penalty {
-        warnings.extend(warning::of_soft_penalty(
+        warnings.extend(crate::contact::warnings::of_soft_penalty(
             &params.obstacle,
             &sol.points,
             params.epsilon,
             &sol.p,
         ));
     }
-    warnings.extend(warning::of_contact(
+    warnings.extend(crate::contact::warnings::of_contact(
         &params.obstacle,
         &sol.points,
         &sol.p,
@@ -255,13 +268,13 @@ fn warnings(disc: &Discretization, params: &ContactParams, sol: &Solution) -> Ve
 
 /// Build on `disc` what a solve by `method` with `rule` needs beyond the mesh's own factor, so
 /// that the solve costs only its iteration: the coupling G of the penalty, ALM and exact
-/// constraint ([`Discretization::coupling`]; milliseconds), or Nitsche's layer, couplings and
+/// constraint ([`crate::contact::coupling::of`]; milliseconds), or Nitsche's layer, couplings and
 /// operator ([`nitsche::prepare`]; seconds at level 7). What fails is the solve's to report.
 pub fn prepare(disc: &Discretization, rule: Rule, method: Method) {
     match method {
         Method::Nitsche { theta, gamma0 } => nitsche::prepare(disc, rule, theta, gamma0),
         _ => {
-            disc.coupling(rule, &disc.contact_points(rule));
+            crate::contact::coupling::of(disc, rule, &ContactPoints::on(disc, rule));
         }
     }
 }
@@ -384,7 +397,7 @@ pub fn solve_scenario(scenario: &Scenario) -> Result<(Discretization, Solution),
     } else {
         Trace::Normal
     };
-    let disc = Discretization::of_traced(scenario, scenario.level, scenario.element, trace)?;
+    let disc = scenario.discretize_traced(scenario.level, scenario.element, trace)?;
     // A scenario whose ε was set to 0 after parsing asks for the exact constraint.
     let method = match scenario.method {
         Method::Penalty if scenario.epsilon == 0.0 => Method::Exact,
@@ -469,7 +482,9 @@ mod tests {
         // Kikuchi's example modelled whole (friction needs both sides of Γ_C free).
         let path = concat!(env!("CARGO_MANIFEST_DIR"), "/scenarios/hertz-paper-full.toml");
         let scenario = Scenario::load(std::path::Path::new(path)).unwrap();
-        let disc = Discretization::of_traced(&scenario, 1, scenario.element, Trace::Full).unwrap();
+        let disc = scenario
+            .discretize_traced(1, scenario.element, Trace::Full)
+            .unwrap();
         let params = ContactParams::by_epsilon(scenario.rule, 1e-6, scenario.obstacle.clone());
         let friction = Friction {
             law: Law::Coulomb { mu: 0.3 },
@@ -495,7 +510,7 @@ mod tests {
     fn a_sweep_equals_fresh_solves_and_goes_on_past_a_failure() {
         let mut scenario = Scenario::paper();
         scenario.level = 1;
-        let disc = Discretization::of(&scenario, 1, scenario.element).unwrap();
+        let disc = scenario.discretize(1, scenario.element).unwrap();
         let at = |epsilon: f64, depth: f64| {
             ContactParams::by_epsilon(scenario.rule, epsilon, scenario.obstacle.with_depth(depth))
         };

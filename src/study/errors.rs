@@ -8,11 +8,11 @@ use serde::Serialize;
 use super::grid::{REFERENCE_SCHEME, ReferenceMesh};
 use super::reference::{Estimate, Reference, ReferenceFields};
 use crate::contact::ContactPoints;
+use crate::contact::solution::Solution;
 use crate::discretization::Discretization;
 use crate::fem::basis::evaluate;
 use crate::mesh::Mesh;
 use crate::scenario::Scenario;
-use crate::solution::Solution;
 
 /// Relative errors of one solution against the reference.
 #[derive(Clone, Copy, Debug, Serialize, PartialEq)]

@@ -15,7 +15,6 @@ use std::ops::ControlFlow;
 use super::{Kept, Reference, StudyRow, convergence_kept, row_params};
 use crate::contact::newton::NewtonOptions;
 use crate::contact::{Method, Rule};
-use crate::discretization::Discretization;
 use crate::grading::Grading;
 use crate::mesh::Element;
 use crate::scenario::Scenario;
@@ -69,7 +68,7 @@ fn graded_series(
         .map(|&level| {
             let (resolved, params) = row_params(scenario, scheme.1, method, epsilon);
             let (m, e) = (params.method, params.epsilon);
-            let disc = Discretization::of(scenario, level, scheme.0);
+            let disc = scenario.discretize(level, scheme.0);
             let solved = disc.as_ref().map_err(Clone::clone).and_then(|disc| {
                 resolved?;
                 let request = Request::new(params.clone()).with_grading(scenario, level, refine);

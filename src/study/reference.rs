@@ -13,6 +13,7 @@ use crate::contact::ContactParams;
 use crate::contact::friction::Friction;
 use crate::contact::newton::NewtonOptions;
 use crate::contact::pressure::load;
+use crate::contact::solution::Solution;
 use crate::contact::{ContactPoints, Method, Rule};
 use crate::discretization::Discretization;
 use crate::discretization::refused;
@@ -22,7 +23,6 @@ use crate::fem::memory::{Limits, Sizes};
 use crate::fem::quadrature::gauss_legendre;
 use crate::mesh::Element;
 use crate::scenario::Scenario;
-use crate::solution::Solution;
 use crate::solve::{Request, Warm, solve};
 
 /// The reference's estimated error: its relative difference from the next coarser reference

@@ -6,6 +6,7 @@ use serde::Serialize;
 use super::errors::{Errors, Kept};
 use super::reference::{Reference, TARGET_SHARE, Target};
 use crate::contact::method::MethodFields;
+use crate::contact::solution::Solution;
 use crate::contact::{Method, Rule};
 use crate::discretization::Discretization;
 use crate::error::SolveError;
@@ -13,7 +14,6 @@ use crate::grading::{GradedGrid, Grading};
 use crate::mesh::Element;
 use crate::scenario::Scenario;
 use crate::scheme::Scheme;
-use crate::solution::Solution;
 use crate::warning::Warning;
 
 /// Whether a row of a study or a sweep has a result, and if not, why.

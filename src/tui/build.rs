@@ -9,7 +9,7 @@
 //! ([`super::engine::Engine::adopt`]) or drops it when the user has moved on. A factorisation
 //! cannot be interrupted, so "cancelling" a build means dropping its result; the memory it may
 //! use is checked before it starts, less what the builds already under way may still take
-//! ([`Discretization::of_beside`]).
+//! ([`crate::scenario::Scenario::discretize_beside`]).
 
 use std::sync::Arc;
 use std::sync::mpsc::{self, Receiver, RecvTimeoutError};
@@ -100,7 +100,7 @@ impl Build {
                 let (t, fresh) = (Instant::now(), built.is_none());
                 let disc = match built {
                     Some(disc) => Ok(disc),
-                    None => Discretization::of_beside(&scenario, level, element, reserved).map(Arc::new),
+                    None => scenario.discretize_beside(level, element, reserved).map(Arc::new),
                 };
                 let build_ms = fresh.then(|| ms_since(t));
                 let built = disc.and_then(|disc| {
@@ -109,9 +109,7 @@ impl Build {
                     // handed back unprepared (a solve then meets the refusal).
                     let factorises = solve::preparing_factorises(&disc, method);
                     let beside = reserved.saturating_add(if fresh { plan.peak } else { 0 });
-                    if factorises
-                        && let Err(e) = Discretization::fits_beside(&scenario, level, element, beside)
-                    {
+                    if factorises && let Err(e) = scenario.fits_beside(level, element, beside) {
                         return if fresh {
                             Ok(Finished {
                                 disc,

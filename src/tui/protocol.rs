@@ -12,6 +12,7 @@ use super::export_error::ExportError;
 use super::lab_error::LabError;
 use crate::contact::friction::Friction;
 use crate::contact::method::Gamma0;
+use crate::contact::solution::Solution;
 use crate::contact::{Method, Rule};
 use crate::discretization::Discretization;
 use crate::fem::Integration;
@@ -20,7 +21,6 @@ use crate::mesh::MAX_LEVEL;
 use crate::refine_edges::Grading;
 use crate::scenario::Scenario;
 use crate::scheme::Scheme;
-use crate::solution::Solution;
 use crate::stress::{StressError, StressField};
 use crate::study::StudyRow;
 

@@ -7,9 +7,9 @@
 use super::shown_friction::FrictionShown;
 use crate::contact::circle::CircleContact;
 use crate::contact::hertz::Hertz;
+use crate::contact::solution::Solution;
 use crate::plot::raw_pressure_edges;
 use crate::scenario::Scenario;
-use crate::solution::Solution;
 
 /// A solution as the views show it.
 #[derive(Clone, Debug)]

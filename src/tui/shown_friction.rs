@@ -7,9 +7,9 @@
 
 use crate::contact::friction::Law;
 use crate::contact::mindlin::{Mindlin, dundurs_beta, stick_extent};
+use crate::contact::solution::Solution;
 use crate::output::{FrictionReport, MindlinReport};
 use crate::scenario::Scenario;
-use crate::solution::Solution;
 
 /// A solve with friction as the views show it (a full model: nothing is mirrored).
 #[derive(Clone, Debug)]

@@ -7,12 +7,12 @@ use std::ops::ControlFlow;
 use super::{Case, Kind, MAX_VERIFY_LEVEL, Measured, converged};
 use crate::contact::method::DEFAULT_ALM_TOL;
 use crate::contact::newton::NewtonOptions;
+use crate::contact::solution::Solution;
 use crate::contact::{ContactParams, Method};
 use crate::discretization::Discretization;
 use crate::error::SolveError;
 use crate::scenario::Scenario;
 use crate::scheme::Scheme;
-use crate::solution::Solution;
 use crate::solve::{self, Request};
 
 /// The cases of this family.
@@ -43,7 +43,7 @@ pub fn cases() -> [Case; 2] {
 fn setup(level: u32) -> Result<(Scenario, Discretization), SolveError> {
     let scenario = Scenario::paper();
     let m3 = Scheme::PAPER[2];
-    let disc = Discretization::of(&scenario, level, m3.element)?;
+    let disc = scenario.discretize(level, m3.element)?;
     Ok((scenario, disc))
 }
 

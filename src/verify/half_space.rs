@@ -7,10 +7,10 @@ use super::{Case, Kind, MAX_VERIFY_LEVEL, Measured, converged};
 use crate::contact::circle::CircleContact;
 use crate::contact::hertz::Hertz;
 use crate::contact::rounded_punch::RoundedPunch;
+use crate::contact::solution::Solution;
 use crate::discretization::Discretization;
 use crate::error::SolveError;
 use crate::scenario::Scenario;
-use crate::solution::Solution;
 use crate::solve::solve_scenario;
 
 /// scenarios/hertz-block.toml, embedded.

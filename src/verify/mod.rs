@@ -168,7 +168,7 @@ pub fn cases() -> Vec<Case> {
 }
 
 /// `sol`, or the error that says it did not converge.
-pub fn converged(sol: &crate::solution::Solution) -> Result<(), SolveError> {
+pub fn converged(sol: &crate::contact::solution::Solution) -> Result<(), SolveError> {
     match sol.newton.failure() {
         None => Ok(()),
         Some(diagnosis) => Err(SolveError::NotConverged {

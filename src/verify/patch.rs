@@ -10,7 +10,6 @@ use std::ops::ControlFlow;
 use super::{Case, Kind, MAX_VERIFY_LEVEL, Measured, converged};
 use crate::contact::newton::NewtonOptions;
 use crate::contact::{ContactParams, Obstacle};
-use crate::discretization::Discretization;
 use crate::error::SolveError;
 use crate::scenario::Scenario;
 use crate::scheme::Scheme;
@@ -43,7 +42,7 @@ fn run(level: u32) -> Result<Vec<Measured>, SolveError> {
     let exact = young * DEPTH / (scenario.height + epsilon * young);
     let mut out = Vec::new();
     for scheme in Scheme::PAPER {
-        let disc = Discretization::of(&scenario, level, scheme.element)?;
+        let disc = scenario.discretize(level, scheme.element)?;
         let params = ContactParams::by_epsilon(scheme.rule, epsilon, plane.clone());
         let request = Request::new(params);
         let sol = solve::solve(&disc, &request, &NewtonOptions::default(), &mut |_| {

@@ -7,7 +7,6 @@ use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-use riplab::discretization::Discretization;
 use riplab::mesh::Element;
 use riplab::scenario::Scenario;
 
@@ -114,11 +113,10 @@ fn depths_beyond_the_body_are_refused() {
 fn the_library_refuses_unrepresentable_parameters() {
     use riplab::contact::ContactParams;
     use riplab::contact::newton::NewtonOptions;
-    use riplab::discretization::Discretization;
     use riplab::error::SolveError;
     use riplab::solve::solve_contact;
     let s = riplab::scenario::Scenario::paper();
-    let disc = Discretization::of(&s, 1, s.element).unwrap();
+    let disc = s.discretize(1, s.element).unwrap();
     for (epsilon, depth) in [(1e-200, 0.8), (1e300, 0.8), (1e-6, 1.7e308), (1e-6, f64::NAN)] {
         let params = ContactParams::by_epsilon(s.rule, epsilon, s.obstacle.with_depth(depth));
         let r = solve_contact(&disc, &params, None, &NewtonOptions::default(), &mut |_| {
@@ -419,7 +417,7 @@ fn force_never_replaces_links_fifos_or_devices() {
     }
     // An existing file is refused before a solve that would take long: under half the
     // memory of level 7 (whose guard would refuse it in other words) it is still "exists".
-    let level7 = Discretization::sizes(&Scenario::paper(), 7, Element::Q1);
+    let level7 = Scenario::paper().sizes(7, Element::Q1);
     let (code, stdout, stderr) = riplab_under_half_of(
         &level7,
         &["solve", "--level", "7", "--plot", target.to_str().unwrap()],
@@ -495,7 +493,7 @@ fn smaller_holes_are_closed() {
     assert!(stderr.contains("--sweep-epsilon"), "{stderr}");
     // ε = 0 with a kernel rule is refused before the (here expensive) assembly: under half the
     // memory of level 8, whose guard would refuse it in other words.
-    let level8 = Discretization::sizes(&Scenario::paper(), 8, Element::Q1);
+    let level8 = Scenario::paper().sizes(8, Element::Q1);
     let (code, _, stderr) = riplab_under_half_of(
         &level8,
         &["solve", "--scheme", "M2", "--epsilon", "0", "--level", "8"],

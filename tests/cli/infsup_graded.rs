@@ -5,7 +5,6 @@
 
 use riplab::contact::newton::NewtonOptions;
 use riplab::contact::{ContactParams, Rule};
-use riplab::discretization::Discretization;
 use riplab::grading::RefineEdges;
 use riplab::mesh::Element;
 use riplab::scenario::Scenario;
@@ -41,7 +40,7 @@ fn a_graded_estimate_is_the_estimate_on_the_graded_lines() {
     let (graded, note) = rows(&["--level", "1", "--refine-edges", "2"]);
     assert!(note.contains("graded at the contact edges"), "{note}");
     let scenario = Scenario::paper();
-    let uniform = Discretization::of(&scenario, 1, Element::Q1).unwrap();
+    let uniform = scenario.discretize(1, Element::Q1).unwrap();
     let params = ContactParams::by_epsilon(Rule::Gauss1, scenario.epsilon, scenario.obstacle.clone());
     let g = solve_graded(
         &scenario,

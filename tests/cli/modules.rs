@@ -486,18 +486,19 @@ fn paths_resolve_through_imports() {
 }
 
 /// The solvers: the entry's conveniences for tests and benches, its children, and the
-/// iterations of the methods in `contact` (docs/design.md §9, "one solve entry").
+/// methods in `contact` with their iterations, friction's and Nitsche's solves on a
+/// discretisation included (docs/design.md §9, "one solve entry").
 const SOLVERS: [&str; 15] = [
     "solve::solve_contact",
     "solve::solve_friction",
     "solve::solve_graded",
     "solve::sweep",
     "solve::methods",
-    "solve::friction::solve",
-    "solve::friction::solve_with",
-    "solve::friction::solve_frictional",
-    "solve::graded",
-    "solve::nitsche",
+    "contact::friction::solve",
+    "contact::friction::solve_with",
+    "contact::friction::solve_frictional",
+    "grading::passes",
+    "contact::nitsche",
     "contact::penalty::solve",
     "contact::alm::solve",
     "contact::signorini::solve_exact",

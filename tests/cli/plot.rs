@@ -3,11 +3,11 @@
 
 use std::path::PathBuf;
 
+use riplab::contact::solution::Solution;
 use riplab::mesh::Element;
 use riplab::plot::{chart_title, pressure_svg, pressure_svg_string, write_file};
 use riplab::scenario::Scenario;
 use riplab::scheme::Scheme;
-use riplab::solution::Solution;
 use riplab::solve::solve_scenario;
 
 /// The paper's problem solved with the preset `scheme` at `level`.

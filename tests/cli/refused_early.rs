@@ -5,7 +5,6 @@
 //! command would build first (`riplab_under_half_of`): had the command gone on to build it,
 //! its memory guard would have refused it in other words.
 
-use riplab::discretization::Discretization;
 use riplab::mesh::Element;
 use riplab::scenario::Scenario;
 
@@ -15,7 +14,7 @@ use riplab::grading::estimate::estimate;
 use crate::common::{no_panic, riplab_under, riplab_under_half_of, scratch_file};
 
 fn paper_sizes(level: u32, element: Element) -> riplab::fem::memory::Sizes {
-    Discretization::sizes(&Scenario::paper(), level, element)
+    Scenario::paper().sizes(level, element)
 }
 
 /// Exit 2, nothing printed, and every fragment in the message.
@@ -95,7 +94,7 @@ fn graded_requests_are_refused_from_their_lines_before_any_assembly() {
 #[test]
 fn a_method_that_takes_no_friction_is_refused_before_any_assembly() {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/scenarios/cattaneo-mindlin.toml");
-    let sizes = Discretization::sizes(&Scenario::load(path.as_ref()).unwrap(), 5, Element::Q1);
+    let sizes = Scenario::load(path.as_ref()).unwrap().sizes(5, Element::Q1);
     refused(
         riplab_under_half_of(&sizes, &["solve", path, "--level", "5", "--method", "nitsche"]),
         &[
@@ -110,7 +109,7 @@ fn a_method_that_takes_no_friction_is_refused_before_any_assembly() {
         ],
     );
     let full = concat!(env!("CARGO_MANIFEST_DIR"), "/scenarios/hertz-paper-full.toml");
-    let sizes = Discretization::sizes(&Scenario::load(full.as_ref()).unwrap(), 7, Element::Q1);
+    let sizes = Scenario::load(full.as_ref()).unwrap().sizes(7, Element::Q1);
     refused(
         riplab_under_half_of(
             &sizes,

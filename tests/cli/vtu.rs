@@ -5,10 +5,10 @@
 use std::path::{Path, PathBuf};
 
 use crate::common::riplab;
+use riplab::contact::solution::Solution;
 use riplab::discretization::Discretization;
 use riplab::mesh::Element;
 use riplab::scenario::Scenario;
-use riplab::solution::Solution;
 use riplab::solve::solve_scenario;
 use riplab::vtu::{VtuError, check_target, check_targets, contact_path, write};
 use vtkio::model::{Attribute, CellType, DataSet, Piece, UnstructuredGridPiece, Vtk};
@@ -82,8 +82,8 @@ fn body_and_contact_side_read_back_with_their_counts_names_and_values() {
         ),
         (Element::P1, "trapezoid", CellType::Triangle, CellType::Line, 3),
     ] {
-        let (s, disc, sol) = solve(element, rule, 1);
-        let field = sol.stress_field(&s, &disc).unwrap();
+        let (_, disc, sol) = solve(element, rule, 1);
+        let field = sol.stress_field(&disc).unwrap();
         let path = dir.join(format!("{}.vtu", element.name()));
         let [body_path, contact] = write(&path, &disc, &sol, &field, false).unwrap();
         assert_eq!(
@@ -192,8 +192,8 @@ fn body_and_contact_side_read_back_with_their_counts_names_and_values() {
 #[test]
 fn existing_files_are_kept_unless_forced_and_only_regular_files_are_replaced() {
     let dir = scratch("keep");
-    let (s, disc, sol) = solve(Element::Q1, "gauss1", 0);
-    let field = sol.stress_field(&s, &disc).unwrap();
+    let (_, disc, sol) = solve(Element::Q1, "gauss1", 0);
+    let field = sol.stress_field(&disc).unwrap();
     let path = dir.join("out.vtu");
     // The name must end in .vtu.
     assert!(matches!(

@@ -25,7 +25,7 @@ pub fn riplab(args: &[&str]) -> (i32, String, String) {
 pub fn bottom_reaction(
     scenario: &Scenario,
     disc: &riplab::discretization::Discretization,
-    sol: &riplab::solution::Solution,
+    sol: &riplab::contact::solution::Solution,
 ) -> f64 {
     use riplab::fem::{Form, apply};
     let ku = apply(

@@ -7,12 +7,12 @@ use crate::common::{Lcg, bottom_reaction, paper_with, rel};
 use riplab::contact::ContactParams;
 use riplab::contact::newton::NewtonOptions;
 use riplab::contact::pressure::{rule_product, smoothed_pressure, trapezoid_product};
+use riplab::contact::solution::Solution;
 use riplab::contact::{ContactPoints, Obstacle, Rule};
 use riplab::discretization::Discretization;
 use riplab::fem::Integration;
 use riplab::material::{Material, Plane};
 use riplab::mesh::{Element, Mesh};
-use riplab::solution::Solution;
 use riplab::solve::{solve_contact, solve_scenario};
 
 fn solve(disc: &Discretization, rule: Rule, epsilon: f64, obstacle: Obstacle) -> Solution {
@@ -59,7 +59,7 @@ fn identity_18_holds_for_every_rule() {
 fn load_equals_bottom_reaction() {
     let scenario = paper_with(&[]);
     for element in Element::ALL {
-        let disc = Discretization::of(&scenario, 2, element).unwrap();
+        let disc = scenario.discretize(2, element).unwrap();
         for rule in Rule::ALL {
             let sol = solve(&disc, rule, 1e-6, scenario.obstacle.clone());
             let reaction = bottom_reaction(&scenario, &disc, &sol);
@@ -79,8 +79,8 @@ fn half_and_full_model_agree() {
     let half = paper_with(&[]);
     let full = paper_with(&[("model", "model = \"full\""), ("nx =", "nx = 16")]);
     for element in Element::ALL {
-        let dh = Discretization::of(&half, 1, element).unwrap();
-        let df = Discretization::of(&full, 1, element).unwrap();
+        let dh = half.discretize(1, element).unwrap();
+        let df = full.discretize(1, element).unwrap();
         for rule in Rule::ALL {
             let sh = solve(&dh, rule, 1e-6, half.obstacle.clone());
             let sf = solve(&df, rule, 1e-6, full.obstacle.clone());
@@ -238,7 +238,7 @@ fn default_scenario_converges_for_every_pair() {
 #[test]
 fn exact_constraint_is_the_limit_of_the_penalty() {
     let scenario = paper_with(&[]);
-    let disc = Discretization::of(&scenario, 3, Element::Q1).unwrap();
+    let disc = scenario.discretize(3, Element::Q1).unwrap();
     let exact = solve(&disc, Rule::Trapezoid, 0.0, scenario.obstacle.clone());
     let ymax = exact.newton.forces.iter().cloned().fold(0.0, f64::max);
     assert!(
@@ -271,7 +271,7 @@ fn exact_constraint_is_the_limit_of_the_penalty() {
 #[test]
 fn newton_converges_down_to_tiny_epsilon() {
     let scenario = paper_with(&[]);
-    let disc = Discretization::of(&scenario, 3, Element::Q1).unwrap();
+    let disc = scenario.discretize(3, Element::Q1).unwrap();
     for rule in [Rule::Gauss1, Rule::Trapezoid] {
         let exact = solve(&disc, rule, 0.0, scenario.obstacle.clone()).load;
         for k in 2..=14 {
@@ -292,7 +292,7 @@ fn newton_converges_down_to_tiny_epsilon() {
 #[test]
 fn exact_constraint_refuses_a_pressure_space_with_a_kernel() {
     let scenario = paper_with(&[]);
-    let disc = Discretization::of(&scenario, 0, Element::Q1).unwrap();
+    let disc = scenario.discretize(0, Element::Q1).unwrap();
     let params = ContactParams::by_epsilon(Rule::Gauss2, 0.0, scenario.obstacle.clone());
     let err = solve_contact(&disc, &params, None, &NewtonOptions::default(), &mut |_| {
         ControlFlow::Continue(())

@@ -6,13 +6,13 @@ use std::ops::ControlFlow;
 use crate::common::{paper_with, riplab_under_half_of};
 use riplab::contact::ContactParams;
 use riplab::contact::newton::NewtonOptions;
+use riplab::contact::solution::Solution;
 use riplab::contact::{Obstacle, Rule};
 use riplab::discretization::Discretization;
 use riplab::error::{SolveError, Workload};
 use riplab::fem::DofMap;
 use riplab::mesh::Element;
 use riplab::scenario::Scenario;
-use riplab::solution::Solution;
 use riplab::solve::{solve_contact, solve_scenario};
 
 fn solve_with(disc: &Discretization, rule: Rule, obstacle: Obstacle) -> Solution {
@@ -48,7 +48,7 @@ fn unknowns_are_counted_without_building_the_mesh() {
 #[test]
 fn a_size_beyond_the_machine_is_refused_before_allocating() {
     let s = paper_with(&[("nx =", "nx = 4096"), ("ny =", "ny = 4096")]);
-    match Discretization::of(&s, 8, Element::Q2) {
+    match s.discretize(8, Element::Q2) {
         Err(SolveError::TooLarge {
             workload: Workload::Level { level: 8, .. },
             need,
@@ -63,7 +63,7 @@ fn a_size_beyond_the_machine_is_refused_before_allocating() {
 #[test]
 fn no_contact_gives_zero_pressure_at_once() {
     let s = paper_with(&[]);
-    let disc = Discretization::of(&s, 2, Element::Q1).unwrap();
+    let disc = s.discretize(2, Element::Q1).unwrap();
     for rule in Rule::ALL {
         let sol = solve_with(&disc, rule, s.obstacle.with_depth(-0.1));
         assert!(sol.p.iter().chain(&sol.pbar).all(|&p| p == 0.0) && sol.load == 0.0);
@@ -78,7 +78,7 @@ fn no_contact_gives_zero_pressure_at_once() {
 #[test]
 fn geometric_extremes_converge() {
     let s = paper_with(&[]);
-    let disc = Discretization::of(&s, 2, Element::Q1).unwrap();
+    let disc = s.discretize(2, Element::Q1).unwrap();
     // Indentation approaching the body's height (3.5 of 4; linear elasticity, so a stress test
     // of the solver, not of the physics).
     let deep = solve_with(&disc, Rule::Gauss1, s.obstacle.with_depth(3.5));
@@ -97,13 +97,13 @@ fn geometric_extremes_converge() {
         );
     }
     // A contact zone of one rule point: the paper's mesh, a shallow indentation.
-    let coarse = Discretization::of(&s, 0, Element::Q1).unwrap();
+    let coarse = s.discretize(0, Element::Q1).unwrap();
     let one = solve_with(&coarse, Rule::Gauss1, s.obstacle.with_depth(0.02));
     assert_eq!(one.p.iter().filter(|&&p| p > 0.0).count(), 1, "{:?}", one.p);
     // A level-0 mesh one element high.
     let thin = paper_with(&[("ny =", "ny = 1")]);
     for element in Element::ALL {
-        let d = Discretization::of(&thin, 0, element).unwrap();
+        let d = thin.discretize(0, element).unwrap();
         assert!(solve_with(&d, Rule::Trapezoid, thin.obstacle.clone()).load > 0.0);
     }
 }
@@ -134,7 +134,7 @@ fn a_long_strip_is_refused_for_its_dense_blocks() {
         .replace("ny = 4 ", "ny = 1 ");
     std::fs::write(&file, text).unwrap();
     let strip = Scenario::load(&file).unwrap();
-    let sizes = Discretization::sizes(&strip, 1, Element::Q1);
+    let sizes = strip.sizes(1, Element::Q1);
     let (code, _, err) = riplab_under_half_of(&sizes, &["solve", file.to_str().unwrap(), "--level", "1"]);
     assert_eq!(code, 2, "{err}");
     assert!(
@@ -148,7 +148,7 @@ fn a_long_strip_is_refused_for_its_dense_blocks() {
 /// and exit 2.
 #[test]
 fn an_address_space_limit_is_honoured() {
-    let sizes = Discretization::sizes(&paper_with(&[]), 7, Element::Q2);
+    let sizes = paper_with(&[]).sizes(7, Element::Q2);
     let (code, _, err) = riplab_under_half_of(&sizes, &["solve", "--level", "7", "--element", "q2"]);
     assert_eq!(code, 2, "{err}");
     assert!(

@@ -6,11 +6,11 @@ use std::path::Path;
 
 use riplab::contact::friction::{Friction, Law, Press, State};
 use riplab::contact::newton::NewtonOptions;
-use riplab::contact::{ContactParams, Method, Rule};
+use riplab::contact::solution::Solution;
+use riplab::contact::{ContactParams, ContactPoints, Method, Rule};
 use riplab::discretization::{Discretization, Trace};
 use riplab::mesh::Element;
 use riplab::scenario::Scenario;
-use riplab::solution::Solution;
 use riplab::solve::solve_contact;
 use riplab::solve::solve_friction;
 
@@ -52,8 +52,8 @@ fn max_rel(a: &[f64], b: &[f64]) -> f64 {
 fn mu_zero_is_frictionless() {
     let s = full();
     for element in [Element::Q1, Element::Q2] {
-        let disc = Discretization::of_traced(&s, 1, element, Trace::Full).unwrap();
-        let normal = Discretization::of(&s, 1, element).unwrap();
+        let disc = s.discretize_traced(1, element, Trace::Full).unwrap();
+        let normal = s.discretize(1, element).unwrap();
         let cases: &[(Rule, Method, f64)] = match element {
             Element::Q2 => &[
                 (Rule::Simpson, Method::Exact, 0.0),
@@ -146,7 +146,7 @@ fn cattaneo_mindlin_within_five_percent() {
     let err = m.relative_error(&sol.points, &f.tbar);
     assert!(err <= 0.05, "‖t̄ − q‖/‖q‖ = {err}");
     // β ≈ 0: eight shift steps give the answer of the default one (no point re-sticks).
-    let disc = Discretization::of_traced(&s, s.level, s.element, Trace::Full).unwrap();
+    let disc = s.discretize_traced(s.level, s.element, Trace::Full).unwrap();
     let p = params(&s, s.rule, s.method, s.epsilon);
     assert_eq!(s.friction.steps, 1);
     let eight = with(
@@ -167,7 +167,7 @@ fn cattaneo_mindlin_within_five_percent() {
 fn large_mu_sticks_everywhere() {
     use riplab::contact::mindlin::stick_half_width;
     let s = full();
-    let disc = Discretization::of_traced(&s, 1, Element::Q1, Trace::Full).unwrap();
+    let disc = s.discretize_traced(1, Element::Q1, Trace::Full).unwrap();
     let p = params(&s, Rule::Trapezoid, Method::Exact, 0.0);
     let shift = 0.01;
     let sol = with(&disc, &p, &coulomb(1e6, shift, 2));
@@ -214,7 +214,7 @@ fn tangential_load_is_the_horizontal_reaction() {
         (Element::Q1, Rule::Trapezoid, Method::Exact, 0.0),
         (Element::Q2, Rule::Simpson, Method::Exact, 0.0),
     ] {
-        let disc = Discretization::of_traced(&s, 1, element, Trace::Full).unwrap();
+        let disc = s.discretize_traced(1, element, Trace::Full).unwrap();
         let sol = with(&disc, &params(&s, rule, method, eps), &coulomb(0.3, 0.05, 4));
         assert!(
             sol.newton.converged,
@@ -249,7 +249,7 @@ fn tangential_load_is_the_horizontal_reaction() {
 #[test]
 fn m1_t_oscillates_where_p_does() {
     let s = full();
-    let disc = Discretization::of_traced(&s, 1, Element::Q1, Trace::Full).unwrap();
+    let disc = s.discretize_traced(1, Element::Q1, Trace::Full).unwrap();
     let p = params(&s, Rule::Gauss1, Method::Penalty, 1e-6);
     let sol = with(&disc, &p, &coulomb(0.3, 0.5, 8));
     assert!(sol.newton.converged, "{:?}", sol.newton.diagnosis);
@@ -298,7 +298,7 @@ fn m1_t_oscillates_where_p_does() {
 fn a_solve_that_does_not_converge_says_where_it_stopped() {
     use riplab::error::Diagnosis;
     let s = full();
-    let disc = Discretization::of_traced(&s, 1, Element::Q1, Trace::Full).unwrap();
+    let disc = s.discretize_traced(1, Element::Q1, Trace::Full).unwrap();
     let p = params(&s, Rule::Trapezoid, Method::Exact, 0.0);
     let opts = NewtonOptions {
         max_iterations: 1,
@@ -323,11 +323,11 @@ fn a_solve_that_does_not_converge_says_where_it_stopped() {
 /// to 1e-10, for the exact multipliers and the penalty.
 #[test]
 fn tresca_at_coulombs_pressure_is_coulomb() {
+    use riplab::contact::friction::FrictionTrace;
     use riplab::contact::friction::law::{Bound, Imposition, StepProblem};
     use riplab::contact::friction::newton::solve_step;
-    use riplab::solve::friction::FrictionTrace;
     let s = full();
-    let disc = Discretization::of_traced(&s, 2, Element::Q1, Trace::Full).unwrap();
+    let disc = s.discretize_traced(2, Element::Q1, Trace::Full).unwrap();
     for (rule, imposition) in [
         (Rule::Trapezoid, Imposition::Exact),
         (
@@ -338,7 +338,7 @@ fn tresca_at_coulombs_pressure_is_coulomb() {
             },
         ),
     ] {
-        let points = disc.contact_points(rule);
+        let points = ContactPoints::on(&disc, rule);
         let couplings = FrictionTrace::of(&disc).unwrap().couplings(&disc, rule, &points);
         let w: Vec<f64> = points.points.iter().map(|q| q.weight).collect();
         let n = w.len();
@@ -393,13 +393,13 @@ fn tresca_at_coulombs_pressure_is_coulomb() {
 /// Coulomb's, and the iterates contract onto Coulomb's solution, found by the other solver.
 #[test]
 fn coulomb_is_the_fixed_point_of_tresca_from_the_frictionless_pressure() {
+    use riplab::contact::friction::FrictionTrace;
     use riplab::contact::friction::law::{Bound, Imposition, StepProblem};
     use riplab::contact::friction::newton::solve_step;
-    use riplab::solve::friction::FrictionTrace;
     let s = full();
-    let disc = Discretization::of_traced(&s, 2, Element::Q1, Trace::Full).unwrap();
+    let disc = s.discretize_traced(2, Element::Q1, Trace::Full).unwrap();
     let rule = Rule::Trapezoid;
-    let points = disc.contact_points(rule);
+    let points = ContactPoints::on(&disc, rule);
     let couplings = FrictionTrace::of(&disc).unwrap().couplings(&disc, rule, &points);
     let w: Vec<f64> = points.points.iter().map(|q| q.weight).collect();
     let n = w.len();

@@ -60,7 +60,7 @@ fn brute_force(disc: &Discretization, rule: Rule) -> (f64, Option<f64>) {
             dense[(c, a.row_idx[k])] = a.values[k];
         }
     }
-    let cp = disc.contact_points(rule);
+    let cp = ContactPoints::on(disc, rule);
     // B[k, j] = I(φ_k, (ψ_j)_n) = w_k (ψ_j)_n(x_k).
     let mut b = DMatrix::<f64>::zeros(cp.len(), n);
     for (k, q) in cp.points.iter().enumerate() {
@@ -113,7 +113,7 @@ fn matches_brute_force_dense_computation() {
         (Element::P1, Rule::Gauss1, 1),
         (Element::P1, Rule::Trapezoid, 0),
     ] {
-        let disc = Discretization::of(&scenario, level, element).unwrap();
+        let disc = scenario.discretize(level, element).unwrap();
         let est = inf_sup(&disc, rule).unwrap();
         let (beta2, beta_bar2) = brute_force(&disc, rule);
         assert!(

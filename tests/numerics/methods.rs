@@ -7,14 +7,14 @@ use std::ops::ControlFlow;
 use crate::common::paper_with;
 use riplab::contact::method::Gamma0;
 use riplab::contact::newton::NewtonOptions;
+use riplab::contact::solution::Solution;
 use riplab::contact::{ContactParams, alm};
-use riplab::contact::{Method, Obstacle, Rule};
+use riplab::contact::{ContactPoints, Method, Obstacle, Rule};
 use riplab::discretization::Discretization;
 use riplab::error::Diagnosis;
 use riplab::fem::Integration;
 use riplab::material::{Material, Plane};
 use riplab::mesh::{Element, Mesh};
-use riplab::solution::Solution;
 use riplab::solve::solve_contact;
 
 fn solve(disc: &Discretization, rule: Rule, method: Method, epsilon: f64, obstacle: &Obstacle) -> Solution {
@@ -64,7 +64,7 @@ fn alm_reaches_the_exact_multipliers() {
     let mut table = Vec::new();
     for level in 0..=4 {
         for element in [Element::Q1, Element::Q2, Element::P1] {
-            let disc = Discretization::of(&scenario, level, element).unwrap();
+            let disc = scenario.discretize(level, element).unwrap();
             for &(_, rule) in pairs.iter().filter(|p| p.0 == element) {
                 let exact = solve(&disc, rule, Method::Exact, 0.0, &scenario.obstacle);
                 let alm = solve(&disc, rule, method, 1e-3, &scenario.obstacle);
@@ -105,7 +105,7 @@ fn alm_converges_in_u_where_the_multipliers_are_not_unique() {
     let scenario = paper_with(&[]);
     // (q1 + simpson at level 3: the penalty reference itself does not converge at ε ≤ 1e-9.)
     for (rule, level) in [(Rule::Gauss2, 1), (Rule::Gauss2, 3), (Rule::Simpson, 1)] {
-        let disc = Discretization::of(&scenario, level, Element::Q1).unwrap();
+        let disc = scenario.discretize(level, Element::Q1).unwrap();
         {
             let what = format!("q1+{} level {level}", rule.name());
             // κ = εE/h = 1e-5.
@@ -219,7 +219,7 @@ fn contact_patch_test() {
         let mut mesh = Mesh::uniform(element, (0.0, width / 2.0, 4), (0.0, height, 3), true);
         mesh.roller_right = true;
         let disc = Discretization::new(mesh, material, Integration::Full).unwrap();
-        let points = disc.contact_points(rule);
+        let points = ContactPoints::on(&disc, rule);
         let unique = points.len() <= disc.contact_dofs().len();
         for &(method, epsilon, factor) in &methods {
             if method == Method::Exact && !unique {
@@ -268,7 +268,7 @@ fn contact_patch_test() {
 #[test]
 fn a_warm_start_from_another_depth_gives_the_answer_from_rest() {
     let scenario = paper_with(&[]);
-    let disc = Discretization::of(&scenario, 3, scenario.element).unwrap();
+    let disc = scenario.discretize(3, scenario.element).unwrap();
     let depth = scenario.obstacle.depth();
     for (method, epsilon) in [
         (Method::Penalty, scenario.epsilon),

@@ -1,4 +1,4 @@
-//! Nitsche's method for unilateral contact (`riplab::solve::nitsche`) checked by things
+//! Nitsche's method for unilateral contact (`riplab::contact::nitsche`) checked by things
 //! independent of its condensation: a contact patch test whose pressure is computed by hand,
 //! the pressure recomputed from the displacement field, global equilibrium, the symmetric
 //! method's stability threshold, and convergence against the study's reference beside the
@@ -10,6 +10,8 @@ use std::sync::OnceLock;
 use crate::common::{bottom_reaction, rel};
 use riplab::contact::ContactParams;
 use riplab::contact::newton::NewtonOptions;
+use riplab::contact::nitsche::{self, NitscheParams};
+use riplab::contact::solution::Solution;
 use riplab::contact::{Obstacle, Rule};
 use riplab::discretization::Discretization;
 use riplab::error::{Diagnosis, InputFault, SolveError};
@@ -18,8 +20,6 @@ use riplab::fem::{DofMap, Integration};
 use riplab::material::{Material, Plane};
 use riplab::mesh::{Element, Mesh};
 use riplab::scenario::Scenario;
-use riplab::solution::Solution;
-use riplab::solve::nitsche::{self, NitscheParams};
 use riplab::solve::solve_contact;
 use riplab::study::{Errors, Reference, errors};
 
@@ -171,7 +171,7 @@ fn pressure_is_the_nitsche_pressure_of_the_displacement() {
         (Element::Q2, Rule::Simpson),
         (Element::P1, Rule::Gauss1),
     ] {
-        let disc = Discretization::of(&scenario, 2, element).unwrap();
+        let disc = scenario.discretize(2, element).unwrap();
         let mesh = disc.mesh();
         let gamma = gamma0 * scenario.material.young / mesh.h();
         let top = *mesh.ys.last().unwrap();
@@ -245,7 +245,7 @@ fn displacement_solves_the_nitsche_equations() {
         (Element::Q2, Rule::Simpson),
         (Element::P1, Rule::Gauss2),
     ] {
-        let disc = Discretization::of(&scenario, 1, element).unwrap();
+        let disc = scenario.discretize(1, element).unwrap();
         let mesh = disc.mesh();
         let params = paper_params(&scenario, rule, 0.0);
         let gamma0 = 10.0 * nitsche::stability_threshold(&disc, rule).unwrap();
@@ -315,7 +315,7 @@ fn symmetric_nitsche_is_stable_above_its_threshold_only() {
         let params = paper_params(&scenario, rule, 0.0);
         let mut thresholds = Vec::new();
         for level in 1..=3 {
-            let disc = Discretization::of(&scenario, level, element).unwrap();
+            let disc = scenario.discretize(level, element).unwrap();
             let star = nitsche::stability_threshold(&disc, rule).unwrap();
             assert!(star > 0.1 && star < 100.0, "{element:?}: γ₀* = {star}");
             converged(&disc, &params, 1.0, 10.0 * star);
@@ -403,7 +403,7 @@ fn nitsche_converges_like_the_exact_constraint() {
         let mut exact_u = Vec::new();
         let mut nitsche_u = vec![Vec::new(); 3];
         for level in levels {
-            let disc = Discretization::of(&scenario, level, element).unwrap();
+            let disc = scenario.discretize(level, element).unwrap();
             let gamma0 = 10.0 * nitsche::stability_threshold(&disc, rule).unwrap();
             let exact = solve_contact(&disc, &params, None, &NewtonOptions::default(), &mut |_| {
                 ControlFlow::Continue(())
@@ -455,7 +455,7 @@ fn skew_symmetric_nitsche_is_stable_at_small_gamma0() {
         let params = paper_params(&scenario, rule, 0.0);
         let mut errs = Vec::new();
         for level in levels {
-            let disc = Discretization::of(&scenario, level, element).unwrap();
+            let disc = scenario.discretize(level, element).unwrap();
             assert!(1e-3 < 1e-2 * nitsche::stability_threshold(&disc, rule).unwrap());
             let sol = converged(&disc, &params, -1.0, 1e-3);
             errs.push(errors(reference, &disc, &sol).u);
@@ -471,7 +471,7 @@ fn skew_symmetric_nitsche_is_stable_at_small_gamma0() {
 #[test]
 fn cached_operators_give_the_fresh_answer() {
     let scenario = Scenario::paper();
-    let disc = Discretization::of(&scenario, 2, Element::Q1).unwrap();
+    let disc = scenario.discretize(2, Element::Q1).unwrap();
     let params = paper_params(&scenario, Rule::Trapezoid, 0.0);
     let deeper = ContactParams {
         obstacle: scenario.obstacle.with_depth(0.5),
@@ -488,7 +488,7 @@ fn cached_operators_give_the_fresh_answer() {
         let _ = converged(&disc, p, theta, gamma0);
     }
     let cached = converged(&disc, &params, 1.0, 30.0);
-    let fresh_disc = Discretization::of(&scenario, 2, Element::Q1).unwrap();
+    let fresh_disc = scenario.discretize(2, Element::Q1).unwrap();
     let fresh = converged(&fresh_disc, &params, 1.0, 30.0);
     for (a, b) in cached.p.iter().zip(&fresh.p) {
         assert!((a - b).abs() <= 1e-10 * fresh.load, "{a} against {b}");
@@ -514,7 +514,7 @@ fn cached_operators_give_the_fresh_answer() {
 #[test]
 fn bad_nitsche_parameters_are_refused() {
     let scenario = Scenario::paper();
-    let disc = Discretization::of(&scenario, 0, Element::Q1).unwrap();
+    let disc = scenario.discretize(0, Element::Q1).unwrap();
     let params = paper_params(&scenario, Rule::Trapezoid, 0.0);
     for (theta, gamma0, name) in [
         (2.0, 10.0, "θ"),
@@ -597,7 +597,7 @@ fn every_scenario_solves_by_nitsche() {
                 (Element::Q2, Rule::Gauss1 | Rule::Trapezoid) => Rule::Simpson,
                 (_, rule) => rule,
             };
-            let disc = Discretization::of(&scenario, 1, element).unwrap();
+            let disc = scenario.discretize(1, element).unwrap();
             let params = paper_params(&scenario, rule, 0.0);
             let star = nitsche::stability_threshold(&disc, rule).unwrap();
             // cattaneo-mindlin's ν = 0.499 puts 10·γ₀* (2.9e8) beyond γ₀'s range (1e8).

@@ -8,7 +8,7 @@ use riplab::solve::solve_scenario;
 use riplab::warning::{ROUND_OFF_LIMIT, Warning};
 
 /// The paper's problem at level 4, M3 (unique multipliers at ε = 0), at `epsilon`.
-fn solve_at(epsilon: f64) -> riplab::solution::Solution {
+fn solve_at(epsilon: f64) -> riplab::contact::solution::Solution {
     let mut scenario = Scenario::paper();
     scenario.level = 4;
     scenario.rule = riplab::contact::Rule::Trapezoid;
@@ -22,13 +22,13 @@ fn solve_at(epsilon: f64) -> riplab::solution::Solution {
 }
 
 /// [`solve_at`], converged.
-fn solve(epsilon: f64) -> riplab::solution::Solution {
+fn solve(epsilon: f64) -> riplab::contact::solution::Solution {
     let sol = solve_at(epsilon);
     assert!(sol.newton.converged, "ε = {epsilon}");
     sol
 }
 
-fn round_off(sol: &riplab::solution::Solution) -> Option<f64> {
+fn round_off(sol: &riplab::contact::solution::Solution) -> Option<f64> {
     sol.warnings.iter().find_map(|w| match w {
         Warning::RoundOff { estimate, .. } => Some(*estimate),
         _ => None,

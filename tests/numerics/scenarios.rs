@@ -144,7 +144,6 @@ fn two_bumps_make_two_zones() {
 /// 17 × 9 nodes, 2·17·8 = 272 dofs above the clamped base less 8 u_x on the symmetry line.
 #[test]
 fn scenario_counts_are_the_meshes() {
-    use riplab::discretization::Discretization;
     use riplab::fem::DofMap;
     use riplab::mesh::Element;
     assert_eq!(Scenario::paper().n_dofs(1, Element::Q1), 264);
@@ -159,7 +158,7 @@ fn scenario_counts_are_the_meshes() {
                 let n = s.n_dofs(level, element);
                 assert_eq!(n, DofMap::model(&mesh).n_free(), "dofs: {at}");
                 if level <= 1 {
-                    let disc = Discretization::of(&s, level, element).unwrap();
+                    let disc = s.discretize(level, element).unwrap();
                     assert_eq!(n, disc.n_dofs(), "discretisation: {at}");
                 }
             }

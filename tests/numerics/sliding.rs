@@ -8,16 +8,16 @@
 use std::ops::ControlFlow;
 use std::sync::Arc;
 
+use riplab::contact::friction::{Free, solve_with};
 use riplab::contact::friction::{Friction, Law, Press, State};
 use riplab::contact::newton::NewtonOptions;
-use riplab::contact::{ContactParams, Method, Obstacle, Outline, Rule};
+use riplab::contact::{ContactParams, ContactPoints, Method, Obstacle, Outline, Rule};
 use riplab::discretization::{Discretization, Trace};
 use riplab::fem::Integration;
 use riplab::fem::basis::evaluate;
 use riplab::fem::dofs::DofMap;
 use riplab::material::{Material, Plane};
 use riplab::mesh::{Element, Mesh};
-use riplab::solve::friction::{Free, solve_with};
 
 const YOUNG: f64 = 1000.0;
 const POISSON: f64 = 0.3;
@@ -104,7 +104,7 @@ fn a_plane_slid_over_a_block_gives_uniform_p_and_t_equal_mu_p() {
         let mesh = Mesh::uniform(element, (-1.0, 1.0, 4), (0.0, HEIGHT, 3), false);
         let dofs = DofMap::model(&mesh);
         let disc = Discretization::with_trace(mesh, dofs, material, Integration::Full, Trace::Full).unwrap();
-        let points = disc.contact_points(rule);
+        let points = ContactPoints::on(&disc, rule);
         let unique = points.len() <= disc.contact_dofs().len();
         for &(method, epsilon, factor) in &methods {
             if method == Method::Exact && !unique {
@@ -168,7 +168,7 @@ fn a_plane_slid_over_a_block_gives_uniform_p_and_t_equal_mu_p() {
                     "{what}: {:?} {:?}",
                     sol.newton.iterations, sol.outer_iterations
                 );
-                let fr = sol.friction.as_ref().unwrap();
+                let fr = &sol.friction;
                 let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * b.abs();
                 for q in 0..points.len() {
                     assert!(close(sol.p[q], p), "{what}: p at {q} = {} against {p}", sol.p[q]);

@@ -10,7 +10,6 @@ use std::ops::ControlFlow;
 use crate::common::paper_with;
 use riplab::contact::ContactParams;
 use riplab::contact::newton::NewtonOptions;
-use riplab::discretization::Discretization;
 use riplab::fem::factor::Factor;
 use riplab::fem::split::{SplitFactor, SplitOrdering};
 use riplab::fem::{DofMap, Form, Integration, assemble};
@@ -23,7 +22,7 @@ use riplab::solve::solve_contact;
 fn run(threads: usize, element: Element, level: u32) -> ([(&'static str, Vec<f64>); 5], bool) {
     riplab::fem::set_threads(threads);
     let s = paper_with(&[]);
-    let disc = Discretization::of(&s, level, element).unwrap();
+    let disc = s.discretize(level, element).unwrap();
     let params = ContactParams::by_epsilon(s.rule, s.epsilon, s.obstacle.clone());
     let sol = solve_contact(&disc, &params, None, &NewtonOptions::default(), &mut |_| {
         ControlFlow::Continue(())

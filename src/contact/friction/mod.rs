@@ -2,9 +2,11 @@
 //! contact rule's points with the same rule as the normal constraint (the penalty (11), the
 //! exact multipliers, the augmented Lagrangian), solved by a semismooth Newton (the
 //! primal–dual active-set form) on the normal and tangential forces together, condensed onto
-//! Γ_C's full trace [u_x, u_y] ([`crate::solve::friction`]). The obstacle is pressed to its depth, then moved
+//! Γ_C's full trace [u_x, u_y] ([`trace`]). The obstacle is pressed to its depth, then moved
 //! sideways by a shift ξ in quasi-static steps ([`path`]); the tangential traction t at the
-//! points is smoothed to t̄ at the vertices with p̄'s weights, the paper's (16)–(17).
+//! points is smoothed to t̄ at the vertices with p̄'s weights, the paper's (16)–(17). The laws,
+//! the systems and the path know nothing of the mesh; [`trace`] and [`solve`] solve them on a
+//! discretisation into a [`crate::contact::solution::Solution`].
 
 #[doc(hidden)]
 pub mod law;
@@ -13,13 +15,22 @@ pub mod newton;
 #[doc(hidden)]
 pub mod path;
 #[doc(hidden)]
+pub mod solve;
+#[doc(hidden)]
 pub mod system;
+#[doc(hidden)]
+pub mod trace;
 
 use serde::Serialize;
 
 use crate::error::FrictionError;
 
 pub use path::{FrictionSolution, StepReport};
+pub(crate) use solve::solve_frictional;
+#[doc(hidden)]
+pub use solve::{Free, Frictional, check, solve_with};
+#[doc(hidden)]
+pub use trace::FrictionTrace;
 
 /// The default number of shift steps: one. On monotone shifts (docs/design.md §11, "Steps")
 /// 1 to 64 steps gave the same Q, P, stick half-width and t̄ to 1e-12 (`hertz-paper-full` at

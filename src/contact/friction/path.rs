@@ -323,7 +323,7 @@ impl<'a> PathProblem<'a> {
     }
 }
 
-/// What a friction solve adds to a [`crate::solution::Solution`].
+/// What a friction solve adds to a [`crate::contact::solution::Solution`].
 #[derive(Clone, Debug)]
 pub struct FrictionSolution {
     /// The law and loading used.

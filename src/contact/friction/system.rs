@@ -158,17 +158,18 @@ pub fn solve(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::contact::ContactPoints;
+    use crate::contact::friction::FrictionTrace;
     use crate::contact::friction::law::Couplings;
     use crate::discretization::Discretization;
     use crate::scenario::Scenario;
-    use crate::solve::friction::FrictionTrace;
     use std::sync::Arc;
 
     fn couplings() -> (Discretization, Arc<Couplings>, Vec<f64>) {
         let scenario = Scenario::load(std::path::Path::new("scenarios/hertz-paper-full.toml")).unwrap();
-        let disc = Discretization::of(&scenario, 0, scenario.element).unwrap();
+        let disc = scenario.discretize(0, scenario.element).unwrap();
         let rule = crate::contact::Rule::Trapezoid;
-        let points = disc.contact_points(rule);
+        let points = ContactPoints::on(&disc, rule);
         let trace = FrictionTrace::of(&disc).unwrap();
         let c = trace.couplings(&disc, rule, &points);
         let w = points.points.iter().map(|q| q.weight).collect();

@@ -15,7 +15,8 @@ use std::sync::{Arc, OnceLock};
 use std::time::Instant;
 
 use crate::contact::newton::NewtonOptions;
-use crate::contact::{ContactParams, Method, Rule, carried_forces};
+use crate::contact::solution::Solution;
+use crate::contact::{ContactParams, ContactPoints, Method, Rule, carried_forces};
 use crate::discretization::Discretization;
 use crate::error::SolveError;
 use crate::fem::Integration;
@@ -23,7 +24,6 @@ use crate::fem::memory::Limits;
 use crate::grading::estimate::fits_within;
 use crate::grading::{GradedGrid, Grading};
 use crate::mesh::Element;
-use crate::solution::Solution;
 use crate::solve::{self, Request};
 
 use super::super::protocol::{Response, SolveKey, SolveRequest, Solved};
@@ -119,7 +119,7 @@ impl Engine {
         let carried = last.points != (key.rule, is_nitsche(key.method));
         let start = match carried {
             false => last.forces.clone(),
-            true => carried_forces(&last.x, &last.p, &disc.contact_points(key.rule)),
+            true => carried_forces(&last.x, &last.p, &ContactPoints::on(&disc, key.rule)),
         };
         let mut newton = |start: Option<&[f64]>| {
             let warm = start.map_or(solve::Warm::Rest, solve::Warm::Forces);

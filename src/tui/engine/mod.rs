@@ -11,7 +11,7 @@ use std::sync::{Arc, Mutex, OnceLock};
 use std::time::Instant;
 
 use crate::contact::newton::{Iteration, NewtonOptions};
-use crate::contact::{Method, Rule, carried_forces};
+use crate::contact::{ContactPoints, Method, Rule, carried_forces};
 use crate::discretization::Discretization;
 use crate::error::SolveError;
 use crate::fem::Integration;
@@ -161,7 +161,7 @@ impl Engine {
             .peaks
             .borrow_mut()
             .entry((level, element))
-            .or_insert_with(|| Discretization::sizes(&self.scenario, level, element).peak_bytes())
+            .or_insert_with(|| self.scenario.sizes(level, element).peak_bytes())
     }
 
     /// What building `level` with `element` for the rule and method of the last solve is
@@ -244,7 +244,7 @@ impl Engine {
             return Ok(disc);
         }
         let t = Instant::now();
-        let disc = Arc::new(Discretization::of(&self.scenario, level, element)?);
+        let disc = Arc::new(self.scenario.discretize(level, element)?);
         self.eta
             .record(self.unknowns(level, element), t.elapsed().as_secs_f64() * 1e3);
         self.cache.push((level, element, disc.clone()));
@@ -402,7 +402,7 @@ impl Engine {
         let (warm, carried) = match &self.warm {
             Some(w) if w.points == points => (Some(w.forces.clone()), false),
             Some(w) => {
-                let to = disc.contact_points(key.rule);
+                let to = ContactPoints::on(&disc, key.rule);
                 (Some(carried_forces(&w.x, &w.p, &to)), true)
             }
             None => (None, false),
@@ -442,7 +442,7 @@ impl Engine {
         disc: Arc<Discretization>,
         points: ForcePoints,
         t: Instant,
-        result: Result<crate::solution::Solution, SolveError>,
+        result: Result<crate::contact::solution::Solution, SolveError>,
     ) -> Response {
         match result {
             Ok(solution) => {

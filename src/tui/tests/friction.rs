@@ -10,7 +10,7 @@ use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use riplab::contact::friction::{Friction, Law};
 use riplab::contact::mindlin::stick_half_width;
 use riplab::contact::newton::NewtonOptions;
-use riplab::discretization::{Discretization, Trace};
+use riplab::discretization::Trace;
 use riplab::output::{FrictionReport, MindlinReport};
 use riplab::scenario::Scenario;
 use riplab::solve::solve_friction;
@@ -94,7 +94,7 @@ fn the_lab_solves_with_the_scenarios_friction_as_riplab_solve_does() {
     assert!(solved.solution.newton.converged);
     let shown = solved.shown.friction.as_ref().expect("friction shown");
     for (trace, tol) in [(Trace::Normal, 1e-12), (Trace::Full, 1e-9)] {
-        let disc = Discretization::of_traced(&scenario, 2, scenario.element, trace).unwrap();
+        let disc = scenario.discretize_traced(2, scenario.element, trace).unwrap();
         let params = solved.solution.params.clone();
         let cli = solve_friction(
             &disc,

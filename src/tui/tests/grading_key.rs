@@ -5,7 +5,6 @@
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use riplab::contact::newton::NewtonOptions;
 use riplab::contact::{ContactParams, Method};
-use riplab::discretization::Discretization;
 use riplab::grading::{Grading, RefineEdges};
 use riplab::scenario::Scenario;
 use riplab::solve::solve_graded;
@@ -69,7 +68,7 @@ fn e_cycles_the_grading_and_the_lab_shows_the_graded_solve() {
     assert!(frame.contains("level 1+2e"), "{frame}");
     // The library's graded solve of the same settings: same mesh, same load.
     let scenario = Scenario::paper();
-    let uniform = Discretization::of(&scenario, 1, scenario.element).unwrap();
+    let uniform = scenario.discretize(1, scenario.element).unwrap();
     let params = ContactParams {
         rule: scenario.rule,
         method: Method::Penalty,

@@ -9,7 +9,6 @@ use std::sync::Arc;
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use riplab::contact::ContactParams;
 use riplab::contact::newton::NewtonOptions;
-use riplab::discretization::Discretization;
 use riplab::grading::{GradedGrid, RefineEdges};
 use riplab::scenario::Scenario;
 use riplab::solve::solve_contact;
@@ -91,7 +90,7 @@ fn a_small_epsilon_change_keeps_the_graded_grid() {
     assert!(grid_of(&after, 2).holds_edges(&after.solution.points, &after.solution.p));
     let mut lines = Scenario::paper();
     (lines.x_lines, lines.y_lines, lines.level) = (after.disc.mesh.xs.clone(), after.disc.mesh.ys.clone(), 0);
-    let disc = Discretization::of(&lines, 0, app.settings.element).unwrap();
+    let disc = lines.discretize(0, app.settings.element).unwrap();
     let fresh = solve_contact(&disc, &params(&app), None, &NewtonOptions::default(), &mut |_| {
         ControlFlow::Continue(())
     })
@@ -138,7 +137,7 @@ fn a_large_depth_change_regrades() {
     assert_ne!(before.disc.mesh.xs, after.disc.mesh.xs, "other lines");
     assert!(grid_of(&after, 2).holds_edges(&after.solution.points, &after.solution.p));
     let s = Scenario::paper();
-    let uniform = Discretization::of(&s, 3, app.settings.element).unwrap();
+    let uniform = s.discretize(3, app.settings.element).unwrap();
     let g = solve_graded(
         &s,
         (3, &uniform),

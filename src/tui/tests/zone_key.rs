@@ -11,7 +11,6 @@ use std::sync::Arc;
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use riplab::contact::ContactParams;
 use riplab::contact::newton::NewtonOptions;
-use riplab::discretization::Discretization;
 use riplab::grading::{GradedGrid, Grading};
 use riplab::scenario::Scenario;
 use riplab::solve::solve_contact;
@@ -74,7 +73,7 @@ fn e_reaches_the_zone_grading_and_the_lab_shows_its_solve() {
     let frame = render_app(&app, &LOOK, 80, 24);
     assert!(frame.contains("level 2+3z"), "{frame}");
     let s = Scenario::paper();
-    let uniform = Discretization::of(&s, 2, app.settings.element).unwrap();
+    let uniform = s.discretize(2, app.settings.element).unwrap();
     let g = solve_graded(
         &s,
         (2, &uniform),

@@ -199,7 +199,7 @@ fn a_level_or_rule_step_starts_newton_from_the_last_pressure() {
 /// A finished build of `level` with `element` (1 ms, no preparation), for [`Engine::adopt`].
 fn finished(scenario: &Scenario, level: u32, element: Element) -> riplab::tui::engine::Built {
     Ok(riplab::tui::engine::Finished {
-        disc: Arc::new(riplab::discretization::Discretization::of(scenario, level, element).unwrap()),
+        disc: Arc::new(scenario.discretize(level, element).unwrap()),
         build_ms: Some(1.0),
         prepare_ms: None,
     })
@@ -320,11 +320,10 @@ fn the_engine_prefetches_the_neighbouring_levels() {
 /// Q1's level 8), whose estimate alone exceeds the budget.
 #[test]
 fn the_cache_budget_holds_level_7_of_q1_not_of_q2() {
-    use riplab::discretization::Discretization;
     use riplab::tui::engine::CACHE_BYTES;
     let scenario = Scenario::paper();
     let engine = Engine::new(scenario.clone());
-    let gib = |l, e| Discretization::sizes(&scenario, l, e).peak_bytes() as f64 / f64::from(1 << 30);
+    let gib = |l, e| scenario.sizes(l, e).peak_bytes() as f64 / f64::from(1 << 30);
     let sizes = format!(
         "q1 6, 7: {:.2} {:.2} GiB; q2 5, 6, 7: {:.2} {:.2} {:.2} GiB; budget {} GiB",
         gib(6, Element::Q1),

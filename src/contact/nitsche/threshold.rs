@@ -4,8 +4,8 @@
 use faer::Side;
 
 use super::{NitscheParams, couplings};
-use crate::contact::Rule;
 use crate::contact::method::{AUTO_GAMMA0_FACTOR, GAMMA0_RANGE, Gamma0};
+use crate::contact::{ContactPoints, Rule};
 use crate::discretization::Discretization;
 use crate::error::{InputFault, SolveError};
 
@@ -14,7 +14,7 @@ use crate::error::{InputFault, SolveError};
 /// (module doc). Computed once per rule (a dense symmetric eigenproblem of the edge points'
 /// size), then kept.
 pub fn stability_threshold(disc: &Discretization, rule: Rule) -> Result<f64, SolveError> {
-    let points = disc.contact_points(rule);
+    let points = ContactPoints::on(disc, rule);
     let cp = couplings(disc, &points)?;
     cp.threshold
         .get_or_init(|| {

@@ -1,6 +1,8 @@
 //! Scenarios: the model of a problem (docs/design.md §1), with the paper's problem embedded as
 //! the default. A scenario is read from its TOML file by the library's reader
-//! ([`Scenario::load`], [`Scenario::parse`], [`Scenario::paper`]).
+//! ([`Scenario::load`], [`Scenario::parse`], [`Scenario::paper`]) and discretised at a level
+//! ([`Scenario::discretize`], [`discretize`]: the memory it needs checked before anything is
+//! built).
 
 use crate::contact::friction::Friction;
 use crate::contact::{Method, Obstacle, Rule};
@@ -9,8 +11,10 @@ use crate::material::Material;
 use crate::mesh::{self, Element, Mesh};
 use crate::refine_edges::{Grading, RefineEdges};
 
+pub mod discretize;
+
 /// The paper's problem, half model: `scenarios/hertz-paper.toml`.
-pub const DEFAULT_SCENARIO: &str = include_str!("../scenarios/hertz-paper.toml");
+pub const DEFAULT_SCENARIO: &str = include_str!("../../scenarios/hertz-paper.toml");
 /// The name under which the embedded default is reported.
 pub const DEFAULT_SOURCE: &str = "<embedded hertz-paper.toml>";
 

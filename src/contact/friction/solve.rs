@@ -1,7 +1,8 @@
 //! A contact solve with friction on a discretisation (docs/design.md §11): the checks, the
-//! full trace's couplings, the loading path, and the [`Solution`] with its
-//! [`FrictionSolution`], warm-startable from an earlier solve's forces (the warnings are the
-//! entry's, [`crate::solve::solve`]).
+//! full trace's couplings, the loading path, and the answer ([`Frictional`], with its
+//! [`FrictionSolution`]; a [`crate::contact::solution::Solution`] by `From`, since the solution
+//! names friction's results), warm-startable from an earlier solve's forces (the warnings are
+//! the entry's, [`crate::solve()`]).
 
 use std::ops::ControlFlow;
 use std::time::Instant;
@@ -11,10 +12,35 @@ use crate::contact::friction::law::{Bound, Imposition};
 use crate::contact::friction::path::{FrictionSolution, PathProblem};
 use crate::contact::friction::{Friction, Law, Press};
 use crate::contact::newton::{Iteration, NewtonOptions, NewtonResult};
-use crate::contact::{ContactParams, Method, load, raw_pressure, smoothed_pressure};
+use crate::contact::{ContactParams, ContactPoints, Method, load, raw_pressure, smoothed_pressure};
 use crate::discretization::{Discretization, ms_since};
 use crate::error::{Diagnosis, InputFault, SolveError};
-use crate::solution::{Solution, Timing};
+
+/// A solve with friction's answer: the normal contact's (as a frictionless solve gives it)
+/// beside friction's own.
+#[derive(Clone, Debug)]
+pub struct Frictional {
+    /// What the solve depended on beyond the mesh.
+    pub params: ContactParams,
+    /// The rule's points on Γ_C.
+    pub points: ContactPoints,
+    /// The last step's Newton result (y, u_n − g, its iterations and history).
+    pub newton: NewtonResult,
+    /// The ALM's multiplier updates (None without).
+    pub outer_iterations: Option<usize>,
+    /// Raw pressure p at the rule's points (12).
+    pub p: Vec<f64>,
+    /// Smoothed pressure p̄ at the Γ_C vertices (16)–(17).
+    pub pbar: Vec<f64>,
+    /// u_y at the Γ_C vertices.
+    pub vertex_uy: Vec<f64>,
+    /// P = I(p, 1).
+    pub load: f64,
+    /// The solve's time on Γ_C, in milliseconds.
+    pub newton_ms: f64,
+    /// The tangential forces, tractions and states.
+    pub friction: FrictionSolution,
+}
 
 /// The traces of u₀ = K⁻¹f on the rule's points: d = B_n u₀ − g and e = B_t u₀ (a scenario
 /// has f = 0: d = −g, e = 0; a patch test loads the body).
@@ -49,15 +75,15 @@ pub fn check(disc: &Discretization, params: &ContactParams, friction: &Friction)
 
 /// Solve the contact problem with `friction` on `disc` (no body load), from the forces
 /// (y, z) of an earlier solve with the same rule (`initial`, ignored if it does not fit).
-pub(in crate::solve) fn solve_frictional(
+pub(crate) fn solve_frictional(
     disc: &Discretization,
     params: &ContactParams,
     friction: &Friction,
     initial: Option<(&[f64], &[f64])>,
     opts: &NewtonOptions,
     on_iteration: &mut dyn FnMut(&Iteration) -> ControlFlow<()>,
-) -> Result<Solution, SolveError> {
-    let points = disc.contact_points(params.rule);
+) -> Result<Frictional, SolveError> {
+    let points = ContactPoints::on(disc, params.rule);
     let d: Vec<f64> = points.points.iter().map(|q| -params.obstacle.gap(q.x)).collect();
     let e = vec![0.0; d.len()];
     solve_with(
@@ -80,10 +106,10 @@ pub fn solve_with(
     initial: Option<(&[f64], &[f64])>,
     opts: &NewtonOptions,
     on_iteration: &mut dyn FnMut(&Iteration) -> ControlFlow<()>,
-) -> Result<Solution, SolveError> {
+) -> Result<Frictional, SolveError> {
     let t = Instant::now();
-    let points = disc.contact_points(params.rule);
-    crate::solve::checks::check_on(disc, params, points.len())?;
+    let points = ContactPoints::on(disc, params.rule);
+    crate::contact::params::check_on(disc, params, points.len())?;
     check(disc, params, friction)?;
     let trace = FrictionTrace::of(disc)?;
     let couplings = trace.couplings(disc, params.rule, &points);
@@ -156,7 +182,7 @@ pub fn solve_with(
         diagnosis = Some(Diagnosis::Overflow);
     }
     let newton_ms = ms_since(t);
-    Ok(Solution {
+    Ok(Frictional {
         params: params.clone(),
         newton: NewtonResult {
             forces: last.y.clone(),
@@ -172,15 +198,8 @@ pub fn solve_with(
         pbar,
         vertex_uy,
         load: load_p,
-        timing: Timing {
-            newton: newton_ms,
-            total: newton_ms,
-            ..Timing::default()
-        },
-        warnings: Vec::new(),
-        nodal_forces: None,
-        gamma0: None,
-        friction: Some(FrictionSolution {
+        newton_ms,
+        friction: FrictionSolution {
             friction: *friction,
             z: last.z,
             t: t_raw,
@@ -189,7 +208,7 @@ pub fn solve_with(
             vertex_ux,
             tangential_load,
             steps: result.steps,
-        }),
+        },
         points,
     })
 }

@@ -4,23 +4,23 @@
 //! starts Newton from the last pass's pressure carried to the new points (forces = p(x)·w);
 //! the new grid has its own assembly, ordering and factor (nothing of the mesh's work carries
 //! over: its lines changed). Every method and element goes through the entry's solve on one
-//! mesh ([`super::solve_contact`]), whose smoothing (17) uses the graded mesh's own weights.
+//! mesh, given by the entry ([`crate::solve()`]), whose smoothing (17) uses the graded mesh's
+//! own weights.
 
-use std::ops::ControlFlow;
-
-use super::{Graded, Request, solve_contact};
-use crate::contact::ContactPoints;
-use crate::contact::newton::{Iteration, NewtonOptions};
-use crate::discretization::Discretization;
-use crate::discretization::refused;
+use super::zone::contact_zones;
+use super::{AUTO_TOLERANCE, GradedGrid, Grading, MAX_PASSES, RefineEdges, contact_edges};
+use crate::contact::solution::{Solution, Timing};
+use crate::contact::{ContactPoints, Rule};
+use crate::discretization::{Discretization, refused};
 use crate::error::{SolveError, Workload};
 use crate::fem::memory::Limits;
-use crate::grading::zone::contact_zones;
-use crate::grading::{AUTO_TOLERANCE, GradedGrid, Grading, MAX_PASSES, RefineEdges, contact_edges};
 use crate::mesh::Element;
 use crate::scenario::Scenario;
-use crate::solution::{Solution, Timing};
 use crate::warning::Warning;
+
+/// The entry's frictionless solve on one mesh from a warm start (the forces at the rule's
+/// points), as the passes are given it.
+pub(crate) type SolveOn<'a> = dyn FnMut(&Discretization, Option<&[f64]>) -> Result<Solution, SolveError> + 'a;
 
 /// One pass of a graded solve, as reported.
 #[derive(Clone, Debug, PartialEq)]
@@ -36,7 +36,7 @@ pub struct Pass {
 }
 
 /// A graded solve's grids: the final grid, its discretisation, and the passes (the solution is
-/// [`super::Solved`]'s).
+/// [`crate::solve::Solved`]'s).
 pub struct Grids {
     /// The final grid.
     pub grid: GradedGrid,
@@ -46,30 +46,27 @@ pub struct Grids {
     pub passes: Vec<Pass>,
 }
 
-/// Solve `request` (frictionless) on `uniform`, the discretisation of the scenario's `level`,
-/// then grade at the contact edges (or over the contact zone) as its grading asks
+/// Solve with `solve_on` (the entry's frictionless solve on one mesh, from the warm start it
+/// is given) on `uniform`, the discretisation of `scenario`'s `level` (from `warm`), then grade at the contact edges (or over the contact zone) as its grading asks
 /// ([`Grading::wants_pass`]), each pass warm-started from the last. The grading stops early when the pressure has no contact
 /// edge (zone), or a pass does not converge (its solution is the result, not converged). A
 /// grid that does not fit the memory is refused before it is built. The uniform level's mesh
 /// work is the caller's to charge ([`Timing`] of the result: every pass's solve and every
 /// graded mesh's work).
-pub(super) fn solve_graded(
+pub(crate) fn solve_graded(
     uniform: &Discretization,
-    Graded {
-        scenario,
-        level,
-        grading: refine,
-    }: Graded<'_>,
-    request: &Request<'_>,
-    opts: &NewtonOptions,
-    on_iteration: &mut dyn FnMut(&Iteration) -> ControlFlow<()>,
+    scenario: &Scenario,
+    level: u32,
+    refine: Grading,
+    rule: Rule,
+    warm: Option<&[f64]>,
+    solve_on: &mut SolveOn<'_>,
 ) -> Result<(Solution, Grids), SolveError> {
-    let params = &request.params;
     let element = uniform.mesh.element;
     let base = GradedGrid::uniform(scenario, level);
     let mut grid = base.clone();
     let mut graded: Option<Discretization> = None;
-    let mut sol = solve_contact(uniform, params, request.warm.forces(), opts, &mut *on_iteration)?;
+    let mut sol = solve_on(uniform, warm)?;
     let mut passes = vec![Pass {
         n_dofs: uniform.n_dofs(),
         h_min: grid.h_min(),
@@ -94,9 +91,9 @@ pub(super) fn solve_graded(
             scenario.material,
             scenario.integration,
         )?;
-        let points = d.contact_points(params.rule);
+        let points = ContactPoints::on(&d, rule);
         let initial = carried(&sol.points, &sol.p, &points);
-        let mut s = solve_contact(&d, params, Some(&initial), opts, &mut *on_iteration)?;
+        let mut s = solve_on(&d, Some(&initial))?;
         s.timing.include_mesh_work(&d);
         let change = pbar_change(&sol, &s);
         let previous_estimate = passes[passes.len() - 1].pbar_change;

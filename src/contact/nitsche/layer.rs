@@ -225,7 +225,7 @@ mod tests {
     #[test]
     fn the_layer_is_the_dofs_the_rows_use() {
         for element in Element::ALL {
-            let disc = Discretization::of(&Scenario::paper(), 2, element).unwrap();
+            let disc = Scenario::paper().discretize(2, element).unwrap();
             let mesh = &disc.mesh;
             let nny = mesh.node_y.len();
             let free = |i, j, comp| disc.dofs.free_index(2 * mesh.node(i, j) + comp).is_some();
@@ -274,7 +274,7 @@ mod tests {
     #[test]
     fn the_layers_schur_complement_is_the_same_split_or_whole() {
         for element in [Element::Q1, Element::Q2] {
-            let disc = Discretization::of(&Scenario::paper(), 3, element).unwrap();
+            let disc = Scenario::paper().discretize(3, element).unwrap();
             let stiffness = assemble(
                 &disc.mesh,
                 &disc.dofs,

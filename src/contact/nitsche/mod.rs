@@ -59,11 +59,10 @@ use std::time::Instant;
 
 use crate::contact::method::Gamma0;
 use crate::contact::newton::{Iteration, NewtonOptions};
+use crate::contact::solution::{Solution, Timing};
 use crate::contact::{ContactParams, ContactPoints, Rule, load, smoothed_pressure};
 use crate::discretization::Discretization;
 use crate::error::{Diagnosis, SolveError};
-use crate::solution::{Solution, Timing};
-use crate::warning;
 
 mod couplings;
 mod layer;
@@ -141,7 +140,7 @@ pub fn prepare(disc: &Discretization, rule: Rule, theta: i8, gamma0: Gamma0) {
         };
         if check_params(&params).is_ok() {
             // A refused (θ, γ₀) is the solve's to report.
-            let _ = Operator::of(disc, &disc.contact_points(rule), params);
+            let _ = Operator::of(disc, &ContactPoints::on(disc, rule), params);
         }
     }
 }
@@ -201,7 +200,7 @@ pub fn solve(
 ) -> Result<Solution, SolveError> {
     let t = Instant::now();
     check_params(&nitsche)?;
-    let points = disc.contact_points(params.rule);
+    let points = ContactPoints::on(disc, params.rule);
     crate::check::depth(params.obstacle.depth(), disc.height()).map_err(|source| SolveError::Range {
         what: "the indentation depth",
         source,
@@ -255,7 +254,12 @@ pub fn solve(
         newton.diagnosis = Some(Diagnosis::Overflow);
     }
     let mut warnings: Vec<_> = disc.stiffness_warning().into_iter().collect();
-    warnings.extend(warning::of_contact(&params.obstacle, &points, &p, disc.mesh.h()));
+    warnings.extend(crate::contact::warnings::of_contact(
+        &params.obstacle,
+        &points,
+        &p,
+        disc.mesh.h(),
+    ));
     let ms = t.elapsed().as_secs_f64() * 1e3;
     let timing = Timing {
         // What this solve built of the layer's factor, the rule's couplings and the (θ, γ₀)

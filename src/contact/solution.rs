@@ -4,12 +4,11 @@
 
 use serde::Serialize;
 
-use crate::contact::friction::FrictionSolution;
-use crate::contact::method::MethodFields;
-use crate::contact::newton::NewtonResult;
-use crate::contact::{ContactParams, ContactPoints};
+use super::friction::{FrictionSolution, Frictional};
+use super::method::MethodFields;
+use super::newton::NewtonResult;
+use super::{ContactParams, ContactPoints};
 use crate::discretization::Discretization;
-use crate::scenario::Scenario;
 use crate::stress::{StressError, StressField};
 use crate::warning::Warning;
 
@@ -62,27 +61,49 @@ pub struct Solution {
     pub friction: Option<FrictionSolution>,
 }
 
+impl From<Frictional> for Solution {
+    /// A solve with friction's answer as a solution, its time all on Γ_C and no warnings yet
+    /// (they are the entry's, [`crate::solve()`]).
+    fn from(f: Frictional) -> Self {
+        Solution {
+            params: f.params,
+            points: f.points,
+            newton: f.newton,
+            outer_iterations: f.outer_iterations,
+            p: f.p,
+            pbar: f.pbar,
+            vertex_uy: f.vertex_uy,
+            load: f.load,
+            timing: Timing {
+                newton: f.newton_ms,
+                total: f.newton_ms,
+                ..Timing::default()
+            },
+            warnings: Vec::new(),
+            nodal_forces: None,
+            gamma0: None,
+            friction: Some(f.friction),
+        }
+    }
+}
+
 impl Solution {
     /// The method and the parameters this solve used, as every output carries them.
     pub fn method_fields(&self) -> MethodFields {
         MethodFields::used(self.params.method, self.gamma0)
     }
 
-    /// The stresses of this solution ([`StressField`]), with the scenario's material and
-    /// integration.
+    /// The stresses of this solution ([`StressField`]), with the material and the integration
+    /// of the stiffness it was solved with (`disc`'s).
     ///
     /// # Errors
     ///
     /// As [`StressField::new`]'s.
-    pub fn stress_field(
-        &self,
-        scenario: &Scenario,
-        disc: &Discretization,
-    ) -> Result<StressField, StressError> {
+    pub fn stress_field(&self, disc: &Discretization) -> Result<StressField, StressError> {
         StressField::new(
             &disc.mesh,
-            &scenario.material,
-            scenario.integration,
+            &disc.material,
+            disc.integration,
             &self.displacement(disc),
         )
     }
@@ -96,7 +117,9 @@ impl Solution {
             disc.factor.solve_in_place(&mut u, 1);
             return disc.dofs.expand(&u, |_| 0.0);
         }
-        let forces = Discretization::nodal_forces(&self.points, &self.newton.forces, disc.contact_dofs.len());
+        let forces = self
+            .points
+            .nodal_forces(&self.newton.forces, disc.contact_dofs.len());
         let mut u = vec![0.0; disc.n_dofs()];
         for (&d, f) in disc.contact_dofs.iter().zip(&forces) {
             u[d] = -f;
@@ -104,7 +127,7 @@ impl Solution {
         if let Some(friction) = &self.friction
             && let Some(dofs) = disc.dofs.tangential_dofs(&disc.mesh)
         {
-            let tangential = Discretization::nodal_forces(&self.points, &friction.z, dofs.len());
+            let tangential = self.points.nodal_forces(&friction.z, dofs.len());
             for (&d, f) in dofs.iter().zip(&tangential) {
                 u[d] += f;
             }

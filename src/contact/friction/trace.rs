@@ -101,7 +101,7 @@ impl FrictionTrace {
             .entry(rule)
             .or_insert_with(|| {
                 Arc::new(Couplings {
-                    g_nn: disc.coupling(rule, points),
+                    g_nn: crate::contact::coupling::of(disc, rule, points),
                     g_nt: t_c_t(points, self.block(1, 0)),
                     g_tt: t_c_t(points, self.block(0, 0)),
                 })
@@ -130,7 +130,7 @@ pub(crate) fn t_c_t(points: &ContactPoints, c: MatRef<'_, f64>) -> Mat<f64> {
 
 /// Tᵀ f: the nodal values on Γ_C of forces `f` at the points.
 pub(crate) fn nodal(points: &ContactPoints, f: &[f64], nodes: usize) -> Vec<f64> {
-    Discretization::nodal_forces(points, f, nodes)
+    points.nodal_forces(f, nodes)
 }
 
 /// C_block x for a nodal vector x.
@@ -160,8 +160,8 @@ mod tests {
     fn full_trace_compliance_is_the_inverse() {
         let scenario = Scenario::load(std::path::Path::new("scenarios/hertz-paper-full.toml")).unwrap();
         for element in [Element::Q1, Element::Q2] {
-            let full = Discretization::of_traced(&scenario, 1, element, Trace::Full).unwrap();
-            let normal = Discretization::of(&scenario, 1, element).unwrap();
+            let full = scenario.discretize_traced(1, element, Trace::Full).unwrap();
+            let normal = scenario.discretize(1, element).unwrap();
             let a = FrictionTrace::of(&full).unwrap();
             let b = FrictionTrace::of(&normal).unwrap();
             let n = a.nodes();
@@ -187,7 +187,7 @@ mod tests {
             assert!((&b.c_full - &expect).norm_max() <= 1e-12 * scale, "{element:?}");
             assert!((full.compliance() - normal.compliance()).norm_max() <= 1e-12 * scale);
             // The half model holds Γ_C's u_x at x = 0: refused.
-            let half = Discretization::of(&Scenario::paper(), 0, element).unwrap();
+            let half = Scenario::paper().discretize(0, element).unwrap();
             assert!(matches!(
                 FrictionTrace::of(&half),
                 Err(SolveError::Input(crate::error::InputFault::HeldTangential))
