@@ -116,8 +116,7 @@ fn every_glyph_stands_on_the_row_of_its_value() {
             app.show_timing = false;
             app.settings.level = 2;
             app.scene = scene;
-            app.show_hertz = true;
-            app.show_gap = true;
+            app.guides = riplab::tui::app::Guides::ALL;
             settle(&mut app, &mut Engine::new(scenario.clone()));
             for projector in [false, true] {
                 app.overlays.projector = projector;

@@ -131,14 +131,12 @@ impl TourApp {
         (
             step.settings,
             step.scene,
-            step.show_gap,
-            step.show_hertz,
+            step.guides,
             step.all_levels,
         ) == (
             self.app.settings,
             self.app.scene,
-            self.app.show_gap,
-            self.app.show_hertz,
+            self.app.guides,
             self.app.all_levels,
         )
     }
