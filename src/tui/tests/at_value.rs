@@ -97,7 +97,7 @@ fn check(frame: &str, charted: &Charted, what: &str) {
     }
 }
 
-/// Each value of `charted` inside its x range has a glyph of its series within four columns
+/// Each value of `charted` inside its ranges has a glyph of its series within four columns
 /// of its x on a row that reads it within half a row; an overlay's value may instead have
 /// every cell within two columns on that row held by something else (a line's dots or another
 /// glyph: the overlay lies under them there).
@@ -108,7 +108,13 @@ fn check_converse(frame: &str, charted: &Charted, what: &str) {
     let [x0, x1] = charted.x_bounds;
     let series = charted.series.iter().map(|s| (s, false));
     for ((glyph, points), beneath) in series.chain(charted.overlays.iter().map(|s| (s, true))) {
-        for &(x, y) in points.iter().filter(|p| p.0 >= x0.min(x1) && p.0 <= x0.max(x1)) {
+        // The values inside the chart's ranges (the y axis of the pressure chart leaves the
+        // gap's far depths out).
+        let [y0, y1] = charted.y_bounds;
+        let inside = |p: &&(f64, f64)| {
+            p.0 >= x0.min(x1) && p.0 <= x0.max(x1) && p.1 >= y0.min(y1) && p.1 <= y0.max(y1)
+        };
+        for &(x, y) in points.iter().filter(inside) {
             let v = if log_y { y.log10() } else { y };
             let col = place(&c.x_ticks, x, log_x).round() as i64;
             let rows: Vec<usize> = c

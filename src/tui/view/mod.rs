@@ -175,16 +175,29 @@ const PANELS_MIN: u16 = 5;
 /// contact zone.
 fn explore(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
     // The chart takes 57% of the rows, and at least [`CHART_NEED`] while the lower panels keep
-    // [`PANELS_MIN`] below the method line (the lab at 80×24). In a shorter area (the tour at
-    // 80×24) the chart takes the rest above 6 panel rows; shorter still (the tour's caption
-    // taking more rows), the method line goes and the panels keep 5 rows.
-    let (chart_rows, method_rows) = if area.height < 16 {
-        (area.height.saturating_sub(5), 0)
-    } else if area.height < CHART_NEED + 1 + PANELS_MIN {
-        (area.height.saturating_sub(7), 1)
-    } else {
+    // [`PANELS_MIN`] below the method line. Shorter (the lab at 80×24 with a wrapped message
+    // or a banner), the panels drop and the inf-sup panel's numbers take one row. In the
+    // tour's shorter area the chart takes the rest above 6 panel rows; shorter still (the
+    // tour's caption taking more rows), the method line goes and the panels keep 5 rows.
+    let short = area.height < CHART_NEED + 1 + PANELS_MIN;
+    let (chart_rows, method_rows) = if !short {
         let share = ((area.height - 1) * 57 + 50) / 100;
         (share.max(CHART_NEED).min(area.height - 1 - PANELS_MIN), 1)
+    } else if !app.overlays.in_tour {
+        let [chart, method_row, row] = Layout::vertical([
+            Constraint::Fill(1),
+            Constraint::Length(u16::from(area.height > CHART_NEED + 1)),
+            Constraint::Length(1),
+        ])
+        .areas(area);
+        method::render(app, frame, method_row, look.theme);
+        pressure::render(app, frame, chart, look);
+        infsup_panel::render_row(app, frame, row, look.theme);
+        return;
+    } else if area.height < 16 {
+        (area.height.saturating_sub(5), 0)
+    } else {
+        (area.height.saturating_sub(7), 1)
     };
     let [chart, method_row, lower] = Layout::vertical([
         Constraint::Length(chart_rows),
