@@ -40,7 +40,7 @@ fn graph(frame: &str, title: &str) -> (Vec<Vec<char>>, Vec<char>) {
     panic!("no x axis in\n{frame}");
 }
 
-/// On cattaneo-mindlin with M1 (t zigzags) zoomed, with `h`: t (`×`), t̄ (`~`)
+/// On cattaneo-mindlin with M1 (t zigzags) zoomed, with Mindlin (`M`): t (`×`), t̄ (`~`)
 /// and q (`*`) each have a mark within three columns of each of their points' x (a glyph that
 /// lands on another series' moves up to three cells), on at least two rows (t/μ and q/μ span
 /// the chart), the stick zone's `═` covers exactly the axis columns of its ends, the legend
@@ -48,8 +48,8 @@ fn graph(frame: &str, title: &str) -> (Vec<Vec<char>>, Vec<char>) {
 #[test]
 fn every_friction_series_is_visible_at_every_size() {
     let (mut app, mut engine) = lab(&cattaneo(), 2);
-    press(&mut app, &mut engine, "1h");
-    // The status line's state, not the `h` key's notice.
+    press(&mut app, &mut engine, "1M");
+    // The status line's state, not the `M` key's notice.
     app.notice = None;
     let solved = app.current().unwrap().clone();
     let shown = solved.shown.friction.as_ref().unwrap();
@@ -179,12 +179,13 @@ fn the_cursor_reads_t_over_mu_and_t() {
     assert!(frame.contains(&readout), "{readout}\n{frame}");
 }
 
-/// Item 3's claim as snapshots: M3 (the scenario's) at level 2 with `h`, 80×24 and 120×40,
-/// monochrome; and M1 at 120×40 (t zigzags, t̄ does not).
+/// Item 3's claim as snapshots: M3 (the scenario's) at level 2 with Hertz, the circle and
+/// Mindlin on (`h`, `o`, `M`), 80×24 and 120×40, monochrome (at 80×24 the legend says the
+/// circle has no room); and M1 at 120×40 (t zigzags, t̄ does not).
 #[test]
 fn friction_frames() {
     let (mut app, mut engine) = lab(&cattaneo(), 2);
-    press(&mut app, &mut engine, "h");
+    press(&mut app, &mut engine, "hoM");
     // The status line's readout, not the `h` key's notice.
     app.notice = None;
     snap!("tui__friction_m3_80x24", render_app(&app, &LOOK, 80, 24));

@@ -81,15 +81,17 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
         })
         .collect();
     // The projector view is the chart alone; else the table takes up to half the height, and
-    // no more than leaves the chart [`super::CHART_NEED`] rows less its legend's (which
-    // stands beside the title of a short chart): short of its full height the table drops its
-    // borders and title, then its explanation line.
+    // in the lab no more than leaves the chart [`super::CHART_NEED`] rows less its legend's
+    // (which stands beside the title of a short chart): short of its full height the table
+    // drops its borders and title, then its explanation line. (The tour's step keeps the
+    // half: its caption quotes the table's numbers.)
+    let half = (levels.len() as u16 + 5).min(area.height / 2);
     let table_height = if app.overlays.projector {
         0
+    } else if app.overlays.in_tour {
+        half
     } else {
-        (levels.len() as u16 + 5)
-            .min(area.height / 2)
-            .min(area.height.saturating_sub(super::CHART_NEED - 2))
+        half.min(area.height.saturating_sub(super::CHART_NEED - 2))
     };
     let [top, bottom] = Layout::vertical([Constraint::Fill(1), Constraint::Length(table_height)]).areas(area);
     chart(app, frame, top, look, &all, &levels);

@@ -118,7 +118,8 @@ pub fn visible(levels: &[u32], current: u32, rows: usize) -> &[u32] {
     }
     let end = match levels.iter().position(|&l| l == current) {
         // Keep the current row, with the row after it when there is one.
-        Some(i) => (i + 2).min(levels.len()).max(rows),
+        // (One row: the current one.)
+        Some(i) => (i + 2).min(levels.len()).max(rows).min(i + rows),
         None => levels.len(),
     };
     &levels[end - rows..end]

@@ -240,7 +240,8 @@ fn monochrome_series_have_distinct_symbols_in_the_legend() {
     let mut app = settled(1, Scene::Explore);
     app.guides = riplab::tui::app::Guides::ALL;
     let text = render_app(&app, &MONO, 100, 30);
-    for entry in ["⠒⠒⠒ p̄ smoothed", "⠒ ⠒ p gauss1", "+ Hertz", "· gap −g"] {
+    // (At 100×30 the gap has no room: the legend names it with its symbol all the same.)
+    for entry in ["⠒⠒⠒ p̄ smoothed", "⠒ ⠒ p gauss1", "+ Hertz", "· gap"] {
         assert!(text.contains(entry), "legend entry `{entry}` in\n{text}");
     }
     let text = render_app(&infsup_app(), &MONO, 80, 24);
