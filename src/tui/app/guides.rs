@@ -79,9 +79,9 @@ impl App {
             Guide::Hertz | Guide::Circle if !cylinder => {
                 Some("no Hertz solution for this obstacle: it needs a cylinder (a radius)")
             }
-            Guide::Mindlin if !cylinder || !self.settings.friction.is_on() => Some(
-                "no Mindlin traction here: it needs a cylinder and friction (F; a full model)",
-            ),
+            Guide::Mindlin if !cylinder || !self.settings.friction.is_on() => {
+                Some("no Mindlin traction here: it needs a cylinder and friction (F; a full model)")
+            }
             _ => None,
         };
         if let Some(why) = refusal {

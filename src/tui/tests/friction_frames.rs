@@ -63,29 +63,49 @@ fn every_friction_series_is_visible_at_every_size() {
         let rows = &rows;
         let width = rows[0].len() as u16;
         let col = |x: f64| cell_of(x, zone, width, 2);
-        let marks = |glyph: char, xs: &mut dyn Iterator<Item = f64>| {
+        // `under`: an overlay (q), drawn under t̄, t and p̄, has a mark at half its points at
+        // least (at_value.rs checks that each of the others lies under them).
+        let marks = |glyph: char, xs: &mut dyn Iterator<Item = f64>, under: bool| {
             let mut seen_rows = std::collections::BTreeSet::new();
+            let (mut points, mut missed) = (0, Vec::new());
             for x in xs {
                 let Some(c) = col(x) else { continue };
                 let near = (c.saturating_sub(3)..=(c + 3).min(width - 1))
                     .flat_map(|c| (0..rows.len()).filter(move |&r| rows[r][usize::from(c)] == glyph))
                     .collect::<Vec<_>>();
-                assert!(!near.is_empty(), "{glyph} at x = {x} ({w}×{h})\n{frame}");
+                points += 1;
+                if near.is_empty() {
+                    missed.push(x);
+                }
                 seen_rows.extend(near);
             }
+            let allowed = if under { points / 2 } else { 0 };
+            assert!(
+                missed.len() <= allowed,
+                "{glyph} at x = {missed:?} ({w}×{h})\n{frame}"
+            );
             assert!(
                 seen_rows.len() >= 2,
                 "{glyph} on {seen_rows:?} ({w}×{h})\n{frame}"
             );
         };
-        marks('×', &mut shown.t.iter().filter(|p| p.1 != 0.0).map(|p| p.0));
-        marks('~', &mut shown.tbar.iter().filter(|p| p.1 != 0.0).map(|p| p.0));
+        marks(
+            '×',
+            &mut shown.t.iter().filter(|p| p.1 != 0.0).map(|p| p.0),
+            false,
+        );
+        marks(
+            '~',
+            &mut shown.tbar.iter().filter(|p| p.1 != 0.0).map(|p| p.0),
+            false,
+        );
         let a = m.hertz.a;
         marks(
             '*',
             &mut (0..41)
                 .map(|i| zone[0] + (zone[1] - zone[0]) * f64::from(i) / 40.0)
                 .filter(|x| x.abs() < a),
+            true,
         );
         // The stick zone: exactly the columns of its ends and those between.
         let (left, right, runs) = shown.stick.unwrap();

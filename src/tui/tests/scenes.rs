@@ -72,7 +72,7 @@ pub(super) fn status_of(text: &str) -> String {
     // The explore scene's panels collapsed to one row (a short lab) end the scene.
     let first = lines[first..bar]
         .iter()
-        .position(|l| l.starts_with(" inf-sup "))
+        .position(|l| l.starts_with("inf-sup "))
         .map_or(first, |i| first + i + 1);
     let rows = lines[first..bar].iter().copied();
     rows.flat_map(str::split_whitespace).collect::<Vec<_>>().join(" ")

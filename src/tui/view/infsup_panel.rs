@@ -94,7 +94,7 @@ pub fn render_row(app: &App, frame: &mut Frame, area: Rect, theme: Theme) {
     let numbers = match app.infsup.get(&key) {
         Some(Ok(b)) if b.kernel.is_some() => "β_h = 0, kernel".to_string(),
         Some(Ok(b)) => format!(
-            "β_h/√h {}  β̄_h/√h {}",
+            "β_h/√h {} β̄_h/√h {}",
             sig(b.beta_over_sqrt_h, 3),
             sig(b.beta_bar_over_sqrt_h, 3)
         ),
@@ -102,7 +102,7 @@ pub fn render_row(app: &App, frame: &mut Frame, area: Rect, theme: Theme) {
         None => "⟳ estimating…".to_string(),
     };
     let mut spans = vec![
-        Span::styled(format!(" inf-sup {scheme}L{}: ", key.level), theme.title()),
+        Span::styled(format!("inf-sup {scheme}L{}: ", key.level), theme.title()),
         Span::raw(format!("{numbers} · ")),
     ];
     spans.extend(verdict(app, key.element, key.rule, theme).spans);

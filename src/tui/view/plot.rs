@@ -86,7 +86,8 @@ pub struct Plot<'a> {
     /// The overlays (guides such as Hertz's parabola), drawn under every line and glyph of
     /// `series`: a mark of theirs never covers another's cell, it moves up to three cells along
     /// its row to a free one, else the cell keeps what it shows. The chart draws one for each
-    /// [`OVERLAY_ROWS`] rows of its graph, in this order, and its legend names the others.
+    /// [`OVERLAY_ROWS`] rows of its graph, in this order, as many as its legend's two rows
+    /// name, and its legend names the others.
     pub overlays: Vec<Series<'a>>,
     /// The series, in the legend's order (after the overlays).
     pub series: Vec<Series<'a>>,
@@ -174,9 +175,18 @@ impl Plot<'_> {
     /// Draw into `area`; returns where the graph went (None when there was no room).
     pub fn render(&self, frame: &mut Frame, area: Rect) -> Option<Placed> {
         // The overlays the graph's rows hold: its box less the borders, the x axis with its
-        // labels and a legend of two rows.
+        // labels and a legend of two rows; fewer while the legend would not hold their names.
         let rows = area.height.saturating_sub(6);
-        let keep = usize::from(rows / OVERLAY_ROWS).min(self.overlays.len());
+        let mut keep = usize::from(rows / OVERLAY_ROWS).min(self.overlays.len());
+        let fits = |keep| {
+            let lines = self.legend_lines(area.width.saturating_sub(2), keep);
+            lines
+                .iter()
+                .all(|l| l.width() <= usize::from(area.width.saturating_sub(2)))
+        };
+        while keep > 0 && !fits(keep) {
+            keep -= 1;
+        }
         let theme = self.theme;
         let block = Block::bordered()
             .title(Span::styled(
@@ -316,7 +326,8 @@ impl Plot<'_> {
             .iter()
             .map(|s| {
                 let word = s.name.split_whitespace().next().unwrap_or_default();
-                s.glyph.map_or_else(|| word.to_string(), |g| format!("{g} {word}"))
+                s.glyph
+                    .map_or_else(|| word.to_string(), |g| format!("{g} {word}"))
             })
             .collect();
         if !hidden.is_empty() {
@@ -441,7 +452,10 @@ impl Plot<'_> {
         let mut taken: HashMap<(u16, u16), usize> = HashMap::new();
         let n = self.series.len();
         let layers = self.series.iter().enumerate().map(|(i, s)| (i, s, false));
-        let under = self.overlays[..keep].iter().enumerate().map(|(i, s)| (n + i, s, true));
+        let under = self.overlays[..keep]
+            .iter()
+            .enumerate()
+            .map(|(i, s)| (n + i, s, true));
         for (i, s, beneath) in layers.chain(under) {
             let Some(g) = s.glyph else { continue };
             let style = Style::new().fg(theme.ink(s.color)).add_modifier(Modifier::BOLD);

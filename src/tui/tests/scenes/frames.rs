@@ -317,9 +317,18 @@ fn overlays_toggle() {
     // Each overlay on its own: g, h, o; M refused without friction (the notice says why).
     for (key, on) in [('g', true), ('h', true), ('o', true), ('M', false)] {
         app.update(ch(key));
-        assert_eq!(app.notice.as_ref().unwrap().text.contains("no Mindlin"), !on, "{key}");
+        assert_eq!(
+            app.notice.as_ref().unwrap().text.contains("no Mindlin"),
+            !on,
+            "{key}"
+        );
     }
-    let g = riplab::tui::app::Guides { gap: true, hertz: true, circle: true, mindlin: false };
+    let g = riplab::tui::app::Guides {
+        gap: true,
+        hertz: true,
+        circle: true,
+        mindlin: false,
+    };
     assert_eq!(app.guides, g);
     app.update(ch('g'));
     assert!(!app.guides.gap && app.guides.hertz && app.guides.circle);
