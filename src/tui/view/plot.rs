@@ -332,7 +332,7 @@ impl Plot<'_> {
             .collect();
         if !hidden.is_empty() {
             entries.push(vec![Span::styled(
-                format!(" hidden, no room: {} ", hidden.join(", ")),
+                format!(" no room: {} ", hidden.join(", ")),
                 self.theme.faint(),
             )]);
         }
