@@ -209,8 +209,8 @@ pub const LAB: &[Row<LabAction>] = &[
     Row {
         keys: "g  h  o  M",
         what: &[
-            "pressure chart overlays, each on its own:",
-            "gap −g / Hertz + / circle o / Mindlin q *",
+            "overlays, each on its own: gap −g /",
+            "Hertz + / circle o / Mindlin q *",
         ],
         bindings: &[
             (Char('g'), L::Guide(Guide::Gap)),
