@@ -5,6 +5,8 @@
 
 use crossterm::event::KeyCode;
 
+use super::app::Guide;
+
 /// What an export key writes ([`super::app::Command::Export`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum ExportKind {
@@ -54,10 +56,8 @@ pub enum LabAction {
     NextScene,
     /// The previous scene.
     PreviousScene,
-    /// Toggle −g on the pressure chart.
-    Gap,
-    /// Toggle Hertz's pressure on the pressure chart.
-    Hertz,
+    /// Toggle one overlay of the pressure chart (−g, Hertz, the circle, Mindlin).
+    Guide(Guide),
     /// Zoom to the contact zone (p̄ > 0) and back.
     Zoom,
     /// The next grading: 0, 1, 2, 3 passes at the contact edges, auto, 1z, 2z, 3z over the
@@ -207,9 +207,17 @@ pub const LAB: &[Row<LabAction>] = &[
         bindings: &[(KeyCode::Tab, L::NextScene), (KeyCode::BackTab, L::PreviousScene)],
     },
     Row {
-        keys: "g  h",
-        what: &["gap / Hertz overlay on the pressure chart"],
-        bindings: &[(Char('g'), L::Gap), (Char('h'), L::Hertz)],
+        keys: "g  h  o  M",
+        what: &[
+            "overlays, each on its own: gap −g /",
+            "Hertz + / circle o / Mindlin q *",
+        ],
+        bindings: &[
+            (Char('g'), L::Guide(Guide::Gap)),
+            (Char('h'), L::Guide(Guide::Hertz)),
+            (Char('o'), L::Guide(Guide::Circle)),
+            (Char('M'), L::Guide(Guide::Mindlin)),
+        ],
     },
     Row {
         keys: "F",

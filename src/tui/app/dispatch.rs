@@ -102,8 +102,7 @@ impl App {
             }
             LabAction::Reset => {
                 self.settings = App::defaults(&self.scenario);
-                self.show_gap = false;
-                self.show_hertz = false;
+                self.guides = super::Guides::default();
                 self.all_levels = false;
                 self.zoom = false;
                 self.notice = Some(Notice::info("reset to the scenario's settings"));
@@ -145,20 +144,7 @@ impl App {
             LabAction::Deeper => self.shift_depth(DEPTH_STEP),
             LabAction::NextScene => self.scene = self.scene.shifted(1),
             LabAction::PreviousScene => self.scene = self.scene.shifted(Scene::ALL.len() - 1),
-            LabAction::Gap => {
-                self.show_gap = !self.show_gap;
-                self.say_overlay("the gap −g", self.show_gap);
-            }
-            LabAction::Hertz => {
-                if self.scenario.obstacle.hertz_radius().is_some() || self.show_hertz {
-                    self.show_hertz = !self.show_hertz;
-                    self.say_overlay("Hertz and the exact circle", self.show_hertz);
-                } else {
-                    self.notice = Some(Notice::info(
-                        "no Hertz solution for this obstacle: it needs a cylinder (a radius)",
-                    ));
-                }
-            }
+            LabAction::Guide(guide) => self.toggle_guide(guide),
             LabAction::Zoom => self.toggle_zoom(),
             LabAction::NextLaw => self.next_law(),
             LabAction::FrictionUp => self.step_friction(true),
@@ -324,18 +310,6 @@ impl App {
             (&mut self.overlays.log_scroll, -step)
         };
         *scroll = u16::try_from((i32::from(*scroll) + step).max(0)).unwrap_or(u16::MAX);
-    }
-
-    /// Say that an overlay of the pressure chart is now on or off, and where it is drawn when
-    /// the scene on screen has no pressure chart.
-    fn say_overlay(&mut self, what: &str, on: bool) {
-        let state = if on { "on" } else { "off" };
-        let place = if matches!(self.scene, Scene::Explore) {
-            ""
-        } else {
-            " (drawn on explore's pressure chart)"
-        };
-        self.notice = Some(Notice::info(format!("{what} {state}{place}")));
     }
 }
 

@@ -15,6 +15,7 @@ use super::lab_error::LabError;
 
 mod dispatch;
 mod friction;
+pub mod guides;
 mod integration;
 pub mod log;
 mod mouse;
@@ -25,6 +26,7 @@ pub use super::protocol::{
     Command, Compare, DisplaceRequest, InfSupKey, InfSupRequest, MAX_APP_LEVEL, Msg, Notice, Progress,
     Response, SolveKey, SolveRequest, Solved, StressRequest, Study, StudyKey, StudyRequest,
 };
+pub use guides::{Guide, Guides};
 pub use overlays::{Drawn, Overlays};
 
 /// Why the lab stops at [`MAX_APP_LEVEL`], for messages (the figures are BENCHMARKS.md's,
@@ -118,10 +120,8 @@ pub struct App {
     pub settings: SolveKey,
     /// The scene on screen.
     pub scene: Scene,
-    /// Draw −g, scaled, in the pressure chart (`g` toggles).
-    pub show_gap: bool,
-    /// Draw Hertz's pressure for the computed load in the pressure chart (`h` toggles; a cylinder only).
-    pub show_hertz: bool,
+    /// The pressure chart's overlays on: −g, Hertz, the circle, Mindlin (`g`, `h`, `o`, `M`).
+    pub guides: Guides,
     /// The help overlay is open (`?`).
     pub show_help: bool,
     /// Zoom the pressure chart and the contact-zone view to the contact zone.
@@ -183,8 +183,7 @@ impl App {
             scenario,
             settings,
             scene: Scene::Explore,
-            show_gap: false,
-            show_hertz: false,
+            guides: Guides::default(),
             show_help: false,
             zoom: narrow.is_some(),
             show_timing: true,

@@ -2,8 +2,9 @@
 //! the chart's own tick labels (within half a row): on every scene, at 80×24, 100×30 and
 //! 120×40, in the lab and in the projector view, on every bundled scenario with every
 //! overlay on (the work–precision chart on the paper's). So no glyph reads as a value its series does not have (the inf-sup chart drew
-//! M4's 0.52 on M3's row of 1.07: `*34` read "M4 = M3 ≈ 1"). That each value has its glyph
-//! near it is `axes.rs`'s test.
+//! M4's 0.52 on M3's row of 1.07: `*34` read "M4 = M3 ≈ 1"). And the converse: each value
+//! plotted has a glyph of its series on its row (within half a row), or, for an overlay (drawn
+//! under the lines), the cells about it are held by what lies above it.
 
 use riplab::scenario::Scenario;
 use riplab::tui::app::{App, Scene};
@@ -65,7 +66,7 @@ fn check(frame: &str, charted: &Charted, what: &str) {
     let c = chart(frame, &prefix);
     let (log_x, log_y) = charted.log;
     let [x0, x1] = charted.x_bounds;
-    for (glyph, points) in &charted.series {
+    for (glyph, points) in charted.series.iter().chain(&charted.overlays) {
         // The points inside the chart's x range (the zoomed one), as (column, value on the y
         // axis, value): a glyph drawn is one of them.
         let drawn: Vec<(f64, f64, f64)> = points
@@ -96,6 +97,52 @@ fn check(frame: &str, charted: &Charted, what: &str) {
     }
 }
 
+/// Each value of `charted` inside its ranges has a glyph of its series within four columns
+/// of its x on a row that reads it within half a row; an overlay's value may instead have
+/// every cell within two columns on that row held by something else (a line's dots or another
+/// glyph: the overlay lies under them there).
+fn check_converse(frame: &str, charted: &Charted, what: &str) {
+    let prefix: String = charted.title.chars().take(12).collect();
+    let c = chart(frame, &prefix);
+    let (log_x, log_y) = charted.log;
+    let [x0, x1] = charted.x_bounds;
+    let series = charted.series.iter().map(|s| (s, false));
+    for ((glyph, points), beneath) in series.chain(charted.overlays.iter().map(|s| (s, true))) {
+        // The values inside the chart's ranges (the y axis of the pressure chart leaves the
+        // gap's far depths out).
+        let [y0, y1] = charted.y_bounds;
+        let inside = |p: &&(f64, f64)| {
+            p.0 >= x0.min(x1) && p.0 <= x0.max(x1) && p.1 >= y0.min(y1) && p.1 <= y0.max(y1)
+        };
+        for &(x, y) in points.iter().filter(inside) {
+            let v = if log_y { y.log10() } else { y };
+            let col = place(&c.x_ticks, x, log_x).round() as i64;
+            let rows: Vec<usize> = c
+                .graph
+                .clone()
+                .filter(|&r| {
+                    let (read, half) = read(&c, r, log_y);
+                    (read - v).abs() <= half * (1.0 + 1e-6)
+                })
+                .collect();
+            let cell = |r: usize, k: i64| {
+                usize::try_from(k)
+                    .ok()
+                    .filter(|&k| k > c.axis)
+                    .and_then(|k| c.lines[r].get(k).copied())
+            };
+            let found = rows.iter().any(|&r| {
+                (col - 4..=col + 4).any(|k| cell(r, k) == Some(*glyph))
+                    || (beneath && (col - 2..=col + 2).all(|k| cell(r, k).is_some_and(|ch| ch != ' ')))
+            });
+            assert!(
+                found,
+                "{what}: ({x}, {y}) has no `{glyph}` on its rows {rows:?} near column {col}\n{frame}"
+            );
+        }
+    }
+}
+
 #[test]
 fn every_glyph_stands_on_the_row_of_its_value() {
     for (name, scenario) in scenarios() {
@@ -116,8 +163,7 @@ fn every_glyph_stands_on_the_row_of_its_value() {
             app.show_timing = false;
             app.settings.level = 2;
             app.scene = scene;
-            app.show_hertz = true;
-            app.show_gap = true;
+            app.guides = riplab::tui::app::Guides::ALL;
             settle(&mut app, &mut Engine::new(scenario.clone()));
             for projector in [false, true] {
                 app.overlays.projector = projector;
@@ -127,6 +173,7 @@ fn every_glyph_stands_on_the_row_of_its_value() {
                     for charted in drawn::take() {
                         let what = format!("{name} {scene:?} {w}×{h} projector {projector}");
                         check(&frame, &charted, &what);
+                        check_converse(&frame, &charted, &what);
                     }
                 }
             }

@@ -40,7 +40,7 @@ fn graph(frame: &str, title: &str) -> (Vec<Vec<char>>, Vec<char>) {
     panic!("no x axis in\n{frame}");
 }
 
-/// On cattaneo-mindlin with M1 (t zigzags) zoomed, with `h`: t (`×`), t̄ (`~`)
+/// On cattaneo-mindlin with M1 (t zigzags) zoomed, with Mindlin (`M`): t (`×`), t̄ (`~`)
 /// and q (`*`) each have a mark within three columns of each of their points' x (a glyph that
 /// lands on another series' moves up to three cells), on at least two rows (t/μ and q/μ span
 /// the chart), the stick zone's `═` covers exactly the axis columns of its ends, the legend
@@ -48,8 +48,8 @@ fn graph(frame: &str, title: &str) -> (Vec<Vec<char>>, Vec<char>) {
 #[test]
 fn every_friction_series_is_visible_at_every_size() {
     let (mut app, mut engine) = lab(&cattaneo(), 2);
-    press(&mut app, &mut engine, "1h");
-    // The status line's state, not the `h` key's notice.
+    press(&mut app, &mut engine, "1M");
+    // The status line's state, not the `M` key's notice.
     app.notice = None;
     let solved = app.current().unwrap().clone();
     let shown = solved.shown.friction.as_ref().unwrap();
@@ -63,29 +63,49 @@ fn every_friction_series_is_visible_at_every_size() {
         let rows = &rows;
         let width = rows[0].len() as u16;
         let col = |x: f64| cell_of(x, zone, width, 2);
-        let marks = |glyph: char, xs: &mut dyn Iterator<Item = f64>| {
+        // `under`: an overlay (q), drawn under t̄, t and p̄, has a mark at half its points at
+        // least (at_value.rs checks that each of the others lies under them).
+        let marks = |glyph: char, xs: &mut dyn Iterator<Item = f64>, under: bool| {
             let mut seen_rows = std::collections::BTreeSet::new();
+            let (mut points, mut missed) = (0, Vec::new());
             for x in xs {
                 let Some(c) = col(x) else { continue };
                 let near = (c.saturating_sub(3)..=(c + 3).min(width - 1))
                     .flat_map(|c| (0..rows.len()).filter(move |&r| rows[r][usize::from(c)] == glyph))
                     .collect::<Vec<_>>();
-                assert!(!near.is_empty(), "{glyph} at x = {x} ({w}×{h})\n{frame}");
+                points += 1;
+                if near.is_empty() {
+                    missed.push(x);
+                }
                 seen_rows.extend(near);
             }
+            let allowed = if under { points / 2 } else { 0 };
+            assert!(
+                missed.len() <= allowed,
+                "{glyph} at x = {missed:?} ({w}×{h})\n{frame}"
+            );
             assert!(
                 seen_rows.len() >= 2,
                 "{glyph} on {seen_rows:?} ({w}×{h})\n{frame}"
             );
         };
-        marks('×', &mut shown.t.iter().filter(|p| p.1 != 0.0).map(|p| p.0));
-        marks('~', &mut shown.tbar.iter().filter(|p| p.1 != 0.0).map(|p| p.0));
+        marks(
+            '×',
+            &mut shown.t.iter().filter(|p| p.1 != 0.0).map(|p| p.0),
+            false,
+        );
+        marks(
+            '~',
+            &mut shown.tbar.iter().filter(|p| p.1 != 0.0).map(|p| p.0),
+            false,
+        );
         let a = m.hertz.a;
         marks(
             '*',
             &mut (0..41)
                 .map(|i| zone[0] + (zone[1] - zone[0]) * f64::from(i) / 40.0)
                 .filter(|x| x.abs() < a),
+            true,
         );
         // The stick zone: exactly the columns of its ends and those between.
         let (left, right, runs) = shown.stick.unwrap();
@@ -179,12 +199,13 @@ fn the_cursor_reads_t_over_mu_and_t() {
     assert!(frame.contains(&readout), "{readout}\n{frame}");
 }
 
-/// Item 3's claim as snapshots: M3 (the scenario's) at level 2 with `h`, 80×24 and 120×40,
-/// monochrome; and M1 at 120×40 (t zigzags, t̄ does not).
+/// Item 3's claim as snapshots: M3 (the scenario's) at level 2 with Hertz, the circle and
+/// Mindlin on (`h`, `o`, `M`), 80×24 and 120×40, monochrome (at 80×24 the legend says the
+/// circle has no room); and M1 at 120×40 (t zigzags, t̄ does not).
 #[test]
 fn friction_frames() {
     let (mut app, mut engine) = lab(&cattaneo(), 2);
-    press(&mut app, &mut engine, "h");
+    press(&mut app, &mut engine, "hoM");
     // The status line's readout, not the `h` key's notice.
     app.notice = None;
     snap!("tui__friction_m3_80x24", render_app(&app, &LOOK, 80, 24));

@@ -38,7 +38,7 @@ fn the_hertz_overlay_reads_out_a_p0_and_the_error() {
     let scenario = block();
     let mut app = App::new(scenario.clone());
     app.show_timing = false;
-    app.show_hertz = true;
+    app.guides.hertz = true;
     settle(&mut app, &mut Engine::new(scenario.clone()));
     let solved = app.solved.clone().expect("solved");
     // Hertz (plane strain): a² = 4PR(1 − ν²)/(πE), p₀ = 2P/(πa), P the whole body's load.

@@ -20,6 +20,7 @@ mod lab_errors;
 mod locking;
 mod mouse;
 mod opening_and_log;
+mod overlay_layers;
 mod record;
 mod refusals;
 mod regrade;

@@ -69,6 +69,11 @@ pub(super) fn status_of(text: &str) -> String {
         .iter()
         .rposition(|l| l.contains('┘') || l.contains('└'))
         .map_or(0, |i| i + 1);
+    // The explore scene's panels collapsed to one row (a short lab) end the scene.
+    let first = lines[first..bar]
+        .iter()
+        .position(|l| l.starts_with("inf-sup "))
+        .map_or(first, |i| first + i + 1);
     let rows = lines[first..bar].iter().copied();
     rows.flat_map(str::split_whitespace).collect::<Vec<_>>().join(" ")
 }

@@ -417,7 +417,7 @@ fn bad_tours_name_the_file_line_key_and_allowed_values() {
     );
     let e = error(&format!("{STEP}overlays = [\"gap\", \"grid\"]\n"));
     assert!(
-        e.contains("step[1].overlays") && e.contains("gap, hertz, all-levels"),
+        e.contains("step[1].overlays") && e.contains("gap, hertz, circle, mindlin, all-levels"),
         "{e}"
     );
     let e = error(&format!("{STEP}scheme = \"M9\"\n"));

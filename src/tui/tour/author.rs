@@ -106,8 +106,10 @@ pub fn step_toml(app: &App, scenario: Option<&str>) -> String {
         lines.push("compare = \"methods\"".into());
     }
     let overlays: Vec<String> = [
-        (app.show_gap, "gap"),
-        (app.show_hertz, "hertz"),
+        (app.guides.gap, "gap"),
+        (app.guides.hertz, "hertz"),
+        (app.guides.circle, "circle"),
+        (app.guides.mindlin, "mindlin"),
         (app.all_levels, "all-levels"),
         (app.zoom, "zoom"),
     ]

@@ -39,7 +39,7 @@ use crate::scheme::Scheme;
 use crate::stress::Quantity;
 use crate::text::{sanitize, sanitize_lines};
 
-use super::app::{App, Compare, MAX_APP_LEVEL, Scene};
+use super::app::{App, Compare, Guides, MAX_APP_LEVEL, Scene};
 use errors::TextError;
 use scenarios::{StepScenarios, Unloaded};
 
@@ -62,7 +62,7 @@ pub const MAX_CAPTION_WIDTH: usize = 96;
 /// The most characters in a step's title.
 pub const MAX_TITLE_WIDTH: usize = 60;
 /// The overlays a step may switch on.
-pub const OVERLAYS: [&str; 4] = ["gap", "hertz", "all-levels", "zoom"];
+pub const OVERLAYS: [&str; 6] = ["gap", "hertz", "circle", "mindlin", "all-levels", "zoom"];
 
 /// A validated tour.
 #[derive(Clone, Debug, PartialEq)]
@@ -111,10 +111,8 @@ pub struct Step {
     pub scene: Option<Scene>,
     /// What the convergence scene compares (`w` in the lab; default: the schemes).
     pub compare: Compare,
-    /// Draw −g in the pressure chart (overlay `gap`).
-    pub gap: bool,
-    /// Draw Hertz's pressure in the pressure chart (overlay `hertz`).
-    pub hertz: bool,
+    /// The pressure chart's overlays (`gap`, `hertz`, `circle`, `mindlin`).
+    pub guides: Guides,
     /// Estimate inf-sup at every level up to the step's (overlay `all-levels`).
     pub all_levels: bool,
     /// Zoom to the contact zone (overlay `zoom`, `z` in the lab).
@@ -324,8 +322,7 @@ impl Tour {
         app.scene = step.scene.unwrap_or(Scene::Explore);
         app.overlays.in_tour = true;
         app.compare = step.compare;
-        app.show_gap = step.gap;
-        app.show_hertz = step.hertz;
+        app.guides = step.guides;
         app.all_levels = step.all_levels;
         app.zoom = step.zoom;
         // A step that zooms chose to: the lab's "opened zoomed in" notice would take the
@@ -524,10 +521,14 @@ fn step(src: &Source, n: usize, raw: &RawStep, scenarios: &mut StepScenarios) ->
         depth: raw.depth.as_ref().map(|d| *d.get_ref()),
         scene,
         compare,
-        gap: on[0],
-        hertz: on[1],
-        all_levels: on[2],
-        zoom: on[3],
+        guides: Guides {
+            gap: on[0],
+            hertz: on[1],
+            circle: on[2],
+            mindlin: on[3],
+        },
+        all_levels: on[4],
+        zoom: on[5],
         quantity,
         friction: friction_step::parse(
             src,

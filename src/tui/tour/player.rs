@@ -128,19 +128,13 @@ impl TourApp {
     /// Whether the lab's settings still are the step's (false once the user changed them).
     pub fn is_pristine(&self) -> bool {
         let step = self.tour.app(self.index);
-        (
-            step.settings,
-            step.scene,
-            step.show_gap,
-            step.show_hertz,
-            step.all_levels,
-        ) == (
-            self.app.settings,
-            self.app.scene,
-            self.app.show_gap,
-            self.app.show_hertz,
-            self.app.all_levels,
-        )
+        (step.settings, step.scene, step.guides, step.all_levels)
+            == (
+                self.app.settings,
+                self.app.scene,
+                self.app.guides,
+                self.app.all_levels,
+            )
     }
 
     /// Handle one input.

@@ -44,8 +44,9 @@ const METHODS: [Legend; 4] = [
 ];
 /// The colour of M1's raw pressure (the dotted curve).
 const RAW_COLOR: Color = Color::Cyan;
-/// The chart keeps at least this many rows; the table gets the rest.
-const MIN_CHART_HEIGHT: u16 = 12;
+/// The chart keeps at least this many rows (8 data rows); the table gets the rest, without
+/// its borders and title when they do not fit (the status line names the reference).
+const MIN_CHART_HEIGHT: u16 = super::CHART_NEED;
 
 pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
     let key = app.study_key();
@@ -58,16 +59,19 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
         (Some(Ok(study)), _) | (None, Some(study)) => {
             let levels = shown_levels(study, area.height);
             let rows = table_lines(study, &levels) as u16;
+            let graded = study.key.refine_edges.grades();
+            let bordered = graded || area.height >= MIN_CHART_HEIGHT + rows + 3;
+            let height = if bordered { rows + 3 } else { rows + 1 };
             let [top, bottom] =
-                Layout::vertical([Constraint::Fill(1), Constraint::Length(rows + 3)]).areas(area);
+                Layout::vertical([Constraint::Fill(1), Constraint::Length(height)]).areas(area);
             chart(frame, top, look, app, study);
-            if study.key.refine_edges.grades() {
+            if graded {
                 let curves = curves(study);
                 let color_of = |name: &str| curves.iter().find(|c| c.name == name).map(|c| c.color);
                 let title = table_title(study, &levels);
                 paired_table(frame, bottom, look.theme, study, (&levels, title), &color_of);
             } else {
-                table(frame, bottom, look.theme, study, &levels);
+                table(frame, bottom, look.theme, study, &levels, bordered);
             }
         }
         (other, _) => {
@@ -263,6 +267,7 @@ fn chart(frame: &mut Frame, area: Rect, look: &Look, app: &App, study: &Study) {
         });
     }
     Plot {
+        overlays: Vec::new(),
         title: format!(
             " work–precision of {}: relative error of p̄ against solve time (log-log) · {} ",
             study.key.label(),
@@ -317,7 +322,7 @@ pub fn svg_curves(app: &App) -> Option<Vec<crate::plot::LogCurve>> {
     Some(out)
 }
 
-fn table(frame: &mut Frame, area: Rect, theme: Theme, study: &Study, levels: &[u32]) {
+fn table(frame: &mut Frame, area: Rect, theme: Theme, study: &Study, levels: &[u32], bordered: bool) {
     let methods = study.key.compare == Compare::Methods;
     // The methods' rows add their Newton steps and the ALM's multiplier updates.
     let head = if methods {
@@ -378,6 +383,10 @@ fn table(frame: &mut Frame, area: Rect, theme: Theme, study: &Study, levels: &[u
         ]));
     }
     let title = table_title(study, levels);
+    if !bordered {
+        frame.render_widget(Paragraph::new(lines), area);
+        return;
+    }
     frame.render_widget(
         Paragraph::new(lines).block(
             Block::bordered()

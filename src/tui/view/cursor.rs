@@ -94,7 +94,7 @@ pub fn readout(app: &App) -> Option<String> {
             ));
         }
     }
-    if app.show_hertz
+    if app.guides.hertz
         && let Some(h) = solved.shown.hertz
     {
         text.push_str(&format!(" · Hertz {}", sig(h.pressure(x).max(0.0), 4)));

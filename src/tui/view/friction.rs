@@ -1,7 +1,7 @@
 //! Friction on the pressure chart (docs/design.md §11, "The lab"): the raw tangential
 //! traction t at the rule's points (`×`), the smoothed t̄ through Γ_C's vertices (a solid
 //! line with `~` at every vertex), the stick zone (`═` on the x axis between its ends), and,
-//! with the Hertz overlay (`h`), Cattaneo–Mindlin's traction q (`*`) for the computed P and
+//! with the Mindlin overlay (`M`), Cattaneo–Mindlin's traction q (`*`) for the computed P and
 //! Q. With Coulomb's law t, t̄ and q are drawn divided by μ, on p's axis: a slipping point's
 //! t/μ reaches its p, and the stick zone is where t/μ stays below (Johnson's figure 7.7);
 //! Tresca's t is drawn as it is (g shares p's unit).
@@ -49,7 +49,7 @@ pub struct Inks {
 }
 
 impl Layer {
-    /// The layer of `shown` over the x range `[lo, hi]`, q when `mindlin` (the `h` overlay).
+    /// The layer of `shown` over the x range `[lo, hi]`, q when `mindlin` (the `M` overlay).
     pub fn new(shown: &FrictionShown, [lo, hi]: [f64; 2], mindlin: bool) -> Layer {
         let q = shown
             .mindlin
@@ -88,7 +88,7 @@ impl Layer {
         }
     }
 
-    /// q's series (empty without it): drawn with the overlays, before p̄.
+    /// q's series (none without it): one of the chart's overlays, under p̄.
     pub fn overlay<'a>(&'a self, inks: &Inks) -> Option<Series<'a>> {
         (!self.q.is_empty()).then(|| Series {
             name: format!("q{} Mindlin", self.over),

@@ -80,11 +80,18 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
             })
         })
         .collect();
-    // The projector view is the chart alone; else the table takes up to half the height.
+    // The projector view is the chart alone; else the table takes up to half the height, and
+    // in the lab no more than leaves the chart [`super::CHART_NEED`] rows less its legend's
+    // (which stands beside the title of a short chart): short of its full height the table
+    // drops its borders and title, then its explanation line. (The tour's step keeps the
+    // half: its caption quotes the table's numbers.)
+    let half = (levels.len() as u16 + 5).min(area.height / 2);
     let table_height = if app.overlays.projector {
         0
+    } else if app.overlays.in_tour {
+        half
     } else {
-        (levels.len() as u16 + 5).min(area.height / 2)
+        half.min(area.height.saturating_sub(super::CHART_NEED - 2))
     };
     let [top, bottom] = Layout::vertical([Constraint::Fill(1), Constraint::Length(table_height)]).areas(area);
     chart(app, frame, top, look, &all, &levels);
@@ -138,6 +145,7 @@ fn chart(app: &App, frame: &mut Frame, area: Rect, look: &Look, all: &[Series], 
         })
         .collect();
     Plot {
+        overlays: Vec::new(),
         title: " β_h/√h against h ".into(),
         x: Axis {
             title: "h".into(),
@@ -187,7 +195,9 @@ fn table(app: &App, frame: &mut Frame, area: Rect, theme: Theme, all: &[Series],
     }
     let mut lines = vec![Line::styled(head, theme.title())];
     let mut first_error: Option<&LabError> = None;
-    let rows = area.height.saturating_sub(5) as usize;
+    // With room for every level: borders and a title; else the rows alone.
+    let bordered = usize::from(area.height) >= levels.len() + 5;
+    let rows = area.height.saturating_sub(if bordered { 5 } else { 2 }) as usize;
     let shown = visible(levels, app.settings.level, rows);
     for &level in shown {
         let mark = if level == app.settings.level { '▸' } else { ' ' };
@@ -240,8 +250,13 @@ fn table(app: &App, frame: &mut Frame, area: Rect, theme: Theme, all: &[Series],
         },
         theme.faint(),
     ));
+    let paragraph = Paragraph::new(lines);
+    if !bordered {
+        frame.render_widget(paragraph, area);
+        return;
+    }
     frame.render_widget(
-        Paragraph::new(lines).block(
+        paragraph.block(
             Block::bordered()
                 .title(Span::styled(
                     format!(" β_h/√h (raw) and β̄_h/√h (M1 p̄){} ", hidden_rows(levels, shown)),

@@ -83,6 +83,32 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, theme: Theme) {
     );
 }
 
+/// The panel in one row without borders, where the explore scene is too short for it (the
+/// chart keeps its rows): the current level's β_h/√h and β̄_h/√h, and the verdict.
+pub fn render_row(app: &App, frame: &mut Frame, area: Rect, theme: Theme) {
+    let key = app.infsup_key();
+    let scheme = Scheme::new(key.element, key.rule)
+        .name()
+        .map(|m| format!("{m} "))
+        .unwrap_or_default();
+    let numbers = match app.infsup.get(&key) {
+        Some(Ok(b)) if b.kernel.is_some() => "β_h = 0, kernel".to_string(),
+        Some(Ok(b)) => format!(
+            "β_h/√h {} β̄_h/√h {}",
+            sig(b.beta_over_sqrt_h, 3),
+            sig(b.beta_bar_over_sqrt_h, 3)
+        ),
+        Some(Err(_)) => "failed (l: log)".to_string(),
+        None => "⟳ estimating…".to_string(),
+    };
+    let mut spans = vec![
+        Span::styled(format!("inf-sup {scheme}L{}: ", key.level), theme.title()),
+        Span::raw(format!("{numbers} · ")),
+    ];
+    spans.extend(verdict(app, key.element, key.rule, theme).spans);
+    frame.render_widget(Paragraph::new(Line::from(spans)), area);
+}
+
 /// The rows of `levels` that fit in `rows`: all, else a window that holds `current` (the
 /// finest rows when `current` is not among them), as far down as it can go.
 pub fn visible(levels: &[u32], current: u32, rows: usize) -> &[u32] {
@@ -92,7 +118,8 @@ pub fn visible(levels: &[u32], current: u32, rows: usize) -> &[u32] {
     }
     let end = match levels.iter().position(|&l| l == current) {
         // Keep the current row, with the row after it when there is one.
-        Some(i) => (i + 2).min(levels.len()).max(rows),
+        // (One row: the current one.)
+        Some(i) => (i + 2).min(levels.len()).max(rows).min(i + rows),
         None => levels.len(),
     };
     &levels[end - rows..end]

@@ -19,6 +19,7 @@ pub mod plot;
 mod pressure;
 mod status;
 mod stress_map;
+mod ticks;
 mod yfit;
 
 use ratatui::Frame;
@@ -161,19 +162,42 @@ fn projector(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
     }
 }
 
+/// The rows a chart's box needs for 8 data rows: its borders, a legend of two rows, the x
+/// axis and its labels. At small sizes the panels beside or below a chart give it these rows
+/// before it loses any (as btm's basic mode drops its panels).
+pub const CHART_NEED: u16 = 14;
+
+/// The least rows of the explore scene's lower panels: the inf-sup panel's borders, header,
+/// current row and verdict.
+const PANELS_MIN: u16 = 5;
+
 /// The explore scene: pressures on top, the method line, then the inf-sup panel and the
 /// contact zone.
 fn explore(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
-    // The lower panels keep at least 6 rows (the inf-sup panel's borders, header, current
-    // row and verdict) below the method line; in a short area (the tour at 80×24) the chart
-    // takes the rest; shorter still (the tour's caption taking more rows), the method line
-    // goes and the panels keep 5 rows, so that the chart keeps its data rows.
-    let (chart_rows, method_rows) = if area.height < 16 {
+    // The chart takes 57% of the rows, and at least [`CHART_NEED`] while the lower panels keep
+    // [`PANELS_MIN`] below the method line. Shorter (the lab at 80×24 with a wrapped message
+    // or a banner), the panels drop and the inf-sup panel's numbers take one row. In the
+    // tour's shorter area the chart takes the rest above 6 panel rows; shorter still (the
+    // tour's caption taking more rows), the method line goes and the panels keep 5 rows.
+    let short = area.height < CHART_NEED + 1 + PANELS_MIN;
+    let (chart_rows, method_rows) = if !short {
+        let share = ((area.height - 1) * 57 + 50) / 100;
+        (share.max(CHART_NEED).min(area.height - 1 - PANELS_MIN), 1)
+    } else if !app.overlays.in_tour {
+        let [chart, method_row, row] = Layout::vertical([
+            Constraint::Fill(1),
+            Constraint::Length(u16::from(area.height > CHART_NEED + 1)),
+            Constraint::Length(1),
+        ])
+        .areas(area);
+        method::render(app, frame, method_row, look.theme);
+        pressure::render(app, frame, chart, look);
+        infsup_panel::render_row(app, frame, row, look.theme);
+        return;
+    } else if area.height < 16 {
         (area.height.saturating_sub(5), 0)
-    } else if area.height < 21 {
-        (area.height.saturating_sub(7), 1)
     } else {
-        (((area.height - 1) * 57 + 50) / 100, 1)
+        (area.height.saturating_sub(7), 1)
     };
     let [chart, method_row, lower] = Layout::vertical([
         Constraint::Length(chart_rows),

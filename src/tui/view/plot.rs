@@ -19,8 +19,12 @@ use ratatui::widgets::canvas::{Canvas, Line as Segment, Painter, Shape};
 
 use super::super::theme::Theme;
 pub use super::cells::{cell_of, dots_per_cell};
-use super::fmt::{sig, title_fit};
+use super::fmt::title_fit;
+pub use super::ticks::{linear_ticks, log_ticks, tick_label};
 use super::yfit;
+
+/// The graph rows each overlay drawn takes ([`Plot::overlays`]).
+pub const OVERLAY_ROWS: u16 = 4;
 
 /// The graph rows under which the legend moves to the title's row (when it fits there).
 const ROOMY: u16 = 20;
@@ -79,63 +83,18 @@ pub struct Plot<'a> {
     pub x: Axis,
     /// The vertical axis.
     pub y: Axis,
-    /// The series, in the legend's order.
+    /// The overlays (guides such as Hertz's parabola), drawn under every line and glyph of
+    /// `series`: a mark of theirs never covers another's cell, it moves up to three cells along
+    /// its row to a free one, else the cell keeps what it shows. The chart draws one for each
+    /// [`OVERLAY_ROWS`] rows of its graph, in this order, as many as its legend's two rows
+    /// name, and its legend names the others.
+    pub overlays: Vec<Series<'a>>,
+    /// The series, in the legend's order (after the overlays).
     pub series: Vec<Series<'a>>,
     /// The glyphs of the canvas.
     pub marker: Marker,
     /// The colours (monochrome or not).
     pub theme: Theme,
-}
-
-/// Ticks on a linear axis: multiples of a 1-2-5 step, at most `max` of them.
-pub fn linear_ticks(bounds: [f64; 2], max: usize) -> Vec<f64> {
-    let (lo, hi) = (bounds[0], bounds[1]);
-    let ordered = hi > lo;
-    if !ordered {
-        return vec![lo];
-    }
-    let max = max.max(2);
-    let raw = (hi - lo) / (max - 1) as f64;
-    let p = 10f64.powf(raw.log10().floor());
-    let step = [1.0, 2.0, 2.5, 5.0, 10.0]
-        .into_iter()
-        .map(|m| m * p)
-        .find(|&s| (((hi - lo) / s).floor() as usize) < max)
-        .unwrap_or(10.0 * p);
-    let first = (lo / step - 1e-9).ceil() as i64;
-    let last = (hi / step + 1e-9).floor() as i64;
-    (first..=last).map(|k| k as f64 * step).collect()
-}
-
-/// Ticks on a log10 axis (data in log10): the decades inside, with 2× and 5× when fewer than
-/// three decades fit and there is room; at most `max`.
-pub fn log_ticks(bounds: [f64; 2], max: usize) -> Vec<f64> {
-    let (lo, hi) = (bounds[0], bounds[1]);
-    let decades: Vec<f64> = ((lo - 1e-9).ceil() as i64..=(hi + 1e-9).floor() as i64)
-        .map(|k| k as f64)
-        .collect();
-    if decades.len() >= 3 || max < 3 {
-        // Every decade, thinned to fit.
-        let every = decades.len().div_ceil(max.max(1)).max(1);
-        return decades.into_iter().step_by(every).collect();
-    }
-    let fine: Vec<f64> = ((lo - 1e-9).floor() as i64..=(hi + 1e-9).ceil() as i64)
-        .flat_map(|k| [1.0f64, 2.0, 5.0].map(|m| k as f64 + m.log10()))
-        .filter(|&v| v >= lo - 1e-9 && v <= hi + 1e-9)
-        .collect();
-    if fine.len() <= max && fine.len() >= 2 {
-        fine
-    } else {
-        decades
-    }
-}
-
-/// The text of a tick at `value` (data units).
-pub fn tick_label(value: f64, scale: Scale) -> String {
-    match scale {
-        Scale::Linear => sig(value, 3),
-        Scale::Log10 => sig(10f64.powf(value), 2),
-    }
 }
 
 /// The legend's sample of a series: its line drawn with the chart's marker and its glyph.
@@ -215,6 +174,19 @@ pub struct Placed {
 impl Plot<'_> {
     /// Draw into `area`; returns where the graph went (None when there was no room).
     pub fn render(&self, frame: &mut Frame, area: Rect) -> Option<Placed> {
+        // The overlays the graph's rows hold: its box less the borders, the x axis with its
+        // labels and a legend of two rows; fewer while the legend would not hold their names.
+        let rows = area.height.saturating_sub(6);
+        let mut keep = usize::from(rows / OVERLAY_ROWS).min(self.overlays.len());
+        let fits = |keep| {
+            let lines = self.legend_lines(area.width.saturating_sub(2), keep);
+            lines
+                .iter()
+                .all(|l| l.width() <= usize::from(area.width.saturating_sub(2)))
+        };
+        while keep > 0 && !fits(keep) {
+            keep -= 1;
+        }
         let theme = self.theme;
         let block = Block::bordered()
             .title(Span::styled(
@@ -229,9 +201,9 @@ impl Plot<'_> {
         }
         // The legend on rows of its own; on the title's row when the graph would have fewer
         // than [`ROOMY`] rows and the legend fits there beside the title.
-        let mut legend = self.legend_lines(inner.width);
+        let mut legend = self.legend_lines(inner.width, keep);
         let title_width = Line::raw(title_fit(&self.title, area.width.saturating_sub(2))).width() as u16;
-        let one_row = self.legend_lines(u16::MAX);
+        let one_row = self.legend_lines(u16::MAX, keep);
         let beside = inner.width.saturating_sub(title_width);
         let short = inner.height.saturating_sub(legend.len() as u16 + 2) < ROOMY;
         if short && one_row.len() == 1 && one_row[0].width() <= usize::from(beside) {
@@ -318,9 +290,9 @@ impl Plot<'_> {
             buf.set_string(start, label_row, &label, axis_style);
             free_from = start + w + 1;
         }
-        self.draw_data(frame, graph, y_bounds);
+        self.draw_data(frame, graph, y_bounds, keep);
         #[cfg(test)]
-        drawn::record(self);
+        drawn::record(self, keep, graph, y_bounds);
         Some(Placed { graph })
     }
 
@@ -331,9 +303,15 @@ impl Plot<'_> {
         }
     }
 
-    /// The axes' titles ("y against x"), then each series' sample and name, wrapped to
+    /// The first `keep` overlays, then the series: what the chart draws, bottom layer first.
+    fn drawn(&self, keep: usize) -> impl Iterator<Item = &Series<'_>> {
+        self.overlays[..keep].iter().chain(&self.series)
+    }
+
+    /// The axes' titles ("y against x"), the overlays left out for lack of rows, then each
+    /// series' sample and name (the first `keep` overlays', then the series'), wrapped to
     /// `width` (two rows at most; one at `u16::MAX`).
-    fn legend_lines(&self, width: u16) -> Vec<Line<'static>> {
+    fn legend_lines(&self, width: u16, keep: usize) -> Vec<Line<'static>> {
         let width = usize::from(width);
         // The axes' titles, unless the chart's title says them.
         let axes = format!("{} against {}", self.y.title, self.x.title);
@@ -344,14 +322,28 @@ impl Plot<'_> {
                 self.theme.axis().add_modifier(Modifier::BOLD),
             )]);
         }
-        for s in &self.series {
+        let hidden: Vec<String> = self.overlays[keep..]
+            .iter()
+            .map(|s| {
+                let word = s.name.split_whitespace().next().unwrap_or_default();
+                s.glyph
+                    .map_or_else(|| word.to_string(), |g| format!("{g} {word}"))
+            })
+            .collect();
+        if !hidden.is_empty() {
+            entries.push(vec![Span::styled(
+                format!(" no room: {} ", hidden.join(", ")),
+                self.theme.faint(),
+            )]);
+        }
+        for s in self.drawn(keep) {
             if s.name.is_empty() {
                 continue;
             }
             let style = Style::new().fg(self.theme.ink(s.color));
             // A series equal to an earlier one says so: its glyphs stand beside that one's, a
             // line names the one it lies on (its name's first word).
-            let same = self.coincides_with(s).map_or_else(String::new, |earlier| {
+            let same = self.coincides_with(s, keep).map_or_else(String::new, |earlier| {
                 let label = earlier.glyph.map_or_else(
                     || {
                         earlier
@@ -388,7 +380,7 @@ impl Plot<'_> {
     /// with the same points (the same x and, to a millionth of the y axis's span, the same y);
     /// for a line, an earlier line drawn along the same path (each one's points on the other's
     /// polyline to that tolerance), as M3's raw p, linear between the vertices, lies on p̄.
-    fn coincides_with(&self, s: &Series) -> Option<&Series<'_>> {
+    fn coincides_with(&self, s: &Series, keep: usize) -> Option<&Series<'_>> {
         let span = |b: [f64; 2]| (b[1] - b[0]).abs();
         let (tx, ty) = (1e-9 * span(self.x.bounds), 1e-6 * span(self.y.bounds));
         let same_points = |a: &Series, b: &Series| {
@@ -405,7 +397,7 @@ impl Plot<'_> {
                 && on_path(a.data, b.data, tx, ty)
                 && on_path(b.data, a.data, tx, ty)
         };
-        let earlier = self.series.iter().take_while(|e| !std::ptr::eq(*e, s));
+        let earlier = self.drawn(keep).take_while(|e| !std::ptr::eq(*e, s));
         match s.glyph {
             Some(_) => earlier.filter(|e| e.glyph.is_some()).find(|e| same_points(e, s)),
             None if s.stroke != Stroke::None => earlier
@@ -416,15 +408,15 @@ impl Plot<'_> {
     }
 
     /// The series on a canvas over `graph` (y over `y_bounds`), lines first, then the glyphs
-    /// over them.
-    fn draw_data(&self, frame: &mut Frame, graph: Rect, y_bounds: [f64; 2]) {
+    /// over them, then the first `keep` overlays' glyphs in the cells left free.
+    fn draw_data(&self, frame: &mut Frame, graph: Rect, y_bounds: [f64; 2], keep: usize) {
         let theme = self.theme;
         let canvas = Canvas::default()
             .marker(self.marker)
             .x_bounds(self.x.bounds)
             .y_bounds(y_bounds)
             .paint(|ctx| {
-                for s in &self.series {
+                for s in self.drawn(keep) {
                     let color = theme.ink(s.color);
                     match s.stroke {
                         Stroke::Solid => {
@@ -455,9 +447,16 @@ impl Plot<'_> {
         let buf: &mut Buffer = frame.buffer_mut();
         // Which series' glyph holds a cell: a glyph that lands on another series' moves to the
         // next free cell of its row (right, else left, up to three cells away), so that no series
-        // hides another.
+        // hides another. An overlay's glyph takes only a cell that nothing else holds (no line's
+        // dots, no other glyph): where none is free it stays under them.
         let mut taken: HashMap<(u16, u16), usize> = HashMap::new();
-        for (i, s) in self.series.iter().enumerate() {
+        let n = self.series.len();
+        let layers = self.series.iter().enumerate().map(|(i, s)| (i, s, false));
+        let under = self.overlays[..keep]
+            .iter()
+            .enumerate()
+            .map(|(i, s)| (n + i, s, true));
+        for (i, s, beneath) in layers.chain(under) {
             let Some(g) = s.glyph else { continue };
             let style = Style::new().fg(theme.ink(s.color)).add_modifier(Modifier::BOLD);
             for &(x, y) in s.data {
@@ -467,16 +466,22 @@ impl Plot<'_> {
                 ) else {
                     continue;
                 };
-                let free = |c: u16| taken.get(&(c, cy)).is_none_or(|&o| o == i);
-                let cx = [0, 1, -1, 2, -2, 3, -3]
+                let row = graph.bottom() - 1 - cy;
+                let free = |c: u16| match taken.get(&(c, cy)) {
+                    Some(&o) => o == i,
+                    None => !beneath || matches!(buf[(graph.x + c, row)].symbol(), " " | "\u{2800}"),
+                };
+                let near = [0, 1, -1, 2, -2, 3, -3]
                     .into_iter()
                     .filter_map(|d: i32| u16::try_from(i32::from(cx) + d).ok().filter(|&c| c < graph.width))
-                    .find(|&c| free(c))
-                    .unwrap_or(cx);
+                    .find(|&c| free(c));
+                let cx = match near {
+                    Some(c) => c,
+                    None if beneath => continue,
+                    None => cx,
+                };
                 taken.insert((cx, cy), i);
-                buf[(graph.x + cx, graph.bottom() - 1 - cy)]
-                    .set_char(g)
-                    .set_style(style);
+                buf[(graph.x + cx, row)].set_char(g).set_style(style);
             }
         }
     }
@@ -526,6 +531,8 @@ fn on_path(a: &[(f64, f64)], b: &[(f64, f64)], tx: f64, ty: f64) -> bool {
 pub mod drawn {
     use std::cell::RefCell;
 
+    use ratatui::layout::Rect;
+
     use super::{Plot, Scale};
 
     /// One chart: its title, its x bounds, its scales and each glyph series' glyph and points
@@ -540,6 +547,14 @@ pub mod drawn {
         pub log: (bool, bool),
         /// Each glyph series' glyph and points.
         pub series: Vec<(char, Vec<(f64, f64)>)>,
+        /// Each overlay drawn (under the series): its glyph and points.
+        pub overlays: Vec<(char, Vec<(f64, f64)>)>,
+        /// The overlays left out for lack of rows (the legend names them).
+        pub hidden: usize,
+        /// The graph's cells.
+        pub graph: Rect,
+        /// The y axis's bounds as fitted to the rows, in values.
+        pub y_bounds: [f64; 2],
     }
 
     thread_local! {
@@ -547,21 +562,27 @@ pub mod drawn {
     }
 
     /// Note `plot` as drawn.
-    pub(super) fn record(plot: &Plot) {
+    pub(super) fn record(plot: &Plot, keep: usize, graph: Rect, y_bounds: [f64; 2]) {
         let (lx, ly) = (plot.x.scale == Scale::Log10, plot.y.scale == Scale::Log10);
         let value = |v: f64, log: bool| if log { 10f64.powf(v) } else { v };
-        let charted = Charted {
-            title: plot.title.trim().to_string(),
-            x_bounds: plot.x.bounds.map(|v| value(v, lx)),
-            log: (lx, ly),
-            series: plot
-                .series
+        let glyphs = |series: &[super::Series]| -> Vec<(char, Vec<(f64, f64)>)> {
+            series
                 .iter()
                 .filter_map(|s| {
                     let points = s.data.iter().map(|&(x, y)| (value(x, lx), value(y, ly)));
                     Some((s.glyph?, points.collect()))
                 })
-                .collect(),
+                .collect()
+        };
+        let charted = Charted {
+            title: plot.title.trim().to_string(),
+            x_bounds: plot.x.bounds.map(|v| value(v, lx)),
+            log: (lx, ly),
+            series: glyphs(&plot.series),
+            overlays: glyphs(&plot.overlays[..keep]),
+            hidden: plot.overlays.len() - keep,
+            graph,
+            y_bounds: y_bounds.map(|v| value(v, ly)),
         };
         CHARTS.with(|c| c.borrow_mut().push(charted));
     }

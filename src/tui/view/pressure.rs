@@ -1,8 +1,9 @@
 //! The main chart (drawn from the solution's [`super::super::shown::Shown`]): raw pressure p (the function of Q_h through the rule's points, so steps
 //! for gauss1, a dotted line) against the smoothed p̄ (a solid line through the vertices)
-//! along Γ_C, mirrored to the full width for a half model, with optional overlays of the gap
-//! and of the Hertz profile (its parabola, `+`) with the exact circular indenter's (`o`). p is drawn last so that its oscillation stays visible on fine
-//! meshes. Units are the paper's: x in units of length, p in the units of E.
+//! along Γ_C, mirrored to the full width for a half model, with the overlays switched on one
+//! by one (docs/lab.md, "Overlays"): the gap, the Hertz profile (its parabola, `+`), the exact
+//! circular indenter's (`o`) and Mindlin's q (`*`), drawn under p̄ and p. p is drawn last so
+//! that its oscillation stays visible on fine meshes. Units are the paper's: x in units of length, p in the units of E.
 
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Rect};
@@ -39,15 +40,16 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
     let full = shown.x_range;
     let zoomed = if app.zoom { shown.zone } else { None };
     let xb = zoomed.unwrap_or(full);
-    let hertz = shown.hertz.filter(|_| app.show_hertz);
+    let guides = app.guides;
+    let hertz = shown.hertz.filter(|_| guides.hertz);
     let data_max = shown.peak;
-    let circle = shown.circle.filter(|_| app.show_hertz);
+    let circle = shown.circle.filter(|_| guides.circle);
     let peak = data_max
         .max(hertz.map_or(0.0, |h| h.p0))
         .max(circle.map_or(0.0, |c| c.p0));
-    // With friction: t, t̄, the stick zone and (with `h`) q on the same axis.
+    // With friction: t, t̄, the stick zone and (with `M`) q on the same axis.
     let friction = shown.friction.as_ref();
-    let layer = friction.map(|f| friction::Layer::new(f, xb, app.show_hertz));
+    let layer = friction.map(|f| friction::Layer::new(f, xb, guides.mindlin));
     let (peak, low) = layer
         .as_ref()
         .map_or((peak, 0.0), |l| (peak.max(l.peak()), l.low()));
@@ -70,7 +72,7 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
     } else {
         1.0
     };
-    let gap_pts: Vec<(f64, f64)> = if app.show_gap {
+    let gap_pts: Vec<(f64, f64)> = if guides.gap {
         let obstacle = &sol.params.obstacle;
         sample(xb, 0.0, |x| {
             let g = obstacle.gap(x);
@@ -80,22 +82,20 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
         Vec::new()
     };
 
-    let mut series = Vec::new();
-    if app.show_gap {
-        series.push(Series {
-            name: format!("gap −g, scaled ×{}", sig(gap_scale, 2)),
-            color: theme.faint_color(),
-            stroke: Stroke::None,
-            glyph: Some('·'),
-            data: &gap_pts,
-        });
-    }
+    let inks = friction::Inks {
+        smooth: theme.ink(ratatui::style::Color::Green),
+        raw: theme.ink(ratatui::style::Color::LightRed),
+        overlay: theme.hertz_color(),
+        stick: theme.ink(ratatui::style::Color::LightGreen),
+    };
+    // The overlays in the order the chart keeps them when its rows are few.
+    let mut overlays = Vec::new();
     if let Some(h) = hertz {
         // Hertz's half-width and peak for the computed load, and p̄'s distance from it.
         let error = shown
             .hertz_error
             .map_or(String::new(), |e| format!(", p̄ off {}%", sig(100.0 * e, 2)));
-        series.push(Series {
+        overlays.push(Series {
             name: format!("Hertz a={} p₀={}{error}", sig(h.a, 3), sig(h.p0, 3)),
             color: theme.hertz_color(),
             stroke: Stroke::None,
@@ -103,8 +103,9 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
             data: &hertz_pts,
         });
     }
+    overlays.extend(layer.as_ref().and_then(|l| l.overlay(&inks)));
     if circle.is_some() {
-        series.push(Series {
+        overlays.push(Series {
             name: "circle".into(),
             color: theme.hertz_color(),
             stroke: Stroke::None,
@@ -112,13 +113,16 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
             data: &circle_pts,
         });
     }
-    let inks = friction::Inks {
-        smooth: theme.ink(ratatui::style::Color::Green),
-        raw: theme.ink(ratatui::style::Color::LightRed),
-        overlay: theme.hertz_color(),
-        stick: theme.ink(ratatui::style::Color::LightGreen),
-    };
-    series.extend(layer.as_ref().and_then(|l| l.overlay(&inks)));
+    if guides.gap {
+        overlays.push(Series {
+            name: format!("gap −g, scaled ×{}", sig(gap_scale, 2)),
+            color: theme.faint_color(),
+            stroke: Stroke::None,
+            glyph: Some('·'),
+            data: &gap_pts,
+        });
+    }
+    let mut series = Vec::new();
     // With friction the legend is long: p's names short (the title names the rule).
     let on = friction.is_some();
     series.push(Series {
@@ -176,6 +180,7 @@ pub fn render(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
             bounds: [ymin, ymax],
             scale: Scale::Linear,
         },
+        overlays,
         series,
         marker: look.marker,
         theme,

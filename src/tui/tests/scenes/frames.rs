@@ -15,8 +15,7 @@ fn explore_80x24() {
 #[test]
 fn explore_120x40_with_overlays() {
     let mut app = settled(2, Scene::Explore);
-    app.show_gap = true;
-    app.show_hertz = true;
+    app.guides = riplab::tui::app::Guides::ALL;
     snap!("tui__explore_120x40", frame(&app, 120, 40));
 }
 
@@ -315,11 +314,24 @@ fn esc_goes_back_and_only_q_quits() {
 #[test]
 fn overlays_toggle() {
     let mut app = App::new(Scenario::paper());
+    // Each overlay on its own: g, h, o; M refused without friction (the notice says why).
+    for (key, on) in [('g', true), ('h', true), ('o', true), ('M', false)] {
+        app.update(ch(key));
+        assert_eq!(
+            app.notice.as_ref().unwrap().text.contains("no Mindlin"),
+            !on,
+            "{key}"
+        );
+    }
+    let g = riplab::tui::app::Guides {
+        gap: true,
+        hertz: true,
+        circle: true,
+        mindlin: false,
+    };
+    assert_eq!(app.guides, g);
     app.update(ch('g'));
-    app.update(ch('h'));
-    assert!(app.show_gap && app.show_hertz);
-    app.update(ch('g'));
-    assert!(!app.show_gap);
+    assert!(!app.guides.gap && app.guides.hertz && app.guides.circle);
 }
 
 #[test]

@@ -145,6 +145,7 @@ fn coinciding_series_are_named_and_both_drawn() {
                 };
                 Plot {
                     title: " test ".into(),
+                    overlays: Vec::new(),
                     x: PlotAxis {
                         title: "h".into(),
                         bounds: [-1.2, 0.2],

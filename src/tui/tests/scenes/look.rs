@@ -141,8 +141,7 @@ fn no_contact_renders() {
     let mut app = App::new(Scenario::paper());
     app.show_timing = false;
     app.settings.depth = 0.0;
-    app.show_gap = true;
-    app.show_hertz = true;
+    app.guides = riplab::tui::app::Guides::ALL;
     for scene in Scene::ALL {
         app.scene = scene;
         settle(&mut app, &mut Engine::new(Scenario::paper()));

@@ -1,0 +1,101 @@
+//! The pressure chart's overlays (docs/lab.md, "Overlays"): the gap −g, Hertz's parabola,
+//! the exact circular indenter's pressure and Cattaneo–Mindlin's traction q, each toggled on
+//! its own (`g`, `h`, `o`, `M`). The chart draws them under p̄ and as many as its rows hold
+//! ([`crate::tui::view::plot::Plot::overlays`]); its legend names the others.
+
+use super::{App, Notice, Scene};
+
+/// One overlay of the pressure chart.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Guide {
+    /// −g, scaled to p's axis (`g`).
+    Gap,
+    /// Hertz's pressure for the computed load (`h`; a cylinder).
+    Hertz,
+    /// The exact circular indenter's pressure for the computed load (`o`; a cylinder).
+    Circle,
+    /// Cattaneo–Mindlin's traction q (`M`; a cylinder with Coulomb friction).
+    Mindlin,
+}
+
+/// Which overlays are on ([`App::guides`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Guides {
+    /// −g (`g`).
+    pub gap: bool,
+    /// Hertz's pressure (`h`).
+    pub hertz: bool,
+    /// The exact circle's pressure (`o`).
+    pub circle: bool,
+    /// Mindlin's q (`M`).
+    pub mindlin: bool,
+}
+
+impl Guides {
+    /// Every overlay on (the tests that draw them all).
+    #[cfg(test)]
+    pub const ALL: Guides = Guides {
+        gap: true,
+        hertz: true,
+        circle: true,
+        mindlin: true,
+    };
+
+    /// Whether `guide` is on.
+    pub fn on(&self, guide: Guide) -> bool {
+        let mut copy = *self;
+        *copy.flag(guide)
+    }
+
+    fn flag(&mut self, guide: Guide) -> &mut bool {
+        match guide {
+            Guide::Gap => &mut self.gap,
+            Guide::Hertz => &mut self.hertz,
+            Guide::Circle => &mut self.circle,
+            Guide::Mindlin => &mut self.mindlin,
+        }
+    }
+}
+
+impl Guide {
+    /// Its name in the notices.
+    pub fn name(self) -> &'static str {
+        match self {
+            Guide::Gap => "the gap −g",
+            Guide::Hertz => "Hertz's pressure (+)",
+            Guide::Circle => "the exact circle's pressure (o)",
+            Guide::Mindlin => "Mindlin's traction q (*)",
+        }
+    }
+}
+
+impl App {
+    /// `g`, `h`, `o`, `M`: `guide` on or off, saying so; refused (and said) where the
+    /// obstacle or the friction has no such curve. Off always works.
+    pub(super) fn toggle_guide(&mut self, guide: Guide) {
+        let cylinder = self.scenario.obstacle.hertz_radius().is_some();
+        let refusal = match guide {
+            _ if self.guides.on(guide) => None,
+            Guide::Hertz | Guide::Circle if !cylinder => {
+                Some("no Hertz solution for this obstacle: it needs a cylinder (a radius)")
+            }
+            Guide::Mindlin if !cylinder || !self.settings.friction.is_on() => {
+                Some("no Mindlin traction here: it needs a cylinder and friction (F; a full model)")
+            }
+            _ => None,
+        };
+        if let Some(why) = refusal {
+            self.notice = Some(Notice::info(why));
+            return;
+        }
+        let flag = self.guides.flag(guide);
+        *flag = !*flag;
+        let state = if *flag { "on" } else { "off" };
+        let place = if self.scene == Scene::Explore {
+            ""
+        } else {
+            " (drawn on explore's pressure chart)"
+        };
+        self.notice = Some(Notice::info(format!("{} {state}{place}", guide.name())));
+    }
+}
