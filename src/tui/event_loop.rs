@@ -79,6 +79,8 @@ pub(super) trait Program {
     fn chapter(&self) -> Option<Chapter>;
     /// Show `notice` on the status line (a recording that failed).
     fn notice(&mut self, notice: Notice) -> Flow;
+    /// The frame just drawn is on the screen, and its marker, if any, in the recording.
+    fn shown(&mut self) {}
 }
 
 /// Forward the terminal's events to `tx` from a thread of their own; a failed read is sent
@@ -229,6 +231,9 @@ fn event_loop<P: Program>(
                 recorder.record(CastEvent::Marker(marker));
             }
             chapter = Some(now);
+        }
+        if flow.redraw {
+            program.shown();
         }
         // Block for one input (or until the program's wait is over), then take whatever else
         // is queued before drawing again.

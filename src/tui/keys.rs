@@ -5,7 +5,18 @@
 
 use crossterm::event::KeyCode;
 
-use super::app::Guide;
+/// One overlay of the pressure chart ([`super::app::Guides`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Guide {
+    /// −g, scaled to p's axis (`g`).
+    Gap,
+    /// Hertz's pressure for the computed load (`h`; a cylinder).
+    Hertz,
+    /// The exact circular indenter's pressure for the computed load (`o`; a cylinder).
+    Circle,
+    /// Cattaneo–Mindlin's traction q (`M`; a cylinder with Coulomb friction).
+    Mindlin,
+}
 
 /// What an export key writes ([`super::app::Command::Export`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

@@ -68,7 +68,9 @@ fn a_recorded_tour_marks_each_step_on_its_finished_frame() {
     assert_eq!(markers.len(), 15, "{markers:?}");
     assert_eq!(markers[0], "The problem");
     assert_eq!(markers[14], "Beyond the paper: friction, Cattaneo–Mindlin");
-    // Each step was shown at least the interval after its marker (counted from then).
+    // Each step was shown at least the interval after its marker: the auto-advance counts
+    // from the finished frame shown, so that however long a frame takes to come on a loaded
+    // host, no step is cut short (a millisecond's margin for the times' floating point).
     let times: Vec<f64> = text
         .lines()
         .skip(1)
@@ -76,6 +78,6 @@ fn a_recorded_tour_marks_each_step_on_its_finished_frame() {
         .filter(|e| e[1] == "m")
         .map(|e| e[0].as_f64().unwrap())
         .collect();
-    assert!(times.windows(2).all(|w| w[1] - w[0] >= 0.45), "{times:?}");
+    assert!(times.windows(2).all(|w| w[1] - w[0] >= 0.5 - 1e-3), "{times:?}");
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -3,20 +3,8 @@
 //! its own (`g`, `h`, `o`, `M`). The chart draws them under p̄ and as many as its rows hold
 //! ([`crate::tui::view::plot::Plot::overlays`]); its legend names the others.
 
+use super::super::keys::Guide;
 use super::{App, Notice, Scene};
-
-/// One overlay of the pressure chart.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Guide {
-    /// −g, scaled to p's axis (`g`).
-    Gap,
-    /// Hertz's pressure for the computed load (`h`; a cylinder).
-    Hertz,
-    /// The exact circular indenter's pressure for the computed load (`o`; a cylinder).
-    Circle,
-    /// Cattaneo–Mindlin's traction q (`M`; a cylinder with Coulomb friction).
-    Mindlin,
-}
 
 /// Which overlays are on ([`App::guides`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

@@ -26,7 +26,7 @@ pub use super::protocol::{
     Command, Compare, DisplaceRequest, InfSupKey, InfSupRequest, MAX_APP_LEVEL, Msg, Notice, Progress,
     Response, SolveKey, SolveRequest, Solved, StressRequest, Study, StudyKey, StudyRequest,
 };
-pub use guides::{Guide, Guides};
+pub use guides::Guides;
 pub use overlays::{Drawn, Overlays};
 
 /// Why the lab stops at [`MAX_APP_LEVEL`], for messages (the figures are BENCHMARKS.md's,

@@ -146,6 +146,8 @@ fn check_converse(frame: &str, charted: &Charted, what: &str) {
 #[test]
 fn every_glyph_stands_on_the_row_of_its_value() {
     for (name, scenario) in scenarios() {
+        // One engine per scenario, as the lab keeps one: the scenes share its solves.
+        let mut engine = Engine::new(scenario.clone());
         // The work–precision chart on the paper's scenario (its study computes a reference at
         // level 5 for every scheme: minutes on the bigger scenarios).
         let paper = name == "hertz-paper.toml";
@@ -164,7 +166,7 @@ fn every_glyph_stands_on_the_row_of_its_value() {
             app.settings.level = 2;
             app.scene = scene;
             app.guides = riplab::tui::app::Guides::ALL;
-            settle(&mut app, &mut Engine::new(scenario.clone()));
+            settle(&mut app, &mut engine);
             for projector in [false, true] {
                 app.overlays.projector = projector;
                 for (w, h) in SIZES {

@@ -4,7 +4,7 @@
 //! frame, above the caption panel, to the digits it is quoted with: "479" is met by a shown
 //! "478.75", "2.9e-2" by "0.0293".
 
-use riplab::tui::tour::{Tour, render_step};
+use riplab::tui::tour::{Tour, render_step_at};
 
 /// A number as written: its value and half a unit of its last digit.
 #[derive(Debug)]
@@ -109,9 +109,10 @@ fn the_matching_reads_numbers_as_written() {
 fn every_step_shows_the_numbers_its_caption_quotes() {
     let tour = Tour::paper();
     let mut failures = Vec::new();
-    for (width, height) in [(80, 24), (100, 30)] {
-        for (i, step) in tour.steps.iter().enumerate() {
-            let frame = render_step(&tour, i, width, height).unwrap();
+    let sizes = [(80, 24), (100, 30)];
+    for (i, step) in tour.steps.iter().enumerate() {
+        let frames = render_step_at(&tour, i, &sizes).unwrap();
+        for (&(width, height), frame) in sizes.iter().zip(frames) {
             let absent = missing(&step.caption, &frame);
             if !absent.is_empty() {
                 failures.push(format!(

@@ -47,9 +47,9 @@ pub use caption::MIN_TOUR_SIZE;
 pub use errors::{AutoIntervalError, TourError};
 pub use player::{TourApp, TourMsg};
 pub use runtime::run_tour;
-#[cfg(test)]
-pub use view::render_step;
 pub use view::view;
+#[cfg(test)]
+pub use view::{render_step, render_step_at};
 
 /// The paper's tour, `tours/paper.toml`.
 pub const PAPER_TOUR: &str = include_str!("../../../tours/paper.toml");

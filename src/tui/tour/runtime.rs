@@ -68,8 +68,10 @@ struct Session {
     scenario: Scenario,
     epoch: u64,
     tx: Sender<Input>,
-    /// When the current step's computations finished (None while they run, or while the
-    /// terminal is too small for the tour): the auto-advance counts from then.
+    /// When the current step's finished frame was shown (None while its computations run,
+    /// or while the terminal is too small for the tour): the auto-advance counts from then,
+    /// so that a step stays on screen, and in a recording after its marker, the whole
+    /// interval however long the frame took to come.
     ready: Option<Instant>,
     /// Where exports go (absolute).
     dir: PathBuf,
@@ -111,7 +113,8 @@ impl Session {
         if !self.player.fits {
             self.ready = None;
         } else if self.ready.is_none() && !self.player.is_busy() {
-            self.ready = Some(Instant::now());
+            // The finished frame is drawn, and the clock starts when it is shown.
+            flow.redraw = true;
         }
         flow
     }
@@ -160,7 +163,7 @@ impl Program for Session {
         }
     }
 
-    /// Until the auto-advance is due (counted from the step's computations' end), a tick
+    /// Until the auto-advance is due (counted from the step's finished frame), a tick
     /// while a long job shows its time left, or for ever.
     fn wait(&self) -> Option<Duration> {
         let tick = self.player.app.wants_tick().then_some(TICK);
@@ -179,6 +182,12 @@ impl Program for Session {
 
     fn should_quit(&self) -> bool {
         self.player.should_quit()
+    }
+
+    fn shown(&mut self) {
+        if self.ready.is_none() && !self.player.is_busy() && self.player.fits {
+            self.ready = Some(Instant::now());
+        }
     }
 
     fn draw(&self, frame: &mut Frame) {

@@ -210,8 +210,17 @@ fn too_small(frame: &mut Frame, area: Rect, tour: &TourApp, theme: Theme) {
 /// synchronously (timings left out so that the text is deterministic).
 #[cfg(test)]
 pub fn render_step(tour: &Tour, index: usize, width: u16, height: u16) -> Result<String, StepError> {
+    render_step_at(tour, index, &[(width, height)]).map(|mut frames| frames.remove(0))
+}
+
+/// [`render_step`] at each of `sizes`, the step solved once (one engine for its sizes).
+#[cfg(test)]
+pub fn render_step_at(tour: &Tour, index: usize, sizes: &[(u16, u16)]) -> Result<Vec<String>, StepError> {
     let mut engine = Engine::new(tour.scenario_of(index).clone());
-    step_frame(tour, index, width, height, &mut engine).map(|(text, _)| text)
+    sizes
+        .iter()
+        .map(|&(width, height)| step_frame(tour, index, width, height, &mut engine).map(|(text, _)| text))
+        .collect()
 }
 
 /// [`render_step`] computed with `engine` (on the step's scenario, so that steps share its

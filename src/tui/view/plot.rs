@@ -20,7 +20,7 @@ use ratatui::widgets::canvas::{Canvas, Line as Segment, Painter, Shape};
 use super::super::theme::Theme;
 pub use super::cells::{cell_of, dots_per_cell};
 use super::fmt::title_fit;
-pub use super::ticks::{linear_ticks, log_ticks, tick_label};
+pub use super::ticks::{Scale, linear_ticks, log_ticks, tick_label};
 use super::yfit;
 
 /// The graph rows each overlay drawn takes ([`Plot::overlays`]).
@@ -28,15 +28,6 @@ pub const OVERLAY_ROWS: u16 = 4;
 
 /// The graph rows under which the legend moves to the title's row (when it fits there).
 const ROOMY: u16 = 20;
-
-/// How an axis maps values.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Scale {
-    /// The data are the values.
-    Linear,
-    /// The data are log10 of the values; labels show the values.
-    Log10,
-}
 
 /// One axis: its title (with units), bounds (in data units) and scale.
 #[derive(Clone, Debug)]

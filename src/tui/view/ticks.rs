@@ -2,7 +2,15 @@
 //! on a log10 axis, and their labels.
 
 use super::fmt::sig;
-use super::plot::Scale;
+
+/// How an axis maps values.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Scale {
+    /// The data are the values.
+    Linear,
+    /// The data are log10 of the values; labels show the values.
+    Log10,
+}
 
 /// Ticks on a linear axis: multiples of a 1-2-5 step, at most `max` of them.
 pub fn linear_ticks(bounds: [f64; 2], max: usize) -> Vec<f64> {
