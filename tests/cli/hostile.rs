@@ -12,8 +12,13 @@ use riplab::scenario::Scenario;
 
 use crate::common::{no_panic, paper_text, riplab, riplab_under_half_of, scratch_file as scratch};
 
-/// Run riplab with a time limit: (exit code, stdout, stderr); a hang fails the test.
-fn riplab_within(args: &[&str], limit: Duration) -> (i32, String, String) {
+/// How long a refusal may take before it counts as a hang: the refusals are immediate, and a
+/// hang (an open() of a FIFO with no writer) is for ever, so the limit is generous enough for
+/// any host however loaded.
+const HANG: Duration = Duration::from_secs(120);
+
+/// Run riplab with a time limit ([`HANG`]): (exit code, stdout, stderr); a hang fails the test.
+fn riplab_within(args: &[&str]) -> (i32, String, String) {
     let mut child = Command::new(env!("CARGO_BIN_EXE_riplab"))
         .args(args)
         .stdin(Stdio::null())
@@ -22,7 +27,7 @@ fn riplab_within(args: &[&str], limit: Duration) -> (i32, String, String) {
         .spawn()
         .unwrap();
     // Each output read to its end on a thread of its own (riplab's end closes both; a full
-    // pipe would block it), the test waiting for both at most `limit`.
+    // pipe would block it), the test waiting for both at most [`HANG`].
     let (done, ended) = std::sync::mpsc::channel();
     let pipes: [Box<dyn std::io::Read + Send>; 2] = [
         Box::new(child.stdout.take().unwrap()),
@@ -36,13 +41,13 @@ fn riplab_within(args: &[&str], limit: Duration) -> (i32, String, String) {
             let _ = done.send((which, read));
         });
     }
-    let deadline = Instant::now() + limit;
+    let deadline = Instant::now() + HANG;
     let mut outputs = [String::new(), String::new()];
     for _ in 0..2 {
         let Ok((which, read)) = ended.recv_timeout(deadline.saturating_duration_since(Instant::now())) else {
             let _ = child.kill();
             let _ = child.wait();
-            panic!("riplab {args:?} still running after {limit:?}");
+            panic!("riplab {args:?} still running after {HANG:?}");
         };
         outputs[which] = String::from_utf8(read.unwrap()).unwrap();
     }
@@ -274,7 +279,7 @@ fn special_files_are_refused_without_reading_them() {
         if !Path::new(path).exists() {
             continue;
         }
-        let (code, stdout, stderr) = riplab_within(&["solve", path], Duration::from_secs(10));
+        let (code, stdout, stderr) = riplab_within(&["solve", path]);
         assert_eq!(code, 2, "{path}: {stderr}");
         assert!(
             stdout.is_empty() && stderr.contains("not a regular file"),
@@ -286,7 +291,7 @@ fn special_files_are_refused_without_reading_them() {
     let _ = std::fs::remove_file(&fifo);
     let made = Command::new("mkfifo").arg(&fifo).status();
     if made.is_ok_and(|s| s.success()) {
-        let (code, _, stderr) = riplab_within(&["solve", fifo.to_str().unwrap()], Duration::from_secs(10));
+        let (code, _, stderr) = riplab_within(&["solve", fifo.to_str().unwrap()]);
         assert_eq!(code, 2, "{stderr}");
         assert!(stderr.contains("a FIFO"), "{stderr}");
         std::fs::remove_file(&fifo).unwrap();
@@ -296,10 +301,7 @@ fn special_files_are_refused_without_reading_them() {
         "device-tour.toml",
         "title = \"t\"\n[[step]]\ntitle = \"s\"\ncaption = \"c\"\nscenario = \"/dev/zero\"\n",
     );
-    let (code, _, stderr) = riplab_within(
-        &["tour", "--tour", tour.to_str().unwrap()],
-        Duration::from_secs(10),
-    );
+    let (code, _, stderr) = riplab_within(&["tour", "--tour", tour.to_str().unwrap()]);
     no_panic(&stderr);
     assert_eq!(code, 2, "{stderr}");
 }
@@ -407,10 +409,7 @@ fn force_never_replaces_links_fifos_or_devices() {
         .status()
         .is_ok_and(|s| s.success())
     {
-        let (code, _, stderr) = riplab_within(
-            &["solve", "--plot", fifo.to_str().unwrap(), "--force"],
-            Duration::from_secs(10),
-        );
+        let (code, _, stderr) = riplab_within(&["solve", "--plot", fifo.to_str().unwrap(), "--force"]);
         assert_eq!(code, 2, "{stderr}");
         use std::os::unix::fs::FileTypeExt as _;
         assert!(std::fs::symlink_metadata(&fifo).unwrap().file_type().is_fifo());

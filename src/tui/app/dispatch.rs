@@ -53,7 +53,7 @@ impl App {
             // The help and the log were closed above (any key closes them).
             LabAction::Back if self.overlays.projector => {
                 self.overlays.projector = false;
-                self.notice = Some(Notice::info("projector view off"));
+                self.notice = Some(Notice::info("projector off"));
             }
             LabAction::Back => {
                 self.notice = Some(Notice::info("Esc goes back: nothing is open to close (q quits)"));
@@ -81,9 +81,9 @@ impl App {
             LabAction::Projector => {
                 self.overlays.projector = !self.overlays.projector;
                 self.notice = Some(Notice::info(if self.overlays.projector {
-                    "projector view: the scene's chart on the whole screen"
+                    "projector: the chart on the whole screen"
                 } else {
-                    "projector view off"
+                    "projector off"
                 }));
             }
             LabAction::Coarser => {

@@ -1,5 +1,5 @@
 //! The status area: the state of the solve (or of the estimates, or the study), or a notice,
-//! then the scene's key bar. The message wraps at words to further rows (at most
+//! then the scene's key bar (in the projector view on the notice's row when both fit). The message wraps at words to further rows (at most
 //! [`MAX_ROWS`], indented under its first word) rather than being cut, and every message is
 //! kept whole in the log (`l`).
 
@@ -36,12 +36,23 @@ pub fn rows(app: &App, width: u16, theme: Theme) -> u16 {
     status_lines(app, width, theme).len() as u16
 }
 
-/// The status area's lines at `width` columns: the message, then the key bar.
+/// The status area's lines at `width` columns: the message, then the key bar. In the
+/// projector view, whose screen is the chart's, the keys end the message's row when both fit
+/// on it.
 fn status_lines(app: &App, width: u16, theme: Theme) -> Vec<Line<'static>> {
-    let mut lines = wrap_with_hints(&state(app, theme), &[], width);
-    if !app.overlays.in_tour {
-        lines.push(key_bar(app, theme, width));
+    let state = state(app, theme);
+    if app.overlays.in_tour {
+        return wrap_with_hints(&state, &[], width);
     }
+    let bar = key_bar(app, theme, width);
+    if app.overlays.projector {
+        let one = wrap_with_hints(&state, &bar.spans, width);
+        if one.len() == 1 {
+            return one;
+        }
+    }
+    let mut lines = wrap_with_hints(&state, &[], width);
+    lines.push(bar);
     lines
 }
 
