@@ -299,8 +299,8 @@ impl Plot<'_> {
         self.overlays[..keep].iter().chain(&self.series)
     }
 
-    /// The axes' titles ("y against x"), the overlays left out for lack of rows, then each
-    /// series' sample and name (the first `keep` overlays', then the series'), wrapped to
+    /// The axes' titles ("y against x"), each series' sample and name (the first `keep`
+    /// overlays', then the series'), then the overlays left out for lack of rows, wrapped to
     /// `width` (two rows at most; one at `u16::MAX`).
     fn legend_lines(&self, width: u16, keep: usize) -> Vec<Line<'static>> {
         let width = usize::from(width);
@@ -321,12 +321,6 @@ impl Plot<'_> {
                     .map_or_else(|| word.to_string(), |g| format!("{g} {word}"))
             })
             .collect();
-        if !hidden.is_empty() {
-            entries.push(vec![Span::styled(
-                format!(" no room: {} ", hidden.join(", ")),
-                self.theme.faint(),
-            )]);
-        }
         for s in self.drawn(keep) {
             if s.name.is_empty() {
                 continue;
@@ -352,6 +346,13 @@ impl Plot<'_> {
                 Span::styled(format!(" {}", sample(s.stroke, s.glyph, self.marker)), style),
                 Span::raw(format!(" {}{same} ", s.name)),
             ]);
+        }
+        // Last: naming what is left out never pushes a drawn series' entry off the legend.
+        if !hidden.is_empty() {
+            entries.push(vec![Span::styled(
+                format!(" no room: {} ", hidden.join(", ")),
+                self.theme.faint(),
+            )]);
         }
         let mut lines: Vec<Vec<Span<'static>>> = vec![Vec::new()];
         let mut used = 0usize;
