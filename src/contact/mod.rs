@@ -17,6 +17,7 @@ pub mod friction;
 pub mod gap;
 pub mod half_plane;
 pub mod hertz;
+pub mod interface;
 pub mod method;
 pub mod mindlin;
 pub mod newton;
