@@ -1,12 +1,12 @@
 //! riplab run in a pseudo-terminal as a person runs it: what it writes is gathered by a
-//! thread, keys and mouse reports are written to it, and every wait is for what it shows or
-//! for its end, with a generous deadline — never for a time.
+//! thread, its end by another, keys and mouse reports are written to it, and every wait is
+//! woken by what it shows or by its end, with a generous deadline — never a sleep or a poll.
 
 use std::io::{Read, Write};
 use std::os::fd::OwnedFd;
 use std::os::unix::process::ExitStatusExt as _;
-use std::process::{Child, Command, ExitStatus, Stdio};
-use std::sync::{Arc, Mutex};
+use std::process::{Command, ExitStatus, Stdio};
+use std::sync::{Arc, Condvar, Mutex};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
@@ -37,14 +37,25 @@ pub fn riplab(args: &[&str]) -> Command {
     command
 }
 
+/// What the reader and the waiter threads gather: everything written, and the status once the
+/// child has ended; each change is announced on the condition variable.
+#[derive(Default)]
+struct Seen {
+    output: Vec<u8>,
+    status: Option<ExitStatus>,
+}
+
+type Shared = Arc<(Mutex<Seen>, Condvar)>;
+
 /// A child on a pseudo-terminal.
 pub struct Pty {
-    child: Child,
+    pid: u32,
     keys: std::fs::File,
     /// The terminal's side, kept open to read its settings after the child ends.
     user: Option<OwnedFd>,
-    output: Arc<Mutex<Vec<u8>>>,
+    seen: Shared,
     reader: Option<JoinHandle<()>>,
+    waiter: Option<JoinHandle<()>>,
 }
 
 /// How a run ended: its status, everything it wrote, and whether the terminal was left in
@@ -60,6 +71,13 @@ impl Ended {
     pub fn signal(&self) -> Option<i32> {
         self.status.signal()
     }
+}
+
+/// Run `change` on what is seen and announce it.
+fn announce(seen: &Shared, change: impl FnOnce(&mut Seen)) {
+    let (lock, changed) = &**seen;
+    change(&mut lock.lock().unwrap());
+    changed.notify_all();
 }
 
 impl Pty {
@@ -91,12 +109,13 @@ impl Pty {
             .stdin(Stdio::from(user.try_clone().unwrap()))
             .stdout(Stdio::from(user.try_clone().unwrap()))
             .stderr(Stdio::from(user.try_clone().unwrap()));
-        let child = command.spawn().unwrap();
+        let mut child = command.spawn().unwrap();
         // The command holds the terminal's side until dropped.
         drop(command);
-        let output = Arc::new(Mutex::new(Vec::new()));
+        let pid = child.id();
+        let seen = Shared::default();
         let reader = {
-            let output = output.clone();
+            let seen = seen.clone();
             let mut from = std::fs::File::from(controller.try_clone().unwrap());
             std::thread::spawn(move || {
                 let mut buf = vec![0u8; 1 << 16];
@@ -104,50 +123,70 @@ impl Pty {
                     if n == 0 {
                         break;
                     }
-                    output.lock().unwrap().extend_from_slice(&buf[..n]);
+                    announce(&seen, |s| s.output.extend_from_slice(&buf[..n]));
                 }
             })
         };
+        let waiter = {
+            let seen = seen.clone();
+            std::thread::spawn(move || {
+                let status = child.wait().unwrap();
+                announce(&seen, |s| s.status = Some(status));
+            })
+        };
         Pty {
-            child,
+            pid,
             keys: std::fs::File::from(controller),
             user: Some(user),
-            output,
+            seen,
             reader: Some(reader),
+            waiter: Some(waiter),
         }
     }
 
     /// The child's process id.
     pub fn pid(&self) -> u32 {
-        self.child.id()
+        self.pid
     }
 
     /// Everything written so far.
     pub fn output(&self) -> Vec<u8> {
-        self.output.lock().unwrap().clone()
+        self.seen.0.lock().unwrap().output.clone()
+    }
+
+    /// Wait, woken by each write and by the end, until `stop` holds of what is seen; the test
+    /// fails if the deadline passes first.
+    fn wait_until<T>(&self, what: &str, mut stop: impl FnMut(&Seen) -> Option<T>) -> T {
+        let deadline = Instant::now() + DEADLINE;
+        let (lock, changed) = &*self.seen;
+        let mut seen = lock.lock().unwrap();
+        loop {
+            if let Some(answer) = stop(&seen) {
+                return answer;
+            }
+            let left = deadline.saturating_duration_since(Instant::now());
+            assert!(!left.is_zero(), "no {what} within {DEADLINE:?}");
+            seen = changed.wait_timeout(seen, left).unwrap().0;
+        }
     }
 
     /// Wait until `done` holds of the output (true) or the child ends first (false); the test
     /// fails if the deadline passes.
     pub fn holds_before_the_end(&mut self, what: &str, done: impl Fn(&[u8]) -> bool) -> bool {
-        let deadline = Instant::now() + DEADLINE;
-        loop {
-            if done(&self.output.lock().unwrap()) {
-                return true;
+        self.wait_until(what, |seen| {
+            if done(&seen.output) {
+                Some(true)
+            } else {
+                seen.status.map(|_| false)
             }
-            if self.child.try_wait().unwrap().is_some() {
-                return false;
-            }
-            assert!(Instant::now() < deadline, "no {what} within {DEADLINE:?}");
-            std::thread::sleep(Duration::from_millis(20));
-        }
+        })
     }
 
     /// Wait until `done` holds of the output; the test fails if the child ends first or the
     /// deadline passes.
     pub fn wait_for(&mut self, what: &str, done: impl Fn(&[u8]) -> bool) {
         if !self.holds_before_the_end(what, done) {
-            let status = self.child.try_wait().unwrap();
+            let status = self.seen.0.lock().unwrap().status;
             let out = self.output();
             let tail = &out[out.len().saturating_sub(2000)..];
             panic!(
@@ -198,14 +237,7 @@ impl Pty {
     /// Wait for the end (within the deadline), then everything written and the terminal's
     /// mode.
     pub fn finish(mut self) -> Ended {
-        let deadline = Instant::now() + DEADLINE;
-        let status = loop {
-            if let Some(status) = self.child.try_wait().unwrap() {
-                break status;
-            }
-            assert!(Instant::now() < deadline, "did not end within {DEADLINE:?}");
-            std::thread::sleep(Duration::from_millis(20));
-        };
+        let status = self.wait_until("end", |seen| seen.status);
         use rustix::termios::LocalModes;
         let user = self.user.take().expect("the terminal's side");
         let modes = rustix::termios::tcgetattr(&user).unwrap().local_modes;
@@ -224,10 +256,16 @@ impl Pty {
 }
 
 impl Drop for Pty {
+    /// A child still running is killed, and the waiter reaps it.
     fn drop(&mut self) {
-        if self.child.try_wait().ok().flatten().is_none() {
-            let _ = self.child.kill();
-            let _ = self.child.wait();
+        if self.seen.0.lock().map(|s| s.status.is_none()).unwrap_or(false) {
+            let _ = Command::new("kill")
+                .arg("-KILL")
+                .arg(self.pid.to_string())
+                .status();
+        }
+        if let Some(waiter) = self.waiter.take() {
+            let _ = waiter.join();
         }
     }
 }

@@ -53,19 +53,24 @@ pub fn settled(level: u32, scene: riplab::tui::app::Scene) -> riplab::tui::app::
 /// visible), which measured times made depend on the machine's load.
 pub fn steady_times(app: &mut riplab::tui::app::App) {
     for study in app.studies.values_mut().flatten() {
-        let mut steady = (**study).clone();
-        for row in &mut steady.rows {
-            let scheme = row
-                .scheme
-                .chars()
-                .last()
-                .and_then(|c| c.to_digit(10))
-                .unwrap_or(1);
-            let passes = 1.0 + f64::from(row.refine_edges);
-            row.solve_ms = row
-                .solve_ms
-                .map(|_| 2.5e-4 * row.n_dofs as f64 * passes * (1.0 + 0.04 * f64::from(scheme)));
-        }
-        *study = std::sync::Arc::new(steady);
+        *study = steady(study);
     }
+}
+
+/// `study` with [`steady_times`]' solve times.
+pub fn steady(study: &riplab::tui::app::Study) -> std::sync::Arc<riplab::tui::app::Study> {
+    let mut steady = study.clone();
+    for row in &mut steady.rows {
+        let scheme = row
+            .scheme
+            .chars()
+            .last()
+            .and_then(|c| c.to_digit(10))
+            .unwrap_or(1);
+        let passes = 1.0 + f64::from(row.refine_edges);
+        row.solve_ms = row
+            .solve_ms
+            .map(|_| 2.5e-4 * row.n_dofs as f64 * passes * (1.0 + 0.04 * f64::from(scheme)));
+    }
+    std::sync::Arc::new(steady)
 }
