@@ -67,12 +67,12 @@ pub(crate) fn mortar(slave: &Trace, master: &Trace, dual: bool) -> Result<Coupli
             let (s0, phi) = slave.basis(seg.slave_edge, x);
             let (m0, phi_m) = master.basis(seg.master_edge, x);
             let mu = multipliers(slave.order, dual, &phi);
-            for a in 0..=slave.order {
-                for c in 0..=slave.order {
-                    add(&mut d[s0 + a], s0 + c, w * mu[a] * phi[c]);
+            for (a, &mu_a) in mu.iter().enumerate().take(slave.order + 1) {
+                for (c, &phi_c) in phi.iter().enumerate().take(slave.order + 1) {
+                    add(&mut d[s0 + a], s0 + c, w * mu_a * phi_c);
                 }
-                for b in 0..=master.order {
-                    add(&mut m[s0 + a], m0 + b, w * mu[a] * phi_m[b]);
+                for (b, &phi_b) in phi_m.iter().enumerate().take(master.order + 1) {
+                    add(&mut m[s0 + a], m0 + b, w * mu_a * phi_b);
                 }
             }
         }
@@ -165,9 +165,9 @@ mod tests {
             mass[e][e + 1] += he / 6.0;
             mass[e + 1][e] += he / 6.0;
         }
-        for j in 0..4 {
+        for (j, mass_j) in mass.iter().enumerate() {
             let row: Vec<f64> = dense(&c.slave[j], 4).iter().map(|v| v * c.weight[j]).collect();
-            assert!(close(&row, &mass[j], 1e-15), "{j}: {row:?}");
+            assert!(close(&row, mass_j, 1e-15), "{j}: {row:?}");
             assert!(close(&dense(&c.master[j], 4), &dense(&c.slave[j], 4), 1e-15));
         }
         let c = couple(&x, 1, &x, 1, true);
@@ -204,16 +204,16 @@ mod tests {
             let x = 0.5 + 0.5 * xi;
             let (_, phi) = t.basis(0, x);
             let psi = multipliers(2, true, &phi);
-            for a in 0..3 {
-                for b in 0..3 {
-                    g[a][b] += 0.5 * w * psi[a] * phi[b];
+            for (g_a, psi_a) in g.iter_mut().zip(psi) {
+                for (g_ab, phi_b) in g_a.iter_mut().zip(phi) {
+                    *g_ab += 0.5 * w * psi_a * phi_b;
                 }
             }
         }
-        for a in 0..3 {
-            for b in 0..3 {
+        for (a, g_a) in g.iter().enumerate() {
+            for (b, g_ab) in g_a.iter().enumerate() {
                 let want = if a == b { lumped[a] } else { 0.0 };
-                assert!((g[a][b] - want).abs() < 1e-14, "{a}{b}: {}", g[a][b]);
+                assert!((g_ab - want).abs() < 1e-14, "{a}{b}: {g_ab}");
             }
         }
         // The sign issue: the mid node's ψ is −1 at the edge's ends.
