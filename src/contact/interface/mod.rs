@@ -4,9 +4,12 @@
 //! dual multipliers, and the reduced-integration penalty's rules on the slave's edges — each
 //! given as a [`Coupling`]: weighted gaps, linear in the two traces' normal displacements.
 
+mod dual;
 mod error;
 mod mortar;
 mod nts;
+#[cfg(test)]
+mod props;
 mod rip;
 mod segments;
 pub mod solve;
