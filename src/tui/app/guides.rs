@@ -58,12 +58,12 @@ impl Guide {
 }
 
 impl App {
-    /// `g`, `h`, `o`, `M`: `guide` on or off, saying so; refused (and said) where the
-    /// obstacle or the friction has no such curve. Off always works.
-    pub(super) fn toggle_guide(&mut self, guide: Guide) {
+    /// Why `guide` has no curve on this screen (the obstacle is no cylinder, or, for
+    /// Mindlin's traction, there is no friction), if it has none: the lab's keys and a tour's
+    /// `overlays` are refused with it.
+    pub fn guide_refusal(&self, guide: Guide) -> Option<&'static str> {
         let cylinder = self.scenario.obstacle.hertz_radius().is_some();
-        let refusal = match guide {
-            _ if self.guides.on(guide) => None,
+        match guide {
             Guide::Hertz | Guide::Circle if !cylinder => {
                 Some("no Hertz solution for this obstacle: it needs a cylinder (a radius)")
             }
@@ -71,6 +71,16 @@ impl App {
                 Some("no Mindlin traction here: it needs a cylinder and friction (F; a full model)")
             }
             _ => None,
+        }
+    }
+
+    /// `g`, `h`, `o`, `M`: `guide` on or off, saying so; refused (and said) where the
+    /// obstacle or the friction has no such curve. Off always works.
+    pub(super) fn toggle_guide(&mut self, guide: Guide) {
+        let refusal = if self.guides.on(guide) {
+            None
+        } else {
+            self.guide_refusal(guide)
         };
         if let Some(why) = refusal {
             self.notice = Some(Notice::info(why));

@@ -320,7 +320,8 @@ fn the_convergence_points_appear_as_their_levels_finish() {
         .unwrap();
     // The chart's x is the measured solve time: steady ones, so that where the points stand
     // (and whether two share a cell) does not depend on the host's load.
-    let partials: Vec<std::sync::Arc<Study>> = partials.iter().map(|s| crate::tui::tests::steady(s)).collect();
+    let partials: Vec<std::sync::Arc<Study>> =
+        partials.iter().map(|s| crate::tui::tests::steady(s)).collect();
     let whole = crate::tui::tests::steady(&whole);
     let finest = |s: &Study| s.rows.iter().map(|r| r.level).max();
     let levels: Vec<Option<u32>> = partials.iter().map(|s| finest(s)).collect();

@@ -3,7 +3,8 @@
 //! shifted out of the body, when the tour is read (not when its handout is half written); the
 //! lab's grading carried by the step `T` writes; an append that would pass the size a tour
 //! file may have refused, the file unchanged; each scenario file read once however many steps
-//! name it; a handout's names taken mid-run refused in words that name no option it lacks.
+//! name it; a handout's names taken mid-run refused in words that name no option it lacks; a
+//! step's overlay its scenario has no curve for refused when the tour is read.
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -74,6 +75,46 @@ fn friction_the_lab_refuses_is_refused_when_the_tour_is_read() {
     }
     let tour = Tour::parse(&one_step("level = 1\nshift = 0.05"), "t.toml", None).unwrap();
     assert!(tour.with_scenario(cattaneo()).is_ok());
+}
+
+/// A step's overlay its scenario has no curve for is refused when the tour is read, in the
+/// words the lab's key says it with (Mindlin's traction on the frictionless paper was
+/// accepted by `tour --check` and drew nothing; Hertz's on a flat punch the same). The
+/// curves the scenario has pass.
+#[test]
+fn an_overlay_the_scenario_has_no_curve_for_is_refused_when_the_tour_is_read() {
+    let punch =
+        Scenario::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/flat-punch.toml")).unwrap();
+    for (settings, scenario, why) in [
+        (
+            "overlays = [\"mindlin\"]",
+            Scenario::paper(),
+            "no Mindlin traction here",
+        ),
+        (
+            "overlays = [\"gap\", \"hertz\"]",
+            punch.clone(),
+            "no Hertz solution",
+        ),
+        ("overlays = [\"circle\"]", punch.clone(), "no Hertz solution"),
+    ] {
+        let e = refused(&format!("level = 0\n{settings}"), scenario);
+        let overlay = settings.rsplit('"').nth(1).unwrap();
+        assert!(
+            e.starts_with("t.toml: step 1 (`s`)")
+                && e.contains(&format!("[\"{overlay}\"]"))
+                && e.contains(why),
+            "{settings}: {e}"
+        );
+    }
+    for (settings, scenario) in [
+        ("overlays = [\"gap\"]", punch),
+        ("overlays = [\"hertz\", \"circle\", \"gap\"]", Scenario::paper()),
+        ("overlays = [\"mindlin\", \"hertz\"]", cattaneo()),
+    ] {
+        let tour = Tour::parse(&one_step(&format!("level = 0\n{settings}")), "t.toml", None).unwrap();
+        assert!(tour.with_scenario(scenario).is_ok(), "{settings}");
+    }
 }
 
 /// `]` `E` `E` `T`: the step holds the lab's two passes of edge grading (it held none, and

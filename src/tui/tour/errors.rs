@@ -48,6 +48,20 @@ pub enum TourError {
         /// The scenario's largest depth.
         max: f64,
     },
+    /// The step asks for an overlay its scenario has no curve for.
+    #[error("{file}: step {step} (`{title}`): overlays = [\"{overlay}\"]: {why}")]
+    Overlay {
+        /// The tour file (sanitised).
+        file: String,
+        /// The step's number (1-based).
+        step: usize,
+        /// The step's title.
+        title: String,
+        /// The overlay's name in the tour file.
+        overlay: &'static str,
+        /// Why the scenario has no such curve.
+        why: &'static str,
+    },
     /// The step's friction is one the lab refuses to solve on its scenario.
     #[error("{file}: step {step} (`{title}`): {source}")]
     Friction {

@@ -16,6 +16,7 @@ pub mod listing;
 mod player;
 mod runtime;
 mod scenarios;
+mod step_checks;
 mod view;
 
 use std::path::{Path, PathBuf};
@@ -230,48 +231,19 @@ impl Tour {
     }
 
     /// The tour with `scenario` for the steps that do not name their own; every step's depth
-    /// is checked against its scenario, its ε against the range of its level, and its
-    /// friction against its scenario's model, method and grading (as the lab refuses them
-    /// when the step is played: [`friction_step::check`]).
+    /// is checked against its scenario, its ε against the range of its level, its friction
+    /// against its scenario's model, method and grading (as the lab refuses them when the step
+    /// is played: [`friction_step::check`]), and its overlays against its obstacle and
+    /// friction (as the lab's keys are: [`App::guide_refusal`]).
     ///
     /// # Errors
     ///
-    /// The first step whose depth, ε or friction its scenario cannot take, with the step's index
-    /// ([`TourError`]).
+    /// The first step whose depth, ε, friction or overlays its scenario cannot take, with the
+    /// step's index ([`TourError`]).
     pub fn with_scenario(mut self, scenario: Scenario) -> Result<Tour, TourError> {
         self.scenario = scenario;
-        for (i, step) in self.steps.iter().enumerate() {
-            friction_step::check(&self.app(i)).map_err(|source| TourError::Friction {
-                file: sanitize(&self.source).into_owned(),
-                step: i + 1,
-                title: step.title.clone(),
-                source,
-            })?;
-            if let Some(epsilon) = step.epsilon.filter(|e| *e > 0.0) {
-                let scenario = self.scenario_of(i);
-                let level = step.level.unwrap_or(scenario.level).min(MAX_APP_LEVEL);
-                check::epsilon_in(epsilon, scenario.epsilon_range(level)).map_err(|source| {
-                    TourError::Epsilon {
-                        file: sanitize(&self.source).into_owned(),
-                        step: i + 1,
-                        title: step.title.clone(),
-                        level,
-                        source: Box::new(source),
-                    }
-                })?;
-            }
-            if let Some(depth) = step.depth {
-                let max = App::new(self.scenario_of(i).clone()).max_depth();
-                if depth > max + 1e-12 {
-                    return Err(TourError::Depth {
-                        file: sanitize(&self.source).into_owned(),
-                        step: i + 1,
-                        title: step.title.clone(),
-                        depth,
-                        max,
-                    });
-                }
-            }
+        for i in 0..self.steps.len() {
+            step_checks::check(&self, i)?;
         }
         Ok(self)
     }
