@@ -6,12 +6,15 @@
 
 use crate::contact::friction::Friction;
 use crate::contact::{Method, Obstacle, Rule};
-use crate::fem::{DofMap, Integration};
+use crate::fem::{DofMap, Integration, Support};
 use crate::material::Material;
 use crate::mesh::{self, Element, Mesh};
 use crate::refine_edges::{Grading, RefineEdges};
 
 pub mod discretize;
+pub mod upper;
+
+pub use upper::{Upper, UpperShape};
 
 /// The paper's problem, half model: `scenarios/hertz-paper.toml`.
 pub const DEFAULT_SCENARIO: &str = include_str!("../../scenarios/hertz-paper.toml");
@@ -35,8 +38,13 @@ pub struct Scenario {
     pub half_model: bool,
     /// The body's material.
     pub material: Material,
-    /// The rigid obstacle pressed into the top Γ_C.
+    /// The rigid obstacle pressed into the top Γ_C; with an upper body, its rigid limit: a
+    /// flat pressed its top's displacement δ.
     pub obstacle: Obstacle,
+    /// How the body's bottom is held (`[body] support`; clamped by default).
+    pub support: Support,
+    /// The upper elastic body in place of the rigid obstacle (`[upper]`; none by default).
+    pub upper: Option<Upper>,
     /// The element of the displacement.
     pub element: Element,
     /// Vertex lines of the level-0 grid across the modelled width and the height (uniform,
@@ -88,13 +96,14 @@ impl Scenario {
     }
 
     /// The number of free dofs at `level` with `element`, counted as the mesh and the dof map
-    /// count them ([`Element::node_lines`], [`DofMap::count`]) without building the mesh.
+    /// count them ([`Element::node_lines`], [`DofMap::count_supported`]) without building the mesh.
     pub fn n_dofs(&self, level: u32, element: Element) -> usize {
         let (cells_x, cells_y) = self.cells(level);
-        DofMap::count(
+        DofMap::count_supported(
             element.node_lines(cells_x),
             element.node_lines(cells_y),
             self.half_model,
+            self.support,
         )
     }
 
