@@ -4,9 +4,21 @@
 //! dual multipliers, and the reduced-integration penalty's rules on the slave's edges — each
 //! given as a [`Coupling`]: weighted gaps, linear in the two traces' normal displacements.
 
+mod error;
+mod mortar;
+mod nts;
+mod rip;
+mod segments;
 pub mod solve;
+#[cfg(test)]
+mod tests;
+mod trace;
+
+pub use error::InterfaceError;
+pub use rip::smoothed_pressure;
 
 use super::Rule;
+use trace::Trace;
 
 /// One side of a flat interface: its trace's nodes in ascending x and the order of its edges
 /// (1: the Q1 element's linear edges; 2: Q2's quadratic ones, edge e having the nodes
@@ -36,6 +48,36 @@ pub enum InterfaceMethod {
     Rip(Rule),
 }
 
+impl InterfaceMethod {
+    /// Every discretisation: node-to-segment one and two pass, mortar standard and dual, and
+    /// the reduced-integration penalty with each rule.
+    pub const ALL: [InterfaceMethod; 8] = [
+        InterfaceMethod::Nts,
+        InterfaceMethod::Nts2,
+        InterfaceMethod::Mortar,
+        InterfaceMethod::MortarDual,
+        InterfaceMethod::Rip(Rule::Gauss1),
+        InterfaceMethod::Rip(Rule::Gauss2),
+        InterfaceMethod::Rip(Rule::Trapezoid),
+        InterfaceMethod::Rip(Rule::Simpson),
+    ];
+
+    /// Its name in the outputs: `nts`, `nts2`, `mortar`, `mortar-dual`, `rip-<rule>` (e.g.
+    /// `rip-gauss1`).
+    pub fn name(self) -> &'static str {
+        match self {
+            InterfaceMethod::Nts => "nts",
+            InterfaceMethod::Nts2 => "nts2",
+            InterfaceMethod::Mortar => "mortar",
+            InterfaceMethod::MortarDual => "mortar-dual",
+            InterfaceMethod::Rip(Rule::Gauss1) => "rip-gauss1",
+            InterfaceMethod::Rip(Rule::Gauss2) => "rip-gauss2",
+            InterfaceMethod::Rip(Rule::Trapezoid) => "rip-trapezoid",
+            InterfaceMethod::Rip(Rule::Simpson) => "rip-simpson",
+        }
+    }
+}
+
 /// A discretised constraint (docs/design.md §12): at each constraint k, the gap
 ///
 /// g_k = g0_k + Σ_i slave[k]_i u_s,i − Σ_l master[k]_l u_m,l ≥ 0,
@@ -56,4 +98,23 @@ pub struct Coupling {
     pub slave: Vec<Vec<(usize, f64)>>,
     /// Each constraint's coefficients on the master's trace nodes: (node, coefficient).
     pub master: Vec<Vec<(usize, f64)>>,
+}
+
+/// The constraint across the interface of `slave` and `master` discretised by `method`
+/// (docs/design.md §12). Every row's slave and master coefficients sum to 1: a rigid
+/// penetration δ of the slave into the master gives the gap −δ at every row.
+///
+/// # Errors
+/// A side whose order is not 1 or 2, whose nodes are fewer than one edge's, not finite, not
+/// strictly ascending, or (order 2) whose mid-edge nodes are off their edges' middles; two
+/// sides with no overlap; a method that finds no constraint on the overlap.
+pub fn coupling(method: InterfaceMethod, slave: Side, master: Side) -> Result<Coupling, InterfaceError> {
+    let (slave, master) = (Trace::new(slave, "slave")?, Trace::new(master, "master")?);
+    match method {
+        InterfaceMethod::Nts => nts::nts(&slave, &master, false),
+        InterfaceMethod::Nts2 => nts::nts(&slave, &master, true),
+        InterfaceMethod::Mortar => mortar::mortar(&slave, &master, false),
+        InterfaceMethod::MortarDual => mortar::mortar(&slave, &master, true),
+        InterfaceMethod::Rip(rule) => rip::rip(rule, &slave, &master),
+    }
 }
