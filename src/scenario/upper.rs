@@ -8,7 +8,8 @@
 //! uses, along the body's outward normal. The top's prescribed displacement δ (downwards) is a
 //! rigid translation added to that solution.
 
-use crate::contact::interface::solve::Slave;
+use crate::contact::interface::solve::{Bodies, BodiesError, InterfaceSolution, Slave, solve_method};
+use crate::contact::interface::{Coupling, InterfaceMethod};
 use crate::discretization::Discretization;
 use crate::error::{SolveError, Workload};
 use crate::fem::memory::{Limits, Sizes};
@@ -136,6 +137,64 @@ impl Scenario {
                 / (self.height / plane_modulus(&self.material)
                     + upper.height / plane_modulus(&upper.material)
                     + epsilon)
+        })
+    }
+}
+
+/// A two-body scenario solved at a level ([`Scenario::solve_bodies`]).
+pub struct TwoBodies {
+    /// The lower body's discretisation.
+    pub lower: Discretization,
+    /// The upper body's, on its mirrored mesh.
+    pub upper: Discretization,
+    /// The constraint across the interface.
+    pub coupling: Coupling,
+    /// The solution.
+    pub solution: InterfaceSolution,
+    /// On the contact patch test ([`Scenario::patch_pressure`]): its exact pressure, and
+    /// max_k |p_k − p| / p over the slave's constraints.
+    pub patch: Option<(f64, f64)>,
+}
+
+impl Scenario {
+    /// Solve this two-body scenario at `level` with its element, the interface discretised by
+    /// `method`, the penalty ε > 0 or the exact multipliers (ε = 0).
+    ///
+    /// # Errors
+    ///
+    /// A one-body scenario, a mesh too large for the memory, or as
+    /// [`solve_method`]'s.
+    pub fn solve_bodies(
+        &self,
+        level: u32,
+        method: InterfaceMethod,
+        epsilon: f64,
+    ) -> Result<TwoBodies, BodiesError> {
+        let upper_body = self.upper.as_ref().ok_or(BodiesError::OneBody)?;
+        let lower = self.discretize(level, self.element)?;
+        let upper = self
+            .discretize_upper(level, self.element, 0)?
+            .ok_or(BodiesError::OneBody)?;
+        let bodies = Bodies {
+            lower: &lower,
+            upper: &upper,
+            displacement: upper_body.displacement,
+            slave: upper_body.slave,
+        };
+        let (coupling, solution) = solve_method(&bodies, method, epsilon)?;
+        let patch = self.patch_pressure(epsilon).map(|exact| {
+            let error = solution
+                .p
+                .iter()
+                .fold(0.0_f64, |m, p| m.max((p - exact).abs() / exact));
+            (exact, error)
+        });
+        Ok(TwoBodies {
+            lower,
+            upper,
+            coupling,
+            solution,
+            patch,
         })
     }
 }

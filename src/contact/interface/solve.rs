@@ -17,7 +17,7 @@ use std::ops::ControlFlow;
 
 use faer::{Mat, Side as FaerSide};
 
-use super::Coupling;
+use super::{Coupling, InterfaceError, InterfaceMethod, Side, coupling, smoothed_pressure};
 use crate::contact::newton::NewtonOptions;
 use crate::contact::penalty::{self, Penalty};
 use crate::contact::signorini;
@@ -113,7 +113,13 @@ pub struct InterfaceSolution {
 
 /// Why the interface's solve gave no result.
 #[derive(Debug, thiserror::Error, PartialEq)]
-pub enum InterfaceError {
+pub enum BodiesError {
+    /// A scenario with one body (no `[upper]`) asked for a two-body solve.
+    #[error("the scenario has one body: a solve across an interface needs an [upper] body")]
+    OneBody,
+    /// The two traces cannot be coupled ([`super::coupling`]).
+    #[error(transparent)]
+    Coupling(#[from] InterfaceError),
     /// The coupling does not fit the two traces (a caller's error).
     #[error("the coupling does not fit the traces: {0}")]
     Mismatch(String),
@@ -147,25 +153,51 @@ pub enum InterfaceError {
     Solve(#[from] SolveError),
 }
 
+/// Solve the contact of `bodies` across their flat interface discretised by `method`
+/// ([`super::coupling`], the initial gap 0), with the penalty ε > 0 or the exact multipliers
+/// (ε = 0); p̄ by (17) for the reduced-integration rules ([`smoothed_pressure`]). The coupling
+/// is returned with the solution.
+///
+/// # Errors
+///
+/// As [`solve`]'s, and two traces that cannot be coupled.
+pub fn solve_method(
+    bodies: &Bodies,
+    method: InterfaceMethod,
+    epsilon: f64,
+) -> Result<(Coupling, InterfaceSolution), BodiesError> {
+    let (slave, _) = bodies.pair();
+    let order = slave.mesh.element.order();
+    let (sx, mx) = bodies.trace_x();
+    let side = |x| Side { x, order };
+    let coupling = coupling(method, side(sx), side(mx))?;
+    let g0 = vec![0.0; coupling.x.len()];
+    let mut sol = solve(bodies, &coupling, &g0, epsilon)?;
+    if let InterfaceMethod::Rip(rule) = method {
+        sol.pbar = smoothed_pressure(rule, side(sx), &coupling, &sol.p)?;
+    }
+    Ok((coupling, sol))
+}
+
 /// Solve the contact of `bodies` across the interface discretised by `coupling`, from the
 /// initial gaps `g0` (one per constraint), with the penalty ε > 0 or the exact multipliers
 /// (ε = 0).
 ///
 /// # Errors
 ///
-/// [`InterfaceError`]: a coupling that does not fit, exact multipliers that are not unique, a
+/// [`BodiesError`]: a coupling that does not fit, exact multipliers that are not unique, a
 /// solve that does not converge or a non-finite result.
 pub fn solve(
     bodies: &Bodies,
     coupling: &Coupling,
     g0: &[f64],
     epsilon: f64,
-) -> Result<InterfaceSolution, InterfaceError> {
+) -> Result<InterfaceSolution, BodiesError> {
     let (slave, master) = bodies.pair();
     check(coupling, g0, slave.contact_dofs.len(), master.contact_dofs.len())?;
     let (lo, hi) = epsilon_range(bodies);
     if epsilon != 0.0 && !(epsilon >= lo && epsilon <= hi) {
-        return Err(InterfaceError::Epsilon { epsilon, lo, hi });
+        return Err(BodiesError::Epsilon { epsilon, lo, hi });
     }
     let n = coupling.x.len();
     let a = delassus(&coupling.slave, &slave.compliance) + delassus(&coupling.master, &master.compliance);
@@ -192,7 +224,7 @@ pub fn solve(
         signorini::solve_exact(&pb, None, &opts, &mut go_on)?
     };
     if let Some(why) = result.failure() {
-        return Err(InterfaceError::NotConverged(why));
+        return Err(BodiesError::NotConverged(why));
     }
     let y = &result.forces;
     let p: Vec<f64> = if epsilon > 0.0 {
@@ -232,7 +264,7 @@ pub fn epsilon_range(bodies: &Bodies) -> (f64, f64) {
 }
 
 /// The coupling's rows against the traces' sizes and `g0`'s.
-fn check(coupling: &Coupling, g0: &[f64], n_slave: usize, n_master: usize) -> Result<(), InterfaceError> {
+fn check(coupling: &Coupling, g0: &[f64], n_slave: usize, n_master: usize) -> Result<(), BodiesError> {
     let n = coupling.x.len();
     let lengths = [
         coupling.weight.len(),
@@ -241,18 +273,18 @@ fn check(coupling: &Coupling, g0: &[f64], n_slave: usize, n_master: usize) -> Re
         g0.len(),
     ];
     if lengths.iter().any(|&l| l != n) {
-        return Err(InterfaceError::Mismatch(format!(
+        return Err(BodiesError::Mismatch(format!(
             "{n} constraints but {lengths:?} weights, slave rows, master rows and initial gaps"
         )));
     }
     if coupling.weight.iter().any(|w| !(w.is_finite() && *w > 0.0)) {
-        return Err(InterfaceError::Mismatch("a weight is not positive".into()));
+        return Err(BodiesError::Mismatch("a weight is not positive".into()));
     }
     let fits = |rows: &[Vec<(usize, f64)>], len: usize| {
         rows.iter().flatten().all(|&(i, c)| i < len && c.is_finite())
     };
     if !fits(&coupling.slave, n_slave) || !fits(&coupling.master, n_master) {
-        return Err(InterfaceError::Mismatch(format!(
+        return Err(BodiesError::Mismatch(format!(
             "a coefficient is not finite or names a node beyond the traces' {n_slave} and {n_master}"
         )));
     }
@@ -276,7 +308,7 @@ fn delassus(rows: &[Vec<(usize, f64)>], c: &Mat<f64>) -> Mat<f64> {
 
 /// Refuse a singular A = Σ G C Gᵀ (constraints not independent): the exact multipliers would
 /// not be unique.
-fn unique(a: &Mat<f64>) -> Result<(), InterfaceError> {
+fn unique(a: &Mat<f64>) -> Result<(), BodiesError> {
     let n = a.nrows();
     if n == 0 {
         return Ok(());
@@ -287,7 +319,7 @@ fn unique(a: &Mat<f64>) -> Result<(), InterfaceError> {
     let largest = values.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
     let smallest = values.iter().fold(f64::INFINITY, |m, &v| m.min(v));
     if smallest <= 1e-12 * largest {
-        return Err(InterfaceError::NotUnique { constraints: n });
+        return Err(BodiesError::NotUnique { constraints: n });
     }
     Ok(())
 }
@@ -347,7 +379,7 @@ fn trace_displacement(
 }
 
 /// Refuse a solution with a non-finite value.
-fn finite(s: &InterfaceSolution) -> Result<(), InterfaceError> {
+fn finite(s: &InterfaceSolution) -> Result<(), BodiesError> {
     let bad = |v: &[f64]| v.iter().any(|x| !x.is_finite());
     let checks: [(&'static str, bool); 5] = [
         ("pressure", bad(&s.p) || bad(&s.pbar) || !s.load.is_finite()),
@@ -357,7 +389,7 @@ fn finite(s: &InterfaceSolution) -> Result<(), InterfaceError> {
         ("position", bad(&s.x)),
     ];
     match checks.iter().find(|c| c.1) {
-        Some((what, _)) => Err(InterfaceError::NonFinite(what)),
+        Some((what, _)) => Err(BodiesError::NonFinite(what)),
         None => Ok(()),
     }
 }

@@ -201,19 +201,19 @@ fn refusals_are_typed() {
     let g0 = vec![0.0; twice.x.len()];
     assert_eq!(
         solve(&bodies, &twice, &g0, 0.0),
-        Err(InterfaceError::NotUnique { constraints: 6 })
+        Err(BodiesError::NotUnique { constraints: 6 })
     );
     assert!(solve(&bodies, &twice, &g0, 1e-3).is_ok());
     let mut beyond = one.clone();
     beyond.slave[0] = vec![(7, 1.0)];
     assert!(matches!(
         solve(&bodies, &beyond, &[0.0; 3], 1e-3),
-        Err(InterfaceError::Mismatch(_))
+        Err(BodiesError::Mismatch(_))
     ));
     let (lo, hi) = epsilon_range(&bodies);
     assert_eq!(
         solve(&bodies, &one, &[0.0; 3], 1e-300),
-        Err(InterfaceError::Epsilon {
+        Err(BodiesError::Epsilon {
             epsilon: 1e-300,
             lo,
             hi
