@@ -5,6 +5,7 @@
 //! built).
 
 use crate::contact::friction::Friction;
+use crate::contact::interface::solve::Slave;
 use crate::contact::{Method, Obstacle, Rule};
 use crate::fem::{DofMap, Integration, Support};
 use crate::material::Material;
@@ -13,8 +14,6 @@ use crate::refine_edges::{Grading, RefineEdges};
 
 pub mod discretize;
 pub mod upper;
-
-pub use upper::{Upper, UpperShape};
 
 /// The paper's problem, half model: `scenarios/hertz-paper.toml`.
 pub const DEFAULT_SCENARIO: &str = include_str!("../../scenarios/hertz-paper.toml");
@@ -148,6 +147,45 @@ impl Scenario {
     pub fn h(&self, level: u32) -> f64 {
         mesh::cell_size(&self.x_lines, &self.y_lines, level)
     }
+}
+
+/// The shape of the upper body.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum UpperShape {
+    /// A rectangle as wide as the lower body, its bottom flat.
+    Block,
+}
+
+impl UpperShape {
+    /// The shape's name in scenario files and the outputs.
+    pub fn name(self) -> &'static str {
+        match self {
+            UpperShape::Block => "block",
+        }
+    }
+}
+
+/// The upper body of a two-body scenario (`[upper]`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Upper {
+    /// Its material (the plane strain or stress of the lower body's).
+    pub material: Material,
+    /// Its height H_u.
+    pub height: f64,
+    /// Its shape.
+    pub shape: UpperShape,
+    /// Its elements across the interface against the lower body's: `ratio.0` upper elements
+    /// for every `ratio.1` lower ones (rounded to a whole number, at least one).
+    pub ratio: (u32, u32),
+    /// The fraction of its element width by which its interior vertex lines are shifted (the
+    /// ends kept aligned with the lower body's), |offset| < 1/2.
+    pub offset: f64,
+    /// How its top is held.
+    pub support: Support,
+    /// The prescribed downward displacement δ of its top.
+    pub displacement: f64,
+    /// Which side's trace carries the contact integral.
+    pub slave: Slave,
 }
 
 /// Vertex lines with every interval bisected `level` times.

@@ -8,7 +8,7 @@
 //! uses, along the body's outward normal. The top's prescribed displacement δ (downwards) is a
 //! rigid translation added to that solution.
 
-use crate::contact::interface::solve::{Bodies, BodiesError, InterfaceSolution, Slave, solve_method};
+use crate::contact::interface::solve::{Bodies, BodiesError, InterfaceSolution, solve_method};
 use crate::contact::interface::{Coupling, InterfaceMethod};
 use crate::discretization::Discretization;
 use crate::error::{SolveError, Workload};
@@ -16,49 +16,11 @@ use crate::fem::memory::{Limits, Sizes};
 use crate::fem::{DofMap, Support};
 use crate::material::{Material, Plane};
 use crate::mesh::{Element, Mesh};
+use crate::scenario::UpperShape;
 
 use super::Scenario;
 
-/// The shape of the upper body.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum UpperShape {
-    /// A rectangle as wide as the lower body, its bottom flat.
-    Block,
-}
-
-impl UpperShape {
-    /// The shape's name in scenario files and the outputs.
-    pub fn name(self) -> &'static str {
-        match self {
-            UpperShape::Block => "block",
-        }
-    }
-}
-
-/// The upper body of a two-body scenario (`[upper]`).
-#[derive(Clone, Debug, PartialEq)]
-pub struct Upper {
-    /// Its material (the plane strain or stress of the lower body's).
-    pub material: Material,
-    /// Its height H_u.
-    pub height: f64,
-    /// Its shape.
-    pub shape: UpperShape,
-    /// Its elements across the interface against the lower body's: `ratio.0` upper elements
-    /// for every `ratio.1` lower ones (rounded to a whole number, at least one).
-    pub ratio: (u32, u32),
-    /// The fraction of its element width by which its interior vertex lines are shifted (the
-    /// ends kept aligned with the lower body's), |offset| < 1/2.
-    pub offset: f64,
-    /// How its top is held.
-    pub support: Support,
-    /// The prescribed downward displacement δ of its top.
-    pub displacement: f64,
-    /// Which side's trace carries the contact integral.
-    pub slave: Slave,
-}
-
-/// The most elements across the upper body's interface per lower element (`ratio.0 / ratio.1`).
+/// The largest of the two whole numbers of [`Upper::ratio`].
 pub const MAX_RATIO: u32 = 64;
 
 impl Scenario {
