@@ -6,6 +6,7 @@ use std::path::Path;
 
 use riplab::contact::Rule;
 use riplab::contact::interface::InterfaceMethod;
+use riplab::mesh::Element;
 use riplab::scenario::Scenario;
 
 fn patch() -> Scenario {
@@ -15,7 +16,20 @@ fn patch() -> Scenario {
 
 /// `patch` at `ratio` and `offset`, solved at `level` by `method` with ε: its patch error.
 fn patch_error(ratio: (u32, u32), offset: f64, level: u32, method: InterfaceMethod, epsilon: f64) -> f64 {
+    patch_error_with(Element::Q1, ratio, offset, level, method, epsilon)
+}
+
+/// [`patch_error`] with `element` in both bodies.
+fn patch_error_with(
+    element: Element,
+    ratio: (u32, u32),
+    offset: f64,
+    level: u32,
+    method: InterfaceMethod,
+    epsilon: f64,
+) -> f64 {
     let mut s = patch();
+    s.element = element;
     let upper = s.upper.as_mut().unwrap();
     (upper.ratio, upper.offset) = (ratio, offset);
     let solved = s.solve_bodies(level, method, epsilon).unwrap();
@@ -61,6 +75,22 @@ fn mortar_passes_the_patch_test() {
             }
             let e = patch_error(ratio, offset, 2, method, 1e-4);
             assert!(e <= 1e-10, "{} {ratio:?} penalty: {e:e}", method.name());
+        }
+    }
+}
+
+/// So do the other elements: Q2 (quadratic edges, Simpson's weights) and P1, at levels 0–2.
+#[test]
+fn mortar_passes_the_patch_test_with_q2_and_p1() {
+    for element in [Element::Q2, Element::P1] {
+        for method in [InterfaceMethod::Mortar, InterfaceMethod::MortarDual] {
+            for (ratio, offset) in [((1, 1), 0.3), ((2, 3), 0.0), ((5, 7), 0.2)] {
+                for level in 0..=2 {
+                    let e = patch_error_with(element, ratio, offset, level, method, 1e-5);
+                    let what = format!("{element:?} {} {ratio:?} level {level}", method.name());
+                    assert!(e <= 1e-10, "{what}: {e:e}");
+                }
+            }
         }
     }
 }
