@@ -4,9 +4,12 @@
 //! dual multipliers, and the reduced-integration penalty's rules on the slave's edges — each
 //! given as a [`Coupling`]: weighted gaps, linear in the two traces' normal displacements.
 
+mod dual;
 mod error;
 mod mortar;
 mod nts;
+#[cfg(test)]
+mod props;
 mod rip;
 mod segments;
 pub mod solve;
@@ -80,14 +83,14 @@ impl InterfaceMethod {
 
 /// A discretised constraint (docs/design.md §12): at each constraint k, the gap
 ///
-/// g_k = g0_k + Σ_i slave[k]_i u_s,i − Σ_l master[k]_l u_m,l ≥ 0,
+/// `g_k = g0_k + Σ_i slave[k]_i u_s,i − Σ_l master[k]_l u_m,l ≥ 0`,
 ///
 /// u_s and u_m the slave's and the master's displacements at their trace nodes along the
 /// interface's normal pointing from the master into the slave (+y when the upper body is the
 /// slave), g0 the initial gap along it, and the measure
 /// `weight[k]` that the constraint carries: its multiplier λ_k (a pressure, compression
-/// positive) exerts the nodal forces weight[k] λ_k slave[k]_i and −weight[k] λ_k master[k]_l,
-/// and the penalty's energy is (1/2ε) Σ_k weight[k] [g_k]₋².
+/// positive) exerts the nodal forces `weight[k] λ_k slave[k]_i` and
+/// `−weight[k] λ_k master[k]_l`, and the penalty's energy is `(1/2ε) Σ_k weight[k] [g_k]₋²`.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Coupling {
     /// Where each constraint sits on the interface (x), for the outputs and the charts.

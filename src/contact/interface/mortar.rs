@@ -1,10 +1,11 @@
 //! Mortar segment-to-segment coupling (docs/design.md §12): the integrals
 //! D_jk = ∫ μ_j φ_k and M_jl = ∫ μ_j φ^m_l over the overlap, μ the multiplier basis — the
-//! slave's trace basis φ (standard) or its biorthogonal dual ψ (Wohlmuth 2000) — by Gauss on
-//! each segment of the exact segmentation, exact for the products.
+//! slave's trace basis φ (standard) or its biorthogonal dual ψ ([`super::dual`]) — by Gauss
+//! on each segment of the exact segmentation, exact for the products.
 
 use super::Coupling;
 use super::InterfaceError;
+use super::dual::DualBasis;
 use super::segments::segments;
 use super::trace::{Trace, overlap};
 use crate::fem::quadrature::gauss_legendre;
@@ -22,29 +23,6 @@ const MIN_ROW_MEASURE: f64 = 1e-9;
 /// off-diagonal) and are left out.
 const ZERO_COEFFICIENT: f64 = 1e-13;
 
-/// The dual basis ψ_a = Σ_b A_ab φ_b on an edge, A = D_e M_e⁻¹ with D_e = diag(∫_e φ_a) and
-/// M_e the edge's mass matrix; both scale with the edge's length, so A is the same on every
-/// edge. Linear: M_e = h/6 [[2, 1], [1, 2]], D_e = h/2 I.
-const DUAL_LINEAR: [[f64; 3]; 3] = [[2.0, -1.0, 0.0], [-1.0, 2.0, 0.0], [0.0, 0.0, 0.0]];
-
-/// Quadratic: M_e = h/30 [[4, 2, −1], [2, 16, 2], [−1, 2, 4]], D_e = h diag(1/6, 2/3, 1/6).
-/// Well defined (∫_e φ_a > 0 for every node of a 3-node edge), but ψ_mid = −1 at the edge's
-/// ends and ψ_end = −1/4 at its middle (docs/design.md §12).
-const DUAL_QUADRATIC: [[f64; 3]; 3] = [[1.5, -0.25, 0.5], [-1.0, 1.5, -1.0], [0.5, -0.25, 1.5]];
-
-/// The multiplier basis at a point from the slave's edge basis there.
-fn multipliers(order: usize, dual: bool, phi: &[f64; 3]) -> [f64; 3] {
-    if !dual {
-        return *phi;
-    }
-    let a = if order == 1 { &DUAL_LINEAR } else { &DUAL_QUADRATIC };
-    let mut psi = [0.0; 3];
-    for (p, row) in psi.iter_mut().zip(a) {
-        *p = row.iter().zip(phi).map(|(c, f)| c * f).sum();
-    }
-    psi
-}
-
 /// Add `value` to the entry of `node` in a short sparse row.
 fn add(row: &mut Vec<(usize, f64)>, node: usize, value: f64) {
     match row.iter_mut().find(|(k, _)| *k == node) {
@@ -58,27 +36,44 @@ fn add(row: &mut Vec<(usize, f64)>, node: usize, value: f64) {
 /// M_jl/D̂_j, weight D̂_j. Both sum to 1 (Σ_k φ_k = Σ_l φ^m_l = 1 on the overlap).
 pub(crate) fn mortar(slave: &Trace, master: &Trace, dual: bool) -> Result<Coupling, InterfaceError> {
     let gauss = gauss_legendre(GAUSS_POINTS);
+    let (lo, hi) = overlap(slave, master)?;
     let n = slave.x.len();
     let (mut d, mut m) = (vec![Vec::new(); n], vec![Vec::new(); n]);
+    let mut psi: Option<(usize, DualBasis)> = None;
     for seg in segments(slave, master)? {
+        let e = seg.slave_edge;
+        if dual && psi.as_ref().is_none_or(|(at, _)| *at != e) {
+            let (a, b) = slave.edge(e);
+            psi = Some((e, DualBasis::on(slave, e, a.max(lo), b.min(hi))));
+        }
         let (mid, half) = (0.5 * (seg.a + seg.b), 0.5 * (seg.b - seg.a));
         for &(xi, wg) in &gauss {
             let (x, w) = (mid + half * xi, half * wg);
-            let (s0, phi) = slave.basis(seg.slave_edge, x);
+            let (s0, phi) = slave.basis(e, x);
             let (m0, phi_m) = master.basis(seg.master_edge, x);
-            let mu = multipliers(slave.order, dual, &phi);
-            for a in 0..=slave.order {
-                for c in 0..=slave.order {
-                    add(&mut d[s0 + a], s0 + c, w * mu[a] * phi[c]);
+            let mu = match &psi {
+                Some((_, basis)) => basis.at(x),
+                None => phi,
+            };
+            for (a, &mu_a) in mu.iter().enumerate().take(slave.order + 1) {
+                let row = s0 + a;
+                if dual {
+                    // ∫ψ_a φ_c = δ_ac ∫φ_a on the covered part: D is diagonal by
+                    // construction, its entry integrated with φ (free of the round-off of ψ's
+                    // cancellations, which grows as (h/len)^order on a sliver).
+                    add(&mut d[row], row, w * phi[a]);
+                } else {
+                    for (c, &phi_c) in phi.iter().enumerate().take(slave.order + 1) {
+                        add(&mut d[row], s0 + c, w * mu_a * phi_c);
+                    }
                 }
-                for b in 0..=master.order {
-                    add(&mut m[s0 + a], m0 + b, w * mu[a] * phi_m[b]);
+                for (b, &phi_b) in phi_m.iter().enumerate().take(master.order + 1) {
+                    add(&mut m[row], m0 + b, w * mu_a * phi_b);
                 }
             }
         }
     }
     let measure = slave.measures();
-    let overlap = overlap(slave, master)?;
     let mut out = Coupling::default();
     for (j, (dj, mj)) in d.into_iter().zip(m).enumerate() {
         let dhat: f64 = dj.iter().map(|(_, v)| v).sum();
@@ -100,7 +95,7 @@ pub(crate) fn mortar(slave: &Trace, master: &Trace, dual: bool) -> Result<Coupli
         return Err(InterfaceError::NoConstraint {
             method: if dual { "mortar-dual" } else { "mortar" },
             what: "slave node with a positive measure",
-            overlap,
+            overlap: (lo, hi),
         });
     }
     Ok(out)
@@ -165,9 +160,9 @@ mod tests {
             mass[e][e + 1] += he / 6.0;
             mass[e + 1][e] += he / 6.0;
         }
-        for j in 0..4 {
+        for (j, mass_j) in mass.iter().enumerate() {
             let row: Vec<f64> = dense(&c.slave[j], 4).iter().map(|v| v * c.weight[j]).collect();
-            assert!(close(&row, &mass[j], 1e-15), "{j}: {row:?}");
+            assert!(close(&row, mass_j, 1e-15), "{j}: {row:?}");
             assert!(close(&dense(&c.master[j], 4), &dense(&c.slave[j], 4), 1e-15));
         }
         let c = couple(&x, 1, &x, 1, true);
@@ -184,40 +179,5 @@ mod tests {
             assert_eq!(c.master[j][0].0, j);
             assert!((c.master[j][0].1 - 1.0).abs() < 1e-14, "{:?}", c.master[j]);
         }
-    }
-
-    #[test]
-    fn quadratic_dual_basis_is_biorthogonal() {
-        // ∫ψ_a φ_b = δ_ab ∫φ_b on the reference edge [0, 1], by a 5-point Gauss rule (exact
-        // to degree 9), and ∫ψ_a = ∫φ_a = 1/6, 2/3, 1/6 > 0: the basis is well defined.
-        let t = Trace::new(
-            Side {
-                x: &[0.0, 0.5, 1.0],
-                order: 2,
-            },
-            "slave",
-        )
-        .unwrap();
-        let lumped = [1.0 / 6.0, 2.0 / 3.0, 1.0 / 6.0];
-        let mut g = [[0.0; 3]; 3];
-        for (xi, w) in gauss_legendre(5) {
-            let x = 0.5 + 0.5 * xi;
-            let (_, phi) = t.basis(0, x);
-            let psi = multipliers(2, true, &phi);
-            for a in 0..3 {
-                for b in 0..3 {
-                    g[a][b] += 0.5 * w * psi[a] * phi[b];
-                }
-            }
-        }
-        for a in 0..3 {
-            for b in 0..3 {
-                let want = if a == b { lumped[a] } else { 0.0 };
-                assert!((g[a][b] - want).abs() < 1e-14, "{a}{b}: {}", g[a][b]);
-            }
-        }
-        // The sign issue: the mid node's ψ is −1 at the edge's ends.
-        let (_, phi) = t.basis(0, 0.0);
-        assert_eq!(multipliers(2, true, &phi)[1], -1.0);
     }
 }
