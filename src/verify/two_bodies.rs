@@ -51,8 +51,8 @@ fn failed(e: BodiesError) -> SolveError {
 }
 
 fn run(level: u32) -> Result<Vec<Measured>, SolveError> {
-    let base = Scenario::parse(PATCH, "<embedded patch-two-blocks.toml>")
-        .expect("the embedded scenario is valid");
+    let base =
+        Scenario::parse(PATCH, "<embedded patch-two-blocks.toml>").expect("the embedded scenario is valid");
     let mut out = Vec::new();
     for (ratio, offset) in MESHES {
         let mut scenario = base.clone();
