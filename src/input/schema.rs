@@ -74,6 +74,7 @@ pub(super) struct RawUpper {
     pub(super) height: Spanned<f64>,
     pub(super) displacement: Spanned<f64>,
     pub(super) shape: Option<Spanned<String>>,
+    pub(super) radius: Option<Spanned<f64>>,
     pub(super) ratio: Option<Spanned<Vec<i64>>>,
     pub(super) offset: Option<Spanned<f64>>,
     pub(super) support: Option<Spanned<String>>,

@@ -1,5 +1,5 @@
 //! `[upper]` validated (docs/design.md §12): the upper elastic body in place of the rigid
-//! obstacle — E and ν in their ranges, a height, the shape `block`, the ratio of two whole
+//! obstacle — E and ν in their ranges, a height, the shape `block` or `cylinder` (with its radius), the ratio of two whole
 //! numbers 1 to [`MAX_RATIO`], an offset |offset| < 1/2, the support among `clamped` and
 //! `roller`, the top's displacement within ± the thinner body's height, the slave among
 //! `upper` and `lower`. `[obstacle]` beside it is refused, and so is what the two-body solve
@@ -35,8 +35,8 @@ impl Locator<'_> {
         }
     }
 
-    /// The obstacle of `[obstacle]`, or with `[upper]` its rigid limit (a flat pressed the
-    /// top's displacement), and the upper body; one of the two tables exactly.
+    /// The obstacle of `[obstacle]`, or with `[upper]` its rigid limit (a flat or the cylinder
+    /// pressed the top's displacement), and the upper body; one of the two tables exactly.
     pub(super) fn obstacle_or_upper(
         &self,
         raw: &RawScenario,
@@ -48,11 +48,18 @@ impl Locator<'_> {
             (None, Some(u)) => {
                 let upper = self.upper(u.get_ref(), raw)?;
                 let reach = (x1 - x0).abs() + x0.abs() + x1.abs() + 1.0;
-                let flat = Obstacle::Polyline {
-                    points: vec![(-reach, 0.0), (reach, 0.0)],
-                    depth: upper.displacement,
+                let rigid = match upper.shape {
+                    UpperShape::Block => Obstacle::Polyline {
+                        points: vec![(-reach, 0.0), (reach, 0.0)],
+                        depth: upper.displacement,
+                    },
+                    UpperShape::Cylinder { radius } => Obstacle::Cylinder {
+                        radius,
+                        depth: upper.displacement,
+                        center: 0.0,
+                    },
                 };
-                Ok((flat, Some(upper)))
+                Ok((rigid, Some(upper)))
             }
             (Some(o), Some(_)) => Err(self.error(
                 Some(o.shape.span()),
@@ -76,16 +83,34 @@ impl Locator<'_> {
         self.check("upper.displacement", &u.displacement, |v| {
             check::depth(*v, thinner)
         })?;
-        if let Some(s) = u.shape.as_ref().filter(|s| s.get_ref() != "block") {
-            return Err(self.error(
-                Some(s.span()),
-                Some("upper.shape".into()),
-                format!(
-                    "\"{}\" is not a shape of the upper body; allowed: \"block\"",
-                    s.get_ref()
-                ),
-            ));
-        }
+        let shape = match (u.shape.as_ref().map(|s| s.get_ref().as_str()), &u.radius) {
+            (None | Some("block"), None) => UpperShape::Block,
+            (Some("cylinder"), Some(r)) => {
+                self.check("upper.radius", r, |v| check::length(*v))?;
+                UpperShape::Cylinder { radius: *r.get_ref() }
+            }
+            (Some("cylinder"), None) => {
+                return Err(self.error(
+                    u.shape.as_ref().map(Spanned::span),
+                    Some("upper.radius".into()),
+                    "is required for shape \"cylinder\": the radius of its bottom's arc".into(),
+                ));
+            }
+            (None | Some("block"), Some(r)) => {
+                return Err(self.error(
+                    Some(r.span()),
+                    Some("upper.radius".into()),
+                    "applies to shape \"cylinder\" only; the block's bottom is flat".into(),
+                ));
+            }
+            (Some(other), _) => {
+                return Err(self.error(
+                    u.shape.as_ref().map(Spanned::span),
+                    Some("upper.shape".into()),
+                    format!("\"{other}\" is not a shape of the upper body; allowed: \"block\", \"cylinder\" (with radius)"),
+                ));
+            }
+        };
         let ratio = match &u.ratio {
             None => (1, 1),
             Some(r) => match r.get_ref()[..] {
@@ -144,7 +169,7 @@ impl Locator<'_> {
                 plane: raw.material.plane,
             },
             height: *u.height.get_ref(),
-            shape: UpperShape::Block,
+            shape,
             ratio,
             offset,
             support: self.support("upper.support", u.support.as_ref())?,

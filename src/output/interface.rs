@@ -18,8 +18,10 @@ pub struct BodyReport {
     pub young: f64,
     /// Poisson's ratio ν.
     pub poisson: f64,
-    /// Its shape: `block`.
+    /// Its shape: `block` or `cylinder`.
     pub shape: &'static str,
+    /// A cylinder's radius (null for a block).
+    pub radius: Option<f64>,
     /// Its full width.
     pub width: f64,
     /// Its height.
@@ -164,6 +166,7 @@ impl InterfaceReport {
                     young: scenario.material.young,
                     poisson: scenario.material.poisson,
                     shape: "block",
+                    radius: None,
                     width: scenario.width,
                     height: scenario.height,
                     support: scenario.support.name(),
@@ -174,6 +177,7 @@ impl InterfaceReport {
                     young: upper.material.young,
                     poisson: upper.material.poisson,
                     shape: upper.shape.name(),
+                    radius: upper.shape.radius(),
                     width: scenario.width,
                     height: upper.height,
                     support: upper.support.name(),

@@ -150,10 +150,17 @@ impl Scenario {
 }
 
 /// The shape of the upper body.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub enum UpperShape {
     /// A rectangle as wide as the lower body, its bottom flat.
     Block,
+    /// A cylinder segment whose bottom is an arc of `radius` touching the lower body at x = 0:
+    /// meshed as the block, its arc the initial gap g₀(x) = R − √(R² − x²) (R beyond |x| = R),
+    /// measured vertically — the half-space idealisation Hertz's solution itself makes.
+    Cylinder {
+        /// The arc's radius R.
+        radius: f64,
+    },
 }
 
 impl UpperShape {
@@ -161,6 +168,31 @@ impl UpperShape {
     pub fn name(self) -> &'static str {
         match self {
             UpperShape::Block => "block",
+            UpperShape::Cylinder { .. } => "cylinder",
+        }
+    }
+
+    /// The initial gap g₀(x) between the shape's bottom and the flat top of the lower body.
+    pub fn initial_gap(self, x: f64) -> f64 {
+        match self {
+            UpperShape::Block => 0.0,
+            UpperShape::Cylinder { radius } => {
+                let inside = (radius * radius - x * x).max(0.0);
+                // x²/(R + √(R² − x²)) against cancellation near x = 0.
+                if inside > 0.0 {
+                    x * x / (radius + inside.sqrt())
+                } else {
+                    radius
+                }
+            }
+        }
+    }
+
+    /// The arc's radius, for a cylinder.
+    pub fn radius(self) -> Option<f64> {
+        match self {
+            UpperShape::Block => None,
+            UpperShape::Cylinder { radius } => Some(radius),
         }
     }
 }

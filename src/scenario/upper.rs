@@ -143,7 +143,8 @@ impl Scenario {
             displacement: upper_body.displacement,
             slave: upper_body.slave,
         };
-        let (coupling, solution) = solve_method(&bodies, method, epsilon)?;
+        let shape = upper_body.shape;
+        let (coupling, solution) = solve_method(&bodies, method, epsilon, |x| shape.initial_gap(x))?;
         let patch = self.patch_pressure(epsilon).map(|exact| {
             let error = solution
                 .p

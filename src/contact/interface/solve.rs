@@ -153,8 +153,8 @@ pub enum BodiesError {
     Solve(#[from] SolveError),
 }
 
-/// Solve the contact of `bodies` across their flat interface discretised by `method`
-/// ([`super::coupling`], the initial gap 0), with the penalty ε > 0 or the exact multipliers
+/// Solve the contact of `bodies` across their interface discretised by `method`
+/// ([`super::coupling`], the initial gap `gap0` at each row's x), with the penalty ε > 0 or the exact multipliers
 /// (ε = 0); p̄ by (17) for the reduced-integration rules ([`smoothed_pressure`]). The coupling
 /// is returned with the solution.
 ///
@@ -165,13 +165,14 @@ pub fn solve_method(
     bodies: &Bodies,
     method: InterfaceMethod,
     epsilon: f64,
+    gap0: impl Fn(f64) -> f64,
 ) -> Result<(Coupling, InterfaceSolution), BodiesError> {
     let (slave, _) = bodies.pair();
     let order = slave.mesh.element.order();
     let (sx, mx) = bodies.trace_x();
     let side = |x| Side { x, order };
     let coupling = coupling(method, side(sx), side(mx))?;
-    let g0 = vec![0.0; coupling.x.len()];
+    let g0: Vec<f64> = coupling.x.iter().map(|&x| gap0(x)).collect();
     let mut sol = solve(bodies, &coupling, &g0, epsilon)?;
     if let InterfaceMethod::Rip(rule) = method {
         sol.pbar = smoothed_pressure(rule, side(sx), &coupling, &sol.p)?;
@@ -276,6 +277,9 @@ fn check(coupling: &Coupling, g0: &[f64], n_slave: usize, n_master: usize) -> Re
         return Err(BodiesError::Mismatch(format!(
             "{n} constraints but {lengths:?} weights, slave rows, master rows and initial gaps"
         )));
+    }
+    if g0.iter().any(|g| !g.is_finite()) {
+        return Err(BodiesError::Mismatch("an initial gap is not finite".into()));
     }
     if coupling.weight.iter().any(|w| !(w.is_finite() && *w > 0.0)) {
         return Err(BodiesError::Mismatch("a weight is not positive".into()));
