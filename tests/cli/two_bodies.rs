@@ -68,6 +68,14 @@ fn two_bodies_json_and_patch_error() {
     assert!(v["patch_error"].as_f64().unwrap() <= 1e-10);
     let p_eps = 0.01 / (1.0 / (1000.0 / 0.91) + 0.5 / (500.0 / 0.96) + 1e-4);
     assert!((v["p_applied"].as_f64().unwrap() - p_eps).abs() < 1e-12 * p_eps);
+    // The cylinder's radius is echoed.
+    let hertz = concat!(env!("CARGO_MANIFEST_DIR"), "/scenarios/hertz-two-bodies.toml");
+    let (code, out, err) = riplab(&["solve", hertz, "--level", "0", "--format", "json"]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["bodies"]["upper"]["shape"], "cylinder");
+    assert_eq!(v["bodies"]["upper"]["radius"], 10.0);
+    assert!(v.get("patch_error").is_none());
     // rip takes --rule; its p̄ is finite.
     let v = json(&["--contact", "rip", "--rule", "gauss1", "--epsilon", "1e-4"]);
     assert_eq!(v["interface"]["contact"], "rip-gauss1");
@@ -113,6 +121,24 @@ fn two_bodies_refusals() {
             "displacement = 0.7",
             "upper.displacement",
             "0.5",
+        ),
+        (
+            "shape = \"block\"",
+            "shape = \"cylinder\"",
+            "upper.radius",
+            "required",
+        ),
+        (
+            "shape = \"block\"",
+            "shape = \"block\"\nradius = 2.0",
+            "upper.radius",
+            "\"cylinder\" only",
+        ),
+        (
+            "shape = \"block\"",
+            "shape = \"sphere\"",
+            "upper.shape",
+            "\"cylinder\"",
         ),
         (
             "[upper]",
