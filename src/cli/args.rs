@@ -295,4 +295,17 @@ impl Select {
         }
         Ok(s)
     }
+
+    /// [`Select::resolve`] for a command that takes one body: a two-body scenario (`[upper]`)
+    /// refused, naming `riplab solve`, which takes it.
+    pub fn resolve_one_body(&self, command: &str) -> Result<Scenario, CliError> {
+        let s = self.resolve()?;
+        if s.upper.is_some() {
+            return Err(CliError::Usage(format!(
+                "{} has two elastic bodies ([upper]): `riplab {command}` takes one body yet; `riplab solve` solves it (--contact chooses the interface's discretisation)",
+                s.source
+            )));
+        }
+        Ok(s)
+    }
 }

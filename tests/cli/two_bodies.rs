@@ -105,6 +105,19 @@ fn two_bodies_refusals() {
         assert_eq!(code, 2, "{args:?}: {err}");
         assert!(err.contains(said), "{args:?}: {err}");
     }
+    // The commands that take one body refuse two, naming `riplab solve`.
+    for command in [
+        &["infsup", PATCH][..],
+        &["study", PATCH, "--levels", "0..1"],
+        &["render", PATCH],
+    ] {
+        let (code, _, err) = riplab(command);
+        assert_eq!(code, 2, "{command:?}: {err}");
+        assert!(
+            err.contains("[upper]") && err.contains("riplab solve"),
+            "{command:?}: {err}"
+        );
+    }
     let text = std::fs::read_to_string(PATCH).unwrap();
     for (from, to, key, allowed) in [
         ("ratio = [2, 3]", "ratio = [0, 3]", "upper.ratio", "1 to 64"),
