@@ -19,8 +19,8 @@ const GAUSS_POINTS: usize = 3;
 /// function is negative); its normalised coefficients would be ill-conditioned.
 const MIN_ROW_MEASURE: f64 = 1e-9;
 
-/// Normalised coefficients below this are a zero's round-off (e.g. the dual D's
-/// off-diagonal) and are left out.
+/// Normalised coefficients below this are a zero's round-off (e.g. the dual's
+/// M_jl = ∫ψ_j φ^m_l off node j on matching sides) and are left out.
 const ZERO_COEFFICIENT: f64 = 1e-13;
 
 /// Add `value` to the entry of `node` in a short sparse row.

@@ -227,6 +227,29 @@ fn nts_by_hand() {
 }
 
 #[test]
+fn ends_an_ulp_apart_are_the_same_end() {
+    // The same width 2 meshed by 3 and by 2 edges, the master ending an ulp short (as i·W/n
+    // may): every slave node and trapezoid point still has its row, the forces stay
+    // symmetric, and the master's shape functions are taken at its end, not extrapolated.
+    let s = [0.0, 2.0 / 3.0, 4.0 / 3.0, 2.0];
+    let m = [0.0, 1.0, 2.0 - f64::EPSILON];
+    let (ss, sm) = (Side { x: &s, order: 1 }, Side { x: &m, order: 1 });
+    for method in [
+        InterfaceMethod::Nts,
+        InterfaceMethod::Nts2,
+        InterfaceMethod::Rip(Rule::Trapezoid),
+    ] {
+        let c = coupling(method, ss, sm).unwrap();
+        assert_eq!(c.x.first(), Some(&0.0), "{}", method.name());
+        assert_eq!(c.x.last(), Some(&2.0), "{}", method.name());
+        let (fs, fm) = forces(&c, s.len(), m.len());
+        assert!((fs[3] - fs[0]).abs() < 1e-12, "{}: {fs:?}", method.name());
+        assert!((fm[2] - fm[0]).abs() < 1e-12, "{}: {fm:?}", method.name());
+        assert!(c.master.iter().flatten().all(|&(_, v)| (0.0..=1.0).contains(&v)));
+    }
+}
+
+#[test]
 fn rip_rows_are_the_rule_points_and_pbar_follows_17() {
     // Gauss1 on slave edges [0, 1], [1, 3] over a master [0, 2]: the first point (x = 0.5)
     // alone lies over the master — the second (x = 2) too, at the master's end.

@@ -8,6 +8,10 @@ use crate::fem::basis::lagrange_1d;
 /// edge's length.
 const MID_NODE_TOLERANCE: f64 = 1e-9;
 
+/// How far past its end, relative to its length, a point still lies on a trace: the same
+/// width meshed with different numbers of cells may end an ulp apart (i·W/n at i = n).
+const END_TOLERANCE: f64 = 1e-12;
+
 /// A checked side: nodes finite and strictly ascending, a whole number of edges of order 1
 /// or 2, quadratic edges' mid nodes at their middles.
 #[derive(Clone, Debug)]
@@ -84,10 +88,12 @@ impl<'a> Trace<'a> {
         (self.vertices[0], self.vertices[self.n_edges()])
     }
 
-    /// Whether x lies on the trace (ends included).
+    /// Whether x lies on the trace, ends included, or past an end by round-off
+    /// ([`END_TOLERANCE`] of its length).
     pub fn holds(&self, x: f64) -> bool {
         let (a, b) = self.ends();
-        (a..=b).contains(&x)
+        let tol = END_TOLERANCE * (b - a);
+        (a - tol..=b + tol).contains(&x)
     }
 
     /// The edge holding x: x₍e₎ ≤ x < x₍e+1₎, the first edge left of the trace and the last
@@ -107,8 +113,10 @@ impl<'a> Trace<'a> {
     }
 
     /// The trace's shape functions at x on the edge holding it, as (node, value), exact zeros
-    /// left out.
+    /// left out; x past an end (by round-off, [`Trace::holds`]) is taken at that end.
     pub fn shape_at(&self, x: f64) -> Vec<(usize, f64)> {
+        let (a, b) = self.ends();
+        let x = x.clamp(a, b);
         let (first, values) = self.basis(self.edge_at(x), x);
         (0..=self.order)
             .filter(|&a| values[a] != 0.0)
