@@ -43,6 +43,7 @@ mod infsup;
 mod lab;
 mod solve;
 mod study;
+mod two_bodies;
 pub use args::{InfsupArgs, Select, SolveArgs, StudyArgs};
 use infsup::infsup;
 use lab::{RENDER_NOTES, lab, render};

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 
-use super::choices::{ElementName, FormatName, RuleName, choice};
+use super::choices::{ContactName, ElementName, FormatName, RuleName, choice};
 use super::{CliError, usage, values};
 use crate::check::{self, CheckError};
 use crate::contact::method::Gamma0;
@@ -115,6 +115,10 @@ pub struct SolveArgs {
     /// Penalty parameter ε > 0 (0: the exact constraint); several, comma-separated, sweep on one mesh.
     #[arg(long, value_delimiter = ',', allow_hyphen_values = true, value_parser = values::number)]
     pub epsilon: Vec<f64>,
+    /// On a two-body scenario (`[upper]`), the discretisation of the constraint across the
+    /// interface (`rip` with the rule of --rule) [default: mortar]
+    #[arg(long, value_enum)]
+    pub contact: Option<ContactName>,
     /// Scaled penalty: ε = κ·h/E (h the level's cell size, E Young's modulus), so that a value
     /// means the same at every level and for every material; several, comma-separated, sweep.
     #[arg(long, value_delimiter = ',', conflicts_with = "epsilon", allow_hyphen_values = true, value_parser = values::number)]
@@ -288,6 +292,19 @@ impl Select {
         }
         if let Some(r) = self.rule {
             s.rule = r;
+        }
+        Ok(s)
+    }
+
+    /// [`Select::resolve`] for a command that takes one body: a two-body scenario (`[upper]`)
+    /// refused, naming `riplab solve`, which takes it.
+    pub fn resolve_one_body(&self, command: &str) -> Result<Scenario, CliError> {
+        let s = self.resolve()?;
+        if s.upper.is_some() {
+            return Err(CliError::Usage(format!(
+                "{} has two elastic bodies ([upper]): `riplab {command}` takes one body yet; `riplab solve` solves it (--contact chooses the interface's discretisation)",
+                s.source
+            )));
         }
         Ok(s)
     }

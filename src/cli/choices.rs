@@ -152,3 +152,20 @@ mod tests {
         );
     }
 }
+
+/// `--contact`: the discretisation of the constraint across two bodies' interface
+/// ([`crate::contact::interface::InterfaceMethod`]; `rip` takes the rule of `--rule`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum ContactName {
+    /// Node-to-segment, one pass: each slave node onto the master's segments.
+    Nts,
+    /// Node-to-segment, two pass: the slave's nodes onto the master and the master's onto the
+    /// slave.
+    Nts2,
+    /// Mortar segment-to-segment, the slave's trace space as multipliers.
+    Mortar,
+    /// Mortar segment-to-segment, the biorthogonal (dual) basis as multipliers.
+    MortarDual,
+    /// The reduced-integration penalty: the rule's points (--rule) on the slave's edges.
+    Rip,
+}

@@ -20,7 +20,7 @@ use crate::scheme::Scheme;
 use crate::solve::{Request, solve};
 
 pub(super) fn infsup(args: &InfsupArgs) -> Result<ExitCode, CliError> {
-    let scenario = args.select.resolve()?;
+    let scenario = args.select.resolve_one_body("infsup")?;
     let refine = grading::refine_edges(args.refine_edges.as_deref(), &scenario)?;
     // `--level L` alone estimates that level; `--levels` a range (they exclude each other).
     let levels = match (&args.levels, args.select.level) {

@@ -29,7 +29,7 @@ pub(super) fn lab(
         scenario: file.clone(),
         ..Select::default()
     }
-    .resolve()?;
+    .resolve_one_body("lab")?;
     let record = tour::with_terminal("the lab", record.as_deref())?;
     crate::tui::run(scenario, file.as_deref(), &opts, record).map_err(|e| CliError::Failed(e.to_string()))?;
     Ok(ExitCode::SUCCESS)
@@ -39,7 +39,7 @@ pub(super) fn render(args: &RenderArgs, marker: MarkerChoice) -> Result<ExitCode
     // The size first: nothing is loaded or allocated for a frame that cannot be drawn.
     let (width, height) = crate::tui::parse_size(&args.size).map_err(|m| usage("--size", m))?;
     let input = render_args::render_input(args)?;
-    let mut scenario = args.select.resolve()?;
+    let mut scenario = args.select.resolve_one_body("render")?;
     let grading = super::grading::refine_edges(args.refine_edges.as_deref(), &scenario)?;
     scenario.set_grading(grading);
     if let Some(method) = input

@@ -13,6 +13,15 @@ use crate::{check, vtu};
 
 pub(super) fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
     let mut scenario = args.select.resolve()?;
+    if scenario.upper.is_some() {
+        return super::two_bodies::solve(args, &scenario);
+    }
+    if args.contact.is_some() {
+        return Err(usage(
+            "--contact",
+            "discretises the interface of two elastic bodies; this scenario has one (give a scenario with [upper], e.g. scenarios/patch-two-blocks.toml)",
+        ));
+    }
     scenario.set_grading(grading::refine_edges(args.refine_edges.as_deref(), &scenario)?);
     let method = args.method.resolve(&scenario)?;
     let frictions = args.friction.resolve(&scenario)?;

@@ -15,7 +15,7 @@ pub(super) fn study(args: &StudyArgs) -> Result<ExitCode, CliError> {
         scenario: args.scenario.clone(),
         ..Select::default()
     }
-    .resolve()?;
+    .resolve_one_body("study")?;
     let mut scenario = scenario;
     scenario.friction = study_friction(args, &scenario)?;
     let schemes = args

@@ -6,6 +6,28 @@ use crate::mesh::Mesh;
 /// Marks a constrained dof in [`DofMap::free`].
 const CONSTRAINED: usize = usize::MAX;
 
+/// How a body is held on its support Γ_D, the bottom row of its mesh (docs/design.md §1).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Support {
+    /// u = 0: the model's clamped base.
+    #[default]
+    Clamped,
+    /// u_y = 0 and u_x free, but for the one u_x that removes the rigid slide (the symmetry
+    /// line's of a half model, else the support's first node's): with free sides, a uniform
+    /// compression is exact (the contact patch test).
+    Roller,
+}
+
+impl Support {
+    /// The support's name in scenario files and the outputs.
+    pub fn name(self) -> &'static str {
+        match self {
+            Support::Clamped => "clamped",
+            Support::Roller => "roller",
+        }
+    }
+}
+
 /// The numbering of the free dofs among the 2 · nodes global ones.
 #[derive(Clone, Debug)]
 pub struct DofMap {
@@ -31,15 +53,36 @@ impl DofMap {
     /// The model's constraints (docs/design.md §1): the bottom clamped, u_x = 0 on the left side
     /// of a half model, and on the right side of a mesh with a roller wall there.
     pub fn model(mesh: &Mesh) -> Self {
+        Self::supported(mesh, Support::Clamped)
+    }
+
+    /// As [`DofMap::model`] with the bottom held by `support`.
+    pub fn supported(mesh: &Mesh, support: Support) -> Self {
         let nnx = mesh.nnx();
         let (symmetric, roller) = (mesh.symmetric_left, mesh.roller_right);
+        let held_base = |node: usize, comp: usize| match support {
+            Support::Clamped => true,
+            Support::Roller => comp == 1 || node == 0,
+        };
         let map = Self::new(mesh.n_nodes(), |node, comp| {
-            node < nnx
+            (node < nnx && held_base(node, comp))
                 || (symmetric && comp == 0 && node % nnx == 0)
                 || (roller && comp == 0 && node % nnx == nnx - 1)
         });
-        debug_assert!(roller || map.n_free == Self::count(nnx, mesh.node_y.len(), symmetric));
+        debug_assert!(
+            roller || map.n_free == Self::count_supported(nnx, mesh.node_y.len(), symmetric, support)
+        );
         map
+    }
+
+    /// [`DofMap::count`] with the bottom held by `support`: a roller frees the u_x of every
+    /// support node but one.
+    pub fn count_supported(nnx: usize, nny: usize, symmetric_left: bool, support: Support) -> usize {
+        Self::count(nnx, nny, symmetric_left)
+            + match support {
+                Support::Clamped => 0,
+                Support::Roller => nnx - 1,
+            }
     }
 
     /// The number of free dofs of [`DofMap::model`] on a grid of `nnx` × `nny` nodes without a
@@ -110,6 +153,8 @@ mod tests {
     fn count_matches_the_model_map() {
         assert_eq!(DofMap::count(5, 3, true), 18);
         assert_eq!(DofMap::count(5, 3, false), 20);
+        // On rollers the base's 5 u_x are free but one: 4 more.
+        assert_eq!(DofMap::count_supported(5, 3, true, Support::Roller), 22);
         for element in Element::ALL {
             for (nx, ny) in [(1, 1), (2, 1), (3, 5)] {
                 for symmetric in [false, true] {
@@ -118,6 +163,11 @@ mod tests {
                         DofMap::model(&mesh).n_free(),
                         DofMap::count(mesh.nnx(), mesh.node_y.len(), symmetric),
                         "{element:?} {nx}×{ny} symmetric {symmetric}"
+                    );
+                    assert_eq!(
+                        DofMap::supported(&mesh, Support::Roller).n_free(),
+                        DofMap::count_supported(mesh.nnx(), mesh.node_y.len(), symmetric, Support::Roller),
+                        "{element:?} {nx}×{ny} symmetric {symmetric} on rollers"
                     );
                 }
             }

@@ -20,7 +20,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use faer::Par;
 
 pub use assembly::{Form, Integration, SymCsc, apply, assemble, body_load, h1_error};
-pub use dofs::DofMap;
+pub use dofs::{DofMap, Support};
 pub use error::FemError;
 
 /// Threads of the assembly, the factorisation and the trace compliance (1: the caller's thread).

@@ -7,7 +7,7 @@
 //! - `nesting`: keys nested too deep, refused with their line before the TOML reader;
 //! - [`literals`]: numbers as written (underflowing decimals, integers beyond 64 bits),
 //!   refused at their key before serde reads them;
-//! - `validate`: the schema checked and turned into the model.
+//! - `validate`: the schema checked and turned into the model (`upper`: the upper body).
 //!
 //! Every value is checked against its allowed range ([`crate::check`]); an error names the
 //! file, the line and column, the key, the value, and what is allowed.
@@ -22,6 +22,7 @@ pub mod locate;
 mod nesting;
 pub mod read;
 mod schema;
+mod upper;
 mod validate;
 
 #[cfg(feature = "tui")]

@@ -20,7 +20,12 @@ pub(super) struct RawScenario {
     pub(super) description: String,
     pub(super) body: RawBody,
     pub(super) material: RawMaterial,
-    pub(super) obstacle: RawObstacle,
+    /// `[obstacle]`: required without `[upper]`, refused with it ([`super::upper`]).
+    #[serde(default)]
+    pub(super) obstacle: Option<RawObstacle>,
+    /// `[upper]`, optional: an elastic body in place of the obstacle ([`super::upper`]).
+    #[serde(default)]
+    pub(super) upper: Option<Spanned<RawUpper>>,
     pub(super) mesh: RawMesh,
     pub(super) contact: RawContact,
     /// `[friction]`, optional ([`super::friction`]).
@@ -54,6 +59,26 @@ pub(super) struct RawBody {
     pub(super) width: Spanned<f64>,
     pub(super) height: Spanned<f64>,
     pub(super) model: Model,
+    /// `clamped` (the default) or `roller` ([`crate::fem::Support`]).
+    #[serde(default)]
+    pub(super) support: Option<Spanned<String>>,
+}
+
+/// `[upper]` as written: the upper body's material, height and shape, its mesh across the
+/// interface (ratio and offset), its support, its top's displacement and the slave side.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawUpper {
+    pub(super) young: Spanned<f64>,
+    pub(super) poisson: Spanned<f64>,
+    pub(super) height: Spanned<f64>,
+    pub(super) displacement: Spanned<f64>,
+    pub(super) shape: Option<Spanned<String>>,
+    pub(super) radius: Option<Spanned<f64>>,
+    pub(super) ratio: Option<Spanned<Vec<i64>>>,
+    pub(super) offset: Option<Spanned<f64>>,
+    pub(super) support: Option<Spanned<String>>,
+    pub(super) slave: Option<Spanned<String>>,
 }
 
 #[derive(Deserialize)]

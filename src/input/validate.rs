@@ -35,11 +35,12 @@ pub(super) fn scenario(text: &str, file: &str) -> Result<Scenario, ScenarioError
     } else {
         (-raw.body.width.get_ref() / 2.0, raw.body.width.get_ref() / 2.0)
     };
-    let obstacle = loc.obstacle(&raw.obstacle, *raw.body.height.get_ref())?;
+    let (obstacle, upper) = loc.obstacle_or_upper(&raw, (x0, x1))?;
+    let support = loc.support("body.support", raw.body.support.as_ref())?;
     if let Some(c) = raw
         .obstacle
-        .center
         .as_ref()
+        .and_then(|o| o.center.as_ref())
         .filter(|c| half_model && *c.get_ref() != 0.0)
     {
         return Err(loc.error(
@@ -51,7 +52,7 @@ pub(super) fn scenario(text: &str, file: &str) -> Result<Scenario, ScenarioError
             ),
         ));
     }
-    if half_model {
+    if let (true, Some(raw_obstacle)) = (half_model, &raw.obstacle) {
         // The half model's symmetry line x = 0 must be the obstacle's too.
         let n = 400;
         for i in 1..=n {
@@ -59,7 +60,7 @@ pub(super) fn scenario(text: &str, file: &str) -> Result<Scenario, ScenarioError
             let (a, b) = (obstacle.gap(x), obstacle.gap(-x));
             if a != b && (a - b).abs() > 1e-9 * (1.0 + a.abs().min(b.abs())) {
                 return Err(loc.error(
-                    Some(raw.obstacle.shape.span()),
+                    Some(raw_obstacle.shape.span()),
                     Some("obstacle".into()),
                     format!("a half model needs an obstacle symmetric about x = 0; here g({x}) = {a} but g({}) = {b}", -x),
                 ));
@@ -141,6 +142,8 @@ pub(super) fn scenario(text: &str, file: &str) -> Result<Scenario, ScenarioError
             plane: raw.material.plane,
         },
         obstacle,
+        support,
+        upper,
         element: raw.mesh.element,
         x_lines,
         y_lines,
@@ -233,7 +236,7 @@ impl Locator<'_> {
     }
 
     /// The obstacle of `[obstacle]`, every key checked against its shape.
-    fn obstacle(&self, raw: &RawObstacle, height: f64) -> Result<Obstacle, ScenarioError> {
+    pub(super) fn obstacle(&self, raw: &RawObstacle, height: f64) -> Result<Obstacle, ScenarioError> {
         let shape = *raw.shape.get_ref();
         self.check("obstacle.depth", &raw.depth, |v| check::depth(*v, height))?;
         let given: [(&str, Option<Range<usize>>); 6] = [

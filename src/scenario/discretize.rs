@@ -51,7 +51,7 @@ impl Scenario {
             refused(e, workload, sizes.unknowns)
         })?;
         let mesh = self.mesh(level, element);
-        let dofs = DofMap::model(&mesh);
+        let dofs = DofMap::supported(&mesh, self.support);
         Discretization::with_trace(mesh, dofs, self.material, self.integration, trace)
     }
 
@@ -68,7 +68,9 @@ impl Scenario {
         reserved: u64,
     ) -> Result<Discretization, SolveError> {
         self.fits_beside(level, element, reserved)?;
-        Discretization::new(self.mesh(level, element), self.material, self.integration)
+        let mesh = self.mesh(level, element);
+        let dofs = DofMap::supported(&mesh, self.support);
+        Discretization::with_dofs(mesh, dofs, self.material, self.integration)
     }
 
     /// Whether the memory this process may use less `reserved` bytes holds the estimated peak

@@ -5,13 +5,15 @@
 //! built).
 
 use crate::contact::friction::Friction;
+use crate::contact::interface::solve::Slave;
 use crate::contact::{Method, Obstacle, Rule};
-use crate::fem::{DofMap, Integration};
+use crate::fem::{DofMap, Integration, Support};
 use crate::material::Material;
 use crate::mesh::{self, Element, Mesh};
 use crate::refine_edges::{Grading, RefineEdges};
 
 pub mod discretize;
+pub mod upper;
 
 /// The paper's problem, half model: `scenarios/hertz-paper.toml`.
 pub const DEFAULT_SCENARIO: &str = include_str!("../../scenarios/hertz-paper.toml");
@@ -35,8 +37,13 @@ pub struct Scenario {
     pub half_model: bool,
     /// The body's material.
     pub material: Material,
-    /// The rigid obstacle pressed into the top Γ_C.
+    /// The rigid obstacle pressed into the top Γ_C; with an upper body, its rigid limit: a
+    /// flat pressed its top's displacement δ.
     pub obstacle: Obstacle,
+    /// How the body's bottom is held (`[body] support`; clamped by default).
+    pub support: Support,
+    /// The upper elastic body in place of the rigid obstacle (`[upper]`; none by default).
+    pub upper: Option<Upper>,
     /// The element of the displacement.
     pub element: Element,
     /// Vertex lines of the level-0 grid across the modelled width and the height (uniform,
@@ -88,13 +95,14 @@ impl Scenario {
     }
 
     /// The number of free dofs at `level` with `element`, counted as the mesh and the dof map
-    /// count them ([`Element::node_lines`], [`DofMap::count`]) without building the mesh.
+    /// count them ([`Element::node_lines`], [`DofMap::count_supported`]) without building the mesh.
     pub fn n_dofs(&self, level: u32, element: Element) -> usize {
         let (cells_x, cells_y) = self.cells(level);
-        DofMap::count(
+        DofMap::count_supported(
             element.node_lines(cells_x),
             element.node_lines(cells_y),
             self.half_model,
+            self.support,
         )
     }
 
@@ -139,6 +147,77 @@ impl Scenario {
     pub fn h(&self, level: u32) -> f64 {
         mesh::cell_size(&self.x_lines, &self.y_lines, level)
     }
+}
+
+/// The shape of the upper body.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum UpperShape {
+    /// A rectangle as wide as the lower body, its bottom flat.
+    Block,
+    /// A cylinder segment whose bottom is an arc of `radius` touching the lower body at x = 0:
+    /// meshed as the block, its arc the initial gap g₀(x) = R − √(R² − x²) (R beyond |x| = R),
+    /// measured vertically — the half-space idealisation Hertz's solution itself makes.
+    Cylinder {
+        /// The arc's radius R.
+        radius: f64,
+    },
+}
+
+impl UpperShape {
+    /// The shape's name in scenario files and the outputs.
+    pub fn name(self) -> &'static str {
+        match self {
+            UpperShape::Block => "block",
+            UpperShape::Cylinder { .. } => "cylinder",
+        }
+    }
+
+    /// The initial gap g₀(x) between the shape's bottom and the flat top of the lower body.
+    pub fn initial_gap(self, x: f64) -> f64 {
+        match self {
+            UpperShape::Block => 0.0,
+            UpperShape::Cylinder { radius } => {
+                let inside = (radius * radius - x * x).max(0.0);
+                // x²/(R + √(R² − x²)) against cancellation near x = 0.
+                if inside > 0.0 {
+                    x * x / (radius + inside.sqrt())
+                } else {
+                    radius
+                }
+            }
+        }
+    }
+
+    /// The arc's radius, for a cylinder.
+    pub fn radius(self) -> Option<f64> {
+        match self {
+            UpperShape::Block => None,
+            UpperShape::Cylinder { radius } => Some(radius),
+        }
+    }
+}
+
+/// The upper body of a two-body scenario (`[upper]`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Upper {
+    /// Its material (the plane strain or stress of the lower body's).
+    pub material: Material,
+    /// Its height H_u.
+    pub height: f64,
+    /// Its shape.
+    pub shape: UpperShape,
+    /// Its elements across the interface against the lower body's: `ratio.0` upper elements
+    /// for every `ratio.1` lower ones (rounded to a whole number, at least one).
+    pub ratio: (u32, u32),
+    /// The fraction of its element width by which its interior vertex lines are shifted (the
+    /// ends kept aligned with the lower body's), |offset| < 1/2.
+    pub offset: f64,
+    /// How its top is held.
+    pub support: Support,
+    /// The prescribed downward displacement δ of its top.
+    pub displacement: f64,
+    /// Which side's trace carries the contact integral.
+    pub slave: Slave,
 }
 
 /// Vertex lines with every interval bisected `level` times.

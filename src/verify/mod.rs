@@ -10,7 +10,8 @@
 //!
 //! Each case names its reference's source. The cases live one family per module:
 //! [`half_space`] (Hertz, the exact circle, the rounded punch), [`patch`] (the contact patch
-//! test), [`infsup`] (β_h's orders), [`manufactured`] (H¹ rates), [`constraint`] (ALM = exact,
+//! test; [`two_bodies`] that of two elastic bodies on meshes that do not match), [`infsup`]
+//! (β_h's orders), [`manufactured`] (H¹ rates), [`constraint`] (ALM = exact,
 //! the penalty's O(ε)), [`mindlin`] (Cattaneo–Mindlin's stick zone and traction).
 
 pub mod constraint;
@@ -20,6 +21,7 @@ pub mod manufactured;
 pub mod mindlin;
 pub mod patch;
 pub mod stored;
+pub mod two_bodies;
 
 use serde::Serialize;
 
@@ -161,7 +163,7 @@ pub struct Case {
 /// Every case, in the order `riplab verify` runs them.
 pub fn cases() -> Vec<Case> {
     let mut all = Vec::from(half_space::cases());
-    all.extend([patch::CASE, infsup::CASE, manufactured::CASE]);
+    all.extend([patch::CASE, two_bodies::CASE, infsup::CASE, manufactured::CASE]);
     all.extend(constraint::cases());
     all.push(mindlin::CASE);
     all

@@ -32,5 +32,6 @@ mod study_notes;
 mod terminal;
 mod tour_files;
 mod tours_and_outputs;
+mod two_bodies;
 mod verify;
 mod vtu;

@@ -23,4 +23,5 @@ mod scenarios;
 mod sliding;
 mod stresses;
 mod study;
+mod two_bodies;
 mod verify;

@@ -1,1 +1,402 @@
 //! The contact solve of two bodies across their interface (docs/design.md §12).
+//!
+//! Each body's [`Discretization`] condenses it onto its Γ_C's displacement along its own
+//! outward normal (the upper body's on its mirrored mesh, [`crate::scenario::Upper`]), C_b its
+//! trace compliance. A [`Coupling`]'s forces y_k = weight_k λ_k push each trace inwards, f_b =
+//! −G_bᵀ y (G_s the slave rows, G_m the master's), so that the gaps are
+//!
+//!   g = g̃0 + (G_s C_s G_sᵀ + G_m C_m G_mᵀ) y,  g̃0_k = g0_k − δ Σ_i G_upper[k]_i,
+//!
+//! δ the downward displacement of the upper body's top (a rigid translation of it). With the
+//! penetration s = −g = d − A y this is the one-body problem condensed on the rule's points
+//! ([`crate::contact::penalty`]): the same semismooth Newton solves the penalty λ = (1/ε)[−g]₊
+//! (ε > 0) and the primal–dual active set the exact multipliers λ ≥ 0, g ≥ 0, λ·g = 0 (ε = 0).
+//! The traces' displacements follow by one back-substitution per body.
+
+use std::ops::ControlFlow;
+
+use faer::{Mat, Side as FaerSide};
+
+use super::{Coupling, InterfaceError, InterfaceMethod, Side, coupling, smoothed_pressure};
+use crate::contact::newton::NewtonOptions;
+use crate::contact::penalty::{self, Penalty};
+use crate::contact::signorini;
+use crate::discretization::Discretization;
+use crate::error::{Diagnosis, SolveError};
+
+/// Which body's trace carries the contact integral (the slave); the other is the master.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Slave {
+    /// The upper body (the default).
+    #[default]
+    Upper,
+    /// The lower body.
+    Lower,
+}
+
+impl Slave {
+    /// The names in scenario files and the outputs.
+    pub const NAMES: [&'static str; 2] = ["upper", "lower"];
+
+    /// The side's name: `upper` or `lower`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Slave::Upper => "upper",
+            Slave::Lower => "lower",
+        }
+    }
+}
+
+/// The two bodies across their interface.
+#[derive(Clone, Copy)]
+pub struct Bodies<'a> {
+    /// The lower body, Γ_C its top.
+    pub lower: &'a Discretization,
+    /// The upper body on its mirrored mesh: its support the mesh's bottom row, Γ_C its top.
+    pub upper: &'a Discretization,
+    /// The prescribed downward displacement δ of the upper body's top.
+    pub displacement: f64,
+    /// Which body is the slave.
+    pub slave: Slave,
+}
+
+impl<'a> Bodies<'a> {
+    /// (slave, master).
+    pub fn pair(&self) -> (&'a Discretization, &'a Discretization) {
+        match self.slave {
+            Slave::Upper => (self.upper, self.lower),
+            Slave::Lower => (self.lower, self.upper),
+        }
+    }
+
+    /// The slave's and the master's trace nodes, ascending x.
+    pub fn trace_x(&self) -> (&'a [f64], &'a [f64]) {
+        let (s, m) = self.pair();
+        (&s.mesh.node_x, &m.mesh.node_x)
+    }
+}
+
+/// The displacements of a trace's nodes, in the global frame (y up).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct TraceDisplacement {
+    /// The nodes, ascending.
+    pub x: Vec<f64>,
+    /// u_x at each.
+    pub ux: Vec<f64>,
+    /// u_y at each.
+    pub uy: Vec<f64>,
+}
+
+/// The interface's solution.
+#[derive(Clone, Debug, PartialEq)]
+pub struct InterfaceSolution {
+    /// Where each constraint sits ([`Coupling::x`]).
+    pub x: Vec<f64>,
+    /// The pressure λ_k ≥ 0 at each constraint (compression positive).
+    pub p: Vec<f64>,
+    /// The gap g_k at each constraint (−ε p_k where the penalty presses).
+    pub gap: Vec<f64>,
+    /// The slave's vertices, ascending.
+    pub vertex_x: Vec<f64>,
+    /// p̄ at the slave's vertices: I(p, φ_i)/I(1, φ_i) over the constraints, φ_i the vertex's
+    /// hat function — (17) for the reduced-integration rules (docs/design.md §4).
+    pub pbar: Vec<f64>,
+    /// The slave's trace.
+    pub slave: TraceDisplacement,
+    /// The master's trace.
+    pub master: TraceDisplacement,
+    /// The load carried across the interface, P = Σ_k weight_k p_k.
+    pub load: f64,
+    /// Newton (active-set) iterations taken.
+    pub iterations: usize,
+}
+
+/// Why the interface's solve gave no result.
+#[derive(Debug, thiserror::Error, PartialEq)]
+pub enum BodiesError {
+    /// A scenario with one body (no `[upper]`) asked for a two-body solve.
+    #[error("the scenario has one body: a solve across an interface needs an [upper] body")]
+    OneBody,
+    /// The two traces cannot be coupled ([`super::coupling`]).
+    #[error(transparent)]
+    Coupling(#[from] InterfaceError),
+    /// The coupling does not fit the two traces (a caller's error).
+    #[error("the coupling does not fit the traces: {0}")]
+    Mismatch(String),
+    /// ε = 0 with constraints that are not independent: the multipliers are not unique.
+    #[error(
+        "the exact multipliers are not unique: {constraints} constraints are not independent on these traces; give ε > 0 (the penalty)"
+    )]
+    NotUnique {
+        /// The number of constraints.
+        constraints: usize,
+    },
+    /// ε outside the range both bodies' meshes and materials can represent
+    /// ([`crate::material::epsilon_range`]).
+    #[error("ε = {epsilon:e} is outside what both bodies can represent: allowed 0 or {lo:e} to {hi:e}")]
+    Epsilon {
+        /// The ε asked.
+        epsilon: f64,
+        /// The smallest allowed ε > 0.
+        lo: f64,
+        /// The largest allowed.
+        hi: f64,
+    },
+    /// The Newton iteration did not converge.
+    #[error("the interface's contact solve did not converge: {0}")]
+    NotConverged(Diagnosis),
+    /// A value came out non-finite (round-off beyond double precision).
+    #[error("the interface's contact solve gave a non-finite {0}: use a larger ε")]
+    NonFinite(&'static str),
+    /// The solver's own error (cancelled, an eigendecomposition that failed).
+    #[error(transparent)]
+    Solve(#[from] SolveError),
+}
+
+/// Solve the contact of `bodies` across their interface discretised by `method`
+/// ([`super::coupling`], the initial gap `gap0` at each row's x), with the penalty ε > 0 or the exact multipliers
+/// (ε = 0); p̄ by (17) for the reduced-integration rules ([`smoothed_pressure`]). The coupling
+/// is returned with the solution.
+///
+/// # Errors
+///
+/// As [`solve`]'s, and two traces that cannot be coupled.
+pub fn solve_method(
+    bodies: &Bodies,
+    method: InterfaceMethod,
+    epsilon: f64,
+    gap0: impl Fn(f64) -> f64,
+) -> Result<(Coupling, InterfaceSolution), BodiesError> {
+    let (slave, _) = bodies.pair();
+    let order = slave.mesh.element.order();
+    let (sx, mx) = bodies.trace_x();
+    let side = |x| Side { x, order };
+    let coupling = coupling(method, side(sx), side(mx))?;
+    let g0: Vec<f64> = coupling.x.iter().map(|&x| gap0(x)).collect();
+    let mut sol = solve(bodies, &coupling, &g0, epsilon)?;
+    if let InterfaceMethod::Rip(rule) = method {
+        sol.pbar = smoothed_pressure(rule, side(sx), &coupling, &sol.p)?;
+    }
+    Ok((coupling, sol))
+}
+
+/// Solve the contact of `bodies` across the interface discretised by `coupling`, from the
+/// initial gaps `g0` (one per constraint), with the penalty ε > 0 or the exact multipliers
+/// (ε = 0).
+///
+/// # Errors
+///
+/// [`BodiesError`]: a coupling that does not fit, exact multipliers that are not unique, a
+/// solve that does not converge or a non-finite result.
+pub fn solve(
+    bodies: &Bodies,
+    coupling: &Coupling,
+    g0: &[f64],
+    epsilon: f64,
+) -> Result<InterfaceSolution, BodiesError> {
+    let (slave, master) = bodies.pair();
+    check(coupling, g0, slave.contact_dofs.len(), master.contact_dofs.len())?;
+    let (lo, hi) = epsilon_range(bodies);
+    if epsilon != 0.0 && !(epsilon >= lo && epsilon <= hi) {
+        return Err(BodiesError::Epsilon { epsilon, lo, hi });
+    }
+    let n = coupling.x.len();
+    let a = delassus(&coupling.slave, &slave.compliance) + delassus(&coupling.master, &master.compliance);
+    let upper_rows = match bodies.slave {
+        Slave::Upper => &coupling.slave,
+        Slave::Lower => &coupling.master,
+    };
+    // The penetration with no contact force: d = −g̃0.
+    let d: Vec<f64> = (0..n)
+        .map(|k| bodies.displacement * upper_rows[k].iter().map(|e| e.1).sum::<f64>() - g0[k])
+        .collect();
+    let pb = Penalty {
+        coupling: &a,
+        free_violation: &d,
+        weight: &coupling.weight,
+        epsilon,
+    };
+    let opts = NewtonOptions::default();
+    let mut go_on = |_: &_| ControlFlow::Continue(());
+    let result = if epsilon > 0.0 {
+        penalty::solve(&pb, None, &opts, &mut go_on)?
+    } else {
+        unique(&a)?;
+        signorini::solve_exact(&pb, None, &opts, &mut go_on)?
+    };
+    if let Some(why) = result.failure() {
+        return Err(BodiesError::NotConverged(why));
+    }
+    let y = &result.forces;
+    let p: Vec<f64> = if epsilon > 0.0 {
+        result.violation.iter().map(|s| s.max(0.0) / epsilon).collect()
+    } else {
+        y.iter().zip(&coupling.weight).map(|(y, w)| y / w).collect()
+    };
+    let gap: Vec<f64> = result.violation.iter().map(|s| -s).collect();
+    let order = slave.mesh.element.order();
+    let vertex_x: Vec<f64> = slave.mesh.node_x.iter().step_by(order).copied().collect();
+    let pbar = smoothed(&vertex_x, &coupling.x, &coupling.weight, &p);
+    let load = coupling.weight.iter().zip(&p).map(|(w, p)| w * p).sum();
+    let trace = |disc: &Discretization, rows: &[Vec<(usize, f64)>]| {
+        let upper = std::ptr::eq(disc, bodies.upper);
+        trace_displacement(disc, rows, y, upper.then_some(bodies.displacement))
+    };
+    let solution = InterfaceSolution {
+        x: coupling.x.clone(),
+        p,
+        gap,
+        vertex_x,
+        pbar,
+        slave: trace(slave, &coupling.slave),
+        master: trace(master, &coupling.master),
+        load,
+        iterations: result.iterations,
+    };
+    finite(&solution)?;
+    Ok(solution)
+}
+
+/// The penalty parameters both bodies can represent: the intersection of their
+/// [`Discretization::epsilon_range`]s.
+pub fn epsilon_range(bodies: &Bodies) -> (f64, f64) {
+    let (l, u) = (bodies.lower.epsilon_range(), bodies.upper.epsilon_range());
+    (l.0.max(u.0), l.1.min(u.1))
+}
+
+/// The coupling's rows against the traces' sizes and `g0`'s.
+fn check(coupling: &Coupling, g0: &[f64], n_slave: usize, n_master: usize) -> Result<(), BodiesError> {
+    let n = coupling.x.len();
+    let lengths = [
+        coupling.weight.len(),
+        coupling.slave.len(),
+        coupling.master.len(),
+        g0.len(),
+    ];
+    if lengths.iter().any(|&l| l != n) {
+        return Err(BodiesError::Mismatch(format!(
+            "{n} constraints but {lengths:?} weights, slave rows, master rows and initial gaps"
+        )));
+    }
+    if g0.iter().any(|g| !g.is_finite()) {
+        return Err(BodiesError::Mismatch("an initial gap is not finite".into()));
+    }
+    if coupling.weight.iter().any(|w| !(w.is_finite() && *w > 0.0)) {
+        return Err(BodiesError::Mismatch("a weight is not positive".into()));
+    }
+    let fits = |rows: &[Vec<(usize, f64)>], len: usize| {
+        rows.iter().flatten().all(|&(i, c)| i < len && c.is_finite())
+    };
+    if !fits(&coupling.slave, n_slave) || !fits(&coupling.master, n_master) {
+        return Err(BodiesError::Mismatch(format!(
+            "a coefficient is not finite or names a node beyond the traces' {n_slave} and {n_master}"
+        )));
+    }
+    Ok(())
+}
+
+/// G C Gᵀ for the rows G (constraint k: (trace node, coefficient)) and the trace compliance C.
+fn delassus(rows: &[Vec<(usize, f64)>], c: &Mat<f64>) -> Mat<f64> {
+    let n = rows.len();
+    // C Gᵀ, a column per constraint.
+    let mut cg = Mat::<f64>::zeros(c.nrows(), n);
+    for (k, row) in rows.iter().enumerate() {
+        for &(i, g) in row {
+            for r in 0..c.nrows() {
+                cg[(r, k)] += g * c[(r, i)];
+            }
+        }
+    }
+    Mat::from_fn(n, n, |j, k| rows[j].iter().map(|&(i, g)| g * cg[(i, k)]).sum())
+}
+
+/// Refuse a singular A = Σ G C Gᵀ (constraints not independent): the exact multipliers would
+/// not be unique.
+fn unique(a: &Mat<f64>) -> Result<(), BodiesError> {
+    let n = a.nrows();
+    if n == 0 {
+        return Ok(());
+    }
+    let values = a
+        .self_adjoint_eigenvalues(FaerSide::Lower)
+        .map_err(SolveError::Eigen)?;
+    let largest = values.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    let smallest = values.iter().fold(f64::INFINITY, |m, &v| m.min(v));
+    if smallest <= 1e-12 * largest {
+        return Err(BodiesError::NotUnique { constraints: n });
+    }
+    Ok(())
+}
+
+/// p̄_i = Σ_k w_k p_k φ_i(x_k) / Σ_k w_k φ_i(x_k) at the vertices `vertex_x`, φ_i the
+/// vertex's hat function: the contact force on the vertex over its tributary length (17);
+/// 0 where no constraint sees the vertex.
+pub(crate) fn smoothed(vertex_x: &[f64], x: &[f64], w: &[f64], p: &[f64]) -> Vec<f64> {
+    let nv = vertex_x.len();
+    let (mut force, mut length) = (vec![0.0; nv], vec![0.0; nv]);
+    for k in (0..x.len()).filter(|_| nv >= 2) {
+        let e = vertex_x.partition_point(|&v| v <= x[k]).clamp(1, nv - 1) - 1;
+        let t = ((x[k] - vertex_x[e]) / (vertex_x[e + 1] - vertex_x[e])).clamp(0.0, 1.0);
+        for (i, phi) in [(e, 1.0 - t), (e + 1, t)] {
+            force[i] += w[k] * p[k] * phi;
+            length[i] += w[k] * phi;
+        }
+    }
+    force
+        .iter()
+        .zip(&length)
+        .map(|(f, l)| if *l > 0.0 { f / l } else { 0.0 })
+        .collect()
+}
+
+/// The global displacements of `disc`'s trace under the forces −Gᵀy of `rows` (inwards):
+/// one back-substitution; for the upper body (`upper` = its top's δ) mirrored back and
+/// translated by −δ.
+fn trace_displacement(
+    disc: &Discretization,
+    rows: &[Vec<(usize, f64)>],
+    y: &[f64],
+    upper: Option<f64>,
+) -> TraceDisplacement {
+    let mut u = vec![0.0; disc.n_dofs()];
+    for (row, &yk) in rows.iter().zip(y) {
+        for &(i, g) in row {
+            u[disc.contact_dofs[i]] -= g * yk;
+        }
+    }
+    disc.factor.solve_in_place(&mut u, 1);
+    let u = disc.dofs.expand(&u, |_| 0.0);
+    let top = disc.mesh.top_nodes();
+    let ux = top.iter().map(|&n| u[2 * n]).collect();
+    let uy = top
+        .iter()
+        .map(|&n| match upper {
+            Some(delta) => -u[2 * n + 1] - delta,
+            None => u[2 * n + 1],
+        })
+        .collect();
+    TraceDisplacement {
+        x: disc.mesh.node_x.clone(),
+        ux,
+        uy,
+    }
+}
+
+/// Refuse a solution with a non-finite value.
+fn finite(s: &InterfaceSolution) -> Result<(), BodiesError> {
+    let bad = |v: &[f64]| v.iter().any(|x| !x.is_finite());
+    let checks: [(&'static str, bool); 5] = [
+        ("pressure", bad(&s.p) || bad(&s.pbar) || !s.load.is_finite()),
+        ("gap", bad(&s.gap)),
+        ("slave displacement", bad(&s.slave.ux) || bad(&s.slave.uy)),
+        ("master displacement", bad(&s.master.ux) || bad(&s.master.uy)),
+        ("position", bad(&s.x)),
+    ];
+    match checks.iter().find(|c| c.1) {
+        Some((what, _)) => Err(BodiesError::NonFinite(what)),
+        None => Ok(()),
+    }
+}
+
+#[cfg(test)]
+mod tests;

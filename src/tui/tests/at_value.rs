@@ -18,7 +18,8 @@ use super::friction::LOOK;
 
 const SIZES: [(u16, u16); 3] = [(80, 24), (100, 30), (120, 40)];
 
-/// The bundled scenarios, by file name.
+/// The bundled scenarios the lab takes, by file name (one body: `riplab lab` refuses a
+/// two-body scenario, `[upper]`).
 fn scenarios() -> Vec<(String, Scenario)> {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios");
     let mut files: Vec<_> = std::fs::read_dir(&dir)
@@ -33,6 +34,7 @@ fn scenarios() -> Vec<(String, Scenario)> {
             let name = p.file_name().unwrap().to_string_lossy().into_owned();
             (name, Scenario::load(&p).unwrap())
         })
+        .filter(|(_, s)| s.upper.is_none())
         .collect()
 }
 

@@ -1,0 +1,172 @@
+//! The upper elastic body of a two-body scenario (docs/design.md §12): its material, height
+//! and shape, its mesh across the interface as a ratio to the lower body's elements and an
+//! offset, its support and the prescribed displacement of its top, and which side is the slave.
+//!
+//! Its [`Discretization`] is built on its mesh mirrored, local y' = top − y: the top (its
+//! support) is the mesh's bottom row and its Γ_C, the interface, the mesh's top row, so that
+//! the trace compliance C = E K⁻¹ Eᵀ on Γ_C's local u_y' = −u_y is the one every contact solver
+//! uses, along the body's outward normal. The top's prescribed displacement δ (downwards) is a
+//! rigid translation added to that solution.
+
+use crate::contact::interface::solve::{Bodies, BodiesError, InterfaceSolution, solve_method};
+use crate::contact::interface::{Coupling, InterfaceMethod};
+use crate::discretization::Discretization;
+use crate::error::{SolveError, Workload};
+use crate::fem::memory::{Limits, Sizes};
+use crate::fem::{DofMap, Support};
+use crate::material::{Material, Plane};
+use crate::mesh::{Element, Mesh};
+use crate::scenario::UpperShape;
+
+use super::Scenario;
+
+/// The largest of the two whole numbers of [`Upper::ratio`].
+pub const MAX_RATIO: u32 = 64;
+
+impl Scenario {
+    /// The upper body's mesh at `level` with `element`, in its local coordinates (y' = top − y,
+    /// its support the bottom row): ratio · the lower's cells across (the interior lines
+    /// shifted by `offset` of a cell), cells as close to square as whole numbers allow. None
+    /// for a one-body scenario.
+    pub fn upper_mesh(&self, level: u32, element: Element) -> Option<Mesh> {
+        let upper = self.upper.as_ref()?;
+        let (x0, x1) = self.x_range();
+        let lower_cells = (self.x_lines.len() - 1) << level;
+        let (a, b) = upper.ratio;
+        let nx = ((lower_cells as f64 * f64::from(a) / f64::from(b)).round() as usize).max(1);
+        let h = (x1 - x0) / nx as f64;
+        let xs: Vec<f64> = (0..=nx)
+            .map(|i| match i {
+                0 => x0,
+                i if i == nx => x1,
+                i => x0 + (i as f64 + upper.offset) * h,
+            })
+            .collect();
+        let ny = ((upper.height / h).round() as usize).clamp(1, 1 << 16);
+        let ys: Vec<f64> = (0..=ny).map(|j| upper.height * j as f64 / ny as f64).collect();
+        Some(Mesh::from_lines(element, xs, ys, self.half_model))
+    }
+
+    /// The upper body's discretisation at `level` with `element` (None for a one-body
+    /// scenario), refused before anything is allocated when its memory estimate exceeds what
+    /// this process may use less `reserved` bytes.
+    ///
+    /// # Errors
+    ///
+    /// As [`Scenario::discretize`]'s.
+    pub fn discretize_upper(
+        &self,
+        level: u32,
+        element: Element,
+        reserved: u64,
+    ) -> Result<Option<Discretization>, SolveError> {
+        let (Some(upper), Some(mesh)) = (&self.upper, self.upper_mesh(level, element)) else {
+            return Ok(None);
+        };
+        let unknowns = DofMap::count_supported(mesh.nnx(), mesh.node_y.len(), self.half_model, upper.support);
+        let sizes = Sizes {
+            element,
+            unknowns,
+            trace: mesh.nnx(),
+            points: 2 * mesh.nnx(),
+        };
+        sizes.check(&Limits::of_process().less(reserved)).map_err(|e| {
+            let workload = Workload::Level {
+                level,
+                element,
+                trace: sizes.trace,
+                reserved: reserved > 0,
+            };
+            crate::discretization::refused(e, workload, sizes.unknowns)
+        })?;
+        let dofs = DofMap::supported(&mesh, upper.support);
+        Discretization::with_dofs(mesh, dofs, upper.material, self.integration).map(Some)
+    }
+
+    /// The pressure of the contact patch test (docs/design.md §12), when this scenario is one:
+    /// two blocks on rollers, the upper's top pressed δ. Both bodies then carry the uniform
+    /// σ_yy = −p with σ_xx = 0, each shortened by p·H/E' (E' the plane modulus), and the
+    /// penalty's gap −εp closes the rest:
+    ///
+    /// p = δ / (H_l/E'_l + H_u/E'_u + ε).
+    pub fn patch_pressure(&self, epsilon: f64) -> Option<f64> {
+        let upper = self.upper.as_ref()?;
+        let patch = upper.shape == UpperShape::Block
+            && upper.support == Support::Roller
+            && self.support == Support::Roller;
+        patch.then(|| {
+            upper.displacement
+                / (self.height / plane_modulus(&self.material)
+                    + upper.height / plane_modulus(&upper.material)
+                    + epsilon)
+        })
+    }
+}
+
+/// A two-body scenario solved at a level ([`Scenario::solve_bodies`]).
+pub struct TwoBodies {
+    /// The lower body's discretisation.
+    pub lower: Discretization,
+    /// The upper body's, on its mirrored mesh.
+    pub upper: Discretization,
+    /// The constraint across the interface.
+    pub coupling: Coupling,
+    /// The solution.
+    pub solution: InterfaceSolution,
+    /// On the contact patch test ([`Scenario::patch_pressure`]): its exact pressure, and
+    /// max_k |p_k − p| / p over the slave's constraints.
+    pub patch: Option<(f64, f64)>,
+}
+
+impl Scenario {
+    /// Solve this two-body scenario at `level` with its element, the interface discretised by
+    /// `method`, the penalty ε > 0 or the exact multipliers (ε = 0).
+    ///
+    /// # Errors
+    ///
+    /// A one-body scenario, a mesh too large for the memory, or as
+    /// [`solve_method`]'s.
+    pub fn solve_bodies(
+        &self,
+        level: u32,
+        method: InterfaceMethod,
+        epsilon: f64,
+    ) -> Result<TwoBodies, BodiesError> {
+        let upper_body = self.upper.as_ref().ok_or(BodiesError::OneBody)?;
+        let lower = self.discretize(level, self.element)?;
+        let upper = self
+            .discretize_upper(level, self.element, 0)?
+            .ok_or(BodiesError::OneBody)?;
+        let bodies = Bodies {
+            lower: &lower,
+            upper: &upper,
+            displacement: upper_body.displacement,
+            slave: upper_body.slave,
+        };
+        let shape = upper_body.shape;
+        let (coupling, solution) = solve_method(&bodies, method, epsilon, |x| shape.initial_gap(x))?;
+        let patch = self.patch_pressure(epsilon).map(|exact| {
+            let error = solution
+                .p
+                .iter()
+                .fold(0.0_f64, |m, p| m.max((p - exact).abs() / exact));
+            (exact, error)
+        });
+        Ok(TwoBodies {
+            lower,
+            upper,
+            coupling,
+            solution,
+            patch,
+        })
+    }
+}
+
+/// The modulus E' of a uniaxial stress σ_yy (σ_xx = 0) in the plane: σ_yy = E' ε_yy, E' =
+/// E/(1 − ν²) in plane strain (ε_zz = 0), E in plane stress.
+pub fn plane_modulus(material: &Material) -> f64 {
+    match material.plane {
+        Plane::Strain => material.young / (1.0 - material.poisson * material.poisson),
+        Plane::Stress => material.young,
+    }
+}

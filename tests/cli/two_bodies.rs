@@ -1,0 +1,172 @@
+//! `riplab solve` on a two-body scenario (docs/design.md §12): the JSON's shape, the patch
+//! test's error for mortar and one-pass node-to-segment, and the flags refused (exit 2).
+
+use crate::common::{riplab, scratch_file};
+
+const PATCH: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/scenarios/patch-two-blocks.toml");
+
+/// The JSON of `riplab solve PATCH ARGS`, which must exit 0.
+fn json(args: &[&str]) -> serde_json::Value {
+    let mut all = vec!["solve", PATCH, "--format", "json"];
+    all.extend_from_slice(args);
+    let (code, out, err) = riplab(&all);
+    assert_eq!(code, 0, "{args:?}: {err}");
+    serde_json::from_str(&out).unwrap()
+}
+
+fn numbers(v: &serde_json::Value) -> Vec<f64> {
+    v.as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect()
+}
+
+/// The JSON has `interface` {contact, slave, nodes (x, ux, uy, pbar), points (x, p), master
+/// (x, ux, uy)}, `bodies` {lower, upper}, `P` and `patch_error`; mortar passes the patch test
+/// (p = 5.347594 everywhere, by hand: 0.01/(1/1098.90 + 0.5/520.833)), one-pass NTS does not.
+#[test]
+fn two_bodies_json_and_patch_error() {
+    let p_exact = 0.01 / (1.0 / (1000.0 / 0.91) + 0.5 / (500.0 / 0.96));
+    for (contact, passes) in [("mortar", true), ("mortar-dual", true), ("nts", false)] {
+        let v = json(&["--contact", contact, "--level", "2"]);
+        let i = &v["interface"];
+        assert_eq!(i["contact"], contact);
+        assert_eq!(i["slave"], "upper");
+        let nodes = &i["nodes"];
+        let n = numbers(&nodes["x"]).len();
+        // The upper body: 2 elements for every 3 of the lower's 24 at level 2.
+        assert_eq!(n, 16 + 1);
+        for key in ["ux", "uy", "pbar"] {
+            assert_eq!(numbers(&nodes[key]).len(), n, "{contact} nodes.{key}");
+        }
+        assert_eq!(numbers(&i["master"]["x"]).len(), 24 + 1);
+        assert_eq!(numbers(&i["master"]["uy"]).len(), 24 + 1);
+        assert_eq!(numbers(&i["points"]["x"]).len(), numbers(&i["points"]["p"]).len());
+        assert_eq!(v["bodies"]["upper"]["young"], 500.0);
+        assert_eq!(v["bodies"]["lower"]["support"], "roller");
+        assert_eq!(v["bodies"]["upper"]["displacement"], 0.01);
+        let error = v["patch_error"].as_f64().unwrap();
+        let load = v["P"].as_f64().unwrap();
+        assert!((v["p_applied"].as_f64().unwrap() - p_exact).abs() < 1e-12 * p_exact);
+        if passes {
+            assert!(error <= 1e-10, "{contact}: {error:e}");
+            // P: p over the half model's width 1.5.
+            assert!(
+                (load - 1.5 * p_exact).abs() < 1e-9 * p_exact,
+                "{contact}: P = {load}"
+            );
+            for p in numbers(&i["points"]["p"]) {
+                assert!((p - p_exact).abs() < 1e-9 * p_exact);
+            }
+        } else {
+            assert!(error > 1e-3, "{contact}: {error:e}");
+        }
+    }
+    // The penalty: the closed form with ε, to round-off for mortar.
+    let v = json(&["--contact", "mortar", "--epsilon", "1e-4"]);
+    assert!(v["patch_error"].as_f64().unwrap() <= 1e-10);
+    let p_eps = 0.01 / (1.0 / (1000.0 / 0.91) + 0.5 / (500.0 / 0.96) + 1e-4);
+    assert!((v["p_applied"].as_f64().unwrap() - p_eps).abs() < 1e-12 * p_eps);
+    // The cylinder's radius is echoed.
+    let hertz = concat!(env!("CARGO_MANIFEST_DIR"), "/scenarios/hertz-two-bodies.toml");
+    let (code, out, err) = riplab(&["solve", hertz, "--level", "0", "--format", "json"]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["bodies"]["upper"]["shape"], "cylinder");
+    assert_eq!(v["bodies"]["upper"]["radius"], 10.0);
+    assert!(v.get("patch_error").is_none());
+    // rip takes --rule; its p̄ is finite.
+    let v = json(&["--contact", "rip", "--rule", "gauss1", "--epsilon", "1e-4"]);
+    assert_eq!(v["interface"]["contact"], "rip-gauss1");
+    assert!(
+        numbers(&v["interface"]["nodes"]["pbar"])
+            .iter()
+            .all(|p| p.is_finite())
+    );
+}
+
+/// --contact on a one-body scenario, a one-body method or flag on a two-body scenario, and bad
+/// `[upper]` values are refused with what is allowed (exit 2).
+#[test]
+fn two_bodies_refusals() {
+    let (code, _, err) = riplab(&["solve", "--contact", "mortar"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("--contact") && err.contains("[upper]"), "{err}");
+    for (args, said) in [
+        (&["--method", "nitsche"][..], "--method"),
+        (&["--method", "alm", "--epsilon", "1e-3"][..], "--method"),
+        (&["--depth", "0.1"][..], "--depth"),
+        (&["--epsilon", "1e-4,1e-3"][..], "--epsilon"),
+    ] {
+        let mut all = vec!["solve", PATCH];
+        all.extend_from_slice(args);
+        let (code, _, err) = riplab(&all);
+        assert_eq!(code, 2, "{args:?}: {err}");
+        assert!(err.contains(said), "{args:?}: {err}");
+    }
+    // The commands that take one body refuse two, naming `riplab solve`.
+    for command in [
+        &["infsup", PATCH][..],
+        &["study", PATCH, "--levels", "0..1"],
+        &["render", PATCH],
+    ] {
+        let (code, _, err) = riplab(command);
+        assert_eq!(code, 2, "{command:?}: {err}");
+        assert!(
+            err.contains("[upper]") && err.contains("riplab solve"),
+            "{command:?}: {err}"
+        );
+    }
+    let text = std::fs::read_to_string(PATCH).unwrap();
+    for (from, to, key, allowed) in [
+        ("ratio = [2, 3]", "ratio = [0, 3]", "upper.ratio", "1 to 64"),
+        ("offset = 0.0", "offset = 0.5", "upper.offset", "-0.5 and 0.5"),
+        ("slave = \"upper\"", "slave = \"top\"", "upper.slave", "\"lower\""),
+        (
+            "support = \"roller\"\ndisplacement",
+            "support = \"pinned\"\ndisplacement",
+            "upper.support",
+            "\"roller\"",
+        ),
+        (
+            "displacement = 0.01",
+            "displacement = 0.7",
+            "upper.displacement",
+            "0.5",
+        ),
+        (
+            "shape = \"block\"",
+            "shape = \"cylinder\"",
+            "upper.radius",
+            "required",
+        ),
+        (
+            "shape = \"block\"",
+            "shape = \"block\"\nradius = 2.0",
+            "upper.radius",
+            "\"cylinder\" only",
+        ),
+        (
+            "shape = \"block\"",
+            "shape = \"sphere\"",
+            "upper.shape",
+            "\"cylinder\"",
+        ),
+        (
+            "[upper]",
+            "[obstacle]\nshape = \"cylinder\"\nradius = 1.0\ndepth = 0.1\n\n[upper]",
+            "obstacle",
+            "one of",
+        ),
+    ] {
+        assert!(text.contains(from), "{from}");
+        let path = scratch_file(&format!("two-bodies-{key}.toml"), &text.replacen(from, to, 1));
+        let (code, _, err) = riplab(&["solve", path.to_str().unwrap()]);
+        assert_eq!(code, 2, "{key}: {err}");
+        assert!(
+            err.contains(key) && err.contains(allowed) && err.contains(':'),
+            "{key}: {err}"
+        );
+    }
+}

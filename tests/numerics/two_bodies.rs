@@ -1,0 +1,172 @@
+//! Two elastic bodies on meshes that need not match (docs/design.md §12), judged by the
+//! contact patch test of scenarios/patch-two-blocks.toml: its exact pressure is uniform,
+//! p = δ/(H_l/E'_l + H_u/E'_u + ε) (E' = E/(1 − ν²), plane strain), by hand.
+
+use std::path::Path;
+
+use riplab::contact::Rule;
+use riplab::contact::interface::InterfaceMethod;
+use riplab::mesh::Element;
+use riplab::scenario::Scenario;
+
+fn patch() -> Scenario {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/patch-two-blocks.toml");
+    Scenario::load(&path).unwrap()
+}
+
+/// `patch` at `ratio` and `offset`, solved at `level` by `method` with ε: its patch error.
+fn patch_error(ratio: (u32, u32), offset: f64, level: u32, method: InterfaceMethod, epsilon: f64) -> f64 {
+    patch_error_with(Element::Q1, ratio, offset, level, method, epsilon)
+}
+
+/// [`patch_error`] with `element` in both bodies.
+fn patch_error_with(
+    element: Element,
+    ratio: (u32, u32),
+    offset: f64,
+    level: u32,
+    method: InterfaceMethod,
+    epsilon: f64,
+) -> f64 {
+    let mut s = patch();
+    s.element = element;
+    let upper = s.upper.as_mut().unwrap();
+    (upper.ratio, upper.offset) = (ratio, offset);
+    let solved = s.solve_bodies(level, method, epsilon).unwrap();
+    let (exact, error) = solved.patch.unwrap();
+    assert!(error.is_finite() && exact > 0.0);
+    // The load carried is the exact pressure over the half width (1.5) whenever p is uniform.
+    if error < 1e-10 {
+        assert!(
+            (solved.solution.load - 1.5 * exact).abs() < 1e-9 * exact,
+            "P = {}",
+            solved.solution.load
+        );
+    }
+    error
+}
+
+/// The scenario's closed form by hand: 0.01/(1/1098.90… + 0.5/520.833…) = 5.347593…
+#[test]
+fn the_patch_scenarios_pressure_by_hand() {
+    let s = patch();
+    let e_lower = 1000.0 / (1.0 - 0.3 * 0.3);
+    let e_upper = 500.0 / (1.0 - 0.2 * 0.2);
+    let p = 0.01 / (1.0 / e_lower + 0.5 / e_upper);
+    assert!((s.patch_pressure(0.0).unwrap() - p).abs() < 1e-12 * p);
+    assert!((p - 5.347_593_582_887_7).abs() < 1e-9);
+    let eps = 1e-4;
+    assert!((s.patch_pressure(eps).unwrap() - 0.01 / (1.0 / e_lower + 0.5 / e_upper + eps)).abs() < 1e-12);
+}
+
+/// Mortar, standard and dual, passes the patch test to round-off at 1:1 with an offset, 2:3
+/// and 5:7, levels 0–4, with the exact multipliers and with the penalty.
+#[test]
+fn mortar_passes_the_patch_test() {
+    for method in [InterfaceMethod::Mortar, InterfaceMethod::MortarDual] {
+        for (ratio, offset) in [((1, 1), 0.3), ((2, 3), 0.0), ((5, 7), 0.2)] {
+            for level in 0..=4 {
+                let e = patch_error(ratio, offset, level, method, 0.0);
+                assert!(
+                    e <= 1e-10,
+                    "{} {ratio:?} offset {offset} level {level}: {e:e}",
+                    method.name()
+                );
+            }
+            let e = patch_error(ratio, offset, 2, method, 1e-4);
+            assert!(e <= 1e-10, "{} {ratio:?} penalty: {e:e}", method.name());
+        }
+    }
+}
+
+/// So do the other elements: Q2 (quadratic edges, Simpson's weights) and P1, at levels 0–2.
+#[test]
+fn mortar_passes_the_patch_test_with_q2_and_p1() {
+    for element in [Element::Q2, Element::P1] {
+        for method in [InterfaceMethod::Mortar, InterfaceMethod::MortarDual] {
+            for (ratio, offset) in [((1, 1), 0.3), ((2, 3), 0.0), ((5, 7), 0.2)] {
+                for level in 0..=2 {
+                    let e = patch_error_with(element, ratio, offset, level, method, 1e-5);
+                    let what = format!("{element:?} {} {ratio:?} level {level}", method.name());
+                    assert!(e <= 1e-10, "{what}: {e:e}");
+                }
+            }
+        }
+    }
+}
+
+/// One-pass node-to-segment fails it on non-matching meshes (its master sees the slave's
+/// nodal forces, not a uniform pressure); two-pass NTS and the reduced-integration rules are
+/// reported (finite), not graded.
+#[test]
+fn node_to_segment_fails_the_patch_test() {
+    for ratio in [(2, 3), (5, 7)] {
+        for level in 0..=2 {
+            let e = patch_error(ratio, 0.0, level, InterfaceMethod::Nts, 0.0);
+            assert!(e > 1e-3, "nts {ratio:?} level {level}: {e:e}");
+        }
+        let others = [
+            (InterfaceMethod::Nts2, 1e-4),
+            (InterfaceMethod::Rip(Rule::Gauss1), 1e-4),
+            (InterfaceMethod::Rip(Rule::Gauss2), 1e-4),
+            (InterfaceMethod::Rip(Rule::Trapezoid), 1e-4),
+            (InterfaceMethod::Rip(Rule::Simpson), 1e-4),
+        ];
+        for (method, epsilon) in others {
+            let e = patch_error(ratio, 0.0, 1, method, epsilon);
+            eprintln!(
+                "{} {ratio:?} level 1, ε = {epsilon:e}: patch error {e:.3e}",
+                method.name()
+            );
+        }
+    }
+}
+
+/// scenarios/hertz-two-bodies.toml: an elastic cylinder (R = 10) on an elastic block, meshes
+/// 3:2 across the contact, the exact multipliers at level 2 (lower h = 1/8, upper 1/12):
+/// against two-body Hertz of the computed load (Johnson §4.2: 1/E* = (1 − ν₁²)/E₁ +
+/// (1 − ν₂²)/E₂, a² = 4PR/(πE*), p₀ = 2P/(πa), P the full load, twice the half model's),
+/// mortar's peak pressure is within 1% of p₀ (measured 0.20%, dual 0.10%) and its contact
+/// ends within one upper cell of a; one-pass NTS's peak is printed (2.5% high).
+#[test]
+fn two_body_hertz_at_level_2() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/hertz-two-bodies.toml");
+    let s = Scenario::load(&path).unwrap();
+    let upper = s.upper.as_ref().unwrap();
+    let radius = upper.shape.radius().unwrap();
+    let e_star = 1.0
+        / ((1.0 - s.material.poisson.powi(2)) / s.material.young
+            + (1.0 - upper.material.poisson.powi(2)) / upper.material.young);
+    for method in [
+        InterfaceMethod::Mortar,
+        InterfaceMethod::MortarDual,
+        InterfaceMethod::Nts,
+    ] {
+        let solved = s.solve_bodies(2, method, 0.0).unwrap();
+        let sol = &solved.solution;
+        let load = 2.0 * sol.load;
+        let a = (4.0 * load * radius / (std::f64::consts::PI * e_star)).sqrt();
+        let p0 = 2.0 * load / (std::f64::consts::PI * a);
+        let peak = sol.p.iter().fold(0.0_f64, |m, &p| m.max(p));
+        let last = (0..sol.p.len()).rev().find(|&k| sol.p[k] > 0.0).unwrap();
+        let (inside, outside) = (sol.x[last], sol.x[last + 1]);
+        eprintln!(
+            "{}: P = {load:.4}, a = {a:.4} (contact ends in [{inside:.4}, {outside:.4}]), p0 = {p0:.4}, peak {peak:.4} ({:+.2}%)",
+            method.name(),
+            100.0 * (peak / p0 - 1.0)
+        );
+        if method != InterfaceMethod::Nts {
+            assert!(
+                (peak / p0 - 1.0).abs() < 0.01,
+                "{}: peak {peak} against p0 {p0}",
+                method.name()
+            );
+            let cell = solved.upper.mesh().h();
+            assert!(
+                inside < a + cell && outside > a - cell,
+                "{}: a = {a}, [{inside}, {outside}]",
+                method.name()
+            );
+        }
+    }
+}
