@@ -360,6 +360,7 @@ fn step(src: &Source, n: usize, raw: &RawStep, scenarios: &mut StepScenarios) ->
             let message = match e {
                 Unloaded::Invalid(e) => format!("cannot load the scenario: {e}"),
                 Unloaded::NoDirectory => "a scenario path needs a tour file to be relative to; allowed only in a tour read from a file".into(),
+                Unloaded::TwoBodies => "the scenario has two elastic bodies ([upper]): the lab shows one body yet; `riplab solve` solves it".into(),
             };
             src.error(Some(path.span()), Some(key("scenario")), message)
         })?),
