@@ -20,7 +20,7 @@ use crate::scenario::UpperShape;
 
 use super::Scenario;
 
-/// The largest of the two whole numbers of [`Upper::ratio`].
+/// The largest of the two whole numbers of [`Upper::ratio`](super::Upper::ratio).
 pub const MAX_RATIO: u32 = 64;
 
 impl Scenario {

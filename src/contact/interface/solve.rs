@@ -5,7 +5,7 @@
 //! trace compliance. A [`Coupling`]'s forces y_k = weight_k λ_k push each trace inwards, f_b =
 //! −G_bᵀ y (G_s the slave rows, G_m the master's), so that the gaps are
 //!
-//!   g = g̃0 + (G_s C_s G_sᵀ + G_m C_m G_mᵀ) y,  g̃0_k = g0_k − δ Σ_i G_upper[k]_i,
+//!   g = g̃0 + (G_s C_s G_sᵀ + G_m C_m G_mᵀ) y,  g̃0_k = g0_k − δ Σ_i G_upper\[k\]_i,
 //!
 //! δ the downward displacement of the upper body's top (a rigid translation of it). With the
 //! penetration s = −g = d − A y this is the one-body problem condensed on the rule's points
