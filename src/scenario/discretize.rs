@@ -81,16 +81,7 @@ impl Scenario {
     ///
     /// [`SolveError::TooLarge`], naming the unknowns, the memory needed and what is available.
     pub fn fits_beside(&self, level: u32, element: Element, reserved: u64) -> Result<(), SolveError> {
-        let sizes = self.sizes(level, element);
-        sizes.check(&Limits::of_process().less(reserved)).map_err(|e| {
-            let workload = Workload::Level {
-                level,
-                element,
-                trace: sizes.trace,
-                reserved: reserved > 0,
-            };
-            refused(e, workload, sizes.unknowns)
-        })
+        fits(&self.sizes(level, element), level, reserved)
     }
 
     /// The sizes that decide the memory of the discretisation of this scenario at `level`
@@ -110,4 +101,19 @@ impl Scenario {
                 .unwrap_or(trace),
         }
     }
+}
+
+/// `sizes` (a mesh of `level`) checked against what this process may use less `reserved`
+/// bytes: [`SolveError::TooLarge`] naming the level, the element and the memory when they do
+/// not fit.
+pub(super) fn fits(sizes: &Sizes, level: u32, reserved: u64) -> Result<(), SolveError> {
+    sizes.check(&Limits::of_process().less(reserved)).map_err(|e| {
+        let workload = Workload::Level {
+            level,
+            element: sizes.element,
+            trace: sizes.trace,
+            reserved: reserved > 0,
+        };
+        refused(e, workload, sizes.unknowns)
+    })
 }

@@ -11,8 +11,8 @@
 use crate::contact::interface::solve::{Bodies, BodiesError, InterfaceSolution, solve_method};
 use crate::contact::interface::{Coupling, InterfaceMethod};
 use crate::discretization::Discretization;
-use crate::error::{SolveError, Workload};
-use crate::fem::memory::{Limits, Sizes};
+use crate::error::SolveError;
+use crate::fem::memory::Sizes;
 use crate::fem::{DofMap, Support};
 use crate::material::{Material, Plane};
 use crate::mesh::{Element, Mesh};
@@ -70,15 +70,7 @@ impl Scenario {
             trace: mesh.nnx(),
             points: 2 * mesh.nnx(),
         };
-        sizes.check(&Limits::of_process().less(reserved)).map_err(|e| {
-            let workload = Workload::Level {
-                level,
-                element,
-                trace: sizes.trace,
-                reserved: reserved > 0,
-            };
-            crate::discretization::refused(e, workload, sizes.unknowns)
-        })?;
+        super::discretize::fits(&sizes, level, reserved)?;
         let dofs = DofMap::supported(&mesh, upper.support);
         Discretization::with_dofs(mesh, dofs, upper.material, self.integration).map(Some)
     }
