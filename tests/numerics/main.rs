@@ -16,6 +16,7 @@ mod infsup;
 mod locking;
 mod methods;
 mod nitsche;
+mod nitsche_inputs;
 mod pressures;
 mod round_off;
 mod scenario_props;
