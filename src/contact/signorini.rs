@@ -45,11 +45,16 @@ impl SemismoothLaw for Complementarity<'_, '_> {
         let bad: Vec<f64> = (0..n)
             .map(|q| (y[q] - (y[q] + s[q] / g[(q, q)]).max(0.0)).abs())
             .collect();
+        // Relative to the forces; from zero forces, a penetration of any size is the whole of
+        // the answer still missing (1), not a residual in force units to compare with rtol.
         let scale = dot(y, y).sqrt();
+        let missing = dot(&bad, &bad).sqrt();
         let residual = if scale > 0.0 {
-            dot(&bad, &bad).sqrt() / scale
+            missing / scale
+        } else if missing > 0.0 {
+            1.0
         } else {
-            dot(&bad, &bad).sqrt()
+            0.0
         };
         Assessment {
             active: count(&active),

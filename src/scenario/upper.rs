@@ -76,7 +76,7 @@ impl Scenario {
     }
 
     /// The pressure of the contact patch test (docs/design.md §12), when this scenario is one:
-    /// two blocks on rollers, the upper's top pressed δ. Both bodies then carry the uniform
+    /// two blocks on rollers, the upper's top pressed δ > 0 (lifted, they carry nothing). Both bodies then carry the uniform
     /// σ_yy = −p with σ_xx = 0, each shortened by p·H/E' (E' the plane modulus), and the
     /// penalty's gap −εp closes the rest:
     ///
@@ -85,7 +85,8 @@ impl Scenario {
         let upper = self.upper.as_ref()?;
         let patch = upper.shape == UpperShape::Block
             && upper.support == Support::Roller
-            && self.support == Support::Roller;
+            && self.support == Support::Roller
+            && upper.displacement > 0.0;
         patch.then(|| {
             upper.displacement
                 / (self.height / plane_modulus(&self.material)

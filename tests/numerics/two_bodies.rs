@@ -170,3 +170,25 @@ fn two_body_hertz_at_level_2() {
         }
     }
 }
+
+/// A small press is answered as a large one, scaled: at δ = 1e-12 (and 1e-30) the exact
+/// multipliers carry the patch test's uniform pressure to 1e-10 (before, the exact solver
+/// took zero forces as converged whenever the penetration's forces were below its tolerance
+/// in force units: P = 0, patch error 1). A lifted top (δ < 0) is no patch test: no
+/// p_applied, no patch error (it printed p_applied = −5.35, patch error 0).
+#[test]
+fn a_small_press_is_solved_and_a_lift_is_no_patch_test() {
+    for delta in [1e-12, 1e-30] {
+        let mut s = patch();
+        s.upper.as_mut().unwrap().displacement = delta;
+        let solved = s.solve_bodies(1, InterfaceMethod::Mortar, 0.0).unwrap();
+        let (exact, error) = solved.patch.unwrap();
+        assert!(error < 1e-10, "δ = {delta}: patch error {error}");
+        assert!((solved.solution.load - 1.5 * exact).abs() < 1e-9 * exact, "δ = {delta}");
+    }
+    let mut s = patch();
+    s.upper.as_mut().unwrap().displacement = -0.01;
+    assert_eq!(s.patch_pressure(0.0), None);
+    let solved = s.solve_bodies(1, InterfaceMethod::Mortar, 0.0).unwrap();
+    assert!(solved.patch.is_none() && solved.solution.load == 0.0);
+}
