@@ -10,6 +10,7 @@ use crate::contact::interface::InterfaceMethod;
 use crate::contact::interface::solve::TraceDisplacement;
 use crate::scenario::Scenario;
 use crate::scenario::upper::TwoBodies;
+use crate::text::num;
 
 /// One body's material and shape, as the scenario gives them.
 #[derive(Serialize)]
@@ -243,7 +244,7 @@ impl Report for InterfaceReport {
                 b.support,
                 b.elements_across,
                 b.displacement
-                    .map_or(String::new(), |d| format!(", top pressed {d}"))
+                    .map_or(String::new(), |d| format!(", top pressed {}", num(d)))
             );
         }
         let _ = writeln!(s, "load P = {:.6e}", self.load);

@@ -15,7 +15,7 @@ use crate::discretization::Discretization;
 use crate::scenario::Scenario;
 use crate::scheme::Scheme;
 use crate::study::Status;
-use crate::text::sci;
+use crate::text::{num, sci};
 use crate::warning::Warning;
 
 /// The `nodes` object of docs/design.md §7: Γ_C's vertices, ascending x.
@@ -264,7 +264,7 @@ impl Report for SolveReport {
             s,
             "method {}{epsilon}, depth = {}, {outer}Newton: {} iteration{}, {state} (relative residual {:.1e})",
             self.method.label(),
-            self.depth,
+            num(self.depth),
             self.newton_iterations,
             plural(self.newton_iterations),
             self.residual

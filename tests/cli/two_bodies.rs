@@ -170,3 +170,21 @@ fn two_bodies_refusals() {
         );
     }
 }
+
+/// A depth or a top displacement of 1e-300 is printed as 1e-300 in the tables, not as a
+/// decimal of 300 digits (both were), and the small press is solved: P > 0.
+#[test]
+fn tiny_depths_and_displacements_print_as_numbers() {
+    let (code, out, err) = riplab(&["solve", "--depth", "1e-300", "--level", "1"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("depth = 1e-300,"), "{out}");
+    let text = std::fs::read_to_string(PATCH)
+        .unwrap()
+        .replace("displacement = 0.01", "displacement = 1e-300");
+    let file = scratch_file("tiny-press.toml", &text);
+    let (code, out, err) = riplab(&["solve", file.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("top pressed 1e-300\n"), "{out}");
+    assert!(out.lines().all(|l| l.chars().count() < 120), "{out}");
+    assert!(!out.contains("load P = 0.000000e0"), "{out}");
+}
