@@ -8,13 +8,13 @@
 //! uses, along the body's outward normal. The top's prescribed displacement δ (downwards) is a
 //! rigid translation added to that solution.
 
+use crate::contact::half_plane::e_star;
 use crate::contact::interface::solve::{Bodies, BodiesError, InterfaceSolution, solve_method};
 use crate::contact::interface::{Coupling, InterfaceMethod};
 use crate::discretization::Discretization;
 use crate::error::SolveError;
 use crate::fem::memory::Sizes;
 use crate::fem::{DofMap, Support};
-use crate::material::{Material, Plane};
 use crate::mesh::{Element, Mesh};
 use crate::scenario::UpperShape;
 
@@ -89,9 +89,7 @@ impl Scenario {
             && upper.displacement > 0.0;
         patch.then(|| {
             upper.displacement
-                / (self.height / plane_modulus(&self.material)
-                    + upper.height / plane_modulus(&upper.material)
-                    + epsilon)
+                / (self.height / e_star(&self.material) + upper.height / e_star(&upper.material) + epsilon)
         })
     }
 }
@@ -152,14 +150,5 @@ impl Scenario {
             solution,
             patch,
         })
-    }
-}
-
-/// The modulus E' of a uniaxial stress σ_yy (σ_xx = 0) in the plane: σ_yy = E' ε_yy, E' =
-/// E/(1 − ν²) in plane strain (ε_zz = 0), E in plane stress.
-pub fn plane_modulus(material: &Material) -> f64 {
-    match material.plane {
-        Plane::Strain => material.young / (1.0 - material.poisson * material.poisson),
-        Plane::Stress => material.young,
     }
 }

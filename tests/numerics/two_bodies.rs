@@ -184,7 +184,10 @@ fn a_small_press_is_solved_and_a_lift_is_no_patch_test() {
         let solved = s.solve_bodies(1, InterfaceMethod::Mortar, 0.0).unwrap();
         let (exact, error) = solved.patch.unwrap();
         assert!(error < 1e-10, "δ = {delta}: patch error {error}");
-        assert!((solved.solution.load - 1.5 * exact).abs() < 1e-9 * exact, "δ = {delta}");
+        assert!(
+            (solved.solution.load - 1.5 * exact).abs() < 1e-9 * exact,
+            "δ = {delta}"
+        );
     }
     let mut s = patch();
     s.upper.as_mut().unwrap().displacement = -0.01;

@@ -229,7 +229,7 @@ pub fn solve(
     }
     let y = &result.forces;
     let p: Vec<f64> = if epsilon > 0.0 {
-        result.violation.iter().map(|s| s.max(0.0) / epsilon).collect()
+        crate::contact::raw_pressure(&result.violation, epsilon)
     } else {
         y.iter().zip(&coupling.weight).map(|(y, w)| y / w).collect()
     };
