@@ -274,7 +274,6 @@ impl ForceBalance<'_> {
     /// The stop test of a force balance: the active set unchanged since `previous` and ‖R‖
     /// below `rtol` relative plus the round-off floor.
     pub fn measure(&self, previous: Option<&Vec<bool>>, rtol: f64) -> Balance {
-        let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
         let active: Vec<bool> = self.gap.iter().map(|&v| v > 0.0).collect();
         let scale = norm(self.implied).max(norm(self.assumed));
         let residual = if scale > 0.0 {
@@ -312,6 +311,16 @@ impl Balance {
 /// The number of `true` in an active set.
 pub(crate) fn count(active: &[bool]) -> usize {
     active.iter().filter(|&&a| a).count()
+}
+
+/// ‖v‖₂ scaled by its largest entry, so that forces of 1e-297 (a press of 1e-300) neither
+/// square to 0 nor read as no force.
+pub(crate) fn norm(v: &[f64]) -> f64 {
+    let m = v.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+    if m == 0.0 || !m.is_finite() {
+        return m;
+    }
+    m * v.iter().map(|x| (x / m) * (x / m)).sum::<f64>().sqrt()
 }
 
 #[cfg(test)]

@@ -11,8 +11,10 @@
 
 use std::ops::ControlFlow;
 
-use super::newton::{Assessment, Iteration, NewtonOptions, NewtonResult, SemismoothLaw, Verdict, count};
-use super::penalty::{Penalty, active_forces, apply, dot, on_points};
+use super::newton::{
+    Assessment, Iteration, NewtonOptions, NewtonResult, SemismoothLaw, Verdict, count, norm,
+};
+use super::penalty::{Penalty, active_forces, apply, on_points};
 use crate::error::{Diagnosis, SolveError};
 
 /// The complementarity law on the multipliers y at the rule's points (`.0` at ε = 0).
@@ -47,8 +49,8 @@ impl SemismoothLaw for Complementarity<'_, '_> {
             .collect();
         // Relative to the forces; from zero forces, a penetration of any size is the whole of
         // the answer still missing (1), not a residual in force units to compare with rtol.
-        let scale = dot(y, y).sqrt();
-        let missing = dot(&bad, &bad).sqrt();
+        let scale = norm(y);
+        let missing = norm(&bad);
         let residual = if scale > 0.0 {
             missing / scale
         } else if missing > 0.0 {
