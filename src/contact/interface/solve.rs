@@ -18,6 +18,7 @@ use std::ops::ControlFlow;
 use faer::{Mat, Side as FaerSide};
 
 use super::{Coupling, InterfaceError, InterfaceMethod, Side, coupling, smoothed_pressure};
+use crate::contact::Rule;
 use crate::contact::newton::NewtonOptions;
 use crate::contact::penalty::{self, Penalty};
 use crate::contact::signorini;
@@ -173,16 +174,19 @@ pub fn solve_method(
     let side = |x| Side { x, order };
     let coupling = coupling(method, side(sx), side(mx))?;
     let g0: Vec<f64> = coupling.x.iter().map(|&x| gap0(x)).collect();
-    let mut sol = solve(bodies, &coupling, &g0, epsilon)?;
-    if let InterfaceMethod::Rip(rule) = method {
-        sol.pbar = smoothed_pressure(rule, side(sx), &coupling, &sol.p)?;
-    }
+    let rule = match method {
+        InterfaceMethod::Rip(rule) => Some(rule),
+        _ => None,
+    };
+    let sol = solve(bodies, &coupling, &g0, epsilon, rule)?;
     Ok((coupling, sol))
 }
 
 /// Solve the contact of `bodies` across the interface discretised by `coupling`, from the
 /// initial gaps `g0` (one per constraint), with the penalty ε > 0 or the exact multipliers
-/// (ε = 0).
+/// (ε = 0). p̄: by (17) over the points of `rule` when the rows are a reduced-integration
+/// rule's ([`smoothed_pressure`], a point off the master at p = 0), else the rows' own hat
+/// average ([`smoothed`]).
 ///
 /// # Errors
 ///
@@ -193,6 +197,7 @@ pub fn solve(
     coupling: &Coupling,
     g0: &[f64],
     epsilon: f64,
+    rule: Option<Rule>,
 ) -> Result<InterfaceSolution, BodiesError> {
     let (slave, master) = bodies.pair();
     check(coupling, g0, slave.contact_dofs.len(), master.contact_dofs.len())?;
@@ -236,7 +241,16 @@ pub fn solve(
     let gap: Vec<f64> = result.violation.iter().map(|s| -s).collect();
     let order = slave.mesh.element.order();
     let vertex_x: Vec<f64> = slave.mesh.node_x.iter().step_by(order).copied().collect();
-    let pbar = smoothed(&vertex_x, &coupling.x, &coupling.weight, &p);
+    let pbar = match rule {
+        Some(rule) => {
+            let side = Side {
+                x: &slave.mesh.node_x,
+                order,
+            };
+            smoothed_pressure(rule, side, coupling, &p)?
+        }
+        None => smoothed(&vertex_x, &coupling.x, &coupling.weight, &p),
+    };
     let load = coupling.weight.iter().zip(&p).map(|(w, p)| w * p).sum();
     let trace = |disc: &Discretization, rows: &[Vec<(usize, f64)>]| {
         let upper = std::ptr::eq(disc, bodies.upper);
