@@ -47,6 +47,19 @@ pub fn num(value: f64) -> String {
     }
 }
 
+/// A value with `digits` decimals (`{:.6}`) when that shows at least three significant
+/// digits of it, in scientific notation with `digits` decimals otherwise (a load of 2e-7 is
+/// not `0.000000`, nor 1e300 a decimal of 300 digits); `NaN`, `inf` and `-inf` as themselves.
+pub fn fixed(value: f64, digits: usize) -> String {
+    let a = value.abs();
+    let least = 10f64.powi(2 - digits as i32);
+    if !value.is_finite() || a == 0.0 || (least..1e9).contains(&a) {
+        format!("{value:.digits$}")
+    } else {
+        format!("{value:.digits$e}")
+    }
+}
+
 /// A result in scientific notation with `digits` decimals (`{:.3e}`), or, when it is not a
 /// finite number, `n/a: ` and `why` (what makes it undefined): a table never shows `inf` or
 /// `NaN` as a value.
@@ -61,6 +74,17 @@ pub fn sci(value: f64, digits: usize, why: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn fixed_keeps_three_digits_or_turns_scientific() {
+        assert_eq!(fixed(7.962_108, 6), "7.962108");
+        assert_eq!(fixed(1.5e-4, 6), "0.000150");
+        assert_eq!(fixed(2e-7, 6), "2.000000e-7");
+        assert_eq!(fixed(-2e-7, 5), "-2.00000e-7");
+        assert_eq!(fixed(0.0, 6), "0.000000");
+        assert_eq!(fixed(3e12, 2), "3.00e12");
+        assert_eq!(fixed(f64::NAN, 6), "NaN");
+    }
 
     #[test]
     fn control_characters_are_replaced() {

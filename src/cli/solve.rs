@@ -9,6 +9,7 @@ use crate::contact::Method;
 use crate::discretization::Trace;
 use crate::output::{SolveReport, Sweep, SweepFailure, SweepRow, output};
 use crate::solve::checks::check_request;
+use crate::text::num;
 use crate::{check, vtu};
 
 pub(super) fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
@@ -168,7 +169,7 @@ pub(super) fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
         for w in &sol.warnings {
             note(&format!(
                 "warning: {setting}, depth = {}: {w}",
-                crate::text::num(params.obstacle.depth())
+                num(params.obstacle.depth())
             ));
         }
         let mut report = SolveReport::new(&scenario, level, disc, &sol);
@@ -201,11 +202,16 @@ pub(super) fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
             SweepRow::Solved(r) if !r.converged => Some(format!(
                 "ε = {:e}, depth = {}: {}",
                 r.epsilon,
-                r.depth,
+                num(r.depth),
                 r.diagnosis.as_deref().unwrap_or("not converged")
             )),
             SweepRow::Solved(_) => None,
-            SweepRow::Failed(f) => Some(format!("ε = {:e}, depth = {}: {}", f.epsilon, f.depth, f.reason)),
+            SweepRow::Failed(f) => Some(format!(
+                "ε = {:e}, depth = {}: {}",
+                f.epsilon,
+                num(f.depth),
+                f.reason
+            )),
         })
         .collect();
     if failed.is_empty() {

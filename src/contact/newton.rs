@@ -251,7 +251,10 @@ pub(crate) struct ForceBalance<'a> {
     pub assumed: &'a [f64],
     /// The mismatch of the two (the residual R).
     pub mismatch: &'a [f64],
-    /// The round-off floor of the implied forces.
+    /// The round-off floor of the implied forces at each point. It counts only where the
+    /// point may be active (`gap` > −`noise`): elsewhere the implied force is exactly 0, so a
+    /// point far outside the contact zone (its round-off O(|g|) huge next to a press of
+    /// 1e-300) neither loosens the tolerance nor swamps the forces.
     pub floor: &'a [f64],
 }
 
@@ -284,7 +287,16 @@ impl ForceBalance<'_> {
         let settled = previous.is_none_or(|prev| {
             (0..active.len()).all(|q| prev[q] == active[q] || self.gap[q].abs() <= self.noise[q])
         });
-        let floor = norm(self.floor);
+        let floor: Vec<f64> = (0..self.floor.len())
+            .map(|q| {
+                if self.gap[q] > -self.noise[q] {
+                    self.floor[q]
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        let floor = norm(&floor);
         Balance {
             active,
             residual,

@@ -15,7 +15,7 @@ use crate::discretization::Discretization;
 use crate::scenario::Scenario;
 use crate::scheme::Scheme;
 use crate::study::Status;
-use crate::text::{num, sci};
+use crate::text::{fixed, num, sci};
 use crate::warning::Warning;
 
 /// The `nodes` object of docs/design.md §7: Γ_C's vertices, ascending x.
@@ -270,25 +270,25 @@ impl Report for SolveReport {
             self.residual
         );
         let full = if self.half_model {
-            format!(" (full body {:.6})", 2.0 * self.load)
+            format!(" (full body {})", fixed(2.0 * self.load, 6))
         } else {
             String::new()
         };
-        let _ = writeln!(s, "load P = {:.6}{full}", self.load);
+        let _ = writeln!(s, "load P = {}{full}", fixed(self.load, 6));
         if let Some(h) = &self.hertz {
             let _ = writeln!(
                 s,
-                "Hertz (plane, for this load): a = {:.5}, p₀ = {:.5}; ‖p̄ − p_Hertz‖₀/‖p_Hertz‖₀ = {} (Hertz's parabola x²/2R: off the circle by O(a²/R²); meaningful when the body is much larger than a)",
-                h.a,
-                h.p0,
+                "Hertz (plane, for this load): a = {}, p₀ = {}; ‖p̄ − p_Hertz‖₀/‖p_Hertz‖₀ = {} (Hertz's parabola x²/2R: off the circle by O(a²/R²); meaningful when the body is much larger than a)",
+                fixed(h.a, 5),
+                fixed(h.p0, 5),
                 sci(h.relative_error, 3, NO_NORM)
             );
             if let Some(c) = &h.circle {
                 let _ = writeln!(
                     s,
-                    "exact circle (half-plane, for this load): a = {:.5}, p₀ = {:.5}; ‖p̄ − p_circle‖₀/‖p_circle‖₀ = {}",
-                    c.a,
-                    c.p0,
+                    "exact circle (half-plane, for this load): a = {}, p₀ = {}; ‖p̄ − p_circle‖₀/‖p_circle‖₀ = {}",
+                    fixed(c.a, 5),
+                    fixed(c.p0, 5),
                     sci(c.relative_error, 3, NO_NORM)
                 );
             }

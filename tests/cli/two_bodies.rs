@@ -178,6 +178,30 @@ fn tiny_depths_and_displacements_print_as_numbers() {
     let (code, out, err) = riplab(&["solve", "--depth", "1e-300", "--level", "1"]);
     assert_eq!(code, 0, "{err}");
     assert!(out.contains("depth = 1e-300,"), "{out}");
+    // The trapezoid has a point at x = 0, where the obstacle presses by 1e-300: a force of
+    // 2.4e-298 that the round-off at the points far out of contact swamped (not certified,
+    // exit 1, the depth printed as a decimal of 300 digits in the error).
+    let (code, out, err) = riplab(&["solve", "--depth", "1e-300", "--level", "1", "--scheme", "M3"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        err.lines().chain(out.lines()).all(|l| l.chars().count() < 400),
+        "{err}"
+    );
+    let load = |out: &str| -> f64 {
+        let line = out.lines().find(|l| l.starts_with("load P = ")).unwrap();
+        line["load P = ".len()..]
+            .split(' ')
+            .next()
+            .unwrap()
+            .parse()
+            .unwrap()
+    };
+    // P is linear in the depth while the active set stays (the same point at 1e-9 below).
+    assert!((load(&out) / 2.392585e-298 - 1.0).abs() < 1e-5, "{out}");
+    // A load of 2.4e-7 read 0.000000 with six decimals (text::fixed).
+    let (code, out, err) = riplab(&["solve", "--depth", "1e-9", "--level", "1", "--scheme", "M3"]);
+    assert_eq!(code, 0, "{err}");
+    assert!((load(&out) / 2.392585e-7 - 1.0).abs() < 1e-5, "{out}");
     let text = std::fs::read_to_string(PATCH)
         .unwrap()
         .replace("displacement = 0.01", "displacement = 1e-300");

@@ -112,8 +112,9 @@ fn every_stop_says_why() {
 }
 
 /// The force balance on a hand-made iterate: implied forces (3, 0) against assumed (0, 4) give
-/// R = (3, −4), ‖R‖ = 5 against the scale max(3, 4) = 4; a floor of norm 3 > 4/2 swamps them;
-/// a sign change within the noise keeps the active set settled.
+/// R = (3, −4), ‖R‖ = 5 against the scale max(3, 4) = 4; a floor of norm 3 > 4/2 swamps them,
+/// unless it lies at a point certainly out of contact; a sign change within the noise keeps
+/// the active set settled.
 #[test]
 fn force_balance_by_hand() {
     let zero = [0.0, 0.0];
@@ -133,8 +134,11 @@ fn force_balance_by_hand() {
     let m2 = at(&[-1.0, -1.0], &zero, &zero).measure(Some(&m.active), 1e-9);
     assert!(!m2.settled);
     // … by no more than its noise: settled; a floor of norm 3 swamps the scale 4.
-    let m3 = at(&[-1.0, -1.0], &[1.0, 0.0], &[3.0, 0.0]).measure(Some(&m.active), 1e-9);
+    let m3 = at(&[-1.0, -1.0], &[1.5, 0.0], &[3.0, 0.0]).measure(Some(&m.active), 1e-9);
     assert!(m3.settled && m3.swamped && !m3.accurate);
+    // A point out of contact by more than its noise has no floor: its force is exactly 0.
+    let m4 = at(&[1.0, -1.0], &[0.0, 0.5], &[0.0, 3.0]).measure(None, 1e-9);
+    assert!(!m4.swamped && !m4.accurate);
     // A tolerance of 2: 5 ≤ 2·4 is accurate.
     assert!(at(&[1.0, -1.0], &zero, &zero).measure(None, 2.0).accurate);
     assert_eq!(count(&m.active), 1);
