@@ -89,6 +89,37 @@ fn alm_reaches_the_exact_multipliers() {
     assert!(most <= 8, "{table:?}");
 }
 
+/// A press of 1e-12 or 1e-300 is the exact multipliers' answer too: P is linear in the depth,
+/// so the ALM at its default tolerance gives the exact load to 1e-9 at every depth (at 1e-12
+/// it stopped after one update at the penalty's answer, 1.6e-3 low, and printed "converged
+/// (relative residual 1.0e0)": the points far out of contact set its round-off floor; at
+/// 1e-300 the forces squared to 0).
+#[test]
+fn a_tiny_press_takes_the_alm_to_the_exact_multipliers() {
+    let scenario = paper_with(&[]);
+    let disc = scenario.discretize(2, Element::Q1).unwrap();
+    for depth in [1.0, 1e-12, 1e-300] {
+        let obstacle = scenario.obstacle.with_depth(depth);
+        let exact = solve(&disc, Rule::Trapezoid, Method::Exact, 0.0, &obstacle);
+        let alm = solve(
+            &disc,
+            Rule::Trapezoid,
+            Method::Alm { tolerance: 1e-10 },
+            1e-6,
+            &obstacle,
+        );
+        assert!(exact.load > 0.0, "depth {depth:e}");
+        let load = (alm.load - exact.load).abs() / exact.load;
+        assert!(
+            load < 1e-9,
+            "depth {depth:e}: load {:e} against {:e}",
+            alm.load,
+            exact.load
+        );
+        assert!(alm.outer_iterations.unwrap() > 1, "depth {depth:e}");
+    }
+}
+
 /// Where the rule's points outnumber the normal displacements (M2 = q1 + gauss2, q1 +
 /// simpson) the multipliers are not unique and `exact` refuses; the ALM (pure Uzawa there, no
 /// Newton step) still converges in u. Its load and u_y on Γ_C agree with the exact-constraint
