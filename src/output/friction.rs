@@ -9,7 +9,7 @@ use crate::contact::friction::{Law, State};
 use crate::contact::mindlin::{Mindlin, dundurs_beta, stick_half_width};
 use crate::contact::solution::Solution;
 use crate::scenario::Scenario;
-use crate::text::num;
+use crate::text::{fixed, num};
 
 /// Why a relative distance from a closed form is undefined: the closed form vanishes on Γ_C
 /// (a contact narrower than round-off), and a distance relative to 0 is no number.
@@ -33,7 +33,7 @@ pub struct FrictionReport {
     pub epsilon_t: Option<f64>,
     /// Q = I(t, 1) (0 without friction).
     pub tangential_load: f64,
-    /// Q/(μP), Coulomb only.
+    /// Q/(μP), Coulomb only, where something presses (P > 0).
     pub load_ratio: Option<f64>,
     /// The computed stick half-width: half the distance between the midpoints outside the
     /// outermost stick points; null with no stick point.
@@ -92,7 +92,11 @@ impl FrictionReport {
             steps: Some(f.friction.steps),
             epsilon_t: f.friction.epsilon_t,
             tangential_load: f.tangential_load,
-            load_ratio: law.mu().map(|mu| f.tangential_load / (mu * sol.load)),
+            // Q/(μP) is undefined where nothing presses (P = 0): absent, not NaN.
+            load_ratio: law
+                .mu()
+                .filter(|_| sol.load > 0.0)
+                .map(|mu| f.tangential_load / (mu * sol.load)),
             stick_half_width: stick_half_width(&sol.points, &f.states).map(|w| w.0),
             stick: count(State::Stick),
             slip: count(State::Slip),
@@ -122,10 +126,10 @@ impl FrictionReport {
             n => format!("{n} steps"),
         };
         Some(format!(
-            "friction {} ({parameter}), shift {} in {steps}: Q = {:.6}{ratio}; {} stick, {} slip, {} open points; {width}",
+            "friction {} ({parameter}), shift {} in {steps}: Q = {}{ratio}; {} stick, {} slip, {} open points; {width}",
             self.law,
             num(self.shift.unwrap_or(0.0)),
-            self.tangential_load,
+            fixed(self.tangential_load, 6),
             self.stick,
             self.slip,
             self.open

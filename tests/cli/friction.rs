@@ -221,6 +221,39 @@ fn extreme_friction_parameters_print_short() {
     }
 }
 
+/// An obstacle lifted off the body presses nothing: Q/(μP) is undefined and absent (it was
+/// printed as NaN in the table and null in JSON), Q = 0 and every point open.
+#[test]
+fn a_lifted_obstacle_has_no_load_ratio() {
+    let args = [
+        "solve",
+        "scenarios/hertz-paper-full.toml",
+        "-l",
+        "1",
+        "--scheme",
+        "M3",
+        "--friction",
+        "coulomb",
+        "--mu",
+        "0.3",
+        "--shift",
+        "0.01",
+        "--depth",
+        "-0.1",
+    ];
+    let (code, out, err) = crate::common::riplab(&args);
+    assert_eq!(code, 0, "{err}");
+    let line = out
+        .lines()
+        .find(|l| l.starts_with("friction "))
+        .expect("the friction line");
+    assert!(!line.contains("NaN") && !line.contains("Q/(μP)"), "{line}");
+    assert!(
+        line.contains("Q = 0.000000; 0 stick, 0 slip, 33 open points"),
+        "{line}"
+    );
+}
+
 /// Cattaneo–Mindlin's q assumes Dundurs' β = 0: `solve` names the body's β beside it (0.286 for
 /// ν = 0.3 in plane strain, (1 − 2ν)/(2(1 − ν)) by hand), and the lab's status line does when
 /// it is far from 0 (hertz-paper-full) but not on cattaneo-mindlin (ν = 0.499: 0.002).

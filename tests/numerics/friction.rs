@@ -451,3 +451,45 @@ fn coulomb_is_the_fixed_point_of_tresca_from_the_frictionless_pressure() {
     assert!(*distances.last().unwrap() < 1e-10, "{distances:?}");
     assert!(distances.windows(2).all(|d| d[1] < d[0]), "{distances:?}");
 }
+
+/// Once the contact zone is one point (a press far below the first element's gap), P and Q
+/// are linear in the press, with the shift scaled with it (Coulomb's law is positively
+/// homogeneous): a press of 1e-300 gives the press of 1e-12's P/λ and Q/λ to 1e-9, with the
+/// same states. It gave P = 0 in 0 iterations, Q/(μP) = NaN: the points far out of contact set
+/// the round-off floor, and the natural residual's squares of 1e-297 were 0.
+#[test]
+fn coulomb_scales_with_a_tiny_press() {
+    let s = full();
+    let disc = s.discretize_traced(1, Element::Q1, Trace::Full).unwrap();
+    let at = |depth: f64| {
+        let mut p = params(&s, Rule::Trapezoid, Method::Exact, 0.0);
+        p.obstacle = s.obstacle.with_depth(depth);
+        let sol = with(&disc, &p, &coulomb(0.3, 0.05 * depth, 2));
+        assert!(
+            sol.newton.converged,
+            "depth {depth:e}: {:?}",
+            sol.newton.diagnosis
+        );
+        let f = sol.friction.unwrap();
+        (sol.load / depth, f.tangential_load / depth, f.states)
+    };
+    let small = at(1e-12);
+    assert!(small.0 > 0.0 && small.1 != 0.0);
+    assert_eq!(small.2.iter().filter(|&&q| q != State::Open).count(), 1);
+    for depth in [1e-100, 1e-300] {
+        let tiny = at(depth);
+        assert!(
+            (tiny.0 / small.0 - 1.0).abs() < 1e-9,
+            "depth {depth:e}: P/λ {} against {}",
+            tiny.0,
+            small.0
+        );
+        assert!(
+            (tiny.1 / small.1 - 1.0).abs() < 1e-9,
+            "depth {depth:e}: Q/λ {} against {}",
+            tiny.1,
+            small.1
+        );
+        assert_eq!(tiny.2, small.2, "depth {depth:e}");
+    }
+}

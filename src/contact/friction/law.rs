@@ -20,6 +20,7 @@ use std::sync::Arc;
 use faer::Mat;
 
 use super::State;
+use crate::contact::newton::norm;
 
 /// Relative size of the round-off in s and r (a few units in the last place), as in
 /// [`crate::contact::penalty`].
@@ -114,15 +115,14 @@ impl Eval {
 
     /// The natural residual's norm ‖(y − y*, z − z*)‖, its scale max(‖(y*, z*)‖, ‖(y, z)‖)
     /// and the norm of the round-off floor.
+    /// Each norm is scaled by its largest entry ([`norm`]): forces of 1e-297 do not square to 0.
     pub fn residual(&self, y: &[f64], z: &[f64]) -> (f64, f64, f64) {
-        let sq = |a: &[f64]| a.iter().map(|v| v * v).sum::<f64>();
-        let diff: f64 = (0..y.len())
-            .map(|q| (y[q] - self.implied_y[q]).powi(2) + (z[q] - self.implied_z[q]).powi(2))
-            .sum();
-        let scale = (sq(&self.implied_y) + sq(&self.implied_z))
-            .max(sq(y) + sq(z))
-            .sqrt();
-        (diff.sqrt(), scale, sq(&self.floor).sqrt())
+        let pair = |a: &[f64], b: &[f64]| norm(&[a, b].concat());
+        let diff: Vec<f64> = (0..y.len())
+            .flat_map(|q| [y[q] - self.implied_y[q], z[q] - self.implied_z[q]])
+            .collect();
+        let scale = pair(&self.implied_y, &self.implied_z).max(pair(y, z));
+        (norm(&diff), scale, norm(&self.floor))
     }
 }
 
@@ -211,7 +211,13 @@ impl StepProblem<'_> {
                     )
                 }
             };
-            out.floor[q] = kn * ns[q] + kt * nr[q];
+            // Round-off counts where the point may be in contact: one open by more than its
+            // noise implies (0, 0) exactly (docs/design.md §11; a far point's round-off O(|g|)
+            // swamped a press of 1e-300).
+            let noise_y = kn * ns[q];
+            if trial_y > -noise_y {
+                out.floor[q] = noise_y + kt * nr[q];
+            }
             if trial_y.is_nan() || tau.is_nan() {
                 out.implied_y[q] = f64::NAN;
                 continue;
