@@ -140,6 +140,10 @@ mod tests {
         let c = CircleContact::for_load(&cylinder(radius), &MATERIAL, p).unwrap();
         let h = Hertz::for_load(&cylinder(radius), &MATERIAL, p).unwrap();
         assert!((c.a - h.a).abs() < 1e-5 * h.a && (c.p0 - h.p0).abs() < 1e-5 * h.p0);
+        // A load of 1e-295 (a ~ 1e-150): Hertz's to round-off (it read a = 2e-60).
+        let c = CircleContact::for_load(&cylinder(radius), &MATERIAL, 1e-295).unwrap();
+        let h = Hertz::for_load(&cylinder(radius), &MATERIAL, 1e-295).unwrap();
+        assert!((c.a - h.a).abs() < 1e-12 * h.a, "{} vs {}", c.a, h.a);
         assert!(CircleContact::for_load(&cylinder(radius), &MATERIAL, 1e9).is_none());
         assert!(CircleContact::for_load(&cylinder(radius), &MATERIAL, 0.0).is_none());
     }

@@ -95,9 +95,11 @@ pub fn elliptic_k_minus_e(k: f64) -> (f64, f64) {
     (big_k, big_k * sum)
 }
 
-/// The x in (lo, hi) where the increasing `f` equals `target`, by bisection to round-off.
+/// The x in (lo, hi) where the increasing `f` equals `target`, by bisection to round-off:
+/// from lo = 0 that can take a halving per binary exponent down to the smallest double
+/// (about 2,100), where 200 halvings stopped at 2⁻²⁰⁰ hi (a contact of 1e-150 read 2e-60).
 pub fn invert(f: impl Fn(f64) -> f64, target: f64, mut lo: f64, mut hi: f64) -> f64 {
-    for _ in 0..200 {
+    for _ in 0..2200 {
         let mid = 0.5 * (lo + hi);
         if mid <= lo || mid >= hi {
             break;
