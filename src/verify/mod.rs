@@ -16,6 +16,7 @@
 
 pub mod constraint;
 pub mod half_space;
+pub mod hertz_two_bodies;
 pub mod infsup;
 pub mod manufactured;
 pub mod mindlin;
@@ -163,7 +164,13 @@ pub struct Case {
 /// Every case, in the order `riplab verify` runs them.
 pub fn cases() -> Vec<Case> {
     let mut all = Vec::from(half_space::cases());
-    all.extend([patch::CASE, two_bodies::CASE, infsup::CASE, manufactured::CASE]);
+    all.extend([
+        patch::CASE,
+        two_bodies::CASE,
+        hertz_two_bodies::CASE,
+        infsup::CASE,
+        manufactured::CASE,
+    ]);
     all.extend(constraint::cases());
     all.push(mindlin::CASE);
     all

@@ -32,7 +32,7 @@ const PATCH: &str = include_str!("../../scenarios/patch-two-blocks.toml");
 const MESHES: [((u32, u32), f64); 3] = [((1, 1), 0.3), ((2, 3), 0.0), ((5, 7), 0.2)];
 
 /// The solver's error of a two-body solve that failed.
-fn failed(e: BodiesError) -> SolveError {
+pub(super) fn failed(e: BodiesError) -> SolveError {
     match e {
         BodiesError::Solve(e) => e,
         other => SolveError::NotConverged {
