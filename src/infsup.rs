@@ -15,9 +15,9 @@
 //! multiplier space: [`interface`] on one level, [`interface_table`] over the levels.
 
 pub mod interface;
+pub mod interface_table;
 #[cfg(test)]
 mod interface_tests;
-pub mod interface_table;
 
 use std::time::Instant;
 
@@ -84,7 +84,8 @@ impl TraceCompliance {
     pub fn of_mesh(mesh: &Mesh, dofs: &DofMap) -> Result<Self, SolveError> {
         let a = assemble(mesh, dofs, Form::H1);
         let n = dofs.n_free();
-        let ordering = Analysis::grid(&a, mesh, dofs, &dofs.contact_dofs(mesh)).map_err(|e| fem_error(e, n))?;
+        let ordering =
+            Analysis::grid(&a, mesh, dofs, &dofs.contact_dofs(mesh)).map_err(|e| fem_error(e, n))?;
         Self::factorised(&ordering, a, n)
     }
 

@@ -15,7 +15,9 @@ use faer::Mat;
 
 use super::{generalized_eigenvalues, p1_mass, smoothing_matrix};
 use crate::contact::interface::solve::{BodiesError, delassus};
-use crate::contact::interface::{Coupling, InterfaceMethod, MultiplierBasis, Side, coupling, multiplier_mass};
+use crate::contact::interface::{
+    Coupling, InterfaceMethod, MultiplierBasis, Side, coupling, multiplier_mass,
+};
 use crate::contact::{ContactPoints, Rule};
 
 /// A generalized eigenvalue at most this fraction of the largest is a kernel's (the two-body
@@ -150,7 +152,9 @@ pub fn estimate(space: Space, traces: &Traces) -> Result<InterfaceInfSup, Bodies
         return Ok(answer(0.0, Some(why)));
     }
     let mass = match space {
-        Space::Mortar | Space::Nts => multiplier_mass(MultiplierBasis::Trace, traces.slave, traces.master, &c)?,
+        Space::Mortar | Space::Nts => {
+            multiplier_mass(MultiplierBasis::Trace, traces.slave, traces.master, &c)?
+        }
         Space::MortarDual => multiplier_mass(MultiplierBasis::Dual, traces.slave, traces.master, &c)?,
         Space::Point(rule) => multiplier_mass(MultiplierBasis::Rule(rule), traces.slave, traces.master, &c)?,
         Space::Smoothed(rule) => smoothed_mass(rule, traces.slave, &c),

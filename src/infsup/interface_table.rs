@@ -71,9 +71,7 @@ fn widest_edge(x: &[f64], order: usize) -> f64 {
 /// ([`BodiesError::OneBody`]).
 pub fn fits(scenario: &Scenario, level: u32, element: Element) -> Result<(), BodiesError> {
     let lower = scenario.sizes(level, element);
-    let upper = scenario
-        .upper_sizes(level, element)
-        .ok_or(BodiesError::OneBody)?;
+    let upper = scenario.upper_sizes(level, element).ok_or(BodiesError::OneBody)?;
     let q = 2.0 * lower.trace.max(upper.trace) as f64;
     let m = (lower.trace + upper.trace) as f64;
     let dense = 8.0 * (6.0 * q * q + 2.0 * q * m);
@@ -116,9 +114,7 @@ fn bodies(scenario: &Scenario, level: u32, element: Element) -> Result<(Body, Bo
     let lower_mesh = scenario.mesh(level, element);
     let lower_dofs = DofMap::supported(&lower_mesh, scenario.support);
     let lower = Body::new(lower_mesh, &lower_dofs)?;
-    let upper_mesh = scenario
-        .upper_mesh(level, element)
-        .ok_or(BodiesError::OneBody)?;
+    let upper_mesh = scenario.upper_mesh(level, element).ok_or(BodiesError::OneBody)?;
     let upper_dofs = DofMap::supported(&upper_mesh, upper.support);
     let upper_body = Body::new(upper_mesh, &upper_dofs)?;
     Ok(match upper.slave {

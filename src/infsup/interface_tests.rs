@@ -29,7 +29,10 @@ fn beta(space: Space, s: &[f64], m: &[f64], c_s: f64, c_m: f64) -> f64 {
 }
 
 fn close(a: f64, b: f64, what: &str) {
-    assert!((a - b).abs() <= 1e-13 * b.abs().max(1.0), "{what}: {a} against {b}");
+    assert!(
+        (a - b).abs() <= 1e-13 * b.abs().max(1.0),
+        "{what}: {a} against {b}"
+    );
 }
 
 /// One linear edge [0, 1] on each side, C_s = 2I, C_m = I (J = C_s + C_m = 3 on the matching
@@ -112,7 +115,12 @@ fn kernels_are_reported() {
         slave_compliance: &cs,
         master_compliance: &cm,
     };
-    assert!(estimate(Space::Point(Rule::Gauss2), &traces).unwrap().kernel.is_none());
+    assert!(
+        estimate(Space::Point(Rule::Gauss2), &traces)
+            .unwrap()
+            .kernel
+            .is_none()
+    );
 }
 
 /// The patch scenario with `ratio` and `offset` (and `element`).
@@ -145,7 +153,10 @@ fn identical_bodies_are_the_one_body_estimate_twice() {
     let s = Scenario::parse(&text, "identical.toml").unwrap();
     let lower = s.mesh(1, Element::Q1);
     let upper = s.upper_mesh(1, Element::Q1).unwrap();
-    assert_eq!((lower.node_x.clone(), lower.node_y.clone()), (upper.node_x, upper.node_y));
+    assert_eq!(
+        (lower.node_x.clone(), lower.node_y.clone()),
+        (upper.node_x, upper.node_y)
+    );
     let rules = [Rule::Gauss1, Rule::Trapezoid, Rule::Gauss2];
     let two = interface_table(&s, &Space::with_rules(&rules), &[0, 1]).unwrap();
     let pairs: Vec<(Element, Rule)> = rules.iter().map(|&r| (Element::Q1, r)).collect();
@@ -177,7 +188,10 @@ fn identical_bodies_are_the_one_body_estimate_twice() {
 /// they are equal only where D = W, which a consistent mass never is.
 #[test]
 fn matching_meshes_relate_mortar_and_nts() {
-    for (element, rule, sigma0) in [(Element::Q1, Rule::Trapezoid, 1.0 / 3.0), (Element::Q2, Rule::Simpson, 0.4)] {
+    for (element, rule, sigma0) in [
+        (Element::Q1, Rule::Trapezoid, 1.0 / 3.0),
+        (Element::Q2, Rule::Simpson, 0.4),
+    ] {
         let s = patch("[1, 1]", "0.0", element);
         let x = s.mesh(1, element).node_x;
         let side = Side {
@@ -199,7 +213,10 @@ fn matching_meshes_relate_mortar_and_nts() {
             close(nts.weight[k], dual.weight[k], "weight");
             for (a, b) in [(&nts.slave[k], &dual.slave[k]), (&nts.master[k], &dual.master[k])] {
                 let (a, b) = (dense(a), dense(b));
-                assert!(a.iter().zip(&b).all(|(a, b)| (a - b).abs() < 1e-12), "{k}: {a:?} {b:?}");
+                assert!(
+                    a.iter().zip(&b).all(|(a, b)| (a - b).abs() < 1e-12),
+                    "{k}: {a:?} {b:?}"
+                );
             }
             assert_eq!(nts.slave[k], vec![(k, 1.0)]);
         }

@@ -71,7 +71,8 @@ impl Scenario {
     /// The sizes that decide the memory of the upper body's discretisation at `level` with
     /// `element` ([`Sizes::peak_bytes`]); None for a one-body scenario.
     pub fn upper_sizes(&self, level: u32, element: Element) -> Option<Sizes> {
-        self.upper_mesh(level, element).map(|mesh| self.upper_sizes_of(&mesh))
+        self.upper_mesh(level, element)
+            .map(|mesh| self.upper_sizes_of(&mesh))
     }
 
     /// The sizes of the upper body on `mesh`, its mesh (points: two per trace node, above

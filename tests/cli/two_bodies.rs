@@ -107,10 +107,7 @@ fn two_bodies_refusals() {
     }
     // The commands that take one body refuse two, naming `riplab solve` (`infsup` takes
     // two: tests/cli/infsup_two_bodies.rs).
-    for command in [
-        &["study", PATCH, "--levels", "0..1"][..],
-        &["render", PATCH],
-    ] {
+    for command in [&["study", PATCH, "--levels", "0..1"][..], &["render", PATCH]] {
         let (code, _, err) = riplab(command);
         assert_eq!(code, 2, "{command:?}: {err}");
         assert!(

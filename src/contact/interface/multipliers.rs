@@ -105,7 +105,11 @@ mod tests {
         assert_eq!(g.nrows(), want.len());
         for (i, row) in want.iter().enumerate() {
             for (j, v) in row.iter().enumerate() {
-                assert!((g[(i, j)] - v).abs() <= tol, "({i}, {j}): {} against {v}", g[(i, j)]);
+                assert!(
+                    (g[(i, j)] - v).abs() <= tol,
+                    "({i}, {j}): {} against {v}",
+                    g[(i, j)]
+                );
             }
         }
     }
@@ -119,13 +123,21 @@ mod tests {
         let trace = gram(MultiplierBasis::Trace, InterfaceMethod::Mortar, &x, &x, 1);
         close(
             &trace,
-            &[&[1.0 / 3.0, 1.0 / 6.0, 0.0], &[1.0 / 6.0, 1.0, 1.0 / 3.0], &[0.0, 1.0 / 3.0, 2.0 / 3.0]],
+            &[
+                &[1.0 / 3.0, 1.0 / 6.0, 0.0],
+                &[1.0 / 6.0, 1.0, 1.0 / 3.0],
+                &[0.0, 1.0 / 3.0, 2.0 / 3.0],
+            ],
             1e-15,
         );
         let nts = gram(MultiplierBasis::Trace, InterfaceMethod::Nts, &x, &x, 1);
         assert_eq!(nts, trace);
         let dual = gram(MultiplierBasis::Dual, InterfaceMethod::MortarDual, &x, &x, 1);
-        close(&dual, &[&[1.0, -0.5, 0.0], &[-0.5, 3.0, -1.0], &[0.0, -1.0, 2.0]], 1e-14);
+        close(
+            &dual,
+            &[&[1.0, -0.5, 0.0], &[-0.5, 3.0, -1.0], &[0.0, -1.0, 2.0]],
+            1e-14,
+        );
         let g1 = gram(
             MultiplierBasis::Rule(Rule::Gauss1),
             InterfaceMethod::Rip(Rule::Gauss1),
@@ -155,10 +167,19 @@ mod tests {
             1e-15,
         );
         let nts = gram(MultiplierBasis::Trace, InterfaceMethod::Nts, &s, &m, 1);
-        close(&nts, &[&[1.0 / 3.0, 1.0 / 6.0], &[1.0 / 6.0, 1.0 / 3.0 + 7.0 / 12.0]], 1e-15);
+        close(
+            &nts,
+            &[&[1.0 / 3.0, 1.0 / 6.0], &[1.0 / 6.0, 1.0 / 3.0 + 7.0 / 12.0]],
+            1e-15,
+        );
         let dual = gram(MultiplierBasis::Dual, InterfaceMethod::MortarDual, &s, &m, 1);
         assert_eq!(dual.nrows(), 3);
-        let total = |g: &Mat<f64>| (0..g.nrows()).flat_map(|i| (0..g.ncols()).map(move |j| (i, j))).map(|(i, j)| g[(i, j)]).sum::<f64>();
+        let total = |g: &Mat<f64>| {
+            (0..g.nrows())
+                .flat_map(|i| (0..g.ncols()).map(move |j| (i, j)))
+                .map(|(i, j)| g[(i, j)])
+                .sum::<f64>()
+        };
         assert!((total(&trace) - 2.0).abs() < 1e-14, "{}", total(&trace));
         assert!((total(&dual) - 2.0).abs() < 1e-13, "{}", total(&dual));
         // Quadratic edges: the mass matrix h/30 [[4, 2, −1], [2, 16, 2], [−1, 2, 4]].
@@ -166,7 +187,11 @@ mod tests {
         let p2 = gram(MultiplierBasis::Trace, InterfaceMethod::Mortar, &q, &q, 2);
         close(
             &p2,
-            &[&[4.0 / 30.0, 2.0 / 30.0, -1.0 / 30.0], &[2.0 / 30.0, 16.0 / 30.0, 2.0 / 30.0], &[-1.0 / 30.0, 2.0 / 30.0, 4.0 / 30.0]],
+            &[
+                &[4.0 / 30.0, 2.0 / 30.0, -1.0 / 30.0],
+                &[2.0 / 30.0, 16.0 / 30.0, 2.0 / 30.0],
+                &[-1.0 / 30.0, 2.0 / 30.0, 4.0 / 30.0],
+            ],
             1e-15,
         );
     }
