@@ -133,7 +133,7 @@ fn patch(ratio: &str, offset: &str, element: Element) -> Scenario {
     s
 }
 
-fn rows_of<'a>(rows: &'a [InterfaceRow], space: Space) -> Vec<&'a InterfaceRow> {
+fn rows_of(rows: &[InterfaceRow], space: Space) -> Vec<&InterfaceRow> {
     rows.iter().filter(|r| r.space == space.name()).collect()
 }
 
