@@ -2,7 +2,7 @@
 //! the interface"): every multiplier space at every level with finite numbers, the slope its
 //! rows print against the log-ratio of their β_h, the three formats, and the bad input.
 
-use crate::common::riplab;
+use crate::common::{no_panic, riplab, riplab_under_half_of};
 
 const PATCH: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/scenarios/patch-two-blocks.toml");
 const HERTZ: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/scenarios/hertz-two-bodies.toml");
@@ -148,4 +148,21 @@ fn infsup_two_bodies_bad_input() {
         assert_eq!(code, 2, "{args:?}: {err}");
         assert!(out.is_empty() && err.contains(said), "{args:?}: {err}");
     }
+}
+
+/// A level whose two bodies do not fit is refused before anything is built (exit 2, the
+/// memory named), under an address-space limit of half riplab's own estimate of the upper
+/// body's discretisation alone, with the levels before it asked too: nothing is printed.
+#[test]
+fn infsup_two_bodies_refused_before_it_runs_out_of_memory() {
+    let scenario = riplab::scenario::Scenario::load(std::path::Path::new(HERTZ)).unwrap();
+    let sizes = scenario.upper_sizes(5, scenario.element).unwrap();
+    let (code, out, err) = riplab_under_half_of(&sizes, &["infsup", HERTZ, "--levels", "0..5"]);
+    no_panic(&err);
+    assert_eq!(code, 2, "{err}");
+    assert!(out.is_empty(), "{out}");
+    assert!(
+        err.contains("across the interface at level") && err.contains("choose a coarser level"),
+        "{err}"
+    );
 }
