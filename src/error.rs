@@ -139,6 +139,15 @@ pub enum Workload {
         /// The unknowns on Γ_C.
         trace: usize,
     },
+    /// The inf-sup estimate across the interface of two bodies at `level`.
+    Interface {
+        /// The level.
+        level: u32,
+        /// The element.
+        element: Element,
+        /// The two traces' unknowns.
+        trace: usize,
+    },
     /// Nitsche's dense work on the layer's unknowns along Γ_C.
     Nitsche,
     /// The study's reference (q2 + simpson) at `level` after `refinements` edge refinements.
@@ -187,6 +196,14 @@ fn too_large(workload: &Workload, unknowns: usize, need: u64, available: u64) ->
         } => format!(
             "the inf-sup estimate {} with {} ({unknowns} unknowns, {trace} on Γ_C) needs about {need} (the mesh, a second factorisation for the H¹ Gram matrix and the dense matrices on Γ_C); this process has {available} available ({limits}): choose a coarser level",
             level.map_or_else(|| "on this mesh".to_string(), |l| format!("at level {l}")),
+            element.name()
+        ),
+        Workload::Interface {
+            level,
+            element,
+            trace,
+        } => format!(
+            "the inf-sup estimate across the interface at level {level} with {} ({unknowns} unknowns in the two bodies, {trace} on their traces) needs about {need} (each body's mesh and a factorisation of its H¹ Gram matrix, and the dense matrices on the interface); this process has {available} available ({limits}): choose a coarser level",
             element.name()
         ),
         Workload::Nitsche => format!(

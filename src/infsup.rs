@@ -10,6 +10,14 @@
 //! compliance* C = E A⁻¹ Eᵀ (E selecting u_y on Γ_C), read from one factorisation of A on
 //! the stiffness's ordering (same pattern, Γ_C dofs last: see [`crate::fem::condense`]).
 //! Every rule then costs only small dense work: B A⁻¹ Bᵀ = W T C Tᵀ W.
+//!
+//! Across the interface of two bodies (docs/design.md §12) the same constants of each
+//! multiplier space: [`interface`] on one level, [`interface_table`] over the levels.
+
+pub mod interface;
+pub mod interface_table;
+#[cfg(test)]
+mod interface_tests;
 
 use std::time::Instant;
 
@@ -21,11 +29,11 @@ use crate::discretization::Discretization;
 use crate::discretization::fem_error;
 use crate::error::{SolveError, Workload};
 use crate::fem::error::FemError;
-use crate::fem::factor::Factor;
+use crate::fem::factor::{Analysis, Factor};
 use crate::fem::memory::{Limits, Sizes};
 use crate::fem::quadrature::gauss_legendre;
-use crate::fem::{Form, assemble};
-use crate::mesh::Element;
+use crate::fem::{DofMap, Form, SymCsc, assemble};
+use crate::mesh::{Element, Mesh};
 use crate::scenario::Scenario;
 use crate::scheme::Scheme;
 
@@ -64,12 +72,31 @@ impl TraceCompliance {
     pub fn new(disc: &Discretization) -> Result<Self, SolveError> {
         fits_beside(disc)?;
         let a = assemble(&disc.mesh, &disc.dofs, Form::H1);
-        let factor = Factor::new(&disc.ordering, a).map_err(|e| match e {
+        Self::factorised(&disc.ordering, a, disc.n_dofs())
+    }
+
+    /// C of the H¹ Gram matrix of `mesh` with `dofs` where no discretisation is built: A's
+    /// own ordering (K's pattern) and one factorisation. The caller checks the memory first.
+    ///
+    /// # Errors
+    ///
+    /// The ordering or the factorisation failed (memory, a pivot that is not positive).
+    pub fn of_mesh(mesh: &Mesh, dofs: &DofMap) -> Result<Self, SolveError> {
+        let a = assemble(mesh, dofs, Form::H1);
+        let n = dofs.n_free();
+        let ordering =
+            Analysis::grid(&a, mesh, dofs, &dofs.contact_dofs(mesh)).map_err(|e| fem_error(e, n))?;
+        Self::factorised(&ordering, a, n)
+    }
+
+    /// C from A factorised on `ordering` (Γ_C's normal dofs last).
+    fn factorised(ordering: &Analysis, a: SymCsc, unknowns: usize) -> Result<Self, SolveError> {
+        let factor = Factor::new(ordering, a).map_err(|e| match e {
             FemError::NotPositiveDefinite { pivot } => SolveError::Factorization {
                 matrix: "H¹ Gram matrix",
                 pivot,
             },
-            e => fem_error(e, disc.n_dofs()),
+            e => fem_error(e, unknowns),
         })?;
         Ok(TraceCompliance {
             c: factor.compliance(),
@@ -200,6 +227,20 @@ pub fn schur(cp: &ContactPoints, compliance: &Mat<f64>) -> Mat<f64> {
 ///
 /// The eigendecomposition did not converge ([`SolveError::Eigen`]).
 pub fn min_generalized_eigenvalue(s: &Mat<f64>, n: &Mat<f64>) -> Result<f64, SolveError> {
+    Ok(generalized_eigenvalues(s, n)?
+        .first()
+        .copied()
+        .unwrap_or(0.0)
+        .max(0.0))
+}
+
+/// Every λ of S q = λ N q over the vectors with Nq ≠ 0, ascending ([`min_generalized_eigenvalue`]'s
+/// reduction).
+///
+/// # Errors
+///
+/// The eigendecomposition did not converge ([`SolveError::Eigen`]).
+pub fn generalized_eigenvalues(s: &Mat<f64>, n: &Mat<f64>) -> Result<Vec<f64>, SolveError> {
     let evd = n.self_adjoint_eigen(Side::Lower).map_err(SolveError::Eigen)?;
     let d = evd.S().column_vector();
     let top = (0..d.nrows()).map(|i| d[i]).fold(0.0, f64::max);
@@ -207,10 +248,9 @@ pub fn min_generalized_eigenvalue(s: &Mat<f64>, n: &Mat<f64>) -> Result<f64, Sol
     let u = evd.U();
     let z = Mat::<f64>::from_fn(n.nrows(), keep.len(), |r, c| u[(r, keep[c])] / d[keep[c]].sqrt());
     let reduced = z.transpose() * s * &z;
-    let lam = reduced
+    reduced
         .self_adjoint_eigenvalues(Side::Lower)
-        .map_err(SolveError::Eigen)?;
-    Ok(lam.first().copied().unwrap_or(0.0).max(0.0))
+        .map_err(SolveError::Eigen)
 }
 
 /// β_h, β̄_h and their ratios to √h for `rule` on `disc`, from its trace compliance.
@@ -325,8 +365,13 @@ impl InfSupRow {
 /// The observed slope of log β_h against log h between two rows (None where β_h = 0, or where
 /// both have the same h: two zone-graded meshes of different levels may).
 pub fn slope(prev: &InfSupRow, row: &InfSupRow) -> Option<f64> {
-    (prev.beta > 0.0 && row.beta > 0.0 && row.h != prev.h)
-        .then(|| (row.beta / prev.beta).ln() / (row.h / prev.h).ln())
+    log_slope((prev.h, prev.beta), (row.h, row.beta))
+}
+
+/// The exponent s of β ∝ h^s through two (h, β): ln(β₁/β₀)/ln(h₁/h₀); None where a β is 0
+/// or the two h are equal.
+pub fn log_slope((h0, beta0): (f64, f64), (h1, beta1): (f64, f64)) -> Option<f64> {
+    (beta0 > 0.0 && beta1 > 0.0 && h1 != h0).then(|| (beta1 / beta0).ln() / (h1 / h0).ln())
 }
 
 /// The inf-sup table of `riplab infsup`: every pair of `pairs` at every level of `levels`,

@@ -156,7 +156,8 @@ pub struct InfsupArgs {
     /// Levels, inclusive: `0..6`, `2..=4` or a single level [default: 0..4, or --level's].
     #[arg(long, conflicts_with = "level")]
     pub levels: Option<String>,
-    /// Every element × rule pair (the paper's M1–M4 first).
+    /// Every element × rule pair (the paper's M1–M4 first); on a two-body scenario every rule's
+    /// points and p̄ beside mortar's, mortar-dual's and NTS's spaces.
     #[arg(long, conflicts_with_all = ["element", "rule", "scheme"])]
     pub all: bool,
     /// Estimate on meshes graded at the contact edges: each scheme's own solve graded N times

@@ -59,7 +59,7 @@ fn refuse_one_body_flags(args: &SolveArgs, scenario: &Scenario) -> Result<(), Cl
 }
 
 /// The CLI's error of a two-body solve: bad input exits 2, a failed solve 1.
-fn cli_error(e: BodiesError, epsilon_flag: &str) -> CliError {
+pub(super) fn cli_error(e: BodiesError, epsilon_flag: &str) -> CliError {
     match e {
         BodiesError::Solve(e) => CliError::Solve(e),
         BodiesError::Epsilon { .. } => usage(epsilon_flag, e),

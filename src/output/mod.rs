@@ -15,7 +15,7 @@ mod sweep;
 pub mod verify;
 pub use csv::{Cell, csv_table};
 pub use friction::{FrictionReport, MindlinReport};
-pub use infsup::{INFSUP_COLUMNS, InfSupTable};
+pub use infsup::{INFSUP_COLUMNS, INTERFACE_INFSUP_COLUMNS, InfSupTable, InterfaceInfSupTable};
 pub use interface::{INTERFACE_COLUMNS, InterfaceReport};
 pub use solve::{CircleReport, HertzReport, Nodes, Points, SolveReport};
 pub use study::{STUDY_COLUMNS, StudyReport};

@@ -63,16 +63,28 @@ impl Scenario {
         let (Some(upper), Some(mesh)) = (&self.upper, self.upper_mesh(level, element)) else {
             return Ok(None);
         };
-        let unknowns = DofMap::count_supported(mesh.nnx(), mesh.node_y.len(), self.half_model, upper.support);
-        let sizes = Sizes {
-            element,
-            unknowns,
-            trace: mesh.nnx(),
-            points: 2 * mesh.nnx(),
-        };
-        super::discretize::fits(&sizes, level, reserved)?;
+        super::discretize::fits(&self.upper_sizes_of(&mesh), level, reserved)?;
         let dofs = DofMap::supported(&mesh, upper.support);
         Discretization::with_dofs(mesh, dofs, upper.material, self.integration).map(Some)
+    }
+
+    /// The sizes that decide the memory of the upper body's discretisation at `level` with
+    /// `element` ([`Sizes::peak_bytes`]); None for a one-body scenario.
+    pub fn upper_sizes(&self, level: u32, element: Element) -> Option<Sizes> {
+        self.upper_mesh(level, element)
+            .map(|mesh| self.upper_sizes_of(&mesh))
+    }
+
+    /// The sizes of the upper body on `mesh`, its mesh (points: two per trace node, above
+    /// every rule's).
+    fn upper_sizes_of(&self, mesh: &Mesh) -> Sizes {
+        let support = self.upper.as_ref().map_or(self.support, |u| u.support);
+        Sizes {
+            element: mesh.element,
+            unknowns: DofMap::count_supported(mesh.nnx(), mesh.node_y.len(), self.half_model, support),
+            trace: mesh.nnx(),
+            points: 2 * mesh.nnx(),
+        }
     }
 
     /// The pressure of the contact patch test (docs/design.md §12), when this scenario is one:

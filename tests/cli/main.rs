@@ -17,6 +17,7 @@ mod hostile;
 mod hostile_again;
 mod hostile_cache;
 mod infsup_graded;
+mod infsup_two_bodies;
 mod lab_commands;
 mod modules;
 mod plot;

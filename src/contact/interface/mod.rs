@@ -7,6 +7,7 @@
 mod dual;
 mod error;
 mod mortar;
+mod multipliers;
 mod nts;
 #[cfg(test)]
 mod props;
@@ -18,6 +19,7 @@ mod tests;
 mod trace;
 
 pub use error::InterfaceError;
+pub use multipliers::{MultiplierBasis, multiplier_mass};
 pub use rip::smoothed_pressure;
 
 use super::Rule;

@@ -310,7 +310,7 @@ fn check(coupling: &Coupling, g0: &[f64], n_slave: usize, n_master: usize) -> Re
 }
 
 /// G C Gᵀ for the rows G (constraint k: (trace node, coefficient)) and the trace compliance C.
-fn delassus(rows: &[Vec<(usize, f64)>], c: &Mat<f64>) -> Mat<f64> {
+pub fn delassus(rows: &[Vec<(usize, f64)>], c: &Mat<f64>) -> Mat<f64> {
     let n = rows.len();
     // C Gᵀ, a column per constraint.
     let mut cg = Mat::<f64>::zeros(c.nrows(), n);
