@@ -11,7 +11,7 @@ use super::{CliError, print, usage};
 use crate::check;
 use crate::contact::Method;
 use crate::contact::interface::InterfaceMethod;
-use crate::contact::interface::solve::BodiesError;
+use crate::contact::interface::solve::{BodiesError, Enforcement};
 use crate::output::{InterfaceReport, output};
 use crate::scenario::Scenario;
 
@@ -83,23 +83,27 @@ pub(super) fn solve(args: &SolveArgs, scenario: &Scenario) -> Result<ExitCode, C
         "--epsilon"
     };
     let (m, epsilon) = method_at(method, epsilon, flag)?;
-    if !matches!(m, Method::Penalty | Method::Exact) {
-        return Err(usage(
-            "--method",
-            format!(
-                "{} does not apply to a two-body scenario; allowed: penalty (ε > 0) or exact (ε = 0), the interface's discretisation chosen by --contact",
-                m.name()
-            ),
-        ));
-    }
+    let enforcement = match m {
+        Method::Penalty | Method::Exact => Enforcement::from(epsilon),
+        Method::Alm { tolerance } => Enforcement::Alm { epsilon, tolerance },
+        _ => {
+            return Err(usage(
+                "--method",
+                format!(
+                    "{} does not apply to a two-body scenario; allowed: penalty (ε > 0), exact (ε = 0) or alm (ε > 0), the interface's discretisation chosen by --contact",
+                    m.name()
+                ),
+            ));
+        }
+    };
     if epsilon > 0.0 {
         check::epsilon_in(epsilon, scenario.epsilon_range(scenario.level)).map_err(|e| usage(flag, e))?;
     }
     let contact = method_of(args.contact.unwrap_or(ContactName::Mortar), scenario);
     let solved = scenario
-        .solve_bodies(scenario.level, contact, epsilon)
+        .solve_bodies(scenario.level, contact, enforcement)
         .map_err(|e| cli_error(e, flag))?;
-    let report = InterfaceReport::new(scenario, scenario.level, contact, epsilon, &solved);
+    let report = InterfaceReport::new(scenario, scenario.level, contact, enforcement, &solved);
     print(&output(&report, args.format))?;
     Ok(ExitCode::SUCCESS)
 }

@@ -202,12 +202,12 @@ impl Locator<'_> {
         }
         if let Some(m) = &raw.contact.method {
             let method = Method::parse(m.get_ref(), None, None, None).ok();
-            if !matches!(method, Some(Method::Penalty | Method::Exact)) {
+            if !matches!(method, Some(Method::Penalty | Method::Exact | Method::Alm { .. })) {
                 return Err(self.error(
                     Some(m.span()),
                     Some("contact.method".into()),
                     format!(
-                        "\"{}\" does not apply with [upper]; allowed: \"penalty\" (ε > 0) or \"exact\" (ε = 0), the interface's discretisation chosen by `riplab solve --contact`",
+                        "\"{}\" does not apply with [upper]; allowed: \"penalty\" (ε > 0), \"exact\" (ε = 0) or \"alm\" (ε > 0), the interface's discretisation chosen by `riplab solve --contact`",
                         m.get_ref()
                     ),
                 ));

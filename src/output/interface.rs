@@ -7,7 +7,7 @@ use serde::Serialize;
 
 use super::{Cell, Report, csv_table};
 use crate::contact::interface::InterfaceMethod;
-use crate::contact::interface::solve::TraceDisplacement;
+use crate::contact::interface::solve::{Enforcement, TraceDisplacement};
 use crate::scenario::Scenario;
 use crate::scenario::upper::TwoBodies;
 use crate::text::num;
@@ -102,12 +102,20 @@ pub struct InterfaceReport {
     pub element: &'static str,
     /// The lower body's level.
     pub level: u32,
+    /// How the constraint is enforced: `penalty`, `exact` or `alm`.
+    pub method: &'static str,
     /// ε (0: the exact multipliers).
     pub epsilon: f64,
+    /// The ALM's tolerance on the multipliers' change.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub alm_tolerance: Option<f64>,
     /// The free dofs of both bodies.
     pub n_dofs: usize,
-    /// Newton (active-set) iterations.
+    /// Newton (active-set) iterations (the ALM's: over all its updates).
     pub newton_iterations: usize,
+    /// The ALM's multiplier updates.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub outer_iterations: Option<usize>,
     /// Always true: a solve that does not converge is an error.
     pub converged: bool,
     /// Whether the half model is solved.
@@ -138,9 +146,10 @@ impl InterfaceReport {
         scenario: &Scenario,
         level: u32,
         method: InterfaceMethod,
-        epsilon: f64,
+        enforcement: impl Into<Enforcement>,
         solved: &TwoBodies,
     ) -> Self {
+        let enforcement = enforcement.into();
         let upper = scenario.upper.as_ref().expect("a two-body scenario");
         let order = scenario.element.order();
         let sol = &solved.solution;
@@ -157,9 +166,19 @@ impl InterfaceReport {
             scenario: scenario.name.clone(),
             element: scenario.element.name(),
             level,
-            epsilon,
+            method: match enforcement {
+                Enforcement::Exact => "exact",
+                Enforcement::Penalty(_) => "penalty",
+                Enforcement::Alm { .. } => "alm",
+            },
+            epsilon: enforcement.epsilon(),
+            alm_tolerance: match enforcement {
+                Enforcement::Alm { tolerance, .. } => Some(tolerance),
+                _ => None,
+            },
             n_dofs: solved.lower.n_dofs() + solved.upper.n_dofs(),
             newton_iterations: sol.iterations,
+            outer_iterations: sol.outer_iterations,
             converged: true,
             half_model: scenario.half_model,
             bodies: Bodies {
@@ -225,10 +244,14 @@ impl Report for InterfaceReport {
             self.n_dofs,
             self.interface.contact,
             self.interface.slave,
-            if self.epsilon > 0.0 {
-                format!("penalty ε = {:e}", self.epsilon)
-            } else {
-                "exact multipliers (ε = 0)".to_string()
+            match (self.method, self.alm_tolerance, self.outer_iterations) {
+                ("alm", Some(tolerance), Some(updates)) => format!(
+                    "ALM at ε = {:e} (tolerance {tolerance:e}), {updates} multiplier update{}",
+                    self.epsilon,
+                    if updates == 1 { "" } else { "s" }
+                ),
+                ("penalty", ..) => format!("penalty ε = {:e}", self.epsilon),
+                _ => "exact multipliers (ε = 0)".to_string(),
             },
             self.newton_iterations
         );
@@ -270,11 +293,12 @@ impl Report for InterfaceReport {
 }
 
 /// The CSV columns of a two-body solve, each a field of its JSON.
-pub const INTERFACE_COLUMNS: [(&str, Cell); 9] = [
+pub const INTERFACE_COLUMNS: [(&str, Cell); 10] = [
     ("scenario", Cell::Field("/scenario")),
     ("contact", Cell::Field("/interface/contact")),
     ("slave", Cell::Field("/interface/slave")),
     ("level", Cell::Field("/level")),
+    ("method", Cell::Field("/method")),
     ("epsilon", Cell::Field("/epsilon")),
     ("n_dofs", Cell::Field("/n_dofs")),
     ("P", Cell::Field("/P")),

@@ -9,7 +9,7 @@
 //! rigid translation added to that solution.
 
 use crate::contact::half_plane::e_star;
-use crate::contact::interface::solve::{Bodies, BodiesError, InterfaceSolution, solve_method};
+use crate::contact::interface::solve::{Bodies, BodiesError, Enforcement, InterfaceSolution, solve_method};
 use crate::contact::interface::{Coupling, InterfaceMethod};
 use crate::discretization::Discretization;
 use crate::error::SolveError;
@@ -123,7 +123,8 @@ pub struct TwoBodies {
 
 impl Scenario {
     /// Solve this two-body scenario at `level` with its element, the interface discretised by
-    /// `method`, the penalty ε > 0 or the exact multipliers (ε = 0).
+    /// `method`, the constraint enforced as `enforcement` says (an ε: the penalty at ε > 0, the
+    /// exact multipliers at 0; or the ALM).
     ///
     /// # Errors
     ///
@@ -133,8 +134,9 @@ impl Scenario {
         &self,
         level: u32,
         method: InterfaceMethod,
-        epsilon: f64,
+        enforcement: impl Into<Enforcement>,
     ) -> Result<TwoBodies, BodiesError> {
+        let enforcement = enforcement.into();
         let upper_body = self.upper.as_ref().ok_or(BodiesError::OneBody)?;
         let lower = self.discretize(level, self.element)?;
         let upper = self
@@ -147,8 +149,14 @@ impl Scenario {
             slave: upper_body.slave,
         };
         let shape = upper_body.shape;
-        let (coupling, solution) = solve_method(&bodies, method, epsilon, |x| shape.initial_gap(x))?;
-        let patch = self.patch_pressure(epsilon).map(|exact| {
+        let (coupling, solution) = solve_method(&bodies, method, enforcement, |x| shape.initial_gap(x))?;
+        // The penalty's patch pressure is softened by ε; the exact multipliers' and the ALM's is not.
+        let softening = if enforcement.is_exact() {
+            0.0
+        } else {
+            enforcement.epsilon()
+        };
+        let patch = self.patch_pressure(softening).map(|exact| {
             let error = solution
                 .p
                 .iter()

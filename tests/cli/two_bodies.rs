@@ -86,6 +86,59 @@ fn two_bodies_json_and_patch_error() {
     );
 }
 
+/// The ALM across the interface (it was refused, "allowed: penalty or exact"): mortar at
+/// ε = 1e-4 carries the exact uniform pressure after its multiplier updates, which the table and
+/// JSON report.
+#[test]
+fn the_alm_solves_two_bodies() {
+    let args = [
+        "solve",
+        PATCH,
+        "--contact",
+        "mortar",
+        "--method",
+        "alm",
+        "--epsilon",
+        "1e-4",
+    ];
+    let (code, out, err) = riplab(&[&args[..], &["--format", "json"]].concat());
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["method"], "alm");
+    assert_eq!(v["alm_tolerance"], 1e-10);
+    assert!(v["outer_iterations"].as_u64().unwrap() >= 2, "{out}");
+    assert!(v["patch_error"].as_f64().unwrap() < 1e-9, "{out}");
+    let (code, out, err) = riplab(&args);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        out.lines()
+            .next()
+            .unwrap()
+            .contains("ALM at ε = 1e-4 (tolerance 1e-10), "),
+        "{out}"
+    );
+    // From the scenario file too (it was refused there, at the method's line).
+    let text = std::fs::read_to_string(PATCH)
+        .unwrap()
+        .replace("[contact]", "[contact]\nmethod = \"alm\"\nalm_tol = 1e-11")
+        .replace("epsilon = 0.0", "epsilon = 1e-4");
+    let file = scratch_file("alm-two-blocks.toml", &text);
+    let (code, out, err) = riplab(&[
+        "solve",
+        file.to_str().unwrap(),
+        "--epsilon",
+        "1e-4",
+        "--format",
+        "json",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(
+        (v["method"].as_str(), v["alm_tolerance"].as_f64()),
+        (Some("alm"), Some(1e-11))
+    );
+}
+
 /// --contact on a one-body scenario, a one-body method or flag on a two-body scenario, and bad
 /// `[upper]` values are refused with what is allowed (exit 2).
 #[test]
@@ -95,7 +148,7 @@ fn two_bodies_refusals() {
     assert!(err.contains("--contact") && err.contains("[upper]"), "{err}");
     for (args, said) in [
         (&["--method", "nitsche"][..], "--method"),
-        (&["--method", "alm", "--epsilon", "1e-3"][..], "--method"),
+        (&["--method", "alm", "--epsilon", "0"][..], "ε"),
         (&["--depth", "0.1"][..], "--depth"),
         (&["--epsilon", "1e-4,1e-3"][..], "--epsilon"),
     ] {

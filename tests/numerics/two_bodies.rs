@@ -195,3 +195,34 @@ fn a_small_press_is_solved_and_a_lift_is_no_patch_test() {
     let solved = s.solve_bodies(1, InterfaceMethod::Mortar, 0.0).unwrap();
     assert!(solved.patch.is_none() && solved.solution.load == 0.0);
 }
+
+/// The ALM across the interface reaches the exact multipliers' answer: at ε = 1e-4 (a
+/// penalty whose patch pressure is 0.1 % soft) mortar's updates carry the exact uniform p at
+/// 2:3 to 1e-9, where the penalty alone stays soft by its closed form; NTS's multipliers
+/// equal the exact ones to 1e-8 (its own answer, not a uniform one).
+#[test]
+fn the_alm_across_the_interface_reaches_the_exact_multipliers() {
+    use riplab::contact::interface::solve::Enforcement;
+    let mut s = patch();
+    s.upper.as_mut().unwrap().ratio = (2, 3);
+    let alm = Enforcement::Alm {
+        epsilon: 1e-4,
+        tolerance: 1e-12,
+    };
+    let solved = s.solve_bodies(2, InterfaceMethod::Mortar, alm).unwrap();
+    let (exact, error) = solved.patch.unwrap();
+    assert!((exact - 5.347_593_582_887_7).abs() < 1e-9, "{exact}");
+    assert!(error < 1e-9, "patch error {error:e}");
+    let updates = solved.solution.outer_iterations.unwrap();
+    assert!((2..=20).contains(&updates), "{updates} updates");
+    // The penalty at the same ε: soft by ε against H_l/E'_l + H_u/E'_u = 1.87e-3, to round-off.
+    let penalty = s.solve_bodies(2, InterfaceMethod::Mortar, 1e-4).unwrap();
+    let soft = s.patch_pressure(1e-4).unwrap();
+    assert!(penalty.solution.p.iter().all(|p| (p - soft).abs() < 1e-10 * soft));
+    assert!((soft / exact - 1.0).abs() > 1e-2);
+    let nts_exact = s.solve_bodies(2, InterfaceMethod::Nts, 0.0).unwrap().solution;
+    let nts_alm = s.solve_bodies(2, InterfaceMethod::Nts, alm).unwrap().solution;
+    for (a, b) in nts_alm.p.iter().zip(&nts_exact.p) {
+        assert!((a - b).abs() < 1e-8 * exact, "{a} vs {b}");
+    }
+}

@@ -21,7 +21,7 @@ use super::{Coupling, InterfaceError, InterfaceMethod, Side, coupling, smoothed_
 use crate::contact::Rule;
 use crate::contact::newton::NewtonOptions;
 use crate::contact::penalty::{self, Penalty};
-use crate::contact::signorini;
+use crate::contact::{alm, signorini};
 use crate::discretization::Discretization;
 use crate::error::{Diagnosis, SolveError};
 
@@ -88,6 +88,49 @@ pub struct TraceDisplacement {
     pub uy: Vec<f64>,
 }
 
+/// How the constraint is enforced across the interface (docs/design.md §10's methods).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Enforcement {
+    /// The exact multipliers (ε = 0), by the active set.
+    Exact,
+    /// The penalty (11) at ε > 0.
+    Penalty(f64),
+    /// The augmented Lagrangian at ε > 0: penalty solves with the multipliers updated until
+    /// they change by less than `tolerance` relative — the exact multipliers' answer.
+    Alm {
+        /// ε > 0.
+        epsilon: f64,
+        /// The relative change of the multipliers that ends the updates, 0 < tolerance < 1.
+        tolerance: f64,
+    },
+}
+
+impl Enforcement {
+    /// ε (0 for the exact multipliers).
+    pub fn epsilon(self) -> f64 {
+        match self {
+            Enforcement::Exact => 0.0,
+            Enforcement::Penalty(epsilon) | Enforcement::Alm { epsilon, .. } => epsilon,
+        }
+    }
+
+    /// Whether the answer is the exact multipliers' (the exact law, or the ALM's limit).
+    pub fn is_exact(self) -> bool {
+        !matches!(self, Enforcement::Penalty(_))
+    }
+}
+
+/// ε = 0: the exact multipliers; ε > 0: the penalty.
+impl From<f64> for Enforcement {
+    fn from(epsilon: f64) -> Self {
+        if epsilon == 0.0 {
+            Enforcement::Exact
+        } else {
+            Enforcement::Penalty(epsilon)
+        }
+    }
+}
+
 /// The interface's solution.
 #[derive(Clone, Debug, PartialEq)]
 pub struct InterfaceSolution {
@@ -108,8 +151,10 @@ pub struct InterfaceSolution {
     pub master: TraceDisplacement,
     /// The load carried across the interface, P = Σ_k weight_k p_k.
     pub load: f64,
-    /// Newton (active-set) iterations taken.
+    /// Newton (active-set) iterations taken (the ALM's: over all its updates).
     pub iterations: usize,
+    /// The ALM's multiplier updates (None for the other enforcements).
+    pub outer_iterations: Option<usize>,
 }
 
 /// Why the interface's solve gave no result.
@@ -155,9 +200,10 @@ pub enum BodiesError {
 }
 
 /// Solve the contact of `bodies` across their interface discretised by `method`
-/// ([`super::coupling`], the initial gap `gap0` at each row's x), with the penalty ε > 0 or the exact multipliers
-/// (ε = 0); p̄ by (17) for the reduced-integration rules ([`smoothed_pressure`]). The coupling
-/// is returned with the solution.
+/// ([`super::coupling`], the initial gap `gap0` at each row's x), the constraint enforced as
+/// `enforcement` says (an ε: the penalty at ε > 0, the exact multipliers at 0); p̄ by (17) for
+/// the reduced-integration rules ([`smoothed_pressure`]). The coupling is returned with the
+/// solution.
 ///
 /// # Errors
 ///
@@ -165,7 +211,7 @@ pub enum BodiesError {
 pub fn solve_method(
     bodies: &Bodies,
     method: InterfaceMethod,
-    epsilon: f64,
+    enforcement: impl Into<Enforcement>,
     gap0: impl Fn(f64) -> f64,
 ) -> Result<(Coupling, InterfaceSolution), BodiesError> {
     let (slave, _) = bodies.pair();
@@ -178,13 +224,13 @@ pub fn solve_method(
         InterfaceMethod::Rip(rule) => Some(rule),
         _ => None,
     };
-    let sol = solve(bodies, &coupling, &g0, epsilon, rule)?;
+    let sol = solve(bodies, &coupling, &g0, enforcement.into(), rule)?;
     Ok((coupling, sol))
 }
 
 /// Solve the contact of `bodies` across the interface discretised by `coupling`, from the
-/// initial gaps `g0` (one per constraint), with the penalty ε > 0 or the exact multipliers
-/// (ε = 0). p̄: by (17) over the points of `rule` when the rows are a reduced-integration
+/// initial gaps `g0` (one per constraint), the constraint enforced as `enforcement` says. p̄:
+/// by (17) over the points of `rule` when the rows are a reduced-integration
 /// rule's ([`smoothed_pressure`], a point off the master at p = 0), else the rows' own hat
 /// average ([`smoothed`]).
 ///
@@ -196,9 +242,10 @@ pub fn solve(
     bodies: &Bodies,
     coupling: &Coupling,
     g0: &[f64],
-    epsilon: f64,
+    enforcement: Enforcement,
     rule: Option<Rule>,
 ) -> Result<InterfaceSolution, BodiesError> {
+    let epsilon = enforcement.epsilon();
     let (slave, master) = bodies.pair();
     check(coupling, g0, slave.contact_dofs.len(), master.contact_dofs.len())?;
     let (lo, hi) = epsilon_range(bodies);
@@ -223,20 +270,28 @@ pub fn solve(
     };
     let opts = NewtonOptions::default();
     let mut go_on = |_: &_| ControlFlow::Continue(());
-    let result = if epsilon > 0.0 {
-        penalty::solve(&pb, None, &opts, &mut go_on)?
-    } else {
-        unique(&a)?;
-        signorini::solve_exact(&pb, None, &opts, &mut go_on)?
+    let (result, outer_iterations) = match enforcement {
+        Enforcement::Penalty(_) => (penalty::solve(&pb, None, &opts, &mut go_on)?, None),
+        Enforcement::Exact => {
+            unique(&a)?;
+            (signorini::solve_exact(&pb, None, &opts, &mut go_on)?, None)
+        }
+        Enforcement::Alm { tolerance, .. } => {
+            // The Newton step on the multipliers where they are unique, Uzawa's where not.
+            let unique = unique(&a).is_ok();
+            let alm = alm::solve(&pb, unique, tolerance, None, &opts, &mut go_on)?;
+            (alm.newton, Some(alm.outer))
+        }
     };
     if let Some(why) = result.failure() {
         return Err(BodiesError::NotConverged(why));
     }
     let y = &result.forces;
-    let p: Vec<f64> = if epsilon > 0.0 {
-        crate::contact::raw_pressure(&result.violation, epsilon)
-    } else {
-        y.iter().zip(&coupling.weight).map(|(y, w)| y / w).collect()
+    let p: Vec<f64> = match enforcement {
+        Enforcement::Penalty(epsilon) => crate::contact::raw_pressure(&result.violation, epsilon),
+        Enforcement::Exact | Enforcement::Alm { .. } => {
+            y.iter().zip(&coupling.weight).map(|(y, w)| y / w).collect()
+        }
     };
     let gap: Vec<f64> = result.violation.iter().map(|s| -s).collect();
     let order = slave.mesh.element.order();
@@ -266,6 +321,7 @@ pub fn solve(
         master: trace(master, &coupling.master),
         load,
         iterations: result.iterations,
+        outer_iterations,
     };
     finite(&solution)?;
     Ok(solution)

@@ -76,7 +76,7 @@ fn matching_blocks_pass_the_patch_test() {
                     displacement: DELTA,
                     slave,
                 };
-                let sol = solve(&bodies, &coupling, &g0, epsilon, None).unwrap();
+                let sol = solve(&bodies, &coupling, &g0, epsilon.into(), None).unwrap();
                 let p = patch_pressure((ml, hl), (mu, hu), epsilon);
                 let what = format!("{element:?} {slave:?} ε = {epsilon}");
                 for (k, pk) in sol.p.iter().chain(&sol.pbar).enumerate() {
@@ -137,7 +137,7 @@ fn a_lifted_top_opens_the_interface() {
         slave: Slave::Upper,
     };
     for epsilon in [0.0, 1e-3] {
-        let sol = solve(&bodies, &coupling, &g0, epsilon, None).unwrap();
+        let sol = solve(&bodies, &coupling, &g0, epsilon.into(), None).unwrap();
         assert!(sol.p.iter().all(|&p| p == 0.0), "{:?}", sol.p);
         assert!(sol.gap.iter().all(|g| (g - DELTA).abs() < 1e-15));
         assert!(sol.slave.uy.iter().all(|u| (u - DELTA).abs() < 1e-15));
@@ -162,7 +162,7 @@ fn clamped_bodies_balance_whichever_side_is_the_slave() {
             displacement: DELTA,
             slave,
         };
-        solve(&bodies, &coupling, &g0, 0.0, None).unwrap()
+        solve(&bodies, &coupling, &g0, 0.0.into(), None).unwrap()
     };
     let (a, b) = (load(Slave::Upper), load(Slave::Lower));
     assert!((a.load - b.load).abs() < 1e-10 * a.load, "{} {}", a.load, b.load);
@@ -200,19 +200,19 @@ fn refusals_are_typed() {
     twice.master.extend(one.master.clone());
     let g0 = vec![0.0; twice.x.len()];
     assert_eq!(
-        solve(&bodies, &twice, &g0, 0.0, None),
+        solve(&bodies, &twice, &g0, 0.0.into(), None),
         Err(BodiesError::NotUnique { constraints: 6 })
     );
-    assert!(solve(&bodies, &twice, &g0, 1e-3, None).is_ok());
+    assert!(solve(&bodies, &twice, &g0, 1e-3.into(), None).is_ok());
     let mut beyond = one.clone();
     beyond.slave[0] = vec![(7, 1.0)];
     assert!(matches!(
-        solve(&bodies, &beyond, &[0.0; 3], 1e-3, None),
+        solve(&bodies, &beyond, &[0.0; 3], 1e-3.into(), None),
         Err(BodiesError::Mismatch(_))
     ));
     let (lo, hi) = epsilon_range(&bodies);
     assert_eq!(
-        solve(&bodies, &one, &[0.0; 3], 1e-300, None),
+        solve(&bodies, &one, &[0.0; 3], 1e-300.into(), None),
         Err(BodiesError::Epsilon {
             epsilon: 1e-300,
             lo,
