@@ -16,7 +16,7 @@ use crate::output::{InterfaceReport, output};
 use crate::scenario::Scenario;
 
 /// The discretisation `--contact` names, `rip` with the scenario's rule (or --rule's).
-fn method_of(name: ContactName, scenario: &Scenario) -> InterfaceMethod {
+pub(super) fn method_of(name: ContactName, scenario: &Scenario) -> InterfaceMethod {
     match name {
         ContactName::Nts => InterfaceMethod::Nts,
         ContactName::Nts2 => InterfaceMethod::Nts2,
@@ -59,7 +59,7 @@ fn refuse_one_body_flags(args: &SolveArgs, scenario: &Scenario) -> Result<(), Cl
 }
 
 /// The CLI's error of a two-body solve: bad input exits 2, a failed solve 1.
-fn cli_error(e: BodiesError, epsilon_flag: &str) -> CliError {
+pub(super) fn cli_error(e: BodiesError, epsilon_flag: &str) -> CliError {
     match e {
         BodiesError::Solve(e) => CliError::Solve(e),
         BodiesError::Epsilon { .. } => usage(epsilon_flag, e),

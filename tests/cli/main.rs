@@ -17,6 +17,7 @@ mod hostile;
 mod hostile_again;
 mod hostile_cache;
 mod infsup_graded;
+mod lab_bodies;
 mod lab_commands;
 mod modules;
 mod plot;

@@ -105,12 +105,9 @@ fn two_bodies_refusals() {
         assert_eq!(code, 2, "{args:?}: {err}");
         assert!(err.contains(said), "{args:?}: {err}");
     }
-    // The commands that take one body refuse two, naming `riplab solve`.
-    for command in [
-        &["infsup", PATCH][..],
-        &["study", PATCH, "--levels", "0..1"],
-        &["render", PATCH],
-    ] {
+    // The commands that take one body refuse two, naming `riplab solve` (`render` and the lab
+    // draw the two-body scene: tests/cli/lab_bodies.rs).
+    for command in [&["infsup", PATCH][..], &["study", PATCH, "--levels", "0..1"]] {
         let (code, _, err) = riplab(command);
         assert_eq!(code, 2, "{command:?}: {err}");
         assert!(

@@ -8,6 +8,7 @@ mod common;
 
 mod at_value;
 mod authoring;
+mod bodies;
 mod axes;
 mod coinciding;
 mod friction;
