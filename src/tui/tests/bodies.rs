@@ -210,3 +210,19 @@ fn a_one_body_lab_refuses_the_two_body_keys() {
         assert!(said.contains("acts on two bodies") && said.contains("patch-two-blocks"), "{said}");
     }
 }
+
+/// The key table drives the two-body scene's dispatch too: every key it binds acts there or
+/// says why not (a notice, the help, a change of settings, quitting), none in silence.
+#[test]
+fn every_key_of_the_table_answers_in_the_two_body_scene() {
+    let scenario = Scenario::load(Path::new(PATCH)).unwrap();
+    for row in riplab::tui::keys::LAB {
+        for &(code, action) in row.bindings {
+            let mut app = BodiesApp::new(scenario.clone(), InterfaceMethod::Mortar).unwrap();
+            let before = app.settings;
+            let (redraw, _) = app.key(KeyEvent::new(code, KeyModifiers::NONE));
+            let answered = app.notice.is_some() || app.show_help || app.quit || app.settings != before;
+            assert!(redraw && answered, "{code:?} ({action:?}) answers nothing");
+        }
+    }
+}
