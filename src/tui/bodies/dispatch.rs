@@ -125,7 +125,7 @@ impl BodiesApp {
         }
         self.settings.offset = if next.abs() < 1e-9 { 0.0 } else { next };
         self.notice = Some(Notice::info(format!(
-            "offset {}: the upper mesh's interior lines shifted by that fraction of its element",
+            "offset {} of an upper element: its interior lines shifted (j J)",
             self.settings.offset
         )));
     }

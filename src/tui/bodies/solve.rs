@@ -120,3 +120,13 @@ pub fn solve(scenario: &Scenario, settings: &Settings) -> Result<Solved, BodiesE
         x_range: [x0, x1],
     })
 }
+
+impl Solved {
+    /// The contact zone: from the first to the last contact point where p > 0 (None where
+    /// the bodies do not touch).
+    pub fn zone(&self) -> Option<[f64; 2]> {
+        let mut pressed = self.p.iter().filter(|q| q.1 > 0.0).map(|q| q.0);
+        let first = pressed.next()?;
+        Some([first, pressed.last().unwrap_or(first)])
+    }
+}

@@ -38,6 +38,9 @@ const PATCH_WINDOW: f64 = 0.25;
 /// Samples of the applied pressure's reference line across the chart.
 const REFERENCE_SAMPLES: usize = 41;
 
+/// A contact zone (widened) under this fraction of the interface is drawn alone.
+const ZOOM_BELOW: f64 = 2.0 / 3.0;
+
 /// The most contact points marked `•` (more would fill every cell).
 const MAX_MARKED: usize = 40;
 
@@ -142,9 +145,12 @@ pub fn state_text(app: &BodiesApp) -> String {
             )
         }
         None => format!(
-            "{name}: load P = {} · p max {} · {} iterations",
+            "{name}: load P = {} · p max {} · contact {} · {} iterations",
             sig(solved.load, 4),
             sig(solved.p.iter().fold(0.0_f64, |m, p| m.max(p.1)), 4),
+            solved
+                .zone()
+                .map_or("nowhere".to_string(), |[a, b]| format!("{} to {}", sig(a, 3), sig(b, 3))),
             solved.iterations
         ),
     };
@@ -180,11 +186,16 @@ fn pressure_chart(app: &BodiesApp, frame: &mut Frame, area: Rect, look: &Look) {
                 .collect()
         })
         .unwrap_or_default();
+    let xb = x_bounds(solved);
+    let inside = |data: &[(f64, f64)]| -> Vec<(f64, f64)> {
+        data.iter().copied().filter(|q| (xb[0]..=xb[1]).contains(&q.0)).collect()
+    };
+    let (p, pbar) = (inside(&solved.p), inside(&solved.pbar));
     let plot = Plot {
         title: chart_title(solved),
         x: Axis {
             title: "x (length)".into(),
-            bounds: solved.x_range,
+            bounds: xb,
             scale: Scale::Linear,
         },
         y: Axis {
@@ -193,18 +204,37 @@ fn pressure_chart(app: &BodiesApp, frame: &mut Frame, area: Rect, look: &Look) {
             scale: Scale::Linear,
         },
         overlays: reference_series(solved, &reference, theme),
-        series: pressure_series(solved, theme),
+        series: pressure_series(solved, &p, &pbar, theme),
         marker: look.marker,
         theme,
     };
     plot.render(frame, area);
 }
 
-/// ` p across the interface · nts · ratio 2:3 · offset 0 · 8:12 edges `.
+/// The x range drawn: the whole interface on the patch test; elsewhere the contact zone
+/// (p > 0) widened by half its width each way, when that is under [`ZOOM_BELOW`] of the
+/// interface (a Hertz contact's zone is a few per cent of it).
+pub fn x_bounds(solved: &Solved) -> [f64; 2] {
+    let whole = solved.x_range;
+    match (solved.patch, solved.zone()) {
+        (None, Some([a, b])) => {
+            let margin = 0.5 * (b - a).max((whole[1] - whole[0]) / 100.0);
+            let zoomed = [(a - margin).max(whole[0]), (b + margin).min(whole[1])];
+            if zoomed[1] - zoomed[0] < ZOOM_BELOW * (whole[1] - whole[0]) {
+                zoomed
+            } else {
+                whole
+            }
+        }
+        _ => whole,
+    }
+}
+
+/// ` interface p · nts · ratio 2:3 · offset 0 · 8:12 edges `.
 fn chart_title(solved: &Solved) -> String {
     let s = &solved.settings;
     format!(
-        " p across the interface · {} · ratio {} · offset {} · {}:{} edges ",
+        " interface p · {} · ratio {} · offset {} · {}:{} edges ",
         s.method.name(),
         s.ratio_text(),
         sig(s.offset, 2),
@@ -243,8 +273,13 @@ fn reference_series<'a>(solved: &Solved, data: &'a [(f64, f64)], theme: Theme) -
 }
 
 /// p̄ (for the reduced-integration rules: a solid line) and p (dotted, `•` at each point
-/// while they are few).
-fn pressure_series(solved: &Solved, theme: Theme) -> Vec<Series<'_>> {
+/// while they are few), the points drawn.
+fn pressure_series<'a>(
+    solved: &Solved,
+    p: &'a [(f64, f64)],
+    pbar: &'a [(f64, f64)],
+    theme: Theme,
+) -> Vec<Series<'a>> {
     let mut series = Vec::new();
     if matches!(solved.settings.method, InterfaceMethod::Rip(_)) {
         series.push(Series {
@@ -252,15 +287,15 @@ fn pressure_series(solved: &Solved, theme: Theme) -> Vec<Series<'_>> {
             color: theme.smooth_color(),
             stroke: Stroke::Solid,
             glyph: None,
-            data: &solved.pbar,
+            data: pbar,
         });
     }
     series.push(Series {
         name: format!("p {}", solved.settings.method.name()),
         color: theme.raw_color(),
         stroke: Stroke::Dotted,
-        glyph: (solved.p.len() <= MAX_MARKED).then_some('•'),
-        data: &solved.p,
+        glyph: (p.len() <= MAX_MARKED).then_some('•'),
+        data: p,
     });
     series
 }

@@ -226,3 +226,24 @@ fn every_key_of_the_table_answers_in_the_two_body_scene() {
         }
     }
 }
+
+/// Off the patch test (two-body Hertz, a zone of a few per cent of the interface) the chart is
+/// drawn over the contact zone widened by half its width, and the status line gives the load,
+/// the peak and the zone; the patch test's chart spans the whole interface.
+#[test]
+fn a_hertz_contact_is_drawn_over_its_zone() {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/scenarios/hertz-two-bodies.toml");
+    let scenario = Scenario::load(Path::new(path)).unwrap();
+    let mut app = BodiesApp::new(scenario, InterfaceMethod::Mortar).unwrap();
+    settle_bodies(&mut app, &[]).unwrap();
+    let solved = app.solved.as_ref().expect("solved");
+    let [a, b] = solved.zone().expect("in contact");
+    let drawn = view::x_bounds(solved);
+    assert_eq!(drawn[0], solved.x_range[0]);
+    assert!(drawn[1] >= b && drawn[1] < 0.5 * solved.x_range[1], "{drawn:?}, zone {a}..{b}");
+    let text = frame(&app);
+    assert!(text.contains("mortar: load P = ") && text.contains("· contact 0 to "), "{text}");
+    let patch = patch(InterfaceMethod::Nts, "");
+    let solved = patch.solved.as_ref().unwrap();
+    assert_eq!(view::x_bounds(solved), solved.x_range);
+}
