@@ -195,7 +195,9 @@ pub fn run(cli: Cli) -> ExitCode {
         return ExitCode::from(2);
     }
     if let (Some(_), Some(_)) = (&cli.contact, &cli.command) {
-        note("error: --contact before the command is the lab's; a command takes its own after its name (e.g. `riplab solve FILE --contact nts`)");
+        note(
+            "error: --contact before the command is the lab's; a command takes its own after its name (e.g. `riplab solve FILE --contact nts`)",
+        );
         return ExitCode::from(2);
     }
     let result = match cli.command {

@@ -35,7 +35,10 @@ pub(super) enum Input {
     Worker(u64, Response),
     /// A solve of the two-body scene, for the settings of the given generation
     /// ([`super::bodies`]).
-    Bodies(u64, Box<Result<super::bodies::solve::Solved, crate::contact::interface::solve::BodiesError>>),
+    Bodies(
+        u64,
+        Box<Result<super::bodies::solve::Solved, crate::contact::interface::solve::BodiesError>>,
+    ),
     /// Reading the terminal failed: the loop ends with this error.
     Broken(io::Error),
     /// The recording failed (the loop shows why on the status line).

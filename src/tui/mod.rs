@@ -148,7 +148,11 @@ pub fn run(
 
 /// Run the lab's two-body scene ([`bodies`]) on `app` until the user quits, recording into
 /// `record` if given.
-pub fn run_bodies(app: bodies::BodiesApp, opts: &TuiOptions, record: Option<CastFile>) -> Result<(), RunError> {
+pub fn run_bodies(
+    app: bodies::BodiesApp,
+    opts: &TuiOptions,
+    record: Option<CastFile>,
+) -> Result<(), RunError> {
     let look = Look {
         theme: Theme::new(opts.no_color),
         marker: opts.marker.marker(),

@@ -19,7 +19,16 @@ fn render_draws_the_two_body_scene() {
         ("nts", "k", "patch test passed"),
         ("rip", "", "p̄ smoothed (17)"),
     ] {
-        let args = ["render", PATCH, "--contact", contact, "--size", "80x24", "--keys", keys];
+        let args = [
+            "render",
+            PATCH,
+            "--contact",
+            contact,
+            "--size",
+            "80x24",
+            "--keys",
+            keys,
+        ];
         let (code, out, err) = run(&args);
         assert_eq!(code, 0, "{args:?}: {err}");
         assert_eq!(out.lines().count(), 24, "{out}");
@@ -29,9 +38,21 @@ fn render_draws_the_two_body_scene() {
         assert!(out.contains(said), "{args:?}: {out}");
         assert!(out.contains(" · ratio "), "{out}");
     }
-    let (code, out, err) = run(&["render", HERTZ, "--contact", "nts2", "--epsilon", "1e-5", "--size", "80x24"]);
+    let (code, out, err) = run(&[
+        "render",
+        HERTZ,
+        "--contact",
+        "nts2",
+        "--epsilon",
+        "1e-5",
+        "--size",
+        "80x24",
+    ]);
     assert_eq!(code, 0, "{err}");
-    assert!(out.contains("nts2: load P = ") && out.contains("ε = 1e-5"), "{out}");
+    assert!(
+        out.contains("nts2: load P = ") && out.contains("ε = 1e-5"),
+        "{out}"
+    );
 }
 
 /// What the two-body scene does not take is refused before any work, naming why (exit 2):
@@ -42,7 +63,10 @@ fn render_refuses_what_two_bodies_do_not_take() {
         (&["--scene", "infsup"][..], "needs one body"),
         (&["--scene", "convergence"][..], "needs one body"),
         (&["--refine-edges", "1"][..], "grading"),
-        (&["--method", "nitsche"][..], "does not apply to a two-body scenario"),
+        (
+            &["--method", "nitsche"][..],
+            "does not apply to a two-body scenario",
+        ),
     ] {
         let mut all = vec!["render", PATCH];
         all.extend_from_slice(args);

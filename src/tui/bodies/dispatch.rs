@@ -38,7 +38,9 @@ impl BodiesApp {
         }
         let name = key_name(key.code);
         let Some(action) = action else {
-            self.notice = Some(Notice::info(format!("{name} does nothing here (? lists the keys)")));
+            self.notice = Some(Notice::info(format!(
+                "{name} does nothing here (? lists the keys)"
+            )));
             return true;
         };
         if self.too_small && action != LabAction::Quit {
@@ -155,7 +157,9 @@ fn refusal(action: LabAction) -> &'static str {
         }
         L::Grade => "grading is not available on two bodies yet",
         L::Integration => "the two-body scene keeps the scenario's volumetric integration",
-        L::Export(_) => "no exports from the two-body scene yet: riplab solve --format json writes its numbers",
+        L::Export(_) => {
+            "no exports from the two-body scene yet: riplab solve --format json writes its numbers"
+        }
         L::Zoom | L::Cursor | L::CursorLeft | L::CursorRight | L::Projector | L::Log => {
             "not in the two-body scene yet (the one-body scenes have it)"
         }

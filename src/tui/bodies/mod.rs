@@ -15,9 +15,9 @@ pub mod view;
 
 use crossterm::event::KeyEvent;
 
+use super::RenderError;
 use super::app::MAX_APP_LEVEL;
 use super::protocol::Notice;
-use super::RenderError;
 use crate::contact::interface::InterfaceMethod;
 use crate::contact::interface::solve::BodiesError;
 use crate::scenario::Scenario;

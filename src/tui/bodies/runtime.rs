@@ -163,7 +163,10 @@ mod tests {
             match rx.recv_timeout(deadline).expect("an answer") {
                 Input::Bodies(generation, result) => {
                     let solved = result.expect("solved");
-                    assert_eq!(solved.settings.ratio, super::super::solve::RATIOS[generation as usize]);
+                    assert_eq!(
+                        solved.settings.ratio,
+                        super::super::solve::RATIOS[generation as usize]
+                    );
                     if generation == 3 {
                         break;
                     }

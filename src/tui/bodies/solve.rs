@@ -127,6 +127,6 @@ impl Solved {
     pub fn zone(&self) -> Option<[f64; 2]> {
         let mut pressed = self.p.iter().filter(|q| q.1 > 0.0).map(|q| q.0);
         let first = pressed.next()?;
-        Some([first, pressed.last().unwrap_or(first)])
+        Some([first, pressed.next_back().unwrap_or(first)])
     }
 }

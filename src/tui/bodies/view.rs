@@ -48,7 +48,11 @@ const MAX_MARKED: usize = 40;
 pub fn view(app: &BodiesApp, frame: &mut Frame, look: &Look) {
     let area = frame.area();
     if area.width < MIN_SIZE.0 || area.height < MIN_SIZE.1 {
-        let said = app.notice.as_ref().map(|n| format!("\n{}", n.text)).unwrap_or_default();
+        let said = app
+            .notice
+            .as_ref()
+            .map(|n| format!("\n{}", n.text))
+            .unwrap_or_default();
         too_small(frame, area, look.theme, &said);
         return;
     }
@@ -67,7 +71,10 @@ pub fn view(app: &BodiesApp, frame: &mut Frame, look: &Look) {
         Constraint::Length(1),
     ])
     .areas(area);
-    frame.render_widget(Paragraph::new(Line::styled(header_text(app), theme.title())), header);
+    frame.render_widget(
+        Paragraph::new(Line::styled(header_text(app), theme.title())),
+        header,
+    );
     pressure_chart(app, frame, chart, look);
     let state_style = if app.error.is_some() {
         theme.bad()
@@ -84,7 +91,11 @@ pub fn view(app: &BodiesApp, frame: &mut Frame, look: &Look) {
         Some(n) if n.failure => theme.bad(),
         _ => theme.faint(),
     };
-    lines.extend(notice.into_iter().map(|l| Line::styled(format!(" {l}"), notice_style)));
+    lines.extend(
+        notice
+            .into_iter()
+            .map(|l| Line::styled(format!(" {l}"), notice_style)),
+    );
     frame.render_widget(Paragraph::new(lines), status);
     frame.render_widget(Paragraph::new(key_bar_line(theme)), bar);
     if app.show_help {
@@ -148,9 +159,11 @@ pub fn state_text(app: &BodiesApp) -> String {
             "{name}: load P = {} · p max {} · contact {} · {} iterations",
             sig(solved.load, 4),
             sig(solved.p.iter().fold(0.0_f64, |m, p| m.max(p.1)), 4),
-            solved
-                .zone()
-                .map_or("nowhere".to_string(), |[a, b]| format!("{} to {}", sig(a, 3), sig(b, 3))),
+            solved.zone().map_or("nowhere".to_string(), |[a, b]| format!(
+                "{} to {}",
+                sig(a, 3),
+                sig(b, 3)
+            )),
             solved.iterations
         ),
     };
@@ -188,7 +201,10 @@ fn pressure_chart(app: &BodiesApp, frame: &mut Frame, area: Rect, look: &Look) {
         .unwrap_or_default();
     let xb = x_bounds(solved);
     let inside = |data: &[(f64, f64)]| -> Vec<(f64, f64)> {
-        data.iter().copied().filter(|q| (xb[0]..=xb[1]).contains(&q.0)).collect()
+        data.iter()
+            .copied()
+            .filter(|q| (xb[0]..=xb[1]).contains(&q.0))
+            .collect()
     };
     let (p, pbar) = (inside(&solved.p), inside(&solved.pbar));
     let plot = Plot {
@@ -318,7 +334,12 @@ fn help(app: &BodiesApp, frame: &mut Frame, area: Rect, theme: Theme) {
     let first = usize::from(app.help_scroll).min(all.len().saturating_sub(rows));
     let shown = &all[first..(first + rows).min(all.len())];
     let title = if shown.len() < all.len() {
-        format!(" keys {}–{} of {} (↑ ↓ scroll) ", first + 1, first + shown.len(), all.len())
+        format!(
+            " keys {}–{} of {} (↑ ↓ scroll) ",
+            first + 1,
+            first + shown.len(),
+            all.len()
+        )
     } else {
         " keys ".to_string()
     };

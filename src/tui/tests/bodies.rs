@@ -42,7 +42,12 @@ fn frame(app: &BodiesApp) -> String {
 
 /// The patch error the scene solved.
 fn patch_error(app: &BodiesApp) -> f64 {
-    app.solved.as_ref().expect("solved").patch.expect("the patch test").1
+    app.solved
+        .as_ref()
+        .expect("solved")
+        .patch
+        .expect("the patch test")
+        .1
 }
 
 /// The rows of the chart's graph (right of its y axis: not the legend) on which p's `•`
@@ -70,7 +75,10 @@ fn mortar_draws_flat_and_nts_oscillates_on_non_matching_meshes() {
     assert_eq!(mortar.settings.ratio, (2, 3));
     assert!(patch_error(&mortar) <= PASSES, "{}", patch_error(&mortar));
     let flat = frame(&mortar);
-    assert!(flat.contains("patch test passed: error < 1e-12 (≤ 1e-10)"), "{flat}");
+    assert!(
+        flat.contains("patch test passed: error < 1e-12 (≤ 1e-10)"),
+        "{flat}"
+    );
     assert_eq!(marked_rows(&flat).len(), 1, "{flat}");
     snap!("bodies_patch_mortar_2_3_80x24", &flat);
 
@@ -98,10 +106,16 @@ fn mortar_draws_flat_and_nts_oscillates_on_non_matching_meshes() {
 fn rip_draws_p_bar_beside_p() {
     let rip = patch(InterfaceMethod::Rip(riplab::contact::Rule::Gauss2), "");
     let text = frame(&rip);
-    assert!(text.contains("p̄ smoothed (17)") && text.contains("p rip-gauss2"), "{text}");
+    assert!(
+        text.contains("p̄ smoothed (17)") && text.contains("p rip-gauss2"),
+        "{text}"
+    );
     assert!(text.contains("─ applied 5.348"), "{text}");
     let mortar = frame(&patch(InterfaceMethod::Mortar, ""));
-    assert!(!mortar.contains("p̄") && mortar.contains("─ applied 5.348"), "{mortar}");
+    assert!(
+        !mortar.contains("p̄") && mortar.contains("─ applied 5.348"),
+        "{mortar}"
+    );
 }
 
 /// `n` cycles every discretisation, `k`/`K` the ratios (the scenario's among them), `j`/`J`
@@ -140,7 +154,10 @@ fn the_two_body_keys_change_what_is_solved() {
     let (g, settings): (u64, Settings) = request.unwrap();
     assert_eq!((g, settings), (generation + 1, app.initial));
     // A reply of an older generation is not shown.
-    assert!(!app.reply(generation, Err(riplab::contact::interface::solve::BodiesError::OneBody)));
+    assert!(!app.reply(
+        generation,
+        Err(riplab::contact::interface::solve::BodiesError::OneBody)
+    ));
     assert!(app.error.is_none());
 }
 
@@ -172,11 +189,20 @@ fn one_body_keys_are_refused_with_their_reason() {
         let (redraw, request) = app.key(key(c));
         assert!(redraw && request.is_none(), "{c}");
         let said = &app.notice.as_ref().expect("a notice").text;
-        assert!(said.starts_with(&format!("{c}: ")) && said.contains(reason), "{c}: {said}");
+        assert!(
+            said.starts_with(&format!("{c}: ")) && said.contains(reason),
+            "{c}: {said}"
+        );
     }
     let (_, request) = app.key(KeyEvent::new(KeyCode::Tab, KeyModifiers::NONE));
     assert!(request.is_none());
-    assert!(app.notice.as_ref().unwrap().text.contains("inf-sup, mesh, convergence and stress scenes need one body"));
+    assert!(
+        app.notice
+            .as_ref()
+            .unwrap()
+            .text
+            .contains("inf-sup, mesh, convergence and stress scenes need one body")
+    );
     assert_eq!(app.settings, before);
 }
 
@@ -186,7 +212,10 @@ fn one_body_keys_are_refused_with_their_reason() {
 fn the_bar_and_help_come_from_the_key_table() {
     let bar = riplab::tui::key_bar::bodies_bar();
     let words: Vec<&str> = bar.iter().map(|e| e.1).collect();
-    assert_eq!(words, ["level", "contact", "ratio", "offset", "reset", "help", "quit"]);
+    assert_eq!(
+        words,
+        ["level", "contact", "ratio", "offset", "reset", "help", "quit"]
+    );
     assert_eq!(bar[1].0, "n");
     let help = riplab::tui::key_bar::bodies_help();
     let every = help.iter().position(|l| l.1.starts_with("every key")).unwrap();
@@ -207,7 +236,10 @@ fn a_one_body_lab_refuses_the_two_body_keys() {
     for c in ['n', 'k', 'K', 'j', 'J'] {
         let _ = app.update(riplab::tui::app::Msg::Key(key(c)));
         let said = &app.notice.as_ref().expect("a notice").text;
-        assert!(said.contains("acts on two bodies") && said.contains("patch-two-blocks"), "{said}");
+        assert!(
+            said.contains("acts on two bodies") && said.contains("patch-two-blocks"),
+            "{said}"
+        );
     }
 }
 
@@ -240,9 +272,15 @@ fn a_hertz_contact_is_drawn_over_its_zone() {
     let [a, b] = solved.zone().expect("in contact");
     let drawn = view::x_bounds(solved);
     assert_eq!(drawn[0], solved.x_range[0]);
-    assert!(drawn[1] >= b && drawn[1] < 0.5 * solved.x_range[1], "{drawn:?}, zone {a}..{b}");
+    assert!(
+        drawn[1] >= b && drawn[1] < 0.5 * solved.x_range[1],
+        "{drawn:?}, zone {a}..{b}"
+    );
     let text = frame(&app);
-    assert!(text.contains("mortar: load P = ") && text.contains("· contact 0 to "), "{text}");
+    assert!(
+        text.contains("mortar: load P = ") && text.contains("· contact 0 to "),
+        "{text}"
+    );
     let patch = patch(InterfaceMethod::Nts, "");
     let solved = patch.solved.as_ref().unwrap();
     assert_eq!(view::x_bounds(solved), solved.x_range);

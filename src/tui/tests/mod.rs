@@ -8,8 +8,8 @@ mod common;
 
 mod at_value;
 mod authoring;
-mod bodies;
 mod axes;
+mod bodies;
 mod coinciding;
 mod friction;
 mod friction_frames;
