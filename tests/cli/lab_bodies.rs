@@ -56,7 +56,8 @@ fn render_draws_the_two_body_scene() {
 }
 
 /// What the two-body scene does not take is refused before any work, naming why (exit 2):
-/// a one-body scene, grading, a one-body method, `--contact` on one body.
+/// a one-body scene, grading, a one-body method, `--contact` on one body (render's and the
+/// lab's), the lab's `--contact` before a command.
 #[test]
 fn render_refuses_what_two_bodies_do_not_take() {
     for (args, said) in [
@@ -74,9 +75,16 @@ fn render_refuses_what_two_bodies_do_not_take() {
         assert_eq!(code, 2, "{args:?}: {err}");
         assert!(err.contains(said), "{args:?}: {err}");
     }
-    let (code, _, err) = run(&["render", "--contact", "nts"]);
+    // --contact on one body: render's, and the lab's (refused before the terminal is taken).
+    for args in [&["render", "--contact", "nts"][..], &["--contact", "nts"]] {
+        let (code, _, err) = run(args);
+        assert_eq!(code, 2, "{args:?}: {err}");
+        assert!(err.contains("--contact") && err.contains("[upper]"), "{args:?}: {err}");
+    }
+    // The lab's --contact is not a command's.
+    let (code, _, err) = run(&["--contact", "nts", "solve", PATCH]);
     assert_eq!(code, 2, "{err}");
-    assert!(err.contains("--contact") && err.contains("[upper]"), "{err}");
+    assert!(err.contains("--contact before the command is the lab's"), "{err}");
 }
 
 /// The lab on the patch scenario in an 80×24 terminal, monochrome: it opens on mortar, `n`
