@@ -79,7 +79,10 @@ fn render_refuses_what_two_bodies_do_not_take() {
     for args in [&["render", "--contact", "nts"][..], &["--contact", "nts"]] {
         let (code, _, err) = run(args);
         assert_eq!(code, 2, "{args:?}: {err}");
-        assert!(err.contains("--contact") && err.contains("[upper]"), "{args:?}: {err}");
+        assert!(
+            err.contains("--contact") && err.contains("[upper]"),
+            "{args:?}: {err}"
+        );
     }
     // The lab's --contact is not a command's.
     let (code, _, err) = run(&["--contact", "nts", "solve", PATCH]);
