@@ -9,7 +9,7 @@ use clap::{Parser, Subcommand};
 use crate::error::SolveError;
 use crate::input::ScenarioError;
 use crate::tui::{MarkerChoice, TuiOptions};
-use choices::{MarkerName, choice};
+use choices::{ContactName, MarkerName, choice};
 
 mod checks;
 mod choices;
@@ -87,6 +87,10 @@ pub struct Cli {
     /// added to only if it is a valid tour) [default: riplab-tour.toml in the export directory]
     #[arg(long, value_name = "FILE")]
     pub tour_out: Option<PathBuf>,
+    /// On a two-body scenario (`[upper]`), the lab's discretisation across the interface to
+    /// start with (`n` cycles them; `rip` with the scenario's rule) [default: mortar]
+    #[arg(long, value_enum)]
+    pub contact: Option<ContactName>,
     /// The command; None opens the terminal lab.
     #[command(subcommand)]
     pub command: Option<Command>,
@@ -190,6 +194,12 @@ pub fn run(cli: Cli) -> ExitCode {
         ));
         return ExitCode::from(2);
     }
+    if let (Some(_), Some(_)) = (&cli.contact, &cli.command) {
+        note(
+            "error: --contact before the command is the lab's; a command takes its own after its name (e.g. `riplab solve FILE --contact nts`)",
+        );
+        return ExitCode::from(2);
+    }
     let result = match cli.command {
         Some(Command::Solve(args)) => solve(&args),
         Some(Command::Infsup(args)) => infsup(&args),
@@ -222,6 +232,7 @@ pub fn run(cli: Cli) -> ExitCode {
         None => lab(
             cli.scenario,
             cli.record,
+            cli.contact,
             TuiOptions {
                 marker: cli.marker,
                 no_color: cli.no_color,

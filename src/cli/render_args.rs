@@ -11,6 +11,7 @@ use crate::tui::app::{LEVEL_LIMIT_WHY, MAX_APP_LEVEL};
 use crate::tui::render_keys::parse_keys;
 
 use super::args::{MethodArgs, Select};
+use super::choices::ContactName;
 use super::{CliError, usage, values};
 
 /// The arguments of `riplab render`.
@@ -43,6 +44,10 @@ pub struct RenderArgs {
     /// refine_edges`, else 0]
     #[arg(long, value_name = "N|auto|Nz")]
     pub refine_edges: Option<String>,
+    /// On a two-body scenario (`[upper]`), the discretisation of the constraint across the
+    /// interface (`rip` with the rule of --rule) [default: mortar]
+    #[arg(long, value_enum)]
+    pub contact: Option<ContactName>,
 }
 
 /// What `render` takes from its arguments before the scenario is read: the keys, and the ε

@@ -16,7 +16,7 @@ use crate::output::{InterfaceReport, output};
 use crate::scenario::Scenario;
 
 /// The discretisation `--contact` names, `rip` with the scenario's rule (or --rule's).
-fn method_of(name: ContactName, scenario: &Scenario) -> InterfaceMethod {
+pub(super) fn method_of(name: ContactName, scenario: &Scenario) -> InterfaceMethod {
     match name {
         ContactName::Nts => InterfaceMethod::Nts,
         ContactName::Nts2 => InterfaceMethod::Nts2,
@@ -72,16 +72,15 @@ pub(super) fn cli_error(e: BodiesError, epsilon_flag: &str) -> CliError {
     }
 }
 
-/// `riplab solve` on the two-body `scenario`.
-pub(super) fn solve(args: &SolveArgs, scenario: &Scenario) -> Result<ExitCode, CliError> {
-    refuse_one_body_flags(args, scenario)?;
-    let method = args.method.resolve(scenario)?;
-    let epsilon = args.epsilon.first().copied().unwrap_or(scenario.epsilon);
-    let flag = if args.epsilon.is_empty() {
-        "the scenario's contact.epsilon"
-    } else {
-        "--epsilon"
-    };
+/// How `method` (None: by ε) at `epsilon` (given by `flag`) enforces the constraint across
+/// `scenario`'s interface: penalty, exact or the ALM; any other method, or an ε that either
+/// body cannot represent, refused (exit 2).
+pub(super) fn enforcement(
+    method: Option<Method>,
+    epsilon: f64,
+    flag: &str,
+    scenario: &Scenario,
+) -> Result<Enforcement, CliError> {
     let (m, epsilon) = method_at(method, epsilon, flag)?;
     let enforcement = match m {
         Method::Penalty | Method::Exact => Enforcement::from(epsilon),
@@ -99,6 +98,20 @@ pub(super) fn solve(args: &SolveArgs, scenario: &Scenario) -> Result<ExitCode, C
     if epsilon > 0.0 {
         check::epsilon_in(epsilon, scenario.epsilon_range(scenario.level)).map_err(|e| usage(flag, e))?;
     }
+    Ok(enforcement)
+}
+
+/// `riplab solve` on the two-body `scenario`.
+pub(super) fn solve(args: &SolveArgs, scenario: &Scenario) -> Result<ExitCode, CliError> {
+    refuse_one_body_flags(args, scenario)?;
+    let method = args.method.resolve(scenario)?;
+    let epsilon = args.epsilon.first().copied().unwrap_or(scenario.epsilon);
+    let flag = if args.epsilon.is_empty() {
+        "the scenario's contact.epsilon"
+    } else {
+        "--epsilon"
+    };
+    let enforcement = enforcement(method, epsilon, flag, scenario)?;
     let contact = method_of(args.contact.unwrap_or(ContactName::Mortar), scenario);
     let solved = scenario
         .solve_bodies(scenario.level, contact, enforcement)

@@ -33,6 +33,12 @@ pub(super) enum Input {
     /// A reply of the worker of the given epoch (a program that replaces its worker drops
     /// the replies of the old one; the lab's worker is epoch 0).
     Worker(u64, Response),
+    /// A solve of the two-body scene, for the settings of the given generation
+    /// ([`super::bodies`]).
+    Bodies(
+        u64,
+        Box<Result<super::bodies::solve::Solved, crate::contact::interface::solve::BodiesError>>,
+    ),
     /// Reading the terminal failed: the loop ends with this error.
     Broken(io::Error),
     /// The recording failed (the loop shows why on the status line).

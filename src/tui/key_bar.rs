@@ -67,6 +67,15 @@ const BAR: &[(Scene, &[Entry])] = &[
     ),
 ];
 
+/// The two-body scene's bar ([`bodies_bar`]).
+const BODIES: &[Entry] = &[
+    (&[L::Coarser, L::Finer], "level"),
+    (&[L::NextContact], "contact"),
+    (&[L::RatioDown, L::RatioUp], "ratio"),
+    (&[L::OffsetDown, L::OffsetUp], "offset"),
+    (&[L::Reset], "reset"),
+];
+
 /// The projector view's bar (`f` back, the cursor).
 const PROJECTOR: &[Entry] = &[(&[L::Projector], "back"), (&[L::Cursor], "cursor")];
 
@@ -78,6 +87,16 @@ pub fn bar(scene: Scene, projector: bool) -> Vec<(String, &'static str)> {
     } else {
         BAR.iter().find(|(s, _)| *s == scene).map_or(&[], |(_, e)| e)
     };
+    with_help_and_quit(entries)
+}
+
+/// The key bar of the two-body scene (docs/lab.md, "Two bodies"), as [`bar`] writes one.
+pub fn bodies_bar() -> Vec<(String, &'static str)> {
+    with_help_and_quit(BODIES)
+}
+
+/// The entries' keys as [`LAB`] binds them, then `? help` and `q quit`.
+fn with_help_and_quit(entries: &[Entry]) -> Vec<(String, &'static str)> {
     let mut out: Vec<(String, &'static str)> = entries
         .iter()
         .map(|(actions, word)| {
@@ -135,6 +154,22 @@ pub fn scene_help(scene: Scene) -> Vec<(&'static str, &'static str)> {
     lines.push(("", "every key:"));
     lines.extend(lab_help());
     lines.extend(MOUSE);
+    lines
+}
+
+/// The two-body scene's help: the rows of [`LAB`] that act there first, then every key
+/// (the others say on the status line why they do not act on two bodies).
+pub fn bodies_help() -> Vec<(&'static str, &'static str)> {
+    let acting: Vec<LabAction> = BODIES.iter().flat_map(|(a, _)| a.iter().copied()).collect();
+    let mut lines = vec![("", "in the two-body scene:")];
+    for row in LAB
+        .iter()
+        .filter(|row| row.bindings.iter().any(|(_, a)| acting.contains(a)))
+    {
+        lines.extend(help_lines(std::slice::from_ref::<Row<LabAction>>(row)));
+    }
+    lines.push(("", "every key (one body's say why not):"));
+    lines.extend(lab_help());
     lines
 }
 

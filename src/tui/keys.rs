@@ -107,6 +107,17 @@ pub enum LabAction {
     ShiftUp,
     /// The shift ξ ÷ 1.25.
     ShiftDown,
+    /// Two bodies: the next discretisation across the interface (nts, nts2, mortar,
+    /// mortar-dual, rip with each rule; docs/design.md §12).
+    NextContact,
+    /// Two bodies: the previous element ratio across the interface.
+    RatioDown,
+    /// Two bodies: the next element ratio across the interface.
+    RatioUp,
+    /// Two bodies: the upper mesh's offset a tenth of its element down.
+    OffsetDown,
+    /// Two bodies: the upper mesh's offset a tenth of its element up.
+    OffsetUp,
 }
 
 /// What a key does in the tour (any other key is the lab's).
@@ -305,6 +316,21 @@ pub const LAB: &[Row<LabAction>] = &[
         keys: "c",
         what: &["stress scene: τ₁ / von Mises / σ_yy"],
         bindings: &[(Char('c'), L::NextQuantity)],
+    },
+    Row {
+        keys: "n",
+        what: &["two bodies: next contact (nts … rip)"],
+        bindings: &[(Char('n'), L::NextContact)],
+    },
+    Row {
+        keys: "k  K",
+        what: &["two bodies: element ratio 1:1 2:3 3:4 5:7"],
+        bindings: &[(Char('k'), L::RatioDown), (Char('K'), L::RatioUp)],
+    },
+    Row {
+        keys: "j  J",
+        what: &["two bodies: offset − / + 0.1 element"],
+        bindings: &[(Char('j'), L::OffsetDown), (Char('J'), L::OffsetUp)],
     },
     Row {
         keys: "0",

@@ -11,6 +11,7 @@
 
 pub mod app;
 pub mod beta;
+pub mod bodies;
 mod build;
 pub mod engine;
 pub mod errors;
@@ -23,7 +24,7 @@ mod export_error;
 mod export_tests;
 pub mod friction_settings;
 mod job;
-mod key_bar;
+pub mod key_bar;
 pub mod keys;
 pub mod lab_error;
 pub mod protocol;
@@ -143,6 +144,21 @@ pub fn run(
         Some(_) => App::new(scenario),
     };
     runtime::run(app, look, dir, source, recording, !opts.no_mouse)
+}
+
+/// Run the lab's two-body scene ([`bodies`]) on `app` until the user quits, recording into
+/// `record` if given.
+pub fn run_bodies(
+    app: bodies::BodiesApp,
+    opts: &TuiOptions,
+    record: Option<CastFile>,
+) -> Result<(), RunError> {
+    let look = Look {
+        theme: Theme::new(opts.no_color),
+        marker: opts.marker.marker(),
+    };
+    let title = format!("riplab lab: {}", text::sanitize(&app.scenario.name));
+    bodies::runtime::run(app, look, record.map(|r| (r, title)), !opts.no_mouse)
 }
 
 /// Why the lab or the tour ended with an error.

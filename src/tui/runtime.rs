@@ -98,7 +98,11 @@ impl Program for Lab {
                 self.app.overlays.too_small = too_small((w, h));
                 Msg::Resize
             }
-            Input::Terminal(_) | Input::Broken(_) | Input::RecordingFailed | Input::Signal => {
+            Input::Terminal(_)
+            | Input::Broken(_)
+            | Input::RecordingFailed
+            | Input::Signal
+            | Input::Bodies(..) => {
                 return Flow::default();
             }
             Input::Worker(_, r) => Msg::Worker(r),

@@ -18,6 +18,7 @@ mod hostile_again;
 mod hostile_cache;
 mod infsup_graded;
 mod infsup_two_bodies;
+mod lab_bodies;
 mod lab_commands;
 mod modules;
 mod plot;

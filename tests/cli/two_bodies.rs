@@ -158,9 +158,10 @@ fn two_bodies_refusals() {
         assert_eq!(code, 2, "{args:?}: {err}");
         assert!(err.contains(said), "{args:?}: {err}");
     }
-    // The commands that take one body refuse two, naming `riplab solve` (`infsup` takes
-    // two: tests/cli/infsup_two_bodies.rs).
-    for command in [&["study", PATCH, "--levels", "0..1"][..], &["render", PATCH]] {
+    // `study` takes one body and refuses two, naming `riplab solve` (`infsup` takes two:
+    // tests/cli/infsup_two_bodies.rs; `render` and the lab draw the two-body scene:
+    // tests/cli/lab_bodies.rs).
+    for command in [&["study", PATCH, "--levels", "0..1"][..]] {
         let (code, _, err) = riplab(command);
         assert_eq!(code, 2, "{command:?}: {err}");
         assert!(

@@ -191,6 +191,16 @@ impl App {
                     self.notice = Some(Notice::info("nothing to export yet: the solve is not finished"));
                 }
             }
+            LabAction::NextContact
+            | LabAction::RatioDown
+            | LabAction::RatioUp
+            | LabAction::OffsetDown
+            | LabAction::OffsetUp => {
+                self.notice = Some(Notice::info(format!(
+                    "{} acts on two bodies (a scenario with [upper], e.g. scenarios/patch-two-blocks.toml); this scenario has one body under a rigid obstacle",
+                    key_name(key.code)
+                )));
+            }
             // Only with Ctrl (above).
             LabAction::Suspend => return false,
         }
@@ -314,7 +324,7 @@ impl App {
 }
 
 /// A key as the help writes it, for notices.
-fn key_name(code: KeyCode) -> String {
+pub(in crate::tui) fn key_name(code: KeyCode) -> String {
     match code {
         KeyCode::Char(' ') => "Space".into(),
         KeyCode::Char(c) => crate::text::sanitize(&c.to_string()).into_owned(),

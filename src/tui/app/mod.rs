@@ -14,6 +14,7 @@ pub use super::keys::ExportKind;
 use super::lab_error::LabError;
 
 mod dispatch;
+pub(in crate::tui) use dispatch::key_name;
 mod friction;
 pub mod guides;
 mod integration;

@@ -9,6 +9,7 @@ mod common;
 mod at_value;
 mod authoring;
 mod axes;
+mod bodies;
 mod coinciding;
 mod friction;
 mod friction_frames;

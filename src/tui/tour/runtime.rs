@@ -142,6 +142,7 @@ impl Program for Session {
             // Other terminal events, replies of a replaced worker.
             Input::Terminal(_)
             | Input::Worker(..)
+            | Input::Bodies(..)
             | Input::Broken(_)
             | Input::RecordingFailed
             | Input::Signal => {

@@ -216,7 +216,7 @@ fn explore(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
 
 /// The message shown instead of the app in a terminal below [`MIN_SIZE`], wrapped to fit.
 /// `said` (a notice: what the last key did) under it.
-fn too_small(frame: &mut Frame, area: Rect, theme: Theme, said: &str) {
+pub(in crate::tui) fn too_small(frame: &mut Frame, area: Rect, theme: Theme, said: &str) {
     let text = format!(
         "riplab needs a bigger terminal\nthis one is {}×{}; the lab needs at least {}×{}\nenlarge the window or make the font smaller\n(q quits; other keys are ignored){said}",
         area.width, area.height, MIN_SIZE.0, MIN_SIZE.1

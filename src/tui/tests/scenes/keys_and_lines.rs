@@ -21,7 +21,7 @@ fn every_key_of_the_table_is_handled_and_no_other() {
         }
     }
     // A key with no action says so.
-    for code in [KeyCode::Char('j'), KeyCode::F(5)] {
+    for code in [KeyCode::Char('y'), KeyCode::F(5)] {
         let mut app = App::new(Scenario::paper());
         assert!(app.update(key(code)).redraw);
         assert!(app.notice.unwrap().text.contains("does nothing here"));
