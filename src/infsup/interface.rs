@@ -8,7 +8,7 @@
 //! trace minus the master's — and M the space's L² Gram matrix on the slave's side of the
 //! overlap ([`multiplier_mass`]; for p̄, Sᵀ M₁ S as the one-body β̄_h of (21)). Only the two
 //! traces enter B, so A⁻¹ is needed there alone: B A⁻¹ Bᵀ = W (S C_s Sᵀ + M C_m Mᵀ) W, C_s and
-//! C_m the bodies' trace compliances of A ([`TraceCompliance`]), G C Gᵀ the two-body solve's
+//! C_m the bodies' trace compliances of A ([`crate::infsup::TraceCompliance`]), G C Gᵀ the two-body solve's
 //! own ([`delassus`]).
 
 use faer::Mat;

@@ -114,6 +114,14 @@ impl TuiOptions {
     pub fn export_dir(&self) -> std::io::Result<PathBuf> {
         std::path::absolute(self.export_dir.as_deref().unwrap_or(Path::new(".")))
     }
+
+    /// How the lab draws: colour unless `--no-color` (or `NO_COLOR`), and the chosen marker.
+    fn look(&self) -> Look {
+        Look {
+            theme: Theme::new(self.no_color),
+            marker: self.marker.marker(),
+        }
+    }
 }
 
 /// Run the interactive lab on `scenario` (read from `scenario_file`, if given) until the user
@@ -124,10 +132,7 @@ pub fn run(
     opts: &TuiOptions,
     record: Option<CastFile>,
 ) -> Result<(), RunError> {
-    let look = Look {
-        theme: Theme::new(opts.no_color),
-        marker: opts.marker.marker(),
-    };
+    let look = opts.look();
     let dir = opts.export_dir()?;
     let source = LabSource {
         tour_out: match &opts.tour_out {
@@ -153,10 +158,7 @@ pub fn run_bodies(
     opts: &TuiOptions,
     record: Option<CastFile>,
 ) -> Result<(), RunError> {
-    let look = Look {
-        theme: Theme::new(opts.no_color),
-        marker: opts.marker.marker(),
-    };
+    let look = opts.look();
     let title = format!("riplab lab: {}", text::sanitize(&app.scenario.name));
     bodies::runtime::run(app, look, record.map(|r| (r, title)), !opts.no_mouse)
 }

@@ -161,8 +161,9 @@ fn two_bodies_refusals() {
     // `study` takes one body and refuses two, naming `riplab solve` (`infsup` takes two:
     // tests/cli/infsup_two_bodies.rs; `render` and the lab draw the two-body scene:
     // tests/cli/lab_bodies.rs).
-    for command in [&["study", PATCH, "--levels", "0..1"][..]] {
-        let (code, _, err) = riplab(command);
+    {
+        let command = ["study", PATCH, "--levels", "0..1"];
+        let (code, _, err) = riplab(&command);
         assert_eq!(code, 2, "{command:?}: {err}");
         assert!(
             err.contains("[upper]") && err.contains("riplab solve"),

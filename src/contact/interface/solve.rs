@@ -232,7 +232,7 @@ pub fn solve_method(
 /// initial gaps `g0` (one per constraint), the constraint enforced as `enforcement` says. p̄:
 /// by (17) over the points of `rule` when the rows are a reduced-integration
 /// rule's ([`smoothed_pressure`], a point off the master at p = 0), else the rows' own hat
-/// average ([`smoothed`]).
+/// average (`smoothed`).
 ///
 /// # Errors
 ///

@@ -17,7 +17,7 @@ use super::super::theme::Theme;
 use super::super::view::fmt::{sig, wrap_words};
 use super::super::view::help::key_popup;
 use super::super::view::plot::{Axis, Plot, Scale, Series, Stroke};
-use super::super::view::{Look, MIN_SIZE, too_small};
+use super::super::view::{Look, below_min_size};
 use super::BodiesApp;
 use super::solve::Solved;
 use crate::contact::interface::InterfaceMethod;
@@ -45,16 +45,10 @@ const ZOOM_BELOW: f64 = 2.0 / 3.0;
 /// The most contact points marked `•` (more would fill every cell).
 const MAX_MARKED: usize = 40;
 
-/// Draw the two-body scene into the whole frame (at least [`MIN_SIZE`]).
+/// Draw the two-body scene into the whole frame (at least [`super::super::view::MIN_SIZE`]).
 pub fn view(app: &BodiesApp, frame: &mut Frame, look: &Look) {
     let area = frame.area();
-    if area.width < MIN_SIZE.0 || area.height < MIN_SIZE.1 {
-        let said = app
-            .notice
-            .as_ref()
-            .map(|n| format!("\n{}", n.text))
-            .unwrap_or_default();
-        too_small(frame, area, look.theme, &said);
+    if below_min_size(frame, area, look.theme, app.notice.as_ref()) {
         return;
     }
     let theme = look.theme;

@@ -29,6 +29,7 @@ use ratatui::text::Line;
 use ratatui::widgets::Paragraph;
 
 use super::app::{App, Drawn, Scene};
+use super::protocol::Notice;
 use super::theme::Theme;
 
 /// The smallest terminal the layout is made for.
@@ -53,13 +54,7 @@ pub fn view(app: &App, frame: &mut Frame, look: &Look) {
     // Nothing to click until this frame draws it.
     app.overlays.drawn.set(Drawn::default());
     let area = frame.area();
-    if area.width < MIN_SIZE.0 || area.height < MIN_SIZE.1 {
-        let said = app
-            .notice
-            .as_ref()
-            .map(|n| format!("\n{}", n.text))
-            .unwrap_or_default();
-        too_small(frame, area, look.theme, &said);
+    if below_min_size(frame, area, look.theme, app.notice.as_ref()) {
         return;
     }
     view_in(app, frame, area, look);
@@ -212,6 +207,22 @@ fn explore(app: &App, frame: &mut Frame, area: Rect, look: &Look) {
     pressure::render(app, frame, chart, look);
     infsup_panel::render(app, frame, panel, look.theme);
     deformed::render(app, frame, contact, look, deformed::Extent::NearContact);
+}
+
+/// Whether `area` is below [`MIN_SIZE`]; if it is, [`too_small`] is drawn there with `notice`
+/// (what the last key did) under it.
+pub(in crate::tui) fn below_min_size(
+    frame: &mut Frame,
+    area: Rect,
+    theme: Theme,
+    notice: Option<&Notice>,
+) -> bool {
+    let below = area.width < MIN_SIZE.0 || area.height < MIN_SIZE.1;
+    if below {
+        let said = notice.map(|n| format!("\n{}", n.text)).unwrap_or_default();
+        too_small(frame, area, theme, &said);
+    }
+    below
 }
 
 /// The message shown instead of the app in a terminal below [`MIN_SIZE`], wrapped to fit.
