@@ -34,10 +34,10 @@ pub(super) enum Input {
     /// the replies of the old one; the lab's worker is epoch 0).
     Worker(u64, Response),
     /// A solve of the two-body scene, for the settings of the given generation
-    /// ([`super::bodies`]).
+    /// ([`super::bodies`], [`super::bodies_solve`]).
     Bodies(
         u64,
-        Box<Result<super::bodies::solve::Solved, crate::contact::interface::solve::BodiesError>>,
+        Box<Result<super::bodies_solve::Solved, crate::contact::interface::solve::BodiesError>>,
     ),
     /// Reading the terminal failed: the loop ends with this error.
     Broken(io::Error),

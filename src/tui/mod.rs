@@ -12,6 +12,7 @@
 pub mod app;
 pub mod beta;
 pub mod bodies;
+pub mod bodies_solve;
 mod build;
 pub mod engine;
 pub mod errors;

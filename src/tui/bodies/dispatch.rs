@@ -6,10 +6,10 @@
 use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 
 use super::super::app::{MAX_APP_LEVEL, key_name};
+use super::super::bodies_solve::{MAX_OFFSET, OFFSET_STEP, RATIOS};
 use super::super::keys::{LabAction, lab_action};
 use super::super::protocol::Notice;
 use super::BodiesApp;
-use super::solve::{MAX_OFFSET, OFFSET_STEP, RATIOS};
 use crate::contact::interface::InterfaceMethod;
 
 impl BodiesApp {

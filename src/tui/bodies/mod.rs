@@ -10,18 +10,18 @@
 
 mod dispatch;
 pub mod runtime;
-pub mod solve;
+
 pub mod view;
 
 use crossterm::event::KeyEvent;
 
 use super::RenderError;
 use super::app::MAX_APP_LEVEL;
+use super::bodies_solve::{self as solve, Settings, Solved};
 use super::protocol::Notice;
 use crate::contact::interface::InterfaceMethod;
 use crate::contact::interface::solve::BodiesError;
 use crate::scenario::Scenario;
-use solve::{Settings, Solved};
 
 /// The two-body scene's state.
 pub struct BodiesApp {

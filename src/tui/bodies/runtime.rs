@@ -10,11 +10,11 @@ use crossterm::event::{Event, KeyCode, KeyEventKind, KeyModifiers};
 use ratatui::Frame;
 
 use super::super::RunError;
+use super::super::bodies_solve::{Settings, solve};
 use super::super::event_loop::{Flow, Input, Program, Recording, run_program};
 use super::super::protocol::Notice;
 use super::super::record::Chapter;
 use super::super::view::{Look, MIN_SIZE};
-use super::solve::{Settings, solve};
 use super::{BodiesApp, Request};
 use crate::scenario::Scenario;
 
@@ -154,7 +154,7 @@ mod tests {
         let (tx, rx) = mpsc::channel();
         let jobs = spawn_worker(scenario, tx).unwrap();
         for generation in 1..=3 {
-            let ratio = super::super::solve::RATIOS[generation as usize];
+            let ratio = super::super::super::bodies_solve::RATIOS[generation as usize];
             jobs.send((generation, Settings { ratio, ..settings })).unwrap();
         }
         // A generous deadline, not a timing: the loop waits for the newest answer.
@@ -165,7 +165,7 @@ mod tests {
                     let solved = result.expect("solved");
                     assert_eq!(
                         solved.settings.ratio,
-                        super::super::solve::RATIOS[generation as usize]
+                        super::super::super::bodies_solve::RATIOS[generation as usize]
                     );
                     if generation == 3 {
                         break;

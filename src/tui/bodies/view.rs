@@ -12,6 +12,7 @@ use ratatui::style::Style;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::Paragraph;
 
+use super::super::bodies_solve::Solved;
 use super::super::key_bar;
 use super::super::theme::Theme;
 use super::super::view::fmt::{sig, wrap_words};
@@ -19,7 +20,6 @@ use super::super::view::help::key_popup;
 use super::super::view::plot::{Axis, Plot, Scale, Series, Stroke};
 use super::super::view::{Look, below_min_size};
 use super::BodiesApp;
-use super::solve::Solved;
 use crate::contact::interface::InterfaceMethod;
 use crate::contact::interface::solve::Enforcement;
 

@@ -10,9 +10,9 @@ use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use ratatui::symbols::Marker;
 use riplab::contact::interface::InterfaceMethod;
 use riplab::scenario::Scenario;
-use riplab::tui::bodies::solve::Settings;
 use riplab::tui::bodies::view::{FAILS, PASSES};
 use riplab::tui::bodies::{BodiesApp, settle_bodies, view};
+use riplab::tui::bodies_solve::Settings;
 use riplab::tui::theme::Theme;
 use riplab::tui::view::Look;
 
