@@ -33,8 +33,12 @@ pub const FAILS: f64 = 1e-3;
 /// Below this a patch error is shown as `< 1e-12` (round-off, whose digits vary by platform).
 const ROUND_OFF: f64 = 1e-12;
 
-/// The patch test's pressure axis: the applied pressure ± this fraction of it, at least.
+/// The patch test's pressure axis: the applied pressure ± this fraction of it at most …
 const PATCH_WINDOW: f64 = 0.25;
+/// … and at least: the window is 2.5 times the largest departure from the applied pressure
+/// between the two, so that a departure of a row's height or more (rip-gauss1's 0.87 %, under
+/// a row at ±25 %, hid the applied line under p̄) stands rows apart from it.
+const PATCH_WINDOW_LEAST: f64 = 0.01;
 
 /// Samples of the applied pressure's reference line across the chart.
 const REFERENCE_SAMPLES: usize = 41;
@@ -261,10 +265,14 @@ fn y_bounds(solved: &Solved) -> [f64; 2] {
     let values = solved.p.iter().chain(&solved.pbar).map(|q| q.1);
     let (lo, hi) = values.fold((f64::INFINITY, 0.0_f64), |(lo, hi), v| (lo.min(v), hi.max(v)));
     match solved.patch {
-        Some((exact, _)) => [
-            lo.min(exact * (1.0 - PATCH_WINDOW)).max(0.0),
-            hi.max(exact * (1.0 + PATCH_WINDOW)),
-        ],
+        Some((exact, _)) => {
+            let departure = (hi - exact).max(exact - lo) / exact;
+            let window = (2.5 * departure).clamp(PATCH_WINDOW_LEAST, PATCH_WINDOW);
+            [
+                lo.min(exact * (1.0 - window)).max(0.0),
+                hi.max(exact * (1.0 + window)),
+            ]
+        }
         None => [0.0, if hi > 0.0 { hi } else { 1.0 }],
     }
 }

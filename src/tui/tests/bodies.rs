@@ -116,6 +116,25 @@ fn rip_draws_p_bar_beside_p() {
         !mortar.contains("p̄") && mortar.contains("─ applied 5.348"),
         "{mortar}"
     );
+    // The applied line the legend names stands on the chart, beside p and p̄: gauss1's p̄,
+    // 0.87 % under it, covered it cell for cell at ±25 % (under a row apart).
+    for text in [
+        frame(&patch(InterfaceMethod::Rip(riplab::contact::Rule::Gauss1), "")),
+        mortar,
+    ] {
+        // A graph row: the frame's `│`, a tick label (digits) or none, the y axis (`│`, `┤`).
+        let graph = |l: &str| -> Option<String> {
+            let rest = l.strip_prefix('│')?;
+            let axis = rest.find(['│', '┤'])?;
+            let label = &rest[..axis];
+            label
+                .chars()
+                .all(|c| c.is_ascii_digit() || " .-e".contains(c))
+                .then(|| rest[axis..].chars().skip(1).collect())
+        };
+        let drawn = text.lines().filter_map(graph).any(|row| row.contains('─'));
+        assert!(drawn, "no applied line on the chart:\n{text}");
+    }
 }
 
 /// `n` cycles every discretisation, `k`/`K` the ratios (the scenario's among them), `j`/`J`
