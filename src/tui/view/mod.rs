@@ -15,6 +15,7 @@ mod infsup_panel;
 mod log;
 mod mesh_axes;
 mod method;
+mod path;
 pub mod plot;
 mod pressure;
 mod status;

@@ -20,6 +20,7 @@ use ratatui::widgets::canvas::{Canvas, Line as Segment, Painter, Shape};
 use super::super::theme::Theme;
 pub use super::cells::{cell_of, dots_per_cell};
 use super::fmt::title_fit;
+use super::path::on_path;
 pub use super::ticks::{Scale, linear_ticks, log_ticks, tick_label};
 use super::yfit;
 
@@ -170,7 +171,7 @@ impl Plot<'_> {
         let rows = area.height.saturating_sub(6);
         let mut keep = usize::from(rows / OVERLAY_ROWS).min(self.overlays.len());
         let fits = |keep| {
-            let lines = self.legend_lines(area.width.saturating_sub(2), keep);
+            let lines = self.legend_lines(area.width.saturating_sub(2), keep, &[]);
             lines
                 .iter()
                 .all(|l| l.width() <= usize::from(area.width.saturating_sub(2)))
@@ -192,12 +193,13 @@ impl Plot<'_> {
         }
         // The legend on rows of its own; on the title's row when the graph would have fewer
         // than [`ROOMY`] rows and the legend fits there beside the title.
-        let mut legend = self.legend_lines(inner.width, keep);
+        let mut legend = self.legend_lines(inner.width, keep, &[]);
         let title_width = Line::raw(title_fit(&self.title, area.width.saturating_sub(2))).width() as u16;
-        let one_row = self.legend_lines(u16::MAX, keep);
+        let one_row = self.legend_lines(u16::MAX, keep, &[]);
         let beside = inner.width.saturating_sub(title_width);
         let short = inner.height.saturating_sub(legend.len() as u16 + 2) < ROOMY;
-        if short && one_row.len() == 1 && one_row[0].width() <= usize::from(beside) {
+        let on_title = short && one_row.len() == 1 && one_row[0].width() <= usize::from(beside);
+        if on_title {
             let at = area.x + 1 + title_width;
             frame.buffer_mut().set_line(at, area.y, &one_row[0], beside);
             legend.clear();
@@ -281,7 +283,28 @@ impl Plot<'_> {
             buf.set_string(start, label_row, &label, axis_style);
             free_from = start + w + 1;
         }
-        self.draw_data(frame, graph, y_bounds, keep);
+        let covered = self.draw_data(frame, graph, y_bounds, keep);
+        if !covered.is_empty() {
+            // The legend again, saying which overlays the data cover, where it still fits.
+            let buf = frame.buffer_mut();
+            if on_title {
+                let line = self.legend_lines(u16::MAX, keep, &covered);
+                if line.len() == 1 && line[0].width() <= usize::from(beside) {
+                    let at = area.x + 1 + title_width;
+                    buf.set_string(at, area.y, " ".repeat(usize::from(beside)), Style::new());
+                    buf.set_line(at, area.y, &line[0], beside);
+                }
+            } else {
+                let lines = self.legend_lines(inner.width, keep, &covered);
+                if lines.len() == legend.len() {
+                    for (i, line) in lines.iter().enumerate() {
+                        let row = inner.y + i as u16;
+                        buf.set_string(inner.x, row, " ".repeat(usize::from(inner.width)), Style::new());
+                        buf.set_line(inner.x, row, line, inner.width);
+                    }
+                }
+            }
+        }
         #[cfg(test)]
         drawn::record(self, keep, graph, y_bounds);
         Some(Placed { graph })
@@ -300,9 +323,10 @@ impl Plot<'_> {
     }
 
     /// The axes' titles ("y against x"), each series' sample and name (the first `keep`
-    /// overlays', then the series'), then the overlays left out for lack of rows, wrapped to
-    /// `width` (two rows at most; one at `u16::MAX`).
-    fn legend_lines(&self, width: u16, keep: usize) -> Vec<Line<'static>> {
+    /// overlays', then the series'; an overlay in `covered` said to be covered), then the
+    /// overlays left out for lack of rows, wrapped to `width` (two rows at most; one at
+    /// `u16::MAX`).
+    fn legend_lines(&self, width: u16, keep: usize, covered: &[usize]) -> Vec<Line<'static>> {
         let width = usize::from(width);
         // The axes' titles, unless the chart's title says them.
         let axes = format!("{} against {}", self.y.title, self.x.title);
@@ -321,7 +345,7 @@ impl Plot<'_> {
                     .map_or_else(|| word.to_string(), |g| format!("{g} {word}"))
             })
             .collect();
-        for s in self.drawn(keep) {
+        for (i, s) in self.drawn(keep).enumerate() {
             if s.name.is_empty() {
                 continue;
             }
@@ -342,6 +366,12 @@ impl Plot<'_> {
                 );
                 format!(" (= {label})")
             });
+            // An overlay whose every mark the data hide: the data lie on it to within a row.
+            let same = if i < keep && covered.contains(&i) {
+                format!("{same} (covered)")
+            } else {
+                same
+            };
             entries.push(vec![
                 Span::styled(format!(" {}", sample(s.stroke, s.glyph, self.marker)), style),
                 Span::raw(format!(" {}{same} ", s.name)),
@@ -400,8 +430,10 @@ impl Plot<'_> {
     }
 
     /// The series on a canvas over `graph` (y over `y_bounds`), lines first, then the glyphs
-    /// over them, then the first `keep` overlays' glyphs in the cells left free.
-    fn draw_data(&self, frame: &mut Frame, graph: Rect, y_bounds: [f64; 2], keep: usize) {
+    /// over them, then the first `keep` overlays' glyphs in the cells left free. Returns the
+    /// overlays (their indices) with a point on the graph and no mark drawn: every cell of
+    /// theirs held by the data.
+    fn draw_data(&self, frame: &mut Frame, graph: Rect, y_bounds: [f64; 2], keep: usize) -> Vec<usize> {
         let theme = self.theme;
         let canvas = Canvas::default()
             .marker(self.marker)
@@ -443,6 +475,8 @@ impl Plot<'_> {
         // dots, no other glyph): where none is free it stays under them.
         let mut taken: HashMap<(u16, u16), usize> = HashMap::new();
         let n = self.series.len();
+        // Per overlay: whether a point of it lies on the graph, and whether a mark was drawn.
+        let mut shown = vec![(false, false); keep];
         let layers = self.series.iter().enumerate().map(|(i, s)| (i, s, false));
         let under = self.overlays[..keep]
             .iter()
@@ -459,6 +493,9 @@ impl Plot<'_> {
                     continue;
                 };
                 let row = graph.bottom() - 1 - cy;
+                if beneath {
+                    shown[i - n].0 = true;
+                }
                 let free = |c: u16| match taken.get(&(c, cy)) {
                     Some(&o) => o == i,
                     None => !beneath || matches!(buf[(graph.x + c, row)].symbol(), " " | "\u{2800}"),
@@ -474,47 +511,13 @@ impl Plot<'_> {
                 };
                 taken.insert((cx, cy), i);
                 buf[(graph.x + cx, row)].set_char(g).set_style(style);
+                if beneath {
+                    shown[i - n].1 = true;
+                }
             }
         }
+        (0..keep).filter(|&k| shown[k] == (true, false)).collect()
     }
-}
-
-/// Whether `a` and `b` span the same x range (within `tx`) and every point of `a` lies on the
-/// polyline through `b` (within `tx` in x and `ty` in y of one of its segments; a vertical
-/// segment holds the y between its ends).
-fn on_path(a: &[(f64, f64)], b: &[(f64, f64)], tx: f64, ty: f64) -> bool {
-    let range = |d: &[(f64, f64)]| {
-        d.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
-            (lo.min(p.0), hi.max(p.0))
-        })
-    };
-    let ((alo, ahi), (blo, bhi)) = (range(a), range(b));
-    let on_segment = |&(x, y): &(f64, f64), w: &[(f64, f64)]| {
-        let ((x0, y0), (x1, y1)) = (w[0], w[1]);
-        if x < x0.min(x1) - tx || x > x0.max(x1) + tx {
-            return false;
-        }
-        if (x1 - x0).abs() <= tx {
-            return y >= y0.min(y1) - ty && y <= y0.max(y1) + ty;
-        }
-        let at = y0 + (y1 - y0) * ((x - x0) / (x1 - x0)).clamp(0.0, 1.0);
-        (y - at).abs() <= ty
-    };
-    // The segments that can hold x: all of them, or, along a path drawn left to right, those
-    // from the last vertex left of x − tx on.
-    let sorted = b.windows(2).all(|w| w[0].0 <= w[1].0);
-    let holds = |p: &(f64, f64)| {
-        let from = if sorted {
-            b.partition_point(|q| q.0 < p.0 - tx).saturating_sub(1)
-        } else {
-            0
-        };
-        b[from..]
-            .windows(2)
-            .take_while(|w| !sorted || w[0].0 <= p.0 + tx)
-            .any(|w| on_segment(p, w))
-    };
-    (alo - blo).abs() <= tx && (ahi - bhi).abs() <= tx && a.iter().all(holds)
 }
 
 /// What each chart drew, for the tests that read a frame: the values of its glyphs, to find
