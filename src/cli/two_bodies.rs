@@ -66,9 +66,10 @@ pub(super) fn cli_error(e: BodiesError, epsilon_flag: &str) -> CliError {
         BodiesError::NotUnique { .. } | BodiesError::Coupling(_) | BodiesError::OneBody => {
             CliError::Usage(e.to_string())
         }
-        BodiesError::Mismatch(_) | BodiesError::NotConverged(_) | BodiesError::NonFinite(_) => {
-            CliError::Failed(e.to_string())
-        }
+        BodiesError::Mismatch(_)
+        | BodiesError::NotConverged(_)
+        | BodiesError::NonFinite(_)
+        | BodiesError::Unbalanced { .. } => CliError::Failed(e.to_string()),
     }
 }
 

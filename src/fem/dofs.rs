@@ -16,6 +16,12 @@ pub enum Support {
     /// line's of a half model, else the support's first node's): with free sides, a uniform
     /// compression is exact (the contact patch test).
     Roller,
+    /// Free but for the one point that removes the vertical translation: the support's first
+    /// node's u (on a half model's symmetry line, which holds the horizontal translation and
+    /// the rotation) — a body whose load is balanced by its contact alone (a pressure on the
+    /// upper body's top, docs/design.md §12). A half model's only: on a full one the rotation
+    /// about that node stays free.
+    Free,
 }
 
 impl Support {
@@ -24,6 +30,7 @@ impl Support {
         match self {
             Support::Clamped => "clamped",
             Support::Roller => "roller",
+            Support::Free => "free",
         }
     }
 }
@@ -63,6 +70,7 @@ impl DofMap {
         let held_base = |node: usize, comp: usize| match support {
             Support::Clamped => true,
             Support::Roller => comp == 1 || node == 0,
+            Support::Free => node == 0,
         };
         let map = Self::new(mesh.n_nodes(), |node, comp| {
             (node < nnx && held_base(node, comp))
@@ -76,12 +84,13 @@ impl DofMap {
     }
 
     /// [`DofMap::count`] with the bottom held by `support`: a roller frees the u_x of every
-    /// support node but one.
+    /// support node but one, [`Support::Free`] both components of every node but one.
     pub fn count_supported(nnx: usize, nny: usize, symmetric_left: bool, support: Support) -> usize {
         Self::count(nnx, nny, symmetric_left)
             + match support {
                 Support::Clamped => 0,
                 Support::Roller => nnx - 1,
+                Support::Free => 2 * nnx - 2,
             }
     }
 
@@ -155,6 +164,8 @@ mod tests {
         assert_eq!(DofMap::count(5, 3, false), 20);
         // On rollers the base's 5 u_x are free but one: 4 more.
         assert_eq!(DofMap::count_supported(5, 3, true, Support::Roller), 22);
+        // Free, the base's 10 dofs are free but its first node's 2: 8 more.
+        assert_eq!(DofMap::count_supported(5, 3, true, Support::Free), 26);
         for element in Element::ALL {
             for (nx, ny) in [(1, 1), (2, 1), (3, 5)] {
                 for symmetric in [false, true] {
@@ -164,11 +175,13 @@ mod tests {
                         DofMap::count(mesh.nnx(), mesh.node_y.len(), symmetric),
                         "{element:?} {nx}×{ny} symmetric {symmetric}"
                     );
-                    assert_eq!(
-                        DofMap::supported(&mesh, Support::Roller).n_free(),
-                        DofMap::count_supported(mesh.nnx(), mesh.node_y.len(), symmetric, Support::Roller),
-                        "{element:?} {nx}×{ny} symmetric {symmetric} on rollers"
-                    );
+                    for support in [Support::Roller, Support::Free] {
+                        assert_eq!(
+                            DofMap::supported(&mesh, support).n_free(),
+                            DofMap::count_supported(mesh.nnx(), mesh.node_y.len(), symmetric, support),
+                            "{element:?} {nx}×{ny} symmetric {symmetric} {support:?}"
+                        );
+                    }
                 }
             }
         }

@@ -14,15 +14,11 @@
 use faer::Mat;
 
 use super::{generalized_eigenvalues, p1_mass, smoothing_matrix};
-use crate::contact::interface::solve::{BodiesError, delassus};
+use crate::contact::interface::solve::{BodiesError, KERNEL, delassus};
 use crate::contact::interface::{
     Coupling, InterfaceMethod, MultiplierBasis, Side, coupling, multiplier_mass,
 };
 use crate::contact::{ContactPoints, Rule};
-
-/// A generalized eigenvalue at most this fraction of the largest is a kernel's (the two-body
-/// solve's test of unique multipliers uses the same).
-const KERNEL: f64 = 1e-12;
 
 /// A multiplier space across the interface.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

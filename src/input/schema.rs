@@ -64,15 +64,18 @@ pub(super) struct RawBody {
     pub(super) support: Option<Spanned<String>>,
 }
 
-/// `[upper]` as written: the upper body's material, height and shape, its mesh across the
-/// interface (ratio and offset), its support, its top's displacement and the slave side.
+/// `[upper]` as written: the upper body's material, height, width and shape, its mesh across the
+/// interface (ratio and offset), its support, its top's displacement or pressure and the slave
+/// side.
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct RawUpper {
     pub(super) young: Spanned<f64>,
     pub(super) poisson: Spanned<f64>,
     pub(super) height: Spanned<f64>,
-    pub(super) displacement: Spanned<f64>,
+    pub(super) width: Option<Spanned<f64>>,
+    pub(super) displacement: Option<Spanned<f64>>,
+    pub(super) pressure: Option<Spanned<f64>>,
     pub(super) shape: Option<Spanned<String>>,
     pub(super) radius: Option<Spanned<f64>>,
     pub(super) ratio: Option<Spanned<Vec<i64>>>,

@@ -1,15 +1,16 @@
 //! `[upper]` validated (docs/design.md §12): the upper elastic body in place of the rigid
-//! obstacle — E and ν in their ranges, a height, the shape `block` or `cylinder` (with its radius), the ratio of two whole
+//! obstacle — E and ν in their ranges, a height, a width up to the lower body's, the shape `block` or `cylinder` (with its radius), the ratio of two whole
 //! numbers 1 to [`MAX_RATIO`], an offset |offset| < 1/2, the support among `clamped` and
-//! `roller`, the top's displacement within ± the thinner body's height, the slave among
-//! `upper` and `lower`. `[obstacle]` beside it is refused, and so is what the two-body solve
+//! `roller`, the top's displacement within ± the thinner body's height or a pressure on it (the
+//! half model's), the slave among
+//! `upper` and `lower` (a narrower upper body is the slave). `[obstacle]` beside it is refused, and so is what the two-body solve
 //! does not take (friction, a graded mesh, a method other than the penalty or the exact
 //! multipliers). Every error: file, line, column, key, value, range.
 
 use toml::Spanned;
 
 use super::locate::{Locator, ScenarioError};
-use super::schema::{RawScenario, RawUpper};
+use super::schema::{Model, RawScenario, RawUpper};
 use crate::check;
 use crate::contact::interface::solve::Slave;
 use crate::contact::{Method, Obstacle};
@@ -47,7 +48,13 @@ impl Locator<'_> {
             (Some(o), None) => Ok((self.obstacle(o, height)?, None)),
             (None, Some(u)) => {
                 let upper = self.upper(u.get_ref(), raw)?;
-                let reach = (x1 - x0).abs() + x0.abs() + x1.abs() + 1.0;
+                // A block as wide as the lower body: a flat beyond both ends; narrower: a flat
+                // punch of its width.
+                let reach = if upper.width < *raw.body.width.get_ref() {
+                    upper.width / 2.0
+                } else {
+                    (x1 - x0).abs() + x0.abs() + x1.abs() + 1.0
+                };
                 let rigid = match upper.shape {
                     UpperShape::Block => Obstacle::Polyline {
                         points: vec![(-reach, 0.0), (reach, 0.0)],
@@ -79,10 +86,27 @@ impl Locator<'_> {
         self.check("upper.young", &u.young, |v| check::young(*v))?;
         self.check("upper.poisson", &u.poisson, |v| check::poisson(*v))?;
         self.check("upper.height", &u.height, |v| check::length(*v))?;
-        let thinner = raw.body.height.get_ref().min(*u.height.get_ref());
-        self.check("upper.displacement", &u.displacement, |v| {
-            check::depth(*v, thinner)
-        })?;
+        let lower_width = *raw.body.width.get_ref();
+        let width = match &u.width {
+            None => lower_width,
+            Some(w) => {
+                self.check("upper.width", w, |v| {
+                    let allowed = check::Allowed::Range {
+                        what: "a width",
+                        lo: 0.0,
+                        hi: lower_width,
+                        note: " (above 0, at most the lower body's width)",
+                    };
+                    if *v > 0.0 {
+                        check::closed(*v, 0.0, lower_width, allowed)
+                    } else {
+                        check::open(*v, 0.0, lower_width, allowed)
+                    }
+                })?;
+                *w.get_ref()
+            }
+        };
+        let (displacement, pressure) = self.top_load(u, raw)?;
         let shape = match (u.shape.as_ref().map(|s| s.get_ref().as_str()), &u.radius) {
             (None | Some("block"), None) => UpperShape::Block,
             (Some("cylinder"), Some(r)) => {
@@ -161,6 +185,13 @@ impl Locator<'_> {
                 }
             },
         };
+        if width < lower_width && slave == Slave::Lower {
+            return Err(self.error(
+                u.slave.as_ref().map(Spanned::span),
+                Some("upper.slave".into()),
+                "\"lower\" does not apply to an upper body narrower than the lower one: the narrower body is the slave, its whole interface over the other's; allowed: \"upper\"".into(),
+            ));
+        }
         self.two_body_conflicts(raw)?;
         Ok(Upper {
             material: Material {
@@ -169,13 +200,66 @@ impl Locator<'_> {
                 plane: raw.material.plane,
             },
             height: *u.height.get_ref(),
+            width,
             shape,
             ratio,
             offset,
-            support: self.support("upper.support", u.support.as_ref())?,
-            displacement: *u.displacement.get_ref(),
+            support: match pressure {
+                Some(_) => Support::Free,
+                None => self.support("upper.support", u.support.as_ref())?,
+            },
+            displacement,
+            pressure,
             slave,
         })
+    }
+
+    /// The upper body's load: its top pressed down by `displacement` (within ± the thinner
+    /// body's height) or under a uniform `pressure` > 0 (the half model's, its top then held by
+    /// a pin alone, no `support`), one of the two exactly.
+    fn top_load(&self, u: &RawUpper, raw: &RawScenario) -> Result<(f64, Option<f64>), ScenarioError> {
+        match (&u.displacement, &u.pressure) {
+            (Some(d), None) => {
+                let thinner = raw.body.height.get_ref().min(*u.height.get_ref());
+                self.check("upper.displacement", d, |v| check::depth(*v, thinner))?;
+                Ok((*d.get_ref(), None))
+            }
+            (None, Some(q)) => {
+                self.check("upper.pressure", q, |v| {
+                    check::open(
+                        *v,
+                        0.0,
+                        f64::INFINITY,
+                        check::Allowed::Said("a finite pressure > 0 (compression) on the upper body's top"),
+                    )
+                })?;
+                if raw.body.model != Model::Half {
+                    return Err(self.error(
+                        Some(q.span()),
+                        Some("upper.pressure".into()),
+                        "needs the half model (body.model = \"half\"): its symmetry line holds the pressed body's rotation; allowed with model = \"half\", or give displacement".into(),
+                    ));
+                }
+                if let Some(s) = &u.support {
+                    return Err(self.error(
+                        Some(s.span()),
+                        Some("upper.support".into()),
+                        "does not apply with pressure: the pressed top is free, held by one pin (docs/design.md §12); give support with displacement only".into(),
+                    ));
+                }
+                Ok((0.0, Some(*q.get_ref())))
+            }
+            (Some(_), Some(q)) => Err(self.error(
+                Some(q.span()),
+                Some("upper.pressure".into()),
+                "does not apply with displacement: give one of displacement (δ, the top pressed down) and pressure (q on the top)".into(),
+            )),
+            (None, None) => Err(self.error(
+                None,
+                Some("upper.displacement".into()),
+                "missing: give displacement (δ, the top pressed down) or pressure (q on the top)".into(),
+            )),
+        }
     }
 
     /// What two bodies do not take: friction, a graded mesh, a method other than `penalty`

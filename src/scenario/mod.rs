@@ -83,6 +83,17 @@ impl Scenario {
         }
     }
 
+    /// The x-range of the modelled upper body, within [`Scenario::x_range`] (None for a
+    /// one-body scenario).
+    pub fn upper_x_range(&self) -> Option<(f64, f64)> {
+        let width = self.upper.as_ref()?.width;
+        Some(if self.half_model {
+            (0.0, width / 2.0)
+        } else {
+            (-width / 2.0, width / 2.0)
+        })
+    }
+
     /// The mesh of `level` with `element`: the level-0 grid with every cell bisected `level`
     /// times in each direction.
     pub fn mesh(&self, level: u32, element: Element) -> Mesh {
@@ -204,6 +215,9 @@ pub struct Upper {
     pub material: Material,
     /// Its height H_u.
     pub height: f64,
+    /// Its width, at most the lower body's (the whole body's, centred on x = 0; a half model
+    /// meshes its half): narrower, it presses a part of the lower body's top.
+    pub width: f64,
     /// Its shape.
     pub shape: UpperShape,
     /// Its elements across the interface against the lower body's: `ratio.0` upper elements
@@ -214,8 +228,12 @@ pub struct Upper {
     pub offset: f64,
     /// How its top is held.
     pub support: Support,
-    /// The prescribed downward displacement δ of its top.
+    /// The prescribed downward displacement δ of its top (0 under a pressure).
     pub displacement: f64,
+    /// A uniform pressure q on its top instead of the displacement: the top is then free but
+    /// for a pin (its support [`Support::Free`]) and the pin's descent is found so that the
+    /// interface carries q·w (docs/design.md §12).
+    pub pressure: Option<f64>,
     /// Which side's trace carries the contact integral.
     pub slave: Slave,
 }

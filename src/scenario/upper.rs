@@ -1,16 +1,18 @@
 //! The upper elastic body of a two-body scenario (docs/design.md §12): its material, height
 //! and shape, its mesh across the interface as a ratio to the lower body's elements and an
-//! offset, its support and the prescribed displacement of its top, and which side is the slave.
+//! offset, its support and the prescribed displacement of (or the pressure on) its top, and
+//! which side is the slave.
 //!
 //! Its [`Discretization`] is built on its mesh mirrored, local y' = top − y: the top (its
 //! support) is the mesh's bottom row and its Γ_C, the interface, the mesh's top row, so that
 //! the trace compliance C = E K⁻¹ Eᵀ on Γ_C's local u_y' = −u_y is the one every contact solver
 //! uses, along the body's outward normal. The top's prescribed displacement δ (downwards) is a
-//! rigid translation added to that solution.
+//! rigid translation added to that solution; under a pressure the top is free but for a pin,
+//! whose descent is found ([`pressed`]).
 
 use crate::contact::half_plane::e_star;
 use crate::contact::interface::solve::{Bodies, BodiesError, Enforcement, InterfaceSolution, solve_method};
-use crate::contact::interface::{Coupling, InterfaceMethod};
+use crate::contact::interface::{Coupling, InterfaceMethod, pressed};
 use crate::discretization::Discretization;
 use crate::error::SolveError;
 use crate::fem::memory::Sizes;
@@ -25,15 +27,16 @@ pub const MAX_RATIO: u32 = 64;
 
 impl Scenario {
     /// The upper body's mesh at `level` with `element`, in its local coordinates (y' = top − y,
-    /// its support the bottom row): ratio · the lower's cells across (the interior lines
-    /// shifted by `offset` of a cell), cells as close to square as whole numbers allow. None
-    /// for a one-body scenario.
+    /// its support the bottom row): ratio · the lower's cells under it across (the interior
+    /// lines shifted by `offset` of a cell), cells as close to square as whole numbers allow.
+    /// None for a one-body scenario.
     pub fn upper_mesh(&self, level: u32, element: Element) -> Option<Mesh> {
         let upper = self.upper.as_ref()?;
-        let (x0, x1) = self.x_range();
-        let lower_cells = (self.x_lines.len() - 1) << level;
+        let (x0, x1) = self.upper_x_range()?;
+        // The lower body's elements under the upper one (all of them when it is as wide).
+        let under = ((self.x_lines.len() - 1) << level) as f64 * upper.width / self.width;
         let (a, b) = upper.ratio;
-        let nx = ((lower_cells as f64 * f64::from(a) / f64::from(b)).round() as usize).max(1);
+        let nx = ((under * f64::from(a) / f64::from(b)).round() as usize).max(1);
         let h = (x1 - x0) / nx as f64;
         let xs: Vec<f64> = (0..=nx)
             .map(|i| match i {
@@ -88,20 +91,29 @@ impl Scenario {
     }
 
     /// The pressure of the contact patch test (docs/design.md §12), when this scenario is one:
-    /// two blocks on rollers, the upper's top pressed δ > 0 (lifted, they carry nothing). Both bodies then carry the uniform
-    /// σ_yy = −p with σ_xx = 0, each shortened by p·H/E' (E' the plane modulus), and the
-    /// penalty's gap −εp closes the rest:
+    /// two blocks of one width, the lower on rollers, the upper's top pressed δ > 0 on rollers
+    /// or under a pressure q (lifted, they carry nothing; a narrower upper block is a punch,
+    /// its pressure not uniform). Both bodies then carry the uniform σ_yy = −p with σ_xx = 0:
+    /// under a pressure p = q; under δ each body is shortened by p·H/E' (E' the plane modulus)
+    /// and the penalty's gap −εp closes the rest:
     ///
     /// p = δ / (H_l/E'_l + H_u/E'_u + ε).
     pub fn patch_pressure(&self, epsilon: f64) -> Option<f64> {
         let upper = self.upper.as_ref()?;
-        let patch = upper.shape == UpperShape::Block
-            && upper.support == Support::Roller
-            && self.support == Support::Roller
-            && upper.displacement > 0.0;
-        patch.then(|| {
-            upper.displacement
-                / (self.height / e_star(&self.material) + upper.height / e_star(&upper.material) + epsilon)
+        let blocks =
+            upper.shape == UpperShape::Block && upper.width == self.width && self.support == Support::Roller;
+        match upper.pressure {
+            Some(q) => blocks.then_some(q),
+            None => (blocks && upper.support == Support::Roller && upper.displacement > 0.0)
+                .then(|| upper.displacement / (self.compliance_across() + epsilon)),
+        }
+    }
+
+    /// H_l/E'_l + H_u/E'_u: the two bodies' uniform compression per unit pressure (0 for a
+    /// one-body scenario).
+    fn compliance_across(&self) -> f64 {
+        self.upper.as_ref().map_or(0.0, |upper| {
+            self.height / e_star(&self.material) + upper.height / e_star(&upper.material)
         })
     }
 }
@@ -119,6 +131,9 @@ pub struct TwoBodies {
     /// On the contact patch test ([`Scenario::patch_pressure`]): its exact pressure, and
     /// max_k |p_k − p| / p over the slave's constraints.
     pub patch: Option<(f64, f64)>,
+    /// The descent of the upper body's top: prescribed, or under a pressure the pin's, found so
+    /// that the interface carries the load ([`pressed`]).
+    pub descent: f64,
 }
 
 impl Scenario {
@@ -149,7 +164,17 @@ impl Scenario {
             slave: upper_body.slave,
         };
         let shape = upper_body.shape;
-        let (coupling, solution) = solve_method(&bodies, method, enforcement, |x| shape.initial_gap(x))?;
+        let gap0 = |x| shape.initial_gap(x);
+        let (coupling, solution, descent) = match upper_body.pressure {
+            None => {
+                let (coupling, solution) = solve_method(&bodies, method, enforcement, gap0)?;
+                (coupling, solution, upper_body.displacement)
+            }
+            Some(q) => {
+                let first = q * (self.compliance_across() + enforcement.epsilon());
+                pressed::solve_pressed(&bodies, method, enforcement, gap0, q, first)?
+            }
+        };
         // The penalty's patch pressure is softened by ε; the exact multipliers' and the ALM's is not.
         let softening = if enforcement.is_exact() {
             0.0
@@ -169,6 +194,7 @@ impl Scenario {
             coupling,
             solution,
             patch,
+            descent,
         })
     }
 }

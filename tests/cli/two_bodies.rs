@@ -176,6 +176,43 @@ fn two_bodies_refusals() {
         ("offset = 0.0", "offset = 0.5", "upper.offset", "-0.5 and 0.5"),
         ("slave = \"upper\"", "slave = \"top\"", "upper.slave", "\"lower\""),
         (
+            "height = 0.5",
+            "height = 0.5\nwidth = 3.5",
+            "upper.width",
+            "from 0 to 3",
+        ),
+        (
+            "height = 0.5",
+            "height = 0.5\nwidth = 0.0",
+            "upper.width",
+            "above 0",
+        ),
+        (
+            "slave = \"upper\"",
+            "slave = \"lower\"\nwidth = 2.0",
+            "upper.slave",
+            "narrower",
+        ),
+        (
+            "displacement = 0.01",
+            "displacement = 0.01\npressure = 5.0",
+            "upper.pressure",
+            "one of displacement",
+        ),
+        ("displacement = 0.01", "", "upper.displacement", "or pressure"),
+        (
+            "support = \"roller\"\ndisplacement = 0.01",
+            "support = \"roller\"\npressure = 5.0",
+            "upper.support",
+            "displacement only",
+        ),
+        (
+            "support = \"roller\"\ndisplacement = 0.01",
+            "pressure = 0.0",
+            "upper.pressure",
+            "> 0",
+        ),
+        (
             "support = \"roller\"\ndisplacement",
             "support = \"pinned\"\ndisplacement",
             "upper.support",
@@ -221,6 +258,19 @@ fn two_bodies_refusals() {
             "{key}: {err}"
         );
     }
+    // A pressure on a full model's upper body: its rotation would be free.
+    let full = text.replacen("model = \"half\"", "model = \"full\"", 1).replacen(
+        "support = \"roller\"\ndisplacement = 0.01",
+        "pressure = 5.0",
+        1,
+    );
+    let path = scratch_file("two-bodies-pressure-full.toml", &full);
+    let (code, _, err) = riplab(&["solve", path.to_str().unwrap()]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("upper.pressure") && err.contains("\"half\""),
+        "{err}"
+    );
 }
 
 /// A depth or a top displacement of 1e-300 is printed as 1e-300 in the tables, not as a

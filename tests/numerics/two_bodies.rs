@@ -226,3 +226,141 @@ fn the_alm_across_the_interface_reaches_the_exact_multipliers() {
         assert!((a - b).abs() < 1e-8 * exact, "{a} vs {b}");
     }
 }
+
+/// An upper block narrower than the lower one (`[upper] width`, docs/design.md §12) on a
+/// foundation 10⁶ times stiffer: between its rollers the block is compressed uniformly, so
+/// p = δ E'_u / H_u at every row (by hand: δ = 0.01, E'_u = 500/0.96, H_u = 0.5), to the
+/// foundation's compliance — for mortar at 2:3 with the upper's 5 elements over the lower's
+/// 8 under it, and on the lower's mesh left whole (its 12 elements). The load is that p over
+/// the upper's half width.
+#[test]
+fn a_narrow_block_on_a_stiff_foundation_is_compressed_uniformly() {
+    let mut s = patch();
+    s.material.young *= 1e6;
+    let upper = s.upper.as_mut().unwrap();
+    upper.width = 2.0;
+    assert_eq!(s.patch_pressure(0.0), None, "a punch is no patch test");
+    let upper_mesh = s.upper_mesh(1, Element::Q1).unwrap();
+    assert_eq!(upper_mesh.node_x.first(), Some(&0.0));
+    assert!((upper_mesh.node_x.last().unwrap() - 1.0).abs() < 1e-15);
+    assert_eq!(upper_mesh.nx(), 5, "2:3 of the 8 lower elements under it");
+    let by_hand = 0.01 * (500.0 / 0.96) / 0.5;
+    for method in [InterfaceMethod::Mortar, InterfaceMethod::MortarDual] {
+        let solved = s.solve_bodies(1, method, 0.0).unwrap();
+        assert_eq!(solved.lower.mesh().nx(), 12);
+        let sol = &solved.solution;
+        assert!(sol.x.iter().all(|&x| (0.0..=1.0 + 1e-12).contains(&x)));
+        for p in &sol.p {
+            assert!(
+                (p / by_hand - 1.0).abs() < 1e-4,
+                "{method:?}: p {p} against {by_hand}"
+            );
+        }
+        assert!(
+            (sol.load / (by_hand * 1.0) - 1.0).abs() < 1e-4,
+            "{method:?}: P {}",
+            sol.load
+        );
+    }
+}
+
+/// A narrow elastic block on a wider elastic body is a punch: mortar's and one-pass NTS's
+/// pressure is highest at its corner (the last row), above 1.3 times the middle's, and
+/// every discretisation carries the same load to 5 % (two-pass NTS, over-constrained, with
+/// rows lifted off between its others).
+#[test]
+fn a_narrow_block_on_an_elastic_body_presses_hardest_at_its_corner() {
+    let mut s = patch();
+    s.upper.as_mut().unwrap().width = 1.0;
+    let mut loads = Vec::new();
+    for method in [
+        InterfaceMethod::Mortar,
+        InterfaceMethod::Nts,
+        InterfaceMethod::Nts2,
+    ] {
+        let sol = s.solve_bodies(2, method, 0.0).unwrap().solution;
+        assert!(sol.load > 0.0 && sol.p.iter().all(|p| p.is_finite() && *p >= 0.0));
+        loads.push(sol.load);
+        if method != InterfaceMethod::Nts2 {
+            let last = *sol.p.last().unwrap();
+            assert!(sol.p.iter().all(|&p| p <= last), "{method:?}: {:?}", sol.p);
+            assert!(last > 1.3 * sol.p[0], "{method:?}: {:?}", sol.p);
+        }
+    }
+    for load in &loads {
+        assert!((load / loads[0] - 1.0).abs() < 0.05, "{loads:?}");
+    }
+}
+
+/// The patch scenario with its upper body's top under a uniform pressure q instead of a
+/// prescribed displacement.
+fn pressed(q: f64) -> Scenario {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/patch-two-blocks.toml");
+    let text = std::fs::read_to_string(path).unwrap();
+    let from = "support = \"roller\"\ndisplacement = 0.01";
+    assert!(text.contains(from));
+    let text = text.replace(from, &format!("pressure = {q:?}"));
+    Scenario::parse(&text, "pressed-two-blocks.toml").unwrap()
+}
+
+/// The contact patch test as the issue of two bodies states it: a uniform pressure q on the
+/// upper block's top (docs/design.md §12, "A pressure on the top") is carried across the
+/// non-matching interface as p = q by mortar (standard and dual, 2:3 and 5:7, either side the
+/// slave), for the exact multipliers and for the penalty alike; the pin's descent is the two
+/// blocks' shortening, δ = q (H_l/E'_l + H_u/E'_u + ε), by hand; the lower trace sinks by the
+/// lower block's shortening q H_l/E'_l, the upper one (which includes u_q) by εq more. NTS
+/// does not carry it uniformly.
+#[test]
+fn a_pressure_on_the_top_is_carried_across_as_it_is() {
+    use riplab::contact::interface::solve::Slave;
+    let q = 5.0;
+    let (lower, upper) = (1.0 / (1000.0 / 0.91), 0.5 / (500.0 / 0.96));
+    for (ratio, slave, epsilon) in [
+        ((2, 3), Slave::Upper, 0.0),
+        ((5, 7), Slave::Upper, 0.0),
+        ((2, 3), Slave::Lower, 0.0),
+        ((2, 3), Slave::Upper, 1e-4),
+    ] {
+        let mut s = pressed(q);
+        let body = s.upper.as_mut().unwrap();
+        (body.ratio, body.slave) = (ratio, slave);
+        assert_eq!(s.patch_pressure(epsilon), Some(q));
+        for method in [InterfaceMethod::Mortar, InterfaceMethod::MortarDual] {
+            let solved = s.solve_bodies(1, method, epsilon).unwrap();
+            let case = format!("{method:?} {ratio:?} {slave:?} ε {epsilon}");
+            let (exact, error) = solved.patch.unwrap();
+            assert_eq!(exact, q);
+            assert!(error < 1e-10, "{case}: patch error {error:e}");
+            assert!((solved.solution.load / (1.5 * q) - 1.0).abs() < 1e-11, "{case}");
+            let delta = q * (lower + upper + epsilon);
+            assert!(
+                (solved.descent / delta - 1.0).abs() < 1e-9,
+                "{case}: δ {} against {delta}",
+                solved.descent
+            );
+            let sol = &solved.solution;
+            // The upper trace sinks by the penalty's penetration εq more.
+            let (upper_trace, lower_trace) = match slave {
+                Slave::Upper => (&sol.slave, &sol.master),
+                _ => (&sol.master, &sol.slave),
+            };
+            for (trace, sinks) in [(upper_trace, q * (lower + epsilon)), (lower_trace, q * lower)] {
+                for uy in &trace.uy {
+                    assert!(
+                        (uy / -sinks - 1.0).abs() < 1e-9,
+                        "{case}: u_y {uy} against {}",
+                        -sinks
+                    );
+                }
+            }
+        }
+    }
+    let mut s = pressed(q);
+    s.upper.as_mut().unwrap().ratio = (2, 3);
+    let (_, nts) = s
+        .solve_bodies(1, InterfaceMethod::Nts, 0.0)
+        .unwrap()
+        .patch
+        .unwrap();
+    assert!(nts > 1e-3, "NTS's patch error {nts}");
+}

@@ -9,6 +9,7 @@ mod error;
 mod mortar;
 mod multipliers;
 mod nts;
+pub mod pressed;
 #[cfg(test)]
 mod props;
 mod rip;

@@ -197,6 +197,18 @@ pub enum BodiesError {
     /// The solver's own error (cancelled, an eigendecomposition that failed).
     #[error(transparent)]
     Solve(#[from] SolveError),
+    /// A pressure on the upper body's top that no descent δ balanced ([`super::pressed`]).
+    #[error(
+        "the pressure on the upper body's top was not balanced: the interface carries P = {carried:e} of its load {load:e} after {steps} descents δ; a smaller pressure or a larger ε"
+    )]
+    Unbalanced {
+        /// The top's load q · width.
+        load: f64,
+        /// The load carried at the last δ tried.
+        carried: f64,
+        /// The δ tried.
+        steps: usize,
+    },
 }
 
 /// Solve the contact of `bodies` across their interface discretised by `method`
@@ -214,6 +226,18 @@ pub fn solve_method(
     enforcement: impl Into<Enforcement>,
     gap0: impl Fn(f64) -> f64,
 ) -> Result<(Coupling, InterfaceSolution), BodiesError> {
+    let (coupling, g0, rule) = couple(bodies, method, gap0)?;
+    let sol = solve(bodies, &coupling, &g0, enforcement.into(), rule)?;
+    Ok((coupling, sol))
+}
+
+/// The coupling of `bodies` by `method`, the initial gap `gap0` at each of its rows, and the
+/// reduced-integration rule whose points the rows are (for p̄ by (17)).
+pub(crate) fn couple(
+    bodies: &Bodies,
+    method: InterfaceMethod,
+    gap0: impl Fn(f64) -> f64,
+) -> Result<(Coupling, Vec<f64>, Option<Rule>), BodiesError> {
     let (slave, _) = bodies.pair();
     let order = slave.mesh.element.order();
     let (sx, mx) = bodies.trace_x();
@@ -224,8 +248,7 @@ pub fn solve_method(
         InterfaceMethod::Rip(rule) => Some(rule),
         _ => None,
     };
-    let sol = solve(bodies, &coupling, &g0, enforcement.into(), rule)?;
-    Ok((coupling, sol))
+    Ok((coupling, g0, rule))
 }
 
 /// Solve the contact of `bodies` across the interface discretised by `coupling`, from the
@@ -380,6 +403,11 @@ pub fn delassus(rows: &[Vec<(usize, f64)>], c: &Mat<f64>) -> Mat<f64> {
     Mat::from_fn(n, n, |j, k| rows[j].iter().map(|&(i, g)| g * cg[(i, k)]).sum())
 }
 
+/// An eigenvalue at most this fraction of the largest is a kernel's: the constraints are then
+/// not independent on the two traces (the exact multipliers are not unique; the inf-sup
+/// estimate across the interface, [`crate::infsup`], is 0).
+pub(crate) const KERNEL: f64 = 1e-12;
+
 /// Refuse a singular A = Σ G C Gᵀ (constraints not independent): the exact multipliers would
 /// not be unique.
 fn unique(a: &Mat<f64>) -> Result<(), BodiesError> {
@@ -392,7 +420,7 @@ fn unique(a: &Mat<f64>) -> Result<(), BodiesError> {
         .map_err(SolveError::Eigen)?;
     let largest = values.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
     let smallest = values.iter().fold(f64::INFINITY, |m, &v| m.min(v));
-    if smallest <= 1e-12 * largest {
+    if smallest <= KERNEL * largest {
         return Err(BodiesError::NotUnique { constraints: n });
     }
     Ok(())

@@ -97,7 +97,11 @@ fn reference_under(line_y: f64) -> String {
         .unwrap();
     let buf = terminal.backend().buffer();
     (0..buf.area.height)
-        .map(|y| (0..buf.area.width).map(|x| buf[(x, y)].symbol()).collect::<String>())
+        .map(|y| {
+            (0..buf.area.width)
+                .map(|x| buf[(x, y)].symbol())
+                .collect::<String>()
+        })
         .find(|row| row.contains("applied 1"))
         .expect("the legend names the reference")
 }
