@@ -90,18 +90,15 @@ impl Locator<'_> {
         let width = match &u.width {
             None => lower_width,
             Some(w) => {
+                let lo = check::LENGTH.0.min(lower_width);
                 self.check("upper.width", w, |v| {
                     let allowed = check::Allowed::Range {
                         what: "a width",
-                        lo: 0.0,
+                        lo,
                         hi: lower_width,
-                        note: " (above 0, at most the lower body's width)",
+                        note: " (a length, at most the lower body's width)",
                     };
-                    if *v > 0.0 {
-                        check::closed(*v, 0.0, lower_width, allowed)
-                    } else {
-                        check::open(*v, 0.0, lower_width, allowed)
-                    }
+                    check::closed(*v, lo, lower_width, allowed)
                 })?;
                 *w.get_ref()
             }
@@ -215,8 +212,9 @@ impl Locator<'_> {
     }
 
     /// The upper body's load: its top pressed down by `displacement` (within ± the thinner
-    /// body's height) or under a uniform `pressure` > 0 (the half model's, its top then held by
-    /// a pin alone, no `support`), one of the two exactly.
+    /// body's height) or under a uniform `pressure` above 0 and at most the softer body's E
+    /// (the half model's, its top then held by a pin alone, no `support`), one of the two
+    /// exactly.
     fn top_load(&self, u: &RawUpper, raw: &RawScenario) -> Result<(f64, Option<f64>), ScenarioError> {
         match (&u.displacement, &u.pressure) {
             (Some(d), None) => {
@@ -225,13 +223,20 @@ impl Locator<'_> {
                 Ok((*d.get_ref(), None))
             }
             (None, Some(q)) => {
+                // At most a strain of 1 in the softer body, as a displacement is at most its height.
+                let softer = raw.material.young.get_ref().min(*u.young.get_ref());
                 self.check("upper.pressure", q, |v| {
-                    check::open(
-                        *v,
-                        0.0,
-                        f64::INFINITY,
-                        check::Allowed::Said("a finite pressure > 0 (compression) on the upper body's top"),
-                    )
+                    let allowed = check::Allowed::Range {
+                        what: "a pressure",
+                        lo: 0.0,
+                        hi: softer,
+                        note: " (above 0, compression; at most the softer body's E)",
+                    };
+                    if *v > 0.0 {
+                        check::closed(*v, 0.0, softer, allowed)
+                    } else {
+                        check::open(*v, 0.0, softer, allowed)
+                    }
                 })?;
                 if raw.body.model != Model::Half {
                     return Err(self.error(

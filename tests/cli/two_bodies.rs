@@ -179,13 +179,13 @@ fn two_bodies_refusals() {
             "height = 0.5",
             "height = 0.5\nwidth = 3.5",
             "upper.width",
-            "from 0 to 3",
+            "from 1e-6 to 3",
         ),
         (
             "height = 0.5",
-            "height = 0.5\nwidth = 0.0",
+            "height = 0.5\nwidth = 1e-7",
             "upper.width",
-            "above 0",
+            "from 1e-6 to 3",
         ),
         (
             "slave = \"upper\"",
@@ -210,7 +210,13 @@ fn two_bodies_refusals() {
             "support = \"roller\"\ndisplacement = 0.01",
             "pressure = 0.0",
             "upper.pressure",
-            "> 0",
+            "above 0",
+        ),
+        (
+            "support = \"roller\"\ndisplacement = 0.01",
+            "pressure = 1e300",
+            "upper.pressure",
+            "from 0 to 500",
         ),
         (
             "support = \"roller\"\ndisplacement",

@@ -364,3 +364,16 @@ fn a_pressure_on_the_top_is_carried_across_as_it_is() {
         .unwrap();
     assert!(nts > 1e-3, "NTS's patch error {nts}");
 }
+
+/// A pressure of 1e-200 on the top is balanced like one of 5 (P = q·w, the patch error
+/// round-off), and so is 1e-300: seen failing before, regula falsi's step fb·(b − a)
+/// underflowed to 0 and the search stayed on one δ for its 200 tries.
+#[test]
+fn a_tiny_pressure_is_balanced() {
+    for q in [1e-200, 1e-300] {
+        let solved = pressed(q).solve_bodies(1, InterfaceMethod::Mortar, 0.0).unwrap();
+        assert!((solved.solution.load / (1.5 * q) - 1.0).abs() < 1e-11, "q {q:e}");
+        let (_, error) = solved.patch.unwrap();
+        assert!(error < 1e-10, "q {q:e}: patch error {error:e}");
+    }
+}

@@ -132,7 +132,8 @@ pub fn solve_pressed(
         if tried >= MAX_STEPS {
             return Err(unbalanced(fb, tried));
         }
-        let c = b - fb * (b - a) / (fb - fa);
+        // The ratio first: fb·(b − a) underflows under a pressure of 1e-200.
+        let c = b - (b - a) * (fb / (fb - fa));
         let (fc, sol) = at(c)?;
         tried += 1;
         if (fc < 0.0) != (fb < 0.0) {
