@@ -181,9 +181,10 @@ pub struct StudyArgs {
     /// Schemes: presets M1–M4 or pairs like q2+gauss1, comma-separated [default: M1,M2,M3,M4]
     #[arg(long, value_delimiter = ',')]
     pub schemes: Vec<String>,
-    /// On a two-body scenario (`[upper]`), the discretisations of the interface, comma-separated
-    /// (`rip` with the scenario's rule) [default: all five]
-    #[arg(long, value_enum, value_delimiter = ',')]
+    /// On a two-body scenario (`[upper]`), the discretisations of the interface to study,
+    /// comma-separated: nts, nts2, mortar, mortar-dual, rip (the reduced-integration penalty
+    /// with the scenario's rule), as `solve --contact` [default: all five]
+    #[arg(long, value_enum, value_delimiter = ',', hide_possible_values = true)]
     pub contact: Vec<ContactName>,
     /// The contact method and its parameters.
     #[command(flatten)]
@@ -211,9 +212,9 @@ pub struct StudyArgs {
     /// Level of the Q2 exact-constraint reference (default: one finer than the finest studied).
     #[arg(long)]
     pub reference_level: Option<i64>,
-    /// At most this many refinements of the reference at its contact edges, made until its
-    /// estimated error is a tenth of the smallest row error (0: the uniform level only)
-    /// [default: 4]
+    /// At most this many refinements of the reference at its contact edges (default 4), made
+    /// until its estimated error is a tenth of the smallest row error (0: the uniform level
+    /// only)
     #[arg(long, allow_negative_numbers = true)]
     pub reference_refinements: Option<i64>,
     /// Compute the reference even if the user's cache directory holds it, and do not store it
