@@ -247,3 +247,47 @@ fn row_failure(e: BodiesError) -> Result<(Status, String), BodiesError> {
     };
     Ok((status, e.to_string()))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const PATCH: &str = include_str!("../../scenarios/patch-two-blocks.toml");
+    const HERTZ: &str = include_str!("../../scenarios/hertz-two-bodies.toml");
+
+    /// The rate is log(e₀/e₁)/log(h₀/h₁) (by hand: 1e-3 to 2.5e-4 as h halves is 2), absent
+    /// where either error is round-off or the closed form has no such quantity.
+    #[test]
+    fn rates_and_the_round_off_floor() {
+        let errors = |patch: f64| InterfaceErrors {
+            patch: Some(patch),
+            ..InterfaceErrors::default()
+        };
+        let halving = (0.5, 0.25);
+        let r = errors(2.5e-4).rates_from(&errors(1e-3), halving);
+        assert!((r.patch.unwrap() - 2.0).abs() < 1e-12, "{r:?}");
+        assert_eq!((r.a, r.p0), (None, None));
+        for (e0, e1) in [(3e-15, 7e-15), (1e-3, 1e-16), (1e-16, 1e-3), (1e-3, 0.0)] {
+            assert_eq!(
+                errors(e1).rates_from(&errors(e0), halving).patch,
+                None,
+                "{e0} {e1}"
+            );
+        }
+        // At the floor itself the rate is given.
+        let r = errors(ROUND_OFF).rates_from(&errors(2.0 * ROUND_OFF), halving);
+        assert!((r.patch.unwrap() - 1.0).abs() < 1e-12, "{r:?}");
+    }
+
+    /// The bundled scenarios' closed forms, and none once the patch test's rollers are gone.
+    #[test]
+    fn each_scenario_has_its_closed_form() {
+        let patch = Scenario::parse(PATCH, "patch").unwrap();
+        assert_eq!(ClosedForm::of(&patch), ClosedForm::Patch);
+        let hertz = Scenario::parse(HERTZ, "hertz").unwrap();
+        assert_eq!(ClosedForm::of(&hertz), ClosedForm::Hertz);
+        let clamped = PATCH.replacen("support = \"roller\"", "support = \"clamped\"", 1);
+        let clamped = Scenario::parse(&clamped, "clamped").unwrap();
+        assert_eq!(ClosedForm::of(&clamped), ClosedForm::None);
+    }
+}
