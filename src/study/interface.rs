@@ -207,16 +207,15 @@ fn fill(
     row.newton_iterations = Some(sol.iterations);
     row.outer_iterations = sol.outer_iterations;
     row.load = Some(sol.load);
-    let pressed = || {
-        sol.x
-            .iter()
-            .zip(&sol.p)
-            .filter(|(_, p)| **p > 0.0)
-            .map(|(x, _)| *x)
-    };
-    row.contact_zone = pressed().next().map(|from| Zone {
+    let mut pressed = sol
+        .x
+        .iter()
+        .zip(&sol.p)
+        .filter(|(_, p)| **p > 0.0)
+        .map(|(x, _)| *x);
+    row.contact_zone = pressed.next().map(|from| Zone {
         from,
-        to: pressed().last().unwrap_or(from),
+        to: pressed.next_back().unwrap_or(from),
     });
     let relative = |computed: f64, exact: f64| ((computed - exact) / exact).abs();
     row.errors = match closed {
