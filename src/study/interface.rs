@@ -242,7 +242,12 @@ fn row_failure(e: BodiesError) -> Result<(Status, String), BodiesError> {
         BodiesError::NotConverged(_) => Status::NotConverged,
         BodiesError::Mismatch(_) | BodiesError::NonFinite(_) => Status::Failed,
         BodiesError::Solve(s) if !s.is_input() => Status::of_error(s),
-        _ => return Err(e),
+        BodiesError::Solve(_)
+        | BodiesError::Epsilon { .. }
+        | BodiesError::Coupling(_)
+        | BodiesError::OneBody => {
+            return Err(e);
+        }
     };
     Ok((status, e.to_string()))
 }
