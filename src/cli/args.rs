@@ -178,9 +178,14 @@ pub struct StudyArgs {
     /// Levels, inclusive: `0..5`, `2..=4` or a single level.
     #[arg(long, default_value = "0..5")]
     pub levels: String,
-    /// Schemes: presets M1–M4 or pairs like q2+gauss1, comma-separated.
-    #[arg(long, value_delimiter = ',', default_value = "M1,M2,M3,M4")]
+    /// Schemes: presets M1–M4 or pairs like q2+gauss1, comma-separated [default: M1,M2,M3,M4]
+    #[arg(long, value_delimiter = ',')]
     pub schemes: Vec<String>,
+    /// On a two-body scenario (`[upper]`), the discretisations of the interface to study,
+    /// comma-separated: nts, nts2, mortar, mortar-dual, rip (the reduced-integration penalty
+    /// with the scenario's rule), as `solve --contact` [default: all five]
+    #[arg(long, value_enum, value_delimiter = ',', hide_possible_values = true)]
+    pub contact: Vec<ContactName>,
     /// The contact method and its parameters.
     #[command(flatten)]
     pub method: MethodArgs,
@@ -207,10 +212,11 @@ pub struct StudyArgs {
     /// Level of the Q2 exact-constraint reference (default: one finer than the finest studied).
     #[arg(long)]
     pub reference_level: Option<i64>,
-    /// At most this many refinements of the reference at its contact edges, made until its
-    /// estimated error is a tenth of the smallest row error (0: the uniform level only).
-    #[arg(long, default_value_t = 4, allow_negative_numbers = true)]
-    pub reference_refinements: i64,
+    /// At most this many refinements of the reference at its contact edges (default 4), made
+    /// until its estimated error is a tenth of the smallest row error (0: the uniform level
+    /// only)
+    #[arg(long, allow_negative_numbers = true)]
+    pub reference_refinements: Option<i64>,
     /// Compute the reference even if the user's cache directory holds it, and do not store it
     /// (by default it is kept in $XDG_CACHE_HOME/riplab, ~/.cache/riplab).
     #[arg(long)]
@@ -293,19 +299,6 @@ impl Select {
         }
         if let Some(r) = self.rule {
             s.rule = r;
-        }
-        Ok(s)
-    }
-
-    /// [`Select::resolve`] for a command that takes one body: a two-body scenario (`[upper]`)
-    /// refused, naming `riplab solve`, which takes it.
-    pub fn resolve_one_body(&self, command: &str) -> Result<Scenario, CliError> {
-        let s = self.resolve()?;
-        if s.upper.is_some() {
-            return Err(CliError::Usage(format!(
-                "{} has two elastic bodies ([upper]): `riplab {command}` takes one body yet; `riplab solve` solves it (--contact chooses the interface's discretisation)",
-                s.source
-            )));
         }
         Ok(s)
     }

@@ -1,29 +1,56 @@
-//! `riplab study`: every scheme against a refined reference, with its rates and fits (docs/design.md §6).
+//! `riplab study`: every scheme against a refined reference, with its rates and fits
+//! (docs/design.md §6); on a two-body scenario every discretisation of the interface against
+//! the scenario's closed form (§12).
 
 use std::process::ExitCode;
 
+use clap::ValueEnum as _;
+
 use super::args::{Select, StudyArgs, method_at, parse_levels};
+use super::choices::ContactName;
 use super::{CliError, grading, note, print, shown, usage};
 use crate::check;
 use crate::contact::Method;
-use crate::output::{Format, StudyReport, output};
+use crate::contact::interface::InterfaceMethod;
+use crate::contact::interface::solve::Enforcement;
+use crate::output::{Format, InterfaceStudyReport, StudyReport, output};
+use crate::scenario::Scenario;
 use crate::scheme::Scheme;
+use crate::study::interface::{ClosedForm, study_interface};
 use crate::study::{Plan, ReferenceLevelError, all_ok};
 
+/// The reference's refinements when `--reference-refinements` is not given.
+const REFERENCE_REFINEMENTS: i64 = 4;
+
 pub(super) fn study(args: &StudyArgs) -> Result<ExitCode, CliError> {
-    let scenario = Select {
+    let mut scenario = Select {
         scenario: args.scenario.clone(),
         ..Select::default()
     }
-    .resolve_one_body("study")?;
-    let mut scenario = scenario;
+    .resolve()?;
+    if scenario.upper.is_some() {
+        return two_bodies(args, &scenario);
+    }
+    if !args.contact.is_empty() {
+        return Err(usage(
+            "--contact",
+            format!(
+                "{} has one body (a rigid obstacle): --contact chooses the discretisation across the interface of a two-body scenario ([upper])",
+                scenario.source
+            ),
+        ));
+    }
     scenario.friction = study_friction(args, &scenario)?;
-    let schemes = args
-        .schemes
-        .iter()
-        .map(|s| Scheme::parse(s).map(|s| (s.element, s.rule)))
-        .collect::<Result<Vec<_>, _>>()
-        .map_err(|m| usage("--schemes", m))?;
+    let schemes = if args.schemes.is_empty() {
+        Scheme::PAPER.iter().map(|s| (s.element, s.rule)).collect()
+    } else {
+        args.schemes
+            .iter()
+            .map(|s| Scheme::parse(s).map(|s| (s.element, s.rule)))
+            .collect::<Result<Vec<_>, _>>()
+            .map_err(|m| usage("--schemes", m))?
+    };
+    let reference_refinements = args.reference_refinements.unwrap_or(REFERENCE_REFINEMENTS);
     let method = args.method.resolve(&scenario)?;
     if let Some(m) = method.filter(|m| !m.uses_epsilon() && !args.sweep_epsilon.is_empty()) {
         return Err(usage(
@@ -79,12 +106,8 @@ pub(super) fn study(args: &StudyArgs) -> Result<ExitCode, CliError> {
         ReferenceLevelError::NotFiner { .. } => usage("--reference-level", e),
         ReferenceLevelError::NoFinerLevel { .. } => usage("--levels", e),
     })?;
-    check::integer(
-        args.reference_refinements,
-        0,
-        i64::from(crate::study::MAX_REFINEMENTS),
-    )
-    .map_err(|m| usage("--reference-refinements", m))?;
+    check::integer(reference_refinements, 0, i64::from(crate::study::MAX_REFINEMENTS))
+        .map_err(|m| usage("--reference-refinements", m))?;
     let dir = (!args.no_cache).then(crate::cache::default_dir).flatten();
     let mut fetch = |grid: &crate::study::ReferenceMesh| {
         let (fields, provenance) = crate::cache::fields(&scenario, grid, dir.as_deref())?;
@@ -166,7 +189,7 @@ pub(super) fn study(args: &StudyArgs) -> Result<ExitCode, CliError> {
         &schemes,
         method,
         plan,
-        (reference_level, args.reference_refinements as u32),
+        (reference_level, reference_refinements as u32),
         &mut fetch,
     )?;
     // Rows whose errors the penalty may account for: a field of the row (JSON, CSV) and a note
@@ -227,4 +250,97 @@ fn study_friction(
             "a study takes one number of steps (a list sweeps them in `riplab solve`)",
         )),
     }
+}
+
+/// `riplab study` on a two-body scenario (docs/design.md §12, "The study across the
+/// interface"): each `--contact` discretisation at each level of `--levels`, against the
+/// scenario's closed form ([`crate::study::interface`]). The one-body study's options are
+/// refused, and every level's memory is checked before any solve (exit 2); a row without a
+/// result exits 1 after the output.
+fn two_bodies(args: &StudyArgs, scenario: &Scenario) -> Result<ExitCode, CliError> {
+    refuse_one_body_options(args, scenario)?;
+    let levels = parse_levels(&args.levels).map_err(|m| usage("--levels", m))?;
+    let method = args.method.resolve(scenario)?;
+    let flag = match args.epsilon {
+        Some(_) => "--epsilon",
+        None => "the scenario's contact.epsilon",
+    };
+    let epsilon = args.epsilon.unwrap_or(scenario.epsilon);
+    let enforcement = super::two_bodies::enforcement(method, epsilon, flag, scenario)?;
+    if epsilon > 0.0 {
+        for level in [levels[0], levels[levels.len() - 1]] {
+            check::epsilon_in(epsilon, scenario.epsilon_range(level))
+                .map_err(|m| usage(flag, format!("at level {level}: {m}")))?;
+        }
+    }
+    let element = scenario.element;
+    for &level in &levels {
+        let upper = scenario.upper_sizes(level, element).map_or(0, |s| s.peak_bytes());
+        scenario.fits_beside(level, element, upper)?;
+    }
+    let names = match args.contact.is_empty() {
+        true => ContactName::value_variants(),
+        false => &args.contact[..],
+    };
+    let mut methods: Vec<InterfaceMethod> = Vec::new();
+    for &name in names {
+        let m = super::two_bodies::method_of(name, scenario);
+        if !methods.contains(&m) {
+            methods.push(m);
+        }
+    }
+    let rows = study_interface(scenario, &methods, &levels, enforcement)
+        .map_err(|e| super::two_bodies::cli_error(e, flag))?;
+    let upper = scenario.upper.as_ref().expect("a two-body scenario");
+    let report = InterfaceStudyReport {
+        scenario: &scenario.name,
+        element: element.name(),
+        ratio: [upper.ratio.0, upper.ratio.1],
+        offset: upper.offset,
+        slave: upper.slave.name(),
+        method: match enforcement {
+            Enforcement::Exact => "exact",
+            Enforcement::Penalty(_) => "penalty",
+            Enforcement::Alm { .. } => "alm",
+        },
+        epsilon: enforcement.epsilon(),
+        closed_form: ClosedForm::of(scenario),
+        rows: &rows,
+    };
+    print(&output(&report, args.format))?;
+    match rows.iter().filter(|r| !r.ok()).count() {
+        0 => Ok(ExitCode::SUCCESS),
+        n => Err(CliError::Failed(format!(
+            "{n} of {} rows have no result (their status and reason are in the output)",
+            rows.len()
+        ))),
+    }
+}
+
+/// Refuse the one-body study's options on a two-body scenario: its schemes, gradings, ε
+/// sweep, reference and friction.
+fn refuse_one_body_options(args: &StudyArgs, scenario: &Scenario) -> Result<(), CliError> {
+    let given: [(&str, bool); 7] = [
+        ("--schemes", !args.schemes.is_empty()),
+        ("--refine-edges", !args.refine_edges.is_empty()),
+        ("--sweep-epsilon", !args.sweep_epsilon.is_empty()),
+        ("--level", args.level.is_some()),
+        ("--reference-level", args.reference_level.is_some()),
+        ("--reference-refinements", args.reference_refinements.is_some()),
+        ("--no-cache", args.no_cache),
+    ];
+    if let Some((flag, _)) = given.iter().find(|g| g.1) {
+        return Err(usage(
+            flag,
+            "does not apply to a two-body scenario ([upper]): its study compares the interface's discretisations (--contact) over --levels against the scenario's closed form, with --method and --epsilon",
+        ));
+    }
+    let frictions = args.friction.resolve(scenario)?;
+    if frictions.len() > 1 || frictions[0].is_on() {
+        return Err(usage(
+            "--friction",
+            "friction is not available on a two-body scenario ([upper]) yet",
+        ));
+    }
+    Ok(())
 }

@@ -4,6 +4,7 @@
 //! a solve that does not converge exits 1.
 
 use std::process::ExitCode;
+use std::time::Instant;
 
 use super::args::{SolveArgs, method_at};
 use super::choices::ContactName;
@@ -114,10 +115,12 @@ pub(super) fn solve(args: &SolveArgs, scenario: &Scenario) -> Result<ExitCode, C
     };
     let enforcement = enforcement(method, epsilon, flag, scenario)?;
     let contact = method_of(args.contact.unwrap_or(ContactName::Mortar), scenario);
+    let t = Instant::now();
     let solved = scenario
         .solve_bodies(scenario.level, contact, enforcement)
         .map_err(|e| cli_error(e, flag))?;
-    let report = InterfaceReport::new(scenario, scenario.level, contact, enforcement, &solved);
+    let total_ms = t.elapsed().as_secs_f64() * 1e3;
+    let report = InterfaceReport::new(scenario, scenario.level, contact, enforcement, &solved, total_ms);
     print(&output(&report, args.format))?;
     Ok(ExitCode::SUCCESS)
 }

@@ -93,6 +93,22 @@ pub struct Interface {
     pub master: MasterNodes,
 }
 
+/// The wall time of a two-body solve and the parts of it each body's discretisation measured
+/// (summed over both bodies), ms: as the one-body JSON's `timing_ms` (docs/design.md §7), the
+/// coupling and the Newton solve inside the total.
+#[derive(Serialize)]
+pub struct BodiesTiming {
+    /// Assembly of both bodies' K.
+    pub assembly: f64,
+    /// Their orderings and symbolic factorisations.
+    pub symbolic: f64,
+    /// Their numeric factorisations and trace compliances.
+    pub factorization: f64,
+    /// The whole solve: both meshes and discretisations, the coupling, the Newton solve and
+    /// the traces' displacements.
+    pub total: f64,
+}
+
 /// The JSON object of a two-body solve.
 #[derive(Serialize)]
 pub struct InterfaceReport {
@@ -133,6 +149,8 @@ pub struct InterfaceReport {
     /// On the contact patch test: max |p − p_applied| / p_applied over the constraints.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub patch_error: Option<f64>,
+    /// The solve's wall time and its parts, ms.
+    pub timing_ms: BodiesTiming,
 }
 
 /// Every `order`-th value: the vertices among a trace's nodes.
@@ -141,13 +159,14 @@ fn vertices(v: &[f64], order: usize) -> Vec<f64> {
 }
 
 impl InterfaceReport {
-    /// The report of `solved`, `scenario` at `level` with `method` and ε.
+    /// The report of `solved`, `scenario` at `level` with `method` and ε, solved in `total_ms`.
     pub fn new(
         scenario: &Scenario,
         level: u32,
         method: InterfaceMethod,
         enforcement: impl Into<Enforcement>,
         solved: &TwoBodies,
+        total_ms: f64,
     ) -> Self {
         let enforcement = enforcement.into();
         let upper = scenario.upper.as_ref().expect("a two-body scenario");
@@ -227,6 +246,12 @@ impl InterfaceReport {
             load: sol.load,
             p_applied: solved.patch.map(|p| p.0),
             patch_error: solved.patch.map(|p| p.1),
+            timing_ms: BodiesTiming {
+                assembly: solved.lower.assembly_ms + solved.upper.assembly_ms,
+                symbolic: solved.lower.symbolic_ms + solved.upper.symbolic_ms,
+                factorization: solved.lower.factorization_ms + solved.upper.factorization_ms,
+                total: total_ms,
+            },
         }
     }
 }
@@ -237,7 +262,7 @@ impl Report for InterfaceReport {
         let (l, u) = (&self.bodies.lower, &self.bodies.upper);
         let _ = writeln!(
             s,
-            "{} — two bodies, {}, level {}, {} dofs; contact {} ({} slave), {}, {} Newton iterations",
+            "{} — two bodies, {}, level {}, {} dofs; contact {} ({} slave), {}, {} Newton iteration{}, {:.1} ms",
             self.scenario,
             self.element,
             self.level,
@@ -253,7 +278,9 @@ impl Report for InterfaceReport {
                 ("penalty", ..) => format!("penalty ε = {:e}", self.epsilon),
                 _ => "exact multipliers (ε = 0)".to_string(),
             },
-            self.newton_iterations
+            self.newton_iterations,
+            if self.newton_iterations == 1 { "" } else { "s" },
+            self.timing_ms.total
         );
         for (name, b) in [("lower", l), ("upper", u)] {
             let _ = writeln!(

@@ -11,6 +11,7 @@ mod infsup;
 mod interface;
 mod solve;
 mod study;
+mod study_interface;
 mod sweep;
 pub mod verify;
 pub use csv::{Cell, csv_table};
@@ -19,6 +20,7 @@ pub use infsup::{INFSUP_COLUMNS, INTERFACE_INFSUP_COLUMNS, InfSupTable, Interfac
 pub use interface::{INTERFACE_COLUMNS, InterfaceReport};
 pub use solve::{CircleReport, HertzReport, Nodes, Points, SolveReport};
 pub use study::{STUDY_COLUMNS, StudyReport};
+pub use study_interface::{INTERFACE_STUDY_COLUMNS, InterfaceStudyReport};
 pub use sweep::{SWEEP_COLUMNS, Sweep, SweepFailure, SweepRow};
 
 /// Output format of the CLI.

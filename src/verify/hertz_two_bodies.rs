@@ -15,6 +15,7 @@ use super::{Case, Kind, MAX_VERIFY_LEVEL, Measured};
 use crate::contact::half_plane::e_star;
 use crate::contact::interface::InterfaceMethod;
 use crate::error::SolveError;
+use crate::scenario::upper::TwoBodies;
 use crate::scenario::{Scenario, UpperShape};
 
 /// The case.
@@ -37,9 +38,11 @@ const A_TOLERANCE: f64 = 0.01;
 const P0_TOLERANCE: f64 = 0.02;
 
 /// Hertz's (a, p₀) and the computed ones at one level.
-struct Level {
-    hertz: (f64, f64),
-    computed: (f64, f64),
+pub(crate) struct Level {
+    /// Johnson's (a, p₀) for the computed load.
+    pub(crate) hertz: (f64, f64),
+    /// The computed (a_h from the pressure's moments, the peak pressure).
+    pub(crate) computed: (f64, f64),
 }
 
 impl Level {
@@ -50,18 +53,25 @@ impl Level {
 
 fn solve(scenario: &Scenario, level: u32, method: InterfaceMethod) -> Result<Level, SolveError> {
     let solved = scenario.solve_bodies(level, method, 0.0).map_err(failed)?;
+    Ok(measure(scenario, &solved).expect("the embedded scenario's cylinder carries a load"))
+}
+
+/// Hertz's (a, p₀) for the load of `solved`, a solve of `scenario`, beside the computed a_h
+/// (from the pressure's moments) and peak; None unless the upper body is a cylinder and the
+/// interface carries a load.
+pub(crate) fn measure(scenario: &Scenario, solved: &TwoBodies) -> Option<Level> {
     let (c, sol) = (&solved.coupling, &solved.solution);
     let force = |k: usize| c.weight[k] * sol.p[k];
     let m0: f64 = (0..sol.p.len()).map(force).sum();
     let m2: f64 = (0..sol.p.len()).map(|k| force(k) * sol.x[k] * sol.x[k]).sum();
     let peak = sol.p.iter().fold(0.0_f64, |m, &p| m.max(p));
-    let upper = scenario
-        .upper
-        .as_ref()
-        .expect("the embedded scenario has two bodies");
+    let upper = scenario.upper.as_ref()?;
     let UpperShape::Cylinder { radius } = upper.shape else {
-        unreachable!("the embedded scenario's upper body is a cylinder")
+        return None;
     };
+    if !(m0 > 0.0 && sol.load > 0.0) {
+        return None;
+    }
     let modulus = 1.0 / (1.0 / e_star(&scenario.material) + 1.0 / e_star(&upper.material));
     let full = if scenario.half_model {
         2.0 * sol.load
@@ -69,7 +79,7 @@ fn solve(scenario: &Scenario, level: u32, method: InterfaceMethod) -> Result<Lev
         sol.load
     };
     let a = (4.0 * full * radius / (std::f64::consts::PI * modulus)).sqrt();
-    Ok(Level {
+    Some(Level {
         hertz: (a, 2.0 * full / (std::f64::consts::PI * a)),
         computed: (2.0 * (m2 / m0).sqrt(), peak),
     })

@@ -31,6 +31,7 @@ mod render_graded;
 mod scenario_words;
 mod study_friction;
 mod study_notes;
+mod study_two_bodies;
 mod terminal;
 mod tour_files;
 mod tours_and_outputs;

@@ -158,15 +158,15 @@ fn two_bodies_refusals() {
         assert_eq!(code, 2, "{args:?}: {err}");
         assert!(err.contains(said), "{args:?}: {err}");
     }
-    // `study` takes one body and refuses two, naming `riplab solve` (`infsup` takes two:
-    // tests/cli/infsup_two_bodies.rs; `render` and the lab draw the two-body scene:
-    // tests/cli/lab_bodies.rs).
+    // `study` takes two bodies but not the one-body study's options (`infsup` takes two:
+    // tests/cli/infsup_two_bodies.rs; `study`: tests/cli/study_two_bodies.rs; `render` and the
+    // lab draw the two-body scene: tests/cli/lab_bodies.rs).
     {
-        let command = ["study", PATCH, "--levels", "0..1"];
+        let command = ["study", PATCH, "--levels", "0..1", "--schemes", "M1"];
         let (code, _, err) = riplab(&command);
         assert_eq!(code, 2, "{command:?}: {err}");
         assert!(
-            err.contains("[upper]") && err.contains("riplab solve"),
+            err.contains("[upper]") && err.contains("--schemes"),
             "{command:?}: {err}"
         );
     }
