@@ -31,8 +31,12 @@ pub struct BodyReport {
     pub support: &'static str,
     /// Its elements across the interface at the level solved.
     pub elements_across: usize,
-    /// The upper body's prescribed downward displacement δ of its top (null for the lower).
+    /// The downward displacement δ of the upper body's top: prescribed, or under a pressure
+    /// its pin's descent, found so that the interface carries the load (null for the lower).
     pub displacement: Option<f64>,
+    /// The uniform pressure q on the upper body's top (null when its displacement is
+    /// prescribed, and for the lower).
+    pub pressure: Option<f64>,
 }
 
 /// Both bodies.
@@ -211,17 +215,19 @@ impl InterfaceReport {
                     support: scenario.support.name(),
                     elements_across: solved.lower.mesh().nx(),
                     displacement: None,
+                    pressure: None,
                 },
                 upper: BodyReport {
                     young: upper.material.young,
                     poisson: upper.material.poisson,
                     shape: upper.shape.name(),
                     radius: upper.shape.radius(),
-                    width: scenario.width,
+                    width: upper.width,
                     height: upper.height,
                     support: upper.support.name(),
                     elements_across: solved.upper.mesh().nx(),
-                    displacement: Some(upper.displacement),
+                    displacement: Some(solved.descent),
+                    pressure: upper.pressure,
                 },
             },
             interface: Interface {
@@ -293,8 +299,12 @@ impl Report for InterfaceReport {
                 b.poisson,
                 b.support,
                 b.elements_across,
-                b.displacement
-                    .map_or(String::new(), |d| format!(", top pressed {}", num(d)))
+                match (b.pressure, b.displacement) {
+                    (Some(q), Some(d)) =>
+                        format!(", top under pressure {}, its pin descended {}", num(q), num(d)),
+                    (None, Some(d)) => format!(", top pressed {}", num(d)),
+                    _ => String::new(),
+                }
             );
         }
         let _ = writeln!(s, "load P = {:.6e}", self.load);

@@ -240,7 +240,9 @@ fn row_failure(e: BodiesError) -> Result<(Status, String), BodiesError> {
     let status = match &e {
         BodiesError::NotUnique { .. } => Status::Kernel,
         BodiesError::NotConverged(_) => Status::NotConverged,
-        BodiesError::Mismatch(_) | BodiesError::NonFinite(_) => Status::Failed,
+        BodiesError::Mismatch(_) | BodiesError::NonFinite(_) | BodiesError::Unbalanced { .. } => {
+            Status::Failed
+        }
         BodiesError::Solve(s) if !s.is_input() => Status::of_error(s),
         BodiesError::Solve(_)
         | BodiesError::Epsilon { .. }

@@ -320,3 +320,46 @@ fn tiny_depths_and_displacements_print_as_numbers() {
     assert!(out.lines().all(|l| l.chars().count() < 200), "{out}");
     assert!(!out.contains("load P = 0.000000e0"), "{out}");
 }
+
+/// A two-body solve under a pressure on the upper's top reports the pressure, the descent
+/// found (the two blocks' shortening, q (H_l/E'_l + H_u/E'_u), by hand) and the upper's own
+/// width; the table says both. Before, the JSON gave the unused displacement 0 and the lower
+/// body's width.
+#[test]
+fn a_pressure_and_a_narrower_upper_are_reported() {
+    let text = std::fs::read_to_string(PATCH).unwrap().replacen(
+        "support = \"roller\"\ndisplacement = 0.01",
+        "pressure = 5.0",
+        1,
+    );
+    let path = scratch_file("two-bodies-pressed.toml", &text);
+    let (code, out, err) = riplab(&["solve", path.to_str().unwrap(), "--format", "json"]);
+    assert_eq!(code, 0, "{err}");
+    let json: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let upper = &json["bodies"]["upper"];
+    assert_eq!(upper["pressure"], 5.0);
+    let by_hand = 5.0 * (1.0 / (1000.0 / 0.91) + 0.5 / (500.0 / 0.96));
+    let descent = upper["displacement"].as_f64().unwrap();
+    assert!(
+        (descent / by_hand - 1.0).abs() < 1e-9,
+        "{descent} against {by_hand}"
+    );
+    assert_eq!(json["bodies"]["lower"]["pressure"], serde_json::Value::Null);
+    let (code, out, _) = riplab(&["solve", path.to_str().unwrap()]);
+    assert_eq!(code, 0);
+    assert!(
+        out.contains("top under pressure 5, its pin descended 0.0093"),
+        "{out}"
+    );
+    let narrow =
+        std::fs::read_to_string(PATCH)
+            .unwrap()
+            .replacen("height = 0.5", "height = 0.5\nwidth = 1.0", 1);
+    let path = scratch_file("two-bodies-narrow.toml", &narrow);
+    let (code, out, err) = riplab(&["solve", path.to_str().unwrap(), "--format", "json"]);
+    assert_eq!(code, 0, "{err}");
+    let json: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(json["bodies"]["upper"]["width"], 1.0);
+    assert_eq!(json["bodies"]["lower"]["width"], 3.0);
+    assert_eq!(json["patch_error"], serde_json::Value::Null);
+}
