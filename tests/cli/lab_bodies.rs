@@ -130,3 +130,28 @@ fn the_lab_opens_the_two_body_scene_and_q_restores_the_terminal() {
     assert!(ended.cooked, "the terminal is left in raw mode");
     assert_restored(&screen(SIZE, &ended.output), "q in the two-body scene");
 }
+
+/// Off the patch test the status line counts the active-set iterations in the singular for
+/// one: a narrow block (`[upper] width`) settles at once, and read "1 iterations".
+#[test]
+fn one_iteration_is_singular_in_the_status_line() {
+    let text =
+        std::fs::read_to_string(PATCH)
+            .unwrap()
+            .replacen("height = 0.5", "height = 0.5\nwidth = 1.0", 1);
+    let path = crate::common::scratch_file("lab-bodies-narrow.toml", &text);
+    let args = [
+        "render",
+        path.to_str().unwrap(),
+        "--contact",
+        "mortar",
+        "--size",
+        "80x24",
+    ];
+    let (code, out, err) = run(&args);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        out.contains("· 1 iteration\n") || out.contains("· 1 iteration "),
+        "{out}"
+    );
+}

@@ -155,7 +155,7 @@ pub fn state_text(app: &BodiesApp) -> String {
             )
         }
         None => format!(
-            "{name}: load P = {} · p max {} · contact {} · {} iterations",
+            "{name}: load P = {} · p max {} · contact {} · {} iteration{}",
             sig(solved.load, 4),
             sig(solved.p.iter().fold(0.0_f64, |m, p| m.max(p.1)), 4),
             solved.zone().map_or("nowhere".to_string(), |[a, b]| format!(
@@ -163,7 +163,8 @@ pub fn state_text(app: &BodiesApp) -> String {
                 sig(a, 3),
                 sig(b, 3)
             )),
-            solved.iterations
+            solved.iterations,
+            if solved.iterations == 1 { "" } else { "s" }
         ),
     };
     format!("{running}{numbers}")
