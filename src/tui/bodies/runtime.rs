@@ -1,6 +1,7 @@
 //! The two-body scene in the lab's one event loop ([`crate::tui::event_loop`]): its state,
 //! and a worker thread that solves the newest settings (older requests still queued are
-//! skipped), so that the screen's thread never solves. The terminal is restored on every path
+//! skipped) on the bodies it keeps ([`super::cache`]), so that the screen's thread never
+//! solves. The terminal is restored on every path
 //! by the loop.
 
 use std::sync::mpsc;
@@ -10,11 +11,12 @@ use crossterm::event::{Event, KeyCode, KeyEventKind, KeyModifiers};
 use ratatui::Frame;
 
 use super::super::RunError;
-use super::super::bodies_solve::{Settings, solve};
+use super::super::bodies_solve::Settings;
 use super::super::event_loop::{Flow, Input, Program, Recording, run_program};
 use super::super::protocol::Notice;
 use super::super::record::Chapter;
 use super::super::view::{Look, MIN_SIZE};
+use super::cache::BodiesCache;
 use super::{BodiesApp, Request};
 use crate::scenario::Scenario;
 
@@ -36,12 +38,13 @@ fn spawn_worker(scenario: Scenario, tx: mpsc::Sender<Input>) -> std::io::Result<
     std::thread::Builder::new()
         .name("riplab-bodies".into())
         .spawn(move || {
+            let mut cache = BodiesCache::new(scenario);
             while let Ok(mut job) = rx.recv() {
                 // Only the newest request matters: the others are already stale.
                 while let Ok(newer) = rx.try_recv() {
                     job = newer;
                 }
-                let result = solve(&scenario, &job.1);
+                let result = cache.solve(&job.1);
                 if tx.send(Input::Bodies(job.0, Box::new(result))).is_err() {
                     return;
                 }

@@ -1,0 +1,186 @@
+//! The two-body scene's discretisations kept between solves (docs/lab.md, "Two bodies"):
+//! each body's [`Discretization`] (its mesh, K factorised and the trace compliance) by what
+//! it depends on — the lower body by the level alone, the upper body by the level, the
+//! element ratio and the offset — so that a change of the discretisation across the
+//! interface (`n`) or of the enforcement solves on both bodies as they are, and a change of
+//! the ratio or the offset builds the upper body only.
+//!
+//! Bounded twice: at most [`KEPT`] of each body, and never more than the memory guard allows
+//! (docs/design.md §12's bodies are built after [`crate::fem::memory::Sizes::peak_bytes`] is
+//! checked against what the process may use: a build refused for its memory drops the least
+//! recently used bodies, those the solve needs kept, and tries again).
+
+use std::rc::Rc;
+
+use super::super::bodies_solve::{Settings, Solved};
+use crate::contact::interface::solve::BodiesError;
+use crate::discretization::Discretization;
+use crate::error::SolveError;
+use crate::scenario::Scenario;
+
+/// How many discretisations of each body are kept at most.
+pub const KEPT: usize = 4;
+
+/// What the upper body's discretisation depends on: the level, the ratio and the offset.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct UpperKey {
+    level: u32,
+    ratio: (u32, u32),
+    offset: f64,
+}
+
+impl UpperKey {
+    fn of(settings: &Settings) -> UpperKey {
+        UpperKey {
+            level: settings.level,
+            ratio: settings.ratio,
+            offset: settings.offset,
+        }
+    }
+}
+
+/// How many discretisations of each body the cache has built (the seam its tests count).
+#[cfg(test)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Built {
+    /// The lower body's.
+    pub lower: usize,
+    /// The upper body's.
+    pub upper: usize,
+}
+
+/// Discretisations by key, the least recently used first.
+struct Kept<K> {
+    entries: Vec<(K, Rc<Discretization>)>,
+}
+
+impl<K: Copy + PartialEq> Kept<K> {
+    fn new() -> Self {
+        Kept { entries: Vec::new() }
+    }
+
+    /// The discretisation of `key`, now the most recently used.
+    fn take(&mut self, key: K) -> Option<Rc<Discretization>> {
+        let i = self.entries.iter().position(|e| e.0 == key)?;
+        let entry = self.entries.remove(i);
+        let disc = entry.1.clone();
+        self.entries.push(entry);
+        Some(disc)
+    }
+
+    /// Keep `disc` as the most recently used, the least recently used dropped beyond [`KEPT`].
+    fn keep(&mut self, key: K, disc: Rc<Discretization>) {
+        self.entries.retain(|e| e.0 != key);
+        self.entries.push((key, disc));
+        if self.entries.len() > KEPT {
+            self.entries.remove(0);
+        }
+    }
+
+    /// Drop the least recently used discretisation other than `pinned`'s; whether there was one.
+    fn drop_oldest(&mut self, pinned: Option<K>) -> bool {
+        match self.entries.iter().position(|e| Some(e.0) != pinned) {
+            Some(i) => {
+                self.entries.remove(i);
+                true
+            }
+            None => false,
+        }
+    }
+}
+
+/// The two bodies' discretisations of one two-body scenario, kept between solves.
+pub struct BodiesCache {
+    scenario: Scenario,
+    lower: Kept<u32>,
+    upper: Kept<UpperKey>,
+    #[cfg(test)]
+    built: Built,
+}
+
+impl BodiesCache {
+    /// An empty cache for the two-body `scenario` (the scene's, before its settings apply).
+    pub fn new(scenario: Scenario) -> BodiesCache {
+        BodiesCache {
+            scenario,
+            lower: Kept::new(),
+            upper: Kept::new(),
+            #[cfg(test)]
+            built: Built::default(),
+        }
+    }
+
+    /// How many discretisations of each body this cache has built.
+    #[cfg(test)]
+    pub fn built(&self) -> Built {
+        self.built
+    }
+
+    /// Solve the scene with `settings`, on the bodies kept when they are, building the others.
+    ///
+    /// # Errors
+    ///
+    /// As [`Scenario::discretize_bodies`] and [`Scenario::solve_discretized`].
+    pub fn solve(&mut self, settings: &Settings) -> Result<Solved, BodiesError> {
+        let scenario = settings.apply(&self.scenario);
+        scenario.upper.as_ref().ok_or(BodiesError::OneBody)?;
+        let lower = self.lower_body(&scenario, settings)?;
+        let upper = self.upper_body(&scenario, settings)?;
+        let interface = scenario.solve_discretized(&lower, &upper, settings.method, settings.enforcement)?;
+        Ok(Solved::of(settings, &scenario, &lower, &upper, interface))
+    }
+
+    /// The lower body at `settings`' level, kept or built.
+    fn lower_body(
+        &mut self,
+        scenario: &Scenario,
+        settings: &Settings,
+    ) -> Result<Rc<Discretization>, BodiesError> {
+        let level = settings.level;
+        if let Some(disc) = self.lower.take(level) {
+            return Ok(disc);
+        }
+        let disc = loop {
+            match scenario.discretize(level, scenario.element) {
+                Err(SolveError::TooLarge { .. }) if self.free(settings) => {}
+                built => break Rc::new(built?),
+            }
+        };
+        #[cfg(test)]
+        {
+            self.built.lower += 1;
+        }
+        self.lower.keep(level, disc.clone());
+        Ok(disc)
+    }
+
+    /// The upper body at `settings`' level, ratio and offset, kept or built.
+    fn upper_body(
+        &mut self,
+        scenario: &Scenario,
+        settings: &Settings,
+    ) -> Result<Rc<Discretization>, BodiesError> {
+        let key = UpperKey::of(settings);
+        if let Some(disc) = self.upper.take(key) {
+            return Ok(disc);
+        }
+        let disc = loop {
+            match scenario.discretize_upper(settings.level, scenario.element, 0) {
+                Err(SolveError::TooLarge { .. }) if self.free(settings) => {}
+                built => break Rc::new(built?.ok_or(BodiesError::OneBody)?),
+            }
+        };
+        #[cfg(test)]
+        {
+            self.built.upper += 1;
+        }
+        self.upper.keep(key, disc.clone());
+        Ok(disc)
+    }
+
+    /// Drop the least recently used body that a solve of `settings` does not use (the upper
+    /// bodies first); whether there was one.
+    fn free(&mut self, settings: &Settings) -> bool {
+        self.upper.drop_oldest(Some(UpperKey::of(settings))) || self.lower.drop_oldest(Some(settings.level))
+    }
+}
