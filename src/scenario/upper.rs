@@ -9,7 +9,9 @@
 //! rigid translation added to that solution.
 
 use crate::contact::half_plane::e_star;
-use crate::contact::interface::solve::{Bodies, BodiesError, Enforcement, InterfaceSolution, solve_method};
+use crate::contact::interface::solve::{
+    Bodies, BodiesError, Enforcement, InterfaceSolution, solve_method_cancellable,
+};
 use crate::contact::interface::{Coupling, InterfaceMethod};
 use crate::discretization::Discretization;
 use crate::error::SolveError;
@@ -155,17 +157,19 @@ impl Scenario {
     /// [`Scenario::discretize_upper`] of a scenario with this one's `[upper]` body up to its
     /// mesh's ratio and offset), the interface discretised by `method`, the constraint
     /// enforced as `enforcement` says (an ε: the penalty at ε > 0, the exact multipliers at 0;
-    /// or the ALM).
+    /// or the ALM); given up as soon as `cancelled` says so.
     ///
     /// # Errors
     ///
-    /// A one-body scenario, or as [`solve_method`]'s.
+    /// A one-body scenario, or as [`solve_method_cancellable`]'s ([`SolveError::Cancelled`]
+    /// among them).
     pub fn solve_discretized(
         &self,
         lower: &Discretization,
         upper: &Discretization,
         method: InterfaceMethod,
         enforcement: impl Into<Enforcement>,
+        cancelled: &dyn Fn() -> bool,
     ) -> Result<Interface, BodiesError> {
         let enforcement = enforcement.into();
         let upper_body = self.upper.as_ref().ok_or(BodiesError::OneBody)?;
@@ -176,7 +180,8 @@ impl Scenario {
             slave: upper_body.slave,
         };
         let shape = upper_body.shape;
-        let (coupling, solution) = solve_method(&bodies, method, enforcement, |x| shape.initial_gap(x))?;
+        let gap0 = |x| shape.initial_gap(x);
+        let (coupling, solution) = solve_method_cancellable(&bodies, method, enforcement, gap0, cancelled)?;
         // The penalty's patch pressure is softened by ε; the exact multipliers' and the ALM's is not.
         let softening = if enforcement.is_exact() {
             0.0
@@ -205,7 +210,7 @@ impl Scenario {
     /// # Errors
     ///
     /// A one-body scenario, a mesh too large for the memory, or as
-    /// [`solve_method`]'s.
+    /// [`crate::contact::interface::solve::solve_method`]'s.
     pub fn solve_bodies(
         &self,
         level: u32,
@@ -217,7 +222,7 @@ impl Scenario {
             coupling,
             solution,
             patch,
-        } = self.solve_discretized(&lower, &upper, method, enforcement)?;
+        } = self.solve_discretized(&lower, &upper, method, enforcement, &|| false)?;
         Ok(TwoBodies {
             lower,
             upper,

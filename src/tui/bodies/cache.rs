@@ -116,17 +116,35 @@ impl BodiesCache {
         self.built
     }
 
-    /// Solve the scene with `settings`, on the bodies kept when they are, building the others.
+    /// Solve the scene with `settings`, on the bodies kept when they are, building the others;
+    /// given up as soon as `cancelled` says so (asked before each body is built — a
+    /// factorisation cannot be interrupted, and a body built is kept — and through the
+    /// interface's solve, [`Scenario::solve_discretized`]).
     ///
     /// # Errors
     ///
-    /// As [`Scenario::discretize_bodies`] and [`Scenario::solve_discretized`].
-    pub fn solve(&mut self, settings: &Settings) -> Result<Solved, BodiesError> {
+    /// As [`Scenario::discretize_bodies`] and [`Scenario::solve_discretized`], and
+    /// [`SolveError::Cancelled`].
+    pub fn solve(
+        &mut self,
+        settings: &Settings,
+        cancelled: &dyn Fn() -> bool,
+    ) -> Result<Solved, BodiesError> {
+        let go_on = || {
+            if cancelled() {
+                Err(BodiesError::Solve(SolveError::Cancelled))
+            } else {
+                Ok(())
+            }
+        };
         let scenario = settings.apply(&self.scenario);
         scenario.upper.as_ref().ok_or(BodiesError::OneBody)?;
+        go_on()?;
         let lower = self.lower_body(&scenario, settings)?;
+        go_on()?;
         let upper = self.upper_body(&scenario, settings)?;
-        let interface = scenario.solve_discretized(&lower, &upper, settings.method, settings.enforcement)?;
+        let interface =
+            scenario.solve_discretized(&lower, &upper, settings.method, settings.enforcement, cancelled)?;
         Ok(Solved::of(settings, &scenario, &lower, &upper, interface))
     }
 

@@ -123,7 +123,7 @@ impl BodiesApp {
 pub fn settle_bodies(app: &mut BodiesApp, keys: &[KeyEvent]) -> Result<(), RenderError> {
     let mut cache = cache::BodiesCache::new(app.scenario.clone());
     let mut settle = |app: &mut BodiesApp, (generation, settings): Request| {
-        let result = cache.solve(&settings);
+        let result = cache.solve(&settings, &|| false);
         app.reply(generation, result);
     };
     let first = app.start();

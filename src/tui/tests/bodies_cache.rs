@@ -3,13 +3,22 @@
 
 use std::path::Path;
 
+use std::cell::Cell;
+
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use riplab::contact::interface::InterfaceMethod;
+use riplab::contact::interface::solve::BodiesError;
+use riplab::error::SolveError;
 use riplab::scenario::Scenario;
 use riplab::tui::bodies::BodiesApp;
 use riplab::tui::bodies::cache::{BodiesCache, Built};
 
 const PATCH: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/scenarios/patch-two-blocks.toml");
+
+/// A solve nobody cancels.
+fn never() -> bool {
+    false
+}
 
 fn key(c: char) -> KeyEvent {
     KeyEvent::new(KeyCode::Char(c), KeyModifiers::NONE)
@@ -28,7 +37,7 @@ fn scene(method: InterfaceMethod) -> (BodiesApp, BodiesCache) {
 fn press(app: &mut BodiesApp, cache: &mut BodiesCache, c: char) {
     let (_, request) = app.key(key(c));
     let (generation, settings) = request.expect("a solve");
-    let result = cache.solve(&settings);
+    let result = cache.solve(&settings, &never);
     assert!(app.reply(generation, result));
     assert!(app.settled());
 }
@@ -40,7 +49,7 @@ fn press(app: &mut BodiesApp, cache: &mut BodiesCache, c: char) {
 fn a_key_discretises_only_the_bodies_it_changes() {
     let (mut app, mut cache) = scene(InterfaceMethod::Mortar);
     let (generation, settings) = app.start();
-    assert!(app.reply(generation, cache.solve(&settings)));
+    assert!(app.reply(generation, cache.solve(&settings, &never)));
     let both = Built { lower: 1, upper: 1 };
     assert_eq!(cache.built(), both);
     for _ in 0..3 {
@@ -69,7 +78,7 @@ fn a_key_discretises_only_the_bodies_it_changes() {
     let right = KeyEvent::new(KeyCode::Right, KeyModifiers::NONE);
     let (_, request) = app.key(right);
     let (generation, settings) = request.unwrap();
-    assert!(app.reply(generation, cache.solve(&settings)));
+    assert!(app.reply(generation, cache.solve(&settings, &never)));
     assert_eq!(cache.built(), Built { lower: 2, upper: 4 }, "→ builds both");
 }
 
@@ -78,10 +87,44 @@ fn a_key_discretises_only_the_bodies_it_changes() {
 fn kept_bodies_solve_as_fresh_ones() {
     let (mut app, mut cache) = scene(InterfaceMethod::Mortar);
     let (generation, settings) = app.start();
-    assert!(app.reply(generation, cache.solve(&settings)));
+    assert!(app.reply(generation, cache.solve(&settings, &never)));
     press(&mut app, &mut cache, 'n');
     let fresh = BodiesCache::new(app.scenario.clone())
-        .solve(&app.settings)
+        .solve(&app.settings, &never)
         .unwrap();
     assert_eq!(app.solved.as_ref(), Some(&fresh));
+}
+
+/// A solve asked to stop before it begins gives the cancelled error and builds nothing.
+#[test]
+fn a_cancelled_solve_stops_before_it_builds() {
+    let (app, mut cache) = scene(InterfaceMethod::Mortar);
+    let cancelled = cache.solve(&app.settings, &|| true);
+    assert_eq!(cancelled, Err(BodiesError::Solve(SolveError::Cancelled)));
+    assert_eq!(cache.built(), Built::default());
+}
+
+/// The interface's solve asks whether to go on at every Newton iteration: a request that
+/// turns stale at its first iteration stops it with the cancelled error; not asked to stop,
+/// the same solve converges.
+#[test]
+fn the_interface_solve_stops_in_its_newton_loop() {
+    let scenario = Scenario::load(Path::new(PATCH)).unwrap();
+    let (lower, upper) = scenario.discretize_bodies(1).unwrap();
+    let solve = |cancelled: &dyn Fn() -> bool| {
+        scenario.solve_discretized(&lower, &upper, InterfaceMethod::Mortar, 0.0, cancelled)
+    };
+    // Asked before the constraints are condensed, after, then at each iteration.
+    let asked = Cell::new(0);
+    let stale_at_the_first_iteration = || {
+        asked.set(asked.get() + 1);
+        asked.get() > 2
+    };
+    assert!(matches!(
+        solve(&stale_at_the_first_iteration),
+        Err(BodiesError::Solve(SolveError::Cancelled))
+    ));
+    assert_eq!(asked.get(), 3);
+    let solved = solve(&never).expect("solved");
+    assert!(solved.solution.iterations >= 1);
 }
