@@ -5,6 +5,9 @@
 //! interface (`n`) or of the enforcement solves on both bodies as they are, and a change of
 //! the ratio or the offset builds the upper body only.
 //!
+//! While the scene is idle the cache builds what the next keys are likely to ask for
+//! ([`BodiesCache::prefetch`]).
+//!
 //! Bounded twice: at most [`KEPT`] of each body, and never more than the memory guard allows
 //! (docs/design.md §12's bodies are built after [`crate::fem::memory::Sizes::peak_bytes`] is
 //! checked against what the process may use: a build refused for its memory drops the least
@@ -12,7 +15,8 @@
 
 use std::rc::Rc;
 
-use super::super::bodies_solve::{Settings, Solved};
+use super::super::app::MAX_APP_LEVEL;
+use super::super::bodies_solve::{Settings, Solved, ratios};
 use crate::contact::interface::solve::BodiesError;
 use crate::discretization::Discretization;
 use crate::error::SolveError;
@@ -57,6 +61,10 @@ struct Kept<K> {
 impl<K: Copy + PartialEq> Kept<K> {
     fn new() -> Self {
         Kept { entries: Vec::new() }
+    }
+
+    fn contains(&self, key: K) -> bool {
+        self.entries.iter().any(|e| e.0 == key)
     }
 
     /// The discretisation of `key`, now the most recently used.
@@ -161,15 +169,10 @@ impl BodiesCache {
         let disc = loop {
             match scenario.discretize(level, scenario.element) {
                 Err(SolveError::TooLarge { .. }) if self.free(settings) => {}
-                built => break Rc::new(built?),
+                built => break built?,
             }
         };
-        #[cfg(test)]
-        {
-            self.built.lower += 1;
-        }
-        self.lower.keep(level, disc.clone());
-        Ok(disc)
+        Ok(self.keep_lower(level, disc))
     }
 
     /// The upper body at `settings`' level, ratio and offset, kept or built.
@@ -185,15 +188,83 @@ impl BodiesCache {
         let disc = loop {
             match scenario.discretize_upper(settings.level, scenario.element, 0) {
                 Err(SolveError::TooLarge { .. }) if self.free(settings) => {}
-                built => break Rc::new(built?.ok_or(BodiesError::OneBody)?),
+                built => break built?.ok_or(BodiesError::OneBody)?,
             }
         };
+        Ok(self.keep_upper(key, disc))
+    }
+
+    /// Keep `disc`, the lower body at `level`, built just now.
+    fn keep_lower(&mut self, level: u32, disc: Discretization) -> Rc<Discretization> {
+        #[cfg(test)]
+        {
+            self.built.lower += 1;
+        }
+        let disc = Rc::new(disc);
+        self.lower.keep(level, disc.clone());
+        disc
+    }
+
+    /// Keep `disc`, the upper body of `key`, built just now.
+    fn keep_upper(&mut self, key: UpperKey, disc: Discretization) -> Rc<Discretization> {
         #[cfg(test)]
         {
             self.built.upper += 1;
         }
+        let disc = Rc::new(disc);
         self.upper.keep(key, disc.clone());
-        Ok(disc)
+        disc
+    }
+
+    /// While the scene is idle after a solve of `settings`: build what its next keys are
+    /// likely to ask for — the upper bodies at the ratios `k` and `K` step to (at this
+    /// offset), then both bodies a level finer (`→`, up to [`MAX_APP_LEVEL`]) — each only when
+    /// the memory guard holds it beside another build of the current bodies' size
+    /// ([`crate::fem::memory::Sizes::peak_bytes`] of both reserved); abandoned as soon as
+    /// `stop` says so, asked before each body (a factorisation cannot be interrupted).
+    pub fn prefetch(&mut self, settings: &Settings, stop: &dyn Fn() -> bool) {
+        let Some(own) = self.scenario.upper.as_ref().map(|u| u.ratio) else {
+            return;
+        };
+        let list = ratios(own);
+        let n = list.len();
+        let at = list.iter().position(|&r| r == settings.ratio).unwrap_or(0);
+        let (level, element) = (settings.level, self.scenario.element);
+        let current = settings.apply(&self.scenario);
+        let reserved = current
+            .sizes(level, element)
+            .peak_bytes()
+            .saturating_add(current.upper_sizes(level, element).map_or(0, |s| s.peak_bytes()));
+        let finer = Settings {
+            level: level + 1,
+            ..*settings
+        };
+        let ratio = |i: usize| Settings {
+            ratio: list[i % n],
+            ..*settings
+        };
+        let ahead = [ratio(at + n - 1), ratio(at + 1), finer];
+        for next in ahead.iter().filter(|s| s.level <= MAX_APP_LEVEL) {
+            let scenario = next.apply(&self.scenario);
+            if !self.lower.contains(next.level) {
+                if stop() {
+                    return;
+                }
+                let Ok(disc) = scenario.discretize_beside(next.level, element, reserved) else {
+                    continue;
+                };
+                self.keep_lower(next.level, disc);
+            }
+            let key = UpperKey::of(next);
+            if !self.upper.contains(key) {
+                if stop() {
+                    return;
+                }
+                if let Ok(Some(disc)) = scenario.discretize_upper(next.level, element, reserved) {
+                    self.keep_upper(key, disc);
+                }
+            }
+        }
     }
 
     /// Drop the least recently used body that a solve of `settings` does not use (the upper

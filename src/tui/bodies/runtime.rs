@@ -48,8 +48,9 @@ impl Jobs {
 
 /// The worker: it takes the newest request queued and solves it on the bodies it keeps
 /// ([`BodiesCache`]), giving the solve up as soon as a newer request is made (a stale
-/// result is never sent), and sends the result to the loop; it ends when either channel
-/// closes.
+/// result is never sent), and sends the result to the loop; then, idle, it builds what the
+/// next keys are likely to ask for ([`BodiesCache::prefetch`]) until a request comes. It
+/// ends when either channel closes.
 fn spawn_worker(scenario: Scenario, tx: mpsc::Sender<Input>) -> std::io::Result<Jobs> {
     let (requests, rx) = mpsc::channel::<Request>();
     let newest = Arc::new(AtomicU64::new(0));
@@ -73,6 +74,8 @@ fn spawn_worker(scenario: Scenario, tx: mpsc::Sender<Input>) -> std::io::Result<
                 if tx.send(Input::Bodies(generation, Box::new(result))).is_err() {
                     return;
                 }
+                // Idle: what the next keys are likely to ask for, until a request comes.
+                cache.prefetch(&settings, &stale);
             }
         })?;
     Ok(Jobs { requests, newest })

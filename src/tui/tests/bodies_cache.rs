@@ -128,3 +128,47 @@ fn the_interface_solve_stops_in_its_newton_loop() {
     let solved = solve(&never).expect("solved");
     assert!(solved.solution.iterations >= 1);
 }
+
+/// Idle after a solve, the cache builds the upper bodies `k` and `K` ask for and both bodies
+/// `→` asks for: the keys then build nothing; asked to stop at once, it builds nothing.
+#[test]
+fn an_idle_prefetch_has_the_next_keys_bodies_ready() {
+    let (mut app, mut cache) = scene(InterfaceMethod::Mortar);
+    let (generation, settings) = app.start();
+    assert!(app.reply(generation, cache.solve(&settings, &never)));
+    cache.prefetch(&app.settings, &|| true);
+    assert_eq!(cache.built(), Built { lower: 1, upper: 1 }, "stopped at once");
+    cache.prefetch(&app.settings, &never);
+    let ready = Built { lower: 2, upper: 4 };
+    assert_eq!(
+        cache.built(),
+        ready,
+        "two ratios' upper bodies, both a level finer"
+    );
+    press(&mut app, &mut cache, 'k');
+    assert_eq!(cache.built(), ready, "k finds its upper body");
+    press(&mut app, &mut cache, 'K');
+    press(&mut app, &mut cache, 'K');
+    assert_eq!(cache.built(), ready, "K finds its upper body");
+    press(&mut app, &mut cache, 'k');
+    let right = KeyEvent::new(KeyCode::Right, KeyModifiers::NONE);
+    let (_, request) = app.key(right);
+    let (generation, settings) = request.unwrap();
+    assert!(app.reply(generation, cache.solve(&settings, &never)));
+    assert_eq!(cache.built(), ready, "→ finds both bodies");
+}
+
+/// A prefetch stops between the two bodies of a level: asked to stop after its first body,
+/// it builds that one only.
+#[test]
+fn a_prefetch_stops_between_bodies() {
+    let (mut app, mut cache) = scene(InterfaceMethod::Mortar);
+    let (generation, settings) = app.start();
+    assert!(app.reply(generation, cache.solve(&settings, &never)));
+    let asked = Cell::new(0);
+    cache.prefetch(&app.settings, &|| {
+        asked.set(asked.get() + 1);
+        asked.get() > 1
+    });
+    assert_eq!(cache.built(), Built { lower: 1, upper: 2 });
+}
