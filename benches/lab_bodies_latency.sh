@@ -1,7 +1,7 @@
 #!/bin/bash
 # Key-to-frame latency of the lab's two-body scene, measured in tmux at 80×24: send a key,
-# poll the pane until its header and chart title show the new settings and nothing is being
-# solved. A variant of benches/lab_latency.sh (the one-body scene's level step).
+# poll the pane until it has changed (the key's frame says `solving` until its answer, a
+# solve or a refusal, is drawn) and nothing is being solved. A variant of benches/lab_latency.sh (the one-body scene's level step).
 # usage: benches/lab_bodies_latency.sh SCENARIO LEVEL WAIT [REPEAT]
 #   opens `riplab SCENARIO` (a two-body scenario), steps with → or ← to LEVEL, then times
 #   REPEAT (default 3) presses each of `n` (the interface's discretisation), `k` (the element
@@ -9,15 +9,15 @@
 #   after the frame before it was shown (0: at once, before an idle prefetch has run; 5: after
 #   it). RIPLAB: the binary (default target/release/riplab).
 scenario=$1; level=$2; wait=$3; repeat=${4:-3}
-top() { tmux capture-pane -p -t blat | sed -n '1,2p'; }
+pane() { tmux capture-pane -p -t blat; }
 settled() { ! tmux capture-pane -p -t blat | grep -q 'solving'; }
 # Send key $1 and print the ms until the frame shows its settings solved.
 timed() {
   local before t0 t1
-  before=$(top)
+  before=$(pane)
   t0=$(date +%s%N)
   tmux send-keys -t blat "$1"
-  until [ "$(top)" != "$before" ] && settled; do sleep 0.002; done
+  until [ "$(pane)" != "$before" ] && settled; do sleep 0.002; done
   t1=$(date +%s%N)
   echo $(( (t1-t0)/1000000 ))
 }

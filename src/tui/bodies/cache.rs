@@ -6,7 +6,7 @@
 //! the ratio or the offset builds the upper body only.
 //!
 //! While the scene is idle the cache builds what the next keys are likely to ask for
-//! ([`BodiesCache::prefetch`]).
+//! ([`BodiesCache::prefetch_ratios`], [`BodiesCache::prefetch_finer`]).
 //!
 //! Bounded twice: at most [`KEPT`] of each body, and never more than the memory guard allows
 //! (docs/design.md §12's bodies are built after [`crate::fem::memory::Sizes::peak_bytes`] is
@@ -216,35 +216,47 @@ impl BodiesCache {
         disc
     }
 
-    /// While the scene is idle after a solve of `settings`: build what its next keys are
-    /// likely to ask for — the upper bodies at the ratios `k` and `K` step to (at this
-    /// offset), then both bodies a level finer (`→`, up to [`MAX_APP_LEVEL`]) — each only when
-    /// the memory guard holds it beside another build of the current bodies' size
-    /// ([`crate::fem::memory::Sizes::peak_bytes`] of both reserved); abandoned as soon as
-    /// `stop` says so, asked before each body (a factorisation cannot be interrupted).
-    pub fn prefetch(&mut self, settings: &Settings, stop: &dyn Fn() -> bool) {
+    /// While the scene is idle after a solve of `settings`: build the upper bodies at the
+    /// ratios `k` and `K` step to (at this offset), what its next keys are likely to ask for
+    /// ([`BodiesCache::build_ahead`]).
+    pub fn prefetch_ratios(&mut self, settings: &Settings, stop: &dyn Fn() -> bool) {
         let Some(own) = self.scenario.upper.as_ref().map(|u| u.ratio) else {
             return;
         };
         let list = ratios(own);
         let n = list.len();
         let at = list.iter().position(|&r| r == settings.ratio).unwrap_or(0);
+        let ratio = |i: usize| Settings {
+            ratio: list[i % n],
+            ..*settings
+        };
+        self.build_ahead(settings, &[ratio(at + n - 1), ratio(at + 1)], stop);
+    }
+
+    /// While the scene is idle after a solve of `settings`: build both bodies a level finer
+    /// (`→`, up to [`MAX_APP_LEVEL`]; [`BodiesCache::build_ahead`]).
+    pub fn prefetch_finer(&mut self, settings: &Settings, stop: &dyn Fn() -> bool) {
+        let finer = Settings {
+            level: settings.level + 1,
+            ..*settings
+        };
+        if finer.level <= MAX_APP_LEVEL {
+            self.build_ahead(settings, &[finer], stop);
+        }
+    }
+
+    /// Build the bodies of each of `ahead` not kept yet, each only when the memory guard
+    /// holds it beside another build of the bodies of `settings`, the current ones
+    /// ([`crate::fem::memory::Sizes::peak_bytes`] of both reserved); abandoned as soon as
+    /// `stop` says so, asked before each body (a factorisation cannot be interrupted).
+    fn build_ahead(&mut self, settings: &Settings, ahead: &[Settings], stop: &dyn Fn() -> bool) {
         let (level, element) = (settings.level, self.scenario.element);
         let current = settings.apply(&self.scenario);
         let reserved = current
             .sizes(level, element)
             .peak_bytes()
             .saturating_add(current.upper_sizes(level, element).map_or(0, |s| s.peak_bytes()));
-        let finer = Settings {
-            level: level + 1,
-            ..*settings
-        };
-        let ratio = |i: usize| Settings {
-            ratio: list[i % n],
-            ..*settings
-        };
-        let ahead = [ratio(at + n - 1), ratio(at + 1), finer];
-        for next in ahead.iter().filter(|s| s.level <= MAX_APP_LEVEL) {
+        for next in ahead {
             let scenario = next.apply(&self.scenario);
             if !self.lower.contains(next.level) {
                 if stop() {

@@ -46,11 +46,17 @@ impl Jobs {
     }
 }
 
+/// How long the scene must be quiet before the worker builds a level finer (four times the
+/// work of the current one, and a factorisation cannot be interrupted: not while keys come in
+/// a burst).
+const QUIET: Duration = Duration::from_millis(300);
+
 /// The worker: it takes the newest request queued and solves it on the bodies it keeps
 /// ([`BodiesCache`]), giving the solve up as soon as a newer request is made (a stale
 /// result is never sent), and sends the result to the loop; then, idle, it builds what the
-/// next keys are likely to ask for ([`BodiesCache::prefetch`]) until a request comes. It
-/// ends when either channel closes.
+/// next keys are likely to ask for until a request comes: the upper bodies of the next
+/// ratios at once, both bodies a level finer after [`QUIET`]. It ends when either channel
+/// closes.
 fn spawn_worker(scenario: Scenario, tx: mpsc::Sender<Input>) -> std::io::Result<Jobs> {
     let (requests, rx) = mpsc::channel::<Request>();
     let newest = Arc::new(AtomicU64::new(0));
@@ -59,7 +65,8 @@ fn spawn_worker(scenario: Scenario, tx: mpsc::Sender<Input>) -> std::io::Result<
         .name("riplab-bodies".into())
         .spawn(move || {
             let mut cache = BodiesCache::new(scenario);
-            while let Ok(mut job) = rx.recv() {
+            let mut next = rx.recv().ok();
+            while let Some(mut job) = next.take() {
                 // Only the newest request matters: the others are already stale.
                 while let Ok(newer) = rx.try_recv() {
                     job = newer;
@@ -68,14 +75,23 @@ fn spawn_worker(scenario: Scenario, tx: mpsc::Sender<Input>) -> std::io::Result<
                 let stale = || seen.load(Ordering::Acquire) != generation;
                 let result = cache.solve(&settings, &stale);
                 // A newer request is on its way: its answer replaces this one.
-                if stale() {
-                    continue;
+                if !stale() {
+                    if tx.send(Input::Bodies(generation, Box::new(result))).is_err() {
+                        return;
+                    }
+                    cache.prefetch_ratios(&settings, &stale);
+                    next = match rx.recv_timeout(QUIET) {
+                        Ok(request) => Some(request),
+                        Err(mpsc::RecvTimeoutError::Timeout) => {
+                            cache.prefetch_finer(&settings, &stale);
+                            None
+                        }
+                        Err(mpsc::RecvTimeoutError::Disconnected) => return,
+                    };
                 }
-                if tx.send(Input::Bodies(generation, Box::new(result))).is_err() {
-                    return;
+                if next.is_none() {
+                    next = rx.recv().ok();
                 }
-                // Idle: what the next keys are likely to ask for, until a request comes.
-                cache.prefetch(&settings, &stale);
             }
         })?;
     Ok(Jobs { requests, newest })

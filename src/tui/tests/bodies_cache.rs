@@ -136,9 +136,11 @@ fn an_idle_prefetch_has_the_next_keys_bodies_ready() {
     let (mut app, mut cache) = scene(InterfaceMethod::Mortar);
     let (generation, settings) = app.start();
     assert!(app.reply(generation, cache.solve(&settings, &never)));
-    cache.prefetch(&app.settings, &|| true);
+    cache.prefetch_ratios(&app.settings, &|| true);
+    cache.prefetch_finer(&app.settings, &|| true);
     assert_eq!(cache.built(), Built { lower: 1, upper: 1 }, "stopped at once");
-    cache.prefetch(&app.settings, &never);
+    cache.prefetch_ratios(&app.settings, &never);
+    cache.prefetch_finer(&app.settings, &never);
     let ready = Built { lower: 2, upper: 4 };
     assert_eq!(
         cache.built(),
@@ -166,9 +168,9 @@ fn a_prefetch_stops_between_bodies() {
     let (generation, settings) = app.start();
     assert!(app.reply(generation, cache.solve(&settings, &never)));
     let asked = Cell::new(0);
-    cache.prefetch(&app.settings, &|| {
+    cache.prefetch_finer(&app.settings, &|| {
         asked.set(asked.get() + 1);
         asked.get() > 1
     });
-    assert_eq!(cache.built(), Built { lower: 1, upper: 2 });
+    assert_eq!(cache.built(), Built { lower: 2, upper: 1 });
 }
