@@ -11,7 +11,9 @@
 //! whose descent is found ([`pressed`]).
 
 use crate::contact::half_plane::e_star;
-use crate::contact::interface::solve::{Bodies, BodiesError, Enforcement, InterfaceSolution, solve_method};
+use crate::contact::interface::solve::{
+    Bodies, BodiesError, Enforcement, InterfaceSolution, solve_method_cancellable,
+};
 use crate::contact::interface::{Coupling, InterfaceMethod, pressed};
 use crate::discretization::Discretization;
 use crate::error::SolveError;
@@ -136,30 +138,62 @@ pub struct TwoBodies {
     pub descent: f64,
 }
 
+/// The contact of a two-body scenario solved on its discretised bodies
+/// ([`Scenario::solve_discretized`]).
+pub struct Interface {
+    /// The constraint across the interface.
+    pub coupling: Coupling,
+    /// The solution.
+    pub solution: InterfaceSolution,
+    /// On the contact patch test ([`Scenario::patch_pressure`]): its exact pressure, and
+    /// max_k |p_k − p| / p over the slave's constraints.
+    pub patch: Option<(f64, f64)>,
+    /// The descent of the upper body's top: prescribed, or under a pressure the pin's, found so
+    /// that the interface carries the load ([`pressed`]).
+    pub descent: f64,
+}
+
 impl Scenario {
-    /// Solve this two-body scenario at `level` with its element, the interface discretised by
-    /// `method`, the constraint enforced as `enforcement` says (an ε: the penalty at ε > 0, the
-    /// exact multipliers at 0; or the ALM).
+    /// This two-body scenario's bodies discretised at `level` with its element: (the lower
+    /// body, the upper body on its mirrored mesh), each refused before anything is allocated
+    /// when its memory estimate exceeds what this process may use.
     ///
     /// # Errors
     ///
-    /// A one-body scenario, a mesh too large for the memory, or as
-    /// [`solve_method`]'s.
-    pub fn solve_bodies(
-        &self,
-        level: u32,
-        method: InterfaceMethod,
-        enforcement: impl Into<Enforcement>,
-    ) -> Result<TwoBodies, BodiesError> {
-        let enforcement = enforcement.into();
-        let upper_body = self.upper.as_ref().ok_or(BodiesError::OneBody)?;
+    /// A one-body scenario, or as [`Scenario::discretize`]'s.
+    pub fn discretize_bodies(&self, level: u32) -> Result<(Discretization, Discretization), BodiesError> {
+        self.upper.as_ref().ok_or(BodiesError::OneBody)?;
         let lower = self.discretize(level, self.element)?;
         let upper = self
             .discretize_upper(level, self.element, 0)?
             .ok_or(BodiesError::OneBody)?;
+        Ok((lower, upper))
+    }
+
+    /// Solve the contact of this two-body scenario's bodies `lower` and `upper`, discretised
+    /// at one level ([`Scenario::discretize_bodies`], or [`Scenario::discretize`] and
+    /// [`Scenario::discretize_upper`] of a scenario with this one's `[upper]` body up to its
+    /// mesh's ratio and offset), the interface discretised by `method`, the constraint
+    /// enforced as `enforcement` says (an ε: the penalty at ε > 0, the exact multipliers at 0;
+    /// or the ALM); given up as soon as `cancelled` says so.
+    ///
+    /// # Errors
+    ///
+    /// A one-body scenario, or as [`solve_method_cancellable`]'s ([`SolveError::Cancelled`]
+    /// among them).
+    pub fn solve_discretized(
+        &self,
+        lower: &Discretization,
+        upper: &Discretization,
+        method: InterfaceMethod,
+        enforcement: impl Into<Enforcement>,
+        cancelled: &dyn Fn() -> bool,
+    ) -> Result<Interface, BodiesError> {
+        let enforcement = enforcement.into();
+        let upper_body = self.upper.as_ref().ok_or(BodiesError::OneBody)?;
         let bodies = Bodies {
-            lower: &lower,
-            upper: &upper,
+            lower,
+            upper,
             displacement: upper_body.displacement,
             slave: upper_body.slave,
         };
@@ -167,12 +201,13 @@ impl Scenario {
         let gap0 = |x| shape.initial_gap(x);
         let (coupling, solution, descent) = match upper_body.pressure {
             None => {
-                let (coupling, solution) = solve_method(&bodies, method, enforcement, gap0)?;
+                let (coupling, solution) =
+                    solve_method_cancellable(&bodies, method, enforcement, gap0, cancelled)?;
                 (coupling, solution, upper_body.displacement)
             }
             Some(q) => {
                 let first = q * (self.compliance_across() + enforcement.epsilon());
-                pressed::solve_pressed(&bodies, method, enforcement, gap0, q, first)?
+                pressed::solve_pressed(&bodies, method, enforcement, gap0, (q, first), cancelled)?
             }
         };
         // The penalty's patch pressure is softened by ε; the exact multipliers' and the ALM's is not.
@@ -188,6 +223,36 @@ impl Scenario {
                 .fold(0.0_f64, |m, p| m.max((p - exact).abs() / exact));
             (exact, error)
         });
+        Ok(Interface {
+            coupling,
+            solution,
+            patch,
+            descent,
+        })
+    }
+
+    /// Solve this two-body scenario at `level` with its element, the interface discretised by
+    /// `method`, the constraint enforced as `enforcement` says (an ε: the penalty at ε > 0, the
+    /// exact multipliers at 0; or the ALM): [`Scenario::discretize_bodies`] then
+    /// [`Scenario::solve_discretized`].
+    ///
+    /// # Errors
+    ///
+    /// A one-body scenario, a mesh too large for the memory, or as
+    /// [`crate::contact::interface::solve::solve_method`]'s.
+    pub fn solve_bodies(
+        &self,
+        level: u32,
+        method: InterfaceMethod,
+        enforcement: impl Into<Enforcement>,
+    ) -> Result<TwoBodies, BodiesError> {
+        let (lower, upper) = self.discretize_bodies(level)?;
+        let Interface {
+            coupling,
+            solution,
+            patch,
+            descent,
+        } = self.solve_discretized(&lower, &upper, method, enforcement, &|| false)?;
         Ok(TwoBodies {
             lower,
             upper,

@@ -5,12 +5,24 @@
 
 use crate::contact::Method;
 use crate::contact::interface::InterfaceMethod;
-use crate::contact::interface::solve::{BodiesError, Enforcement, Slave};
+use crate::contact::interface::solve::{Enforcement, Slave};
+use crate::discretization::Discretization;
 use crate::scenario::Scenario;
+use crate::scenario::upper::Interface;
 
 /// The element ratios the lab's `k` and `K` step through (upper elements : lower ones across
 /// the interface): matching, then ever less commensurate.
 pub const RATIOS: [(u32, u32); 4] = [(1, 1), (2, 3), (3, 4), (5, 7)];
+
+/// The ratios `k` and `K` step through on a scenario whose own is `own`: [`RATIOS`], `own`
+/// after them when it is not one of them.
+pub fn ratios(own: (u32, u32)) -> Vec<(u32, u32)> {
+    let mut list = RATIOS.to_vec();
+    if !list.contains(&own) {
+        list.push(own);
+    }
+    list
+}
 
 /// The offset's step (`j`, `J`), a fraction of the upper body's element.
 pub const OFFSET_STEP: f64 = 0.1;
@@ -92,43 +104,44 @@ pub struct Solved {
     pub x_range: [f64; 2],
 }
 
-/// Solve `scenario` (two bodies) with `settings`: the frame's data.
-///
-/// # Errors
-///
-/// As [`Scenario::solve_bodies`].
-pub fn solve(scenario: &Scenario, settings: &Settings) -> Result<Solved, BodiesError> {
-    let s = settings.apply(scenario);
-    let solved = s.solve_bodies(s.level, settings.method, settings.enforcement)?;
-    let sol = &solved.solution;
-    let mut p: Vec<(f64, f64)> = sol.x.iter().copied().zip(sol.p.iter().copied()).collect();
-    p.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let pbar = sol
-        .vertex_x
-        .iter()
-        .copied()
-        .zip(sol.pbar.iter().copied())
-        .collect();
-    let (x0, x1) = s.x_range();
-    let slave = s.upper.as_ref().map_or(Slave::Upper, |u| u.slave);
-    let (slave_edges, master_edges) = match slave {
-        Slave::Upper => (solved.upper.mesh.xs.len() - 1, solved.lower.mesh.xs.len() - 1),
-        Slave::Lower => (solved.lower.mesh.xs.len() - 1, solved.upper.mesh.xs.len() - 1),
-    };
-    Ok(Solved {
-        settings: *settings,
-        p,
-        pbar,
-        patch: solved.patch,
-        load: sol.load,
-        iterations: sol.iterations,
-        edges: (slave_edges, master_edges),
-        slave,
-        x_range: [x0, x1],
-    })
-}
-
 impl Solved {
+    /// The frame's data of `interface`, solved with `settings` on `scenario` with those
+    /// settings applied ([`Settings::apply`]) across its bodies `lower` and `upper`.
+    pub fn of(
+        settings: &Settings,
+        scenario: &Scenario,
+        lower: &Discretization,
+        upper: &Discretization,
+        interface: Interface,
+    ) -> Solved {
+        let sol = interface.solution;
+        let mut p: Vec<(f64, f64)> = sol.x.iter().copied().zip(sol.p.iter().copied()).collect();
+        p.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let pbar = sol
+            .vertex_x
+            .iter()
+            .copied()
+            .zip(sol.pbar.iter().copied())
+            .collect();
+        let (x0, x1) = scenario.x_range();
+        let slave = scenario.upper.as_ref().map_or(Slave::Upper, |u| u.slave);
+        let (slave_edges, master_edges) = match slave {
+            Slave::Upper => (upper.mesh.xs.len() - 1, lower.mesh.xs.len() - 1),
+            Slave::Lower => (lower.mesh.xs.len() - 1, upper.mesh.xs.len() - 1),
+        };
+        Solved {
+            settings: *settings,
+            p,
+            pbar,
+            patch: interface.patch,
+            load: sol.load,
+            iterations: sol.iterations,
+            edges: (slave_edges, master_edges),
+            slave,
+            x_range: [x0, x1],
+        }
+    }
+
     /// The contact zone: from the first to the last contact point where p > 0 (None where
     /// the bodies do not touch).
     pub fn zone(&self) -> Option<[f64; 2]> {

@@ -15,7 +15,7 @@
 
 use super::Coupling;
 use super::InterfaceMethod;
-use super::solve::{Bodies, BodiesError, Enforcement, InterfaceSolution, Slave, couple, solve};
+use super::solve::{Bodies, BodiesError, Enforcement, InterfaceSolution, Slave, couple, solve_cancellable};
 use crate::discretization::Discretization;
 
 /// The relative misfit |P − q·w| / (q·w) that ends the search for δ.
@@ -66,19 +66,20 @@ fn top_load(upper: &Discretization, q: f64) -> Result<TopLoad, BodiesError> {
 /// held by the pin of [`Support::Free`](crate::fem::Support::Free): the coupling, the solution
 /// (its Newton iterations summed over every δ tried, the upper's trace with u_q in it) and the
 /// pin's descent δ. `first` is a first guess of δ's scale (the two bodies' uniform
-/// compression under q, q (H_l/E'_l + H_u/E'_u + ε)).
+/// compression under q, q (H_l/E'_l + H_u/E'_u + ε)). Given up as soon as `cancelled` says
+/// so.
 ///
 /// # Errors
 ///
-/// As [`super::solve::solve_method`]'s, and [`BodiesError::Unbalanced`] when no δ balances
-/// the load within [`BALANCE`] in `MAX_STEPS` solves.
+/// As [`super::solve::solve_method_cancellable`]'s, and [`BodiesError::Unbalanced`] when no
+/// δ balances the load within [`BALANCE`] in `MAX_STEPS` solves.
 pub fn solve_pressed(
     bodies: &Bodies,
     method: InterfaceMethod,
     enforcement: Enforcement,
     gap0: impl Fn(f64) -> f64,
-    q: f64,
-    first: f64,
+    (q, first): (f64, f64),
+    cancelled: &dyn Fn() -> bool,
 ) -> Result<(Coupling, InterfaceSolution, f64), BodiesError> {
     let (coupling, g0, rule) = couple(bodies, method, gap0)?;
     let top = top_load(bodies.upper, q)?;
@@ -99,7 +100,7 @@ pub fn solve_pressed(
             displacement: delta,
             ..*bodies
         };
-        let sol = solve(&pressed, &coupling, &shifted, enforcement, rule)?;
+        let sol = solve_cancellable(&pressed, &coupling, &shifted, enforcement, rule, cancelled)?;
         iterations += sol.iterations;
         Ok((sol.load - load, sol))
     };

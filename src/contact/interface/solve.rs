@@ -226,8 +226,23 @@ pub fn solve_method(
     enforcement: impl Into<Enforcement>,
     gap0: impl Fn(f64) -> f64,
 ) -> Result<(Coupling, InterfaceSolution), BodiesError> {
+    solve_method_cancellable(bodies, method, enforcement, gap0, &|| false)
+}
+
+/// [`solve_method`], given up as soon as `cancelled` says so ([`solve_cancellable`]).
+///
+/// # Errors
+///
+/// As [`solve_method`]'s, and [`SolveError::Cancelled`].
+pub fn solve_method_cancellable(
+    bodies: &Bodies,
+    method: InterfaceMethod,
+    enforcement: impl Into<Enforcement>,
+    gap0: impl Fn(f64) -> f64,
+    cancelled: &dyn Fn() -> bool,
+) -> Result<(Coupling, InterfaceSolution), BodiesError> {
     let (coupling, g0, rule) = couple(bodies, method, gap0)?;
-    let sol = solve(bodies, &coupling, &g0, enforcement.into(), rule)?;
+    let sol = solve_cancellable(bodies, &coupling, &g0, enforcement.into(), rule, cancelled)?;
     Ok((coupling, sol))
 }
 
@@ -268,6 +283,32 @@ pub fn solve(
     enforcement: Enforcement,
     rule: Option<Rule>,
 ) -> Result<InterfaceSolution, BodiesError> {
+    solve_cancellable(bodies, coupling, g0, enforcement, rule, &|| false)
+}
+
+/// [`solve`], given up ([`SolveError::Cancelled`]) as soon as `cancelled` says so: it is
+/// asked before the constraints are condensed, after, and at every Newton (active-set)
+/// iteration — what a caller with a newer question does not wait for.
+///
+/// # Errors
+///
+/// As [`solve`]'s, and [`SolveError::Cancelled`].
+pub fn solve_cancellable(
+    bodies: &Bodies,
+    coupling: &Coupling,
+    g0: &[f64],
+    enforcement: Enforcement,
+    rule: Option<Rule>,
+    cancelled: &dyn Fn() -> bool,
+) -> Result<InterfaceSolution, BodiesError> {
+    let go_on_condensing = || {
+        if cancelled() {
+            Err(SolveError::Cancelled)
+        } else {
+            Ok(())
+        }
+    };
+    go_on_condensing()?;
     let epsilon = enforcement.epsilon();
     let (slave, master) = bodies.pair();
     check(coupling, g0, slave.contact_dofs.len(), master.contact_dofs.len())?;
@@ -277,6 +318,7 @@ pub fn solve(
     }
     let n = coupling.x.len();
     let a = delassus(&coupling.slave, &slave.compliance) + delassus(&coupling.master, &master.compliance);
+    go_on_condensing()?;
     let upper_rows = match bodies.slave {
         Slave::Upper => &coupling.slave,
         Slave::Lower => &coupling.master,
@@ -292,7 +334,13 @@ pub fn solve(
         epsilon,
     };
     let opts = NewtonOptions::default();
-    let mut go_on = |_: &_| ControlFlow::Continue(());
+    let mut go_on = |_: &_| {
+        if cancelled() {
+            ControlFlow::Break(())
+        } else {
+            ControlFlow::Continue(())
+        }
+    };
     let (result, outer_iterations) = match enforcement {
         Enforcement::Penalty(_) => (penalty::solve(&pb, None, &opts, &mut go_on)?, None),
         Enforcement::Exact => {

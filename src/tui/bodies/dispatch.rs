@@ -6,7 +6,7 @@
 use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 
 use super::super::app::{MAX_APP_LEVEL, key_name};
-use super::super::bodies_solve::{MAX_OFFSET, OFFSET_STEP, RATIOS};
+use super::super::bodies_solve::{MAX_OFFSET, OFFSET_STEP, ratios};
 use super::super::keys::{LabAction, lab_action};
 use super::super::protocol::Notice;
 use super::BodiesApp;
@@ -92,12 +92,9 @@ impl BodiesApp {
         true
     }
 
-    /// The next (or previous) element ratio of [`RATIOS`], the scenario's own among them.
+    /// The next (or previous) element ratio of [`ratios`], the scenario's own among them.
     fn step_ratio(&mut self, up: bool) {
-        let mut list = RATIOS.to_vec();
-        if !list.contains(&self.initial.ratio) {
-            list.push(self.initial.ratio);
-        }
+        let list = ratios(self.initial.ratio);
         let n = list.len();
         let next = match list.iter().position(|&r| r == self.settings.ratio) {
             Some(i) if up => (i + 1) % n,

@@ -5,9 +5,11 @@
 //! oscillate the moment the meshes stop matching while mortar's stays flat (the contact
 //! patch test). Its state is [`BodiesApp`]; its keys are the lab's table's
 //! ([`super::keys::LAB`]), those that have no meaning for two bodies refused with the reason;
-//! [`view`] draws it, [`runtime`] runs it with its solve on a worker thread, and
-//! [`render_bodies`] draws one frame as text for `riplab render`.
+//! [`view`] draws it, [`runtime`] runs it with its solve on a worker thread (the bodies'
+//! discretisations kept between solves by [`cache`]), and [`render_bodies`] draws one frame
+//! as text for `riplab render`.
 
+pub mod cache;
 mod dispatch;
 pub mod runtime;
 
@@ -17,7 +19,7 @@ use crossterm::event::KeyEvent;
 
 use super::RenderError;
 use super::app::MAX_APP_LEVEL;
-use super::bodies_solve::{self as solve, Settings, Solved};
+use super::bodies_solve::{Settings, Solved};
 use super::protocol::Notice;
 use crate::contact::interface::InterfaceMethod;
 use crate::contact::interface::solve::BodiesError;
@@ -119,8 +121,9 @@ impl BodiesApp {
 ///
 /// A key that quits.
 pub fn settle_bodies(app: &mut BodiesApp, keys: &[KeyEvent]) -> Result<(), RenderError> {
-    let settle = |app: &mut BodiesApp, (generation, settings): Request| {
-        let result = solve::solve(&app.scenario, &settings);
+    let mut cache = cache::BodiesCache::new(app.scenario.clone());
+    let mut settle = |app: &mut BodiesApp, (generation, settings): Request| {
+        let result = cache.solve(&settings, &|| false);
         app.reply(generation, result);
     };
     let first = app.start();

@@ -10,6 +10,7 @@ mod at_value;
 mod authoring;
 mod axes;
 mod bodies;
+mod bodies_cache;
 mod coinciding;
 mod friction;
 mod friction_frames;
