@@ -6,7 +6,7 @@
 //! The closed form: on the contact patch test ([`Scenario::patch_pressure`]) the patch error
 //! max_k |p_k − p|/p; on an upper cylinder two-body Hertz, the errors of the half-width a (from
 //! the pressure's moments) and of the peak p₀ against Johnson §4.2
-//! ([`crate::verify::hertz_two_bodies::measure`]); on any other two-body scenario none, and a
+//! (`verify::hertz_two_bodies::measure`, the verify pack's own); on any other two-body scenario none, and a
 //! row gives the load P and the contact zone instead.
 
 use std::time::Instant;
