@@ -15,6 +15,7 @@ use crate::contact::interface::InterfaceMethod;
 use crate::contact::interface::solve::{BodiesError, Enforcement};
 use crate::output::{InterfaceReport, output};
 use crate::scenario::Scenario;
+use crate::scenario::upper::{Interface, TwoBodies};
 
 /// The discretisation `--contact` names, `rip` with the scenario's rule (or --rule's).
 pub(super) fn method_of(name: ContactName, scenario: &Scenario) -> InterfaceMethod {
@@ -116,11 +117,35 @@ pub(super) fn solve(args: &SolveArgs, scenario: &Scenario) -> Result<ExitCode, C
     let enforcement = enforcement(method, epsilon, flag, scenario)?;
     let contact = method_of(args.contact.unwrap_or(ContactName::Mortar), scenario);
     let t = Instant::now();
-    let solved = scenario
-        .solve_bodies(scenario.level, contact, enforcement)
-        .map_err(|e| cli_error(e, flag))?;
-    let total_ms = t.elapsed().as_secs_f64() * 1e3;
-    let report = InterfaceReport::new(scenario, scenario.level, contact, enforcement, &solved, total_ms);
+    let fail = |e| cli_error(e, flag);
+    let (lower, upper) = scenario.discretize_bodies(scenario.level).map_err(fail)?;
+    let across = Instant::now();
+    let Interface {
+        coupling,
+        solution,
+        patch,
+        descent,
+    } = scenario
+        .solve_discretized(&lower, &upper, contact, enforcement, &|| false)
+        .map_err(fail)?;
+    let ms = |since: Instant| since.elapsed().as_secs_f64() * 1e3;
+    let (interface_ms, total_ms) = (ms(across), ms(t));
+    let solved = TwoBodies {
+        lower,
+        upper,
+        coupling,
+        solution,
+        patch,
+        descent,
+    };
+    let report = InterfaceReport::new(
+        scenario,
+        scenario.level,
+        contact,
+        enforcement,
+        &solved,
+        (interface_ms, total_ms),
+    );
     print(&output(&report, args.format))?;
     Ok(ExitCode::SUCCESS)
 }

@@ -286,7 +286,7 @@ fn one_body_options_are_refused() {
 fn the_two_body_solve_is_timed() {
     let v = json(&["solve", PATCH, "--contact", "mortar", "--format", "json"]);
     let t = &v["timing_ms"];
-    let parts: Vec<f64> = ["assembly", "symbolic", "factorization"]
+    let parts: Vec<f64> = ["assembly", "symbolic", "factorization", "interface"]
         .iter()
         .map(|k| number(&t[k]))
         .collect();
