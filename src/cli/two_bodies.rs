@@ -15,7 +15,7 @@ use crate::contact::interface::InterfaceMethod;
 use crate::contact::interface::solve::{BodiesError, Enforcement};
 use crate::output::{InterfaceReport, output};
 use crate::scenario::Scenario;
-use crate::scenario::upper::{Interface, TwoBodies};
+use crate::scenario::upper::TwoBodies;
 
 /// The discretisation `--contact` names, `rip` with the scenario's rule (or --rule's).
 pub(super) fn method_of(name: ContactName, scenario: &Scenario) -> InterfaceMethod {
@@ -120,24 +120,12 @@ pub(super) fn solve(args: &SolveArgs, scenario: &Scenario) -> Result<ExitCode, C
     let fail = |e| cli_error(e, flag);
     let (lower, upper) = scenario.discretize_bodies(scenario.level).map_err(fail)?;
     let across = Instant::now();
-    let Interface {
-        coupling,
-        solution,
-        patch,
-        descent,
-    } = scenario
+    let interface = scenario
         .solve_discretized(&lower, &upper, contact, enforcement, &|| false)
         .map_err(fail)?;
     let ms = |since: Instant| since.elapsed().as_secs_f64() * 1e3;
     let (interface_ms, total_ms) = (ms(across), ms(t));
-    let solved = TwoBodies {
-        lower,
-        upper,
-        coupling,
-        solution,
-        patch,
-        descent,
-    };
+    let solved = TwoBodies::of(lower, upper, interface);
     let report = InterfaceReport::new(
         scenario,
         scenario.level,

@@ -247,19 +247,28 @@ impl Scenario {
         enforcement: impl Into<Enforcement>,
     ) -> Result<TwoBodies, BodiesError> {
         let (lower, upper) = self.discretize_bodies(level)?;
+        let interface = self.solve_discretized(&lower, &upper, method, enforcement, &|| false)?;
+        Ok(TwoBodies::of(lower, upper, interface))
+    }
+}
+
+impl TwoBodies {
+    /// The bodies `lower` and `upper` with their `interface` solved
+    /// ([`Scenario::solve_discretized`]).
+    pub fn of(lower: Discretization, upper: Discretization, interface: Interface) -> TwoBodies {
         let Interface {
             coupling,
             solution,
             patch,
             descent,
-        } = self.solve_discretized(&lower, &upper, method, enforcement, &|| false)?;
-        Ok(TwoBodies {
+        } = interface;
+        TwoBodies {
             lower,
             upper,
             coupling,
             solution,
             patch,
             descent,
-        })
+        }
     }
 }
