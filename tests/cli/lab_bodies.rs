@@ -155,3 +155,33 @@ fn one_iteration_is_singular_in_the_status_line() {
         "{out}"
     );
 }
+
+/// A status line wider than the frame breaks between its items, not inside one: a narrow
+/// block pressed 1e-300 under rip-trapezoid read "… · contact 0 to 0.5 · 1" and "iteration"
+/// on the next row.
+#[test]
+fn a_long_status_line_breaks_between_its_items() {
+    let text = std::fs::read_to_string(PATCH)
+        .unwrap()
+        .replacen("height = 0.5", "height = 0.5\nwidth = 1.0", 1)
+        .replacen("displacement = 0.01", "displacement = 1e-300", 1)
+        .replacen("rule = \"gauss1\"", "rule = \"trapezoid\"", 1);
+    let path = crate::common::scratch_file("lab-bodies-long-status.toml", &text);
+    let args = [
+        "render",
+        path.to_str().unwrap(),
+        "--contact",
+        "rip",
+        "--size",
+        "80x24",
+    ];
+    let (code, out, err) = run(&args);
+    assert_eq!(code, 0, "{err}");
+    let rows: Vec<&str> = out.lines().collect();
+    let at = rows
+        .iter()
+        .position(|l| l.contains("load P = "))
+        .expect("the status line");
+    assert!(rows[at].trim_end().ends_with("contact 0 to 0.5"), "{out}");
+    assert_eq!(rows[at + 1].trim(), "1 iteration", "{out}");
+}

@@ -15,7 +15,7 @@ use ratatui::widgets::Paragraph;
 use super::super::bodies_solve::Solved;
 use super::super::key_bar;
 use super::super::theme::Theme;
-use super::super::view::fmt::{sig, wrap_words};
+use super::super::view::fmt::{sig, wrap_items, wrap_words};
 use super::super::view::help::key_popup;
 use super::super::view::plot::{Axis, Plot, Scale, Series, Stroke};
 use super::super::view::{Look, below_min_size};
@@ -56,7 +56,7 @@ pub fn view(app: &BodiesApp, frame: &mut Frame, look: &Look) {
         return;
     }
     let theme = look.theme;
-    let state = wrap_words(&state_text(app), usize::from(area.width.saturating_sub(1)));
+    let state = wrap_items(&state_text(app), usize::from(area.width.saturating_sub(1)));
     let notice = app
         .notice
         .as_ref()

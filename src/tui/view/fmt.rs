@@ -98,10 +98,56 @@ pub fn wrap_words(text: &str, width: usize) -> Vec<String> {
     out
 }
 
+/// `text` of items joined by ` · ` wrapped to lines of at most `width` characters between
+/// items, so that no item ("1 iteration", "P = 7.5") is split; an item longer than a line is
+/// wrapped at its spaces ([`wrap_words`]).
+pub fn wrap_items(text: &str, width: usize) -> Vec<String> {
+    const SEP: &str = " · ";
+    let mut out: Vec<String> = Vec::new();
+    let mut current = String::new();
+    for item in text.split(SEP) {
+        let (cw, iw) = (current.chars().count(), item.chars().count());
+        if cw > 0 && cw + SEP.chars().count() + iw <= width {
+            current.push_str(SEP);
+            current.push_str(item);
+            continue;
+        }
+        if cw > 0 {
+            out.push(std::mem::take(&mut current));
+        }
+        if iw <= width {
+            current = item.to_string();
+        } else {
+            out.extend(wrap_words(item, width));
+        }
+    }
+    if !current.is_empty() || out.is_empty() {
+        out.push(current);
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::plot::nice_ceil;
+
+    /// Items stay whole: the line breaks between them, and an item wider than a line is
+    /// wrapped at its spaces.
+    #[test]
+    fn items_are_wrapped_whole() {
+        let text = "rip-trapezoid: load P = 3.032e-298 · p max 7.338e-298 · contact 0 to 0.5 · 1 iteration";
+        assert_eq!(
+            wrap_items(text, 79),
+            [
+                "rip-trapezoid: load P = 3.032e-298 · p max 7.338e-298 · contact 0 to 0.5",
+                "1 iteration"
+            ]
+        );
+        assert_eq!(wrap_items("a · b", 80), ["a · b"]);
+        assert_eq!(wrap_items("a long item · b", 6), ["a long", "item", "b"]);
+        assert_eq!(wrap_items("", 6), [""]);
+    }
 
     #[test]
     fn a_table_row_is_the_columns_format_and_a_long_cell_borrows_padding() {
