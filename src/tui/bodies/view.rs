@@ -55,6 +55,12 @@ pub fn view(app: &BodiesApp, frame: &mut Frame, look: &Look) {
     if below_min_size(frame, area, look.theme, app.notice.as_ref()) {
         return;
     }
+    view_in(app, frame, area, look, true);
+}
+
+/// Draw the two-body scene into `area` (at least [`super::super::view::MIN_SIZE`]), its key
+/// bar at the bottom when `keys` (the guided tour puts its caption and its own keys there).
+pub fn view_in(app: &BodiesApp, frame: &mut Frame, area: Rect, look: &Look, keys: bool) {
     let theme = look.theme;
     let state = wrap_items(&state_text(app), usize::from(area.width.saturating_sub(1)));
     let notice = app
@@ -67,7 +73,7 @@ pub fn view(app: &BodiesApp, frame: &mut Frame, look: &Look) {
         Constraint::Length(1),
         Constraint::Fill(1),
         Constraint::Length(status_rows),
-        Constraint::Length(1),
+        Constraint::Length(u16::from(keys)),
     ])
     .areas(area);
     frame.render_widget(
@@ -96,7 +102,9 @@ pub fn view(app: &BodiesApp, frame: &mut Frame, look: &Look) {
             .map(|l| Line::styled(format!(" {l}"), notice_style)),
     );
     frame.render_widget(Paragraph::new(lines), status);
-    frame.render_widget(Paragraph::new(key_bar_line(theme)), bar);
+    if keys {
+        frame.render_widget(Paragraph::new(key_bar_line(theme)), bar);
+    }
     if app.show_help {
         help(app, frame, area, theme);
     }
