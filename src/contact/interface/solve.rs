@@ -149,6 +149,10 @@ pub struct InterfaceSolution {
     pub slave: TraceDisplacement,
     /// The master's trace.
     pub master: TraceDisplacement,
+    /// Every node's displacement in the lower body and in the upper one, (u_x, u_y) by node in
+    /// its mesh's order, in the global frame (the upper's mirrored back and translated by −δ,
+    /// as its trace): what the traces were read from, kept for drawing the meshes.
+    pub bodies: [Vec<f64>; 2],
     /// The load carried across the interface, P = Σ_k weight_k p_k.
     pub load: f64,
     /// Newton (active-set) iterations taken (the ALM's: over all its updates).
@@ -380,7 +384,13 @@ pub fn solve_cancellable(
     let load = coupling.weight.iter().zip(&p).map(|(w, p)| w * p).sum();
     let trace = |disc: &Discretization, rows: &[Vec<(usize, f64)>]| {
         let upper = std::ptr::eq(disc, bodies.upper);
-        trace_displacement(disc, rows, y, upper.then_some(bodies.displacement))
+        displacement(disc, rows, y, upper.then_some(bodies.displacement))
+    };
+    let ((slave_trace, slave_field), (master_trace, master_field)) =
+        (trace(slave, &coupling.slave), trace(master, &coupling.master));
+    let fields = match bodies.slave {
+        Slave::Upper => [master_field, slave_field],
+        Slave::Lower => [slave_field, master_field],
     };
     let solution = InterfaceSolution {
         x: coupling.x.clone(),
@@ -388,8 +398,9 @@ pub fn solve_cancellable(
         gap,
         vertex_x,
         pbar,
-        slave: trace(slave, &coupling.slave),
-        master: trace(master, &coupling.master),
+        slave: slave_trace,
+        master: master_trace,
+        bodies: fields,
         load,
         iterations: result.iterations,
         outer_iterations,
@@ -495,15 +506,15 @@ pub(crate) fn smoothed(vertex_x: &[f64], x: &[f64], w: &[f64], p: &[f64]) -> Vec
         .collect()
 }
 
-/// The global displacements of `disc`'s trace under the forces −Gᵀy of `rows` (inwards):
-/// one back-substitution; for the upper body (`upper` = its top's δ) mirrored back and
-/// translated by −δ.
-fn trace_displacement(
+/// The global displacements of `disc`'s nodes under the forces −Gᵀy of `rows` (inwards): one
+/// back-substitution; for the upper body (`upper` = its top's δ) mirrored back and translated
+/// by −δ. Its trace's, and every node's ((u_x, u_y) by node).
+fn displacement(
     disc: &Discretization,
     rows: &[Vec<(usize, f64)>],
     y: &[f64],
     upper: Option<f64>,
-) -> TraceDisplacement {
+) -> (TraceDisplacement, Vec<f64>) {
     let mut u = vec![0.0; disc.n_dofs()];
     for (row, &yk) in rows.iter().zip(y) {
         for &(i, g) in row {
@@ -511,31 +522,30 @@ fn trace_displacement(
         }
     }
     disc.factor.solve_in_place(&mut u, 1);
-    let u = disc.dofs.expand(&u, |_| 0.0);
-    let top = disc.mesh.top_nodes();
-    let ux = top.iter().map(|&n| u[2 * n]).collect();
-    let uy = top
-        .iter()
-        .map(|&n| match upper {
-            Some(delta) => -u[2 * n + 1] - delta,
-            None => u[2 * n + 1],
-        })
-        .collect();
-    TraceDisplacement {
-        x: disc.mesh.node_x.clone(),
-        ux,
-        uy,
+    let mut u = disc.dofs.expand(&u, |_| 0.0);
+    if let Some(delta) = upper {
+        for uy in u.iter_mut().skip(1).step_by(2) {
+            *uy = -*uy - delta;
+        }
     }
+    let top = disc.mesh.top_nodes();
+    let trace = TraceDisplacement {
+        x: disc.mesh.node_x.clone(),
+        ux: top.iter().map(|&n| u[2 * n]).collect(),
+        uy: top.iter().map(|&n| u[2 * n + 1]).collect(),
+    };
+    (trace, u)
 }
 
 /// Refuse a solution with a non-finite value.
 fn finite(s: &InterfaceSolution) -> Result<(), BodiesError> {
     let bad = |v: &[f64]| v.iter().any(|x| !x.is_finite());
-    let checks: [(&'static str, bool); 5] = [
+    let checks: [(&'static str, bool); 6] = [
         ("pressure", bad(&s.p) || bad(&s.pbar) || !s.load.is_finite()),
         ("gap", bad(&s.gap)),
         ("slave displacement", bad(&s.slave.ux) || bad(&s.slave.uy)),
         ("master displacement", bad(&s.master.ux) || bad(&s.master.uy)),
+        ("displacement", bad(&s.bodies[0]) || bad(&s.bodies[1])),
         ("position", bad(&s.x)),
     ];
     match checks.iter().find(|c| c.1) {

@@ -3,7 +3,7 @@
 //! chosen discretisation (node-to-segment, mortar, the reduced-integration rules) drawn live
 //! as the method, the element ratio and the offset change, so that NTS's pressure starts to
 //! oscillate the moment the meshes stop matching while mortar's stays flat (the contact
-//! patch test). Its state is [`BodiesApp`]; its keys are the lab's table's
+//! patch test), both meshes drawn deformed under it. Its state is [`BodiesApp`]; its keys are the lab's table's
 //! ([`super::keys::LAB`]), those that have no meaning for two bodies refused with the reason;
 //! [`view`] draws it, [`runtime`] runs it with its solve on a worker thread (the bodies'
 //! discretisations kept between solves by [`cache`]), and [`render_bodies`] draws one frame
@@ -11,6 +11,7 @@
 
 pub mod cache;
 mod dispatch;
+mod meshes;
 pub mod runtime;
 
 pub mod view;

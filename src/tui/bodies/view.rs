@@ -2,8 +2,9 @@
 //! multipliers; the interface pressure of the chosen discretisation along the interface —
 //! p at the slave's contact points (a dotted line, `•` at each point while they are few),
 //! p̄ by (17) for the reduced-integration rules (a solid line) and, on the contact patch test,
-//! the applied pressure as a dashed reference line (`─`); the state of the solve with the
-//! patch error or the load; the key's answer; and the key bar. Lines differ by stroke and
+//! the applied pressure as a dashed reference line (`─`); under it both meshes near the
+//! interface ([`super::meshes`]); the state of the solve with the patch error or the load; the
+//! key's answer; and the key bar. Lines differ by stroke and
 //! glyph, not by colour alone (NO_COLOR).
 
 use ratatui::Frame;
@@ -40,6 +41,9 @@ const PATCH_WINDOW: f64 = 0.25;
 /// a row at ±25 %, hid the applied line under p̄) stands rows apart from it.
 const PATCH_WINDOW_LEAST: f64 = 0.01;
 
+/// The fewest rows of the meshes' panel (its border's two and six of meshes).
+const MESH_ROWS: u16 = 8;
+
 /// Samples of the applied pressure's reference line across the chart.
 const REFERENCE_SAMPLES: usize = 41;
 
@@ -69,18 +73,24 @@ pub fn view_in(app: &BodiesApp, frame: &mut Frame, area: Rect, look: &Look, keys
         .map(|n| wrap_words(&n.text, usize::from(area.width.saturating_sub(1))))
         .unwrap_or_default();
     let status_rows = (state.len() + notice.len()).min(6) as u16;
-    let [header, chart, status, bar] = Layout::vertical([
+    let [header, panels, status, bar] = Layout::vertical([
         Constraint::Length(1),
         Constraint::Fill(1),
         Constraint::Length(status_rows),
         Constraint::Length(u16::from(keys)),
     ])
     .areas(area);
+    let [chart, meshes] = Layout::vertical([
+        Constraint::Fill(1),
+        Constraint::Length((panels.height * 2 / 5).max(MESH_ROWS)),
+    ])
+    .areas(panels);
     frame.render_widget(
         Paragraph::new(Line::styled(header_text(app), theme.title())),
         header,
     );
     pressure_chart(app, frame, chart, look);
+    super::meshes::render(app.solved.as_ref(), app.scenario.height, frame, meshes, look);
     let state_style = if app.error.is_some() {
         theme.bad()
     } else if app.settled() {
