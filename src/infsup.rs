@@ -19,6 +19,7 @@ pub mod interface_table;
 #[cfg(test)]
 mod interface_tests;
 
+use std::sync::{Arc, Mutex, PoisonError};
 use std::time::Instant;
 
 use faer::{Mat, Side};
@@ -292,14 +293,37 @@ pub fn estimate(
     })
 }
 
-/// The estimate for one rule (computes the trace compliance; reuse [`TraceCompliance`] and
-/// [`estimate`] for several rules on one mesh).
+/// The estimate for one rule on `disc`, its H¹ trace compliance made by the first estimate
+/// on `disc` and kept with it ([`kept_compliance`]): the rules of one mesh share one
+/// factorisation of A.
 ///
 /// # Errors
 ///
 /// As [`TraceCompliance::new`]'s and [`estimate`]'s.
 pub fn inf_sup(disc: &Discretization, rule: Rule) -> Result<InfSup, SolveError> {
-    estimate(disc, &TraceCompliance::new(disc)?, rule)
+    estimate(disc, &*kept_compliance(disc)?, rule)
+}
+
+/// The slot of [`kept_compliance`] in a discretisation's kept state: empty until an estimate
+/// succeeds (a refusal for memory is not kept: it may fit later).
+#[derive(Default)]
+struct KeptCompliance(Mutex<Option<Arc<TraceCompliance>>>);
+
+/// `disc`'s H¹ trace compliance ([`TraceCompliance::new`]), made once and kept with `disc`: a
+/// second caller, on any thread, waits for the first one's and shares it.
+///
+/// # Errors
+///
+/// As [`TraceCompliance::new`]'s.
+pub(crate) fn kept_compliance(disc: &Discretization) -> Result<Arc<TraceCompliance>, SolveError> {
+    let kept = disc.kept.get_or_init(KeptCompliance::default);
+    let mut slot = kept.0.lock().unwrap_or_else(PoisonError::into_inner);
+    if let Some(made) = &*slot {
+        return Ok(Arc::clone(made));
+    }
+    let made = Arc::new(TraceCompliance::new(disc)?);
+    *slot = Some(Arc::clone(&made));
+    Ok(made)
 }
 
 /// One row of `riplab infsup` (docs/design.md §7; `scheme`, `slope`, `kernel` and the timings
@@ -435,5 +459,23 @@ mod tests {
             let ratio = extra / (measured_kb as f64 * 1024.0);
             assert!((1.0..1.3).contains(&ratio), "level {level}: {ratio}");
         }
+    }
+
+    /// The rules on one mesh share one H¹ trace compliance, made by the first estimate, and
+    /// each rule's β_h and β̄_h are those of a compliance made afresh for it.
+    #[test]
+    fn the_rules_of_one_mesh_share_one_trace_compliance() {
+        let disc = Scenario::paper().discretize(2, Element::Q1).unwrap();
+        for rule in Rule::ALL {
+            let shared = inf_sup(&disc, rule).unwrap();
+            let fresh = estimate(&disc, &TraceCompliance::new(&disc).unwrap(), rule).unwrap();
+            assert_eq!(
+                (shared.beta, shared.beta_bar),
+                (fresh.beta, fresh.beta_bar),
+                "{rule:?}"
+            );
+        }
+        let (a, b) = (kept_compliance(&disc).unwrap(), kept_compliance(&disc).unwrap());
+        assert!(Arc::ptr_eq(&a, &b));
     }
 }
