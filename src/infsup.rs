@@ -305,7 +305,9 @@ pub fn inf_sup(disc: &Discretization, rule: Rule) -> Result<InfSup, SolveError> 
 }
 
 /// The slot of [`kept_compliance`] in a discretisation's kept state: empty until an estimate
-/// succeeds (a refusal for memory is not kept: it may fit later).
+/// succeeds (a refusal for memory is not kept: it may fit later). Its m×m beside the
+/// discretisation's own C stays within the discretisation's peak estimate, which counts three
+/// m×m while C is formed ([`crate::fem::memory::Sizes::peak_bytes`]).
 #[derive(Default)]
 struct KeptCompliance(Mutex<Option<Arc<TraceCompliance>>>);
 
