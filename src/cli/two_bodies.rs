@@ -125,6 +125,7 @@ pub(super) fn solve(args: &SolveArgs, scenario: &Scenario) -> Result<ExitCode, C
         .map_err(fail)?;
     let ms = |since: Instant| since.elapsed().as_secs_f64() * 1e3;
     let (interface_ms, total_ms) = (ms(across), ms(t));
+    let coupling_ms = interface.coupling_ms;
     let solved = TwoBodies::of(lower, upper, interface);
     let report = InterfaceReport::new(
         scenario,
@@ -132,7 +133,7 @@ pub(super) fn solve(args: &SolveArgs, scenario: &Scenario) -> Result<ExitCode, C
         contact,
         enforcement,
         &solved,
-        (interface_ms, total_ms),
+        (coupling_ms, interface_ms, total_ms),
     );
     print(&output(&report, args.format))?;
     Ok(ExitCode::SUCCESS)

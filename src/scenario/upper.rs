@@ -10,9 +10,11 @@
 //! rigid translation added to that solution; under a pressure the top is free but for a pin,
 //! whose descent is found ([`pressed`]).
 
+use std::time::Instant;
+
 use crate::contact::half_plane::e_star;
 use crate::contact::interface::solve::{
-    Bodies, BodiesError, Enforcement, InterfaceSolution, solve_method_cancellable,
+    Bodies, BodiesError, Enforcement, InterfaceSolution, couple, solve_cancellable,
 };
 use crate::contact::interface::{Coupling, InterfaceMethod, pressed};
 use crate::discretization::Discretization;
@@ -151,6 +153,9 @@ pub struct Interface {
     /// The descent of the upper body's top: prescribed, or under a pressure the pin's, found so
     /// that the interface carries the load ([`pressed`]).
     pub descent: f64,
+    /// The coupling's wall time, ms: the segmentation, the rows' integrals and the initial
+    /// gaps (the rest of the solve across the interface is the condensation and Newton's).
+    pub coupling_ms: f64,
 }
 
 impl Scenario {
@@ -179,8 +184,9 @@ impl Scenario {
     ///
     /// # Errors
     ///
-    /// A one-body scenario, or as [`solve_method_cancellable`]'s ([`SolveError::Cancelled`]
-    /// among them).
+    /// A one-body scenario, traces that cannot be coupled, or as
+    /// [`crate::contact::interface::solve::solve_cancellable`]'s and
+    /// [`pressed::solve_pressed`]'s ([`SolveError::Cancelled`] among them).
     pub fn solve_discretized(
         &self,
         lower: &Discretization,
@@ -198,16 +204,18 @@ impl Scenario {
             slave: upper_body.slave,
         };
         let shape = upper_body.shape;
-        let gap0 = |x| shape.initial_gap(x);
-        let (coupling, solution, descent) = match upper_body.pressure {
-            None => {
-                let (coupling, solution) =
-                    solve_method_cancellable(&bodies, method, enforcement, gap0, cancelled)?;
-                (coupling, solution, upper_body.displacement)
-            }
+        let started = Instant::now();
+        let (coupling, g0, rule) = couple(&bodies, method, |x| shape.initial_gap(x))?;
+        let coupling_ms = started.elapsed().as_secs_f64() * 1e3;
+        let (solution, descent) = match upper_body.pressure {
+            None => (
+                solve_cancellable(&bodies, &coupling, &g0, enforcement, rule, cancelled)?,
+                upper_body.displacement,
+            ),
             Some(q) => {
                 let first = q * (self.compliance_across() + enforcement.epsilon());
-                pressed::solve_pressed(&bodies, method, enforcement, gap0, (q, first), cancelled)?
+                let coupled = (&coupling, g0.as_slice(), rule);
+                pressed::solve_pressed(&bodies, coupled, enforcement, (q, first), cancelled)?
             }
         };
         // The penalty's patch pressure is softened by ε; the exact multipliers' and the ALM's is not.
@@ -228,6 +236,7 @@ impl Scenario {
             solution,
             patch,
             descent,
+            coupling_ms,
         })
     }
 
@@ -261,6 +270,7 @@ impl TwoBodies {
             solution,
             patch,
             descent,
+            ..
         } = interface;
         TwoBodies {
             lower,

@@ -281,7 +281,8 @@ fn one_body_options_are_refused() {
 }
 
 /// `riplab solve` on two bodies: `timing_ms` has the discretisations' parts and the total,
-/// finite and ≥ 0, the total at least their sum, and the table's first line says the total.
+/// finite and ≥ 0, the total at least their sum, the interface's time its coupling's and the
+/// contact solve's, and the table's first line says the total.
 #[test]
 fn the_two_body_solve_is_timed() {
     let v = json(&["solve", PATCH, "--contact", "mortar", "--format", "json"]);
@@ -295,6 +296,13 @@ fn the_two_body_solve_is_timed() {
         assert!(v.is_finite() && *v >= 0.0, "{t}");
     }
     assert!(total >= parts.iter().sum::<f64>(), "{t}");
+    // The solve across the interface is its coupling and the rest.
+    let (coupling, contact) = (number(&t["coupling"]), number(&t["contact"]));
+    assert!(coupling >= 0.0 && contact >= 0.0, "{t}");
+    assert!(
+        (coupling + contact - parts[3]).abs() <= 1e-9 * parts[3].max(1.0),
+        "{t}"
+    );
     let (code, out, err) = riplab(&["solve", PATCH, "--contact", "mortar"]);
     assert_eq!(code, 0, "{err}");
     let first = out.lines().next().unwrap();

@@ -14,8 +14,8 @@
 //! tolerance.
 
 use super::Coupling;
-use super::InterfaceMethod;
-use super::solve::{Bodies, BodiesError, Enforcement, InterfaceSolution, Slave, couple, solve_cancellable};
+use super::solve::{Bodies, BodiesError, Enforcement, InterfaceSolution, Slave, solve_cancellable};
+use crate::contact::Rule;
 use crate::discretization::Discretization;
 
 /// The relative misfit |P − q·w| / (q·w) that ends the search for δ.
@@ -28,8 +28,8 @@ const MAX_STEPS: usize = 200;
 struct TopLoad {
     /// u_q along the body's outward normal at its Γ_C nodes (the contact dofs' order).
     normal: Vec<f64>,
-    /// u_q at its Γ_C nodes in the global frame: (u_x, u_y).
-    global: (Vec<f64>, Vec<f64>),
+    /// u_q at every node in the global frame, (u_x, u_y) by node.
+    global: Vec<f64>,
 }
 
 /// u_q = K⁻¹ f_q of `upper` (its mirrored mesh: the top is the mesh's bottom row) under the
@@ -52,36 +52,33 @@ fn top_load(upper: &Discretization, q: f64) -> Result<TopLoad, BodiesError> {
     }
     upper.factor().solve_in_place(&mut f, 1);
     let normal = upper.contact_dofs().iter().map(|&k| f[k]).collect();
-    let u = dofs.expand(&f, |_| 0.0);
-    let top = mesh.top_nodes();
-    let global = (
-        top.iter().map(|&n| u[2 * n]).collect(),
-        top.iter().map(|&n| -u[2 * n + 1]).collect(),
-    );
+    let mut global = dofs.expand(&f, |_| 0.0);
+    for uy in global.iter_mut().skip(1).step_by(2) {
+        *uy = -*uy;
+    }
     Ok(TopLoad { normal, global })
 }
 
 /// Solve the contact of `bodies` (its `displacement` unused) across the interface discretised
-/// by `method`, the initial gap `gap0`, the upper body's top under the pressure `q` > 0 and
-/// held by the pin of [`Support::Free`](crate::fem::Support::Free): the coupling, the solution
-/// (its Newton iterations summed over every δ tried, the upper's trace with u_q in it) and the
-/// pin's descent δ. `first` is a first guess of δ's scale (the two bodies' uniform
+/// by `coupling` ([`super::solve::couple`]: its rows, their initial gaps `g0` and the rule of
+/// a reduced-integration coupling), the upper body's top under the pressure `q` > 0 and held
+/// by the pin of [`Support::Free`](crate::fem::Support::Free): the solution (its Newton
+/// iterations summed over every δ tried, the upper's trace and displacement with u_q in them)
+/// and the pin's descent δ. `first` is a first guess of δ's scale (the two bodies' uniform
 /// compression under q, q (H_l/E'_l + H_u/E'_u + ε)). Given up as soon as `cancelled` says
 /// so.
 ///
 /// # Errors
 ///
-/// As [`super::solve::solve_method_cancellable`]'s, and [`BodiesError::Unbalanced`] when no
+/// As [`super::solve::solve_cancellable`]'s, and [`BodiesError::Unbalanced`] when no
 /// δ balances the load within [`BALANCE`] in `MAX_STEPS` solves.
 pub fn solve_pressed(
     bodies: &Bodies,
-    method: InterfaceMethod,
+    (coupling, g0, rule): (&Coupling, &[f64], Option<Rule>),
     enforcement: Enforcement,
-    gap0: impl Fn(f64) -> f64,
     (q, first): (f64, f64),
     cancelled: &dyn Fn() -> bool,
-) -> Result<(Coupling, InterfaceSolution, f64), BodiesError> {
-    let (coupling, g0, rule) = couple(bodies, method, gap0)?;
+) -> Result<(InterfaceSolution, f64), BodiesError> {
     let top = top_load(bodies.upper, q)?;
     let upper_rows = match bodies.slave {
         Slave::Upper => &coupling.slave,
@@ -100,7 +97,7 @@ pub fn solve_pressed(
             displacement: delta,
             ..*bodies
         };
-        let sol = solve_cancellable(&pressed, &coupling, &shifted, enforcement, rule, cancelled)?;
+        let sol = solve_cancellable(&pressed, coupling, &shifted, enforcement, rule, cancelled)?;
         iterations += sol.iterations;
         Ok((sol.load - load, sol))
     };
@@ -150,11 +147,12 @@ pub fn solve_pressed(
         Slave::Upper => &mut sol.slave,
         Slave::Lower => &mut sol.master,
     };
-    for (u, du) in trace.ux.iter_mut().zip(&top.global.0) {
+    for (k, &n) in mesh.top_nodes().iter().enumerate() {
+        trace.ux[k] += top.global[2 * n];
+        trace.uy[k] += top.global[2 * n + 1];
+    }
+    for (u, du) in sol.bodies[1].iter_mut().zip(&top.global) {
         *u += du;
     }
-    for (u, du) in trace.uy.iter_mut().zip(&top.global.1) {
-        *u += du;
-    }
-    Ok((coupling, sol, b))
+    Ok((sol, b))
 }

@@ -230,23 +230,8 @@ pub fn solve_method(
     enforcement: impl Into<Enforcement>,
     gap0: impl Fn(f64) -> f64,
 ) -> Result<(Coupling, InterfaceSolution), BodiesError> {
-    solve_method_cancellable(bodies, method, enforcement, gap0, &|| false)
-}
-
-/// [`solve_method`], given up as soon as `cancelled` says so ([`solve_cancellable`]).
-///
-/// # Errors
-///
-/// As [`solve_method`]'s, and [`SolveError::Cancelled`].
-pub fn solve_method_cancellable(
-    bodies: &Bodies,
-    method: InterfaceMethod,
-    enforcement: impl Into<Enforcement>,
-    gap0: impl Fn(f64) -> f64,
-    cancelled: &dyn Fn() -> bool,
-) -> Result<(Coupling, InterfaceSolution), BodiesError> {
     let (coupling, g0, rule) = couple(bodies, method, gap0)?;
-    let sol = solve_cancellable(bodies, &coupling, &g0, enforcement.into(), rule, cancelled)?;
+    let sol = solve(bodies, &coupling, &g0, enforcement.into(), rule)?;
     Ok((coupling, sol))
 }
 

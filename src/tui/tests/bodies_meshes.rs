@@ -134,3 +134,38 @@ fn the_meshes_move_as_the_uniform_compression_does() {
         }
     }
 }
+
+/// Under a pressure q on the upper body's top (docs/design.md §12, "A pressure on the top")
+/// the meshes carry the top's own displacement u_q too: both bodies compressed uniformly by q,
+/// the lower's top sinking q·H_l/E'_l, the upper's top q·(H_l/E'_l + H_u/E'_u) — the pin's
+/// descent — and every node between on the line.
+#[test]
+fn under_a_pressure_the_meshes_carry_the_tops_displacement() {
+    let q = 5.0;
+    let text = std::fs::read_to_string(PATCH).unwrap().replace(
+        "support = \"roller\"\ndisplacement = 0.01",
+        &format!("pressure = {q:?}"),
+    );
+    let scenario = Scenario::parse(&text, "pressed.toml").unwrap();
+    assert_eq!(scenario.upper.as_ref().unwrap().pressure, Some(q));
+    let mut app = BodiesApp::new(scenario, InterfaceMethod::Mortar).expect("two bodies");
+    settle_bodies(&mut app, &[]).unwrap();
+    let solved = app.solved.as_ref().unwrap_or_else(|| panic!("{:?}", app.error));
+    let (scenario, upper) = (&app.scenario, app.scenario.upper.as_ref().unwrap());
+    let plane = |m: &Material| m.young / (1.0 - m.poisson * m.poisson);
+    let (lower_strain, upper_strain) = (q / plane(&scenario.material), q / plane(&upper.material));
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * b.abs().max(1e-3);
+    let [lower_strip, upper_strip] = &solved.strips;
+    for n in &lower_strip.rows[0] {
+        assert!(
+            close(n.uy, -lower_strain * scenario.height),
+            "the lower top: {n:?}"
+        );
+    }
+    let top = scenario.height + upper.height;
+    assert!(close(upper_strip.rows.last().unwrap()[0].y, top));
+    for n in upper_strip.rows.iter().flatten() {
+        let want = -lower_strain * scenario.height - upper_strain * (n.y - scenario.height);
+        assert!(close(n.uy, want), "{n:?} against {want}");
+    }
+}
