@@ -4,6 +4,7 @@
 //! dual multipliers, and the reduced-integration penalty's rules on the slave's edges — each
 //! given as a [`Coupling`]: weighted gaps, linear in the two traces' normal displacements.
 
+mod condense;
 mod dual;
 mod error;
 mod mortar;

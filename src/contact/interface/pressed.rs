@@ -14,7 +14,7 @@
 //! tolerance.
 
 use super::Coupling;
-use super::solve::{Bodies, BodiesError, Enforcement, InterfaceSolution, Slave, solve_cancellable};
+use super::solve::{Bodies, BodiesError, Condensed, Enforcement, InterfaceSolution, Slave};
 use crate::contact::Rule;
 use crate::discretization::Discretization;
 
@@ -91,13 +91,11 @@ pub fn solve_pressed(
         .collect();
     let mesh = bodies.upper.mesh();
     let load = q * (mesh.node_x[mesh.nnx() - 1] - mesh.node_x[0]);
+    // The rows, A and the multipliers' uniqueness are the same for every δ: condensed once.
+    let condensed = Condensed::new(*bodies, coupling, &shifted, enforcement, rule, cancelled)?;
     let mut iterations = 0usize;
     let mut at = |delta: f64| -> Result<(f64, InterfaceSolution), BodiesError> {
-        let pressed = Bodies {
-            displacement: delta,
-            ..*bodies
-        };
-        let sol = solve_cancellable(&pressed, coupling, &shifted, enforcement, rule, cancelled)?;
+        let sol = condensed.solve(delta, &shifted, cancelled)?;
         iterations += sol.iterations;
         Ok((sol.load - load, sol))
     };

@@ -17,9 +17,11 @@ use std::ops::ControlFlow;
 
 use faer::{Mat, Side as FaerSide};
 
+pub use super::condense::delassus;
+use super::condense::smoothed;
 use super::{Coupling, InterfaceError, InterfaceMethod, Side, coupling, smoothed_pressure};
 use crate::contact::Rule;
-use crate::contact::newton::NewtonOptions;
+use crate::contact::newton::{NewtonOptions, NewtonResult};
 use crate::contact::penalty::{self, Penalty};
 use crate::contact::{alm, signorini};
 use crate::discretization::Discretization;
@@ -290,108 +292,191 @@ pub fn solve_cancellable(
     rule: Option<Rule>,
     cancelled: &dyn Fn() -> bool,
 ) -> Result<InterfaceSolution, BodiesError> {
-    let go_on_condensing = || {
-        if cancelled() {
-            Err(SolveError::Cancelled)
-        } else {
-            Ok(())
+    Condensed::new(*bodies, coupling, g0, enforcement, rule, cancelled)?.solve(
+        bodies.displacement,
+        g0,
+        cancelled,
+    )
+}
+
+/// The constraint across the interface condensed on the two traces: A = G_s C_s G_sᵀ +
+/// G_m C_m G_mᵀ ([`delassus`]) and, for the exact multipliers and the ALM, whether they are
+/// unique — what every solve with these rows shares, whatever the upper top's descent δ and
+/// the initial gaps (under a pressure the search for δ solves many: [`super::pressed`]).
+pub(crate) struct Condensed<'a> {
+    bodies: Bodies<'a>,
+    coupling: &'a Coupling,
+    enforcement: Enforcement,
+    rule: Option<Rule>,
+    a: Mat<f64>,
+    /// The multipliers are unique (A positive definite); asked of the exact multipliers and the ALM only.
+    unique: bool,
+}
+
+impl<'a> Condensed<'a> {
+    /// `coupling` of `bodies` condensed, checked against the traces and initial gaps like
+    /// `g0`; given up as soon as `cancelled` says so.
+    ///
+    /// # Errors
+    ///
+    /// As [`solve`]'s before its Newton iteration: a coupling that does not fit, ε out of
+    /// range, the exact multipliers not unique; and [`SolveError::Cancelled`].
+    pub(crate) fn new(
+        bodies: Bodies<'a>,
+        coupling: &'a Coupling,
+        g0: &[f64],
+        enforcement: Enforcement,
+        rule: Option<Rule>,
+        cancelled: &dyn Fn() -> bool,
+    ) -> Result<Self, BodiesError> {
+        let go_on = || {
+            if cancelled() {
+                Err(SolveError::Cancelled)
+            } else {
+                Ok(())
+            }
+        };
+        go_on()?;
+        let epsilon = enforcement.epsilon();
+        let (slave, master) = bodies.pair();
+        check(coupling, g0, slave.contact_dofs.len(), master.contact_dofs.len())?;
+        let (lo, hi) = epsilon_range(&bodies);
+        if epsilon != 0.0 && !(epsilon >= lo && epsilon <= hi) {
+            return Err(BodiesError::Epsilon { epsilon, lo, hi });
         }
-    };
-    go_on_condensing()?;
-    let epsilon = enforcement.epsilon();
-    let (slave, master) = bodies.pair();
-    check(coupling, g0, slave.contact_dofs.len(), master.contact_dofs.len())?;
-    let (lo, hi) = epsilon_range(bodies);
-    if epsilon != 0.0 && !(epsilon >= lo && epsilon <= hi) {
-        return Err(BodiesError::Epsilon { epsilon, lo, hi });
+        let a = delassus(&coupling.slave, &slave.compliance) + delassus(&coupling.master, &master.compliance);
+        go_on()?;
+        let unique = match enforcement {
+            Enforcement::Penalty(_) => false,
+            Enforcement::Exact => {
+                unique(&a)?;
+                true
+            }
+            Enforcement::Alm { .. } => unique(&a).is_ok(),
+        };
+        Ok(Condensed {
+            bodies,
+            coupling,
+            enforcement,
+            rule,
+            a,
+            unique,
+        })
     }
-    let n = coupling.x.len();
-    let a = delassus(&coupling.slave, &slave.compliance) + delassus(&coupling.master, &master.compliance);
-    go_on_condensing()?;
-    let upper_rows = match bodies.slave {
-        Slave::Upper => &coupling.slave,
-        Slave::Lower => &coupling.master,
-    };
-    // The penetration with no contact force: d = −g̃0.
-    let d: Vec<f64> = (0..n)
-        .map(|k| bodies.displacement * upper_rows[k].iter().map(|e| e.1).sum::<f64>() - g0[k])
-        .collect();
-    let pb = Penalty {
-        coupling: &a,
-        free_violation: &d,
-        weight: &coupling.weight,
-        epsilon,
-    };
-    let opts = NewtonOptions::default();
-    let mut go_on = |_: &_| {
-        if cancelled() {
-            ControlFlow::Break(())
-        } else {
-            ControlFlow::Continue(())
+
+    /// The solve with the upper top's descent `displacement` and the initial gaps `g0` (one
+    /// per row, as [`Condensed::new`]'s); given up as soon as `cancelled` says so.
+    ///
+    /// # Errors
+    ///
+    /// As [`solve`]'s.
+    pub(crate) fn solve(
+        &self,
+        displacement: f64,
+        g0: &[f64],
+        cancelled: &dyn Fn() -> bool,
+    ) -> Result<InterfaceSolution, BodiesError> {
+        let (coupling, enforcement, a) = (self.coupling, self.enforcement, &self.a);
+        let bodies = Bodies {
+            displacement,
+            ..self.bodies
+        };
+        let (slave, master) = bodies.pair();
+        check(coupling, g0, slave.contact_dofs.len(), master.contact_dofs.len())?;
+        let n = coupling.x.len();
+        let upper_rows = match bodies.slave {
+            Slave::Upper => &coupling.slave,
+            Slave::Lower => &coupling.master,
+        };
+        // The penetration with no contact force: d = −g̃0.
+        let d: Vec<f64> = (0..n)
+            .map(|k| displacement * upper_rows[k].iter().map(|e| e.1).sum::<f64>() - g0[k])
+            .collect();
+        let pb = Penalty {
+            coupling: a,
+            free_violation: &d,
+            weight: &coupling.weight,
+            epsilon: enforcement.epsilon(),
+        };
+        let opts = NewtonOptions::default();
+        let mut go_on = |_: &_| {
+            if cancelled() {
+                ControlFlow::Break(())
+            } else {
+                ControlFlow::Continue(())
+            }
+        };
+        let (result, outer_iterations) = match enforcement {
+            Enforcement::Penalty(_) => (penalty::solve(&pb, None, &opts, &mut go_on)?, None),
+            Enforcement::Exact => (signorini::solve_exact(&pb, None, &opts, &mut go_on)?, None),
+            Enforcement::Alm { tolerance, .. } => {
+                // The Newton step on the multipliers where they are unique, Uzawa's where not.
+                let alm = alm::solve(&pb, self.unique, tolerance, None, &opts, &mut go_on)?;
+                (alm.newton, Some(alm.outer))
+            }
+        };
+        if let Some(why) = result.failure() {
+            return Err(BodiesError::NotConverged(why));
         }
-    };
-    let (result, outer_iterations) = match enforcement {
-        Enforcement::Penalty(_) => (penalty::solve(&pb, None, &opts, &mut go_on)?, None),
-        Enforcement::Exact => {
-            unique(&a)?;
-            (signorini::solve_exact(&pb, None, &opts, &mut go_on)?, None)
-        }
-        Enforcement::Alm { tolerance, .. } => {
-            // The Newton step on the multipliers where they are unique, Uzawa's where not.
-            let unique = unique(&a).is_ok();
-            let alm = alm::solve(&pb, unique, tolerance, None, &opts, &mut go_on)?;
-            (alm.newton, Some(alm.outer))
-        }
-    };
-    if let Some(why) = result.failure() {
-        return Err(BodiesError::NotConverged(why));
+        self.finish(&bodies, &result, outer_iterations)
     }
-    let y = &result.forces;
-    let p: Vec<f64> = match enforcement {
-        Enforcement::Penalty(epsilon) => crate::contact::raw_pressure(&result.violation, epsilon),
-        Enforcement::Exact | Enforcement::Alm { .. } => {
-            y.iter().zip(&coupling.weight).map(|(y, w)| y / w).collect()
-        }
-    };
-    let gap: Vec<f64> = result.violation.iter().map(|s| -s).collect();
-    let order = slave.mesh.element.order();
-    let vertex_x: Vec<f64> = slave.mesh.node_x.iter().step_by(order).copied().collect();
-    let pbar = match rule {
-        Some(rule) => {
-            let side = Side {
-                x: &slave.mesh.node_x,
-                order,
-            };
-            smoothed_pressure(rule, side, coupling, &p)?
-        }
-        None => smoothed(&vertex_x, &coupling.x, &coupling.weight, &p),
-    };
-    let load = coupling.weight.iter().zip(&p).map(|(w, p)| w * p).sum();
-    let trace = |disc: &Discretization, rows: &[Vec<(usize, f64)>]| {
-        let upper = std::ptr::eq(disc, bodies.upper);
-        displacement(disc, rows, y, upper.then_some(bodies.displacement))
-    };
-    let ((slave_trace, slave_field), (master_trace, master_field)) =
-        (trace(slave, &coupling.slave), trace(master, &coupling.master));
-    let fields = match bodies.slave {
-        Slave::Upper => [master_field, slave_field],
-        Slave::Lower => [slave_field, master_field],
-    };
-    let solution = InterfaceSolution {
-        x: coupling.x.clone(),
-        p,
-        gap,
-        vertex_x,
-        pbar,
-        slave: slave_trace,
-        master: master_trace,
-        bodies: fields,
-        load,
-        iterations: result.iterations,
-        outer_iterations,
-    };
-    finite(&solution)?;
-    Ok(solution)
+
+    /// The solution from the Newton iteration's `result` on `bodies`.
+    fn finish(
+        &self,
+        bodies: &Bodies,
+        result: &NewtonResult,
+        outer_iterations: Option<usize>,
+    ) -> Result<InterfaceSolution, BodiesError> {
+        let (coupling, enforcement, rule) = (self.coupling, self.enforcement, self.rule);
+        let (slave, master) = bodies.pair();
+        let y = &result.forces;
+        let p: Vec<f64> = match enforcement {
+            Enforcement::Penalty(epsilon) => crate::contact::raw_pressure(&result.violation, epsilon),
+            Enforcement::Exact | Enforcement::Alm { .. } => {
+                y.iter().zip(&coupling.weight).map(|(y, w)| y / w).collect()
+            }
+        };
+        let gap: Vec<f64> = result.violation.iter().map(|s| -s).collect();
+        let order = slave.mesh.element.order();
+        let vertex_x: Vec<f64> = slave.mesh.node_x.iter().step_by(order).copied().collect();
+        let pbar = match rule {
+            Some(rule) => {
+                let side = Side {
+                    x: &slave.mesh.node_x,
+                    order,
+                };
+                smoothed_pressure(rule, side, coupling, &p)?
+            }
+            None => smoothed(&vertex_x, &coupling.x, &coupling.weight, &p),
+        };
+        let load = coupling.weight.iter().zip(&p).map(|(w, p)| w * p).sum();
+        let trace = |disc: &Discretization, rows: &[Vec<(usize, f64)>]| {
+            let upper = std::ptr::eq(disc, bodies.upper);
+            displacement(disc, rows, y, upper.then_some(bodies.displacement))
+        };
+        let ((slave_trace, slave_field), (master_trace, master_field)) =
+            (trace(slave, &coupling.slave), trace(master, &coupling.master));
+        let fields = match bodies.slave {
+            Slave::Upper => [master_field, slave_field],
+            Slave::Lower => [slave_field, master_field],
+        };
+        let solution = InterfaceSolution {
+            x: coupling.x.clone(),
+            p,
+            gap,
+            vertex_x,
+            pbar,
+            slave: slave_trace,
+            master: master_trace,
+            bodies: fields,
+            load,
+            iterations: result.iterations,
+            outer_iterations,
+        };
+        finite(&solution)?;
+        Ok(solution)
+    }
 }
 
 /// The penalty parameters both bodies can represent: the intersection of their
@@ -432,21 +517,6 @@ fn check(coupling: &Coupling, g0: &[f64], n_slave: usize, n_master: usize) -> Re
     Ok(())
 }
 
-/// G C Gᵀ for the rows G (constraint k: (trace node, coefficient)) and the trace compliance C.
-pub fn delassus(rows: &[Vec<(usize, f64)>], c: &Mat<f64>) -> Mat<f64> {
-    let n = rows.len();
-    // C Gᵀ, a column per constraint.
-    let mut cg = Mat::<f64>::zeros(c.nrows(), n);
-    for (k, row) in rows.iter().enumerate() {
-        for &(i, g) in row {
-            for r in 0..c.nrows() {
-                cg[(r, k)] += g * c[(r, i)];
-            }
-        }
-    }
-    Mat::from_fn(n, n, |j, k| rows[j].iter().map(|&(i, g)| g * cg[(i, k)]).sum())
-}
-
 /// An eigenvalue at most this fraction of the largest is a kernel's: the constraints are then
 /// not independent on the two traces (the exact multipliers are not unique; the inf-sup
 /// estimate across the interface, [`crate::infsup`], is 0).
@@ -468,27 +538,6 @@ fn unique(a: &Mat<f64>) -> Result<(), BodiesError> {
         return Err(BodiesError::NotUnique { constraints: n });
     }
     Ok(())
-}
-
-/// p̄_i = Σ_k w_k p_k φ_i(x_k) / Σ_k w_k φ_i(x_k) at the vertices `vertex_x`, φ_i the
-/// vertex's hat function: the contact force on the vertex over its tributary length (17);
-/// 0 where no constraint sees the vertex.
-pub(crate) fn smoothed(vertex_x: &[f64], x: &[f64], w: &[f64], p: &[f64]) -> Vec<f64> {
-    let nv = vertex_x.len();
-    let (mut force, mut length) = (vec![0.0; nv], vec![0.0; nv]);
-    for k in (0..x.len()).filter(|_| nv >= 2) {
-        let e = vertex_x.partition_point(|&v| v <= x[k]).clamp(1, nv - 1) - 1;
-        let t = ((x[k] - vertex_x[e]) / (vertex_x[e + 1] - vertex_x[e])).clamp(0.0, 1.0);
-        for (i, phi) in [(e, 1.0 - t), (e + 1, t)] {
-            force[i] += w[k] * p[k] * phi;
-            length[i] += w[k] * phi;
-        }
-    }
-    force
-        .iter()
-        .zip(&length)
-        .map(|(f, l)| if *l > 0.0 { f / l } else { 0.0 })
-        .collect()
 }
 
 /// The global displacements of `disc`'s nodes under the forces −Gᵀy of `rows` (inwards): one
