@@ -294,3 +294,57 @@ fn the_paper_tour_ends_on_the_contact_patch_test() {
     assert!(rip.0.starts_with("rip-") && rip.1 == (2, 3), "{:?}", (&rip.0, rip.1));
     assert!(rip.3.contains("patch test "), "{}", rip.3);
 }
+
+/// `--check`'s listing names a two-body step's scene, level, element with the ratio and its
+/// discretisation; a handout writes its screen (with its caption and the two-body header), no
+/// chart, and an index line of its settings.
+#[test]
+fn listing_and_handout_include_two_body_steps() {
+    use riplab::tui::tour::handout::write_handout;
+    use riplab::tui::tour::listing::listing;
+    let tour = tour(&[
+        ONE_BODY.to_string(),
+        patch_step("NTS", "contact = \"nts\"\nratio = [2, 3]\nlevel = 1\nepsilon = 1e-4"),
+    ]
+    .concat());
+    let list = listing(&tour);
+    let row: Vec<&str> = list
+        .lines()
+        .find(|l| l.contains("two-bodies"))
+        .unwrap_or_else(|| panic!("{list}"))
+        .split_whitespace()
+        .collect();
+    assert_eq!(row[..6], ["2", "two-bodies", "1", "q1", "2:3", "nts"], "{list}");
+    let dir = std::env::temp_dir().join(format!("riplab-tour-bodies-handout-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let files = write_handout(&tour, &dir, 80, 24, |_, _| {}).unwrap();
+    let names: Vec<String> = files
+        .iter()
+        .map(|f| f.file_name().unwrap().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(names, ["step-01.txt", "step-01.svg", "step-02.txt", "index.md"]);
+    let screen = std::fs::read_to_string(dir.join("step-02.txt")).unwrap();
+    assert!(
+        screen.contains(" riplab · patch-two-blocks · two bodies · q1 level 1 · ε = 1e-4")
+            && screen.contains("The caption of NTS."),
+        "{screen}"
+    );
+    let index = std::fs::read_to_string(dir.join("index.md")).unwrap();
+    assert!(
+        index.contains(
+            "Scene two bodies · patch-two-blocks · q1 at level 1 · nts · ratio 2:3 · offset 0 · penalty, ε = 0.0001"
+        ) && index.contains("- chart: none: the two-body scene's interface pressure is on its screen"),
+        "{index}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The refusal's words, as `tour --check` prints them (STABILITY.md quotes them).
+#[test]
+fn a_one_body_key_on_a_two_body_step_is_refused_in_these_words() {
+    let e = error(&patch_step("s", "scheme = \"M1\""));
+    assert_eq!(
+        e,
+        "t.toml:6:10: `step[1].scheme`: does not apply to a two-body step (its scenario has an elastic [upper] body): the bodies' element is their scenario's ([mesh] element), and a rip rule is chosen by contact (rip-gauss1, rip-gauss2, rip-trapezoid, rip-simpson); allowed on a two-body step: title, caption, scenario, contact, ratio, offset, level, epsilon\n    6 | scheme = \"M1\"\n      |          ^"
+    );
+}
