@@ -67,7 +67,11 @@ fn check_lists_the_steps_without_a_terminal() {
         .map(|l| l.split_whitespace().collect())
         .collect();
     assert_eq!(two.len(), 4, "{out}");
-    assert_eq!(two[1][..6], ["17", "two-bodies", "2", "q1", "2:3", "nts"], "{out}");
+    assert_eq!(
+        two[1][..6],
+        ["17", "two-bodies", "2", "q1", "2:3", "nts"],
+        "{out}"
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

@@ -136,7 +136,11 @@ fn every_step_of_the_paper_tour_100x30() {
         if let Some(bodies) = tour.bodies(i) {
             // The two-body scene's chart is not snapshotted: its header and its status line.
             let header = format!(" riplab · {} · two bodies · ", bodies.scenario.name);
-            assert!(text.lines().any(|l| l.starts_with(&header)), "step {}:\n{text}", i + 1);
+            assert!(
+                text.lines().any(|l| l.starts_with(&header)),
+                "step {}:\n{text}",
+                i + 1
+            );
             assert!(text.contains("patch test "), "step {}:\n{text}", i + 1);
             continue;
         }
@@ -257,7 +261,10 @@ fn keys_advance_go_back_and_stay_in_bounds() {
     assert_eq!(player.index(), 0);
     // And says so.
     let said = |p: &TourApp| {
-        let notice = p.bodies.as_ref().map_or(p.app.notice.as_ref(), |b| b.notice.as_ref());
+        let notice = p
+            .bodies
+            .as_ref()
+            .map_or(p.app.notice.as_ref(), |b| b.notice.as_ref());
         notice.map(|n| n.text.clone()).unwrap_or_default()
     };
     assert!(said(&player).contains("is the first"), "{}", said(&player));
@@ -295,7 +302,10 @@ fn esc_never_quits_the_tour_and_q_asks_once_before_the_end() {
     let tour = Tour::paper();
     let mut player = TourApp::new(tour, None);
     let said = |p: &TourApp| {
-        let notice = p.bodies.as_ref().map_or(p.app.notice.as_ref(), |b| b.notice.as_ref());
+        let notice = p
+            .bodies
+            .as_ref()
+            .map_or(p.app.notice.as_ref(), |b| b.notice.as_ref());
         notice.map(|n| n.text.clone()).unwrap_or_default()
     };
     player.update(ch('l'));

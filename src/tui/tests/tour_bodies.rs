@@ -28,10 +28,12 @@ fn patch_step(title: &str, settings: &str) -> String {
 }
 
 /// A one-body step at level 0.
-const ONE_BODY: &str = "\n[[step]]\ntitle = \"One body\"\nlevel = 0\ncaption = \"Under the rigid obstacle.\"\n";
+const ONE_BODY: &str =
+    "\n[[step]]\ntitle = \"One body\"\nlevel = 0\ncaption = \"Under the rigid obstacle.\"\n";
 
 fn tour(steps: &str) -> Tour {
-    Tour::parse(&format!("title = \"t\"\n{steps}"), "t.toml", Some(&scenarios())).unwrap_or_else(|e| panic!("{e}"))
+    Tour::parse(&format!("title = \"t\"\n{steps}"), "t.toml", Some(&scenarios()))
+        .unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// The error of a tour of `steps`, read from `scenarios/`.
@@ -53,7 +55,9 @@ fn patch_error(frame: &str, verdict: &str) -> f64 {
         .chars()
         .take_while(|c| c.is_ascii_digit() || matches!(c, '.' | 'e' | '-'))
         .collect();
-    number.parse().unwrap_or_else(|e| panic!("{number}: {e}\n{frame}"))
+    number
+        .parse()
+        .unwrap_or_else(|e| panic!("{number}: {e}\n{frame}"))
 }
 
 fn key(code: KeyCode) -> TourMsg {
@@ -66,12 +70,17 @@ fn key(code: KeyCode) -> TourMsg {
 /// round-off.
 #[test]
 fn a_two_body_step_renders_its_scene_and_the_patch_verdict_at_80x24() {
-    let tour = tour(&[
-        patch_step("NTS at 2:3", "contact = \"nts\"\nratio = [2, 3]\nlevel = 2"),
-        patch_step("Mortar at 2:3", "contact = \"mortar\"\nratio = [2, 3]\nlevel = 2"),
-        patch_step("NTS matching", "contact = \"nts\"\nratio = [1, 1]\noffset = 0.0\nlevel = 1"),
-    ]
-    .concat());
+    let tour = tour(
+        &[
+            patch_step("NTS at 2:3", "contact = \"nts\"\nratio = [2, 3]\nlevel = 2"),
+            patch_step("Mortar at 2:3", "contact = \"mortar\"\nratio = [2, 3]\nlevel = 2"),
+            patch_step(
+                "NTS matching",
+                "contact = \"nts\"\nratio = [1, 1]\noffset = 0.0\nlevel = 1",
+            ),
+        ]
+        .concat(),
+    );
     let bodies = tour.bodies(0).expect("a two-body step");
     assert_eq!(bodies.settings.method, InterfaceMethod::Nts);
     assert_eq!((bodies.settings.ratio, bodies.settings.level), ((2, 3), 2));
@@ -104,16 +113,24 @@ fn a_two_body_step_renders_its_scene_and_the_patch_verdict_at_80x24() {
 #[test]
 fn a_two_body_step_takes_its_scenario_s_settings_where_it_gives_none() {
     use riplab::contact::interface::solve::Enforcement;
-    let tour = tour(&[
-        patch_step("Own", ""),
-        patch_step("Penalty", "epsilon = 1e-4\noffset = -0.2\ncontact = \"rip-gauss2\""),
-    ]
-    .concat());
+    let tour = tour(
+        &[
+            patch_step("Own", ""),
+            patch_step(
+                "Penalty",
+                "epsilon = 1e-4\noffset = -0.2\ncontact = \"rip-gauss2\"",
+            ),
+        ]
+        .concat(),
+    );
     let own = tour.bodies(0).unwrap();
     let scenario = Scenario::load(&scenarios().join("patch-two-blocks.toml")).unwrap();
     let upper = scenario.upper.as_ref().unwrap();
     assert_eq!(own.settings.method, InterfaceMethod::Mortar);
-    assert_eq!((own.settings.ratio, own.settings.offset), (upper.ratio, upper.offset));
+    assert_eq!(
+        (own.settings.ratio, own.settings.offset),
+        (upper.ratio, upper.offset)
+    );
     assert_eq!(own.settings.enforcement, Enforcement::Exact);
     let penalty = tour.bodies(1).unwrap();
     assert_eq!(penalty.settings.enforcement, Enforcement::Penalty(1e-4));
@@ -151,8 +168,13 @@ fn keys_that_do_not_apply_to_the_step_are_refused_with_their_place() {
         );
     }
     // The first in the file's order is named.
-    let e = error(&at("contact = \"nts\"\nlevel = 1\nquantity = \"tau1\"\nelement = \"q2\""));
-    assert!(e.starts_with("t.toml:8:") && e.contains("step[1].quantity"), "{e}");
+    let e = error(&at(
+        "contact = \"nts\"\nlevel = 1\nquantity = \"tau1\"\nelement = \"q2\"",
+    ));
+    assert!(
+        e.starts_with("t.toml:8:") && e.contains("step[1].quantity"),
+        "{e}"
+    );
     for (line, key) in [
         ("contact = \"nts\"", "contact"),
         ("ratio = [2, 3]", "ratio"),
@@ -170,7 +192,9 @@ fn keys_that_do_not_apply_to_the_step_are_refused_with_their_place() {
     assert!(
         e.starts_with("t.toml:6:11:")
             && e.contains("step[1].contact")
-            && e.contains("nts, nts2, mortar, mortar-dual, rip-gauss1, rip-gauss2, rip-trapezoid, rip-simpson"),
+            && e.contains(
+                "nts, nts2, mortar, mortar-dual, rip-gauss1, rip-gauss2, rip-trapezoid, rip-simpson"
+            ),
         "{e}"
     );
     for ratio in ["[0, 3]", "[2]", "[2, 65]", "[2, 3, 4]"] {
@@ -185,7 +209,9 @@ fn keys_that_do_not_apply_to_the_step_are_refused_with_their_place() {
     for offset in ["0.5", "-0.7", "nan"] {
         let e = error(&at(&format!("offset = {offset}")));
         assert!(
-            e.starts_with("t.toml:6:10:") && e.contains("step[1].offset") && e.contains("strictly between -0.5 and 0.5"),
+            e.starts_with("t.toml:6:10:")
+                && e.contains("step[1].offset")
+                && e.contains("strictly between -0.5 and 0.5"),
             "{offset}: {e}"
         );
     }
@@ -216,12 +242,14 @@ fn a_two_body_scenario_for_the_steps_that_name_none_is_refused() {
 /// entered again; the tour's keys and its notices stay the tour's.
 #[test]
 fn the_player_goes_between_one_body_and_two_body_steps() {
-    let tour = tour(&[
-        ONE_BODY.to_string(),
-        patch_step("NTS", "contact = \"nts\"\nlevel = 1"),
-        ONE_BODY.to_string(),
-    ]
-    .concat());
+    let tour = tour(
+        &[
+            ONE_BODY.to_string(),
+            patch_step("NTS", "contact = \"nts\"\nlevel = 1"),
+            ONE_BODY.to_string(),
+        ]
+        .concat(),
+    );
     let mut player = TourApp::new(tour.clone(), None);
     assert!(player.bodies.is_none());
     let effect = player.update(key(KeyCode::Char(' ')));
@@ -231,7 +259,10 @@ fn the_player_goes_between_one_body_and_two_body_steps() {
     assert!(player.is_busy() && player.is_pristine());
     let mut cache = BodiesCache::new(tour.scenario_of(1).clone());
     let solved = cache.solve(&settings, &|| false);
-    assert!(!player.bodies_reply(generation + 1, cache.solve(&settings, &|| false)), "a reply nobody asked for");
+    assert!(
+        !player.bodies_reply(generation + 1, cache.solve(&settings, &|| false)),
+        "a reply nobody asked for"
+    );
     assert!(player.bodies_reply(generation, solved));
     assert!(!player.is_busy());
     // The scene's keys: `n` the next discretisation, solved anew.
@@ -255,7 +286,12 @@ fn the_player_goes_between_one_body_and_two_body_steps() {
     // The tour's keys stay the tour's, its notices on the two-body scene's status line.
     player.update(key(KeyCode::Char('q')));
     assert!(!player.should_quit());
-    let said = player.bodies.as_ref().and_then(|b| b.notice.clone()).map(|n| n.text).unwrap_or_default();
+    let said = player
+        .bodies
+        .as_ref()
+        .and_then(|b| b.notice.clone())
+        .map(|n| n.text)
+        .unwrap_or_default();
     assert!(said.contains("q again ends the tour"), "{said}");
     player.update(key(KeyCode::Char('?')));
     assert!(player.show_help);
@@ -274,24 +310,43 @@ fn the_paper_tour_ends_on_the_contact_patch_test() {
     let first = (0..tour.steps.len())
         .find(|&i| tour.bodies(i).is_some())
         .expect("two-body steps");
-    assert!((first..tour.steps.len()).all(|i| tour.bodies(i).is_some()), "at the end");
+    assert!(
+        (first..tour.steps.len()).all(|i| tour.bodies(i).is_some()),
+        "at the end"
+    );
     let shown: Vec<(String, (u32, u32), f64, String)> = (first..tour.steps.len())
         .map(|i| {
             let s = tour.bodies(i).unwrap().settings;
             assert!(s.level <= 3, "step {}: level {} solves fast", i + 1, s.level);
-            (s.method.name().to_string(), s.ratio, s.offset, render_step(&tour, i, 80, 24).unwrap())
+            (
+                s.method.name().to_string(),
+                s.ratio,
+                s.offset,
+                render_step(&tour, i, 80, 24).unwrap(),
+            )
         })
         .collect();
     let [nts_matching, nts, mortar, rip, ..] = &shown[..] else {
         panic!("four two-body steps at least");
     };
-    assert_eq!((nts_matching.0.as_str(), nts_matching.1, nts_matching.2), ("nts", (1, 1), 0.0));
-    assert!(patch_error(&nts_matching.3, "passed: error") <= 1e-10, "{}", nts_matching.3);
+    assert_eq!(
+        (nts_matching.0.as_str(), nts_matching.1, nts_matching.2),
+        ("nts", (1, 1), 0.0)
+    );
+    assert!(
+        patch_error(&nts_matching.3, "passed: error") <= 1e-10,
+        "{}",
+        nts_matching.3
+    );
     assert_eq!((nts.0.as_str(), nts.1), ("nts", (2, 3)));
     assert!(patch_error(&nts.3, "failed: error") > 1e-3, "{}", nts.3);
     assert_eq!((mortar.0.as_str(), mortar.1), ("mortar", (2, 3)));
     assert!(patch_error(&mortar.3, "passed: error") <= 1e-10, "{}", mortar.3);
-    assert!(rip.0.starts_with("rip-") && rip.1 == (2, 3), "{:?}", (&rip.0, rip.1));
+    assert!(
+        rip.0.starts_with("rip-") && rip.1 == (2, 3),
+        "{:?}",
+        (&rip.0, rip.1)
+    );
     assert!(rip.3.contains("patch test "), "{}", rip.3);
 }
 
@@ -302,11 +357,16 @@ fn the_paper_tour_ends_on_the_contact_patch_test() {
 fn listing_and_handout_include_two_body_steps() {
     use riplab::tui::tour::handout::write_handout;
     use riplab::tui::tour::listing::listing;
-    let tour = tour(&[
-        ONE_BODY.to_string(),
-        patch_step("NTS", "contact = \"nts\"\nratio = [2, 3]\nlevel = 1\nepsilon = 1e-4"),
-    ]
-    .concat());
+    let tour = tour(
+        &[
+            ONE_BODY.to_string(),
+            patch_step(
+                "NTS",
+                "contact = \"nts\"\nratio = [2, 3]\nlevel = 1\nepsilon = 1e-4",
+            ),
+        ]
+        .concat(),
+    );
     let list = listing(&tour);
     let row: Vec<&str> = list
         .lines()

@@ -125,11 +125,18 @@ fn a_two_body_scenario_makes_a_two_body_step() {
     for file in ["patch-two-blocks.toml", "hertz-two-bodies.toml"] {
         let text = one_step(&format!("scenario = \"{file}\""));
         let tour = Tour::parse(&text, "t.toml", Some(&dir)).unwrap_or_else(|e| panic!("{file}: {e}"));
-        let bodies = tour.bodies(0).unwrap_or_else(|| panic!("{file}: a two-body step"));
+        let bodies = tour
+            .bodies(0)
+            .unwrap_or_else(|| panic!("{file}: a two-body step"));
         assert!(bodies.scenario.upper.is_some(), "{file}");
     }
     let text = one_step("scenario = \"flat-punch.toml\"");
-    assert!(Tour::parse(&text, "t.toml", Some(&dir)).unwrap().bodies(0).is_none());
+    assert!(
+        Tour::parse(&text, "t.toml", Some(&dir))
+            .unwrap()
+            .bodies(0)
+            .is_none()
+    );
 }
 
 /// `]` `E` `E` `T`: the step holds the lab's two passes of edge grading (it held none, and

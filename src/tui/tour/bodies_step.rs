@@ -40,17 +40,16 @@ impl BodiesStep {
     /// The two-body scene of `scenario` at this step's settings and its `level` and `epsilon`
     /// (None for a one-body scenario); `0` in the scene goes back to them.
     pub fn app(&self, scenario: &Scenario, level: Option<u32>, epsilon: Option<f64>) -> Option<BodiesApp> {
-        let mut app = BodiesApp::new(
-            scenario.clone(),
-            self.contact.unwrap_or(InterfaceMethod::Mortar),
-        )?;
+        let mut app = BodiesApp::new(scenario.clone(), self.contact.unwrap_or(InterfaceMethod::Mortar))?;
         let s = &mut app.settings;
         s.level = level.unwrap_or(s.level).min(MAX_APP_LEVEL);
         s.ratio = self.ratio.unwrap_or(s.ratio);
         s.offset = self.offset.unwrap_or(s.offset);
         if let Some(epsilon) = epsilon {
             s.enforcement = match s.enforcement {
-                Enforcement::Alm { tolerance, .. } if epsilon > 0.0 => Enforcement::Alm { epsilon, tolerance },
+                Enforcement::Alm { tolerance, .. } if epsilon > 0.0 => {
+                    Enforcement::Alm { epsilon, tolerance }
+                }
                 _ => Enforcement::from(epsilon),
             };
         }
@@ -114,10 +113,7 @@ fn one_body_keys(raw: &RawStep) -> Vec<(&'static str, Range<usize>)> {
         ("threshold", raw.threshold.as_ref().map(Spanned::span)),
         ("shift", raw.shift.as_ref().map(Spanned::span)),
     ];
-    given
-        .into_iter()
-        .filter_map(|(k, s)| s.map(|s| (k, s)))
-        .collect()
+    given.into_iter().filter_map(|(k, s)| s.map(|s| (k, s))).collect()
 }
 
 /// Step `n`'s two-body keys validated: Some on a step whose scenario has two bodies

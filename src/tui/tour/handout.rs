@@ -27,13 +27,13 @@ use crate::text::num;
 
 use super::super::app::{App, Msg, Scene};
 use super::super::bodies::BodiesApp;
-use crate::contact::interface::solve::Enforcement;
 use super::super::engine::Engine;
 use super::super::settle::carry_out;
 use super::super::view::{convergence, infsup_chart};
 use super::Tour;
 use super::errors::{DirectoryFault, StepError};
 use super::view::step_frame;
+use crate::contact::interface::solve::Enforcement;
 
 /// Why a handout was not written.
 #[derive(Debug, thiserror::Error)]

@@ -136,7 +136,10 @@ impl TourApp {
     /// The solve the current step's two-body scene still needs (None on a one-body step, or
     /// once it is solved).
     pub fn bodies_request(&self) -> Option<Request> {
-        self.bodies.as_ref().filter(|b| !b.settled()).map(BodiesApp::start)
+        self.bodies
+            .as_ref()
+            .filter(|b| !b.settled())
+            .map(BodiesApp::start)
     }
 
     /// The two-body solver's answer for `generation`: shown if it is the current scene's
@@ -420,7 +423,11 @@ fn bodies_msg(bodies: &mut BodiesApp, msg: Msg) -> TourEffect {
                 && matches!(key.kind, KeyEventKind::Press | KeyEventKind::Repeat);
             TourEffect {
                 redraw: suspend,
-                commands: if suspend { vec![Command::Suspend] } else { Vec::new() },
+                commands: if suspend {
+                    vec![Command::Suspend]
+                } else {
+                    Vec::new()
+                },
                 ..TourEffect::default()
             }
         }
