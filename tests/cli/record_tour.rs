@@ -84,3 +84,48 @@ fn a_recorded_tour_marks_each_step_on_its_finished_frame() {
     assert!(times.windows(2).all(|w| w[1] - w[0] >= 0.5 - 1e-3), "{times:?}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// The live tour goes between one-body and two-body steps with its keys: End shows the last
+/// step (two bodies, solved on the tour's thread), `n` there changes its discretisation and it
+/// is solved again, ← shows the step before (mortar), Home the first (one body, its solve
+/// kept); `q` `q` quits with exit 0.
+#[test]
+fn the_live_tour_goes_between_one_body_and_two_body_steps() {
+    let (controller, user) = pty_of(SIZE);
+    let child = std::process::Command::new(env!("CARGO_BIN_EXE_riplab"))
+        .arg("tour")
+        .env("TERM", "xterm-256color")
+        .env("NO_COLOR", "1")
+        .env("XDG_CACHE_HOME", crate::common::test_cache())
+        .stdin(Stdio::from(user.try_clone().unwrap()))
+        .stdout(Stdio::from(user.try_clone().unwrap()))
+        .stderr(Stdio::from(user))
+        .spawn()
+        .unwrap();
+    let mut child = Reap(child);
+    let (screen, reader) = Screen::read_into(&controller, parser_of(SIZE));
+    let mut keys = std::fs::File::from(controller.try_clone().unwrap());
+    // A generous deadline, not a timing: each step solves in well under a second.
+    let deadline = Instant::now() + Duration::from_secs(300);
+    drop(screen.wait_for(&["tour 1/19", "✓ converged"], deadline));
+    for (key, shown) in [
+        (
+            &b"\x1b[F"[..],
+            &["tour 19/19", "patch test failed: error 0.0077"][..],
+        ),
+        (
+            b"n",
+            &["rip-gauss2", "patch test failed: error 0.096", "(changed)"],
+        ),
+        (b"\x1b[D", &["tour 18/19", "patch test passed"]),
+        (b"\x1b[H", &["tour 1/19", "✓ converged"]),
+    ] {
+        keys.write_all(key).unwrap();
+        drop(screen.wait_for(shown, deadline));
+    }
+    keys.write_all(b"qq").unwrap();
+    screen.wait_for_end(deadline);
+    assert!(child.0.wait().unwrap().success());
+    drop(child);
+    let _ = reader.join();
+}
