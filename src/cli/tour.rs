@@ -31,8 +31,9 @@ pub struct TourArgs {
     #[arg(long, value_name = "FILE.cast", conflicts_with_all = ["handout", "check"])]
     pub record: Option<PathBuf>,
     /// Write a handout instead of running the tour: each step's screen as text
-    /// (step-01.txt…), its scene's chart as SVG (step-01.svg…) and an index.md, into DIR
-    /// (created if missing; it must be empty). No terminal needed.
+    /// (step-01.txt…), its scene's chart as SVG (step-01.svg…; none for a two-body step, whose
+    /// screen draws its interface pressure) and an index.md, into DIR (created if missing; it
+    /// must be empty). No terminal needed.
     #[arg(long, value_name = "DIR", conflicts_with_all = ["auto", "check"])]
     pub handout: Option<PathBuf>,
     /// The handout's frame size, COLUMNSxROWS, from 80x24 to 1000x500.

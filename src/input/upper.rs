@@ -81,6 +81,38 @@ impl Locator<'_> {
         }
     }
 
+    /// The element ratio under `key` (`[upper] ratio`, or a tour step's `ratio`): two whole
+    /// numbers [upper, lower], each 1 to [`MAX_RATIO`].
+    pub(crate) fn ratio(&self, key: &str, r: &Spanned<Vec<i64>>) -> Result<(u32, u32), ScenarioError> {
+        match r.get_ref()[..] {
+            [a, b] if (1..=i64::from(MAX_RATIO)).contains(&a) && (1..=i64::from(MAX_RATIO)).contains(&b) => {
+                Ok((a as u32, b as u32))
+            }
+            _ => Err(self.error(
+                Some(r.span()),
+                Some(key.into()),
+                format!(
+                    "{:?} is not a ratio; allowed: two whole numbers [upper, lower], each 1 to {MAX_RATIO}: the upper body's elements across the interface for that many of the lower's",
+                    r.get_ref()
+                ),
+            )),
+        }
+    }
+
+    /// The upper mesh's offset under `key` (`[upper] offset`, or a tour step's `offset`): a
+    /// fraction of the upper body's element, |offset| < 1/2.
+    pub(crate) fn offset(&self, key: &str, o: &Spanned<f64>) -> Result<f64, ScenarioError> {
+        self.check(key, o, |v| {
+            check::open(
+                *v,
+                -0.5,
+                0.5,
+                check::Allowed::Said("a fraction of the upper body's element strictly between -0.5 and 0.5"),
+            )
+        })?;
+        Ok(*o.get_ref())
+    }
+
     /// The upper body of `[upper]`, and what the rest of `raw` asks that two bodies do not take.
     fn upper(&self, u: &RawUpper, raw: &RawScenario) -> Result<Upper, ScenarioError> {
         self.check("upper.young", &u.young, |v| check::young(*v))?;
@@ -134,39 +166,11 @@ impl Locator<'_> {
         };
         let ratio = match &u.ratio {
             None => (1, 1),
-            Some(r) => match r.get_ref()[..] {
-                [a, b]
-                    if (1..=i64::from(MAX_RATIO)).contains(&a) && (1..=i64::from(MAX_RATIO)).contains(&b) =>
-                {
-                    (a as u32, b as u32)
-                }
-                _ => {
-                    return Err(self.error(
-                        Some(r.span()),
-                        Some("upper.ratio".into()),
-                        format!(
-                            "{:?} is not a ratio; allowed: two whole numbers [upper, lower], each 1 to {MAX_RATIO}: the upper body's elements across the interface for that many of the lower's",
-                            r.get_ref()
-                        ),
-                    ));
-                }
-            },
+            Some(r) => self.ratio("upper.ratio", r)?,
         };
         let offset = match &u.offset {
             None => 0.0,
-            Some(o) => {
-                self.check("upper.offset", o, |v| {
-                    check::open(
-                        *v,
-                        -0.5,
-                        0.5,
-                        check::Allowed::Said(
-                            "a fraction of the upper body's element strictly between -0.5 and 0.5",
-                        ),
-                    )
-                })?;
-                *o.get_ref()
-            }
+            Some(o) => self.offset("upper.offset", o)?,
         };
         let slave = match &u.slave {
             None => Slave::Upper,

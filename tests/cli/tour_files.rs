@@ -59,7 +59,19 @@ fn check_lists_the_steps_without_a_terminal() {
     let paper = concat!(env!("CARGO_MANIFEST_DIR"), "/tours/paper.toml");
     let (code, out, _) = riplab(&["tour", "--check", paper]);
     assert_eq!(code, 0);
-    assert!(out.contains("a valid tour of 15 steps"), "{out}");
+    assert!(out.contains("a valid tour of 19 steps"), "{out}");
+    // Its two-body steps: the scene, the level, the element with the ratio, the discretisation.
+    let two: Vec<Vec<&str>> = out
+        .lines()
+        .filter(|l| l.contains(" two-bodies "))
+        .map(|l| l.split_whitespace().collect())
+        .collect();
+    assert_eq!(two.len(), 4, "{out}");
+    assert_eq!(
+        two[1][..6],
+        ["17", "two-bodies", "2", "q1", "2:3", "nts"],
+        "{out}"
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

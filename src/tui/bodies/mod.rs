@@ -27,6 +27,7 @@ use crate::contact::interface::solve::BodiesError;
 use crate::scenario::Scenario;
 
 /// The two-body scene's state.
+#[derive(Debug)]
 pub struct BodiesApp {
     /// The scenario as read (two bodies).
     pub scenario: Scenario,

@@ -31,6 +31,7 @@ mod scenes;
 mod screens;
 mod stress_scene;
 mod tour;
+mod tour_bodies;
 mod tour_checks;
 mod tour_numbers;
 mod typed_errors;

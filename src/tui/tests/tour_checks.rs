@@ -117,24 +117,26 @@ fn an_overlay_the_scenario_has_no_curve_for_is_refused_when_the_tour_is_read() {
     }
 }
 
-/// A step naming a scenario of two elastic bodies is refused when the tour is read, at its
-/// `scenario` key, naming `riplab solve`: the lab would play its rigid limit as one body.
+/// A step naming a scenario of two elastic bodies is a two-body step (the lab's two-body
+/// scene, not the rigid limit played as one body); a one-body scenario's step is not.
 #[test]
-fn a_two_body_scenario_is_refused_when_the_tour_is_read() {
+fn a_two_body_scenario_makes_a_two_body_step() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios");
     for file in ["patch-two-blocks.toml", "hertz-two-bodies.toml"] {
         let text = one_step(&format!("scenario = \"{file}\""));
-        let e = Tour::parse(&text, "t.toml", Some(&dir))
-            .map(|_| ())
-            .expect_err(file)
-            .to_string();
-        assert!(
-            e.contains("step[1].scenario") && e.contains("two elastic bodies") && e.contains("riplab solve"),
-            "{file}: {e}"
-        );
+        let tour = Tour::parse(&text, "t.toml", Some(&dir)).unwrap_or_else(|e| panic!("{file}: {e}"));
+        let bodies = tour
+            .bodies(0)
+            .unwrap_or_else(|| panic!("{file}: a two-body step"));
+        assert!(bodies.scenario.upper.is_some(), "{file}");
     }
     let text = one_step("scenario = \"flat-punch.toml\"");
-    assert!(Tour::parse(&text, "t.toml", Some(&dir)).is_ok());
+    assert!(
+        Tour::parse(&text, "t.toml", Some(&dir))
+            .unwrap()
+            .bodies(0)
+            .is_none()
+    );
 }
 
 /// `]` `E` `E` `T`: the step holds the lab's two passes of edge grading (it held none, and

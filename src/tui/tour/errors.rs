@@ -62,6 +62,21 @@ pub enum TourError {
         /// Why the scenario has no such curve.
         why: &'static str,
     },
+    /// The scenario of the steps that name none has two bodies: those steps show the one-body
+    /// lab (a two-body step names its scenario, [`super::bodies_step`]).
+    #[error(
+        "{file}: step {step} (`{title}`) names no scenario, and the tour's, {scenario}, has two elastic bodies ([upper]); allowed: a one-body scenario for the steps that name none (a two-body step names its own with `scenario`)"
+    )]
+    TwoBodies {
+        /// The tour file (sanitised).
+        file: String,
+        /// The first step naming no scenario (1-based).
+        step: usize,
+        /// The step's title.
+        title: String,
+        /// The scenario given (sanitised).
+        scenario: String,
+    },
     /// The step's friction is one the lab refuses to solve on its scenario.
     #[error("{file}: step {step} (`{title}`): {source}")]
     Friction {

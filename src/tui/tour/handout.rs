@@ -2,7 +2,8 @@
 //! every step, its screen as text (`step-01.txt`, equal to [`super::render_step`], the caption
 //! panel included) and its scene's chart as SVG (`step-01.svg`: the inf-sup chart on an inf-sup
 //! step, the work–precision chart on a convergence step, else p and p̄ along Γ_C at the step's
-//! settings, as the lab's `S` writes it); and `index.md`,
+//! settings, as the lab's `S` writes it; none on a two-body step, whose screen draws its
+//! interface pressure); and `index.md`,
 //! which lists the steps with their captions, settings and files.
 //!
 //! The rule for the directory: it is created if it does not exist, and used only if it is
@@ -25,12 +26,14 @@ use crate::scheme::Scheme;
 use crate::text::num;
 
 use super::super::app::{App, Msg, Scene};
+use super::super::bodies::BodiesApp;
 use super::super::engine::Engine;
 use super::super::settle::carry_out;
 use super::super::view::{convergence, infsup_chart};
 use super::Tour;
 use super::errors::{DirectoryFault, StepError};
 use super::view::step_frame;
+use crate::contact::interface::solve::Enforcement;
 
 /// Why a handout was not written.
 #[derive(Debug, thiserror::Error)]
@@ -156,7 +159,12 @@ fn write_within(
         // would change the Newton steps the status line counts.
         let mut engine = Engine::new(tour.scenario_of(i).clone());
         let (text, app) = step_frame(tour, i, width, height, &mut engine).map_err(fail)?;
-        let svg = chart(app, &mut engine).map_err(fail)?;
+        // A two-body step's chart is on its screen (no SVG of two bodies yet).
+        let bodies = tour.bodies(i);
+        let svg = match &bodies {
+            Some(_) => String::new(),
+            None => chart(app, &mut engine).map_err(fail)?,
+        };
         written += (text.len() + svg.len()) as u64;
         // The index, written last, is counted in as it will be.
         if written + (index.len() as u64) + INDEX_STEP_BYTES > limit {
@@ -168,6 +176,9 @@ fn write_within(
         }
         let stem = format!("step-{:02}", i + 1);
         for (ext, bytes) in [("txt", text.as_bytes()), ("svg", svg.as_bytes())] {
+            if bytes.is_empty() {
+                continue;
+            }
             let path = dir.join(format!("{stem}.{ext}"));
             save(&path, bytes)?;
             files.push(path);
@@ -176,10 +187,16 @@ fn write_within(
         for line in step.caption.lines() {
             let _ = writeln!(index, "> {line}");
         }
-        let settings = settings(&tour.app(i));
+        let (settings, chart) = match &bodies {
+            Some(bodies) => (
+                bodies_settings(bodies),
+                "none: the two-body scene's interface pressure is on its screen".to_string(),
+            ),
+            None => (settings(&tour.app(i)), format!("[{stem}.svg]({stem}.svg)")),
+        };
         let _ = write!(
             index,
-            "\n{settings}\n\n- screen: [{stem}.txt]({stem}.txt)\n- chart: [{stem}.svg]({stem}.svg)\n\n"
+            "\n{settings}\n\n- screen: [{stem}.txt]({stem}.txt)\n- chart: {chart}\n\n"
         );
         progress(i + 1, tour.steps.len());
     }
@@ -248,6 +265,10 @@ fn mib(bytes: u64) -> String {
 pub fn estimate(tour: &Tour, width: u16, height: u16) -> u64 {
     let screen = u64::from(height) * (4 * u64::from(width) + 1);
     let steps = (0..tour.steps.len()).map(|i| {
+        if tour.is_two_body(i) {
+            // Its screen and its lines of the index: no chart.
+            return screen + INDEX_STEP_BYTES;
+        }
         let app = tour.app(i);
         let s = &app.settings;
         let cells = (app.scenario.x_lines.len() as u64 - 1) << s.level;
@@ -335,6 +356,26 @@ fn settings(app: &App) -> String {
         s.level,
         s.method.label(),
         num(s.depth)
+    )
+}
+
+/// A two-body step's settings in a line: scenario, element and level, the discretisation
+/// across the interface, the ratio and offset, the enforcement.
+fn bodies_settings(app: &BodiesApp) -> String {
+    let s = &app.settings;
+    let enforcement = match s.enforcement {
+        Enforcement::Exact => "exact multipliers".to_string(),
+        Enforcement::Penalty(epsilon) => format!("penalty, ε = {}", num(epsilon)),
+        Enforcement::Alm { epsilon, .. } => format!("alm, ε = {}", num(epsilon)),
+    };
+    format!(
+        "Scene two bodies · {} · {} at level {} · {} · ratio {} · offset {} · {enforcement}",
+        app.scenario.name,
+        app.scenario.element.name(),
+        s.level,
+        s.method.name(),
+        s.ratio_text(),
+        num(s.offset)
     )
 }
 

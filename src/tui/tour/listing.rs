@@ -1,7 +1,9 @@
 //! `riplab tour --check FILE`: a validated tour's steps as a table, one line each: the scene,
 //! the level, the scheme and the method each step shows (a setting the step leaves out is its
-//! scenario's, as [`Tour::app`] makes it), and the title; above it, how many scenario files
-//! the steps name (each read once).
+//! scenario's, as [`Tour::app`] makes it), and the title — a two-body step's scene
+//! `two-bodies`, its element with the ratio for the scheme and its discretisation across the
+//! interface for the method ([`Tour::bodies`]); above it, how many scenario files the steps
+//! name (each read once).
 
 use std::fmt::Write as _;
 
@@ -32,6 +34,22 @@ pub fn listing(tour: &Tour) -> String {
         "step", "scene", "level", "scheme", "method"
     );
     for (i, step) in tour.steps.iter().enumerate() {
+        if let Some(bodies) = tour.bodies(i) {
+            // The two-body scene: the element and the ratio, the discretisation.
+            let s = &bodies.settings;
+            let mesh = format!("{} {}", bodies.scenario.element.name(), s.ratio_text());
+            let _ = writeln!(
+                out,
+                "{:>4}  {:<11}  {:>5}  {:<14}  {:<8}  {}",
+                i + 1,
+                "two-bodies",
+                s.level,
+                mesh,
+                s.method.name(),
+                step.title
+            );
+            continue;
+        }
         let app = tour.app(i);
         let s = &app.settings;
         let _ = writeln!(

@@ -7,6 +7,8 @@
 //! tick); [`view`] draws it; [`run_tour`] runs it in the terminal.
 
 pub mod author;
+pub mod bodies_step;
+mod bodies_worker;
 mod caption;
 mod embedded;
 pub mod errors;
@@ -41,7 +43,7 @@ use crate::stress::Quantity;
 use crate::text::{sanitize, sanitize_lines};
 
 use super::app::{App, Compare, Guides, MAX_APP_LEVEL, Scene};
-use errors::TextError;
+use caption::{caption, one_line};
 use scenarios::{StepScenarios, Unloaded};
 
 pub use caption::MIN_TOUR_SIZE;
@@ -122,6 +124,9 @@ pub struct Step {
     pub quantity: Option<Quantity>,
     /// The friction law and shift over the scenario's (`F`, `u`/`U`, `<`/`>` in the lab).
     pub friction: Option<friction_step::StepFriction>,
+    /// On a step whose scenario has two bodies, its two-body scene's settings
+    /// ([`bodies_step`]); None on a one-body step.
+    pub bodies: Option<bodies_step::BodiesStep>,
 }
 
 #[derive(Deserialize)]
@@ -157,6 +162,9 @@ struct RawStep {
     mu: Option<Spanned<f64>>,
     threshold: Option<Spanned<f64>>,
     shift: Option<Spanned<f64>>,
+    contact: Option<Spanned<String>>,
+    ratio: Option<Spanned<Vec<i64>>>,
+    offset: Option<Spanned<f64>>,
 }
 
 impl Tour {
@@ -239,8 +247,18 @@ impl Tour {
     /// # Errors
     ///
     /// The first step whose depth, ε, friction or overlays its scenario cannot take, with the
-    /// step's index ([`TourError`]).
+    /// step's index ([`TourError`]); a two-body `scenario` while a step names none.
     pub fn with_scenario(mut self, scenario: Scenario) -> Result<Tour, TourError> {
+        if scenario.upper.is_some()
+            && let Some(i) = self.steps.iter().position(|s| s.scenario.is_none())
+        {
+            return Err(TourError::TwoBodies {
+                file: sanitize(&self.source).into_owned(),
+                step: i + 1,
+                title: self.steps[i].title.clone(),
+                scenario: sanitize(&scenario.source).into_owned(),
+            });
+        }
         self.scenario = scenario;
         for i in 0..self.steps.len() {
             step_checks::check(&self, i)?;
@@ -269,12 +287,15 @@ impl Tour {
     }
 
     /// The lab at the settings of step `index` (a setting the step leaves out is the
-    /// scenario's; a depth beyond the scenario's limit is clamped to it).
+    /// scenario's; a depth beyond the scenario's limit is clamped to it). A two-body step's is
+    /// the lab on the tour's scenario, left unsolved while [`Tour::bodies`] shows the step.
     pub fn app(&self, index: usize) -> App {
-        let mut app = App::new(self.scenario_of(index).clone());
-        let Some(step) = self.steps.get(index) else {
+        let Some(step) = self.steps.get(index).filter(|s| s.bodies.is_none()) else {
+            let mut app = App::new(self.scenario.clone());
+            app.overlays.in_tour = true;
             return app;
         };
+        let mut app = App::new(self.scenario_of(index).clone());
         let s = &mut app.settings;
         s.element = step.element.unwrap_or(s.element);
         s.rule = step.rule.unwrap_or(s.rule);
@@ -316,39 +337,6 @@ fn directory_of(path: &Path) -> PathBuf {
         .map_or_else(|| Path::new(".").to_path_buf(), Path::to_path_buf)
 }
 
-/// Text on one line of at most `width` characters, not blank.
-fn one_line(text: &str, width: usize) -> Result<(), TextError> {
-    if text.trim().is_empty() {
-        return Err(TextError::EmptyLine { width });
-    }
-    if text.contains('\n') || text.chars().count() > width {
-        return Err(TextError::Line { width });
-    }
-    Ok(())
-}
-
-/// A caption of 1 to [`MAX_CAPTION_LINES`] lines of at most [`MAX_CAPTION_WIDTH`] characters.
-fn caption(text: &str) -> Result<(), TextError> {
-    let lines: Vec<&str> = text.trim_matches('\n').lines().collect();
-    if text.trim().is_empty() {
-        return Err(TextError::EmptyCaption);
-    }
-    if lines.len() > MAX_CAPTION_LINES {
-        return Err(TextError::CaptionLines { lines: lines.len() });
-    }
-    if let Some((n, line)) = lines
-        .iter()
-        .enumerate()
-        .find(|(_, l)| l.chars().count() > MAX_CAPTION_WIDTH)
-    {
-        return Err(TextError::CaptionWidth {
-            line: n + 1,
-            chars: line.chars().count(),
-        });
-    }
-    Ok(())
-}
-
 /// Step number `n` (1-based) validated.
 fn step(src: &Source, n: usize, raw: &RawStep, scenarios: &mut StepScenarios) -> Result<Step, ScenarioError> {
     let key = |k: &str| format!("step[{n}].{k}");
@@ -360,11 +348,12 @@ fn step(src: &Source, n: usize, raw: &RawStep, scenarios: &mut StepScenarios) ->
             let message = match e {
                 Unloaded::Invalid(e) => format!("cannot load the scenario: {e}"),
                 Unloaded::NoDirectory => "a scenario path needs a tour file to be relative to; allowed only in a tour read from a file".into(),
-                Unloaded::TwoBodies => "the scenario has two elastic bodies ([upper]): the lab shows one body yet; `riplab solve` solves it".into(),
             };
             src.error(Some(path.span()), Some(key("scenario")), message)
         })?),
     };
+    let two_bodies = scenario.as_ref().is_some_and(|s| s.upper.is_some());
+    let bodies = bodies_step::parse(src, n, raw, two_bodies)?;
     let (mut element, mut rule) = (
         raw.element.as_ref().map(|e| *e.get_ref()),
         raw.rule.as_ref().map(|r| *r.get_ref()),
@@ -513,6 +502,7 @@ fn step(src: &Source, n: usize, raw: &RawStep, scenarios: &mut StepScenarios) ->
                 shift: raw.shift.as_ref(),
             },
         )?,
+        bodies,
     })
 }
 

@@ -1,6 +1,7 @@
-//! The tour's state and its pure update: the step shown, the lab at that step's settings, and
-//! the keys that move between steps. Every other key goes to the lab, so that a step can be
-//! explored; leaving a step and coming back restores its settings.
+//! The tour's state and its pure update: the step shown, the lab at that step's settings (or,
+//! on a two-body step, the lab's two-body scene, [`super::bodies_step`]), and the keys that
+//! move between steps. Every other key goes to the lab (or the two-body scene), so that a step
+//! can be explored; leaving a step and coming back restores its settings.
 
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -12,7 +13,9 @@ use crate::scenario::Scenario;
 
 use super::super::app::{App, Command, InfSupKey, Msg, Notice};
 use super::super::beta::InfSup;
-use super::super::keys::{TourAction, tour_action};
+use super::super::bodies::{BodiesApp, Request};
+use super::super::bodies_solve::Solved as BodiesSolved;
+use super::super::keys::{LabAction, TourAction, lab_action, tour_action};
 use super::super::lab_error::LabError;
 use super::super::protocol::Solved;
 use super::Tour;
@@ -42,16 +45,26 @@ pub struct TourEffect {
     pub commands: Vec<Command>,
     /// Another step is shown (the auto-advance clock starts again).
     pub step_changed: bool,
+    /// The solve the two-body scene of the current step asks for.
+    pub bodies: Option<Request>,
 }
 
 /// The state of a running tour.
-#[derive(Clone, Debug)]
+#[derive(Debug)]
 pub struct TourApp {
     /// The tour being walked through.
     pub tour: Tour,
     index: usize,
-    /// The lab at the current step.
+    /// The lab at the current step (on a two-body step, the lab on the tour's scenario,
+    /// unsolved: [`TourApp::bodies`] is shown).
     pub app: App,
+    /// The two-body scene of the current step, when its scenario has two bodies.
+    pub bodies: Option<BodiesApp>,
+    /// The newest generation of the two-body scenes' requests: a step's scene starts past it,
+    /// so that a late reply to a step left is never taken for another's.
+    bodies_generation: u64,
+    /// Recent two-body solves, with their scenarios, for going back without solving again.
+    bodies_solves: Vec<(Scenario, BodiesSolved)>,
     /// Advance by itself after this long on a step (once its numbers are on screen).
     pub auto: Option<Duration>,
     /// The help overlay is open (`?`).
@@ -75,10 +88,14 @@ impl TourApp {
     /// The tour at its first step.
     pub fn new(tour: Tour, auto: Option<Duration>) -> Self {
         let app = tour.app(0);
+        let bodies = tour.bodies(0);
         TourApp {
             tour,
             index: 0,
             app,
+            bodies,
+            bodies_generation: 0,
+            bodies_solves: Vec::new(),
             auto,
             show_help: false,
             show_timing: true,
@@ -107,9 +124,46 @@ impl TourApp {
     }
 
     /// Whether the lab still computes what the step shows ([`App::is_computing`]: the solve,
-    /// the inf-sup rows, the study and its reference, the stresses).
+    /// the inf-sup rows, the study and its reference, the stresses); on a two-body step,
+    /// whether its scene's solve is still to come.
     pub fn is_busy(&self) -> bool {
-        self.app.is_computing()
+        match &self.bodies {
+            Some(bodies) => !bodies.settled(),
+            None => self.app.is_computing(),
+        }
+    }
+
+    /// The solve the current step's two-body scene still needs (None on a one-body step, or
+    /// once it is solved).
+    pub fn bodies_request(&self) -> Option<Request> {
+        self.bodies
+            .as_ref()
+            .filter(|b| !b.settled())
+            .map(BodiesApp::start)
+    }
+
+    /// The two-body solver's answer for `generation`: shown if it is the current scene's
+    /// newest request's; whether it was.
+    pub fn bodies_reply(
+        &mut self,
+        generation: u64,
+        result: Result<BodiesSolved, crate::contact::interface::solve::BodiesError>,
+    ) -> bool {
+        self.bodies.as_mut().is_some_and(|b| b.reply(generation, result))
+    }
+
+    /// Show `notice` on the status line of the scene shown (the lab's, or the two-body
+    /// scene's).
+    pub fn show_notice(&mut self, notice: Notice) {
+        match &mut self.bodies {
+            Some(bodies) => bodies.notice = Some(notice),
+            None => self.app.notice = Some(notice),
+        }
+    }
+
+    /// Say `text` on the status line of the scene shown.
+    fn say(&mut self, text: String) {
+        self.show_notice(Notice::info(text));
     }
 
     /// Whether to advance by itself, the step's computations having finished `elapsed` ago
@@ -127,6 +181,12 @@ impl TourApp {
 
     /// Whether the lab's settings still are the step's (false once the user changed them).
     pub fn is_pristine(&self) -> bool {
+        if let Some(bodies) = &self.bodies {
+            return self
+                .tour
+                .bodies(self.index)
+                .is_some_and(|step| step.settings == bodies.settings);
+        }
         let step = self.tour.app(self.index);
         (step.settings, step.scene, step.guides, step.all_levels)
             == (
@@ -182,9 +242,9 @@ impl TourApp {
                         // A lesson is not ended by a stray key: asked once.
                         self.quit_asked = true;
                         let (n, last) = (self.index + 1, self.tour.steps.len());
-                        self.app.notice = Some(Notice::info(format!(
+                        self.say(format!(
                             "step {n} of {last}: q again ends the tour, any other key goes on"
-                        )));
+                        ));
                         return TourEffect {
                             redraw: true,
                             ..TourEffect::default()
@@ -229,16 +289,17 @@ impl TourApp {
                 redraw: true,
                 commands: self.enter(i),
                 step_changed: true,
+                bodies: self.bodies_request(),
             },
             // At either end: nothing moves, and the status line says why (a help overlay
             // closed above needs a redraw too).
             Some(_) => {
                 let (n, last) = (self.index + 1, self.tour.steps.len());
-                self.app.notice = Some(Notice::info(if n == last {
+                self.say(if n == last {
                     format!("step {n} of {last} is the last: q ends the tour, Home goes back to the first")
                 } else {
                     format!("step {n} of {last} is the first: Space goes on")
-                }));
+                });
                 TourEffect {
                     redraw: true,
                     ..TourEffect::default()
@@ -251,13 +312,16 @@ impl TourApp {
         }
     }
 
-    /// Pass `msg` to the lab.
+    /// Pass `msg` to the lab, or on a two-body step to its scene.
     fn lab(&mut self, msg: Msg) -> TourEffect {
+        if let Some(bodies) = &mut self.bodies {
+            return bodies_msg(bodies, msg);
+        }
         let effect = self.app.update(msg);
         TourEffect {
             redraw: effect.redraw,
             commands: effect.commands,
-            step_changed: false,
+            ..TourEffect::default()
         }
     }
 
@@ -265,13 +329,14 @@ impl TourApp {
     pub fn go_to(&mut self, index: usize) -> Vec<Command> {
         let index = index.min(self.tour.steps.len().saturating_sub(1));
         if index == self.index {
-            return self.app.update(Msg::Resize).commands;
+            return self.lab(Msg::Resize).commands;
         }
         self.enter(index)
     }
 
     /// Show step `index`: keep what the lab computed, set up the step's lab from what is
-    /// known, and return the requests it still needs.
+    /// known, and return the requests it still needs (a two-body step's solve is
+    /// [`TourApp::bodies_request`]).
     fn enter(&mut self, index: usize) -> Vec<Command> {
         self.keep();
         let generation = self.app.generation + 1;
@@ -291,11 +356,42 @@ impl TourApp {
             .find(|(s, solved)| *s == app.scenario && solved.key == app.settings)
             .map(|(_, solved)| solved.clone());
         self.app = app;
+        self.bodies = self.tour.bodies(index).map(|mut bodies| {
+            self.bodies_generation += 1;
+            bodies.generation = self.bodies_generation;
+            bodies.solved = self
+                .bodies_solves
+                .iter()
+                .rev()
+                .find(|(s, solved)| *s == bodies.scenario && solved.settings == bodies.settings)
+                .map(|(_, solved)| solved.clone());
+            bodies
+        });
+        if self.bodies.is_some() {
+            // The lab waits unsolved while the two-body scene is shown.
+            return Vec::new();
+        }
         self.app.update(Msg::Resize).commands
     }
 
-    /// File the lab's finished work under its scenario.
+    /// File the lab's (or the two-body scene's) finished work under its scenario.
     fn keep(&mut self) {
+        if let Some(bodies) = &self.bodies {
+            self.bodies_generation = self.bodies_generation.max(bodies.generation);
+            if let Some(solved) = bodies.solved.as_ref().filter(|_| bodies.error.is_none()) {
+                let known = self
+                    .bodies_solves
+                    .iter()
+                    .any(|(s, k)| k == solved && *s == bodies.scenario);
+                if !known {
+                    self.bodies_solves.push((bodies.scenario.clone(), solved.clone()));
+                    if self.bodies_solves.len() > KEPT_SOLVES {
+                        self.bodies_solves.remove(0);
+                    }
+                }
+            }
+            return;
+        }
         let scenario = &self.app.scenario;
         if let Some(solved) = &self.app.solved {
             let known = self
@@ -314,5 +410,46 @@ impl TourApp {
             Some((_, estimates)) => estimates.extend(done),
             None => self.estimates.push((scenario.clone(), done)),
         }
+    }
+}
+
+/// `msg` for the two-body scene of a step: a key to the scene (its solve asked for when its
+/// settings changed; Ctrl-Z suspends, as in the lab), a resize redrawn, a notice shown; the
+/// lab's other messages (its worker's replies, its clock) concern the lab, which waits.
+fn bodies_msg(bodies: &mut BodiesApp, msg: Msg) -> TourEffect {
+    match msg {
+        Msg::Key(key) if key.modifiers.contains(KeyModifiers::CONTROL) => {
+            let suspend = lab_action(key.code, true) == Some(LabAction::Suspend)
+                && matches!(key.kind, KeyEventKind::Press | KeyEventKind::Repeat);
+            TourEffect {
+                redraw: suspend,
+                commands: if suspend {
+                    vec![Command::Suspend]
+                } else {
+                    Vec::new()
+                },
+                ..TourEffect::default()
+            }
+        }
+        Msg::Key(key) => {
+            let (redraw, request) = bodies.key(key);
+            TourEffect {
+                redraw,
+                bodies: request,
+                ..TourEffect::default()
+            }
+        }
+        Msg::Resize => TourEffect {
+            redraw: true,
+            ..TourEffect::default()
+        },
+        Msg::Notice(notice) => {
+            bodies.notice = Some(notice);
+            TourEffect {
+                redraw: true,
+                ..TourEffect::default()
+            }
+        }
+        Msg::Mouse(_) | Msg::Worker(_) | Msg::Exported(_) | Msg::Tick => TourEffect::default(),
     }
 }

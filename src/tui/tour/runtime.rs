@@ -1,5 +1,6 @@
 //! The tour in the lab's event loop ([`super::super::event_loop::run_program`]): one worker per
-//! scenario in use, replies of a replaced worker dropped, and the auto-advance clock.
+//! scenario in use, replies of a replaced worker dropped, a two-body solver for the two-body
+//! steps ([`super::bodies_worker`]), and the auto-advance clock.
 
 use std::io;
 use std::path::PathBuf;
@@ -12,6 +13,7 @@ use ratatui::Frame;
 use crate::scenario::Scenario;
 
 use super::super::app::{Command, Msg, Notice};
+use super::super::bodies::Request;
 use super::super::event_loop::{Flow, Input, Program, TICK, run_program};
 use super::super::export::export_shown;
 use super::super::record::{CastFile, Chapter};
@@ -19,6 +21,7 @@ use super::super::theme::Theme;
 use super::super::view::Look;
 use super::super::worker::Worker;
 use super::super::{RunError, TuiOptions};
+use super::bodies_worker::BodiesWorker;
 use super::{Tour, TourApp, TourMsg, auto_interval, view};
 
 /// Run `tour` in the terminal until the user quits; with `auto` (seconds, 0.5..=3600) each
@@ -48,6 +51,7 @@ pub fn run_tour(
         let scenario = player.app.scenario.clone();
         Ok(Session {
             worker: spawn(&tx, scenario.clone(), 0),
+            bodies: None,
             player,
             scenario,
             epoch: 0,
@@ -64,6 +68,8 @@ pub fn run_tour(
 struct Session {
     player: TourApp,
     worker: Worker,
+    /// The solver of the two-body steps' scenario, once one is shown.
+    bodies: Option<BodiesWorker>,
     /// The scenario the worker computes on, and its epoch (bumped with each new worker).
     scenario: Scenario,
     epoch: u64,
@@ -92,7 +98,7 @@ impl Session {
         if effect.step_changed {
             self.ready = None;
             if let Some(failure) = &self.recording_failed {
-                self.player.app.notice = Some(failure.clone());
+                self.player.show_notice(failure.clone());
             }
             if self.player.app.scenario != self.scenario {
                 self.scenario = self.player.app.scenario.clone();
@@ -110,6 +116,40 @@ impl Session {
                 other => self.worker.send(&other),
             }
         }
+        if let Some(request) = effect.bodies {
+            self.ask_bodies(request);
+        }
+        self.finish(flow)
+    }
+
+    /// Ask the two-body solver of the shown scene's scenario (started, or replaced, when the
+    /// scene's scenario is another) for `request`; a solver that cannot start or has stopped
+    /// is said on the status line.
+    fn ask_bodies(&mut self, request: Request) {
+        let Some(scene) = &mut self.player.bodies else {
+            return;
+        };
+        if self.bodies.as_ref().is_none_or(|w| w.scenario != scene.scenario) {
+            // The solver of another scenario is dropped first: what it solves is given up.
+            self.bodies = None;
+            match BodiesWorker::spawn(scene.scenario.clone(), self.tx.clone()) {
+                Ok(worker) => self.bodies = Some(worker),
+                Err(e) => {
+                    scene.notice = Some(Notice::failure(format!(
+                        "the two-body solver could not start: {e}"
+                    )));
+                    return;
+                }
+            }
+        }
+        if !self.bodies.as_ref().is_some_and(|w| w.send(request)) {
+            scene.notice = Some(Notice::failure("the two-body solver has stopped"));
+        }
+    }
+
+    /// `flow`, redrawn when the step's frame is finished (the auto-advance's clock starts once
+    /// it is shown).
+    fn finish(&mut self, mut flow: Flow) -> Flow {
         if !self.player.fits {
             self.ready = None;
         } else if self.ready.is_none() && !self.player.is_busy() {
@@ -122,7 +162,11 @@ impl Session {
 
 impl Program for Session {
     fn start(&mut self) -> Flow {
-        self.apply(TourMsg::Lab(Msg::Resize))
+        let flow = self.apply(TourMsg::Lab(Msg::Resize));
+        if let Some(request) = self.player.bodies_request() {
+            self.ask_bodies(request);
+        }
+        flow
     }
 
     fn input(&mut self, input: Input) -> Flow {
@@ -139,10 +183,16 @@ impl Program for Session {
                 Msg::Resize
             }
             Input::Worker(epoch, r) if epoch == self.epoch => Msg::Worker(r),
+            Input::Bodies(generation, result) => {
+                let shown = self.player.bodies_reply(generation, *result);
+                return self.finish(Flow {
+                    redraw: shown,
+                    suspend: false,
+                });
+            }
             // Other terminal events, replies of a replaced worker.
             Input::Terminal(_)
             | Input::Worker(..)
-            | Input::Bodies(..)
             | Input::Broken(_)
             | Input::RecordingFailed
             | Input::Signal => {

@@ -2,8 +2,8 @@
 //! name it, and shared by those steps: a tour of 200 steps on one 1 MiB scenario reads 1 MiB,
 //! not 200, and holds one scenario, not 200 copies. A path is relative to the tour file's
 //! directory; a tour read from no file (the embedded one) may name only the scenario files
-//! embedded with it ([`super::embedded`]). A scenario of two bodies is refused: the lab shows
-//! one (as `riplab lab` and `render` refuse it).
+//! embedded with it ([`super::embedded`]). A scenario of two bodies makes its steps two-body
+//! steps ([`super::bodies_step`]).
 
 use std::collections::HashMap;
 use std::path::Path;
@@ -20,8 +20,6 @@ pub(super) enum Unloaded {
     Invalid(ScenarioError),
     /// A path in a tour read from no file, naming no embedded scenario.
     NoDirectory,
-    /// A scenario of two elastic bodies (`[upper]`), which the lab does not show.
-    TwoBodies,
 }
 
 /// The scenarios a tour's steps have named so far, by the path as written.
@@ -56,9 +54,6 @@ impl<'a> StepScenarios<'a> {
         };
         self.reads += 1;
         let scenario = Arc::new(scenario.map_err(Unloaded::Invalid)?);
-        if scenario.upper.is_some() {
-            return Err(Unloaded::TwoBodies);
-        }
         self.loaded.insert(path.to_string(), Arc::clone(&scenario));
         Ok(scenario)
     }

@@ -1,5 +1,6 @@
-//! Drawing the tour: the lab on top, the step's caption in a panel below, the tour's help on
-//! top of both; and [`render_step`], one step as plain text (for tests and documents).
+//! Drawing the tour: the lab (or, on a two-body step, the lab's two-body scene) on top, the
+//! step's caption in a panel below, the tour's help on top of both; and [`render_step`], one
+//! step as plain text (for tests and documents).
 
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Rect};
@@ -8,6 +9,7 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::Paragraph;
 
 use super::super::app::App;
+use super::super::bodies::cache::BodiesCache;
 use super::super::engine::Engine;
 use super::super::keys;
 use super::super::settle::carry_out;
@@ -46,7 +48,10 @@ pub fn view(tour: &TourApp, frame: &mut Frame, look: &Look) {
     }
     let rows = (title.len() + text.len()).min(room).max(title.len() + 1) as u16;
     let [lab, panel] = Layout::vertical([Constraint::Fill(1), Constraint::Length(rows)]).areas(area);
-    view_in(&tour.app, frame, lab, look);
+    match &tour.bodies {
+        Some(bodies) => super::super::bodies::view::view_in(bodies, frame, lab, look, false),
+        None => view_in(&tour.app, frame, lab, look),
+    }
     caption_panel(tour, frame, panel, look.theme, &title, &text);
     if tour.show_help {
         help(frame, area, look.theme);
@@ -206,8 +211,8 @@ fn too_small(frame: &mut Frame, area: Rect, tour: &TourApp, theme: Theme) {
     centred_message(frame, area, &text, theme);
 }
 
-/// Step `index` of `tour` on a `width`×`height` test terminal as plain text, its lab solved
-/// synchronously (timings left out so that the text is deterministic).
+/// Step `index` of `tour` on a `width`×`height` test terminal as plain text, its lab (or its
+/// two-body scene) solved synchronously (timings left out so that the text is deterministic).
 #[cfg(test)]
 pub fn render_step(tour: &Tour, index: usize, width: u16, height: u16) -> Result<String, StepError> {
     render_step_at(tour, index, &[(width, height)]).map(|mut frames| frames.remove(0))
@@ -224,7 +229,8 @@ pub fn render_step_at(tour: &Tour, index: usize, sizes: &[(u16, u16)]) -> Result
 }
 
 /// [`render_step`] computed with `engine` (on the step's scenario, so that steps share its
-/// work): the text and the step's lab as drawn.
+/// work; a two-body step's scene is solved here on its own bodies): the text and the step's lab as drawn
+/// (a two-body step's waits unsolved).
 pub(crate) fn step_frame(
     tour: &Tour,
     index: usize,
@@ -244,6 +250,11 @@ pub(crate) fn step_frame(
     player.app.show_timing = false;
     let commands = player.go_to(index);
     carry_out(&mut player.app, engine, commands);
+    if let Some(bodies) = &mut player.bodies {
+        let (generation, settings) = bodies.start();
+        let result = BodiesCache::new(bodies.scenario.clone()).solve(&settings, &|| false);
+        bodies.reply(generation, result);
+    }
     let look = Look {
         theme: Theme { color: true },
         marker: Marker::Braille,
