@@ -102,9 +102,7 @@ impl BodiesApp {
             BodiesView::InfSup => BodiesView::Pressure,
         };
         self.notice = Some(Notice::info(match self.shown {
-            BodiesView::InfSup => {
-                "inf-sup view: β_h as both meshes are refined (Tab: the pressure)"
-            }
+            BodiesView::InfSup => "inf-sup view: β_h as both meshes are refined (Tab: the pressure)",
             BodiesView::Pressure => "the interface pressure (Tab: the inf-sup view)",
         }));
     }
@@ -163,9 +161,7 @@ fn refusal(action: LabAction) -> &'static str {
         L::Compare | L::NextQuantity => {
             "the mesh, convergence and stress scenes need one body under a rigid obstacle; two bodies have the pressure and the inf-sup views (Tab)"
         }
-        L::AllLevels => {
-            "the two-body inf-sup view (Tab) estimates every level up to the current one already"
-        }
+        L::AllLevels => "the two-body inf-sup view (Tab) estimates every level up to the current one already",
         L::Guide(_) => {
             "the overlays (gap, Hertz, circle, Mindlin) are the one-body chart's; the patch test's applied pressure is drawn here as its reference line"
         }

@@ -14,12 +14,12 @@ use ratatui::style::{Color, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Paragraph};
 
-use super::BodiesApp;
-use super::infsup::{EstimateKey, LevelEstimate, shown_levels};
 use super::super::theme::Theme;
 use super::super::view::Look;
 use super::super::view::fmt::{sig, table_row};
 use super::super::view::plot::{Axis, Plot, Scale, Series, Stroke};
+use super::BodiesApp;
+use super::infsup::{EstimateKey, LevelEstimate, shown_levels};
 use crate::contact::interface::solve::BodiesError;
 use crate::error::SolveError;
 use crate::infsup::interface::Space;
@@ -198,9 +198,9 @@ fn chart(
         })
         .collect();
     let hs: Vec<f64> = rows.iter().map(|(_, r)| r[0].h.log10()).collect();
-    let (h_lo, h_hi) = hs
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &h| (a.min(h), b.max(h)));
+    let (h_lo, h_hi) = hs.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &h| {
+        (a.min(h), b.max(h))
+    });
     let xb = if h_hi > h_lo {
         [h_lo, h_hi]
     } else {
@@ -327,15 +327,16 @@ fn table(
     }
     lines.push(Line::raw(slopes));
     let kernel = rows.iter().find_map(|(level, r)| {
-        r.iter()
-            .find_map(|row| row.kernel.as_ref().map(|k| format!("{} L{level}: {k}", row.space)))
+        r.iter().find_map(|row| {
+            row.kernel
+                .as_ref()
+                .map(|k| format!("{} L{level}: {k}", row.space))
+        })
     });
     let foot = match (failure, kernel) {
         (Some((level, e)), _) => format!("level {level}: {e}"),
         (None, Some(k)) => format!("kernel {k}"),
-        (None, None) => {
-            "h: the slave's widest edge · slope: β_h ∝ h^slope, the finest two levels".into()
-        }
+        (None, None) => "h: the slave's widest edge · slope: β_h ∝ h^slope, the finest two levels".into(),
     };
     lines.push(Line::styled(format!(" {foot}"), theme.faint()));
     let paragraph = Paragraph::new(lines);
@@ -363,7 +364,10 @@ fn visible(levels: &[u32], current: u32, rows: usize) -> &[u32] {
     if levels.len() <= rows {
         return levels;
     }
-    let at = levels.iter().position(|&l| l == current).unwrap_or(levels.len() - 1);
+    let at = levels
+        .iter()
+        .position(|&l| l == current)
+        .unwrap_or(levels.len() - 1);
     let end = (at + 2).min(levels.len()).max(rows);
     &levels[end - rows..end]
 }

@@ -147,8 +147,12 @@ impl BodiesApp {
     /// The estimates to ask for: the levels the inf-sup view shows and has not got, when it is
     /// shown; a job it no longer shows is given up ([`infsup::Estimates::request`]).
     pub fn infsup_request(&mut self) -> Option<infsup::EstimateJob> {
-        let wanted = (self.shown == BodiesView::InfSup)
-            .then(|| (self.estimate_key(), infsup::shown_levels(self.settings.level).collect()));
+        let wanted = (self.shown == BodiesView::InfSup).then(|| {
+            (
+                self.estimate_key(),
+                infsup::shown_levels(self.settings.level).collect(),
+            )
+        });
         self.infsup.request(wanted)
     }
 }

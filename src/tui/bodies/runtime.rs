@@ -380,8 +380,12 @@ mod tests {
         };
         // Job 1 (2:3) is stale before the worker takes it: job 2 (1:1) is the newest.
         jobs.newest_estimate.store(2, Ordering::Release);
-        jobs.requests.send(Job::Estimate(job(1, (2, 3), &[0, 1]))).unwrap();
-        jobs.requests.send(Job::Estimate(job(2, (1, 1), &[0, 1]))).unwrap();
+        jobs.requests
+            .send(Job::Estimate(job(1, (2, 3), &[0, 1])))
+            .unwrap();
+        jobs.requests
+            .send(Job::Estimate(job(2, (1, 1), &[0, 1])))
+            .unwrap();
         jobs.estimate(job(3, (1, 1), &[1, 0])).unwrap();
         let next = || got.recv_timeout(Duration::from_secs(120)).expect("an estimate");
         let mut seen = Vec::new();

@@ -225,7 +225,9 @@ fn the_bar_and_help_come_from_the_key_table() {
     let words: Vec<&str> = bar.iter().map(|e| e.1).collect();
     assert_eq!(
         words,
-        ["level", "contact", "ratio", "offset", "inf-sup", "reset", "help", "quit"]
+        [
+            "level", "contact", "ratio", "offset", "inf-sup", "reset", "help", "quit"
+        ]
     );
     assert_eq!((bar[1].0.as_str(), bar[4].0.as_str()), ("n", "Tab"));
     let help = riplab::tui::key_bar::bodies_help();

@@ -136,7 +136,11 @@ fn the_numbers_shown_are_riplab_infsup_s() {
     let (a, b) = (&printed[2], &printed[3]);
     for (i, &slope) in slopes.iter().enumerate() {
         let again = (b[1 + i] / a[1 + i]).ln() / (b[0] / a[0]).ln();
-        assert!((again - slope).abs() <= 0.01, "{}: {slope} against {again}", spaces[i].name());
+        assert!(
+            (again - slope).abs() <= 0.01,
+            "{}: {slope} against {again}",
+            spaces[i].name()
+        );
     }
 }
 
@@ -247,8 +251,8 @@ fn graph(text: &str) -> String {
 fn a_level_not_estimated_is_said() {
     let mut app = patch(InterfaceMethod::Mortar, "\t");
     let key: EstimateKey = app.estimate_key();
-    let too_large = riplab::contact::interface::solve::BodiesError::Solve(
-        riplab::error::SolveError::TooLarge {
+    let too_large =
+        riplab::contact::interface::solve::BodiesError::Solve(riplab::error::SolveError::TooLarge {
             workload: riplab::error::Workload::Interface {
                 level: 3,
                 element: app.scenario.element,
@@ -257,8 +261,7 @@ fn a_level_not_estimated_is_said() {
             unknowns: 1000,
             need: 2_000_000,
             available: 1_000_000,
-        },
-    );
+        });
     app.infsup.keep(key, 3, Err(too_large));
     let text = frame(&app, 80, 24);
     assert!(
