@@ -66,8 +66,9 @@ fn bodies_app(scenario: Scenario, contact: Option<ContactName>) -> Result<Option
 }
 
 /// `riplab render` on a two-body scenario: the two-body scene with `--contact`, at the
-/// scenario's ε or `--epsilon`'s (penalty or exact alone), after `--keys`. What a two-body
-/// scene does not take (another scene, grading, another method) is refused before any work
+/// scenario's ε or `--epsilon`'s (penalty or exact alone), after `--keys`, its inf-sup view
+/// with `--scene infsup`. What a two-body scene does not take (a one-body scene, grading,
+/// another method) is refused before any work
 /// (exit 2); a solve the two-body solve refuses as bad input too, with its message; a solve
 /// that fails prints the frame showing why, exit 1.
 fn render_bodies(
@@ -77,11 +78,11 @@ fn render_bodies(
     (width, height): (u16, u16),
     marker: MarkerChoice,
 ) -> Result<ExitCode, CliError> {
-    if args.scene != "explore" {
+    if !matches!(args.scene.as_str(), "explore" | "infsup") {
         return Err(usage(
             "--scene",
             format!(
-                "the {} scene needs one body under a rigid obstacle; a two-body scenario ([upper]) has the two-body scene (--scene explore)",
+                "the {} scene needs one body under a rigid obstacle; a two-body scenario ([upper]) has the two-body scene (--scene explore) and its inf-sup view (--scene infsup)",
                 args.scene
             ),
         ));
@@ -107,6 +108,9 @@ fn render_bodies(
     };
     app.settings.enforcement = enforcement;
     app.initial.enforcement = enforcement;
+    if args.scene == "infsup" {
+        app.shown = crate::tui::bodies::BodiesView::InfSup;
+    }
     let look = crate::tui::view::Look {
         theme: crate::tui::theme::Theme { color: true },
         marker: marker.marker(),

@@ -73,6 +73,7 @@ const BODIES: &[Entry] = &[
     (&[L::NextContact], "contact"),
     (&[L::RatioDown, L::RatioUp], "ratio"),
     (&[L::OffsetDown, L::OffsetUp], "offset"),
+    (&[L::NextScene], "inf-sup"),
     (&[L::Reset], "reset"),
 ];
 

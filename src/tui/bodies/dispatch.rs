@@ -1,7 +1,8 @@
 //! What a key does in the two-body scene ([`BodiesApp::dispatch`]): the action the lab's key
 //! table names ([`crate::tui::keys::lab_action`]), applied to the level, the discretisation,
-//! the element ratio or the offset; a key whose action has no meaning for two bodies is
-//! refused with the reason on the status line, never ignored in silence.
+//! the element ratio or the offset, or to the view shown (Tab, Shift-Tab: the pressure or the
+//! inf-sup view); a key whose action has no meaning for two bodies is refused with the reason
+//! on the status line, never ignored in silence.
 
 use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 
@@ -9,7 +10,7 @@ use super::super::app::{MAX_APP_LEVEL, key_name};
 use super::super::bodies_solve::{MAX_OFFSET, OFFSET_STEP, ratios};
 use super::super::keys::{LabAction, lab_action};
 use super::super::protocol::Notice;
-use super::BodiesApp;
+use super::{BodiesApp, BodiesView};
 use crate::contact::interface::InterfaceMethod;
 
 impl BodiesApp {
@@ -86,10 +87,24 @@ impl BodiesApp {
                 self.settings = self.initial;
                 self.notice = Some(Notice::info("reset to the scenario's settings"));
             }
+            LabAction::NextScene | LabAction::PreviousScene => self.next_view(),
             LabAction::Suspend => return false,
             other => self.notice = Some(Notice::info(format!("{name}: {}", refusal(other)))),
         }
         true
+    }
+
+    /// The other view: the inf-sup view after the pressure's, and back (two views: Tab and
+    /// Shift-Tab alike).
+    fn next_view(&mut self) {
+        self.shown = match self.shown {
+            BodiesView::Pressure => BodiesView::InfSup,
+            BodiesView::InfSup => BodiesView::Pressure,
+        };
+        self.notice = Some(Notice::info(match self.shown {
+            BodiesView::InfSup => "inf-sup view: β_h as both meshes are refined (Tab: the pressure)",
+            BodiesView::Pressure => "the interface pressure (Tab: the inf-sup view)",
+        }));
     }
 
     /// The next (or previous) element ratio of [`ratios`], the scenario's own among them.
@@ -143,9 +158,10 @@ fn refusal(action: LabAction) -> &'static str {
         L::Shallower | L::Deeper => {
             "the depth is the rigid obstacle's; two bodies are pressed by the upper body's [upper] displacement"
         }
-        L::NextScene | L::PreviousScene | L::Compare | L::AllLevels | L::NextQuantity => {
-            "the inf-sup, mesh, convergence and stress scenes need one body under a rigid obstacle; two bodies have this scene only"
+        L::Compare | L::NextQuantity => {
+            "the mesh, convergence and stress scenes need one body under a rigid obstacle; two bodies have the pressure and the inf-sup views (Tab)"
         }
+        L::AllLevels => "the two-body inf-sup view (Tab) estimates every level up to the current one already",
         L::Guide(_) => {
             "the overlays (gap, Hertz, circle, Mindlin) are the one-body chart's; the patch test's applied pressure is drawn here as its reference line"
         }
@@ -172,6 +188,8 @@ fn refusal(action: LabAction) -> &'static str {
         | L::OffsetDown
         | L::OffsetUp
         | L::Reset
+        | L::NextScene
+        | L::PreviousScene
         | L::Suspend => "",
     }
 }

@@ -3,14 +3,18 @@
 //! chosen discretisation (node-to-segment, mortar, the reduced-integration rules) drawn live
 //! as the method, the element ratio and the offset change, so that NTS's pressure starts to
 //! oscillate the moment the meshes stop matching while mortar's stays flat (the contact
-//! patch test), both meshes drawn deformed under it. Its state is [`BodiesApp`]; its keys are the lab's table's
+//! patch test), both meshes drawn deformed under it; Tab shows its inf-sup view instead, β_h of
+//! each multiplier space as both meshes are refined at the current ratio and offset
+//! ([`infsup`], drawn by [`infsup_view`]). Its state is [`BodiesApp`]; its keys are the lab's table's
 //! ([`super::keys::LAB`]), those that have no meaning for two bodies refused with the reason;
-//! [`view`] draws it, [`runtime`] runs it with its solve on a worker thread (the bodies'
-//! discretisations kept between solves by [`cache`]), and [`render_bodies`] draws one frame
-//! as text for `riplab render`.
+//! [`view`] draws it, [`runtime`] runs it with its solves and estimates on a worker thread (the
+//! bodies' discretisations kept between solves by [`cache`]), and [`render_bodies`] draws one
+//! frame as text for `riplab render`.
 
 pub mod cache;
 mod dispatch;
+pub mod infsup;
+pub mod infsup_view;
 mod meshes;
 pub mod runtime;
 
@@ -25,6 +29,15 @@ use super::protocol::Notice;
 use crate::contact::interface::InterfaceMethod;
 use crate::contact::interface::solve::BodiesError;
 use crate::scenario::Scenario;
+
+/// Which view of the two-body scene is shown (Tab, Shift-Tab).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BodiesView {
+    /// The interface pressure over both meshes.
+    Pressure,
+    /// β_h of each multiplier space against h ([`infsup`]).
+    InfSup,
+}
 
 /// The two-body scene's state.
 #[derive(Debug)]
@@ -51,6 +64,10 @@ pub struct BodiesApp {
     pub quit: bool,
     /// Bumped at every change of the settings: a reply of an older one is stale.
     pub generation: u64,
+    /// The view shown.
+    pub shown: BodiesView,
+    /// The inf-sup view's estimates, kept, and the job asked for.
+    pub infsup: infsup::Estimates,
 }
 
 /// A solve for the worker: the generation it answers and the settings.
@@ -75,6 +92,8 @@ impl BodiesApp {
             too_small: false,
             quit: false,
             generation: 0,
+            shown: BodiesView::Pressure,
+            infsup: infsup::Estimates::default(),
         })
     }
 
@@ -103,21 +122,44 @@ impl BodiesApp {
         true
     }
 
-    /// A key: what it changes (and the solve to ask for when the settings changed).
+    /// A key: what it changes, and the solve to ask for — while the pressure is shown, when
+    /// the settings changed or the pressure view came back to settings not solved (the
+    /// inf-sup view asks for its estimates by [`BodiesApp::infsup_request`]).
     pub fn key(&mut self, key: KeyEvent) -> (bool, Option<Request>) {
-        let before = self.settings;
+        let (before, shown) = (self.settings, self.shown);
         let redraw = self.dispatch(key);
-        if self.settings == before {
+        let changed = self.settings != before;
+        if changed {
+            self.generation += 1;
+            self.error = None;
+        }
+        if !changed && self.shown == shown {
             return (redraw, None);
         }
-        self.generation += 1;
-        self.error = None;
-        (true, Some((self.generation, self.settings)))
+        let solve = self.shown == BodiesView::Pressure && (changed || !self.settled());
+        (true, solve.then_some((self.generation, self.settings)))
+    }
+
+    /// The inf-sup view's key: the current ratio, offset and rule.
+    pub fn estimate_key(&self) -> infsup::EstimateKey {
+        infsup::EstimateKey::of(&self.settings, &self.scenario)
+    }
+
+    /// The estimates to ask for: the levels the inf-sup view shows and has not got, when it is
+    /// shown; a job it no longer shows is given up ([`infsup::Estimates::request`]).
+    pub fn infsup_request(&mut self) -> Option<infsup::EstimateJob> {
+        let wanted = (self.shown == BodiesView::InfSup).then(|| {
+            (
+                self.estimate_key(),
+                infsup::shown_levels(self.settings.level).collect(),
+            )
+        });
+        self.infsup.request(wanted)
     }
 }
 
-/// `app` solved synchronously, then `keys` applied one by one, each solved before the next
-/// (what `riplab render` and the tests draw).
+/// `app` solved synchronously, then `keys` applied one by one, each solved (or, in the
+/// inf-sup view, estimated) before the next (what `riplab render` and the tests draw).
 ///
 /// # Errors
 ///
@@ -128,8 +170,17 @@ pub fn settle_bodies(app: &mut BodiesApp, keys: &[KeyEvent]) -> Result<(), Rende
         let result = cache.solve(&settings, &|| false);
         app.reply(generation, result);
     };
+    let estimate = |app: &mut BodiesApp| {
+        if let Some(job) = app.infsup_request() {
+            for level in job.levels {
+                let estimate = infsup::estimate_level(&app.scenario, job.key, level);
+                app.infsup.keep(job.key, level, estimate);
+            }
+        }
+    };
     let first = app.start();
     settle(app, first);
+    estimate(app);
     for (i, &key) in keys.iter().enumerate() {
         let (_, request) = app.key(key);
         if app.quit {
@@ -138,6 +189,7 @@ pub fn settle_bodies(app: &mut BodiesApp, keys: &[KeyEvent]) -> Result<(), Rende
         if let Some(request) = request {
             settle(app, request);
         }
+        estimate(app);
     }
     Ok(())
 }

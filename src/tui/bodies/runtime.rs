@@ -1,8 +1,11 @@
 //! The two-body scene in the lab's one event loop ([`crate::tui::event_loop`]): its state,
 //! and a worker thread that solves the newest settings (older requests still queued are
 //! skipped, a solve under way is given up when a newer request is made) on the bodies it
-//! keeps ([`super::cache`]), so that the screen's thread never solves. The terminal is restored on every path
-//! by the loop.
+//! keeps ([`super::cache`]), and estimates the inf-sup view's levels one by one (given up
+//! between levels once the view wants another key or is left), so that the screen's thread
+//! never solves. The solves come back through the loop's channel; the estimates through one of
+//! their own, taken after each batch of inputs and every [`POLL`] while a job is out. The
+//! terminal is restored on every path by the loop.
 
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, mpsc};
@@ -17,6 +20,7 @@ use super::super::protocol::Notice;
 use super::super::record::Chapter;
 use super::super::view::{Look, MIN_SIZE};
 use super::cache::BodiesCache;
+use super::infsup::{EstimateJob, EstimateKey, LevelEstimate, estimate_level};
 use super::{BodiesApp, Request};
 use crate::scenario::Scenario;
 
@@ -24,25 +28,47 @@ use crate::scenario::Scenario;
 /// every case.
 pub fn run(app: BodiesApp, look: Look, recording: Recording, mouse: bool) -> Result<(), RunError> {
     run_program(recording, mouse, |tx, size| {
-        let jobs = spawn_worker(app.scenario.clone(), tx)?;
-        let mut lab = BodiesLab { app, jobs, look };
+        let (estimates_tx, estimates) = mpsc::channel();
+        let jobs = spawn_worker(app.scenario.clone(), tx, estimates_tx)?;
+        let mut lab = BodiesLab {
+            app,
+            jobs,
+            estimates,
+            look,
+        };
         lab.app.too_small = size.width < MIN_SIZE.0 || size.height < MIN_SIZE.1;
         Ok(lab)
     })
 }
 
-/// The way to the worker: its requests, and the newest request's generation, which the
-/// worker compares with the one it is answering to give up a stale solve.
+/// What the worker is asked: a solve, or the inf-sup view's levels.
+enum Job {
+    Solve(Request),
+    Estimate(EstimateJob),
+}
+
+/// One level estimated: its key, its level and the estimate.
+type Estimated = (EstimateKey, u32, LevelEstimate);
+
+/// The way to the worker: its jobs, and the newest solve's and estimate's generations, which
+/// the worker compares with the ones it is answering to give up a stale job.
 struct Jobs {
-    requests: mpsc::Sender<Request>,
+    requests: mpsc::Sender<Job>,
     newest: Arc<AtomicU64>,
+    newest_estimate: Arc<AtomicU64>,
 }
 
 impl Jobs {
     /// Ask for `request`: from now on every older request is stale.
-    fn send(&self, request: Request) -> Result<(), mpsc::SendError<Request>> {
+    fn send(&self, request: Request) -> Result<(), mpsc::SendError<Job>> {
         self.newest.store(request.0, Ordering::Release);
-        self.requests.send(request)
+        self.requests.send(Job::Solve(request))
+    }
+
+    /// Ask for `job`: from now on every older estimate is stale.
+    fn estimate(&self, job: EstimateJob) -> Result<(), mpsc::SendError<Job>> {
+        self.newest_estimate.store(job.generation, Ordering::Release);
+        self.requests.send(Job::Estimate(job))
     }
 }
 
@@ -51,69 +77,137 @@ impl Jobs {
 /// a burst).
 const QUIET: Duration = Duration::from_millis(300);
 
-/// The worker: it takes the newest request queued and solves it on the bodies it keeps
-/// ([`BodiesCache`]), giving the solve up as soon as a newer request is made (a stale
-/// result is never sent), and sends the result to the loop; then, idle, it builds what the
-/// next keys are likely to ask for until a request comes: the upper bodies of the next
-/// ratios at once, both bodies a level finer after [`QUIET`]. It ends when either channel
-/// closes.
-fn spawn_worker(scenario: Scenario, tx: mpsc::Sender<Input>) -> std::io::Result<Jobs> {
-    let (requests, rx) = mpsc::channel::<Request>();
+/// How often the loop looks for estimates while a job is out.
+const POLL: Duration = Duration::from_millis(50);
+
+/// The worker: it takes the newest solve and the newest estimate queued. The solve first, on
+/// the bodies it keeps ([`BodiesCache`]), given up as soon as a newer request is made (a stale
+/// result is never sent), its result sent to the loop; then, idle, it builds what the next
+/// keys are likely to ask for until a job comes: the upper bodies of the next ratios at once,
+/// both bodies a level finer after [`QUIET`]. An estimate level by level, each sent as it is
+/// done, given up between levels as soon as a newer one is asked for (the view left or its key
+/// changed); a level it estimated once is not estimated again (the scene keeps it). It ends
+/// when either channel closes.
+fn spawn_worker(
+    scenario: Scenario,
+    tx: mpsc::Sender<Input>,
+    estimates: mpsc::Sender<Estimated>,
+) -> std::io::Result<Jobs> {
+    let (requests, rx) = mpsc::channel::<Job>();
     let newest = Arc::new(AtomicU64::new(0));
-    let seen = newest.clone();
+    let newest_estimate = Arc::new(AtomicU64::new(0));
+    let (seen, seen_estimate) = (newest.clone(), newest_estimate.clone());
     std::thread::Builder::new()
         .name("riplab-bodies".into())
         .spawn(move || {
-            let mut cache = BodiesCache::new(scenario);
-            let mut next = rx.recv().ok();
-            while let Some(mut job) = next.take() {
-                // Only the newest request matters: the others are already stale.
+            let mut cache = BodiesCache::new(scenario.clone());
+            let mut done: Vec<(EstimateKey, u32)> = Vec::new();
+            let mut pending = Pending::default();
+            let Ok(first) = rx.recv() else { return };
+            pending.put(first);
+            loop {
+                // Only the newest of each kind matters: the others are already stale.
                 while let Ok(newer) = rx.try_recv() {
-                    job = newer;
+                    pending.put(newer);
                 }
-                let (generation, settings) = job;
-                let stale = || seen.load(Ordering::Acquire) != generation;
-                let result = cache.solve(&settings, &stale);
-                // A newer request is on its way: its answer replaces this one.
-                if !stale() {
-                    if tx.send(Input::Bodies(generation, Box::new(result))).is_err() {
-                        return;
-                    }
-                    cache.prefetch_ratios(&settings, &stale);
-                    next = match rx.recv_timeout(QUIET) {
-                        Ok(request) => Some(request),
-                        Err(mpsc::RecvTimeoutError::Timeout) => {
-                            cache.prefetch_finer(&settings, &stale);
-                            None
+                if let Some((generation, settings)) = pending.solve.take() {
+                    let stale = || seen.load(Ordering::Acquire) != generation;
+                    let result = cache.solve(&settings, &stale);
+                    // A newer request is on its way: its answer replaces this one.
+                    if !stale() {
+                        if tx.send(Input::Bodies(generation, Box::new(result))).is_err() {
+                            return;
                         }
-                        Err(mpsc::RecvTimeoutError::Disconnected) => return,
-                    };
+                        cache.prefetch_ratios(&settings, &stale);
+                        match rx.recv_timeout(QUIET) {
+                            Ok(job) => pending.put(job),
+                            Err(mpsc::RecvTimeoutError::Timeout) => cache.prefetch_finer(&settings, &stale),
+                            Err(mpsc::RecvTimeoutError::Disconnected) => return,
+                        }
+                    }
+                    continue;
                 }
-                if next.is_none() {
-                    next = rx.recv().ok();
+                if let Some(job) = pending.estimate.take() {
+                    for &level in &job.levels {
+                        if seen_estimate.load(Ordering::Acquire) != job.generation {
+                            break;
+                        }
+                        if done.contains(&(job.key, level)) {
+                            continue;
+                        }
+                        let result = estimate_level(&scenario, job.key, level);
+                        done.push((job.key, level));
+                        if estimates.send((job.key, level, result)).is_err() {
+                            return;
+                        }
+                    }
+                    continue;
+                }
+                match rx.recv() {
+                    Ok(job) => pending.put(job),
+                    Err(_) => return,
                 }
             }
         })?;
-    Ok(Jobs { requests, newest })
+    Ok(Jobs {
+        requests,
+        newest,
+        newest_estimate,
+    })
+}
+
+/// The newest solve and estimate the worker has taken and not started.
+#[derive(Default)]
+struct Pending {
+    solve: Option<Request>,
+    estimate: Option<EstimateJob>,
+}
+
+impl Pending {
+    /// `job`, replacing the older of its kind.
+    fn put(&mut self, job: Job) {
+        match job {
+            Job::Solve(r) => self.solve = Some(r),
+            Job::Estimate(e) => self.estimate = Some(e),
+        }
+    }
 }
 
 /// The scene in the loop.
 struct BodiesLab {
     app: BodiesApp,
     jobs: Jobs,
+    estimates: mpsc::Receiver<Estimated>,
     look: Look,
 }
 
 impl BodiesLab {
+    /// Ask for `request`, and for the estimates the view now wants (a job it no longer wants
+    /// given up: its generation moves on).
     fn ask(&mut self, request: Option<Request>) {
-        if let Some(request) = request
-            && self.jobs.send(request).is_err()
-        {
+        // A solve of older settings is given up, even when the view asks for none now.
+        self.jobs.newest.store(self.app.generation, Ordering::Release);
+        let estimate = self.app.infsup_request();
+        self.jobs
+            .newest_estimate
+            .store(self.app.infsup.generation(), Ordering::Release);
+        let sent = request.map_or(Ok(()), |r| self.jobs.send(r)).is_ok()
+            && estimate.map_or(Ok(()), |e| self.jobs.estimate(e)).is_ok();
+        if !sent {
             self.app.notice = Some(Notice::failure("the solver's thread has stopped: q quits"));
         }
     }
-}
 
+    /// Keep the estimates the worker has sent; whether there were any.
+    fn take_estimates(&mut self) -> bool {
+        let mut any = false;
+        while let Ok((key, level, estimate)) = self.estimates.try_recv() {
+            self.app.infsup.keep(key, level, estimate);
+            any = true;
+        }
+        any
+    }
+}
 impl Program for BodiesLab {
     fn start(&mut self) -> Flow {
         let first = self.app.start();
@@ -155,11 +249,19 @@ impl Program for BodiesLab {
     }
 
     fn tick(&mut self) -> Flow {
-        Flow::default()
+        Flow {
+            redraw: self.take_estimates(),
+            suspend: false,
+        }
     }
 
+    fn after_inputs(&mut self) -> Flow {
+        self.tick()
+    }
+
+    /// [`POLL`] while estimates are out (they come on a channel of their own), else for ever.
     fn wait(&self) -> Option<Duration> {
-        None
+        self.app.infsup.busy().then_some(POLL)
     }
 
     fn should_quit(&self) -> bool {
@@ -213,7 +315,8 @@ mod tests {
         let scenario = patch();
         let settings = Settings::of(&scenario, InterfaceMethod::Nts).unwrap();
         let (tx, rx) = mpsc::channel();
-        let jobs = spawn_worker(scenario, tx).unwrap();
+        let (estimates, _) = mpsc::channel();
+        let jobs = spawn_worker(scenario, tx, estimates).unwrap();
         for generation in 1..=3 {
             let ratio = RATIOS[generation as usize];
             jobs.send((generation, Settings { ratio, ..settings })).unwrap();
@@ -234,13 +337,14 @@ mod tests {
         let scenario = patch();
         let settings = Settings::of(&scenario, InterfaceMethod::Nts).unwrap();
         let (tx, rx) = mpsc::channel();
-        let jobs = spawn_worker(scenario, tx).unwrap();
+        let (estimates, _) = mpsc::channel();
+        let jobs = spawn_worker(scenario, tx, estimates).unwrap();
         // Generation 3 is the newest before the worker sees any request.
         jobs.newest.store(3, Ordering::Release);
         for generation in 1..=3 {
             let ratio = RATIOS[generation as usize];
             jobs.requests
-                .send((generation, Settings { ratio, ..settings }))
+                .send(Job::Solve((generation, Settings { ratio, ..settings })))
                 .unwrap();
         }
         assert_eq!(answer(&rx), (3, RATIOS[3]));
@@ -253,5 +357,48 @@ mod tests {
         ))
         .unwrap();
         assert_eq!(answer(&rx), (4, RATIOS[0]));
+    }
+
+    /// The inf-sup view's levels are estimated on the worker, each sent as it is done; a job
+    /// made stale by a newer one (another ratio) is given up before its next level, and a
+    /// level estimated once is not estimated again: asked twice, it is sent once.
+    #[test]
+    fn the_worker_estimates_level_by_level_and_gives_up_a_stale_key() {
+        let scenario = patch();
+        let settings = Settings::of(&scenario, InterfaceMethod::Mortar).unwrap();
+        let (tx, _rx) = mpsc::channel();
+        let (estimates, got) = mpsc::channel();
+        let jobs = spawn_worker(scenario.clone(), tx, estimates).unwrap();
+        let key = |ratio| EstimateKey {
+            ratio,
+            ..EstimateKey::of(&settings, &scenario)
+        };
+        let job = |generation, ratio, levels: &[u32]| EstimateJob {
+            generation,
+            key: key(ratio),
+            levels: levels.to_vec(),
+        };
+        // Job 1 (2:3) is stale before the worker takes it: job 2 (1:1) is the newest.
+        jobs.newest_estimate.store(2, Ordering::Release);
+        jobs.requests
+            .send(Job::Estimate(job(1, (2, 3), &[0, 1])))
+            .unwrap();
+        jobs.requests
+            .send(Job::Estimate(job(2, (1, 1), &[0, 1])))
+            .unwrap();
+        jobs.estimate(job(3, (1, 1), &[1, 0])).unwrap();
+        let next = || got.recv_timeout(Duration::from_secs(120)).expect("an estimate");
+        let mut seen = Vec::new();
+        while seen.len() < 2 {
+            let (k, level, estimate) = next();
+            assert_eq!(k, key((1, 1)), "a stale key's level was sent");
+            assert_eq!(estimate.expect("estimated").len(), k.spaces().len());
+            seen.push(level);
+        }
+        seen.sort_unstable();
+        assert_eq!(seen, [0, 1]);
+        // Nothing more: each level of 1:1 once (job 3 asked again for both).
+        jobs.estimate(job(4, (2, 3), &[0])).unwrap();
+        assert_eq!(next().0, key((2, 3)));
     }
 }

@@ -5,7 +5,8 @@
 //! the applied pressure as a dashed reference line (`─`); under it both meshes near the
 //! interface ([`super::meshes`]); the state of the solve with the patch error or the load; the
 //! key's answer; and the key bar. Lines differ by stroke and
-//! glyph, not by colour alone (NO_COLOR).
+//! glyph, not by colour alone (NO_COLOR). In the inf-sup view (Tab) the panels and the state
+//! are [`super::infsup_view`]'s.
 
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Rect};
@@ -20,7 +21,7 @@ use super::super::view::fmt::{sig, wrap_items, wrap_words};
 use super::super::view::help::key_popup;
 use super::super::view::plot::{Axis, Plot, Scale, Series, Stroke};
 use super::super::view::{Look, below_min_size};
-use super::BodiesApp;
+use super::{BodiesApp, BodiesView, infsup_view};
 use crate::contact::interface::InterfaceMethod;
 use crate::contact::interface::solve::Enforcement;
 
@@ -66,7 +67,13 @@ pub fn view(app: &BodiesApp, frame: &mut Frame, look: &Look) {
 /// bar at the bottom when `keys` (the guided tour puts its caption and its own keys there).
 pub fn view_in(app: &BodiesApp, frame: &mut Frame, area: Rect, look: &Look, keys: bool) {
     let theme = look.theme;
-    let state = wrap_items(&state_text(app), usize::from(area.width.saturating_sub(1)));
+    let infsup = app.shown == BodiesView::InfSup;
+    let state = if infsup {
+        infsup_view::state_text(app)
+    } else {
+        state_text(app)
+    };
+    let state = wrap_items(&state, usize::from(area.width.saturating_sub(1)));
     let notice = app
         .notice
         .as_ref()
@@ -80,18 +87,26 @@ pub fn view_in(app: &BodiesApp, frame: &mut Frame, area: Rect, look: &Look, keys
         Constraint::Length(u16::from(keys)),
     ])
     .areas(area);
-    let [chart, meshes] = Layout::vertical([
-        Constraint::Fill(1),
-        Constraint::Length((panels.height * 2 / 5).max(MESH_ROWS)),
-    ])
-    .areas(panels);
-    frame.render_widget(
-        Paragraph::new(Line::styled(header_text(app), theme.title())),
-        header,
-    );
-    pressure_chart(app, frame, chart, look);
-    super::meshes::render(app.solved.as_ref(), app.scenario.height, frame, meshes, look);
-    let state_style = if app.error.is_some() {
+    let header_line = if infsup {
+        infsup_view::header_text(app)
+    } else {
+        header_text(app)
+    };
+    frame.render_widget(Paragraph::new(Line::styled(header_line, theme.title())), header);
+    if infsup {
+        infsup_view::render(app, frame, panels, look);
+    } else {
+        let [chart, meshes] = Layout::vertical([
+            Constraint::Fill(1),
+            Constraint::Length((panels.height * 2 / 5).max(MESH_ROWS)),
+        ])
+        .areas(panels);
+        pressure_chart(app, frame, chart, look);
+        super::meshes::render(app.solved.as_ref(), app.scenario.height, frame, meshes, look);
+    }
+    let state_style = if infsup {
+        infsup_view::state_style(app, theme)
+    } else if app.error.is_some() {
         theme.bad()
     } else if app.settled() {
         Style::new()

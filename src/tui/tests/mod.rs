@@ -11,6 +11,7 @@ mod authoring;
 mod axes;
 mod bodies;
 mod bodies_cache;
+mod bodies_infsup;
 mod bodies_meshes;
 mod coinciding;
 mod friction;
