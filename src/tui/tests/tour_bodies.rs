@@ -408,3 +408,29 @@ fn a_one_body_key_on_a_two_body_step_is_refused_in_these_words() {
         "t.toml:6:10: `step[1].scheme`: does not apply to a two-body step (its scenario has an elastic [upper] body): the bodies' element is their scenario's ([mesh] element), and a rip rule is chosen by contact (rip-gauss1, rip-gauss2, rip-trapezoid, rip-simpson); allowed on a two-body step: title, caption, scenario, contact, ratio, offset, level, epsilon\n    6 | scheme = \"M1\"\n      |          ^"
     );
 }
+
+/// Tab on a two-body step keeps the step's pressure view and says where the inf-sup view is:
+/// the tour's worker solves steps, it does not estimate (the view would wait for ever).
+#[test]
+fn tab_on_a_two_body_step_stays_on_the_pressure() {
+    let tour = tour(
+        &[
+            ONE_BODY.to_string(),
+            patch_step("NTS", "contact = \"nts\"\nlevel = 1"),
+        ]
+        .concat(),
+    );
+    let mut player = TourApp::new(tour, None);
+    player.update(key(KeyCode::Char(' ')));
+    for code in [KeyCode::Tab, KeyCode::BackTab] {
+        let effect = player.update(key(code));
+        assert!(
+            effect.bodies.is_none() && effect.commands.is_empty(),
+            "{effect:?}"
+        );
+        let bodies = player.bodies.as_ref().expect("the two-body step");
+        assert_eq!(bodies.shown, riplab::tui::bodies::BodiesView::Pressure);
+        let said = &bodies.notice.as_ref().expect("a notice").text;
+        assert!(said.contains("inf-sup view"), "{said}");
+    }
+}

@@ -431,6 +431,21 @@ fn bodies_msg(bodies: &mut BodiesApp, msg: Msg) -> TourEffect {
                 ..TourEffect::default()
             }
         }
+        Msg::Key(key)
+            if matches!(
+                lab_action(key.code, false),
+                Some(LabAction::NextScene | LabAction::PreviousScene)
+            ) =>
+        {
+            // The tour's worker solves a step; the inf-sup view's estimates are the lab's.
+            bodies.notice = Some(Notice::info(
+                "Tab: a tour step shows its interface pressure; the lab (riplab FILE) has the two-body inf-sup view",
+            ));
+            TourEffect {
+                redraw: true,
+                ..TourEffect::default()
+            }
+        }
         Msg::Key(key) => {
             let (redraw, request) = bodies.key(key);
             TourEffect {
