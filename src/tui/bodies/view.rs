@@ -45,6 +45,11 @@ const PATCH_WINDOW_LEAST: f64 = 0.01;
 /// The fewest rows of the meshes' panel (its border's two and six of meshes).
 const MESH_ROWS: u16 = 8;
 
+/// The fewest rows the pressure chart keeps beside the meshes: its border's two, the legend's,
+/// the x axis' two and seven of graph, where the applied pressure's reference line has room
+/// (an overlay for every four rows of graph, [`super::super::view::plot`]).
+const CHART_LEAST: u16 = 12;
+
 /// Samples of the applied pressure's reference line across the chart.
 const REFERENCE_SAMPLES: usize = 41;
 
@@ -96,13 +101,20 @@ pub fn view_in(app: &BodiesApp, frame: &mut Frame, area: Rect, look: &Look, keys
     if infsup {
         infsup_view::render(app, frame, panels, look);
     } else {
-        let [chart, meshes] = Layout::vertical([
-            Constraint::Fill(1),
-            Constraint::Length((panels.height * 2 / 5).max(MESH_ROWS)),
-        ])
-        .areas(panels);
+        // The chart first: the meshes take two fifths of the rows when the chart keeps
+        // CHART_LEAST beside MESH_ROWS of them, and are left out otherwise (a tour step's
+        // caption takes the rows they would need).
+        let meshes_rows = if panels.height >= CHART_LEAST + MESH_ROWS {
+            (panels.height * 2 / 5).clamp(MESH_ROWS, panels.height - CHART_LEAST)
+        } else {
+            0
+        };
+        let [chart, meshes] =
+            Layout::vertical([Constraint::Fill(1), Constraint::Length(meshes_rows)]).areas(panels);
         pressure_chart(app, frame, chart, look);
-        super::meshes::render(app.solved.as_ref(), app.scenario.height, frame, meshes, look);
+        if meshes_rows > 0 {
+            super::meshes::render(app.solved.as_ref(), app.scenario.height, frame, meshes, look);
+        }
     }
     let state_style = if infsup {
         infsup_view::state_style(app, theme)

@@ -434,3 +434,19 @@ fn tab_on_a_two_body_step_stays_on_the_pressure() {
         assert!(said.contains("inf-sup view"), "{said}");
     }
 }
+
+/// A two-body step at 80×24 keeps the pressure chart's rows for its reference line: the
+/// applied pressure is drawn (not "no room"), the meshes' panel left out when the caption takes
+/// its rows.
+#[test]
+fn a_two_body_step_at_80x24_draws_the_applied_pressure() {
+    let tour = riplab::tui::tour::Tour::paper();
+    let last = tour.steps.len() - 1;
+    for index in last - 3..=last {
+        let text = riplab::tui::tour::render_step(&tour, index, 80, 24).unwrap();
+        assert!(
+            text.contains("─ applied 5.348") && !text.contains("no room"),
+            "step {index}:\n{text}"
+        );
+    }
+}
