@@ -294,7 +294,7 @@ pub fn estimate(
 }
 
 /// The estimate for one rule on `disc`, its H¹ trace compliance made by the first estimate
-/// on `disc` and kept with it ([`kept_compliance`]): the rules of one mesh share one
+/// on `disc` and kept with it (`kept_compliance`): the rules of one mesh share one
 /// factorisation of A.
 ///
 /// # Errors

@@ -60,7 +60,7 @@ fn top_load(upper: &Discretization, q: f64) -> Result<TopLoad, BodiesError> {
 }
 
 /// Solve the contact of `bodies` (its `displacement` unused) across the interface discretised
-/// by `coupling` ([`super::solve::couple`]: its rows, their initial gaps `g0` and the rule of
+/// by `coupling` (`solve::couple`'s: its rows, their initial gaps `g0` and the rule of
 /// a reduced-integration coupling), the upper body's top under the pressure `q` > 0 and held
 /// by the pin of [`Support::Free`](crate::fem::Support::Free): the solution (its Newton
 /// iterations summed over every δ tried, the upper's trace and displacement with u_q in them)
