@@ -206,13 +206,7 @@ fn chart(
     } else {
         [h_lo - 0.1, h_hi + 0.1]
     };
-    let (lo, hi) = data
-        .iter()
-        .flatten()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &(_, y)| {
-            (lo.min(y), hi.max(y))
-        });
-    let yb = if lo.is_finite() { [lo, hi] } else { [-1.0, 1.0] };
+    let yb = super::super::view::yfit::span(&data);
     let series = spaces
         .iter()
         .zip(&data)

@@ -121,13 +121,7 @@ fn chart(app: &App, frame: &mut Frame, area: Rect, look: &Look, all: &[Series], 
                 .collect()
         })
         .collect();
-    let (lo, hi) = data
-        .iter()
-        .flatten()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &(_, y)| {
-            (lo.min(y), hi.max(y))
-        });
-    let yb = if lo.is_finite() { [lo, hi] } else { [-1.0, 1.0] };
+    let yb = super::yfit::span(&data);
     let series = all
         .iter()
         .zip(&data)

@@ -21,7 +21,7 @@ mod pressure;
 mod status;
 mod stress_map;
 mod ticks;
-mod yfit;
+pub(in crate::tui) mod yfit;
 
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Rect};

@@ -91,6 +91,18 @@ pub fn fit(bounds: [f64; 2], log: bool, rows: u16, per: u16, max: usize) -> Opti
     Some(([low, high], ticks))
 }
 
+/// The range of the y values of every series of `data` ((x, y) points), [−1, 1] when there
+/// are none: the bounds a chart's y axis is fitted to.
+pub fn span(data: &[Vec<(f64, f64)>]) -> [f64; 2] {
+    let (lo, hi) = data
+        .iter()
+        .flatten()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &(_, y)| {
+            (lo.min(y), hi.max(y))
+        });
+    if lo.is_finite() { [lo, hi] } else { [-1.0, 1.0] }
+}
+
 /// The axis of [`fit`], or `bounds` and `ticks` as they are when it finds none.
 pub fn fit_or(
     bounds: [f64; 2],
