@@ -35,6 +35,7 @@ mod tour;
 mod tour_bodies;
 mod tour_checks;
 mod tour_numbers;
+mod tour_validation;
 mod typed_errors;
 mod zone_key;
 

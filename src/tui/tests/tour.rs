@@ -1,17 +1,16 @@
 //! The guided tour: every tour file is valid and every step solves; each step of the embedded
-//! tour as an insta snapshot (plain text, 100×30); the keys that move between steps; and the
-//! validation errors of bad tour files.
+//! tour as an insta snapshot (plain text, 100×30); the keys that move between steps (the
+//! validation errors of bad tour files: [`super::tour_validation`]).
 
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 
-use riplab::scenario::Scenario;
 use riplab::tui::app::{Command, Compare, Msg, Scene};
 use riplab::tui::engine::Engine;
 use riplab::tui::settle::{carry_out, settle};
-use riplab::tui::tour::{Tour, TourApp, TourError, TourMsg, auto_interval, render_step};
+use riplab::tui::tour::{Tour, TourApp, TourMsg, auto_interval, render_step};
 
 fn key(code: KeyCode) -> TourMsg {
     TourMsg::Lab(Msg::Key(KeyEvent::new(code, KeyModifiers::NONE)))
@@ -19,6 +18,15 @@ fn key(code: KeyCode) -> TourMsg {
 
 fn ch(c: char) -> TourMsg {
     key(KeyCode::Char(c))
+}
+
+/// The notice the tour shows now: the two-body scene's on a two-body step, the lab's else.
+fn said(p: &TourApp) -> String {
+    let notice = p
+        .bodies
+        .as_ref()
+        .map_or(p.app.notice.as_ref(), |b| b.notice.as_ref());
+    notice.map(|n| n.text.clone()).unwrap_or_default()
 }
 
 const LOOK: riplab::tui::view::Look = riplab::tui::view::Look {
@@ -260,13 +268,6 @@ fn keys_advance_go_back_and_stay_in_bounds() {
     assert!(!back.step_changed, "no step before the first");
     assert_eq!(player.index(), 0);
     // And says so.
-    let said = |p: &TourApp| {
-        let notice = p
-            .bodies
-            .as_ref()
-            .map_or(p.app.notice.as_ref(), |b| b.notice.as_ref());
-        notice.map(|n| n.text.clone()).unwrap_or_default()
-    };
     assert!(said(&player).contains("is the first"), "{}", said(&player));
     let next = player.update(ch(' '));
     assert!(next.step_changed);
@@ -301,13 +302,6 @@ fn keys_advance_go_back_and_stay_in_bounds() {
 fn esc_never_quits_the_tour_and_q_asks_once_before_the_end() {
     let tour = Tour::paper();
     let mut player = TourApp::new(tour, None);
-    let said = |p: &TourApp| {
-        let notice = p
-            .bodies
-            .as_ref()
-            .map_or(p.app.notice.as_ref(), |b| b.notice.as_ref());
-        notice.map(|n| n.text.clone()).unwrap_or_default()
-    };
     player.update(ch('l'));
     assert!(player.app.overlays.show_log);
     player.update(key(KeyCode::Esc));
@@ -419,99 +413,6 @@ fn auto_advances_when_due_and_stops_at_the_end() {
         assert!(auto_interval(bad).is_err(), "{bad}");
     }
 }
-
-// ---- validation ----------------------------------------------------------------------------
-
-/// The error of parsing `text` as a tour.
-fn error(text: &str) -> String {
-    Tour::parse(text, "bad.toml", None).unwrap_err().to_string()
-}
-
-const STEP: &str = "title = \"t\"\n[[step]]\ntitle = \"s\"\ncaption = \"c\"\n";
-
-#[test]
-fn bad_tours_name_the_file_line_key_and_allowed_values() {
-    let e = error(&format!("{STEP}colour = 1\n"));
-    assert!(e.starts_with("bad.toml:5:"), "{e}");
-    assert!(e.contains("colour") && e.contains("caption"), "{e}");
-    let e = error(&format!("{STEP}level = 9\n"));
-    assert!(
-        e.starts_with("bad.toml:5:9:") && e.contains("step[1].level") && e.contains("0 to 7"),
-        "{e}"
-    );
-    let e = error(&format!("{STEP}scene = \"plot\"\n"));
-    assert!(
-        e.contains("step[1].scene") && e.contains("explore, infsup, mesh"),
-        "{e}"
-    );
-    let e = error(&format!("{STEP}overlays = [\"gap\", \"grid\"]\n"));
-    assert!(
-        e.contains("step[1].overlays") && e.contains("gap, hertz, circle, mindlin, all-levels"),
-        "{e}"
-    );
-    let e = error(&format!("{STEP}scheme = \"M9\"\n"));
-    assert!(
-        e.contains("step[1].scheme") && e.contains("M1, M2, M3, M4"),
-        "{e}"
-    );
-    let e = error(&format!("{STEP}scheme = \"M1\"\nrule = \"simpson\"\n"));
-    assert!(e.contains("not both"), "{e}");
-    let e = error(&format!("{STEP}element = \"q3\"\n"));
-    assert!(e.contains("q3") && e.contains("q1"), "{e}");
-    let e = error(&format!("{STEP}epsilon = -1e-6\n"));
-    assert!(
-        e.contains("step[1].epsilon") && e.contains("exact constraint"),
-        "{e}"
-    );
-    let e = error(&format!("{STEP}depth = -0.1\n"));
-    assert!(e.contains("step[1].depth"), "{e}");
-    let e = error("title = \"t\"\n[[step]]\ntitle = \"s\"\ncaption = \"\"\"\n1\n2\n3\n4\n5\"\"\"\n");
-    assert!(e.contains("step[1].caption") && e.contains("5 lines"), "{e}");
-    let e = error(&format!(
-        "title = \"t\"\n[[step]]\ntitle = \"s\"\ncaption = \"{}\"\n",
-        "x".repeat(97)
-    ));
-    assert!(e.contains("97 characters"), "{e}");
-    let e = error("title = \"t\"\nstep = []\n");
-    assert!(e.contains("at least one"), "{e}");
-    let e = error(&format!("{STEP}scenario = \"x.toml\"\n"));
-    assert!(e.contains("step[1].scenario") && e.contains("tour file"), "{e}");
-    assert!(error("title = ").starts_with("bad.toml:1:"));
-}
-
-#[test]
-fn scenario_paths_are_relative_to_the_tour_file() {
-    let dir = std::env::temp_dir().join(format!("riplab-tour-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let scenario = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/hertz-paper.toml");
-    std::fs::copy(&scenario, dir.join("mine.toml")).unwrap();
-    let file = dir.join("t.toml");
-    std::fs::write(&file, format!("{STEP}scenario = \"mine.toml\"\ndepth = 0.5\n")).unwrap();
-    let tour = Tour::load(&file).unwrap();
-    assert_eq!(tour.scenario_of(0).name, "hertz-paper");
-    assert_eq!(tour.app(0).settings.depth, 0.5);
-    std::fs::write(&file, format!("{STEP}scenario = \"missing.toml\"\n")).unwrap();
-    let e = Tour::load(&file).unwrap_err().to_string();
-    assert!(e.contains("t.toml:5:") && e.contains("missing.toml"), "{e}");
-    // A depth beyond the scenario's limit is refused for the scenario given at run time.
-    std::fs::write(&file, format!("{STEP}depth = 2.5\n")).unwrap();
-    let tour = Tour::load(&file).unwrap();
-    let e = tour.with_scenario(Scenario::paper()).unwrap_err();
-    assert!(
-        matches!(
-            e,
-            TourError::Depth {
-                step: 1,
-                depth: 2.5,
-                ..
-            }
-        ),
-        "{e}"
-    );
-    std::fs::remove_dir_all(&dir).unwrap();
-}
-
-// ---- the tour at 80×24 ---------------------------------------------------------
 
 /// Every step runs at 80×24: the lab above, below it the step's title wrapped (never cut)
 /// and its whole caption — the lab yields the rows, nothing is a `↓` away.
