@@ -8,7 +8,6 @@ use faer::linalg::evd::EvdError;
 pub use crate::check::{Allowed, CheckError};
 use crate::fem::error::gib;
 use crate::mesh::Element;
-use crate::refine_edges::Grading;
 use crate::text::num;
 
 mod diagnosis;
@@ -157,14 +156,15 @@ pub enum Workload {
         /// Its edge refinements.
         refinements: u32,
     },
-    /// A solve at `level` with `element` graded as `grading` asks ([`crate::grading`]).
+    /// A solve at `level` with `element` graded as `grading` asks (docs/design.md §6).
     Graded {
         /// Its uniform level.
         level: u32,
         /// The element.
         element: Element,
-        /// The grading asked for (at the edges or over the zone, and its passes).
-        grading: Grading,
+        /// The grading asked for, in words: where it grades, its passes and its text
+        /// (`graded over the contact zone, 8 passes (8z)`).
+        grading: String,
     },
     /// A problem of the finite element layer.
     Unknowns,
@@ -223,7 +223,7 @@ fn too_large(workload: &Workload, unknowns: usize, need: u64, available: u64) ->
         } => format!(
             "level {level} with {} {}: {unknowns} unknowns on its finest grid, about {need} at the solve's peak (the uniform level's, the previous pass's and the last pass's discretisations); this process has {available} available ({limits}): choose fewer passes or a coarser level",
             element.name(),
-            grading.described()
+            grading
         ),
         Workload::Unknowns => {
             format!(

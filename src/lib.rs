@@ -80,7 +80,6 @@ pub mod mesh;
 pub mod output;
 #[doc(hidden)]
 pub mod plot;
-pub(crate) mod refine_edges;
 pub mod scenario;
 pub mod scheme;
 pub mod solve;

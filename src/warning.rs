@@ -80,13 +80,15 @@ pub enum Warning {
         /// An ε that brings the penetration to half the limit ([`crate::contact::warnings::of_soft_penalty`]).
         sufficient: f64,
     },
-    /// `--refine-edges auto` made its [`crate::grading::MAX_PASSES`] passes, every one
-    /// changing p̄ by more than [`crate::grading::AUTO_TOLERANCE`].
+    /// `--refine-edges auto` made its cap of passes, every one changing p̄ by more than its
+    /// tolerance.
     GradingCap {
         /// The passes made (the cap).
         passes: u32,
         /// The smallest relative change of p̄ (L²(Γ_C)) a pass made: the kept grid's.
         change: f64,
+        /// The change of p̄ below which `auto` stops.
+        tolerance: f64,
         /// The passes of the grid kept (the one whose pass changed p̄ least).
         kept: u32,
     },
@@ -155,10 +157,15 @@ impl fmt::Display for Warning {
                 num(100.0 * SOFT_PENETRATION_LIMIT),
                 num(*epsilon),
             ),
-            Warning::GradingCap { passes, change, kept } => write!(
+            Warning::GradingCap {
+                passes,
+                change,
+                tolerance,
+                kept,
+            } => write!(
                 f,
                 "--refine-edges auto reached its cap of {passes} passes with p̄ still changing by {change:.1e} or more per pass (it stops below {}): the grading has not settled; kept the grid of {kept} pass{}, whose pass changed p̄ least; a finer --level resolves the contact edges better",
-                num(crate::refine_edges::AUTO_TOLERANCE),
+                num(*tolerance),
                 if *kept == 1 { "" } else { "es" }
             ),
             Warning::NarrowContact { elements, h } => write!(

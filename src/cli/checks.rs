@@ -32,7 +32,7 @@ pub(super) fn render_request(scenario: &Scenario, scene: &str, epsilon: Option<f
     };
     check_request(scenario, level, element, &params)?;
     // A grading's estimate holds the uniform level's: it speaks first, naming the grading.
-    crate::grading::estimate::fits(scenario, level, element, scenario.grading(), |_| 0)?;
+    scenario.graded_fits(level, element, scenario.grading(), |_| 0)?;
     scenario.fits_beside(level, element, 0)?;
     match scene {
         "infsup" => crate::infsup::fits(scenario, level, element)?,

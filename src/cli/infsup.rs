@@ -39,7 +39,7 @@ pub(super) fn infsup(args: &InfsupArgs) -> Result<ExitCode, CliError> {
     for &(element, _) in &pairs {
         for &level in &levels {
             if refine.grades() {
-                crate::grading::estimate::fits(&scenario, level, element, refine, Sizes::infsup_extra_bytes)?;
+                scenario.graded_fits(level, element, refine, Sizes::infsup_extra_bytes)?;
             } else {
                 fits(&scenario, level, element)?;
             }

@@ -136,7 +136,7 @@ pub(super) fn solve(args: &SolveArgs) -> Result<ExitCode, CliError> {
     }
 
     // A graded solve's memory, from its lines, before the uniform level is built.
-    crate::grading::estimate::fits(&scenario, level, scenario.element, scenario.grading(), |_| 0)?;
+    scenario.graded_fits(level, scenario.element, scenario.grading(), |_| 0)?;
     let trace = if friction_on { Trace::Full } else { Trace::Normal };
     let disc = scenario.discretize_traced(level, scenario.element, trace)?;
     let mut instances: Vec<ContactParams> = epsilons

@@ -153,13 +153,13 @@ pub(super) fn study(args: &StudyArgs) -> Result<ExitCode, CliError> {
             )
         });
     }
-    // Every graded row's memory, estimated from its lines (crate::grading::estimate) before
+    // Every graded row's memory, estimated from its lines (Scenario::graded_fits) before
     // the reference or any row is assembled: one that cannot fit refuses the whole study.
     if args.sweep_epsilon.is_empty() {
         for &grading in &refine {
             for &(element, _) in &schemes {
                 for &level in &levels {
-                    crate::grading::estimate::fits(&scenario, level, element, grading, |_| 0)?;
+                    scenario.graded_fits(level, element, grading, |_| 0)?;
                 }
             }
         }

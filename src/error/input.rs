@@ -33,8 +33,8 @@ pub enum InputFault {
         "friction: a graded mesh (refine_edges = {grading}) does not take friction yet; solve a uniform level"
     )]
     FrictionGraded {
-        /// The grading asked.
-        grading: crate::refine_edges::Grading,
+        /// The grading asked, as written (`3`, `auto`, `3z`).
+        grading: String,
     },
     /// A tangential penalty ε_t given to the exact method.
     #[error("friction: epsilon_t is the tangential penalty of penalty and alm; exact takes none")]

@@ -39,7 +39,17 @@ mod tests {
     use super::*;
     use crate::contact::Rule;
     use crate::mesh::Element;
-    use crate::scenario::Scenario;
+
+    /// The paper's level 2 of its half model: 32 × 16 cells of side 1/4 over [0, 8] × [0, 4].
+    fn level_2() -> GradedGrid {
+        let lines = |n: u32, to: f64| (0..=n).map(|k| to * f64::from(k) / f64::from(n)).collect();
+        GradedGrid {
+            level: 2,
+            passes: 0,
+            xs: lines(32, 8.0),
+            ys: lines(16, 4.0),
+        }
+    }
 
     /// A pressure p(x) = max(0, 1 − x/a) at `points`: one contact edge, at x = a.
     fn pressed_to(points: &ContactPoints, a: f64) -> Vec<f64> {
@@ -51,10 +61,9 @@ mod tests {
     /// pressure without an edge; the uniform grid holds none (it has no band).
     #[test]
     fn a_graded_grid_holds_the_edges_in_its_band_only() {
-        let s = Scenario::paper();
-        let uniform = GradedGrid::uniform(&s, 2);
+        let uniform = level_2();
         let at = |grid: &GradedGrid| {
-            let mesh = grid.mesh(Element::Q1, s.half_model);
+            let mesh = grid.mesh(Element::Q1, true);
             ContactPoints::new(Rule::Gauss1, &mesh.node_x, 1)
         };
         let h = uniform.xs[1] - uniform.xs[0];
@@ -76,10 +85,9 @@ mod tests {
     /// the halved band) nor one pressed everywhere; the uniform grid holds none.
     #[test]
     fn a_zone_grid_holds_its_contact_zone_in_its_finest_band_only() {
-        let s = Scenario::paper();
-        let uniform = GradedGrid::uniform(&s, 2);
+        let uniform = level_2();
         let at = |grid: &GradedGrid| {
-            let mesh = grid.mesh(Element::Q1, s.half_model);
+            let mesh = grid.mesh(Element::Q1, true);
             ContactPoints::new(Rule::Gauss1, &mesh.node_x, 1)
         };
         let h = uniform.xs[1] - uniform.xs[0];

@@ -3,20 +3,18 @@
 //! are predicted with the obstacle's overlap with the undeformed body standing for the
 //! contact zone (the body gives way under the obstacle: the zone it presses lies within the
 //! overlap), its ends for the contact edges; the solve's peak holds the uniform level's
-//! discretisation, the previous pass's and the last pass's being built
-//! ([`crate::solve::solve()`] with a grading). A request whose estimate exceeds what the process may use is
-//! refused naming the level, the element, the grading and the memory.
+//! discretisation, the previous pass's and the last pass's being built ([`super::passes`]). A
+//! request whose estimate exceeds what the process may use is refused naming the level, the
+//! element, the grading and the memory.
 
-use crate::contact::Rule;
+use crate::contact::{Obstacle, Rule};
 use crate::discretization::refused;
 use crate::error::{SolveError, Workload};
 use crate::fem::DofMap;
 use crate::fem::memory::{Limits, Sizes};
 use crate::mesh::Element;
-use crate::refine_edges::{MAX_PASSES, RefineEdges};
-use crate::scenario::Scenario;
 
-use super::{GradedGrid, Grading};
+use super::{GradedGrid, Grading, MAX_PASSES, RefineEdges};
 
 impl GradedGrid {
     /// The sizes that decide the memory of this grid's discretisation with `element`
@@ -37,20 +35,19 @@ impl GradedGrid {
     }
 }
 
-/// The grids a solve of `scenario` at `level` graded as `grading` asks passes through, the
-/// uniform level first, predicted from the obstacle's overlap with the undeformed body
-/// ([`crate::contact::Obstacle::contact_extent`]): a zone pass grades the intervals it
-/// covers, an edge pass those that hold its ends inside the body. `auto` is predicted at its
-/// cap, [`MAX_PASSES`]. Only the uniform level when the obstacle does not reach the body.
-pub fn predicted(scenario: &Scenario, level: u32, grading: Grading) -> Vec<GradedGrid> {
-    let base = GradedGrid::uniform(scenario, level);
-    let (x0, x1) = (base.xs[0], base.xs[base.xs.len() - 1]);
+/// The grids a solve from the `uniform` grid graded as `grading` asks passes through, the
+/// uniform level first, predicted from the `obstacle`'s overlap with the undeformed body
+/// ([`Obstacle::contact_extent`]): a zone pass grades the intervals it covers, an edge pass
+/// those that hold its ends inside the body. `auto` is predicted at its cap, [`MAX_PASSES`].
+/// Only the uniform level when the obstacle does not reach the body.
+pub fn predicted(uniform: GradedGrid, obstacle: &Obstacle, grading: Grading) -> Vec<GradedGrid> {
+    let (x0, x1) = (uniform.xs[0], uniform.xs[uniform.xs.len() - 1]);
     let passes = match grading {
         Grading::Edges(RefineEdges::Passes(n)) | Grading::Zone(n) => n,
         Grading::Edges(RefineEdges::Auto) => MAX_PASSES,
     };
-    let mut grids = vec![base.clone()];
-    let Some((lo, hi)) = scenario.obstacle.contact_extent(x0, x1) else {
+    let mut grids = vec![uniform.clone()];
+    let Some((lo, hi)) = obstacle.contact_extent(x0, x1) else {
         return grids;
     };
     // The vertex interval of `xs` that holds x.
@@ -58,7 +55,7 @@ pub fn predicted(scenario: &Scenario, level: u32, grading: Grading) -> Vec<Grade
     for _ in 0..passes {
         let grid = &grids[grids.len() - 1];
         let next = match grading {
-            Grading::Zone(_) => grid.zoned(&base, &[(interval(&grid.xs, lo), interval(&grid.xs, hi))]),
+            Grading::Zone(_) => grid.zoned(&uniform, &[(interval(&grid.xs, lo), interval(&grid.xs, hi))]),
             Grading::Edges(_) => {
                 let edges: Vec<usize> = [(lo, lo > x0), (hi, hi < x1)]
                     .iter()
@@ -90,47 +87,29 @@ pub fn peak_bytes(grids: &[GradedGrid], element: Element, half_model: bool) -> u
     most
 }
 
-/// The estimate of a solve of `scenario` at `level` with `element` graded as `grading`, with
-/// `extra` bytes of work on its last grid's sizes beside it (an inf-sup estimate's; 0 for a
-/// solve): the last grid's sizes and the peak, bytes.
+/// The estimate of a solve through `grids` ([`predicted`]) with `element` (on a half model or
+/// not), with `extra` bytes of work on its last grid's sizes beside it (an inf-sup estimate's;
+/// 0 for a solve): the last grid's sizes and the peak, bytes.
 pub fn estimate(
-    scenario: &Scenario,
-    level: u32,
-    element: Element,
-    grading: Grading,
+    grids: &[GradedGrid],
+    (element, half_model): (Element, bool),
     extra: impl Fn(&Sizes) -> u64,
 ) -> (Sizes, u64) {
-    let grids = predicted(scenario, level, grading);
-    let last = grids[grids.len() - 1].sizes(element, scenario.half_model);
-    let need = peak_bytes(&grids, element, scenario.half_model).saturating_add(extra(&last));
+    let last = grids[grids.len() - 1].sizes(element, half_model);
+    let need = peak_bytes(grids, element, half_model).saturating_add(extra(&last));
     (last, need)
 }
 
-/// Refuse a solve of `scenario` at `level` with `element` graded as `grading` (with `extra`,
-/// as [`estimate`]) when its estimate exceeds what this process may use; before anything is
-/// assembled. Nothing to check without a grading.
+/// Refuse a solve through `grids` ([`predicted`], the uniform level's first) with `element`
+/// graded as `grading` (with `extra`, as [`estimate`]) when its estimate exceeds `limits`;
+/// before anything is assembled. Nothing to check without a grading.
 ///
 /// # Errors
 ///
 /// [`SolveError::TooLarge`], naming the level, the element, the grading and the memory.
-pub fn fits(
-    scenario: &Scenario,
-    level: u32,
-    element: Element,
-    grading: Grading,
-    extra: impl Fn(&Sizes) -> u64,
-) -> Result<(), SolveError> {
-    fits_within(scenario, (level, element), grading, extra, &Limits::of_process())
-}
-
-/// [`fits`] against `limits`.
-///
-/// # Errors
-///
-/// As [`fits`]'s.
 pub fn fits_within(
-    scenario: &Scenario,
-    (level, element): (u32, Element),
+    grids: &[GradedGrid],
+    (element, half_model): (Element, bool),
     grading: Grading,
     extra: impl Fn(&Sizes) -> u64,
     limits: &Limits,
@@ -138,12 +117,12 @@ pub fn fits_within(
     if !grading.grades() {
         return Ok(());
     }
-    let (last, need) = estimate(scenario, level, element, grading, extra);
+    let (last, need) = estimate(grids, (element, half_model), extra);
     last.check_need(need, limits).map_err(|e| {
         let workload = Workload::Graded {
-            level,
+            level: grids[0].level,
             element,
-            grading,
+            grading: grading.described(),
         };
         refused(e, workload, last.unknowns)
     })
@@ -154,7 +133,17 @@ mod tests {
     use super::*;
     use crate::contact::ContactParams;
     use crate::contact::newton::NewtonOptions;
+    use crate::scenario::Scenario;
     use crate::solve::solve_graded;
+
+    /// The grids [`predicted`] for `s` at `level` graded as `grading`.
+    fn grids_of(s: &Scenario, level: u32, grading: Grading) -> Vec<GradedGrid> {
+        predicted(
+            GradedGrid::uniform(level, &s.mesh(level, Element::Q1)),
+            &s.obstacle,
+            grading,
+        )
+    }
 
     /// The prediction's last grid holds at least the unknowns the paper's graded solves end on
     /// (levels 1 and 2, M1 and M3, two and three passes at the edges and over the zone), and
@@ -173,7 +162,7 @@ mod tests {
             ] {
                 let solved =
                     solve_graded(&s, (level, &uniform), &params, grading, &NewtonOptions::default()).unwrap();
-                let grids = predicted(&s, level, grading);
+                let grids = grids_of(&s, level, grading);
                 assert_eq!(grids.len() as u32, solved.grid.passes + 1, "{grading}");
                 let predicted = grids[grids.len() - 1].sizes(element, s.half_model).unknowns;
                 let actual = solved.grid.sizes(element, s.half_model).unknowns;
@@ -198,13 +187,14 @@ mod tests {
     fn a_zone_grading_of_level_8_is_refused_from_its_lines() {
         let s = Scenario::paper();
         let zone = Grading::Zone(8);
-        let (last, need) = estimate(&s, 8, Element::Q1, zone, |_| 0);
+        let grids = grids_of(&s, 8, zone);
+        let (last, need) = estimate(&grids, (Element::Q1, s.half_model), |_| 0);
         assert!(last.unknowns > 100_000_000, "{}", last.unknowns);
         let room = |bytes: u64| Limits {
             machine: Some(bytes),
             ..Limits::default()
         };
-        let e = fits_within(&s, (8, Element::Q1), zone, |_| 0, &room(need - 1)).unwrap_err();
+        let e = fits_within(&grids, (Element::Q1, s.half_model), zone, |_| 0, &room(need - 1)).unwrap_err();
         let text = e.to_string();
         assert!(
             text.contains("level 8 with q1 graded over the contact zone, 8 passes (8z): ")
@@ -213,12 +203,18 @@ mod tests {
         );
         assert!(e.is_input());
         assert_eq!(
-            fits_within(&s, (8, Element::Q1), zone, |_| 0, &room(need)),
+            fits_within(&grids, (Element::Q1, s.half_model), zone, |_| 0, &room(need)),
             Ok(())
         );
         let none = Grading::default();
         assert_eq!(
-            fits_within(&s, (8, Element::Q1), none, |_| u64::MAX, &room(0)),
+            fits_within(
+                &grids_of(&s, 8, none),
+                (Element::Q1, s.half_model),
+                none,
+                |_| u64::MAX,
+                &room(0)
+            ),
             Ok(())
         );
     }

@@ -1,33 +1,38 @@
-//! Meshes graded at the contact edges (docs/design.md §6): a uniform level's vertex
-//! lines with the intervals around each contact edge, and the rows of cells next to Γ_C,
-//! bisected once per pass; or over the whole contact zone ([`zone`]). Where the pressure has
-//! its square-root profile (the edges of the contact zone), a uniform mesh's error of p and p̄
-//! is set by the two cells that hold an edge; bisecting only there buys the accuracy of a much
-//! finer level for a few more unknowns, until (17) meets the band's changes of edge length
-//! ([`zone`] says why, and grades the whole zone instead).
+//! Grading: everything about a mesh graded at its contact edges or over its contact zone
+//! (docs/design.md §6), in one place. It owns the request's words (`N`, `Nz`, `auto`:
+//! [`Grading`], [`RefineEdges`], read and written as on the command line); the
+//! graded lines (a uniform level's vertex lines with the intervals around each contact edge,
+//! and the rows of cells next to Γ_C, bisected once per pass: [`GradedGrid`]); the zone
+//! ([`zone`]: the whole contact zone graded instead); the band (whether the contact edges still
+//! lie in a graded grid's finest band); the size of a graded request, predicted from its lines
+//! before any pass ([`estimate`]); and the passes of a graded solve ([`passes`]). Where the
+//! pressure has its square-root profile (the edges of the contact zone), a uniform mesh's
+//! error of p and p̄ is set by the two cells that hold an edge; bisecting only there buys the
+//! accuracy of a much finer level for a few more unknowns, until (17) meets the band's changes
+//! of edge length ([`zone`] says why, and grades the whole zone instead).
 //!
-//! The same lines serve the study's reference ([`crate::study::ReferenceMesh::refined`]) and a
-//! graded solve ([`crate::solve::solve()`] with a grading, whose passes are [`passes`]): grading
-//! is only a choice of lines, so a graded mesh is the mesh a scenario with those
-//! `x_lines`/`y_lines` gives at level 0, and its refined lines contain the uniform level's
-//! (nesting). A graded request's size is predicted before any pass ([`estimate`]). The
-//! request's words (`N`, `Nz`, `auto`: [`Grading`], [`RefineEdges`]) are re-exported from a
-//! module below the errors, the warnings and the scenario that name them.
+//! The same lines serve the study's reference and a graded solve: grading is only a choice of
+//! lines, so a graded mesh is the mesh a scenario with those `x_lines`/`y_lines` gives at level
+//! 0, and its refined lines contain the uniform level's (nesting). The folder sits above the
+//! contact methods and the discretisation, and below the scenario (which stores a grading and
+//! hands the estimate its uniform lines and its obstacle) and the solve entry (which hands the
+//! passes the uniform level's discretisation and its solve on one mesh); the errors and the
+//! warnings name no grading, only carry what they print of one.
 
 use crate::contact::ContactPoints;
 use crate::mesh::{Element, Mesh};
-use crate::scenario::Scenario;
 
 mod band;
 pub mod estimate;
 pub mod passes;
+mod request;
 pub mod zone;
 
 /// How many vertex intervals on each side of a contact edge one pass bisects (with the edge's
 /// own), and how many of Γ_C's neighbouring rows of cells.
 pub const EDGE_WIDTH: usize = 2;
 
-pub use crate::refine_edges::{AUTO_TOLERANCE, Grading, MAX_PASSES, RefineEdges, RefineEdgesError};
+pub use request::{AUTO_TOLERANCE, Grading, MAX_PASSES, RefineEdges, RefineEdgesError};
 
 /// A grid graded at the contact edges (or over the contact zone): a uniform level's vertex
 /// lines after `passes` passes.
@@ -44,14 +49,13 @@ pub struct GradedGrid {
 }
 
 impl GradedGrid {
-    /// The uniform grid of `level` (the lines of [`Scenario::mesh`]).
-    pub fn uniform(scenario: &Scenario, level: u32) -> Self {
-        let m = scenario.mesh(level, Element::Q1);
+    /// The uniform grid of `level`: `mesh`'s vertex lines, no pass yet.
+    pub fn uniform(level: u32, mesh: &Mesh) -> Self {
         GradedGrid {
             level,
             passes: 0,
-            xs: m.xs,
-            ys: m.ys,
+            xs: mesh.xs.clone(),
+            ys: mesh.ys.clone(),
         }
     }
 

@@ -3,9 +3,9 @@
 //! the contact zone: [`GradedGrid::zoned`]) and solve again, pass after pass. Each pass
 //! starts Newton from the last pass's pressure carried to the new points (forces = p(x)·w);
 //! the new grid has its own assembly, ordering and factor (nothing of the mesh's work carries
-//! over: its lines changed). Every method and element goes through the entry's solve on one
-//! mesh, given by the entry ([`crate::solve()`]), whose smoothing (17) uses the graded mesh's
-//! own weights.
+//! over: its lines changed), with the uniform level's material, integration and model. Every
+//! method and element goes through the entry's solve on one mesh, which the solve entry gives
+//! the passes, and whose smoothing (17) uses the graded mesh's own weights.
 
 use super::zone::contact_zones;
 use super::{AUTO_TOLERANCE, GradedGrid, Grading, MAX_PASSES, RefineEdges, contact_edges};
@@ -15,7 +15,6 @@ use crate::discretization::{Discretization, refused};
 use crate::error::{SolveError, Workload};
 use crate::fem::memory::Limits;
 use crate::mesh::Element;
-use crate::scenario::Scenario;
 use crate::warning::Warning;
 
 /// The entry's frictionless solve on one mesh from a warm start (the forces at the rule's
@@ -36,7 +35,7 @@ pub struct Pass {
 }
 
 /// A graded solve's grids: the final grid, its discretisation, and the passes (the solution is
-/// [`crate::solve::Solved`]'s).
+/// returned beside them).
 pub struct Grids {
     /// The final grid.
     pub grid: GradedGrid,
@@ -47,23 +46,31 @@ pub struct Grids {
 }
 
 /// Solve with `solve_on` (the entry's frictionless solve on one mesh, from the warm start it
-/// is given) on `uniform`, the discretisation of `scenario`'s `level` (from `warm`), then grade at the contact edges (or over the contact zone) as its grading asks
-/// ([`Grading::wants_pass`]), each pass warm-started from the last. The grading stops early when the pressure has no contact
-/// edge (zone), or a pass does not converge (its solution is the result, not converged). A
-/// grid that does not fit the memory is refused before it is built. The uniform level's mesh
+/// is given) on `uniform`, the discretisation of a uniform `level` (from `warm`), then grade at
+/// the contact edges (or over the contact zone) as `refine` asks ([`Grading::wants_pass`]),
+/// each pass discretised as `uniform` is (its material, integration and model) and
+/// warm-started from the last. The grading stops early when the pressure has no contact edge
+/// (zone), or a pass does not converge (its solution is the result, not converged). A grid
+/// that does not fit the memory is refused before it is built. The uniform level's mesh
 /// work is the caller's to charge ([`Timing`] of the result: every pass's solve and every
 /// graded mesh's work).
 pub(crate) fn solve_graded(
-    uniform: &Discretization,
-    scenario: &Scenario,
-    level: u32,
+    (level, uniform): (u32, &Discretization),
     refine: Grading,
     rule: Rule,
     warm: Option<&[f64]>,
     solve_on: &mut SolveOn<'_>,
 ) -> Result<(Solution, Grids), SolveError> {
     let element = uniform.mesh.element;
-    let base = GradedGrid::uniform(scenario, level);
+    let half_model = uniform.mesh.symmetric_left;
+    let discretize = |grid: &GradedGrid| {
+        Discretization::new(
+            grid.mesh(element, half_model),
+            uniform.material,
+            uniform.integration,
+        )
+    };
+    let base = GradedGrid::uniform(level, &uniform.mesh);
     let mut grid = base.clone();
     let mut graded: Option<Discretization> = None;
     let mut sol = solve_on(uniform, warm)?;
@@ -85,12 +92,8 @@ pub(crate) fn solve_graded(
         let Some(next) = next else {
             break;
         };
-        fits(scenario, &next, element, refine)?;
-        let d = Discretization::new(
-            next.mesh(element, scenario.half_model),
-            scenario.material,
-            scenario.integration,
-        )?;
+        fits(&next, (element, half_model), refine)?;
+        let d = discretize(&next)?;
         let points = ContactPoints::on(&d, rule);
         let initial = carried(&sol.points, &sol.p, &points);
         let mut s = solve_on(&d, Some(&initial))?;
@@ -126,11 +129,7 @@ pub(crate) fn solve_graded(
         graded = match b.grid.passes {
             0 => None,
             _ => {
-                let d = Discretization::new(
-                    b.grid.mesh(element, scenario.half_model),
-                    scenario.material,
-                    scenario.integration,
-                )?;
+                let d = discretize(&b.grid)?;
                 spent.add(&Timing::mesh_work(&d));
                 Some(d)
             }
@@ -148,6 +147,7 @@ pub(crate) fn solve_graded(
             Warning::GradingCap {
                 passes: MAX_PASSES,
                 change: smallest,
+                tolerance: AUTO_TOLERANCE,
                 kept: grid.passes,
             },
         );
@@ -191,17 +191,16 @@ fn stopped_falling(passes: &[Pass]) -> bool {
 /// this process may use beside what it holds (the up-front estimate, [`super::estimate`],
 /// predicted the passes; this is the pass the solve found).
 fn fits(
-    scenario: &Scenario,
     grid: &GradedGrid,
-    element: Element,
+    (element, half_model): (Element, bool),
     grading: Grading,
 ) -> Result<(), SolveError> {
-    let sizes = grid.sizes(element, scenario.half_model);
+    let sizes = grid.sizes(element, half_model);
     sizes.check(&Limits::of_process()).map_err(|e| {
         let workload = Workload::Graded {
             level: grid.level,
             element,
-            grading,
+            grading: grading.described(),
         };
         refused(e, workload, sizes.unknowns)
     })

@@ -14,7 +14,7 @@ use super::schema::{Model, RawBody, RawFriction, RawScenario};
 use crate::contact::friction::{DEFAULT_STEPS, Friction, Law, MAX_STEPS, Press};
 use crate::contact::{Method, Obstacle};
 use crate::error::FrictionError;
-use crate::refine_edges::Grading;
+use crate::grading::Grading;
 use crate::text::num;
 
 impl Locator<'_> {

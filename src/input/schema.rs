@@ -8,9 +8,9 @@ use crate::contact::Rule;
 use crate::contact::method::Gamma0;
 use crate::error::MethodError;
 use crate::fem::Integration;
+use crate::grading::{Grading, RefineEdges, RefineEdgesError};
 use crate::material::Plane;
 use crate::mesh::Element;
-use crate::refine_edges::{Grading, RefineEdges, RefineEdgesError};
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -160,7 +160,7 @@ pub(crate) enum RawRefineEdges {
 }
 
 impl RawRefineEdges {
-    /// The grading written (0 to [`crate::refine_edges::MAX_PASSES`], `auto`, or `Nz`).
+    /// The grading written (0 to [`crate::grading::MAX_PASSES`], `auto`, or `Nz`).
     pub(crate) fn parse(&self) -> Result<Grading, RefineEdgesError> {
         match self {
             RawRefineEdges::Count(n) => RefineEdges::of_count(*n).map(Grading::Edges),
@@ -178,7 +178,7 @@ impl<'de> Deserialize<'de> for RawRefineEdges {
                 write!(
                     f,
                     "a number of passes 0 to {} or `\"auto\"` or `\"1z\"` to `\"{0}z\"`",
-                    crate::refine_edges::MAX_PASSES
+                    crate::grading::MAX_PASSES
                 )
             }
             fn visit_i64<E>(self, v: i64) -> Result<RawRefineEdges, E> {

@@ -12,8 +12,8 @@ use crate::check::{self, CheckError};
 use crate::contact::gap::Bump;
 use crate::contact::{Method, Obstacle};
 use crate::fem::Integration;
+use crate::grading::Grading;
 use crate::material::Material;
-use crate::refine_edges::Grading;
 use crate::scenario::Scenario;
 use crate::text::{num, sanitize, sanitize_lines};
 
@@ -166,7 +166,7 @@ fn integer_range(key: &str) -> Option<(i64, i64)> {
     match key {
         "mesh.level" => Some((0, i64::from(crate::mesh::MAX_LEVEL))),
         "mesh.nx" | "mesh.ny" => Some((1, check::MAX_CELLS_0)),
-        "mesh.refine_edges" => Some((0, i64::from(crate::refine_edges::MAX_PASSES))),
+        "mesh.refine_edges" => Some((0, i64::from(crate::grading::MAX_PASSES))),
         "friction.steps" => Some((1, crate::contact::friction::MAX_STEPS as i64)),
         _ => None,
     }

@@ -2,17 +2,19 @@
 //! the default. A scenario is read from its TOML file by the library's reader
 //! ([`Scenario::load`], [`Scenario::parse`], [`Scenario::paper`]) and discretised at a level
 //! ([`Scenario::discretize`], [`discretize`]: the memory it needs checked before anything is
-//! built).
+//! built); a graded request on it is sized from its lines the same way
+//! ([`Scenario::graded_fits`], [`crate::grading::estimate`]).
 
 use crate::contact::friction::Friction;
 use crate::contact::interface::solve::Slave;
 use crate::contact::{Method, Obstacle, Rule};
 use crate::fem::{DofMap, Integration, Support};
+use crate::grading::{Grading, RefineEdges};
 use crate::material::Material;
 use crate::mesh::{self, Element, Mesh};
-use crate::refine_edges::{Grading, RefineEdges};
 
 pub mod discretize;
+mod graded;
 pub mod upper;
 
 /// The paper's problem, half model: `scenarios/hertz-paper.toml`.

@@ -122,7 +122,7 @@ fn the_lines_nest_and_the_final_edges_lie_in_the_band() {
     {
         let p = params(&s, s.rule, Method::Penalty, s.epsilon);
         let (g, uniform) = graded(&s, level, s.element, &p, refine);
-        let lines = GradedGrid::uniform(&s, level);
+        let lines = s.uniform_grid(level);
         assert!(lines.xs.iter().all(|x| g.grid.xs.contains(x)), "{}", s.name);
         assert!(lines.ys.iter().all(|y| g.grid.ys.contains(y)), "{}", s.name);
         assert_eq!(g.grid.h_min(), lines.h_min() / 8.0, "{}", s.name);

@@ -105,8 +105,9 @@ impl<'a> Warm<'a> {
     }
 }
 
-/// A grading asked of a scenario's uniform level: its lines, material and obstacle are the
-/// scenario's, the first pass's discretisation is the one given to [`solve`].
+/// A grading asked of a scenario's uniform level: its size is predicted from the scenario's
+/// lines and obstacle ([`Scenario::graded_fits`]), its passes grade the discretisation given to
+/// [`solve`] (its material, integration and model).
 #[derive(Clone, Copy, Debug)]
 pub struct Graded<'a> {
     /// The scenario.
@@ -178,7 +179,8 @@ pub fn solve(
         return Ok(Solved { sol, graded: None });
     };
     if request.friction.is_on() {
-        return Err(InputFault::FrictionGraded { grading: g.grading }.into());
+        let grading = g.grading.to_string();
+        return Err(InputFault::FrictionGraded { grading }.into());
     }
     let (sol, graded) = graded_passes(disc, g, request, opts, on_iteration)?;
     Ok(Solved {
@@ -188,7 +190,7 @@ pub fn solve(
 }
 
 /// The passes of `g` from `disc`, refused before the first when the grading's memory
-/// estimate does not fit ([`crate::grading::estimate::fits`]).
+/// estimate does not fit ([`Scenario::graded_fits`]).
 fn graded_passes(
     disc: &Discretization,
     g: Graded<'_>,
@@ -196,12 +198,11 @@ fn graded_passes(
     opts: &NewtonOptions,
     on_iteration: &mut dyn FnMut(&Iteration) -> ControlFlow<()>,
 ) -> Result<(Solution, Grids), SolveError> {
-    crate::grading::estimate::fits(g.scenario, g.level, disc.mesh.element, g.grading, |_| 0)?;
+    g.scenario
+        .graded_fits(g.level, disc.mesh.element, g.grading, |_| 0)?;
     let params = &request.params;
     crate::grading::passes::solve_graded(
-        disc,
-        g.scenario,
-        g.level,
+        (g.level, disc),
         g.grading,
         params.rule,
         request.warm.forces(),
@@ -496,7 +497,9 @@ mod tests {
         let grading = Grading::Edges(RefineEdges::Passes(2));
         let graded = request.clone().with_grading(&scenario, 1, grading);
         match solve(&disc, &graded, &opts, go_on) {
-            Err(SolveError::Input(InputFault::FrictionGraded { grading: g })) => assert_eq!(g, grading),
+            Err(SolveError::Input(InputFault::FrictionGraded { grading: g })) => {
+                assert_eq!(g, grading.to_string())
+            }
             Err(e) => panic!("{e}"),
             Ok(_) => panic!("friction on a graded mesh solved"),
         }

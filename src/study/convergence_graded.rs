@@ -5,8 +5,8 @@
 use super::{Reference, StudyRow, graded, strip, with_rates};
 use crate::contact::{Method, Rule};
 use crate::error::{InputFault, SolveError};
+use crate::grading::Grading;
 use crate::mesh::Element;
-use crate::refine_edges::Grading;
 use crate::scenario::Scenario;
 
 /// Every scheme at every level, each solve graded as `refine` asks (fresh solves with
@@ -54,7 +54,7 @@ pub fn convergence_graded(
 mod tests {
     use super::*;
     use crate::contact::friction::{Friction, Law, Press};
-    use crate::refine_edges::RefineEdges;
+    use crate::grading::RefineEdges;
     use crate::study::{ReferenceFields, ReferenceMesh, Status, uniform_reference};
 
     /// With the scenario's friction on, every graded row says that grading does not take it

@@ -10,7 +10,7 @@ use crate::contact::solution::Solution;
 use crate::contact::{Method, Rule};
 use crate::discretization::Discretization;
 use crate::error::SolveError;
-use crate::grading::{GradedGrid, Grading};
+use crate::grading::Grading;
 use crate::mesh::Element;
 use crate::scenario::Scenario;
 use crate::scheme::Scheme;
@@ -141,7 +141,7 @@ impl StudyRow {
             method: method.into(),
             n_dofs: scenario.n_dofs(level, element),
             refine_edges: 0,
-            h_min: GradedGrid::uniform(scenario, level).h_min(),
+            h_min: scenario.uniform_grid(level).h_min(),
             grading: Grading::default(),
             status: Status::Ok,
             reason: None,

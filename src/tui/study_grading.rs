@@ -3,7 +3,7 @@
 //! contact edges or over the contact zone ([`crate::grading`]), the two series drawn side by
 //! side.
 
-use crate::refine_edges::{Grading, RefineEdges};
+use crate::grading::{Grading, RefineEdges};
 
 use super::protocol::StudyKey;
 

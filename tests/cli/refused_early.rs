@@ -9,7 +9,6 @@ use riplab::mesh::Element;
 use riplab::scenario::Scenario;
 
 use riplab::grading::Grading;
-use riplab::grading::estimate::estimate;
 
 use crate::common::{no_panic, riplab_under, riplab_under_half_of, scratch_file};
 
@@ -140,7 +139,7 @@ fn a_method_that_takes_no_friction_is_refused_before_any_assembly() {
 fn a_study_whose_graded_rows_cannot_fit_is_refused_before_any_assembly() {
     let paper = Scenario::paper();
     let memory = ["GiB", "available", "choose fewer passes or a coarser level"];
-    let (_, need) = estimate(&paper, 3, Element::Q1, Grading::Zone(8), |_| 0);
+    let (_, need) = paper.graded_estimate(3, Element::Q1, Grading::Zone(8), |_| 0);
     let out = riplab_under(
         need / 2,
         &[
@@ -166,7 +165,7 @@ fn a_study_whose_graded_rows_cannot_fit_is_refused_before_any_assembly() {
     });
     assert!(named && !stderr.contains("the reference"), "{stderr}");
     let edges = Grading::parse("8").unwrap();
-    let (_, need) = estimate(&paper, 7, Element::Q2, edges, |_| 0);
+    let (_, need) = paper.graded_estimate(7, Element::Q2, edges, |_| 0);
     let out = riplab_under(
         need / 2,
         &[

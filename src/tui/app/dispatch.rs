@@ -4,8 +4,8 @@
 use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 
 use crate::contact::Rule;
+use crate::grading::{Grading, RefineEdges};
 use crate::mesh::Element;
-use crate::refine_edges::{Grading, RefineEdges};
 use crate::scheme::Scheme;
 use crate::stress::Quantity;
 

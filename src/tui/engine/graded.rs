@@ -21,7 +21,6 @@ use crate::discretization::Discretization;
 use crate::error::SolveError;
 use crate::fem::Integration;
 use crate::fem::memory::Limits;
-use crate::grading::estimate::fits_within;
 use crate::grading::{GradedGrid, Grading};
 use crate::mesh::Element;
 use crate::solve::{self, Request};
@@ -166,13 +165,7 @@ impl Engine {
         let mut scenario = self.scenario.clone();
         scenario.obstacle = scenario.obstacle.with_depth(key.depth);
         let limits = self.limits.clone().unwrap_or_else(Limits::of_process);
-        fits_within(
-            &scenario,
-            (key.level, key.element),
-            key.refine_edges,
-            |_| 0,
-            &limits,
-        )
+        scenario.graded_fits_within((key.level, key.element), key.refine_edges, |_| 0, &limits)
     }
 
     /// Solve `req` on `uniform` graded as its key asks, started at `t`: the library's entry ([`solve::solve`]) from

@@ -3,7 +3,7 @@
 use std::sync::{Arc, Mutex, PoisonError};
 use std::time::Instant;
 
-use crate::refine_edges::{Grading, RefineEdges};
+use crate::grading::{Grading, RefineEdges};
 use crate::scenario::Scenario;
 use crate::scheme::Scheme;
 use crate::study::{StudyRow, convergence_graded};

@@ -118,12 +118,11 @@ fn a_graded_mesh_reads_as_lines_not_blocks() {
 #[test]
 fn e_onto_a_grading_beyond_the_memory_is_refused_before_its_assembly() {
     use riplab::fem::memory::Limits;
-    use riplab::grading::estimate::estimate;
     let mut app = settled(1, Scene::Explore);
     let mut engine = Engine::new(Scenario::paper());
     let (element, s) = (app.settings.element, Scenario::paper());
-    let (_, one) = estimate(&s, 1, element, RefineEdges::Passes(1).into(), |_| 0);
-    let (last, two) = estimate(&s, 1, element, RefineEdges::Passes(2).into(), |_| 0);
+    let (_, one) = s.graded_estimate(1, element, RefineEdges::Passes(1).into(), |_| 0);
+    let (last, two) = s.graded_estimate(1, element, RefineEdges::Passes(2).into(), |_| 0);
     assert!(one < two, "{one} {two}");
     engine.limits = Some(Limits {
         machine: Some(two - 1),

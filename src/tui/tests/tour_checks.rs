@@ -11,7 +11,7 @@ use std::sync::Arc;
 
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 
-use riplab::refine_edges::{Grading, RefineEdges};
+use riplab::grading::{Grading, RefineEdges};
 use riplab::scenario::Scenario;
 use riplab::tui::app::{App, Msg};
 use riplab::tui::tour::Tour;

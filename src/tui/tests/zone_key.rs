@@ -177,7 +177,6 @@ fn friction_with_zone_grading_is_refused() {
 #[test]
 fn e_onto_a_zone_grading_beyond_the_memory_is_refused_before_its_assembly() {
     use riplab::fem::memory::Limits;
-    use riplab::grading::estimate::estimate;
     let mut scenario = Scenario::paper();
     scenario.set_grading(Grading::Zone(1));
     let mut engine = Engine::new(scenario.clone());
@@ -189,7 +188,7 @@ fn e_onto_a_zone_grading_beyond_the_memory_is_refused_before_its_assembly() {
         app.current().and_then(|c| c.regrade),
         Some(Regrade::Graded { passes: 1 })
     );
-    let (_, need) = estimate(&scenario, 2, app.settings.element, Grading::Zone(2), |_| 0);
+    let (_, need) = scenario.graded_estimate(2, app.settings.element, Grading::Zone(2), |_| 0);
     engine.limits = Some(Limits {
         machine: Some(need - 1),
         ..Limits::default()

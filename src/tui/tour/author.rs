@@ -14,8 +14,8 @@ use std::path::{Path, PathBuf};
 
 use crate::contact::method::Gamma0;
 use crate::fem::Integration;
+use crate::grading::{Grading, RefineEdges};
 use crate::input::read::MAX_FILE_BYTES;
-use crate::refine_edges::{Grading, RefineEdges};
 use crate::scheme::Scheme;
 use crate::stress::Quantity;
 

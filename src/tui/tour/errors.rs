@@ -5,10 +5,10 @@
 use std::path::PathBuf;
 
 use crate::check::CheckError;
+use crate::grading::Grading;
 use crate::input::ScenarioError;
 use crate::input::read::MAX_FILE_BYTES;
 use crate::plot::PlotError;
-use crate::refine_edges::Grading;
 use crate::text::num;
 
 use super::super::errors::SizeError;

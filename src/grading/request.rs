@@ -1,6 +1,6 @@
-//! How a solve grades its mesh: the value of `--refine-edges N|Nz|auto` and of a
-//! scenario's `[mesh] refine_edges`, at the contact edges ([`RefineEdges`]) or over the contact
-//! zone ([`Grading::Zone`]), the grading itself being [`crate::grading`]'s.
+//! The grading request's words: how a solve grades its mesh, the value of `--refine-edges
+//! N|Nz|auto` and of a scenario's `[mesh] refine_edges`, at the contact edges ([`RefineEdges`])
+//! or over the contact zone ([`Grading::Zone`]), read and written as on the command line.
 
 use std::fmt;
 
@@ -96,7 +96,7 @@ impl fmt::Display for RefineEdges {
 }
 
 /// How a solve grades its mesh: at the contact edges (`N`, `Ne`, `auto`: [`RefineEdges`]) or
-/// over the whole contact zone (`Nz`: [`crate::grading::zone`]). Written as on the command
+/// over the whole contact zone (`Nz`: [`super::zone`]). Written as on the command
 /// line (`3`, `auto`, `3z`), and so in JSON and CSV.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[non_exhaustive]
