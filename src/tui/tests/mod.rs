@@ -53,6 +53,24 @@ pub fn settled(level: u32, scene: riplab::tui::app::Scene) -> riplab::tui::app::
     app
 }
 
+/// The sizes the embedded tour's walks read: the smallest terminal the lab takes and the
+/// projector's.
+pub const PAPER_SIZES: [(u16, u16); 2] = [(80, 24), (100, 30)];
+
+/// The embedded tour's frames at [`PAPER_SIZES`], step by step: each step solved once for
+/// both sizes (`render_step_at`) and the frames kept for every walk that reads them
+/// (`tour::every_step_runs_at_80x24`, `tour::every_step_of_the_paper_tour_100x30`,
+/// `tour_numbers`), which solved every step anew each.
+pub fn paper_frames() -> &'static [Vec<String>] {
+    static FRAMES: std::sync::OnceLock<Vec<Vec<String>>> = std::sync::OnceLock::new();
+    FRAMES.get_or_init(|| {
+        let tour = riplab::tui::tour::Tour::paper();
+        (0..tour.steps.len())
+            .map(|i| riplab::tui::tour::render_step_at(&tour, i, &PAPER_SIZES).unwrap())
+            .collect()
+    })
+}
+
 /// Every study row's solve time replaced by a steady one (proportional to its unknowns and
 /// passes, M1–M4 a few per cent apart, as measured), so that a work–precision frame is the
 /// same on every machine: the tests that use it claim something of the drawing (every mark

@@ -10,7 +10,7 @@ use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use riplab::tui::app::{Command, Compare, Msg, Scene};
 use riplab::tui::engine::Engine;
 use riplab::tui::settle::{carry_out, settle};
-use riplab::tui::tour::{Tour, TourApp, TourMsg, auto_interval, render_step};
+use riplab::tui::tour::{Tour, TourApp, TourMsg, auto_interval};
 
 fn key(code: KeyCode) -> TourMsg {
     TourMsg::Lab(Msg::Key(KeyEvent::new(code, KeyModifiers::NONE)))
@@ -69,7 +69,14 @@ fn every_tour_loads_and_every_step_solves() {
         unsourced(&tours[0]),
         "the embedded tour is tours/paper.toml"
     );
+    // A tour whose steps are one already solved (tours/paper.toml's, the embedded tour's) is
+    // not solved again.
+    let mut solved = Vec::new();
     for tour in &tours {
+        if solved.contains(&unsourced(tour)) {
+            continue;
+        }
+        solved.push(unsourced(tour));
         for (i, step) in tour.steps.iter().enumerate() {
             let what = format!("{}: step {} `{}`", tour.source, i + 1, step.title);
             if let Some(mut bodies) = tour.bodies(i) {
@@ -133,7 +140,7 @@ fn the_paper_tour_tells_the_story_in_order() {
 fn every_step_of_the_paper_tour_100x30() {
     let tour = Tour::paper();
     for i in 0..tour.steps.len() {
-        let text = render_step(&tour, i, 100, 30).unwrap();
+        let text = &super::paper_frames()[i][1];
         assert!(text.contains(&format!("tour {}/{}", i + 1, tour.steps.len())));
         let first = tour.steps[i].caption.lines().next().unwrap();
         assert!(
@@ -421,7 +428,7 @@ fn every_step_runs_at_80x24() {
     let tour = Tour::paper();
     let words = |text: &str| text.split_whitespace().collect::<Vec<_>>().join(" ");
     for i in 0..tour.steps.len() {
-        let text = render_step(&tour, i, 80, 24).unwrap();
+        let text = &super::paper_frames()[i][0];
         assert!(!text.contains("bigger terminal"), "step {}:\n{text}", i + 1);
         assert!(text.contains(&format!("tour {}/{}", i + 1, tour.steps.len())));
         // Columns: combining marks (the bar of p̄) take none.
@@ -435,7 +442,7 @@ fn every_step_runs_at_80x24() {
         // The whole caption, its words in order, at the bottom of the frame.
         let caption = words(&tour.steps[i].caption);
         assert!(
-            words(&text).ends_with(&caption),
+            words(text).ends_with(&caption),
             "step {} caption `{caption}`:\n{text}",
             i + 1
         );

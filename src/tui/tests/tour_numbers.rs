@@ -4,7 +4,9 @@
 //! frame, above the caption panel, to the digits it is quoted with: "479" is met by a shown
 //! "478.75", "2.9e-2" by "0.0293".
 
-use riplab::tui::tour::{Tour, render_step_at};
+use riplab::tui::tour::Tour;
+
+use super::{PAPER_SIZES, paper_frames};
 
 /// A number as written: its value and half a unit of its last digit.
 #[derive(Debug)]
@@ -109,11 +111,9 @@ fn the_matching_reads_numbers_as_written() {
 fn every_step_shows_the_numbers_its_caption_quotes() {
     let tour = Tour::paper();
     let mut failures = Vec::new();
-    let sizes = [(80, 24), (100, 30)];
     for (i, step) in tour.steps.iter().enumerate() {
-        let frames = render_step_at(&tour, i, &sizes).unwrap();
-        for (&(width, height), frame) in sizes.iter().zip(frames) {
-            let absent = missing(&step.caption, &frame);
+        for (&(width, height), frame) in PAPER_SIZES.iter().zip(&paper_frames()[i]) {
+            let absent = missing(&step.caption, frame);
             if !absent.is_empty() {
                 failures.push(format!(
                     "step {} at {width}×{height} does not show {absent:?}:\n{frame}",

@@ -218,14 +218,17 @@ pub fn render_step(tour: &Tour, index: usize, width: u16, height: u16) -> Result
     render_step_at(tour, index, &[(width, height)]).map(|mut frames| frames.remove(0))
 }
 
-/// [`render_step`] at each of `sizes`, the step solved once (one engine for its sizes).
+/// [`render_step`] at each of `sizes`: the step solved once and drawn at each size.
 #[cfg(test)]
 pub fn render_step_at(tour: &Tour, index: usize, sizes: &[(u16, u16)]) -> Result<Vec<String>, StepError> {
-    let mut engine = Engine::new(tour.scenario_of(index).clone());
-    sizes
+    for &(width, height) in sizes {
+        check_size(width, height)?;
+    }
+    let player = settled_step(tour, index, &mut Engine::new(tour.scenario_of(index).clone()))?;
+    Ok(sizes
         .iter()
-        .map(|&(width, height)| step_frame(tour, index, width, height, &mut engine).map(|(text, _)| text))
-        .collect()
+        .map(|&(width, height)| step_text(&player, width, height))
+        .collect())
 }
 
 /// [`render_step`] computed with `engine` (on the step's scenario, so that steps share its
@@ -238,13 +241,20 @@ pub(crate) fn step_frame(
     height: u16,
     engine: &mut Engine,
 ) -> Result<(String, App), StepError> {
+    check_size(width, height)?;
+    let player = settled_step(tour, index, engine)?;
+    Ok((step_text(&player, width, height), player.app))
+}
+
+/// The tour on step `index`, its lab's commands carried out with `engine` and a two-body
+/// step's scene solved, timings hidden.
+fn settled_step(tour: &Tour, index: usize, engine: &mut Engine) -> Result<TourApp, StepError> {
     if index >= tour.steps.len() {
         return Err(StepError::NoSuchStep {
             step: index + 1,
             steps: tour.steps.len(),
         });
     }
-    check_size(width, height)?;
     let mut player = TourApp::new(tour.clone(), None);
     player.show_timing = false;
     player.app.show_timing = false;
@@ -255,10 +265,14 @@ pub(crate) fn step_frame(
         let result = BodiesCache::new(bodies.scenario.clone()).solve(&settings, &|| false);
         bodies.reply(generation, result);
     }
+    Ok(player)
+}
+
+/// `player` drawn on a `width`×`height` test terminal as plain text.
+fn step_text(player: &TourApp, width: u16, height: u16) -> String {
     let look = Look {
         theme: Theme { color: true },
         marker: Marker::Braille,
     };
-    let text = render_frame(width, height, |frame| view(&player, frame, &look));
-    Ok((text, player.app))
+    render_frame(width, height, |frame| view(player, frame, &look))
 }
