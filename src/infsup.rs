@@ -14,7 +14,9 @@
 //! Across the interface of two bodies (docs/design.md §12) the same constants of each
 //! multiplier space: [`interface`] on one level, [`interface_table`] over the levels.
 
+#[doc(hidden)]
 pub mod interface;
+#[doc(hidden)]
 pub mod interface_table;
 #[cfg(test)]
 mod interface_tests;

@@ -24,6 +24,7 @@ mod convergence_graded;
 mod errors;
 mod graded;
 mod grid;
+#[doc(hidden)]
 pub mod interface;
 mod meaning;
 pub mod penalty_error;

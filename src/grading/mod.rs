@@ -23,9 +23,12 @@ use crate::contact::ContactPoints;
 use crate::mesh::{Element, Mesh};
 
 mod band;
+#[doc(hidden)]
 pub mod estimate;
+#[doc(hidden)]
 pub mod passes;
 mod request;
+#[doc(hidden)]
 pub mod zone;
 
 /// How many vertex intervals on each side of a contact edge one pass bisects (with the edge's

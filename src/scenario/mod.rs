@@ -15,6 +15,7 @@ use crate::mesh::{self, Element, Mesh};
 
 pub mod discretize;
 mod graded;
+#[doc(hidden)]
 pub mod upper;
 
 /// The paper's problem, half model: `scenarios/hertz-paper.toml`.

@@ -10,11 +10,13 @@ mod error;
 mod mortar;
 mod multipliers;
 mod nts;
+#[doc(hidden)]
 pub mod pressed;
 #[cfg(test)]
 mod props;
 mod rip;
 mod segments;
+#[doc(hidden)]
 pub mod solve;
 #[cfg(test)]
 mod tests;
