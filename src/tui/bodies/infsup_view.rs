@@ -17,7 +17,8 @@ use ratatui::widgets::{Block, Paragraph};
 use super::super::theme::Theme;
 use super::super::view::Look;
 use super::super::view::fmt::{sig, table_row};
-use super::super::view::plot::{Axis, Plot, Scale, Series, Stroke};
+use super::super::view::infsup_chart::beta_plot;
+use super::super::view::plot::{Series, Stroke};
 use super::BodiesApp;
 use super::infsup::{EstimateKey, LevelEstimate, shown_levels};
 use crate::contact::interface::solve::BodiesError;
@@ -234,24 +235,7 @@ fn chart(
             }
         })
         .collect();
-    Plot {
-        title,
-        x: Axis {
-            title: "h".into(),
-            bounds: xb,
-            scale: Scale::Log10,
-        },
-        y: Axis {
-            title: "β_h/√h".into(),
-            bounds: yb,
-            scale: Scale::Log10,
-        },
-        overlays: Vec::new(),
-        series,
-        marker: look.marker,
-        theme: look.theme,
-    }
-    .render(frame, area);
+    beta_plot(title, [xb, yb], series, look).render(frame, area);
 }
 
 /// The table: a row per level shown (h, the slave's widest edge on the interface, and β_h of

@@ -138,9 +138,20 @@ fn chart(app: &App, frame: &mut Frame, area: Rect, look: &Look, all: &[Series], 
             data: pts,
         })
         .collect();
+    beta_plot(" β_h/√h against h ".into(), [xb, yb], series, look).render(frame, area);
+}
+
+/// The chart both inf-sup views draw (one body's and two bodies'): `series` of β_h/√h
+/// against h on log-log axes over `bounds` (x, then y; log10 values), titled `title`.
+pub(in crate::tui) fn beta_plot<'a>(
+    title: String,
+    [xb, yb]: [[f64; 2]; 2],
+    series: Vec<plot::Series<'a>>,
+    look: &Look,
+) -> Plot<'a> {
     Plot {
         overlays: Vec::new(),
-        title: " β_h/√h against h ".into(),
+        title,
         x: Axis {
             title: "h".into(),
             bounds: xb,
@@ -155,7 +166,6 @@ fn chart(app: &App, frame: &mut Frame, area: Rect, look: &Look, all: &[Series], 
         marker: look.marker,
         theme: look.theme,
     }
-    .render(frame, area);
 }
 
 /// The chart's curves in values (h, β/√h) for the tour's handout ([`crate::plot::LogCurve`]):
