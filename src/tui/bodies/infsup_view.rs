@@ -17,7 +17,7 @@ use ratatui::widgets::{Block, Paragraph};
 use super::super::theme::Theme;
 use super::super::view::Look;
 use super::super::view::fmt::{sig, table_row};
-use super::super::view::infsup_chart::beta_plot;
+use super::super::view::infsup_chart::{beta_plot, table_block};
 use super::super::view::plot::{Series, Stroke};
 use super::BodiesApp;
 use super::infsup::{EstimateKey, LevelEstimate, shown_levels};
@@ -317,22 +317,8 @@ fn table(
         (None, None) => "h: the slave's widest edge · slope: β_h ∝ h^slope, the finest two levels".into(),
     };
     lines.push(Line::styled(format!(" {foot}"), theme.faint()));
-    let paragraph = Paragraph::new(lines);
-    if !bordered {
-        frame.render_widget(paragraph, area);
-        return;
-    }
-    frame.render_widget(
-        paragraph.block(
-            Block::bordered()
-                .title(Span::styled(
-                    format!(" β_h per multiplier space{} ", hidden(&levels, shown)),
-                    theme.title(),
-                ))
-                .border_style(theme.axis()),
-        ),
-        area,
-    );
+    let title = format!(" β_h per multiplier space{} ", hidden(&levels, shown));
+    table_block(frame, area, lines, bordered.then_some(title), theme);
 }
 
 /// The levels of `levels` (ascending from 0) that fit in `rows`: all, else the `rows` finest up

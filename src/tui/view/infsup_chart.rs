@@ -254,20 +254,26 @@ fn table(app: &App, frame: &mut Frame, area: Rect, theme: Theme, all: &[Series],
         },
         theme.faint(),
     ));
+    let title = format!(" β_h/√h (raw) and β̄_h/√h (M1 p̄){} ", hidden_rows(levels, shown));
+    table_block(frame, area, lines, bordered.then_some(title), theme);
+}
+
+/// The table of an inf-sup view (one body's or two bodies'): `lines` in `area`, in a block
+/// with `title` when there is one (else bare, where rows are short).
+pub(in crate::tui) fn table_block(
+    frame: &mut Frame,
+    area: Rect,
+    lines: Vec<Line<'_>>,
+    title: Option<String>,
+    theme: Theme,
+) {
     let paragraph = Paragraph::new(lines);
-    if !bordered {
+    let Some(title) = title else {
         frame.render_widget(paragraph, area);
         return;
-    }
-    frame.render_widget(
-        paragraph.block(
-            Block::bordered()
-                .title(Span::styled(
-                    format!(" β_h/√h (raw) and β̄_h/√h (M1 p̄){} ", hidden_rows(levels, shown)),
-                    theme.title(),
-                ))
-                .border_style(theme.axis()),
-        ),
-        area,
-    );
+    };
+    let block = Block::bordered()
+        .title(Span::styled(title, theme.title()))
+        .border_style(theme.axis());
+    frame.render_widget(paragraph.block(block), area);
 }
