@@ -4,6 +4,10 @@
 //! RLIMIT_AS, less what the process already maps) and the control group's limit (cgroup v2
 //! `memory.max` or v1 `memory.limit_in_bytes`, less its usage, at every level of the
 //! hierarchy), whichever is smallest (Linux; elsewhere nothing is known and nothing refused).
+//! The address-space limit also keeps what the dense product kernel reserves on each thread
+//! that may multiply (`fem/memory/kernel.rs`).
+
+pub(super) mod kernel;
 
 use std::path::Path;
 
@@ -94,7 +98,8 @@ impl Sizes {
 pub struct Limits {
     /// `MemAvailable` of /proc/meminfo.
     pub machine: Option<u64>,
-    /// The soft RLIMIT_AS less the address space already mapped (VmSize).
+    /// The soft RLIMIT_AS less the address space already mapped (VmSize) and the dense
+    /// product kernel's buffers of the threads that may multiply (`fem/memory/kernel.rs`).
     pub address_space: Option<u64>,
     /// The tightest control group limit less that group's usage.
     pub cgroup: Option<u64>,
@@ -107,10 +112,13 @@ impl Limits {
         let address_space = read("/proc/self/limits")
             .and_then(|t| parse_rlimit_as(&t))
             .map(|limit| {
-                let used = read("/proc/self/status")
-                    .and_then(|t| parse_vm_size(&t))
-                    .unwrap_or(0);
-                limit.saturating_sub(used)
+                let mapped = || {
+                    read("/proc/self/status")
+                        .and_then(|t| parse_vm_size(&t))
+                        .unwrap_or(0)
+                };
+                let to_come = kernel::to_map(|| limit.saturating_sub(mapped()));
+                limit.saturating_sub(mapped()).saturating_sub(to_come)
             });
         let cgroup = read("/proc/self/cgroup").and_then(|t| {
             let mut headroom = None;

@@ -7,6 +7,7 @@ pub mod condense;
 pub mod dofs;
 pub mod error;
 pub mod factor;
+mod gather;
 pub mod memory;
 pub mod ordering;
 mod partial;
@@ -84,7 +85,10 @@ pub(crate) fn join<A: Send, B: Send>(a: impl FnOnce() -> A + Send, b: impl FnOnc
         return (a(), b());
     }
     std::thread::scope(|scope| {
-        let second = scope.spawn(b);
+        let second = scope.spawn(|| {
+            memory::kernel::on_second_half();
+            b()
+        });
         let first = a();
         let second = second
             .join()

@@ -346,7 +346,7 @@ mod tests {
     use crate::fem::{Form, assemble};
     use crate::mesh::Element;
 
-    use crate::fem::partial::Kernel;
+    use crate::fem::gather::Kernel;
     use nalgebra::DMatrix;
 
     /// The H¹ form on an nx × ny grid of `element`, with its two halves' and its one part's

@@ -91,7 +91,9 @@ fn the_inf_sup_estimate_is_refused_before_it_runs_out_of_memory() {
     const MIB: f64 = (1u64 << 20) as f64;
     // A probe: the smallest of these limits that leaves the process some room to start, and
     // is refused, gives the estimate and the mapping (the limit less what was available).
-    let (need, mapped) = [512u64, 768, 1024, 1536, 2048]
+    // The probes climb past what the dense product kernel reserves on the first product (960
+    // MiB where the L3 is reported as 480 MiB; src/fem/memory/kernel.rs).
+    let (need, mapped) = [512u64, 768, 1024, 1280, 1536, 1792, 2048, 2560, 3072, 4096]
         .into_iter()
         .find_map(|mib| {
             let (code, stderr) = riplab_limited(mib, &args);
@@ -99,7 +101,7 @@ fn the_inf_sup_estimate_is_refused_before_it_runs_out_of_memory() {
             (code == 2 && available >= 0.1 * f64::from(1u32 << 30))
                 .then_some((need, mib as f64 * MIB - available))
         })
-        .expect("a probe under 512–2048 MiB is refused with the estimate and what is available");
+        .expect("a probe under 512–4096 MiB is refused with the estimate and what is available");
     // One decimal of GiB on each figure: ±0.1 GiB on the sum, far inside the 25% below.
     let limit = |fraction: f64| ((mapped + fraction * need) / MIB).ceil() as u64;
     for fraction in [0.75, 0.95, 1.1, 1.3, 1.6] {
@@ -120,6 +122,29 @@ fn the_inf_sup_estimate_is_refused_before_it_runs_out_of_memory() {
         }
         if fraction > 1.5 {
             assert_eq!(code, 0, "{at}: the estimate said it fits: {stderr}");
+        }
+    }
+}
+
+/// A solve under address-space limits around what the process maps and the dense product
+/// kernel reserves on a thread's first product (twice its figure for the L3 cache: 960 MiB on
+/// a host whose two cores share a 480 MiB L3, 4 MiB on a small one) is refused with exit 2 or
+/// answers: never aborted inside the kernel (`memory allocation of 1006632960 bytes failed`
+/// under 1000 MiB, with the guard's estimate fitting). With two threads, each thread that may
+/// multiply keeps its own.
+#[test]
+fn a_solve_under_a_tight_address_space_is_refused_never_aborted() {
+    for (mib, threads) in [(700u64, "1"), (1000, "1"), (1400, "1"), (1400, "2")] {
+        let args = ["solve", "--level", "5", "--element", "q2", "--threads", threads];
+        let (code, stderr) = riplab_limited(mib, &args);
+        no_panic(&stderr);
+        let at = format!("{mib} MiB, {threads} threads");
+        assert!(code == 0 || code == 2, "{at}: exit {code}: {stderr}");
+        if code == 2 {
+            assert!(
+                stderr.contains("choose a coarser level") && stderr.contains("available"),
+                "{at}: {stderr}"
+            );
         }
     }
 }
