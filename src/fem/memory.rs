@@ -5,11 +5,13 @@
 //! `memory.max` or v1 `memory.limit_in_bytes`, less its usage, at every level of the
 //! hierarchy), whichever is smallest (Linux; elsewhere nothing is known and nothing refused).
 //! The address-space limit also keeps what the dense product kernel reserves on each thread
-//! that may multiply (`fem/memory/kernel.rs`).
+//! that will multiply (`fem/memory/kernel.rs`).
 
-pub(super) mod kernel;
+mod kernel;
 
 use std::path::Path;
+
+use faer::Par;
 
 use super::error::FemError;
 use crate::mesh::Element;
@@ -82,13 +84,29 @@ impl Sizes {
     /// Refuse before allocating when `need` bytes (an estimate of work on these sizes)
     /// exceed what `limits` leave.
     pub fn check_need(&self, need: u64, limits: &Limits) -> Result<(), FemError> {
-        match limits.available() {
+        match self.beside_parallel_threads(limits).available() {
             Some(available) if need > available => Err(FemError::TooLarge {
                 unknowns: self.unknowns,
                 need,
                 available,
             }),
             _ => Ok(()),
+        }
+    }
+
+    /// `limits`, and when these sizes run on several threads (`fem::sparse_parallelism`,
+    /// `fem::dense_parallelism`), the address space less what those threads' dense product
+    /// buffers take (`fem/memory/kernel.rs`).
+    fn beside_parallel_threads(&self, limits: &Limits) -> Limits {
+        let order = self.trace.max(self.points);
+        let parallel = matches!(super::sparse_parallelism(self.unknowns), Par::Rayon(_))
+            || matches!(super::dense_parallelism(order), Par::Rayon(_));
+        match limits.address_space {
+            Some(headroom) if parallel => Limits {
+                address_space: Some(headroom.saturating_sub(kernel::parallel_to_map(headroom))),
+                ..limits.clone()
+            },
+            _ => limits.clone(),
         }
     }
 }
@@ -99,7 +117,7 @@ pub struct Limits {
     /// `MemAvailable` of /proc/meminfo.
     pub machine: Option<u64>,
     /// The soft RLIMIT_AS less the address space already mapped (VmSize) and the dense
-    /// product kernel's buffers of the threads that may multiply (`fem/memory/kernel.rs`).
+    /// product kernel's buffers of the calling thread if still to map (`fem/memory/kernel.rs`).
     pub address_space: Option<u64>,
     /// The tightest control group limit less that group's usage.
     pub cgroup: Option<u64>,

@@ -85,10 +85,7 @@ pub(crate) fn join<A: Send, B: Send>(a: impl FnOnce() -> A + Send, b: impl FnOnc
         return (a(), b());
     }
     std::thread::scope(|scope| {
-        let second = scope.spawn(|| {
-            memory::kernel::on_second_half();
-            b()
-        });
+        let second = scope.spawn(b);
         let first = a();
         let second = second
             .join()

@@ -8,13 +8,15 @@
 //! cannot hold it the allocation aborts the process inside the kernel. Its size follows the
 //! cache the machine reports: 960 MiB on a host whose two cores share a 480 MiB L3.
 //!
-//! [`Limits::of_process`](super::Limits::of_process) therefore counts these buffers for every
-//! thread that may multiply. It maps those of the calling thread and of rayon's pool the
-//! first time it reads the limits, when the address space holds them, so that from then on
-//! what the process maps includes them. The second half of a split factorisation runs on a
-//! thread made for it (`fem::join`), whose buffers are always still to come. The kernel's
-//! figure is computed the way the kernel computes it, because its cache module is private.
-//! The tests `hostile_again::a_solve_under_a_tight_address_space_is_refused_never_aborted` and
+//! The memory guard therefore counts these buffers for the threads that will multiply.
+//! [`Limits::of_process`](super::Limits::of_process) maps the calling thread's the first time
+//! it reads the limits, when the address space holds them, so that from then on what the
+//! process maps includes them. A check of sizes that run in parallel
+//! ([`Sizes::check_need`](super::Sizes::check_need)) also counts the second half's thread of a
+//! split factorisation, made for each one (`fem::join`), and rayon's pool, whose buffers it
+//! maps the same way. The kernel's figure is computed the way the kernel computes it, because
+//! its cache module is private. The tests
+//! `hostile_again::a_solve_under_a_tight_address_space_is_refused_never_aborted` and
 //! `hostile_again::the_inf_sup_estimate_is_refused_before_it_runs_out_of_memory` (tests/cli)
 //! check this end to end: under address-space limits around the buffers and the estimate, a
 //! solve answers or is refused, never aborted.
@@ -22,8 +24,6 @@
 use std::cell::Cell;
 use std::path::Path;
 use std::sync::atomic::{AtomicBool, Ordering};
-
-use faer::Par;
 
 use super::super::gather::Kernel;
 
@@ -38,14 +38,6 @@ const MARGIN: u64 = 64 << 20;
 thread_local! {
     /// Whether this thread's buffers are mapped.
     static MAPPED: Cell<bool> = const { Cell::new(false) };
-    /// Whether this thread is a split factorisation's second half (`fem::join`).
-    static SECOND_HALF: Cell<bool> = const { Cell::new(false) };
-}
-
-/// Mark the calling thread as the second half of a split factorisation: its buffers are the
-/// calling thread's, not another's still to come.
-pub(in crate::fem) fn on_second_half() {
-    SECOND_HALF.set(true);
 }
 
 /// Whether every thread of rayon's pool has its buffers mapped.
@@ -64,49 +56,43 @@ fn per_thread() -> u64 {
     })
 }
 
-/// The buffers the threads that may multiply have still to map, bytes, `headroom` giving the
-/// address space left. The calling thread's, and with more than one thread rayon's pool's,
-/// are mapped first where the headroom holds them (and counted from then on in what the
-/// process maps). A second half's thread is new for each split factorisation: outside one, its
-/// buffers are to come; while both halves run, the first half's reading counts them although
-/// the second may have mapped them already (a refusal up to one thread's buffers early, never
-/// an abort).
+/// The calling thread's buffers if still to map, bytes, `headroom` giving the address space
+/// left: they are mapped here where the headroom holds them (0 then: what the process maps
+/// counts them from now on).
 pub(super) fn to_map(headroom: impl Fn() -> u64) -> u64 {
+    let per = per_thread();
+    if per == 0 || MAPPED.get() {
+        return 0;
+    }
+    if headroom() >= per + MARGIN {
+        map_here();
+        0
+    } else {
+        per
+    }
+}
+
+/// The address space a parallel solve's other threads take beside `headroom` (read before
+/// this call), bytes: the second half's buffers, always to come, and rayon's pool's, mapped
+/// here where the headroom holds them, unless mapped before.
+pub(super) fn parallel_to_map(headroom: u64) -> u64 {
     let per = per_thread();
     if per == 0 {
         return 0;
     }
-    let mut to_come = 0;
-    if !MAPPED.get() {
-        if headroom() >= per + MARGIN {
-            map_here();
-        } else {
-            to_come += per;
-        }
+    if POOL_MAPPED.load(Ordering::Relaxed) {
+        return per;
     }
-    if matches!(super::super::parallelism(), Par::Rayon(_)) {
-        if !SECOND_HALF.get() {
-            to_come += per;
-        }
-        if !POOL_MAPPED.load(Ordering::Relaxed) && rayon::current_thread_index().is_none() {
-            // Counting the pool starts it: its threads' stacks are mapped before the headroom
-            // is read.
-            let pool = rayon::current_num_threads() as u64 * per;
-            if headroom() >= to_come + pool + MARGIN {
-                rayon::broadcast(|_| {
-                    if !MAPPED.get() {
-                        map_here();
-                    }
-                });
-                POOL_MAPPED.store(true, Ordering::Relaxed);
-            } else {
-                to_come += pool;
+    let pool = rayon::current_num_threads() as u64 * per;
+    if rayon::current_thread_index().is_none() && headroom >= per + pool + MARGIN {
+        rayon::broadcast(|_| {
+            if !MAPPED.get() {
+                map_here();
             }
-        } else if !POOL_MAPPED.load(Ordering::Relaxed) {
-            to_come += rayon::current_num_threads() as u64 * per;
-        }
+        });
+        POOL_MAPPED.store(true, Ordering::Relaxed);
     }
-    to_come
+    per + pool
 }
 
 /// Map this thread's buffers (one 1×1 product through the kernel).
