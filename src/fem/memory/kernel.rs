@@ -101,9 +101,9 @@ fn map_here() {
     MAPPED.set(true);
 }
 
-/// Two buffers of `l3` bytes, each in whole 4 KiB pages.
+/// Two buffers of `l3` bytes, each in whole 4 KiB pages (saturating).
 fn buffers(l3: u64) -> u64 {
-    2 * l3.div_ceil(4096) * 4096
+    l3.div_ceil(4096).saturating_mul(4096).saturating_mul(2)
 }
 
 /// The kernel's L1, L2 and L3 figures from what sysfs gave (None: its defaults): each at
@@ -111,8 +111,8 @@ fn buffers(l3: u64) -> u64 {
 fn kernel_caches(read: Option<[u64; 3]>) -> [u64; 3] {
     let [l1, l2, l3] = read.unwrap_or(DEFAULT_CACHES);
     let l1 = l1.max(DEFAULT_CACHES[0]);
-    let l2 = l2.max(DEFAULT_CACHES[1]).max(4 * l1);
-    let l3 = l3.max(DEFAULT_CACHES[2]).max(4 * l2);
+    let l2 = l2.max(DEFAULT_CACHES[1]).max(l1.saturating_mul(4));
+    let l3 = l3.max(DEFAULT_CACHES[2]).max(l2.saturating_mul(4));
     [l1, l2, l3]
 }
 
@@ -154,9 +154,9 @@ fn sysfs_caches(root: &Path, physical: usize) -> Option<[u64; 3]> {
         }
     }
     for c in &mut caches {
-        *c *= l1_shared as u64;
+        *c = c.saturating_mul(l1_shared as u64);
     }
-    caches[2] *= physical as u64;
+    caches[2] = caches[2].saturating_mul(physical as u64);
     Some(caches)
 }
 
@@ -191,13 +191,17 @@ fn size_bytes(text: &str) -> Option<u64> {
 fn cpu_count(text: &str) -> Option<usize> {
     text.split(',').try_fold(0usize, |count, item| {
         let n = match item.split_once('-') {
-            Some((start, end)) => (end.parse::<usize>().ok()? + 1).checked_sub(start.parse().ok()?)?,
+            Some((start, end)) => end
+                .parse::<usize>()
+                .ok()?
+                .checked_add(1)?
+                .checked_sub(start.parse().ok()?)?,
             None => {
                 item.parse::<usize>().ok()?;
                 1
             }
         };
-        Some(count + n)
+        count.checked_add(n)
     })
 }
 
@@ -270,6 +274,29 @@ mod tests {
         );
         let _ = std::fs::remove_dir_all(&root);
         assert_eq!(sysfs_caches(&root, 1), None, "no tree: the defaults");
+    }
+
+    /// Figures no machine reports, as a container's sysfs may: a size near 2⁶⁴ bytes and a CPU
+    /// list ending at usize::MAX saturate, never overflow (the guard runs before every solve).
+    #[test]
+    fn absurd_cache_figures_saturate() {
+        let root = sysfs(
+            "absurd",
+            2,
+            &[
+                ("Data", 1, "48K", "0-18446744073709551615"),
+                ("Unified", 3, "18014398509481983K", "0"),
+            ],
+        );
+        let caches = kernel_caches(sysfs_caches(&root, usize::MAX));
+        assert_eq!(caches[2], u64::MAX);
+        assert_eq!(buffers(caches[2]), u64::MAX);
+        let _ = std::fs::remove_dir_all(root);
+        assert_eq!(
+            cpu_count("0-18446744073709551615,1"),
+            None,
+            "more CPUs than usize counts"
+        );
     }
 
     #[test]
