@@ -317,8 +317,8 @@ fn table(
         (None, None) => "h: the slave's widest edge · slope: β_h ∝ h^slope, the finest two levels".into(),
     };
     lines.push(Line::styled(format!(" {foot}"), theme.faint()));
-    let title = format!(" β_h per multiplier space{} ", hidden(&levels, shown));
-    table_block(frame, area, lines, bordered.then_some(title), theme);
+    let title = bordered.then(|| format!(" β_h per multiplier space{} ", hidden(&levels, shown)));
+    table_block(frame, area, lines, title, theme);
 }
 
 /// The levels of `levels` (ascending from 0) that fit in `rows`: all, else the `rows` finest up

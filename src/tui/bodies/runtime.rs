@@ -299,17 +299,24 @@ mod tests {
         Scenario::load(Path::new(path)).unwrap()
     }
 
-    /// The next answer of the worker: (its generation, its ratio).
-    /// A worker on the patch scenario, the scenario's settings with `method`, and the channels
-    /// the worker answers on: solves, then estimates.
-    fn worker(method: InterfaceMethod) -> (Jobs, Settings, mpsc::Receiver<Input>, mpsc::Receiver<Estimated>) {
-        let scenario = patch();
-        let settings = Settings::of(&scenario, method).unwrap();
+    /// A worker on `scenario`, its settings with `method`, and the channels the worker answers
+    /// on: solves, then estimates.
+    fn worker(
+        scenario: &Scenario,
+        method: InterfaceMethod,
+    ) -> (Jobs, Settings, mpsc::Receiver<Input>, mpsc::Receiver<Estimated>) {
+        let settings = Settings::of(scenario, method).unwrap();
         let (tx, rx) = mpsc::channel();
         let (estimates, got) = mpsc::channel();
-        (spawn_worker(scenario, tx, estimates).unwrap(), settings, rx, got)
+        (
+            spawn_worker(scenario.clone(), tx, estimates).unwrap(),
+            settings,
+            rx,
+            got,
+        )
     }
 
+    /// The next answer of the worker: (its generation, its ratio).
     fn answer(rx: &mpsc::Receiver<Input>) -> (u64, (u32, u32)) {
         // A generous deadline, not a timing: the worker answers in well under a second.
         match rx.recv_timeout(Duration::from_secs(120)).expect("an answer") {
@@ -322,7 +329,7 @@ mod tests {
     /// thread; of requests queued while it works, it solves the newest.
     #[test]
     fn the_worker_answers_the_newest_request() {
-        let (jobs, settings, rx, _got) = worker(InterfaceMethod::Nts);
+        let (jobs, settings, rx, _got) = worker(&patch(), InterfaceMethod::Nts);
         for generation in 1..=3 {
             let ratio = RATIOS[generation as usize];
             jobs.send((generation, Settings { ratio, ..settings })).unwrap();
@@ -340,7 +347,7 @@ mod tests {
     /// worker's first answer is the newest request's, and a later request is answered after it.
     #[test]
     fn the_worker_never_answers_a_stale_request() {
-        let (jobs, settings, rx, _got) = worker(InterfaceMethod::Nts);
+        let (jobs, settings, rx, _got) = worker(&patch(), InterfaceMethod::Nts);
         // Generation 3 is the newest before the worker sees any request.
         jobs.newest.store(3, Ordering::Release);
         for generation in 1..=3 {
@@ -367,7 +374,7 @@ mod tests {
     #[test]
     fn the_worker_estimates_level_by_level_and_gives_up_a_stale_key() {
         let scenario = patch();
-        let (jobs, settings, _rx, got) = worker(InterfaceMethod::Mortar);
+        let (jobs, settings, _rx, got) = worker(&scenario, InterfaceMethod::Mortar);
         let key = |ratio| EstimateKey {
             ratio,
             ..EstimateKey::of(&settings, &scenario)

@@ -254,8 +254,8 @@ fn table(app: &App, frame: &mut Frame, area: Rect, theme: Theme, all: &[Series],
         },
         theme.faint(),
     ));
-    let title = format!(" β_h/√h (raw) and β̄_h/√h (M1 p̄){} ", hidden_rows(levels, shown));
-    table_block(frame, area, lines, bordered.then_some(title), theme);
+    let title = bordered.then(|| format!(" β_h/√h (raw) and β̄_h/√h (M1 p̄){} ", hidden_rows(levels, shown)));
+    table_block(frame, area, lines, title, theme);
 }
 
 /// The table of an inf-sup view (one body's or two bodies'): `lines` in `area`, in a block
