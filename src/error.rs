@@ -173,7 +173,7 @@ pub enum Workload {
 /// [`SolveError::TooLarge`]'s message.
 fn too_large(workload: &Workload, unknowns: usize, need: u64, available: u64) -> String {
     let (need, available) = (gib(need), gib(available));
-    let limits = "free memory, ulimit -v less what is mapped and the product kernel's buffers, and the control group's limit";
+    let limits = crate::fem::memory::limits_in_words();
     match workload {
         Workload::Level {
             level,

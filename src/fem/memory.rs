@@ -111,6 +111,26 @@ impl Sizes {
     }
 }
 
+/// What a refusal's "available" is the smallest of, in words: the address-space limit named
+/// with the dense product kernel's buffers per thread where the processor runs the kernel
+/// (`fem/memory/kernel.rs`; 0.9 GiB on a host whose cores share a 480 MiB L3), so that a user
+/// under `ulimit -v` reads what the limit must hold beside the work.
+pub(crate) fn limits_in_words() -> String {
+    limits_words(kernel::per_thread())
+}
+
+fn limits_words(per_thread: u64) -> String {
+    let buffers = if per_thread == 0 {
+        String::new()
+    } else {
+        format!(
+            " and the product kernel's {} a thread",
+            super::error::gib(per_thread)
+        )
+    };
+    format!("free memory, ulimit -v less what is mapped{buffers}, and the control group's limit")
+}
+
 /// What the kernel says about this process's memory, bytes (None: unknown or unlimited).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Limits {
@@ -261,6 +281,18 @@ pub fn cgroup_headroom(root: &Path, rel: &str, v2: bool) -> Option<u64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_limits_name_the_kernels_buffers_where_it_runs() {
+        assert_eq!(
+            limits_words(1_006_632_960),
+            "free memory, ulimit -v less what is mapped and the product kernel's 0.9 GiB a thread, and the control group's limit"
+        );
+        assert_eq!(
+            limits_words(0),
+            "free memory, ulimit -v less what is mapped, and the control group's limit"
+        );
+    }
 
     #[test]
     fn work_under_way_is_taken_from_every_known_limit() {

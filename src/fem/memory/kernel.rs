@@ -45,7 +45,7 @@ static POOL_MAPPED: AtomicBool = AtomicBool::new(false);
 
 /// The bytes one thread's first product reserves: two buffers of the kernel's L3 figure,
 /// each rounded up to whole 4 KiB pages (0 where the processor does not run the kernel).
-fn per_thread() -> u64 {
+pub(super) fn per_thread() -> u64 {
     static BYTES: std::sync::OnceLock<u64> = std::sync::OnceLock::new();
     *BYTES.get_or_init(|| {
         if Kernel::detect() == Kernel::Dense {
