@@ -64,7 +64,7 @@ pub(super) fn to_map(headroom: impl Fn() -> u64) -> u64 {
     if per == 0 || MAPPED.get() {
         return 0;
     }
-    if headroom() >= per + MARGIN {
+    if holds(headroom(), per) {
         map_here();
         0
     } else {
@@ -83,8 +83,8 @@ pub(super) fn parallel_to_map(headroom: u64) -> u64 {
     if POOL_MAPPED.load(Ordering::Relaxed) {
         return per;
     }
-    let pool = rayon::current_num_threads() as u64 * per;
-    if rayon::current_thread_index().is_none() && headroom >= per + pool + MARGIN {
+    let threads = threads_need(per, rayon::current_num_threads());
+    if rayon::current_thread_index().is_none() && holds(headroom, threads) {
         rayon::broadcast(|_| {
             if !MAPPED.get() {
                 map_here();
@@ -92,7 +92,19 @@ pub(super) fn parallel_to_map(headroom: u64) -> u64 {
         });
         POOL_MAPPED.store(true, Ordering::Relaxed);
     }
-    per + pool
+    threads
+}
+
+/// Whether `headroom` holds `need` bytes of buffers and the [`MARGIN`] beside them (never
+/// when the sum overflows).
+fn holds(headroom: u64, need: u64) -> bool {
+    need.checked_add(MARGIN).is_some_and(|n| headroom >= n)
+}
+
+/// The buffers, bytes, of the second half's thread and a pool of `pool` threads, `per` each
+/// (saturating: a figure read from sysfs may be absurd).
+fn threads_need(per: u64, pool: usize) -> u64 {
+    per.saturating_mul(pool as u64).saturating_add(per)
 }
 
 /// Map this thread's buffers (one 1×1 product through the kernel).
@@ -297,6 +309,13 @@ mod tests {
             None,
             "more CPUs than usize counts"
         );
+        // What the guard does with such a figure: no room holds it, and the threads' sum
+        // saturates.
+        assert!(!holds(u64::MAX, u64::MAX));
+        assert!(!holds(u64::MAX, u64::MAX - 1));
+        assert_eq!(threads_need(u64::MAX, 2), u64::MAX);
+        assert_eq!(threads_need(1 << 30, 2), 3 << 30);
+        assert!(holds(2 << 30, 1 << 30));
     }
 
     #[test]
